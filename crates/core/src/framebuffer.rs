@@ -1,0 +1,78 @@
+//! Frame buffers: linear RGB images and the G-buffer.
+use glam::Vec3;
+use slc_bounds::Brdf;
+
+/// A linear-RGB float image, row 0 at the top.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Image {
+    pub width: u32,
+    pub height: u32,
+    pub pixels: Vec<Vec3>,
+}
+
+impl Image {
+    pub fn new(width: u32, height: u32) -> Self {
+        Self { width, height, pixels: vec![Vec3::ZERO; width as usize * height as usize] }
+    }
+
+    #[inline]
+    pub fn get(&self, x: u32, y: u32) -> Vec3 {
+        self.pixels[y as usize * self.width as usize + x as usize]
+    }
+
+    /// Mean over all pixels, per channel (accumulated in f64).
+    pub fn mean(&self) -> Vec3 {
+        let mut s = [0.0f64; 3];
+        for p in &self.pixels {
+            for c in 0..3 {
+                s[c] += p[c] as f64;
+            }
+        }
+        let n = self.pixels.len().max(1) as f64;
+        Vec3::new((s[0] / n) as f32, (s[1] / n) as f32, (s[2] / n) as f32)
+    }
+
+    /// Pixel-wise sum of two images of the same size.
+    pub fn add(&self, other: &Image) -> Image {
+        assert_eq!((self.width, self.height), (other.width, other.height));
+        let pixels = self.pixels.iter().zip(&other.pixels).map(|(a, b)| *a + *b).collect();
+        Image { width: self.width, height: self.height, pixels }
+    }
+
+    /// Root-mean-square error against another image of the same size, over all pixels and channels.
+    pub fn rmse(&self, other: &Image) -> f32 {
+        assert_eq!((self.width, self.height), (other.width, other.height));
+        let mut s = 0.0f64;
+        for (a, b) in self.pixels.iter().zip(&other.pixels) {
+            s += (*a - *b).length_squared() as f64;
+        }
+        (s / (3.0 * self.pixels.len().max(1) as f64)).sqrt() as f32
+    }
+
+    /// Whether every value is finite and non-negative.
+    pub fn is_finite_non_negative(&self) -> bool {
+        self.pixels.iter().all(|p| p.is_finite() && p.min_element() >= 0.0)
+    }
+}
+
+/// What the camera sees at one pixel: the surface point and its BRDF.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct GSample {
+    pub position: Vec3,
+    /// Unit shading normal, on the side facing the camera.
+    pub normal: Vec3,
+    /// Unit direction from the surface towards the camera.
+    pub omega_o: Vec3,
+    /// Linear view depth (distance along the camera's forward axis).
+    pub depth: f32,
+    pub brdf: Brdf,
+}
+
+/// A G-buffer: per pixel, the visible surface, or `None` where the camera sees nothing or the
+/// back of a one-sided surface (both black).
+#[derive(Clone, Debug, PartialEq)]
+pub struct GBuffer {
+    pub width: u32,
+    pub height: u32,
+    pub samples: Vec<Option<GSample>>,
+}

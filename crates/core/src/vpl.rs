@@ -1,0 +1,48 @@
+//! Virtual point lights.
+use glam::Vec3;
+use slc_bounds::Brdf;
+
+/// Which lobe of the surface BRDF a VPL reflects with. A reflective-shadow-map texel yields a
+/// diffuse VPL (where kd > 0) and a glossy VPL (where the specular layer reflects); together
+/// they reflect with the full BRDF.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum VplLobe {
+    Diffuse,
+    Glossy,
+}
+
+/// A virtual point light: the photon that arrived at a surface point, re-emitted with one
+/// lobe of that surface's BRDF (paper eq. 4).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Vpl {
+    /// Position q on the surface.
+    pub position: Vec3,
+    /// Unit surface normal n (facing the side the photon arrived from).
+    pub normal: Vec3,
+    /// Unit direction ωi from the VPL towards where the photon came from.
+    pub omega_i: Vec3,
+    /// Radiant flux Φ of the photon that arrived (W per channel).
+    pub flux: Vec3,
+    /// The surface's BRDF at q.
+    pub brdf: Brdf,
+    pub lobe: VplLobe,
+    /// The VPL's Russian-roulette number ξ in (0, 1) (paper eq. 3), from [`crate::rng::vpl_xi`].
+    pub xi: f32,
+}
+
+impl Vpl {
+    /// Radiant intensity towards unit direction `omega_o`, paper eq. (4):
+    /// `I(ωo) = Φ f(ωi, ωo) max(ωo·n, 0)` with f the VPL's lobe of the BRDF.
+    #[inline]
+    pub fn intensity(&self, omega_o: Vec3) -> Vec3 {
+        let cos_o = self.normal.dot(omega_o);
+        if cos_o <= 0.0 {
+            return Vec3::ZERO;
+        }
+        let f = match self.lobe {
+            VplLobe::Diffuse => self.brdf.diffuse(self.normal, self.omega_i, omega_o),
+            VplLobe::Glossy => self.brdf.specular(self.normal, self.omega_i, omega_o),
+        };
+        self.flux * f * cos_o
+    }
+}
