@@ -60,7 +60,12 @@ impl Camera {
             Vec4::new(r.x, u.x, b.x, 0.0),
             Vec4::new(r.y, u.y, b.y, 0.0),
             Vec4::new(r.z, u.z, b.z, 0.0),
-            Vec4::new(-r.dot(self.position), -u.dot(self.position), -b.dot(self.position), 1.0),
+            Vec4::new(
+                -r.dot(self.position),
+                -u.dot(self.position),
+                -b.dot(self.position),
+                1.0,
+            ),
         )
     }
 
@@ -76,7 +81,13 @@ mod tests {
 
     #[test]
     fn centre_ray_is_forward_and_corners_span_the_fov() {
-        let cam = Camera::look_at(Vec3::new(0.0, 1.0, 3.4), Vec3::new(0.0, 1.0, 0.0), Vec3::Y, 40f32.to_radians()).unwrap();
+        let cam = Camera::look_at(
+            Vec3::new(0.0, 1.0, 3.4),
+            Vec3::new(0.0, 1.0, 0.0),
+            Vec3::Y,
+            40f32.to_radians(),
+        )
+        .unwrap();
         let d = cam.ray_direction(128, 128, 0.0, 0.0, 256, 256);
         assert!((d - Vec3::NEG_Z).length() < 1e-6);
         // Top edge of the image: angle to forward is yfov/2.

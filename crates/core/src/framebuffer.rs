@@ -12,7 +12,11 @@ pub struct Image {
 
 impl Image {
     pub fn new(width: u32, height: u32) -> Self {
-        Self { width, height, pixels: vec![Vec3::ZERO; width as usize * height as usize] }
+        Self {
+            width,
+            height,
+            pixels: vec![Vec3::ZERO; width as usize * height as usize],
+        }
     }
 
     #[inline]
@@ -35,8 +39,17 @@ impl Image {
     /// Pixel-wise sum of two images of the same size.
     pub fn add(&self, other: &Image) -> Image {
         assert_eq!((self.width, self.height), (other.width, other.height));
-        let pixels = self.pixels.iter().zip(&other.pixels).map(|(a, b)| *a + *b).collect();
-        Image { width: self.width, height: self.height, pixels }
+        let pixels = self
+            .pixels
+            .iter()
+            .zip(&other.pixels)
+            .map(|(a, b)| *a + *b)
+            .collect();
+        Image {
+            width: self.width,
+            height: self.height,
+            pixels,
+        }
     }
 
     /// Root-mean-square error against another image of the same size, over all pixels and channels.
@@ -51,7 +64,9 @@ impl Image {
 
     /// Whether every value is finite and non-negative.
     pub fn is_finite_non_negative(&self) -> bool {
-        self.pixels.iter().all(|p| p.is_finite() && p.min_element() >= 0.0)
+        self.pixels
+            .iter()
+            .all(|p| p.is_finite() && p.min_element() >= 0.0)
     }
 }
 
@@ -61,6 +76,8 @@ pub struct GSample {
     pub position: Vec3,
     /// Unit shading normal, on the side facing the camera.
     pub normal: Vec3,
+    /// Unit geometric normal, on the side facing the camera (lifts shadow-ray origins).
+    pub geometric_normal: Vec3,
     /// Unit direction from the surface towards the camera.
     pub omega_o: Vec3,
     /// Linear view depth (distance along the camera's forward axis).

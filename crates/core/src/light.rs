@@ -44,15 +44,31 @@ impl Light {
     /// (outside a spot cone, at the light's own position).
     pub fn incident(&self, x: Vec3) -> Option<Incident> {
         match *self {
-            Light::Point { position, intensity } => point_incident(position, intensity, x),
-            Light::Spot { position, direction, intensity, .. } => {
+            Light::Point {
+                position,
+                intensity,
+            } => point_incident(position, intensity, x),
+            Light::Spot {
+                position,
+                direction,
+                intensity,
+                ..
+            } => {
                 let inc = point_incident(position, intensity, x)?;
                 let falloff = self.spot_falloff(-inc.omega_i.dot(direction));
-                (falloff > 0.0).then(|| Incident { irradiance: inc.irradiance * falloff, ..inc })
+                (falloff > 0.0).then(|| Incident {
+                    irradiance: inc.irradiance * falloff,
+                    ..inc
+                })
             }
-            Light::Directional { direction, irradiance } => {
-                Some(Incident { omega_i: -direction, distance: f32::INFINITY, irradiance })
-            }
+            Light::Directional {
+                direction,
+                irradiance,
+            } => Some(Incident {
+                omega_i: -direction,
+                distance: f32::INFINITY,
+                irradiance,
+            }),
         }
     }
 
@@ -60,7 +76,11 @@ impl Light {
     /// direction (1 for other lights).
     pub fn spot_falloff(&self, cos_axis: f32) -> f32 {
         match *self {
-            Light::Spot { inner_cone_angle, outer_cone_angle, .. } => {
+            Light::Spot {
+                inner_cone_angle,
+                outer_cone_angle,
+                ..
+            } => {
                 let (ci, co) = (inner_cone_angle.cos(), outer_cone_angle.cos());
                 let t = ((cos_axis - co) / (ci - co).max(1e-3)).clamp(0.0, 1.0);
                 t * t
@@ -73,8 +93,17 @@ impl Light {
     pub fn is_valid(&self) -> bool {
         let ok = |v: Vec3| v.is_finite() && v.min_element() >= 0.0;
         match *self {
-            Light::Point { position, intensity } => position.is_finite() && ok(intensity),
-            Light::Spot { position, direction, intensity, inner_cone_angle, outer_cone_angle } => {
+            Light::Point {
+                position,
+                intensity,
+            } => position.is_finite() && ok(intensity),
+            Light::Spot {
+                position,
+                direction,
+                intensity,
+                inner_cone_angle,
+                outer_cone_angle,
+            } => {
                 position.is_finite()
                     && direction.is_normalized()
                     && ok(intensity)
@@ -82,7 +111,10 @@ impl Light {
                     && inner_cone_angle <= outer_cone_angle
                     && outer_cone_angle <= std::f32::consts::FRAC_PI_2
             }
-            Light::Directional { direction, irradiance } => direction.is_normalized() && ok(irradiance),
+            Light::Directional {
+                direction,
+                irradiance,
+            } => direction.is_normalized() && ok(irradiance),
         }
     }
 }
@@ -92,7 +124,11 @@ fn point_incident(position: Vec3, intensity: Vec3, x: Vec3) -> Option<Incident> 
     let d2 = to_light.length_squared();
     (d2 > 0.0).then(|| {
         let distance = d2.sqrt();
-        Incident { omega_i: to_light / distance, distance, irradiance: intensity / d2 }
+        Incident {
+            omega_i: to_light / distance,
+            distance,
+            irradiance: intensity / d2,
+        }
     })
 }
 
@@ -102,7 +138,10 @@ mod tests {
 
     #[test]
     fn inverse_square_law() {
-        let l = Light::Point { position: Vec3::new(0.0, 2.0, 0.0), intensity: Vec3::splat(5.0) };
+        let l = Light::Point {
+            position: Vec3::new(0.0, 2.0, 0.0),
+            intensity: Vec3::splat(5.0),
+        };
         let inc = l.incident(Vec3::ZERO).unwrap();
         assert_eq!(inc.omega_i, Vec3::Y);
         assert!((inc.irradiance.x - 1.25).abs() < 1e-6);

@@ -13,7 +13,12 @@ pub const ALPHA_MIN: f32 = 1e-3;
 pub enum MaterialModel {
     /// Diffuse albedo, F0 and α given directly (OBJ+MTL, built-in scenes). A diffuse texture,
     /// when present, multiplies `kd`.
-    Direct { kd: Vec3, kd_texture: Option<TextureId>, f0: Vec3, alpha: f32 },
+    Direct {
+        kd: Vec3,
+        kd_texture: Option<TextureId>,
+        f0: Vec3,
+        alpha: f32,
+    },
     /// glTF 2.0 metallic-roughness: `kd = base (1 - metallic)`,
     /// `F0 = 0.04 (1 - metallic) + base metallic`, `alpha = roughness²` (clamped to [`ALPHA_MIN`]).
     /// Textures multiply the factors: base colour (RGB), metallic (blue) and roughness (green).
@@ -44,7 +49,12 @@ impl Material {
     pub fn direct(name: &str, kd: Vec3, f0: Vec3, alpha: f32) -> Self {
         Self {
             name: name.to_string(),
-            model: MaterialModel::Direct { kd, kd_texture: None, f0, alpha: alpha.max(ALPHA_MIN) },
+            model: MaterialModel::Direct {
+                kd,
+                kd_texture: None,
+                f0,
+                alpha: alpha.max(ALPHA_MIN),
+            },
             eta: None,
             double_sided: false,
         }
@@ -57,7 +67,12 @@ impl Material {
             _ => Vec3::ONE,
         };
         let (kd, f0, alpha) = match self.model {
-            MaterialModel::Direct { kd, kd_texture, f0, alpha } => (kd * lookup(kd_texture), f0, alpha),
+            MaterialModel::Direct {
+                kd,
+                kd_texture,
+                f0,
+                alpha,
+            } => (kd * lookup(kd_texture), f0, alpha),
             MaterialModel::MetallicRoughness {
                 base_color,
                 base_color_texture,
@@ -67,15 +82,26 @@ impl Material {
             } => {
                 let base = base_color * lookup(base_color_texture);
                 let mr = lookup(metallic_roughness_texture);
-                let (m, r) = ((metallic * mr.z).clamp(0.0, 1.0), (roughness * mr.y).clamp(0.0, 1.0));
-                (base * (1.0 - m), Vec3::splat(0.04 * (1.0 - m)) + base * m, r * r)
+                let (m, r) = (
+                    (metallic * mr.z).clamp(0.0, 1.0),
+                    (roughness * mr.y).clamp(0.0, 1.0),
+                );
+                (
+                    base * (1.0 - m),
+                    Vec3::splat(0.04 * (1.0 - m)) + base * m,
+                    r * r,
+                )
             }
         };
         let fresnel = match self.eta {
             Some(eta) => Fresnel::Dielectric(eta),
             None => Fresnel::Schlick(f0.clamp(Vec3::ZERO, Vec3::ONE)),
         };
-        Brdf { kd: kd.clamp(Vec3::ZERO, Vec3::ONE), fresnel, alpha: alpha.clamp(ALPHA_MIN, 1.0) }
+        Brdf {
+            kd: kd.clamp(Vec3::ZERO, Vec3::ONE),
+            fresnel,
+            alpha: alpha.clamp(ALPHA_MIN, 1.0),
+        }
     }
 
     /// Whether the specular layer can reflect anything (F0 > 0 or a dielectric).

@@ -30,19 +30,31 @@ impl Mesh {
     pub fn triangle_defect(&self, tri: [u32; 3]) -> Option<TriangleDefect> {
         let n = self.positions.len();
         if tri.iter().any(|&i| i as usize >= n)
-            || self.normals.as_ref().is_some_and(|v| tri.iter().any(|&i| i as usize >= v.len()))
-            || self.uvs.as_ref().is_some_and(|v| tri.iter().any(|&i| i as usize >= v.len()))
+            || self
+                .normals
+                .as_ref()
+                .is_some_and(|v| tri.iter().any(|&i| i as usize >= v.len()))
+            || self
+                .uvs
+                .as_ref()
+                .is_some_and(|v| tri.iter().any(|&i| i as usize >= v.len()))
         {
             return Some(TriangleDefect::IndexOutOfRange);
         }
         let [a, b, c] = tri.map(|i| self.positions[i as usize]);
         if !(a.is_finite() && b.is_finite() && c.is_finite())
-            || self.normals.as_ref().is_some_and(|v| tri.iter().any(|&i| !v[i as usize].is_finite()))
+            || self
+                .normals
+                .as_ref()
+                .is_some_and(|v| tri.iter().any(|&i| !v[i as usize].is_finite()))
         {
             return Some(TriangleDefect::NonFinite);
         }
         let area2 = (b - a).cross(c - a).length();
-        let scale = (b - a).length_squared().max((c - a).length_squared()).max(f32::MIN_POSITIVE);
+        let scale = (b - a)
+            .length_squared()
+            .max((c - a).length_squared())
+            .max(f32::MIN_POSITIVE);
         (area2 <= 1e-12 * scale || !area2.is_normal()).then_some(TriangleDefect::Degenerate)
     }
 
@@ -99,12 +111,25 @@ mod tests {
     #[test]
     fn defects_are_found_and_counted() {
         let mut m = Mesh {
-            positions: vec![Vec3::ZERO, Vec3::X, Vec3::Y, Vec3::new(2.0, 0.0, 0.0), Vec3::NAN],
+            positions: vec![
+                Vec3::ZERO,
+                Vec3::X,
+                Vec3::Y,
+                Vec3::new(2.0, 0.0, 0.0),
+                Vec3::NAN,
+            ],
             triangles: vec![[0, 1, 2], [0, 1, 3], [0, 1, 4], [0, 1, 9]],
             ..Default::default()
         };
         let c = m.remove_defective_triangles();
         assert_eq!(m.triangles, vec![[0, 1, 2]]);
-        assert_eq!(c, DefectCounts { index_out_of_range: 1, non_finite: 1, degenerate: 1 });
+        assert_eq!(
+            c,
+            DefectCounts {
+                index_out_of_range: 1,
+                non_finite: 1,
+                degenerate: 1
+            }
+        );
     }
 }

@@ -62,7 +62,12 @@ pub struct Sequence {
 
 impl Sequence {
     pub fn new(seed: u32, index: u32, stream: u32, first: u32) -> Self {
-        Self { seed, index, stream, counter: first }
+        Self {
+            seed,
+            index,
+            stream,
+            counter: first,
+        }
     }
 
     /// The next number in (0, 1).
@@ -108,7 +113,10 @@ mod tests {
         assert!((mean - 0.5).abs() < 3.3e-3, "mean {mean}");
         // Chi-square with 9 degrees of freedom: 27.9 is the 0.999 quantile.
         let expected = n as f64 / 10.0;
-        let chi2: f64 = buckets.iter().map(|&b| (b as f64 - expected).powi(2) / expected).sum();
+        let chi2: f64 = buckets
+            .iter()
+            .map(|&b| (b as f64 - expected).powi(2) / expected)
+            .sum();
         assert!(chi2 < 27.9, "chi2 {chi2}");
     }
 
@@ -121,7 +129,10 @@ mod tests {
     #[test]
     fn seeds_and_streams_differ() {
         assert_ne!(vpl_xi(1, 5), vpl_xi(2, 5));
-        assert_ne!(uniform(1, 5, stream::XI, 0), uniform(1, 5, stream::PIXEL, 0));
+        assert_ne!(
+            uniform(1, 5, stream::XI, 0),
+            uniform(1, 5, stream::PIXEL, 0)
+        );
         let mut s = Sequence::new(3, 9, stream::PIXEL, 0);
         let a = s.next_f32();
         assert_eq!(a, uniform(3, 9, stream::PIXEL, 0));

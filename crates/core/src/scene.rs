@@ -52,27 +52,45 @@ impl Scene {
 
     /// Whether any material has a specular layer (else no glossy VPL is generated).
     pub fn has_specular(&self) -> bool {
-        self.meshes.iter().any(|m| self.materials[m.material].has_specular())
+        self.meshes
+            .iter()
+            .any(|m| self.materials[m.material].has_specular())
     }
 
     /// Checks what rendering needs: triangles, at least one valid light, valid material indices.
     pub fn validate_for_render(&self) -> Result<(), SceneError> {
         if self.triangle_count() == 0 {
-            return Err(SceneError::NoGeometry { scene: self.name.clone() });
+            return Err(SceneError::NoGeometry {
+                scene: self.name.clone(),
+            });
         }
         if self.lights.is_empty() {
-            return Err(SceneError::NoLight { scene: self.name.clone() });
+            return Err(SceneError::NoLight {
+                scene: self.name.clone(),
+            });
         }
         if let Some(i) = self.lights.iter().position(|l| !l.is_valid()) {
             return Err(SceneError::Invalid {
                 scene: self.name.clone(),
-                message: format!("light {i} has a non-finite or negative value: {:?}", self.lights[i]),
+                message: format!(
+                    "light {i} has a non-finite or negative value: {:?}",
+                    self.lights[i]
+                ),
             });
         }
-        if let Some(m) = self.meshes.iter().find(|m| m.material >= self.materials.len()) {
+        if let Some(m) = self
+            .meshes
+            .iter()
+            .find(|m| m.material >= self.materials.len())
+        {
             return Err(SceneError::Invalid {
                 scene: self.name.clone(),
-                message: format!("mesh '{}' refers to material {} of {}", m.name, m.material, self.materials.len()),
+                message: format!(
+                    "mesh '{}' refers to material {} of {}",
+                    m.name,
+                    m.material,
+                    self.materials.len()
+                ),
             });
         }
         Ok(())
@@ -91,7 +109,8 @@ impl Scene {
         let yfov = 45f32.to_radians();
         let dist = half.x.max(half.y) / (0.5 * yfov).tan() + half.z;
         let eye = centre + Vec3::Z * dist.max(1e-3);
-        let mut cam = Camera::look_at(eye, centre, Vec3::Y, yfov).expect("eye differs from centre along z");
+        let mut cam =
+            Camera::look_at(eye, centre, Vec3::Y, yfov).expect("eye differs from centre along z");
         cam.zfar = 4.0 * (dist + half.length()).max(1.0);
         cam
     }

@@ -25,7 +25,8 @@ impl Texture {
         let y = uv.y * self.height as f32 - 0.5;
         let (x0, y0) = (x.floor(), y.floor());
         let (fx, fy) = (x - x0, y - y0);
-        let texel = |ix: i64, iy: i64| self.texels[(iy.rem_euclid(h) * w + ix.rem_euclid(w)) as usize];
+        let texel =
+            |ix: i64, iy: i64| self.texels[(iy.rem_euclid(h) * w + ix.rem_euclid(w)) as usize];
         let (ix, iy) = (x0 as i64, y0 as i64);
         let top = texel(ix, iy).lerp(texel(ix + 1, iy), fx);
         let bottom = texel(ix, iy + 1).lerp(texel(ix + 1, iy + 1), fx);
@@ -48,7 +49,12 @@ mod tests {
 
     #[test]
     fn bilinear_and_wrap() {
-        let t = Texture { name: "t".into(), width: 2, height: 1, texels: vec![Vec3::ZERO, Vec3::ONE] };
+        let t = Texture {
+            name: "t".into(),
+            width: 2,
+            height: 1,
+            texels: vec![Vec3::ZERO, Vec3::ONE],
+        };
         assert_eq!(t.sample(Vec2::new(0.25, 0.5)), Vec3::ZERO);
         assert_eq!(t.sample(Vec2::new(0.75, 0.5)), Vec3::ONE);
         assert!((t.sample(Vec2::new(0.5, 0.5)).x - 0.5).abs() < 1e-6);

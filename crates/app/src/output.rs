@@ -1,0 +1,82 @@
+//! Writing images: linear float EXR and sRGB PNG.
+use slc_core::Image;
+use std::path::Path;
+
+/// Writes a linear-RGB float EXR (no exposure, no tone map).
+pub fn write_exr(path: &Path, image: &Image) -> Result<(), String> {
+    let w = image.width as usize;
+    exr::prelude::write_rgb_file(path, w, image.height as usize, |x, y| {
+        let p = image.pixels[y * w + x];
+        (p.x, p.y, p.z)
+    })
+    .map_err(|e| format!("{}: cannot write EXR: {e}", path.display()))
+}
+
+/// The sRGB opto-electronic transfer function of a linear value clamped to [0, 1].
+pub fn linear_to_srgb(c: f32) -> f32 {
+    let c = if c.is_finite() {
+        c.clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    if c <= 0.003_130_8 {
+        12.92 * c
+    } else {
+        1.055 * c.powf(1.0 / 2.4) - 0.055
+    }
+}
+
+/// Writes an 8-bit sRGB PNG of a linear image, values clamped to [0, 1] (like the reference previews).
+pub fn write_png(path: &Path, image: &Image) -> Result<(), String> {
+    let to8 = |c: f32| (linear_to_srgb(c) * 255.0 + 0.5) as u8;
+    let mut out = image::RgbImage::new(image.width, image.height);
+    for (o, p) in out.pixels_mut().zip(&image.pixels) {
+        *o = image::Rgb([to8(p.x), to8(p.y), to8(p.z)]);
+    }
+    out.save(path)
+        .map_err(|e| format!("{}: cannot write PNG: {e}", path.display()))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Reads a linear-RGB EXR (the first RGB layer) into an image.
+    fn read_exr(path: &Path) -> Result<Image, String> {
+        use exr::prelude::*;
+        let img = read_first_rgba_layer_from_file(
+            path,
+            |res, _| (res.width(), vec![Vec3::ZERO; res.width() * res.height()]),
+            |(w, px), pos, (r, g, b, _a): (f32, f32, f32, f32)| {
+                px[pos.y() * *w + pos.x()] = Vec3::new(r, g, b)
+            },
+        )
+        .map_err(|e| format!("{}: cannot read EXR: {e}", path.display()))?;
+        let size = img.layer_data.size;
+        let (_, pixels) = img.layer_data.channel_data.pixels;
+        Ok(slc_core::Image {
+            width: size.width() as u32,
+            height: size.height() as u32,
+            pixels,
+        })
+    }
+
+    #[test]
+    fn exr_round_trip_is_exact() {
+        let mut img = Image::new(3, 2);
+        img.pixels[4] = Vec3::new(0.25, 4.5, 1e-7);
+        let path = std::env::temp_dir().join(format!("slc-exr-{}.exr", std::process::id()));
+        write_exr(&path, &img).unwrap();
+        let back = read_exr(&path).unwrap();
+        std::fs::remove_file(&path).ok();
+        assert_eq!(back, img);
+    }
+
+    #[test]
+    fn srgb_curve() {
+        assert_eq!(linear_to_srgb(0.0), 0.0);
+        assert!((linear_to_srgb(1.0) - 1.0).abs() < 1e-6);
+        assert!((linear_to_srgb(0.214) - 0.5).abs() < 2e-3);
+        assert_eq!(linear_to_srgb(f32::NAN), 0.0);
+    }
+}

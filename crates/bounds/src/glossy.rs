@@ -1,0 +1,230 @@
+//! A glossy VPL: the GGX specular lobe of its radiant intensity (eq. 4, 6) and the radius r
+//! of its bounding spheroid (eq. 12).
+use crate::brdf::microfacet;
+use crate::check;
+use crate::error::BoundsError;
+use crate::fresnel::Fresnel;
+use crate::ggx;
+use crate::stochastic::{scalar_intensity, StochasticParams};
+use core::f64::consts::PI;
+use glam::Vec3;
+
+/// A VPL reflecting by the GGX microfacet BRDF, validated: finite position q, unit normal n,
+/// unit incoming direction ωi (from the VPL towards where the light came from), α in (0, 1],
+/// finite non-negative RGB flux Φ and a valid [`Fresnel`] model.
+///
+/// ωi below or on the surface (ωi·n <= 0) is accepted: such a VPL reflects nothing, and its
+/// bounds are empty.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct GlossyLobe {
+    position: Vec3,
+    normal: Vec3,
+    omega_i: Vec3,
+    alpha: f32,
+    flux: Vec3,
+    fresnel: Fresnel,
+}
+
+impl GlossyLobe {
+    /// Validates the VPL of eq. (4) with the BRDF of eq. (6); see [`BoundsError`] for the
+    /// rejected inputs. Unit vectors are accepted within 1e-3 and renormalised.
+    pub fn new(
+        position: Vec3,
+        normal: Vec3,
+        omega_i: Vec3,
+        alpha: f32,
+        flux: Vec3,
+        fresnel: Fresnel,
+    ) -> Result<Self, BoundsError> {
+        Ok(Self {
+            position: check::finite(position, "position")?,
+            normal: check::unit(normal, "normal")?,
+            omega_i: check::unit(omega_i, "omega_i")?,
+            alpha: check::alpha(alpha)?,
+            flux: check::non_negative(flux, "flux")?,
+            fresnel: check::fresnel(fresnel)?,
+        })
+    }
+
+    /// The VPL position q of eq. (15).
+    #[inline]
+    pub fn position(&self) -> Vec3 {
+        self.position
+    }
+
+    /// The geometric normal n of eq. (4).
+    #[inline]
+    pub fn normal(&self) -> Vec3 {
+        self.normal
+    }
+
+    /// The incoming direction ωi of eq. (4).
+    #[inline]
+    pub fn omega_i(&self) -> Vec3 {
+        self.omega_i
+    }
+
+    /// The GGX roughness α of eq. (7).
+    #[inline]
+    pub fn alpha(&self) -> f32 {
+        self.alpha
+    }
+
+    /// The RGB flux Φ of eq. (4).
+    #[inline]
+    pub fn flux(&self) -> Vec3 {
+        self.flux
+    }
+
+    /// The Fresnel model F of eq. (6).
+    #[inline]
+    pub fn fresnel(&self) -> Fresnel {
+        self.fresnel
+    }
+
+    /// ωi·n, the cosine in the denominators of eq. (9) and (12).
+    #[inline]
+    pub fn cos_i(&self) -> f32 {
+        self.normal.dot(self.omega_i)
+    }
+
+    /// The mirror direction ω_u = 2(ωi·n)n − ωi of section 4.2 (the spheroid's long axis).
+    #[inline]
+    pub fn reflection(&self) -> Vec3 {
+        (2.0 * self.cos_i() * self.normal - self.omega_i).normalize()
+    }
+
+    /// The scalar radiant intensity I(ωo) = scalar(Φ f(ωi, ωo)) max(ωo·n, 0) of eq. (4), with
+    /// the GGX BRDF of eq. (6) (true Fresnel factor, separable Smith G2), reduced to a scalar
+    /// by [`scalar_intensity`]. `omega_o` is the unit direction from the VPL to the shading
+    /// point; not validated (per-pixel path), and zero below the surface.
+    #[inline]
+    pub fn intensity(&self, omega_o: Vec3) -> f32 {
+        let f = microfacet(self.normal, self.omega_i, omega_o, self.alpha, self.fresnel);
+        scalar_intensity(self.flux * f) * self.normal.dot(omega_o).max(0.0)
+    }
+
+    /// The radius of eq. (12): `r = sqrt(Φ F_max(ωi) G1(ωi) / (4π δ ξ |ωi·n|))`, where
+    /// `Φ F_max` is the largest channel of Φ_c F_max,c(ωi) (supplemental eq. (2), (6)) and
+    /// `G1/|ωi·n|` is evaluated in closed form, finite at grazing incidence.
+    ///
+    /// Zero when ωi·n <= 0 or the flux is zero (the VPL reflects nothing). Computed in f64; an
+    /// [`BoundsError::Overflow`] if r does not fit in an `f32`.
+    pub fn radius(&self, params: &StochasticParams) -> Result<f32, BoundsError> {
+        let cos_i = self.cos_i();
+        let peak = scalar_intensity(self.flux * self.fresnel.max_over_half_vectors(cos_i));
+        if cos_i <= 0.0 || peak <= 0.0 {
+            return Ok(0.0);
+        }
+        let numerator = f64::from(peak) * f64::from(ggx::g1_over_cos(self.alpha, cos_i));
+        let denominator = 4.0 * PI * f64::from(params.delta()) * f64::from(params.xi());
+        check::fits((numerator / denominator).sqrt(), "spheroid radius r")
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn lobe(normal: Vec3, omega_i: Vec3, alpha: f32, flux: Vec3, f: Fresnel) -> GlossyLobe {
+        GlossyLobe::new(Vec3::ZERO, normal, omega_i, alpha, flux, f).unwrap()
+    }
+
+    #[test]
+    fn radius_is_eq_12() {
+        let params = StochasticParams::new(1e-3, 0.25).unwrap();
+        let wi = Vec3::new(0.6, 0.0, 0.8);
+        let l = lobe(
+            Vec3::Z,
+            wi,
+            0.5,
+            Vec3::new(1.0, 2.0, 0.5),
+            Fresnel::Schlick(Vec3::ONE),
+        );
+        // F ≡ 1: r² = Φ G1 / (4π δ ξ cos) with max Φ = 2, G1(0.8) = 1.6 / (0.8 + sqrt(0.73)).
+        let g1 = 1.6 / (0.8 + 0.73f64.sqrt());
+        let want = (2.0 * g1 / (4.0 * PI * 1e-3 * 0.25 * 0.8)).sqrt();
+        let got = f64::from(l.radius(&params).unwrap());
+        assert!((got - want).abs() < 1e-5 * want, "{got} vs {want}");
+        assert!((l.reflection() - Vec3::new(-0.6, 0.0, 0.8)).length() < 1e-6);
+        assert!((l.cos_i() - 0.8).abs() < 1e-6);
+    }
+
+    #[test]
+    fn empty_when_nothing_is_reflected() {
+        let params = StochasticParams::new(1e-3, 0.5).unwrap();
+        let f = Fresnel::Dielectric(1.5);
+        let below = lobe(Vec3::Z, Vec3::new(0.6, 0.0, -0.8), 0.3, Vec3::ONE, f);
+        assert_eq!(below.radius(&params), Ok(0.0));
+        let tangent = lobe(Vec3::Z, Vec3::X, 0.3, Vec3::ONE, f);
+        assert_eq!(tangent.radius(&params), Ok(0.0));
+        let dark = lobe(Vec3::Z, Vec3::Z, 0.3, Vec3::ZERO, f);
+        assert_eq!(dark.radius(&params), Ok(0.0));
+        assert_eq!(below.intensity(Vec3::Z), 0.0);
+    }
+
+    #[test]
+    fn grazing_incidence_is_finite() {
+        let params = StochasticParams::new(1e-9, 3e-8).unwrap();
+        let wi = Vec3::new(1.0, 0.0, 1e-6).normalize();
+        for alpha in [1e-4, 1e-3, 1.0] {
+            let l = lobe(
+                Vec3::Z,
+                wi,
+                alpha,
+                Vec3::splat(5.0),
+                Fresnel::Dielectric(1.5),
+            );
+            let r = l.radius(&params).unwrap();
+            assert!(r.is_finite() && r > 0.0, "alpha {alpha}: {r}");
+        }
+    }
+
+    #[test]
+    fn invalid_inputs_are_errors() {
+        let ok = |n, wi, a, flux, f| GlossyLobe::new(Vec3::ZERO, n, wi, a, flux, f);
+        let (n, s) = (Vec3::Z, Fresnel::Schlick(Vec3::splat(0.04)));
+        for a in [0.0, -0.1, 1.5, f32::NAN] {
+            assert!(matches!(
+                ok(n, n, a, Vec3::ONE, s),
+                Err(BoundsError::InvalidAlpha(_))
+            ));
+        }
+        assert!(ok(n, n, 1.0, Vec3::ONE, s).is_ok());
+        assert_eq!(
+            ok(n * 2.0, n, 0.5, Vec3::ONE, s),
+            Err(BoundsError::NotUnit("normal"))
+        );
+        assert_eq!(
+            ok(n, Vec3::NAN, 0.5, Vec3::ONE, s),
+            Err(BoundsError::NotFinite("omega_i"))
+        );
+        assert_eq!(
+            ok(n, n, 0.5, -Vec3::ONE, s),
+            Err(BoundsError::Negative("flux"))
+        );
+        assert_eq!(
+            ok(n, n, 0.5, Vec3::splat(f32::INFINITY), s),
+            Err(BoundsError::NotFinite("flux"))
+        );
+        assert!(ok(n, n, 0.5, Vec3::ONE, Fresnel::Dielectric(0.0)).is_err());
+        assert!(ok(n, n, 0.5, Vec3::ONE, Fresnel::Schlick(Vec3::splat(2.0))).is_err());
+        assert_eq!(
+            GlossyLobe::new(Vec3::NAN, n, n, 0.5, Vec3::ONE, s),
+            Err(BoundsError::NotFinite("position"))
+        );
+    }
+
+    #[test]
+    fn overflow_is_an_error() {
+        let params = StochasticParams::new(f32::MIN_POSITIVE, f32::MIN_POSITIVE).unwrap();
+        let l = lobe(
+            Vec3::Z,
+            Vec3::Z,
+            1e-4,
+            Vec3::splat(f32::MAX),
+            Fresnel::Schlick(Vec3::ONE),
+        );
+        assert!(matches!(l.radius(&params), Err(BoundsError::Overflow(_))));
+    }
+}

@@ -1,0 +1,389 @@
+//! glTF 2.0 loader (`.gltf` with external or embedded buffers, and binary `.glb`).
+//!
+//! The default scene (else the first; else every root node) is walked from its root nodes;
+//! every node's world matrix is the product of its ancestors' local matrices.
+//!
+//! - **Meshes**: each primitive of mode `TRIANGLES` becomes one [`Mesh`](crate::Mesh) in world
+//!   space: positions by the world matrix, normals (if present) by its inverse transpose,
+//!   renormalized, winding flipped where the determinant is negative; `TEXCOORD_0` if present;
+//!   indices, or `0..n` when absent. Other modes are skipped with a warning. Defective
+//!   triangles are removed and counted in [`LoadReport::skipped`](crate::LoadReport).
+//!   A mesh used by several nodes is instanced once per node.
+//! - **Materials** become [`MaterialModel::MetallicRoughness`](crate::MaterialModel): base
+//!   colour factor (RGB), metallic and roughness factors, base-colour texture (sRGB-decoded)
+//!   and metallic-roughness texture (linear), both on `TEXCOORD_0`; `doubleSided`;
+//!   `KHR_materials_ior` gives `eta` for non-metals (metallic factor 0, `ior` >= 1). A texture
+//!   that cannot be read or decoded gives a warning and the factor alone is used; emission and
+//!   alpha modes are ignored with a warning, as is a roughness whose square is below
+//!   [`ALPHA_MIN`](crate::ALPHA_MIN) (clamped when used). Primitives without a material get
+//!   the glTF default material (base colour 1, metallic 1, roughness 1).
+//! - **Camera**: the first node (depth-first) with a perspective camera: position = the node's
+//!   world translation, view direction = its world -z, up = its world +y, `yfov`, `znear`,
+//!   `zfar` (absent: the camera's default far plane).
+//! - **Lights** (`KHR_lights_punctual`), **read radiometrically, not photometrically**: a point
+//!   or spot light's `intensity` times `color` is its radiant intensity in W/sr per RGB channel
+//!   (NOT candela: no 683 lm/W, no 4π), a directional light's is irradiance in W/m² (NOT lux).
+//!   Spots point along the node's world -z with the cone angles of the extension (defaults
+//!   0 and π/4); directional lights travel along world -z. `range` is ignored (warning).
+//!
+//! Malformed files (unreadable JSON, missing or short buffers, accessors of the wrong type or
+//! outside their buffer) are errors naming the file; unsupported features are warnings.
+use crate::camera::Camera;
+use crate::error::SceneError;
+use crate::gltf_material::{default_material, load_materials};
+use crate::gltf_mesh::primitive_mesh;
+use crate::import_util::add_mesh;
+use crate::light::Light;
+use crate::scene::Scene;
+use glam::{Mat4, Vec3};
+use gltf::khr_lights_punctual::Kind;
+use std::path::Path;
+
+/// Loads a `.gltf` or `.glb` file. The scene is named by the file's stem.
+pub fn load_gltf(path: &Path) -> Result<Scene, SceneError> {
+    let bytes = std::fs::read(path).map_err(|source| SceneError::Io {
+        path: path.to_path_buf(),
+        source,
+    })?;
+    let error = |message: String| SceneError::Gltf {
+        path: path.to_path_buf(),
+        message,
+    };
+    check_glb_header(&bytes).map_err(error)?;
+    let gltf::Gltf { document, blob } =
+        gltf::Gltf::from_slice_without_validation(&bytes).map_err(|e| error(e.to_string()))?;
+    validate(&document).map_err(error)?;
+    let base = path.parent().unwrap_or(Path::new("."));
+    let buffers = load_buffers(&document, base, blob).map_err(error)?;
+
+    let mut scene = Scene {
+        name: path.file_stem().map_or_else(
+            || path.display().to_string(),
+            |s| s.to_string_lossy().into_owned(),
+        ),
+        ..Scene::default()
+    };
+    load_materials(&document, &buffers, base, &mut scene);
+    let mut default_material_index = None;
+    let mut visited = vec![false; document.nodes().len()];
+    let mut stack: Vec<(gltf::Node, Mat4)> = root_nodes(&document)
+        .into_iter()
+        .rev()
+        .map(|n| (n, Mat4::IDENTITY))
+        .collect();
+    while let Some((node, parent)) = stack.pop() {
+        let name = node
+            .name()
+            .map_or_else(|| format!("node {}", node.index()), str::to_string);
+        if std::mem::replace(&mut visited[node.index()], true) {
+            scene.report.warnings.push(format!(
+                "{name} is reached twice in the node hierarchy; its second use is skipped"
+            ));
+            continue;
+        }
+        let world = parent * Mat4::from_cols_array_2d(&node.transform().matrix());
+        if let Some(mesh) = node.mesh() {
+            let default = &mut default_material_index;
+            read_mesh(&mesh, world, &buffers, default, &mut scene).map_err(error)?;
+        }
+        if let Some(camera) = node.camera() {
+            read_camera(&document, camera.index(), world, &name, &mut scene);
+        }
+        if let Some(light) = node.light() {
+            read_light(&light, world, &name, &mut scene);
+        }
+        stack.extend(
+            node.children()
+                .map(|c| (c, world))
+                .collect::<Vec<_>>()
+                .into_iter()
+                .rev(),
+        );
+    }
+    Ok(scene)
+}
+
+/// Adds the triangle primitives of `mesh` placed by `world`; primitives without a material
+/// get the glTF default material, added once (its index kept in `default_index`).
+fn read_mesh(
+    mesh: &gltf::Mesh,
+    world: Mat4,
+    buffers: &[Vec<u8>],
+    default_index: &mut Option<usize>,
+    scene: &mut Scene,
+) -> Result<(), String> {
+    let mesh_name = mesh
+        .name()
+        .map_or_else(|| format!("mesh {}", mesh.index()), str::to_string);
+    let single = mesh.primitives().len() == 1;
+    for primitive in mesh.primitives() {
+        let name = match single {
+            true => mesh_name.clone(),
+            false => format!("{mesh_name}#{}", primitive.index()),
+        };
+        if primitive.mode() != gltf::mesh::Mode::Triangles {
+            scene.report.warnings.push(format!(
+                "{name}: primitive mode {:?} is not supported (only triangles); skipped",
+                primitive.mode()
+            ));
+            continue;
+        }
+        let material = match primitive.material().index() {
+            Some(i) => i,
+            None => *default_index.get_or_insert_with(|| {
+                scene.materials.push(default_material());
+                scene.materials.len() - 1
+            }),
+        };
+        let warnings = &mut scene.report.warnings;
+        let m = primitive_mesh(&primitive, buffers, world, name, material, warnings)?;
+        add_mesh(scene, m);
+    }
+    Ok(())
+}
+
+/// The nodes to walk: the default scene's, else the first scene's, else every node that is
+/// no other node's child.
+fn root_nodes(document: &gltf::Document) -> Vec<gltf::Node<'_>> {
+    if let Some(s) = document
+        .default_scene()
+        .or_else(|| document.scenes().next())
+    {
+        return s.nodes().collect();
+    }
+    let mut is_child = vec![false; document.nodes().len()];
+    document
+        .nodes()
+        .flat_map(|n| n.children())
+        .for_each(|c| is_child[c.index()] = true);
+    document.nodes().filter(|n| !is_child[n.index()]).collect()
+}
+
+/// Refuses a GLB header whose total length is shorter than the header itself (the `gltf`
+/// crate subtracts without checking).
+fn check_glb_header(bytes: &[u8]) -> Result<(), String> {
+    match bytes {
+        [b'g', b'l', b'T', b'F', _, _, _, _, l0, l1, l2, l3, ..]
+            if u32::from_le_bytes([*l0, *l1, *l2, *l3]) < 12 =>
+        {
+            Err("GLB header: total length below the header's 12 bytes".into())
+        }
+        _ => Ok(()),
+    }
+}
+
+/// The `gltf` crate's validation, preceded by the check it assumes (and panics without):
+/// every primitive's `POSITION` names an existing accessor.
+fn validate(document: &gltf::Document) -> Result<(), String> {
+    use gltf::json::validation::{Checked, Validate};
+    let root = document.as_json();
+    for (m, mesh) in root.meshes.iter().enumerate() {
+        for (p, primitive) in mesh.primitives.iter().enumerate() {
+            let position = primitive
+                .attributes
+                .get(&Checked::Valid(gltf::Semantic::Positions));
+            if position.is_some_and(|a| a.value() >= root.accessors.len()) {
+                return Err(format!(
+                    "meshes[{m}].primitives[{p}]: POSITION names no accessor"
+                ));
+            }
+        }
+    }
+    let mut errors = Vec::new();
+    root.validate(root, gltf::json::Path::new, &mut |path, e| {
+        errors.push(format!("{}: {e}", path()))
+    });
+    match errors.len() {
+        0 => Ok(()),
+        n => Err(format!(
+            "{n} validation error(s): {}",
+            errors[..n.min(5)].join("; ")
+        )),
+    }
+}
+
+/// Reads every buffer: the GLB binary chunk, embedded `data:` URIs, or files relative to `base`.
+fn load_buffers(
+    document: &gltf::Document,
+    base: &Path,
+    mut blob: Option<Vec<u8>>,
+) -> Result<Vec<Vec<u8>>, String> {
+    document
+        .buffers()
+        .map(|buffer| {
+            let what = format!("buffer {}", buffer.index());
+            let data = match buffer.source() {
+                gltf::buffer::Source::Bin => blob
+                    .take()
+                    .ok_or(format!("{what}: the GLB binary chunk is missing"))?,
+                gltf::buffer::Source::Uri(uri) => {
+                    read_uri(uri, base).map_err(|e| format!("{what}: {e}"))?
+                }
+            };
+            if data.len() < buffer.length() {
+                return Err(format!(
+                    "{what}: {} bytes, but byteLength is {}",
+                    data.len(),
+                    buffer.length()
+                ));
+            }
+            Ok(data)
+        })
+        .collect()
+}
+
+/// The bytes a URI refers to: a relative (percent-encoded) path from `base`, or anything the
+/// `gltf` crate resolves itself (`data:` base64, `file:`).
+pub(crate) fn read_uri(uri: &str, base: &Path) -> Result<Vec<u8>, String> {
+    if uri.contains(':') {
+        return gltf::buffer::Data::from_source(gltf::buffer::Source::Uri(uri), Some(base))
+            .map(|d| d.0)
+            .map_err(|e| format!("cannot read '{}': {e}", short(uri)));
+    }
+    let relative =
+        percent_decode(uri).ok_or_else(|| format!("'{uri}' is not a valid percent-encoded URI"))?;
+    let file = base.join(relative);
+    std::fs::read(&file).map_err(|e| format!("cannot read '{}': {e}", file.display()))
+}
+
+/// A URI cut to a readable length (embedded data URIs are long).
+fn short(uri: &str) -> String {
+    match uri.char_indices().nth(60) {
+        Some((i, _)) => format!("{}...", &uri[..i]),
+        None => uri.to_string(),
+    }
+}
+
+/// Decodes `%XX` escapes; `None` for a broken escape or a result that is not UTF-8.
+fn percent_decode(s: &str) -> Option<String> {
+    let mut bytes = Vec::with_capacity(s.len());
+    let mut it = s.bytes();
+    while let Some(b) = it.next() {
+        if b == b'%' {
+            let hex = [it.next()?, it.next()?];
+            bytes.push(u8::from_str_radix(std::str::from_utf8(&hex).ok()?, 16).ok()?);
+        } else {
+            bytes.push(b);
+        }
+    }
+    String::from_utf8(bytes).ok()
+}
+
+/// Sets the scene's camera from the first perspective camera; warns about the others.
+/// Reads the camera's JSON: the `gltf` crate's `projection()` panics on a camera whose `type`
+/// names a projection it does not describe.
+fn read_camera(
+    document: &gltf::Document,
+    index: usize,
+    world: Mat4,
+    node: &str,
+    scene: &mut Scene,
+) {
+    use gltf::json::{camera::Type, validation::Checked};
+    let json = document.as_json().cameras.get(index);
+    let perspective = json.and_then(|c| match c.type_ {
+        Checked::Valid(Type::Perspective) => c.perspective.as_ref(),
+        _ => None,
+    });
+    let Some(p) = perspective else {
+        let warning = format!("{node}: only perspective cameras are supported; ignored");
+        scene.report.warnings.push(warning);
+        return;
+    };
+    if scene.camera.is_some() {
+        let warning = format!("{node}: only the first camera is used; ignored");
+        scene.report.warnings.push(warning);
+        return;
+    }
+    let eye = world.transform_point3(Vec3::ZERO);
+    let forward = world.transform_vector3(Vec3::NEG_Z);
+    let up = world.transform_vector3(Vec3::Y);
+    let zfar = p.zfar.unwrap_or(f32::INFINITY);
+    match Camera::from_basis(eye, forward, up, p.yfov) {
+        Some(cam) if eye.is_finite() && p.znear > 0.0 && zfar > p.znear => {
+            let zfar = if zfar.is_finite() { zfar } else { cam.zfar };
+            scene.camera = Some(Camera {
+                znear: p.znear,
+                zfar,
+                ..cam
+            });
+        }
+        _ => scene.report.warnings.push(format!(
+            "{node}: degenerate camera (transform, yfov {}, znear {} or zfar {zfar}); ignored",
+            p.yfov, p.znear
+        )),
+    }
+}
+
+/// Adds a `KHR_lights_punctual` light placed by the node's world matrix.
+fn read_light(
+    light: &gltf::khr_lights_punctual::Light,
+    world: Mat4,
+    node: &str,
+    scene: &mut Scene,
+) {
+    if light.range().is_some() {
+        scene
+            .report
+            .warnings
+            .push(format!("{node}: light range is ignored (no cut-off)"));
+    }
+    let power = Vec3::from(light.color()) * light.intensity();
+    let position = world.transform_point3(Vec3::ZERO);
+    let direction = world.transform_vector3(Vec3::NEG_Z).normalize_or_zero();
+    let converted = match light.kind() {
+        Kind::Point => Light::Point {
+            position,
+            intensity: power,
+        },
+        Kind::Spot {
+            inner_cone_angle,
+            outer_cone_angle,
+        } => Light::Spot {
+            position,
+            direction,
+            intensity: power,
+            inner_cone_angle,
+            outer_cone_angle,
+        },
+        Kind::Directional => Light::Directional {
+            direction,
+            irradiance: power,
+        },
+    };
+    if converted.is_valid() {
+        scene.lights.push(converted);
+    } else {
+        scene
+            .report
+            .warnings
+            .push(format!("{node}: invalid light {converted:?}; ignored"));
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn percent_decoding() {
+        assert_eq!(percent_decode("a%20b.bin").as_deref(), Some("a b.bin"));
+        assert_eq!(percent_decode("plain.bin").as_deref(), Some("plain.bin"));
+        assert_eq!(percent_decode("bad%2"), None);
+        assert_eq!(percent_decode("bad%zz"), None);
+        assert_eq!(percent_decode("%FF"), None);
+    }
+
+    #[test]
+    fn uris() {
+        let base = Path::new("/nonexistent");
+        assert_eq!(
+            read_uri("data:application/octet-stream;base64,AQID", base).unwrap()[..3],
+            [1, 2, 3]
+        );
+        assert!(read_uri("missing.bin", base)
+            .unwrap_err()
+            .contains("/nonexistent/missing.bin"));
+        assert!(read_uri("https://example.com/x.bin", base).is_err());
+    }
+}

@@ -1,0 +1,183 @@
+//! Ray casting against the scene's triangles with an obvhs compressed wide BVH.
+use glam::{Vec3, Vec3A};
+use obvhs::cwbvh::{builder::build_cwbvh_from_tris, CwBvh};
+use obvhs::ray::{Ray, RayHit};
+use obvhs::triangle::Triangle;
+use obvhs::BvhBuildParams;
+use slc_bounds::Brdf;
+use slc_core::Scene;
+use std::time::Duration;
+
+/// Which mesh triangle a BVH primitive is.
+#[derive(Clone, Copy, Debug)]
+struct PrimRef {
+    mesh: u32,
+    tri: u32,
+}
+
+/// A BVH over every triangle of a scene, with closest-hit and occlusion queries.
+pub struct Tracer {
+    bvh: CwBvh,
+    /// Triangles in BVH primitive order.
+    tris: Vec<Triangle>,
+    prims: Vec<PrimRef>,
+    /// Offset that lifts ray origins off surfaces, relative to the scene's size.
+    epsilon: f32,
+}
+
+/// A ray-surface intersection, oriented for shading.
+#[derive(Clone, Copy, Debug)]
+pub struct SurfaceHit {
+    pub position: Vec3,
+    /// Unit geometric normal, facing the incoming ray for two-sided materials, as authored otherwise.
+    pub geometric_normal: Vec3,
+    /// Unit shading normal on the same side as `geometric_normal`.
+    pub shading_normal: Vec3,
+    /// Whether the ray hit the side the (oriented) geometric normal points to. A one-sided
+    /// surface seen from behind is black and reflects nothing.
+    pub front: bool,
+    pub brdf: Brdf,
+    pub distance: f32,
+}
+
+impl Tracer {
+    pub fn new(scene: &Scene) -> Self {
+        let mut tris = Vec::with_capacity(scene.triangle_count());
+        let mut prims = Vec::with_capacity(scene.triangle_count());
+        for (mi, mesh) in scene.meshes.iter().enumerate() {
+            for (ti, t) in mesh.triangles.iter().enumerate() {
+                let [v0, v1, v2] = t.map(|i| Vec3A::from(mesh.positions[i as usize]));
+                tris.push(Triangle { v0, v1, v2 });
+                prims.push(PrimRef {
+                    mesh: mi as u32,
+                    tri: ti as u32,
+                });
+            }
+        }
+        let extent = scene.bounds().map_or(1.0, |(lo, hi)| {
+            lo.abs().max(hi.abs()).max_element().max(1.0)
+        });
+        let bvh = build_cwbvh_from_tris(
+            &tris,
+            BvhBuildParams::medium_build(),
+            &mut Duration::default(),
+        );
+        let order = &bvh.primitive_indices;
+        let tris = order.iter().map(|&i| tris[i as usize]).collect();
+        let prims = order.iter().map(|&i| prims[i as usize]).collect();
+        Self {
+            bvh,
+            tris,
+            prims,
+            epsilon: 2e-5 * extent,
+        }
+    }
+
+    /// The origin offset used to leave a surface.
+    pub fn epsilon(&self) -> f32 {
+        self.epsilon
+    }
+
+    /// Closest hit along `origin + t dir`, t in (0, tmax).
+    pub fn intersect(
+        &self,
+        scene: &Scene,
+        origin: Vec3,
+        dir: Vec3,
+        tmax: f32,
+    ) -> Option<SurfaceHit> {
+        let ray = Ray::new(origin.into(), dir.into(), 0.0, tmax);
+        let mut hit = RayHit::none();
+        if !self
+            .bvh
+            .ray_traverse(ray, &mut hit, |r, id| self.tris[id].intersect(r))
+        {
+            return None;
+        }
+        Some(self.surface(
+            scene,
+            hit.primitive_id as usize,
+            origin + dir * hit.t,
+            dir,
+            hit.t,
+        ))
+    }
+
+    /// Whether the segment from `from` to `to` is free of geometry (ends excluded by epsilon).
+    pub fn unoccluded(&self, from: Vec3, to: Vec3) -> bool {
+        let d = to - from;
+        let len = d.length();
+        if len <= 2.0 * self.epsilon {
+            return true;
+        }
+        let ray = Ray::new(
+            from.into(),
+            (d / len).into(),
+            self.epsilon,
+            len - self.epsilon,
+        );
+        self.bvh
+            .ray_traverse_miss(ray, |r, id| self.tris[id].intersect(r))
+    }
+
+    /// Whether the ray from `from` along `dir` escapes the scene (for directional lights).
+    pub fn escapes(&self, from: Vec3, dir: Vec3) -> bool {
+        let ray = Ray::new(from.into(), dir.into(), self.epsilon, f32::INFINITY);
+        self.bvh
+            .ray_traverse_miss(ray, |r, id| self.tris[id].intersect(r))
+    }
+
+    /// A point just off the surface at `p` on the side of `n`.
+    #[inline]
+    pub fn lift(&self, p: Vec3, n: Vec3) -> Vec3 {
+        p + n * self.epsilon
+    }
+
+    fn surface(
+        &self,
+        scene: &Scene,
+        prim: usize,
+        position: Vec3,
+        dir: Vec3,
+        distance: f32,
+    ) -> SurfaceHit {
+        let r = self.prims[prim];
+        let mesh = &scene.meshes[r.mesh as usize];
+        let material = &scene.materials[mesh.material];
+        let idx = mesh.triangles[r.tri as usize].map(|i| i as usize);
+        let [a, b, c] = idx.map(|i| mesh.positions[i]);
+        let cross = (b - a).cross(c - a);
+        let area2 = cross.length_squared();
+        let mut ng = cross / area2.sqrt();
+        // Barycentric coordinates of the hit point.
+        let w1 = (position - a).cross(c - a).dot(cross) / area2;
+        let w2 = (b - a).cross(position - a).dot(cross) / area2;
+        let w0 = 1.0 - w1 - w2;
+        let mut ns = mesh
+            .normals
+            .as_ref()
+            .and_then(|n| (n[idx[0]] * w0 + n[idx[1]] * w1 + n[idx[2]] * w2).try_normalize())
+            .unwrap_or(ng);
+        let mut front = dir.dot(ng) < 0.0;
+        if material.double_sided && !front {
+            ng = -ng;
+            front = true;
+        }
+        if ns.dot(ng) < 0.0 {
+            ns = -ns;
+        }
+        let uv = mesh
+            .uvs
+            .as_ref()
+            .map(|t| t[idx[0]] * w0 + t[idx[1]] * w1 + t[idx[2]] * w2);
+        let brdf = material.brdf_at(uv, &scene.textures);
+        SurfaceHit {
+            position,
+            geometric_normal: ng,
+            shading_normal: ns,
+            front,
+            brdf,
+            distance,
+        }
+    }
+}

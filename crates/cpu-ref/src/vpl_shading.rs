@@ -1,0 +1,88 @@
+//! Shading with every VPL (no culling): the exact VPL sum, or the stochastic estimate of
+//! paper eq. (3) where each VPL is kept at a pixel only if p(ωo, l) > ξ.
+use crate::tracer::Tracer;
+use glam::Vec3;
+use rayon::prelude::*;
+use slc_bounds::stochastic::{scalar_intensity, StochasticParams};
+use slc_bounds::BoundsError;
+use slc_core::{GBuffer, GSample, Image, Vpl};
+
+/// How each VPL's contribution is weighted.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum VplEstimator {
+    /// Every VPL contributes fully (p = 1): the all-VPL reference.
+    Exact,
+    /// Russian roulette with the VPL's ξ: contribution / p where p(ωo, l) = min(I/(δ l²), 1) > ξ
+    /// (paper eq. 2-3), zero otherwise. Unbiased with respect to [`VplEstimator::Exact`].
+    Stochastic { delta: f32 },
+}
+
+/// The contribution of one VPL to the radiance leaving `g` towards the camera:
+/// `f(x; ωl, ωo) I(ω) / l² cos θx`, with I the VPL's intensity towards x (paper eq. 1, 4),
+/// weighted by the estimator of eq. (3) when `roulette` holds the VPL's (δ, ξ); without visibility.
+#[inline]
+pub fn vpl_contribution(g: &GSample, vpl: &Vpl, roulette: Option<&StochasticParams>) -> Vec3 {
+    let d = g.position - vpl.position;
+    let l2 = d.length_squared();
+    if l2 <= 0.0 {
+        return Vec3::ZERO;
+    }
+    let omega = d / l2.sqrt(); // from the VPL to x
+    let cos_x = -g.normal.dot(omega);
+    if cos_x <= 0.0 {
+        return Vec3::ZERO;
+    }
+    let intensity = vpl.intensity(omega);
+    let weight = match roulette {
+        None => 1.0,
+        Some(r) => r.estimator_weight(r.probability(scalar_intensity(intensity), l2)),
+    };
+    if weight == 0.0 {
+        return Vec3::ZERO;
+    }
+    g.brdf.eval(g.normal, -omega, g.omega_o) * intensity * (weight * cos_x / l2)
+}
+
+/// Indirect radiance at every pixel from every VPL; with `visibility`, each VPL-pixel pair
+/// is tested with a shadow ray. `progress` is called with the number of pixels finished.
+/// Fails only when δ or a VPL's ξ is out of its domain.
+pub fn shade_vpls(
+    tracer: &Tracer,
+    gbuffer: &GBuffer,
+    vpls: &[Vpl],
+    estimator: VplEstimator,
+    visibility: bool,
+    progress: &(dyn Fn(u64) + Sync),
+) -> Result<Image, BoundsError> {
+    let roulette = match estimator {
+        VplEstimator::Exact => None,
+        VplEstimator::Stochastic { delta } => Some(
+            vpls.iter()
+                .map(|v| StochasticParams::new(delta, v.xi))
+                .collect::<Result<Vec<_>, _>>()?,
+        ),
+    };
+    let mut image = Image::new(gbuffer.width, gbuffer.height);
+    let w = gbuffer.width as usize;
+    image
+        .pixels
+        .par_chunks_mut(w)
+        .zip(gbuffer.samples.par_chunks(w))
+        .for_each(|(out, row)| {
+            for (o, g) in out.iter_mut().zip(row) {
+                let Some(g) = g else { continue };
+                let from = tracer.lift(g.position, g.geometric_normal);
+                for (k, vpl) in vpls.iter().enumerate() {
+                    let c = vpl_contribution(g, vpl, roulette.as_ref().map(|r| &r[k]));
+                    if c != Vec3::ZERO
+                        && (!visibility
+                            || tracer.unoccluded(from, tracer.lift(vpl.position, vpl.normal)))
+                    {
+                        *o += c;
+                    }
+                }
+            }
+            progress(w as u64);
+        });
+    Ok(image)
+}

@@ -1,0 +1,57 @@
+//! VPLs from reflective-shadow-map texels.
+use crate::rsm::Rsm;
+use slc_core::rng::vpl_xi;
+use slc_core::{Vpl, VplLobe};
+
+/// Which lobes become VPLs (the paper's Table 2 measures diffuse-only and glossy-only runs).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum LobeSelection {
+    Both,
+    Diffuse,
+    Glossy,
+}
+
+impl LobeSelection {
+    fn wants(self, lobe: VplLobe) -> bool {
+        matches!(
+            (self, lobe),
+            (LobeSelection::Both, _)
+                | (LobeSelection::Diffuse, VplLobe::Diffuse)
+                | (LobeSelection::Glossy, VplLobe::Glossy)
+        )
+    }
+}
+
+/// One diffuse VPL (where kd > 0) and one glossy VPL (where the specular layer reflects) per
+/// lit texel. Texel k of the concatenated maps (light-major, then face, row, column) gives the
+/// VPL ids 2k (diffuse) and 2k + 1 (glossy); ξ = `vpl_xi(seed, id)`, so every backend draws the
+/// same ξ for the same VPL whatever texels are empty.
+pub fn generate_vpls(maps: &[Rsm], seed: u32, lobes: LobeSelection) -> Vec<Vpl> {
+    let mut vpls = Vec::new();
+    let mut base = 0u32;
+    for rsm in maps {
+        for (k, texel) in rsm.texels.iter().enumerate() {
+            let Some(t) = texel else { continue };
+            let id = 2 * (base + k as u32);
+            let specular = t.brdf.fresnel.max_over_half_vectors(1.0).max_element() > 0.0;
+            for (lobe, present, id) in [
+                (VplLobe::Diffuse, t.brdf.kd.max_element() > 0.0, id),
+                (VplLobe::Glossy, specular, id + 1),
+            ] {
+                if present && lobes.wants(lobe) {
+                    vpls.push(Vpl {
+                        position: t.position,
+                        normal: t.normal,
+                        omega_i: t.omega_i,
+                        flux: t.flux,
+                        brdf: t.brdf,
+                        lobe,
+                        xi: vpl_xi(seed, id),
+                    });
+                }
+            }
+        }
+        base += rsm.texels.len() as u32;
+    }
+    vpls
+}
