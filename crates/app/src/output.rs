@@ -40,10 +40,12 @@ pub fn write_png(path: &Path, image: &Image) -> Result<(), String> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use glam::Vec3;
 
     /// Reads a linear-RGB EXR (the first RGB layer) into an image.
     fn read_exr(path: &Path) -> Result<Image, String> {
         use exr::prelude::*;
+        use glam::Vec3;
         let img = read_first_rgba_layer_from_file(
             path,
             |res, _| (res.width(), vec![Vec3::ZERO; res.width() * res.height()]),

@@ -26,8 +26,10 @@ pub fn builtin(name: &str) -> Option<Scene> {
     }
 }
 
-/// Where the copper panel stands and which way its front faces.
+/// Centre of the copper panel (its lowest corner is just above the floor).
 const PANEL_CENTRE: Vec3 = Vec3::new(-0.6, 0.42, -0.3);
+/// Direction (not normalized) the copper panel's front face points to: towards the green
+/// wall and up towards the light, so that the light's mirror image lands on the green wall.
 const PANEL_FACING: Vec3 = Vec3::new(1.0, 0.6, 0.2);
 
 fn cornell_glossy() -> Scene {

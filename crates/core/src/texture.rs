@@ -15,7 +15,8 @@ pub struct Texture {
 }
 
 impl Texture {
-    /// Bilinear lookup with repeat wrapping; glTF/OBJ convention: (0,0) is the image's top-left.
+    /// Bilinear lookup with repeat wrapping; (0,0) is the image's top-left as in glTF (the OBJ
+    /// loader flips v on load to match).
     pub fn sample(&self, uv: Vec2) -> Vec3 {
         let (w, h) = (self.width as i64, self.height as i64);
         if w == 0 || h == 0 || !uv.is_finite() {

@@ -8,14 +8,14 @@ use glam::Vec3;
 use slc_core::rng::{stream, Sequence};
 use slc_core::{Camera, GSample, Scene};
 
-/// Direct and one-bounce indirect radiance of one pixel sample.
+/// Direct and one-bounce indirect radiance of sample `index` of pixel number `pixel` of a
+/// `width` x `height` image.
 pub fn trace_pixel_sample(
     scene: &Scene,
     tracer: &Tracer,
     camera: &Camera,
     pixel: u32,
-    width: u32,
-    height: u32,
+    (width, height): (u32, u32),
     seed: u32,
     index: u32,
 ) -> (Vec3, Vec3) {

@@ -130,8 +130,7 @@ pub fn render(
                                         &tracer,
                                         &camera,
                                         j * w + i,
-                                        w,
-                                        h,
+                                        (w, h),
                                         settings.seed,
                                         pass,
                                     )

@@ -58,13 +58,14 @@ struct Face {
     extent: f32,
 }
 
+/// (forward, right, up) of the six cube faces, right = forward x up like the camera.
 const CUBE_FACES: [(Vec3, Vec3, Vec3); 6] = [
-    (Vec3::X, Vec3::NEG_Z, Vec3::Y),
-    (Vec3::NEG_X, Vec3::Z, Vec3::Y),
-    (Vec3::Y, Vec3::X, Vec3::NEG_Z),
-    (Vec3::NEG_Y, Vec3::X, Vec3::Z),
-    (Vec3::Z, Vec3::X, Vec3::Y),
-    (Vec3::NEG_Z, Vec3::NEG_X, Vec3::Y),
+    (Vec3::X, Vec3::Z, Vec3::Y),
+    (Vec3::NEG_X, Vec3::NEG_Z, Vec3::Y),
+    (Vec3::Y, Vec3::NEG_X, Vec3::NEG_Z),
+    (Vec3::NEG_Y, Vec3::NEG_X, Vec3::Z),
+    (Vec3::Z, Vec3::NEG_X, Vec3::Y),
+    (Vec3::NEG_Z, Vec3::X, Vec3::Y),
 ];
 
 fn cube_faces() -> Vec<Face> {

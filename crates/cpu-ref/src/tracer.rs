@@ -1,4 +1,5 @@
 //! Ray casting against the scene's triangles with an obvhs compressed wide BVH.
+use crate::watertight::{barycentric, ShearedRay};
 use glam::{Vec3, Vec3A};
 use obvhs::cwbvh::{builder::build_cwbvh_from_tris, CwBvh};
 use obvhs::ray::{Ray, RayHit};
@@ -87,11 +88,11 @@ impl Tracer {
         tmax: f32,
     ) -> Option<SurfaceHit> {
         let ray = Ray::new(origin.into(), dir.into(), 0.0, tmax);
+        let sheared = ShearedRay::new(origin, dir);
         let mut hit = RayHit::none();
-        if !self
-            .bvh
-            .ray_traverse(ray, &mut hit, |r, id| self.tris[id].intersect(r))
-        {
+        if !self.bvh.ray_traverse(ray, &mut hit, |r, id| {
+            sheared.intersect(&self.tris[id], r.tmin, r.tmax)
+        }) {
             return None;
         }
         Some(self.surface(
@@ -110,21 +111,20 @@ impl Tracer {
         if len <= 2.0 * self.epsilon {
             return true;
         }
-        let ray = Ray::new(
-            from.into(),
-            (d / len).into(),
-            self.epsilon,
-            len - self.epsilon,
-        );
-        self.bvh
-            .ray_traverse_miss(ray, |r, id| self.tris[id].intersect(r))
+        self.segment_is_free(from, d / len, self.epsilon, len - self.epsilon)
     }
 
     /// Whether the ray from `from` along `dir` escapes the scene (for directional lights).
     pub fn escapes(&self, from: Vec3, dir: Vec3) -> bool {
-        let ray = Ray::new(from.into(), dir.into(), self.epsilon, f32::INFINITY);
-        self.bvh
-            .ray_traverse_miss(ray, |r, id| self.tris[id].intersect(r))
+        self.segment_is_free(from, dir, self.epsilon, f32::INFINITY)
+    }
+
+    fn segment_is_free(&self, from: Vec3, dir: Vec3, tmin: f32, tmax: f32) -> bool {
+        let ray = Ray::new(from.into(), dir.into(), tmin, tmax);
+        let sheared = ShearedRay::new(from, dir);
+        self.bvh.ray_traverse_miss(ray, |r, id| {
+            sheared.intersect(&self.tris[id], r.tmin, r.tmax)
+        })
     }
 
     /// A point just off the surface at `p` on the side of `n`.
@@ -146,13 +146,8 @@ impl Tracer {
         let material = &scene.materials[mesh.material];
         let idx = mesh.triangles[r.tri as usize].map(|i| i as usize);
         let [a, b, c] = idx.map(|i| mesh.positions[i]);
-        let cross = (b - a).cross(c - a);
-        let area2 = cross.length_squared();
-        let mut ng = cross / area2.sqrt();
-        // Barycentric coordinates of the hit point.
-        let w1 = (position - a).cross(c - a).dot(cross) / area2;
-        let w2 = (b - a).cross(position - a).dot(cross) / area2;
-        let w0 = 1.0 - w1 - w2;
+        let mut ng = (b - a).cross(c - a).normalize();
+        let (w0, w1, w2) = barycentric(a, b, c, position);
         let mut ns = mesh
             .normals
             .as_ref()

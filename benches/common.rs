@@ -1,0 +1,18 @@
+//! The built-in default scene and its VPLs, shared by the benchmarks.
+use slc_core::{builtin, Scene, Vpl};
+use slc_cpu_ref::rsm::{trace_rsm, TexelSample};
+use slc_cpu_ref::vpls::{generate_vpls, LobeSelection};
+use slc_cpu_ref::Tracer;
+
+/// The default scene, its tracer and its VPLs from an RSM of `rsm`² texels per face.
+pub fn default_scene_vpls(rsm: u32) -> (Scene, Tracer, Vec<Vpl>) {
+    let scene = builtin("default").expect("built-in default scene");
+    let tracer = Tracer::new(&scene);
+    let maps: Vec<_> = scene
+        .lights
+        .iter()
+        .map(|l| trace_rsm(&scene, &tracer, l, rsm, TexelSample::Centre))
+        .collect();
+    let vpls = generate_vpls(&maps, 0, LobeSelection::Both);
+    (scene, tracer, vpls)
+}

@@ -1,0 +1,360 @@
+//! Light transport checks that would catch a wrong flux, solid angle, falloff or estimator.
+use glam::Vec3;
+use slc_core::shapes::{cuboid, quad};
+use slc_core::{builtin, Light, Material, Scene};
+use slc_cpu_ref::gbuffer::{trace_gbuffer, PixelSample};
+use slc_cpu_ref::rsm::{trace_rsm, Rsm, TexelSample};
+use slc_cpu_ref::vpl_shading::shade_vpls;
+use slc_cpu_ref::vpls::{generate_vpls, LobeSelection};
+use slc_cpu_ref::{render, Method, RenderError, RenderSettings, Tracer, VplEstimator};
+use std::f32::consts::PI;
+
+fn scene(meshes: Vec<slc_core::Mesh>, double_sided: bool, light: Light) -> Scene {
+    let mut m = Material::direct("grey", Vec3::splat(0.5), Vec3::splat(0.04), 0.3);
+    m.double_sided = double_sided;
+    Scene {
+        name: "test".into(),
+        meshes,
+        materials: vec![m],
+        lights: vec![light],
+        ..Scene::default()
+    }
+}
+
+fn total_flux(rsm: &Rsm) -> Vec3 {
+    rsm.texels.iter().flatten().map(|t| t.flux).sum()
+}
+
+/// A closed box around a point light receives all of its power, 4π I.
+#[test]
+fn point_light_power_is_conserved_in_a_closed_box() {
+    let box_mesh = cuboid(
+        "room",
+        Vec3::new(0.1, 0.2, -0.3),
+        [
+            Vec3::new(1.0, 0.0, 0.0),
+            Vec3::new(0.0, 1.5, 0.0),
+            Vec3::new(0.0, 0.0, 0.7),
+        ],
+        0,
+    );
+    let intensity = Vec3::new(2.0, 1.0, 0.5);
+    let s = scene(
+        vec![box_mesh],
+        true,
+        Light::Point {
+            position: Vec3::new(0.3, 0.4, -0.1),
+            intensity,
+        },
+    );
+    let tracer = Tracer::new(&s);
+    let power = 4.0 * PI * intensity;
+    let centre = trace_rsm(&s, &tracer, &s.lights[0], 32, TexelSample::Centre);
+    assert_eq!(
+        centre.texels.iter().flatten().count(),
+        6 * 32 * 32,
+        "every texel hits the room"
+    );
+    assert!((total_flux(&centre) - power).abs().max_element() < 1e-4 * power.max_element());
+    // Jittered texels estimate the same power without bias: the mean over passes converges.
+    let passes = 16;
+    let mean: Vec3 = (0..passes)
+        .map(|p| {
+            total_flux(&trace_rsm(
+                &s,
+                &tracer,
+                &s.lights[0],
+                16,
+                TexelSample::Jittered { seed: 3, pass: p },
+            ))
+        })
+        .sum::<Vec3>()
+        / passes as f32;
+    assert!(
+        (mean - power).abs().max_element() < 2e-3 * power.max_element(),
+        "{mean} vs {power}"
+    );
+}
+
+/// One-sided surfaces seen from behind reflect nothing: a light inside an outward-facing box
+/// makes no VPL.
+#[test]
+fn backs_of_one_sided_surfaces_make_no_vpls() {
+    let box_mesh = cuboid("box", Vec3::ZERO, [Vec3::X, Vec3::Y, Vec3::Z], 0);
+    let s = scene(
+        vec![box_mesh],
+        false,
+        Light::Point {
+            position: Vec3::ZERO,
+            intensity: Vec3::ONE,
+        },
+    );
+    let tracer = Tracer::new(&s);
+    let rsm = trace_rsm(&s, &tracer, &s.lights[0], 8, TexelSample::Centre);
+    assert!(rsm.texels.iter().all(Option::is_none));
+}
+
+/// A spot light delivers I ∫ falloff dω; the integral is done here by quadrature over the cone.
+#[test]
+fn spot_light_power_matches_its_cone() {
+    let floor = quad(
+        "floor",
+        Vec3::new(-50.0, 0.0, 50.0),
+        Vec3::new(100.0, 0.0, 0.0),
+        Vec3::new(0.0, 0.0, -100.0),
+        0,
+    );
+    let (inner, outer) = (0.3f32, 0.6f32);
+    let light = Light::Spot {
+        position: Vec3::new(0.0, 1.0, 0.0),
+        direction: Vec3::NEG_Y,
+        intensity: Vec3::ONE,
+        inner_cone_angle: inner,
+        outer_cone_angle: outer,
+    };
+    let s = scene(vec![floor], false, light.clone());
+    let tracer = Tracer::new(&s);
+    let n = 20_000;
+    let expected: f64 = (0..n)
+        .map(|k| {
+            let theta = (k as f64 + 0.5) / n as f64 * outer as f64;
+            light.spot_falloff(theta.cos() as f32) as f64
+                * 2.0
+                * std::f64::consts::PI
+                * theta.sin()
+                * outer as f64
+                / n as f64
+        })
+        .sum();
+    let got = total_flux(&trace_rsm(&s, &tracer, &light, 256, TexelSample::Centre)).x as f64;
+    assert!(
+        (got - expected).abs() < 2e-3 * expected,
+        "{got} vs {expected}"
+    );
+}
+
+/// A directional light delivers E times the area it meets: a floor quad inside the map.
+#[test]
+fn directional_light_power_is_irradiance_times_area() {
+    let floor = quad(
+        "floor",
+        Vec3::new(-1.0, 0.0, 0.5),
+        Vec3::new(2.0, 0.0, 0.0),
+        Vec3::new(0.0, 0.0, -1.0),
+        0,
+    );
+    let light = Light::Directional {
+        direction: Vec3::NEG_Y,
+        irradiance: Vec3::splat(3.0),
+    };
+    let s = scene(vec![floor], false, light.clone());
+    let tracer = Tracer::new(&s);
+    let got = total_flux(&trace_rsm(&s, &tracer, &light, 512, TexelSample::Centre)).x;
+    // Area 2, irradiance 3; the texel grid only approximates the quad's outline.
+    assert!((got - 6.0).abs() < 0.02 * 6.0, "{got}");
+}
+
+/// The estimator of eq. (3) is unbiased: over many ξ draws, the mean image converges to the
+/// exact all-VPL sum at every pixel (within 5 standard errors of the mean).
+#[test]
+fn stochastic_estimate_converges_to_the_exact_sum() {
+    let s = builtin("default").unwrap();
+    let tracer = Tracer::new(&s);
+    let maps = vec![trace_rsm(&s, &tracer, &s.lights[0], 8, TexelSample::Centre)];
+    let g = trace_gbuffer(
+        &s,
+        &tracer,
+        &s.camera_or_default(),
+        24,
+        24,
+        PixelSample::Centre,
+    );
+    let exact = shade_vpls(
+        &tracer,
+        &g,
+        &generate_vpls(&maps, 0, LobeSelection::Both),
+        VplEstimator::Exact,
+        false,
+        &|_| {},
+    )
+    .unwrap();
+    let draws = 400;
+    let delta = 2e-2;
+    let mut sum = vec![0.0f64; exact.pixels.len()];
+    let mut sum_sq = vec![0.0f64; exact.pixels.len()];
+    let mut rejected_some = false;
+    for seed in 0..draws {
+        let vpls = generate_vpls(&maps, seed, LobeSelection::Both);
+        let est = shade_vpls(
+            &tracer,
+            &g,
+            &vpls,
+            VplEstimator::Stochastic { delta },
+            false,
+            &|_| {},
+        )
+        .unwrap();
+        for (k, p) in est.pixels.iter().enumerate() {
+            assert!(p.is_finite());
+            let v = p.x as f64;
+            sum[k] += v;
+            sum_sq[k] += v * v;
+            rejected_some |= (v - exact.pixels[k].x as f64).abs() > 1e-6 * v.abs().max(1e-3);
+        }
+    }
+    assert!(
+        rejected_some,
+        "delta {delta} must actually reject VPLs for this test to mean anything"
+    );
+    let n = draws as f64;
+    for (k, e) in exact.pixels.iter().enumerate() {
+        let mean = sum[k] / n;
+        let var = (sum_sq[k] / n - mean * mean).max(0.0);
+        let se = (var / n).sqrt();
+        assert!(
+            (mean - e.x as f64).abs() <= 5.0 * se + 1e-6 * e.x as f64,
+            "pixel {k}: mean {mean} vs exact {} (se {se})",
+            e.x
+        );
+    }
+}
+
+/// Tiny δ accepts every VPL with p = 1: the estimate equals the exact sum. Huge δ rejects almost
+/// everything and stays finite.
+#[test]
+fn extreme_deltas() {
+    let s = builtin("default").unwrap();
+    let tracer = Tracer::new(&s);
+    let maps = vec![trace_rsm(&s, &tracer, &s.lights[0], 8, TexelSample::Centre)];
+    let vpls = generate_vpls(&maps, 5, LobeSelection::Both);
+    let g = trace_gbuffer(
+        &s,
+        &tracer,
+        &s.camera_or_default(),
+        16,
+        16,
+        PixelSample::Centre,
+    );
+    let exact = shade_vpls(&tracer, &g, &vpls, VplEstimator::Exact, false, &|_| {}).unwrap();
+    let tiny = shade_vpls(
+        &tracer,
+        &g,
+        &vpls,
+        VplEstimator::Stochastic { delta: 1e-9 },
+        false,
+        &|_| {},
+    )
+    .unwrap();
+    assert!(tiny.rmse(&exact) <= 1e-6 * exact.mean().max_element());
+    for delta in [1e3f32, 1e30] {
+        let huge = shade_vpls(
+            &tracer,
+            &g,
+            &vpls,
+            VplEstimator::Stochastic { delta },
+            false,
+            &|_| {},
+        )
+        .unwrap();
+        assert!(huge.is_finite_non_negative());
+    }
+    assert!(shade_vpls(
+        &tracer,
+        &g,
+        &vpls,
+        VplEstimator::Stochastic { delta: 0.0 },
+        false,
+        &|_| {}
+    )
+    .is_err());
+}
+
+/// A light of zero intensity renders black everywhere, with no NaN.
+#[test]
+fn zero_flux_renders_black() {
+    let mut s = builtin("default").unwrap();
+    s.lights = vec![Light::Point {
+        position: Vec3::new(0.0, 1.5, 0.0),
+        intensity: Vec3::ZERO,
+    }];
+    for method in [
+        Method::Vpl(VplEstimator::Stochastic { delta: 1e-3 }),
+        Method::Vpl(VplEstimator::Exact),
+        Method::Path,
+    ] {
+        let settings = RenderSettings {
+            width: 16,
+            height: 16,
+            rsm_resolution: 4,
+            seed: 0,
+            method,
+            visibility: true,
+            spp: 2,
+            lobes: LobeSelection::Both,
+        };
+        let f = render(&s, &settings, &|_| {}).unwrap();
+        assert!(
+            f.direct
+                .pixels
+                .iter()
+                .chain(&f.indirect.pixels)
+                .all(|p| *p == Vec3::ZERO),
+            "{method:?}"
+        );
+    }
+}
+
+/// Out-of-domain settings and scenes are errors, not panics.
+#[test]
+fn bad_settings_and_scenes_are_errors() {
+    let s = builtin("default").unwrap();
+    let ok = RenderSettings {
+        width: 8,
+        height: 8,
+        rsm_resolution: 4,
+        seed: 0,
+        method: Method::Path,
+        visibility: false,
+        spp: 1,
+        lobes: LobeSelection::Both,
+    };
+    for bad in [
+        RenderSettings {
+            width: 0,
+            ..ok.clone()
+        },
+        RenderSettings {
+            spp: 0,
+            ..ok.clone()
+        },
+        RenderSettings {
+            rsm_resolution: 0,
+            ..ok.clone()
+        },
+        RenderSettings {
+            method: Method::Vpl(VplEstimator::Stochastic { delta: f32::NAN }),
+            ..ok.clone()
+        },
+        RenderSettings {
+            method: Method::Vpl(VplEstimator::Stochastic { delta: -1.0 }),
+            ..ok.clone()
+        },
+    ] {
+        assert!(
+            matches!(render(&s, &bad, &|_| {}), Err(RenderError::Settings(_))),
+            "{bad:?}"
+        );
+    }
+    let mut dark = s.clone();
+    dark.lights.clear();
+    assert!(matches!(
+        render(&dark, &ok, &|_| {}),
+        Err(RenderError::Scene(slc_core::SceneError::NoLight { .. }))
+    ));
+    let mut nan = s.clone();
+    nan.lights[0] = Light::Point {
+        position: Vec3::NAN,
+        intensity: Vec3::ONE,
+    };
+    assert!(render(&nan, &ok, &|_| {}).is_err());
+}
