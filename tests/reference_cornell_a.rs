@@ -10,7 +10,7 @@
 //! standard errors of our mean.
 use glam::Vec3;
 use slc_core::{load_scene, Image};
-use slc_cpu_ref::{render, LobeSelection, Method, RenderSettings, VplEstimator};
+use slc_cpu_ref::{render, LobeSelection, Method, RenderSettings};
 use std::path::{Path, PathBuf};
 
 fn reference_dir() -> PathBuf {
@@ -192,7 +192,7 @@ fn vpl_reference_with_visibility_agrees_with_mitsuba() {
     // 128 x 128 against the reference box-filtered 2 x 2: the same pixel filter at half the
     // resolution, so the VPL-to-pixel shadow rays stay affordable.
     let dir = reference_dir();
-    let [(da, db), (ia, ib)] = render_pair(Method::Vpl(VplEstimator::Exact), true, 128, 16, 8);
+    let [(da, db), (ia, ib)] = render_pair(Method::VplReference, true, 128, 16, 8);
     for (name, a, b, reference, stderr) in [
         ("direct", &da, &db, "direct.exr", "direct_stderr.exr"),
         ("indirect", &ia, &ib, "indirect.exr", "indirect_stderr.exr"),

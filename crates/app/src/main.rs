@@ -1,16 +1,18 @@
 //! `slc`: single-bounce global illumination with many virtual point lights.
+mod args;
+mod compare_cmd;
+mod heatmap;
 mod output;
+mod plot;
+mod progress;
 mod render_cmd;
 mod report;
+mod sweep_cmd;
 
 use clap::{Parser, Subcommand};
 
 #[derive(Parser)]
-#[command(
-    name = "slc",
-    version,
-    about = "Stochastic light culling for VPLs on GGX microsurfaces: render, measure, compare"
-)]
+#[command(name = "slc", version, about = "Stochastic light culling for VPLs on GGX microsurfaces: render, compare, sweep")]
 struct Cli {
     #[command(subcommand)]
     command: Command,
@@ -20,12 +22,18 @@ struct Cli {
 enum Command {
     /// Render a scene: direct, indirect and total images (EXR + PNG) and report.json.
     Render(render_cmd::RenderArgs),
+    /// Every culling strategy on the same VPLs: images, heat maps, report.md, side-by-side.
+    Compare(compare_cmd::CompareArgs),
+    /// Speed against accuracy over δ per strategy: CSV, SVG plot, equal-time comparison.
+    Sweep(sweep_cmd::SweepArgs),
 }
 
 fn main() {
     let cli = Cli::parse();
     let result = match cli.command {
         Command::Render(args) => render_cmd::run(&args),
+        Command::Compare(args) => compare_cmd::run(&args),
+        Command::Sweep(args) => sweep_cmd::run(&args),
     };
     if let Err(e) = result {
         eprintln!("error: {e}");

@@ -26,15 +26,31 @@ pub fn linear_to_srgb(c: f32) -> f32 {
     }
 }
 
-/// Writes an 8-bit sRGB PNG of a linear image, values clamped to [0, 1] (like the reference previews).
-pub fn write_png(path: &Path, image: &Image) -> Result<(), String> {
+/// An 8-bit sRGB image of a linear image, values clamped to [0, 1] (like the reference previews).
+pub fn to_srgb8(image: &Image) -> image::RgbImage {
     let to8 = |c: f32| (linear_to_srgb(c) * 255.0 + 0.5) as u8;
     let mut out = image::RgbImage::new(image.width, image.height);
     for (o, p) in out.pixels_mut().zip(&image.pixels) {
         *o = image::Rgb([to8(p.x), to8(p.y), to8(p.z)]);
     }
-    out.save(path)
-        .map_err(|e| format!("{}: cannot write PNG: {e}", path.display()))
+    out
+}
+
+/// Writes an 8-bit sRGB PNG of a linear image (see [`to_srgb8`]).
+pub fn write_png(path: &Path, image: &Image) -> Result<(), String> {
+    to_srgb8(image).save(path).map_err(|e| format!("{}: cannot write PNG: {e}", path.display()))
+}
+
+/// Writes a frame's folder: `direct`, `indirect` and `total`, each as EXR and PNG; returns the
+/// images by name (total included) for the report.
+pub fn write_frame<'a>(dir: &Path, direct: &'a Image, indirect: &'a Image, total: &'a Image) -> Result<[(&'static str, &'a Image); 3], String> {
+    std::fs::create_dir_all(dir).map_err(|e| format!("{}: cannot create folder: {e}", dir.display()))?;
+    let images = [("direct", direct), ("indirect", indirect), ("total", total)];
+        for (name, img) in images {
+        write_exr(&dir.join(format!("{name}.exr")), img)?;
+        write_png(&dir.join(format!("{name}.png")), img)?;
+    }
+    Ok(images)
 }
 
 #[cfg(test)]

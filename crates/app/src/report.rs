@@ -1,7 +1,12 @@
 //! `report.json`: what was rendered, how long each pass took and what was measured.
 //! Unknown values are `null`, never made up.
+use crate::args::FrameArgs;
 use serde::Serialize;
+use slc_core::{Image, Scene};
+use slc_cpu_ref::{Method, Timings};
+use slc_cull::metrics::CullMetrics;
 use std::collections::BTreeMap;
+use std::path::Path;
 
 #[derive(Serialize, Debug)]
 pub struct Report {
@@ -12,11 +17,16 @@ pub struct Report {
     pub width: u32,
     pub height: u32,
     pub vpl_count: usize,
-    /// δ of eq. (2); `null` when every VPL is used with p = 1 (the VPL reference) or no VPLs are used.
+    /// δ of eq. (2); `null` for the references, which use every VPL with p = 1 or none.
     pub delta: Option<f32>,
     pub seed: u32,
-    pub culling: &'static str,
+    /// The culling strategy; `null` for the references.
+    pub culling: Option<&'static str>,
     pub shader: &'static str,
+    /// K of K x K interleaved sampling; `null` for the references.
+    pub interleave: Option<u32>,
+    /// Whether the cross bilateral filter ran; `null` for the references.
+    pub denoise: Option<bool>,
     /// `vpl` or `path` for reference renders, `null` for the stochastic estimate.
     pub reference: Option<&'static str>,
     pub visibility: bool,
@@ -30,6 +40,7 @@ pub struct Report {
     pub warnings: Vec<String>,
 }
 
+/// Culling metrics (measured by brute force over all pixel-VPL pairs of each subregion).
 #[derive(Serialize, Debug, Default)]
 pub struct Metrics {
     pub lights_per_pixel_mean: Option<f64>,
@@ -37,4 +48,69 @@ pub struct Metrics {
     pub false_positive_pairs: Option<u64>,
     pub false_discovery_rate: Option<f64>,
     pub missed_pairs: Option<u64>,
+}
+
+impl From<Option<&CullMetrics>> for Metrics {
+    fn from(m: Option<&CullMetrics>) -> Self {
+        m.map_or_else(Metrics::default, |m| Metrics {
+            lights_per_pixel_mean: Some(m.lights_per_pixel_mean),
+            true_positive_pairs: Some(m.true_positive_pairs),
+            false_positive_pairs: Some(m.false_positive_pairs),
+            false_discovery_rate: Some(m.false_discovery_rate),
+            missed_pairs: Some(m.missed_pairs),
+        })
+    }
+}
+
+/// What a frame was, for its report.
+pub struct FrameFacts<'a> {
+    pub scene: &'a Scene,
+    pub args: &'a FrameArgs,
+    pub method: Method,
+    pub spp: u32,
+    pub vpl_count: usize,
+    pub timings: &'a Timings,
+    pub metrics: Option<&'a CullMetrics>,
+    pub images: &'a [(&'static str, &'a Image)],
+}
+
+impl Report {
+    pub fn new(f: &FrameFacts) -> Self {
+        let stochastic = match f.method {
+            Method::Stochastic(s) => Some(s),
+            _ => None,
+        };
+        Report {
+            scene: f.scene.name.clone(),
+            backend: "cpu",
+            adapter: format!("CPU ({} rayon threads)", rayon::current_num_threads()),
+            width: f.args.width,
+            height: f.args.height,
+            vpl_count: f.vpl_count,
+            delta: stochastic.map(|s| s.delta),
+            seed: f.args.seed,
+            culling: stochastic.map(|s| s.culling),
+            shader: "vpl",
+            interleave: stochastic.map(|s| s.interleave),
+            denoise: stochastic.map(|s| s.denoise),
+            reference: match f.method {
+                Method::VplReference => Some("vpl"),
+                Method::Path => Some("path"),
+                Method::Stochastic(_) => None,
+            },
+            visibility: f.args.visibility || f.method == Method::Path,
+            spp: f.spp,
+            rsm: f.args.rsm,
+            timings_ms: f.timings.0.iter().map(|(k, v)| (k.to_string(), *v)).chain([("total".to_string(), f.timings.total())]).collect(),
+            metrics: f.metrics.into(),
+            image_means: f.images.iter().map(|(n, i)| (*n, i.mean().to_array())).collect(),
+            skipped_triangles: f.scene.report.skipped.total(),
+            warnings: f.scene.report.warnings.clone(),
+        }
+    }
+
+    pub fn write(&self, path: &Path) -> Result<(), String> {
+        let json = serde_json::to_string_pretty(self).map_err(|e| e.to_string())?;
+        std::fs::write(path, json + "\n").map_err(|e| format!("{}: cannot write report: {e}", path.display()))
+    }
 }

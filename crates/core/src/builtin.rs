@@ -5,9 +5,10 @@
 //! ceiling and back wall, red left wall, green right wall, kd 0.7 / 0.1, F0 0.04, α 1; point
 //! light of 5 W/sr at (0, 1.5, 0); camera at (0, 1, 3.4) looking at (0, 1, 0), 40° vertical
 //! field of view) with a rough copper panel (kd 0, F0 (0.95, 0.64, 0.54), α 0.15) leaning
-//! towards the left wall and tilted so that the light's mirror reflection crosses the room and
-//! lands on the green wall: a glossy caustic a diffuse-only method cannot produce. A blue
-//! diffuse box stands near the back right corner.
+//! towards the left wall and tilted so that a spot light's mirror reflection crosses the room
+//! and lands on the green wall: a glossy caustic a diffuse-only method cannot produce. The spot
+//! (120 W/sr, 6°-10° cone) sits high in the front right corner and aims at the panel; the point
+//! light is dimmed to a 2 W/sr fill. A blue diffuse box stands near the back right corner.
 use crate::camera::Camera;
 use crate::light::Light;
 use crate::material::Material;
@@ -31,6 +32,9 @@ const PANEL_CENTRE: Vec3 = Vec3::new(-0.6, 0.42, -0.3);
 /// Direction (not normalized) the copper panel's front face points to: towards the green
 /// wall and up towards the light, so that the light's mirror image lands on the green wall.
 const PANEL_FACING: Vec3 = Vec3::new(1.0, 0.6, 0.2);
+/// A narrow spot light high in the front right corner aims at the panel, so most glossy VPLs
+/// sit on the copper and their caustic on the green wall is bright.
+const SPOT_POSITION: Vec3 = Vec3::new(0.7, 1.9, 0.6);
 
 fn cornell_glossy() -> Scene {
     let wall = |name: &str, kd: Vec3| Material::direct(name, kd, Vec3::splat(0.04), 1.0);
@@ -38,7 +42,7 @@ fn cornell_glossy() -> Scene {
         wall("white", Vec3::splat(0.7)),
         wall("red", Vec3::new(0.7, 0.1, 0.1)),
         wall("green", Vec3::new(0.1, 0.7, 0.1)),
-        Material::direct("copper", Vec3::ZERO, Vec3::new(0.95, 0.64, 0.54), 0.15),
+        Material::direct("copper", Vec3::ZERO, Vec3::new(0.95, 0.64, 0.54), 0.08),
         wall("blue", Vec3::new(0.2, 0.3, 0.8)),
     ];
     let (white, red, green, copper, blue) = (0, 1, 2, 3, 4);
@@ -74,10 +78,19 @@ fn cornell_glossy() -> Scene {
         meshes,
         materials,
         textures: Vec::new(),
-        lights: vec![Light::Point {
-            position: Vec3::new(0.0, 1.5, 0.0),
-            intensity: Vec3::splat(5.0),
-        }],
+        lights: vec![
+            Light::Spot {
+                position: SPOT_POSITION,
+                direction: (PANEL_CENTRE - SPOT_POSITION).normalize(),
+                intensity: Vec3::splat(120.0),
+                inner_cone_angle: 6f32.to_radians(),
+                outer_cone_angle: 10f32.to_radians(),
+            },
+            Light::Point {
+                position: Vec3::new(0.0, 1.5, 0.0),
+                intensity: Vec3::splat(2.0),
+            },
+        ],
         camera,
         report: Default::default(),
     }
@@ -123,7 +136,7 @@ mod tests {
         assert_eq!(s.name, "cornell-glossy");
         assert!(builtin("nonexistent").is_none());
         s.validate_for_render().unwrap();
-        assert_eq!(s.lights.len(), 1);
+        assert_eq!(s.lights.len(), 2);
         let cam = s.camera.as_ref().unwrap();
         assert!((cam.forward - Vec3::NEG_Z).length() < 1e-6);
         assert!(s.has_specular());
@@ -169,12 +182,16 @@ mod tests {
     #[test]
     fn the_copper_panel_reflects_the_light_onto_the_visible_green_wall() {
         let s = builtin("default").unwrap();
-        let Light::Point {
-            position: light, ..
+        let Light::Spot {
+            position: light,
+            direction,
+            outer_cone_angle,
+            ..
         } = s.lights[0]
         else {
-            panic!("point light expected")
+            panic!("a spot light aimed at the panel expected")
         };
+        assert!(direction.dot((PANEL_CENTRE - light).normalize()) > outer_cone_angle.cos());
         let n = PANEL_FACING.normalize();
         let hit = PANEL_CENTRE + 0.02 * n; // centre of the panel's front face
         assert!(!occluded(&s, light, hit + 1e-3 * n));

@@ -15,7 +15,9 @@ pub enum SceneError {
     Gltf { path: PathBuf, message: String },
     #[error("{path}: not a valid OBJ/MTL file: {message}")]
     Obj { path: PathBuf, message: String },
-    #[error("{path}: unsupported scene format (expected .gltf, .glb or .obj)")]
+    #[error(
+        "{path}: unsupported scene format (expected .gltf, .glb, .obj or .toml scene settings)"
+    )]
     UnsupportedFormat { path: PathBuf },
     #[error("unknown built-in scene '{name}' (built-in scenes: {available})")]
     UnknownBuiltin { name: String, available: String },
@@ -25,4 +27,7 @@ pub enum SceneError {
     NoGeometry { scene: String },
     #[error("{scene}: {message}")]
     Invalid { scene: String, message: String },
+    /// A scene settings file (`.toml`) that is malformed or asks for something invalid.
+    #[error("{path}: invalid scene settings: {message}")]
+    Settings { path: PathBuf, message: String },
 }

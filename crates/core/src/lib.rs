@@ -14,6 +14,7 @@
 //! ```
 pub mod builtin;
 pub mod camera;
+pub mod culling;
 pub mod error;
 pub mod framebuffer;
 pub mod gltf_loader;
@@ -27,6 +28,7 @@ pub mod mesh;
 pub mod obj_loader;
 pub mod rng;
 pub mod scene;
+pub mod settings;
 pub mod shapes;
 pub mod texture;
 mod texture_decode;
@@ -37,12 +39,14 @@ mod loader_tests;
 
 pub use builtin::{builtin, BUILTIN_NAMES};
 pub use camera::Camera;
+pub use culling::{CullError, CullInput, Culler, Interleaving, LightLists, NO_LIST, TILE_SIZE};
 pub use error::SceneError;
 pub use framebuffer::{GBuffer, GSample, Image};
 pub use light::{Incident, Light};
-pub use load::load_scene;
+pub use load::{load_scene, load_scene_file};
 pub use material::{Material, MaterialModel, ALPHA_MIN};
 pub use mesh::Mesh;
 pub use scene::{LoadReport, Scene};
+pub use settings::{load_settings, MaterialOverride, Settings};
 pub use texture::{Texture, TextureId};
 pub use vpl::{Vpl, VplLobe};

@@ -1,38 +1,51 @@
-//! One entry point for every scene source: built-in names and scene files.
+//! One entry point for every scene source: built-in names, scene files and scene settings.
 use crate::builtin::{builtin, BUILTIN_NAMES};
 use crate::error::SceneError;
 use crate::gltf_loader::load_gltf;
 use crate::obj_loader::load_obj;
 use crate::scene::Scene;
+use crate::settings::load_settings;
 use std::path::Path;
 
 /// Loads a scene: a built-in name (see [`BUILTIN_NAMES`]) or a file path chosen by its
-/// extension, case-insensitive: `.gltf` / `.glb` (glTF 2.0) or `.obj` (OBJ + MTL). The scene
-/// is named by the built-in name or the file's stem.
+/// extension, case-insensitive: `.gltf` / `.glb` (glTF 2.0), `.obj` (OBJ + MTL) or `.toml`
+/// (scene settings naming one of those files, see [`crate::settings`]). The scene is named by
+/// the built-in name or the file's stem (for settings: the settings file's stem).
 ///
 /// Errors: an unknown extension is [`SceneError::UnsupportedFormat`]; a spec without
 /// extension that is neither a built-in name nor a file is [`SceneError::UnknownBuiltin`];
-/// loader errors name the file.
+/// loader errors name the file; settings errors are [`SceneError::Settings`].
 pub fn load_scene(spec: &str) -> Result<Scene, SceneError> {
     if let Some(scene) = builtin(spec) {
         return Ok(scene);
     }
     let path = Path::new(spec);
-    match path
-        .extension()
-        .map(|e| e.to_string_lossy().to_ascii_lowercase())
-        .as_deref()
-    {
-        Some("gltf" | "glb") => load_gltf(path),
-        Some("obj") => load_obj(path),
+    match extension(path).as_deref() {
+        Some("toml") => load_settings(path),
         None if !path.is_file() => Err(SceneError::UnknownBuiltin {
             name: spec.to_string(),
             available: BUILTIN_NAMES.join(", "),
         }),
+        _ => load_scene_file(path),
+    }
+}
+
+/// Loads a scene file chosen by its extension, case-insensitive: `.gltf` / `.glb` or `.obj`.
+/// Neither built-in names nor settings files: this is what a settings file may name.
+pub fn load_scene_file(path: &Path) -> Result<Scene, SceneError> {
+    match extension(path).as_deref() {
+        Some("gltf" | "glb") => load_gltf(path),
+        Some("obj") => load_obj(path),
         _ => Err(SceneError::UnsupportedFormat {
             path: path.to_path_buf(),
         }),
     }
+}
+
+/// The file extension in lower case.
+pub(crate) fn extension(path: &Path) -> Option<String> {
+    path.extension()
+        .map(|e| e.to_string_lossy().to_ascii_lowercase())
 }
 
 #[cfg(test)]
@@ -78,6 +91,7 @@ mod tests {
             "/nonexistent/a.GLTF",
             "/nonexistent/a.Glb",
             "/nonexistent/a.OBJ",
+            "/nonexistent/a.TOML",
         ] {
             assert!(
                 matches!(load_scene(spec), Err(SceneError::Io { .. })),

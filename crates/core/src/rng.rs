@@ -12,6 +12,8 @@ pub mod stream {
     pub const RSM_JITTER: u32 = 1;
     /// Per-pixel samples (camera jitter, path sampling), index = pixel index.
     pub const PIXEL: u32 = 2;
+    /// The interleaved-sampling subregion of a VPL, index = VPL id.
+    pub const INTERLEAVE: u32 = 3;
 }
 
 /// The PCG hash of Jarzynski and Olano, "Hash Functions for GPU Rendering", JCGT 9(3), 2020.

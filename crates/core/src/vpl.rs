@@ -26,7 +26,10 @@ pub struct Vpl {
     /// The surface's BRDF at q.
     pub brdf: Brdf,
     pub lobe: VplLobe,
-    /// The VPL's Russian-roulette number ξ in (0, 1) (paper eq. 3), from [`crate::rng::vpl_xi`].
+    /// Stable id: 2k for the diffuse and 2k + 1 for the glossy VPL of RSM texel k, whatever
+    /// texels are empty, so every backend derives the same random numbers from it.
+    pub id: u32,
+    /// The VPL's Russian-roulette number ξ in (0, 1) (paper eq. 3): `rng::vpl_xi(seed, id)`.
     pub xi: f32,
 }
 

@@ -19,12 +19,14 @@
 //!
 //! ```
 //! use slc_core::builtin;
-//! use slc_cpu_ref::{render, LobeSelection, Method, RenderSettings, VplEstimator};
+//! use slc_cpu_ref::{render, LobeSelection, Method, RenderSettings, Stochastic};
 //!
 //! let scene = builtin("default").unwrap();
 //! let settings = RenderSettings {
 //!     width: 32, height: 32, rsm_resolution: 4, seed: 7,
-//!     method: Method::Vpl(VplEstimator::Stochastic { delta: 1e-3 }),
+//!     method: Method::Stochastic(Stochastic {
+//!         delta: 1e-3, culling: "ellipsoid", interleave: 4, denoise: true, metrics: false,
+//!     }),
 //!     visibility: false, spp: 1, lobes: LobeSelection::Both,
 //! };
 //! let frame = render(&scene, &settings, &|_pixels_done| {})?;
@@ -32,6 +34,7 @@
 //! assert!(frame.indirect.mean().max_element() > 0.0);
 //! # Ok::<(), slc_cpu_ref::RenderError>(())
 //! ```
+pub mod denoise;
 pub mod direct;
 pub mod gbuffer;
 pub mod path;
@@ -43,7 +46,7 @@ pub mod vpl_shading;
 pub mod vpls;
 pub mod watertight;
 
-pub use render::{render, Frame, Method, RenderError, RenderSettings};
+pub use render::{prepare, render, shade_stochastic, Frame, Method, Prepared, RenderError, RenderSettings, Stochastic, StochasticFrame, Timings};
 pub use tracer::Tracer;
 pub use vpl_shading::VplEstimator;
 pub use vpls::LobeSelection;

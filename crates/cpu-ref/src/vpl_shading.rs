@@ -5,7 +5,7 @@ use glam::Vec3;
 use rayon::prelude::*;
 use slc_bounds::stochastic::{scalar_intensity, StochasticParams};
 use slc_bounds::BoundsError;
-use slc_core::{GBuffer, GSample, Image, Vpl};
+use slc_core::{GBuffer, GSample, Image, Interleaving, LightLists, Vpl};
 
 /// How each VPL's contribution is weighted.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -79,6 +79,53 @@ pub fn shade_vpls(
                             || tracer.unoccluded(from, tracer.lift(vpl.position, vpl.normal)))
                     {
                         *o += c;
+                    }
+                }
+            }
+            progress(w as u64);
+        });
+    Ok(image)
+}
+
+/// Indirect radiance from culled light lists (paper eq. 3 with interleaved sampling): each
+/// pixel sums the VPLs of its list with weight K²/p when p > ξ. Unbiased as long as the lists
+/// miss no VPL with p > ξ at the pixel.
+pub fn shade_lists(
+    tracer: &Tracer,
+    gbuffer: &GBuffer,
+    vpls: &[Vpl],
+    lists: &LightLists,
+    interleaving: Interleaving,
+    delta: f32,
+    visibility: bool,
+    progress: &(dyn Fn(u64) + Sync),
+) -> Result<Image, BoundsError> {
+    let roulette = vpls
+        .iter()
+        .map(|v| StochasticParams::new(delta, v.xi))
+        .collect::<Result<Vec<_>, _>>()?;
+    let scale = interleaving.scale();
+    let mut image = Image::new(gbuffer.width, gbuffer.height);
+    let w = gbuffer.width as usize;
+    image
+        .pixels
+        .par_chunks_mut(w)
+        .enumerate()
+        .for_each(|(y, out)| {
+            for (x, o) in out.iter_mut().enumerate() {
+                let p = y * w + x;
+                let Some(g) = &gbuffer.samples[p] else {
+                    continue;
+                };
+                let from = tracer.lift(g.position, g.geometric_normal);
+                for &k in lists.for_pixel(p) {
+                    let vpl = &vpls[k as usize];
+                    let c = vpl_contribution(g, vpl, Some(&roulette[k as usize]));
+                    if c != Vec3::ZERO
+                        && (!visibility
+                            || tracer.unoccluded(from, tracer.lift(vpl.position, vpl.normal)))
+                    {
+                        *o += c * scale;
                     }
                 }
             }

@@ -46,6 +46,7 @@ pub fn generate_vpls(maps: &[Rsm], seed: u32, lobes: LobeSelection) -> Vec<Vpl> 
                         flux: t.flux,
                         brdf: t.brdf,
                         lobe,
+                        id,
                         xi: vpl_xi(seed, id),
                     });
                 }

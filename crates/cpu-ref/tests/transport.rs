@@ -6,7 +6,12 @@ use slc_cpu_ref::gbuffer::{trace_gbuffer, PixelSample};
 use slc_cpu_ref::rsm::{trace_rsm, Rsm, TexelSample};
 use slc_cpu_ref::vpl_shading::shade_vpls;
 use slc_cpu_ref::vpls::{generate_vpls, LobeSelection};
-use slc_cpu_ref::{render, Method, RenderError, RenderSettings, Tracer, VplEstimator};
+use slc_cpu_ref::{render, Method, RenderError, RenderSettings, Stochastic, Tracer, VplEstimator};
+
+/// The stochastic estimate without culling, interleaving or denoising.
+fn unculled(delta: f32) -> Stochastic {
+    Stochastic { delta, culling: "none", interleave: 1, denoise: false, metrics: false }
+}
 use std::f32::consts::PI;
 
 fn scene(meshes: Vec<slc_core::Mesh>, double_sided: bool, light: Light) -> Scene {
@@ -278,8 +283,9 @@ fn zero_flux_renders_black() {
         intensity: Vec3::ZERO,
     }];
     for method in [
-        Method::Vpl(VplEstimator::Stochastic { delta: 1e-3 }),
-        Method::Vpl(VplEstimator::Exact),
+        Method::Stochastic(unculled(1e-3)),
+        Method::Stochastic(Stochastic { culling: "ellipsoid", interleave: 4, denoise: true, ..unculled(1e-3) }),
+        Method::VplReference,
         Method::Path,
     ] {
         let settings = RenderSettings {
@@ -332,13 +338,15 @@ fn bad_settings_and_scenes_are_errors() {
             ..ok.clone()
         },
         RenderSettings {
-            method: Method::Vpl(VplEstimator::Stochastic { delta: f32::NAN }),
+            method: Method::Stochastic(unculled(f32::NAN)),
             ..ok.clone()
         },
         RenderSettings {
-            method: Method::Vpl(VplEstimator::Stochastic { delta: -1.0 }),
+            method: Method::Stochastic(unculled(-1.0)),
             ..ok.clone()
         },
+        RenderSettings { method: Method::Stochastic(Stochastic { interleave: 0, ..unculled(1e-3) }), ..ok.clone() },
+        RenderSettings { method: Method::Stochastic(Stochastic { culling: "octree", ..unculled(1e-3) }), ..ok.clone() },
     ] {
         assert!(
             matches!(render(&s, &bad, &|_| {}), Err(RenderError::Settings(_))),

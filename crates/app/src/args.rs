@@ -1,0 +1,90 @@
+//! Command-line options shared by `render`, `compare` and `sweep`.
+use clap::{Args, ValueEnum};
+use slc_core::{load_scene, Scene};
+use slc_cpu_ref::{LobeSelection, RenderSettings};
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum Backend {
+    Cpu,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum Shader {
+    Vpl,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum Lobes {
+    /// Diffuse and glossy VPLs.
+    Both,
+    /// Diffuse VPLs only (spheres in every strategy), as the paper's Table 2, upper half.
+    Diffuse,
+    /// Glossy VPLs only, as the paper's Table 2, lower half.
+    Glossy,
+}
+
+/// What a frame is made of: the scene, the image, the VPLs.
+#[derive(Args, Debug, Clone)]
+pub struct FrameArgs {
+    /// A .gltf/.glb/.obj file, a .toml scene-settings file, or a built-in scene name; none
+    /// renders the built-in default.
+    pub scene: Option<String>,
+    #[arg(long, default_value_t = 512)]
+    pub width: u32,
+    #[arg(long, default_value_t = 512)]
+    pub height: u32,
+    #[arg(long, value_enum, default_value_t = Backend::Cpu)]
+    pub backend: Backend,
+    #[arg(long, value_enum, default_value_t = Shader::Vpl)]
+    pub shader: Shader,
+    /// Reflective-shadow-map resolution per face (a point light has six faces; each texel makes
+    /// a diffuse and a glossy VPL).
+    #[arg(long, default_value_t = 64)]
+    pub rsm: u32,
+    #[arg(long, default_value_t = 0)]
+    pub seed: u32,
+    /// Which VPL lobes to generate.
+    #[arg(long, value_enum, default_value_t = Lobes::Both)]
+    pub lobes: Lobes,
+    /// Shadow rays between every listed VPL and pixel.
+    #[arg(long)]
+    pub visibility: bool,
+}
+
+impl FrameArgs {
+    /// Loads the scene, printing its loader warnings.
+    pub fn load(&self) -> Result<Scene, String> {
+        let scene = load_scene(self.scene.as_deref().unwrap_or("default")).map_err(|e| e.to_string())?;
+        for w in &scene.report.warnings {
+            eprintln!("warning: {w}");
+        }
+        Ok(scene)
+    }
+
+    /// Render settings for `method`, one pass.
+    pub fn settings(&self, method: slc_cpu_ref::Method, spp: u32) -> RenderSettings {
+        RenderSettings {
+            width: self.width,
+            height: self.height,
+            rsm_resolution: self.rsm,
+            seed: self.seed,
+            method,
+            visibility: self.visibility,
+            spp,
+            lobes: match self.lobes {
+                Lobes::Both => LobeSelection::Both,
+                Lobes::Diffuse => LobeSelection::Diffuse,
+                Lobes::Glossy => LobeSelection::Glossy,
+            },
+        }
+    }
+}
+
+/// Maps a culling name given on the command line to the library's static name.
+pub fn culling_name(name: &str) -> Result<&'static str, String> {
+    slc_cull::CULLER_NAMES
+        .iter()
+        .find(|n| **n == name)
+        .copied()
+        .ok_or_else(|| format!("unknown culling strategy '{name}' (one of {})", slc_cull::CULLER_NAMES.join(", ")))
+}

@@ -1,0 +1,183 @@
+//! `slc compare`: every culling strategy on the same G-buffer, VPLs and ξ, side by side.
+//!
+//! Writes one folder per strategy (images, heat map, report.json), `reference_vpl/` (every VPL
+//! with p = 1, the same VPLs), `report.md` with the table, and `side_by_side.png`.
+use crate::args::{culling_name, FrameArgs};
+use crate::heatmap::heat_map;
+use crate::output::write_frame;
+use crate::progress::bar;
+use crate::report::{FrameFacts, Report};
+use clap::Args;
+use image::RgbImage;
+use slc_core::Image;
+use slc_cpu_ref::denoise::{cross_bilateral, BilateralParams};
+use slc_cpu_ref::vpl_shading::{shade_vpls, VplEstimator};
+use slc_cpu_ref::{prepare, shade_stochastic, Method, Stochastic, Timings, Tracer};
+use std::fmt::Write;
+use std::path::PathBuf;
+
+#[derive(Args, Debug)]
+pub struct CompareArgs {
+    #[command(flatten)]
+    pub frame: FrameArgs,
+    /// Output folder.
+    #[arg(long, default_value = "compare")]
+    pub out: PathBuf,
+    /// Strategies to compare, comma separated.
+    #[arg(long, value_delimiter = ',', default_value = "none,sphere,enclosing-sphere,ellipsoid,clustered")]
+    pub culling: Vec<String>,
+    #[arg(long, default_value_t = 1e-3)]
+    pub delta: f32,
+    #[arg(long, default_value_t = 8)]
+    pub interleave: u32,
+    #[arg(long)]
+    pub no_denoise: bool,
+    /// Heat-map brightness saturates at this many VPLs per pixel (256 in the paper's figures).
+    #[arg(long, default_value_t = 256)]
+    pub heat_max: u32,
+    /// Skip the all-VPL reference (it costs every VPL at every pixel).
+    #[arg(long)]
+    pub no_reference: bool,
+}
+
+/// One strategy's row of the table.
+struct Row {
+    name: &'static str,
+    timings: Timings,
+    lights_per_pixel: f64,
+    tp: u64,
+    fp: u64,
+    missed: u64,
+    fdr: f64,
+    rmse_unculled: Option<f32>,
+    rmse_reference: Option<f32>,
+    total: Image,
+    heat: RgbImage,
+}
+
+pub fn run(args: &CompareArgs) -> Result<(), String> {
+    let scene = args.frame.load()?;
+    scene.validate_for_render().map_err(|e| e.to_string())?;
+    let names = args.culling.iter().map(|n| culling_name(n)).collect::<Result<Vec<_>, _>>()?;
+    let f = &args.frame;
+    let base = Stochastic { delta: args.delta, culling: "none", interleave: args.interleave, denoise: !args.no_denoise, metrics: true };
+    let settings = f.settings(Method::Stochastic(base), 1);
+    settings.validate().map_err(|e| e.to_string())?;
+    let pixels = f.width as u64 * f.height as u64;
+    eprintln!("preparing {} ({}x{}, RSM {}²)", scene.name, f.width, f.height, f.rsm);
+    let p = prepare(&scene, &settings, Tracer::new(&scene), None);
+    eprintln!("{} VPLs", p.vpls.len());
+
+    let reference = (!args.no_reference)
+        .then(|| {
+            let bar = bar(pixels, "all-VPL reference".into());
+            let r = shade_vpls(&p.tracer, &p.gbuffer, &p.vpls, VplEstimator::Exact, f.visibility, &|n| bar.inc(n));
+            bar.finish_and_clear();
+            r
+        })
+        .transpose()
+        .map_err(|e| e.to_string())?;
+    if let Some(r) = &reference {
+        let total = p.direct.add(r);
+        let dir = args.out.join("reference_vpl");
+        let images = write_frame(&dir, &p.direct, r, &total)?;
+        let facts = FrameFacts { scene: &scene, args: f, method: Method::VplReference, spp: 1, vpl_count: p.vpls.len(), timings: &p.timings, metrics: None, images: &images };
+        Report::new(&facts).write(&dir.join("report.json"))?;
+    }
+
+    // The unculled estimate with the same K, δ and ξ: a strategy that misses nothing equals it.
+    let unculled = shade_stochastic(&p, &Stochastic { denoise: false, metrics: false, ..base }, f.seed, f.visibility, &|_| {}).map_err(|e| e.to_string())?.indirect;
+    let mut rows = Vec::new();
+    for name in names {
+        let s = Stochastic { culling: name, ..base };
+        let bar = bar(pixels, format!("{name}"));
+        let out = shade_stochastic(&p, &s, f.seed, f.visibility, &|n| bar.inc(n)).map_err(|e| e.to_string())?;
+        bar.finish_and_clear();
+        let m = out.metrics.as_ref().expect("metrics were asked for");
+        let denoised_unculled = if s.denoise { cross_bilateral(&unculled, &p.gbuffer, BilateralParams::default()) } else { unculled.clone() };
+        let total = p.direct.add(&out.indirect);
+        let dir = args.out.join(name);
+        let images = write_frame(&dir, &p.direct, &out.indirect, &total)?;
+        let heat = heat_map(f.width, f.height, &m.lights_per_pixel, &m.fdr_per_pixel, args.heat_max);
+        heat.save(dir.join("heatmap.png")).map_err(|e| format!("{}: {e}", dir.display()))?;
+        let mut timings = p.timings.clone();
+        timings.merge(&out.timings);
+        let facts = FrameFacts { scene: &scene, args: f, method: Method::Stochastic(s), spp: 1, vpl_count: p.vpls.len(), timings: &timings, metrics: Some(m), images: &images };
+        Report::new(&facts).write(&dir.join("report.json"))?;
+        rows.push(Row {
+            name,
+            timings: out.timings,
+            lights_per_pixel: m.lights_per_pixel_mean,
+            tp: m.true_positive_pairs,
+            fp: m.false_positive_pairs,
+            missed: m.missed_pairs,
+            fdr: m.false_discovery_rate,
+            rmse_unculled: Some(out.indirect.rmse(&denoised_unculled)),
+            rmse_reference: reference.as_ref().map(|r| out.indirect.rmse(r)),
+            total,
+            heat,
+        });
+        eprintln!("{name}: done");
+    }
+    write_table(args, &scene.name, p.vpls.len(), &rows)?;
+    side_by_side(&rows).save(args.out.join("side_by_side.png")).map_err(|e| e.to_string())?;
+    println!("wrote {}", args.out.display());
+    Ok(())
+}
+
+fn ms(t: &Timings, name: &str) -> f64 {
+    t.0.iter().find(|(n, _)| *n == name).map_or(0.0, |(_, v)| *v)
+}
+
+fn write_table(args: &CompareArgs, scene: &str, vpls: usize, rows: &[Row]) -> Result<(), String> {
+    let f = &args.frame;
+    let mut md = String::new();
+    let _ = writeln!(md, "# slc compare: {scene}\n");
+    let _ = writeln!(
+        md,
+        "{}x{}, {vpls} VPLs (RSM {}² per face, lobes {:?}), δ = {}, K = {}, denoise {}, seed {}, {} rayon threads.\n",
+        f.width,
+        f.height,
+        f.rsm,
+        f.lobes,
+        args.delta,
+        args.interleave,
+        !args.no_denoise,
+        f.seed,
+        rayon::current_num_threads()
+    );
+    let _ = writeln!(md, "Every strategy shades the same G-buffer, VPLs and ξ. \"vs unculled\" is the RMSE of the indirect image against the estimate with no culling (same K, δ, ξ and filter): 0 up to float rounding when nothing contributing was culled. \"vs reference\" is against every VPL with p = 1 (`reference_vpl/`).\n");
+    let _ = writeln!(md, "| strategy | culling ms | shading ms | denoise ms | culling + shading ms | lights/pixel | true positives | false positives | missed | FDR | RMSE vs unculled | RMSE vs reference |");
+    let _ = writeln!(md, "|---|---|---|---|---|---|---|---|---|---|---|---|");
+    let fmt_opt = |v: Option<f32>| v.map_or("n/a".to_string(), |v| format!("{v:.3e}"));
+    for r in rows {
+        let (c, s, d) = (ms(&r.timings, "culling"), ms(&r.timings, "shading"), ms(&r.timings, "denoise"));
+        let _ = writeln!(
+            md,
+            "| {} | {c:.1} | {s:.1} | {d:.1} | {:.1} | {:.1} | {} | {} | {} | {:.3} | {} | {} |",
+            r.name,
+            c + s,
+            r.lights_per_pixel,
+            r.tp,
+            r.fp,
+            r.missed,
+            r.fdr,
+            fmt_opt(r.rmse_unculled),
+            fmt_opt(r.rmse_reference)
+        );
+    }
+    let _ = writeln!(md, "\nHeat maps (`*/heatmap.png`, bottom row of `side_by_side.png`): brightness = VPLs per pixel (full at {}), colour = false discovery rate from blue (0) to red (1).", args.heat_max);
+    std::fs::write(args.out.join("report.md"), md).map_err(|e| e.to_string())
+}
+
+/// Totals in the top row, heat maps below, one column per strategy.
+fn side_by_side(rows: &[Row]) -> RgbImage {
+    let (w, h) = rows.first().map_or((1, 1), |r| (r.total.width, r.total.height));
+    let mut out = RgbImage::new(w * rows.len().max(1) as u32, 2 * h);
+    for (i, r) in rows.iter().enumerate() {
+        let png = crate::output::to_srgb8(&r.total);
+        image::imageops::replace(&mut out, &png, (i as u32 * w) as i64, 0);
+        image::imageops::replace(&mut out, &r.heat, (i as u32 * w) as i64, h as i64);
+    }
+    out
+}

@@ -1,0 +1,133 @@
+//! `slc sweep`: the speed-versus-accuracy trade of δ for each culling strategy.
+//!
+//! For each strategy and δ, shades the same prepared frame (same G-buffer, VPLs and ξ) and
+//! records culling + shading time and the RMSE of the indirect image against every VPL with
+//! p = 1. Writes `sweep.csv`, `sweep.svg` (RMSE against time, one curve per strategy) and an
+//! equal-time comparison (`equal_time.md`, `equal_time.png`) in the spirit of the supplemental's
+//! Fig. 2: each strategy at the δ whose time is closest to the reference strategy's median run.
+use crate::args::{culling_name, FrameArgs};
+use crate::output::to_srgb8;
+use crate::plot::{line_plot_svg, Series};
+use crate::progress::bar;
+use clap::Args;
+use image::RgbImage;
+use slc_core::Image;
+use slc_cpu_ref::vpl_shading::{shade_vpls, VplEstimator};
+use slc_cpu_ref::{prepare, shade_stochastic, Method, Stochastic, Tracer};
+use std::fmt::Write;
+use std::path::PathBuf;
+
+#[derive(Args, Debug)]
+pub struct SweepArgs {
+    #[command(flatten)]
+    pub frame: FrameArgs,
+    #[arg(long, default_value = "sweep")]
+    pub out: PathBuf,
+    /// Values of δ, comma separated.
+    #[arg(long, value_delimiter = ',', default_value = "1e-4,3e-4,1e-3,3e-3,1e-2")]
+    pub delta: Vec<f32>,
+    /// Strategies, comma separated; the first is the equal-time reference.
+    #[arg(long, value_delimiter = ',', default_value = "ellipsoid,sphere,enclosing-sphere,clustered")]
+    pub culling: Vec<String>,
+    #[arg(long, default_value_t = 8)]
+    pub interleave: u32,
+    #[arg(long)]
+    pub no_denoise: bool,
+    /// Timing repetitions per point; the fastest is kept.
+    #[arg(long, default_value_t = 1)]
+    pub repeat: u32,
+}
+
+struct Point {
+    strategy: &'static str,
+    delta: f32,
+    culling_ms: f64,
+    shading_ms: f64,
+    rmse: f32,
+    total: Image,
+}
+
+impl Point {
+    fn time_ms(&self) -> f64 {
+        self.culling_ms + self.shading_ms
+    }
+}
+
+pub fn run(args: &SweepArgs) -> Result<(), String> {
+    let scene = args.frame.load()?;
+    scene.validate_for_render().map_err(|e| e.to_string())?;
+    let names = args.culling.iter().map(|n| culling_name(n)).collect::<Result<Vec<_>, _>>()?;
+    if names.is_empty() || args.delta.is_empty() || args.repeat == 0 {
+        return Err("sweep needs at least one strategy, one δ and one repetition".into());
+    }
+    let f = &args.frame;
+    let base = Stochastic { delta: args.delta[0], culling: names[0], interleave: args.interleave, denoise: !args.no_denoise, metrics: false };
+    for &delta in &args.delta {
+        f.settings(Method::Stochastic(Stochastic { delta, ..base }), 1).validate().map_err(|e| e.to_string())?;
+    }
+    let p = prepare(&scene, &f.settings(Method::Stochastic(base), 1), Tracer::new(&scene), None);
+    let pixels = f.width as u64 * f.height as u64;
+    let reference = {
+        let bar = bar(pixels, "all-VPL reference".into());
+        let r = shade_vpls(&p.tracer, &p.gbuffer, &p.vpls, VplEstimator::Exact, f.visibility, &|n| bar.inc(n)).map_err(|e| e.to_string())?;
+        bar.finish_and_clear();
+        r
+    };
+    let mut points = Vec::new();
+    let progress = bar((names.len() * args.delta.len() * args.repeat as usize) as u64, "sweep".into());
+    for &strategy in &names {
+        for &delta in &args.delta {
+            let s = Stochastic { delta, culling: strategy, ..base };
+            let mut best: Option<Point> = None;
+            for _ in 0..args.repeat {
+                let out = shade_stochastic(&p, &s, f.seed, f.visibility, &|_| {}).map_err(|e| e.to_string())?;
+                let t = |n: &str| out.timings.0.iter().find(|(k, _)| *k == n).map_or(0.0, |(_, v)| *v);
+                let point = Point { strategy, delta, culling_ms: t("culling"), shading_ms: t("shading"), rmse: out.indirect.rmse(&reference), total: p.direct.add(&out.indirect) };
+                if best.as_ref().is_none_or(|b| point.time_ms() < b.time_ms()) {
+                    best = Some(point);
+                }
+                progress.inc(1);
+            }
+            points.extend(best);
+        }
+    }
+    progress.finish_and_clear();
+    std::fs::create_dir_all(&args.out).map_err(|e| format!("{}: {e}", args.out.display()))?;
+    let mut csv = String::from("strategy,delta,culling_ms,shading_ms,culling_plus_shading_ms,rmse_vs_all_vpl\n");
+    for pt in &points {
+        let _ = writeln!(csv, "{},{},{:.3},{:.3},{:.3},{:.6e}", pt.strategy, pt.delta, pt.culling_ms, pt.shading_ms, pt.time_ms(), pt.rmse);
+    }
+    std::fs::write(args.out.join("sweep.csv"), csv).map_err(|e| e.to_string())?;
+    let series: Vec<Series> = names
+        .iter()
+        .map(|&n| Series { name: n.to_string(), points: points.iter().filter(|p| p.strategy == n).map(|p| (p.time_ms(), p.rmse as f64)).collect() })
+        .collect();
+    let title = format!("{}: RMSE vs culling + shading time, δ in {:?}", scene.name, args.delta);
+    std::fs::write(args.out.join("sweep.svg"), line_plot_svg(&title, "culling + shading (ms)", "RMSE of indirect vs all VPLs", &series, true, true)).map_err(|e| e.to_string())?;
+    equal_time(args, &names, &points)?;
+    println!("wrote {}", args.out.display());
+    Ok(())
+}
+
+/// Each strategy's run closest in time to the median run of the first strategy.
+fn equal_time(args: &SweepArgs, names: &[&'static str], points: &[Point]) -> Result<(), String> {
+    let mut first: Vec<&Point> = points.iter().filter(|p| p.strategy == names[0]).collect();
+    first.sort_by(|a, b| a.time_ms().total_cmp(&b.time_ms()));
+    let target = first[first.len() / 2].time_ms();
+    let picks: Vec<&Point> = names
+        .iter()
+        .filter_map(|&n| points.iter().filter(|p| p.strategy == n).min_by(|a, b| (a.time_ms() - target).abs().total_cmp(&(b.time_ms() - target).abs())))
+        .collect();
+    let mut md = format!("# Equal-time comparison\n\nTarget: {target:.1} ms of culling + shading (the median run of `{}`).\n\n| strategy | δ | culling + shading ms | RMSE vs all VPLs |\n|---|---|---|---|\n", names[0]);
+    for p in &picks {
+        let _ = writeln!(md, "| {} | {} | {:.1} | {:.4e} |", p.strategy, p.delta, p.time_ms(), p.rmse);
+    }
+    md.push_str("\n`equal_time.png`: the total images in this order, left to right.\n");
+    std::fs::write(args.out.join("equal_time.md"), md).map_err(|e| e.to_string())?;
+    let (w, h) = (args.frame.width, args.frame.height);
+    let mut strip = RgbImage::new(w * picks.len() as u32, h);
+    for (i, p) in picks.iter().enumerate() {
+        image::imageops::replace(&mut strip, &to_srgb8(&p.total), (i as u32 * w) as i64, 0);
+    }
+    strip.save(args.out.join("equal_time.png")).map_err(|e| e.to_string())
+}

@@ -1,0 +1,113 @@
+//! The interface between culling strategies and shading: what a culler gets, and the light
+//! lists it returns.
+use crate::camera::Camera;
+use crate::framebuffer::GBuffer;
+use crate::rng::{hash4, stream};
+use crate::vpl::Vpl;
+
+/// Pixels per tile side in tiled and clustered culling (paper section 5, 7).
+pub const TILE_SIZE: u32 = 16;
+
+/// Interleaved sampling (paper section 6, Fig. 8): the screen is split into K x K subregions
+/// (pixel (x, y) belongs to subregion (x mod K, y mod K)), and each VPL to one subregion chosen
+/// uniformly at random from its id. A pixel sums only its subregion's VPLs, times K², which
+/// keeps the estimate unbiased: each VPL is in the pixel's subregion with probability 1/K².
+/// K = 1 turns interleaving off.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Interleaving {
+    pub k: u32,
+    pub seed: u32,
+}
+
+impl Interleaving {
+    pub fn subregions(&self) -> u32 {
+        self.k * self.k
+    }
+
+    /// The subregion of pixel (x, y), row-major in the K x K grid.
+    #[inline]
+    pub fn pixel_subregion(&self, x: u32, y: u32) -> u32 {
+        (y % self.k) * self.k + x % self.k
+    }
+
+    /// The subregion a VPL belongs to, from its stable id.
+    #[inline]
+    pub fn vpl_subregion(&self, vpl_id: u32) -> u32 {
+        if self.k == 1 {
+            0
+        } else {
+            hash4(self.seed, vpl_id, stream::INTERLEAVE, 0) % self.subregions()
+        }
+    }
+
+    /// The factor every contribution is multiplied by: K².
+    pub fn scale(&self) -> f32 {
+        self.subregions() as f32
+    }
+}
+
+/// Everything a culler may look at. All strategies of a comparison get the same input.
+#[derive(Clone, Copy, Debug)]
+pub struct CullInput<'a> {
+    pub gbuffer: &'a GBuffer,
+    pub camera: &'a Camera,
+    pub vpls: &'a [Vpl],
+    /// δ of eq. (2), the same for every VPL.
+    pub delta: f32,
+    pub interleaving: Interleaving,
+}
+
+/// Light lists in compressed rows: list `i` holds `indices[offsets[i]..offsets[i + 1]]`
+/// (indices into `CullInput::vpls`), and pixel `p` shades with list `pixel_list[p]`
+/// (`NO_LIST` for pixels that see nothing). A tile with two depth clusters has two lists; a
+/// pixel picks the one of its depth.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct LightLists {
+    pub offsets: Vec<u32>,
+    pub indices: Vec<u32>,
+    pub pixel_list: Vec<u32>,
+}
+
+/// `pixel_list` value of a pixel without a list.
+pub const NO_LIST: u32 = u32::MAX;
+
+impl LightLists {
+    /// The VPL indices pixel `p` is shaded with.
+    #[inline]
+    pub fn for_pixel(&self, p: usize) -> &[u32] {
+        match self.pixel_list[p] {
+            NO_LIST => &[],
+            l => {
+                &self.indices
+                    [self.offsets[l as usize] as usize..self.offsets[l as usize + 1] as usize]
+            }
+        }
+    }
+
+    /// Number of lists.
+    pub fn len(&self) -> usize {
+        self.offsets.len().saturating_sub(1)
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+}
+
+/// Why culling failed.
+#[derive(Debug, thiserror::Error)]
+pub enum CullError {
+    #[error("invalid culling input: {0}")]
+    Input(String),
+    #[error(transparent)]
+    Bounds(#[from] slc_bounds::BoundsError),
+}
+
+/// A culling strategy: builds, for every pixel, the list of VPLs that may contribute there.
+/// A strategy must never leave out a VPL whose probability p(ωo, l) of eq. (2) at a pixel
+/// exceeds its ξ (that would bias the estimate); listing extra VPLs only costs time.
+pub trait Culler: Sync {
+    /// The strategy's name as the command line spells it.
+    fn name(&self) -> &'static str;
+    fn cull(&self, input: &CullInput) -> Result<LightLists, CullError>;
+}

@@ -1,0 +1,1019 @@
+//! Scene settings: a small TOML file that names a scene file and supplies what it lacks (a
+//! camera, lights) or changes what it has (materials, e.g. a glossy floor on Sponza).
+//! [`load_scene`](crate::load_scene) reads a `.toml` path as settings; the scene is named by
+//! the settings file's stem. Ready-made settings are in the repository's `scenes/` folder.
+//!
+//! A full example (every key; only `scene` is required):
+//!
+//! ```toml
+//! # Relative to this file (an absolute path is used as is): a .gltf, .glb or .obj file.
+//! scene = "../../shared/scenes/sponza/sponza.obj"
+//! # Optional. Default: the [[lights]] below replace the file's lights if any are given,
+//! # else the file's lights are kept. false: add them to the file's lights.
+//! replace_lights = true
+//!
+//! [camera]                      # optional: replaces the file's camera
+//! position = [-9.5, 1.7, 0.0]
+//! target = [10.0, 3.5, 0.0]     # the point looked at (not equal to position)
+//! up = [0.0, 1.0, 0.0]          # optional, default +y; not parallel to the view direction
+//! yfov_deg = 60.0               # full vertical field of view in degrees, in (0, 180)
+//! znear = 0.05                  # optional, default 0.01; 0 < znear < zfar
+//! zfar = 100.0                  # optional, default 1000
+//!
+//! [[lights]]
+//! type = "spot"
+//! position = [-12.0, 22.0, 0.5]
+//! target = [3.0, 0.1, -1.0]     # or direction = [x, y, z]: exactly one of the two
+//! intensity = [8000.0, 7600.0, 6800.0]  # W/sr per channel; one number means grey
+//! inner_cone_deg = 10.0         # optional, default 0; 0 <= inner <= outer
+//! outer_cone_deg = 15.0         # optional, default 45; 0 < outer <= 90
+//!
+//! [[lights]]
+//! type = "point"
+//! position = [0.0, 1.9, 0.0]
+//! intensity = 5.0               # W/sr per channel
+//!
+//! [[lights]]
+//! type = "directional"
+//! direction = [0.3, -1.0, 0.1]  # the direction the light travels in
+//! irradiance = 2.0              # W/m^2 per channel on a surface facing the light
+//!
+//! [[materials]]                 # overrides, applied in order (a later one wins)
+//! name = "sp_00_pod"            # exact material name, or a glob: * matches any run of characters
+//! kd = 0.8                      # diffuse albedo in [0, 1] (one number or [r, g, b])
+//! f0 = 0.04                     # specular reflectance at normal incidence, in [0, 1]
+//! alpha = 0.1                   # GGX alpha in (0, 1]; or roughness = 0.316 (alpha = roughness^2)
+//! eta = 1.5                     # relative index of refraction > 0: exact dielectric Fresnel
+//! double_sided = true
+//! ```
+//!
+//! Rules:
+//! - Everything is checked before the scene is touched: unknown keys (a misspelt `intensty`),
+//!   wrong types, non-finite numbers, angles and ranges outside the limits above, an override
+//!   that sets nothing, and an override matching no material of the scene are errors
+//!   ([`SceneError::Settings`]) naming the settings file and the problem; a settings file that
+//!   cannot be read is [`SceneError::Io`]. Errors of the scene file itself name that file.
+//! - Units are those of [`Light`]: radiometric, not photometric (no candela, no lux).
+//! - Material overrides: on a material given by kd, F0 and alpha
+//!   ([`MaterialModel::Direct`]) they set those values; a diffuse texture keeps multiplying
+//!   `kd`. On a glTF metallic-roughness material, `alpha` alone sets its roughness factor to
+//!   `sqrt(alpha)`; `kd` or `f0` turn it into kd, F0 and alpha
+//!   (`kd = base (1 - metallic)`, `F0 = 0.04 (1 - metallic) + base metallic`,
+//!   `alpha = roughness^2`, the base-colour texture then multiplies `kd`) before the override's
+//!   values are set; a warning tells when textures no longer apply in full. An `alpha` below
+//!   [`ALPHA_MIN`] is clamped up to it with a warning, as the loaders do.
+//!
+//! The same from code, on a built-in scene instead of the named file:
+//!
+//! ```
+//! use slc_core::{builtin, Settings};
+//! use std::path::Path;
+//!
+//! let text = "scene = \"room.obj\"\n[[materials]]\nname = \"wh*\"\nalpha = 0.2\n";
+//! let settings = Settings::parse(text, Path::new("scenes/satin.toml"))?;
+//! assert_eq!(settings.scene, Path::new("scenes/room.obj"));
+//! let mut scene = builtin("default").expect("a built-in scene");
+//! settings.apply(&mut scene)?;
+//! assert_eq!(scene.name, "satin");
+//! assert_eq!(scene.materials[0].brdf_at(None, &[]).alpha, 0.2);
+//! # Ok::<(), slc_core::SceneError>(())
+//! ```
+use crate::camera::Camera;
+use crate::error::SceneError;
+use crate::import_util::small_alpha_warning;
+use crate::light::Light;
+use crate::load::{extension, load_scene_file};
+use crate::material::{Material, MaterialModel, ALPHA_MIN};
+use crate::scene::Scene;
+use glam::Vec3;
+use serde::Deserialize;
+use std::path::{Path, PathBuf};
+
+/// Validated scene settings: which scene file to load and what to set in it.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Settings {
+    /// The settings file: errors name it and its stem names the scene.
+    pub path: PathBuf,
+    /// The scene file, resolved against the settings file's folder.
+    pub scene: PathBuf,
+    /// The camera that replaces the scene file's, if given.
+    pub camera: Option<Camera>,
+    /// Lights in the order of the file.
+    pub lights: Vec<Light>,
+    /// Whether `lights` replace the scene file's lights (else they are added to them).
+    pub replace_lights: bool,
+    /// Material overrides in the order of the file.
+    pub materials: Vec<MaterialOverride>,
+}
+
+/// New values for the materials whose names match `pattern`; `None` keeps the loaded value.
+#[derive(Clone, Debug, PartialEq)]
+pub struct MaterialOverride {
+    /// An exact material name, or a glob where `*` matches any run of characters.
+    pub pattern: String,
+    pub kd: Option<Vec3>,
+    pub f0: Option<Vec3>,
+    /// GGX alpha in (0, 1] (a `roughness` in the file is stored squared).
+    pub alpha: Option<f32>,
+    pub eta: Option<f32>,
+    pub double_sided: Option<bool>,
+}
+
+/// Loads the scene a settings file names and applies the settings to it.
+pub fn load_settings(path: &Path) -> Result<Scene, SceneError> {
+    let settings = Settings::read(path)?;
+    if !settings.scene.is_file() {
+        return Err(SceneError::Settings {
+            path: path.to_path_buf(),
+            message: format!("scene file {} not found", settings.scene.display()),
+        });
+    }
+    let mut scene = load_scene_file(&settings.scene)?;
+    settings.apply(&mut scene)?;
+    Ok(scene)
+}
+
+impl Settings {
+    /// Reads and validates a settings file (the scene file is not opened).
+    pub fn read(path: &Path) -> Result<Self, SceneError> {
+        let text = std::fs::read_to_string(path).map_err(|source| SceneError::Io {
+            path: path.to_path_buf(),
+            source,
+        })?;
+        Self::parse(&text, path)
+    }
+
+    /// Parses and validates settings text that came from the file `path`.
+    pub fn parse(text: &str, path: &Path) -> Result<Self, SceneError> {
+        let error = |message: String| SceneError::Settings {
+            path: path.to_path_buf(),
+            message,
+        };
+        let raw: RawSettings = toml::from_str(text).map_err(|e| error(e.to_string()))?;
+        let scene = path.parent().unwrap_or(Path::new("")).join(&raw.scene);
+        if !matches!(extension(&scene).as_deref(), Some("gltf" | "glb" | "obj")) {
+            return Err(error(format!(
+                "scene '{}' is not a .gltf, .glb or .obj file",
+                raw.scene
+            )));
+        }
+        let camera = raw
+            .camera
+            .map(RawCamera::validate)
+            .transpose()
+            .map_err(|m| error(format!("[camera]: {m}")))?;
+        let lights = numbered(raw.lights, "[[lights]]", RawLight::validate).map_err(error)?;
+        let replace_lights = raw.replace_lights.unwrap_or(!lights.is_empty());
+        if replace_lights && lights.is_empty() {
+            return Err(error(
+                "replace_lights = true without [[lights]] would leave the scene without light"
+                    .into(),
+            ));
+        }
+        let materials =
+            numbered(raw.materials, "[[materials]]", RawMaterial::validate).map_err(error)?;
+        Ok(Self {
+            path: path.to_path_buf(),
+            scene,
+            camera,
+            lights,
+            replace_lights,
+            materials,
+        })
+    }
+
+    /// Applies the settings to a loaded scene: name, camera, lights, then material overrides.
+    /// Fails without changing the scene when an override matches none of its materials.
+    pub fn apply(&self, scene: &mut Scene) -> Result<(), SceneError> {
+        if let Some((i, o)) = self.materials.iter().enumerate().find(|(_, o)| {
+            !scene
+                .materials
+                .iter()
+                .any(|m| glob_match(&o.pattern, &m.name))
+        }) {
+            let names: Vec<&str> = scene.materials.iter().map(|m| m.name.as_str()).collect();
+            return Err(SceneError::Settings {
+                path: self.path.clone(),
+                message: format!(
+                    "[[materials]] #{}: '{}' matches no material of {} (its materials: {})",
+                    i + 1,
+                    o.pattern,
+                    self.scene.display(),
+                    names.join(", ")
+                ),
+            });
+        }
+        scene.name = self.path.file_stem().map_or_else(
+            || self.path.display().to_string(),
+            |s| s.to_string_lossy().into_owned(),
+        );
+        if let Some(camera) = &self.camera {
+            scene.camera = Some(camera.clone());
+        }
+        if self.replace_lights {
+            scene.lights.clear();
+        }
+        scene.lights.extend(self.lights.iter().cloned());
+        for o in &self.materials {
+            for m in scene
+                .materials
+                .iter_mut()
+                .filter(|m| glob_match(&o.pattern, &m.name))
+            {
+                scene.report.warnings.extend(o.apply_to(m));
+            }
+        }
+        Ok(())
+    }
+}
+
+impl MaterialOverride {
+    /// Sets the override's values in `m` (see the module documentation for glTF materials);
+    /// returns warnings for the user.
+    pub fn apply_to(&self, m: &mut Material) -> Vec<String> {
+        let mut warnings = Vec::new();
+        if let Some(eta) = self.eta {
+            m.eta = Some(eta);
+        }
+        if let Some(double_sided) = self.double_sided {
+            m.double_sided = double_sided;
+        }
+        if let Some(alpha) = self.alpha {
+            warnings.extend(small_alpha_warning(&m.name, alpha));
+        }
+        let changes_model = self.kd.is_some() || self.f0.is_some();
+        match &mut m.model {
+            MaterialModel::MetallicRoughness { roughness, .. } if !changes_model => {
+                if let Some(alpha) = self.alpha {
+                    *roughness = alpha.sqrt();
+                }
+                return warnings;
+            }
+            MaterialModel::MetallicRoughness {
+                base_color,
+                base_color_texture,
+                metallic,
+                roughness,
+                metallic_roughness_texture,
+            } => {
+                let (metal, r) = (metallic.clamp(0.0, 1.0), roughness.clamp(0.0, 1.0));
+                if metallic_roughness_texture.is_some()
+                    || (base_color_texture.is_some() && metal > 0.0 && self.f0.is_none())
+                {
+                    warnings.push(format!(
+                        "material '{}': the kd/f0 override turns its metallic-roughness parameters into kd, F0 and alpha; its textures now only tint kd",
+                        m.name
+                    ));
+                }
+                m.model = MaterialModel::Direct {
+                    kd: *base_color * (1.0 - metal),
+                    kd_texture: *base_color_texture,
+                    f0: Vec3::splat(0.04 * (1.0 - metal)) + *base_color * metal,
+                    alpha: (r * r).max(ALPHA_MIN),
+                };
+            }
+            MaterialModel::Direct { .. } => {}
+        }
+        if let MaterialModel::Direct { kd, f0, alpha, .. } = &mut m.model {
+            *kd = self.kd.unwrap_or(*kd);
+            *f0 = self.f0.unwrap_or(*f0);
+            *alpha = self.alpha.map_or(*alpha, |a| a.max(ALPHA_MIN));
+        }
+        warnings
+    }
+}
+
+/// Whether `name` matches `pattern`: `*` matches any run of characters (none included), every
+/// other character matches itself; a pattern without `*` is an exact name.
+pub fn glob_match(pattern: &str, name: &str) -> bool {
+    let mut parts = pattern.split('*');
+    let Some(mut rest) = name.strip_prefix(parts.next().unwrap_or("")) else {
+        return false;
+    };
+    let parts: Vec<&str> = parts.collect();
+    let Some((last, middle)) = parts.split_last() else {
+        return rest.is_empty();
+    };
+    for part in middle {
+        match rest.find(part) {
+            Some(i) => rest = &rest[i + part.len()..],
+            None => return false,
+        }
+    }
+    rest.ends_with(last)
+}
+
+/// Validates each table of an array of tables; errors say which one (counted from 1).
+fn numbered<R, T>(
+    raw: Vec<R>,
+    what: &str,
+    validate: impl Fn(R) -> Result<T, String>,
+) -> Result<Vec<T>, String> {
+    raw.into_iter()
+        .enumerate()
+        .map(|(i, r)| validate(r).map_err(|m| format!("{what} #{}: {m}", i + 1)))
+        .collect()
+}
+
+/// The file as written, before validation.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawSettings {
+    scene: String,
+    replace_lights: Option<bool>,
+    camera: Option<RawCamera>,
+    #[serde(default)]
+    lights: Vec<RawLight>,
+    #[serde(default)]
+    materials: Vec<RawMaterial>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawCamera {
+    position: [f32; 3],
+    target: [f32; 3],
+    up: Option<[f32; 3]>,
+    yfov_deg: f32,
+    znear: Option<f32>,
+    zfar: Option<f32>,
+}
+
+#[derive(Deserialize)]
+#[serde(tag = "type", rename_all = "lowercase", deny_unknown_fields)]
+enum RawLight {
+    Point {
+        position: [f32; 3],
+        intensity: Rgb,
+    },
+    Spot {
+        position: [f32; 3],
+        direction: Option<[f32; 3]>,
+        target: Option<[f32; 3]>,
+        intensity: Rgb,
+        inner_cone_deg: Option<f32>,
+        outer_cone_deg: Option<f32>,
+    },
+    Directional {
+        direction: [f32; 3],
+        irradiance: Rgb,
+    },
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawMaterial {
+    name: String,
+    kd: Option<Rgb>,
+    f0: Option<Rgb>,
+    alpha: Option<f32>,
+    roughness: Option<f32>,
+    eta: Option<f32>,
+    double_sided: Option<bool>,
+}
+
+/// A colour: one number for grey or `[r, g, b]`.
+#[derive(Clone, Copy, Deserialize)]
+#[serde(
+    untagged,
+    expecting = "a number or an array of three numbers [r, g, b]"
+)]
+enum Rgb {
+    Grey(f32),
+    Rgb([f32; 3]),
+}
+
+impl Rgb {
+    fn vec3(self) -> Vec3 {
+        match self {
+            Rgb::Grey(v) => Vec3::splat(v),
+            Rgb::Rgb(v) => Vec3::from(v),
+        }
+    }
+
+    /// The colour if every channel is finite and at least 0 (at most 1 with `unit`).
+    fn checked(self, key: &str, unit: bool) -> Result<Vec3, String> {
+        let v = self.vec3();
+        let max = if unit { 1.0 } else { f32::MAX };
+        if v.is_finite() && v.min_element() >= 0.0 && v.max_element() <= max {
+            Ok(v)
+        } else if unit {
+            Err(format!("{key} {v} is outside [0, 1]"))
+        } else {
+            Err(format!("{key} {v} must be finite and at least 0"))
+        }
+    }
+}
+
+/// A finite point or vector.
+fn finite(key: &str, v: [f32; 3]) -> Result<Vec3, String> {
+    let v = Vec3::from(v);
+    if v.is_finite() {
+        Ok(v)
+    } else {
+        Err(format!("{key} {v} is not finite"))
+    }
+}
+
+/// A finite, non-zero vector, normalized.
+fn unit(key: &str, v: [f32; 3]) -> Result<Vec3, String> {
+    finite(key, v)?
+        .try_normalize()
+        .ok_or_else(|| format!("{key} is the zero vector"))
+}
+
+/// A value in (0, 1].
+fn in_unit_interval(key: &str, v: f32) -> Result<f32, String> {
+    if v > 0.0 && v <= 1.0 {
+        Ok(v)
+    } else {
+        Err(format!("{key} {v} is outside (0, 1]"))
+    }
+}
+
+impl RawCamera {
+    fn validate(self) -> Result<Camera, String> {
+        let position = finite("position", self.position)?;
+        let target = finite("target", self.target)?;
+        let up = unit("up", self.up.unwrap_or([0.0, 1.0, 0.0]))?;
+        if !(self.yfov_deg > 0.0 && self.yfov_deg < 180.0) {
+            return Err(format!("yfov_deg {} is outside (0, 180)", self.yfov_deg));
+        }
+        let mut camera = Camera::look_at(position, target, up, self.yfov_deg.to_radians())
+            .ok_or("target equals position, or up is parallel to the view direction")?;
+        camera.znear = self.znear.unwrap_or(camera.znear);
+        camera.zfar = self.zfar.unwrap_or(camera.zfar);
+        if !(camera.znear > 0.0 && camera.znear < camera.zfar && camera.zfar.is_finite()) {
+            return Err(format!(
+                "znear {} and zfar {} must satisfy 0 < znear < zfar < infinity",
+                camera.znear, camera.zfar
+            ));
+        }
+        Ok(camera)
+    }
+}
+
+impl RawLight {
+    fn validate(self) -> Result<Light, String> {
+        match self {
+            RawLight::Point {
+                position,
+                intensity,
+            } => Ok(Light::Point {
+                position: finite("position", position)?,
+                intensity: intensity.checked("intensity", false)?,
+            }),
+            RawLight::Spot {
+                position,
+                direction,
+                target,
+                intensity,
+                inner_cone_deg,
+                outer_cone_deg,
+            } => {
+                let position = finite("position", position)?;
+                let direction = match (direction, target) {
+                    (Some(d), None) => unit("direction", d)?,
+                    (None, Some(t)) => (finite("target", t)? - position)
+                        .try_normalize()
+                        .ok_or("target equals position")?,
+                    _ => return Err("give exactly one of direction and target".into()),
+                };
+                let outer = outer_cone_deg.unwrap_or(45.0);
+                let inner = inner_cone_deg.unwrap_or(0.0);
+                if !(outer > 0.0 && outer <= 90.0) {
+                    return Err(format!("outer_cone_deg {outer} is outside (0, 90]"));
+                }
+                if !(inner >= 0.0 && inner <= outer) {
+                    return Err(format!(
+                        "inner_cone_deg {inner} is outside [0, outer_cone_deg = {outer}]"
+                    ));
+                }
+                let radians = |deg: f32| deg.to_radians().min(std::f32::consts::FRAC_PI_2);
+                Ok(Light::Spot {
+                    position,
+                    direction,
+                    intensity: intensity.checked("intensity", false)?,
+                    inner_cone_angle: radians(inner),
+                    outer_cone_angle: radians(outer),
+                })
+            }
+            RawLight::Directional {
+                direction,
+                irradiance,
+            } => Ok(Light::Directional {
+                direction: unit("direction", direction)?,
+                irradiance: irradiance.checked("irradiance", false)?,
+            }),
+        }
+    }
+}
+
+impl RawMaterial {
+    fn validate(self) -> Result<MaterialOverride, String> {
+        if self.name.is_empty() {
+            return Err("name is empty".into());
+        }
+        let with_name = |m: String| format!("'{}': {m}", self.name);
+        let alpha = match (self.alpha, self.roughness) {
+            (Some(_), Some(_)) => {
+                return Err(with_name("give alpha or roughness, not both".into()))
+            }
+            (Some(a), None) => Some(in_unit_interval("alpha", a).map_err(with_name)?),
+            (None, Some(r)) => Some(in_unit_interval("roughness", r).map_err(with_name)?.powi(2)),
+            (None, None) => None,
+        };
+        let kd = self.kd.map(|c| c.checked("kd", true)).transpose();
+        let f0 = self.f0.map(|c| c.checked("f0", true)).transpose();
+        let eta = match self.eta {
+            Some(eta) if !(eta > 0.0 && eta.is_finite()) => {
+                return Err(with_name(format!("eta {eta} must be finite and above 0")))
+            }
+            eta => eta,
+        };
+        let o = MaterialOverride {
+            kd: kd.map_err(with_name)?,
+            f0: f0.map_err(with_name)?,
+            alpha,
+            eta,
+            double_sided: self.double_sided,
+            pattern: self.name,
+        };
+        let sets_nothing = o.kd.is_none()
+            && o.f0.is_none()
+            && o.alpha.is_none()
+            && o.eta.is_none()
+            && o.double_sided.is_none();
+        if sets_nothing {
+            return Err(format!(
+                "'{}' sets nothing (give kd, f0, alpha or roughness, eta or double_sided)",
+                o.pattern
+            ));
+        }
+        Ok(o)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::builtin::builtin;
+    use crate::load::load_scene;
+
+    /// The settings files shipped in the repository's `scenes/` folder.
+    fn shipped() -> Vec<PathBuf> {
+        let dir = Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/../../scenes"));
+        let mut files: Vec<PathBuf> = std::fs::read_dir(dir)
+            .unwrap()
+            .map(|e| e.unwrap().path())
+            .filter(|p| extension(p).as_deref() == Some("toml"))
+            .collect();
+        files.sort();
+        files
+    }
+
+    /// The nearest surface along a ray: distance, face normal and material (a loop over all
+    /// triangles, Möller-Trumbore).
+    fn first_hit(scene: &Scene, origin: Vec3, dir: Vec3) -> Option<(f32, Vec3, &Material)> {
+        let mut best: Option<(f32, Vec3, &Material)> = None;
+        for m in &scene.meshes {
+            for t in &m.triangles {
+                let [a, b, c] = t.map(|i| m.positions[i as usize]);
+                let (e1, e2) = (b - a, c - a);
+                let p = dir.cross(e2);
+                let det = e1.dot(p);
+                if det.abs() < 1e-12 {
+                    continue;
+                }
+                let s = origin - a;
+                let u = s.dot(p) / det;
+                let q = s.cross(e1);
+                let v = dir.dot(q) / det;
+                let d = e2.dot(q) / det;
+                if u >= 0.0 && v >= 0.0 && u + v <= 1.0 && d > 1e-4 && best.is_none_or(|h| d < h.0)
+                {
+                    best = Some((d, e1.cross(e2).normalize(), &scene.materials[m.material]));
+                }
+            }
+        }
+        best
+    }
+
+    /// Whether `p` (normal `n`, seen from `eye`) gets light from some light, shadows included.
+    fn directly_lit(scene: &Scene, p: Vec3, n: Vec3, eye: Vec3) -> bool {
+        let n = if n.dot(eye - p) < 0.0 { -n } else { n };
+        scene.lights.iter().any(|l| {
+            l.incident(p).is_some_and(|inc| {
+                n.dot(inc.omega_i) > 0.0
+                    && first_hit(scene, p + 1e-3 * n, inc.omega_i)
+                        .is_none_or(|h| h.0 > inc.distance - 2e-3)
+            })
+        })
+    }
+
+    #[test]
+    fn shipped_settings_load_and_light_what_their_camera_sees() {
+        let files = shipped();
+        let names: Vec<String> = files
+            .iter()
+            .map(|p| p.file_stem().unwrap().to_string_lossy().into_owned())
+            .collect();
+        for expected in [
+            "sponza",
+            "cornell-mcguire-original",
+            "cornell-mcguire-glossy",
+            "cornell-mcguire-sphere",
+            "cornell-mcguire-mirror",
+            "cornell-gltf",
+        ] {
+            assert!(
+                names.iter().any(|n| n == expected),
+                "{expected} in {names:?}"
+            );
+        }
+        for (path, name) in files.iter().zip(&names) {
+            let start = std::time::Instant::now();
+            let scene = load_scene(path.to_str().unwrap()).unwrap();
+            scene.validate_for_render().unwrap();
+            assert_eq!(&scene.name, name);
+            assert!(scene.lights.iter().all(Light::is_valid));
+            let cam = scene.camera.clone().unwrap();
+            let (lo, hi) = scene.bounds().unwrap();
+            let margin = 2.0 * (hi - lo);
+            assert!(
+                cam.position.cmpge(lo - margin).all() && cam.position.cmple(hi + margin).all(),
+                "{name}: camera {} far from bounds {lo}..{hi}",
+                cam.position
+            );
+            let centre = first_hit(&scene, cam.position, cam.forward);
+            assert!(centre.is_some(), "{name}: the centre ray hits nothing");
+            // A 12 x 12 grid of primary rays (the renderer's default image is square): how
+            // many see geometry, and directly lit geometry.
+            let (mut seen, mut lit) = (0, 0);
+            for j in 0..12 {
+                for i in 0..12 {
+                    let dir = cam.ray_direction(i, j, 0.5, 0.5, 12, 12);
+                    if let Some((d, n, _)) = first_hit(&scene, cam.position, dir) {
+                        seen += 1;
+                        lit += directly_lit(&scene, cam.position + d * dir, n, cam.position) as u32;
+                    }
+                }
+            }
+            eprintln!(
+                "{name}: {} triangles, {seen}/144 rays hit, {lit} directly lit, centre at {:.2} ({}), {:?}",
+                scene.triangle_count(),
+                centre.unwrap().0,
+                centre.unwrap().2.name,
+                start.elapsed()
+            );
+            assert!(seen >= 72, "{name}: {seen}/144 primary rays hit geometry");
+            assert!(lit >= 10, "{name}: {lit}/144 primary rays see lit geometry");
+        }
+    }
+
+    #[test]
+    fn sponza_placements() {
+        let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../../scenes/sponza.toml");
+        let scene = load_scene(path).unwrap();
+        let floor = scene
+            .materials
+            .iter()
+            .find(|m| m.name == "sp_00_pod")
+            .unwrap();
+        match &floor.model {
+            MaterialModel::Direct {
+                f0,
+                alpha,
+                kd_texture,
+                ..
+            } => {
+                assert_eq!((*f0, *alpha), (Vec3::splat(0.04), 0.1));
+                assert!(kd_texture.is_some());
+            }
+            other => panic!("{other:?}"),
+        }
+        // The camera stands in the courtyard: open sky above, the floor 1.6 below it.
+        let cam = scene.camera.as_ref().unwrap();
+        let (lo, hi) = scene.bounds().unwrap();
+        assert!(cam.position.cmpgt(lo).all() && cam.position.cmplt(hi).all());
+        assert!(first_hit(&scene, cam.position, Vec3::Y).is_none());
+        let (down, _, m) = first_hit(&scene, cam.position, Vec3::NEG_Y).unwrap();
+        assert_eq!(
+            (m.name.as_str(), (down * 100.0).round()),
+            ("sp_00_pod", 161.0)
+        );
+        // The spot is above the roof, and every ray of its outer cone passes the opening
+        // (first hit below the roof's top at y 15.65); its axis lands on the courtyard floor.
+        let Light::Spot {
+            position,
+            direction,
+            outer_cone_angle,
+            ..
+        } = scene.lights[0]
+        else {
+            panic!("{:?}", scene.lights)
+        };
+        assert!(position.y > hi.y);
+        let (d, _, m) = first_hit(&scene, position, direction).unwrap();
+        let spot = position + d * direction;
+        assert_eq!(m.name, "sp_00_pod");
+        assert!((spot.y - 0.093).abs() < 1e-3 && spot.x.abs() < 10.8 && spot.z.abs() < 2.4);
+        let (b1, b2) = direction.any_orthonormal_pair();
+        for k in 0..32 {
+            let phi = k as f32 / 32.0 * std::f32::consts::TAU;
+            let (s, c) = outer_cone_angle.sin_cos();
+            let dir = c * direction + s * (phi.cos() * b1 + phi.sin() * b2);
+            let (d, _, _) = first_hit(&scene, position, dir).unwrap();
+            assert!(
+                (position + d * dir).y < 15.0,
+                "cone ray {k} stops on the roof"
+            );
+        }
+    }
+
+    #[test]
+    fn cornell_lights_sit_just_under_their_lamp() {
+        for (file, lamp) in [
+            ("cornell-mcguire-original", "light"),
+            ("cornell-mcguire-mirror", "light"),
+            ("cornell-mcguire-glossy", "default grey"),
+            ("cornell-mcguire-sphere", "light"),
+            ("cornell-gltf", "EmissiveMaterial"),
+        ] {
+            let path = Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/../../scenes"))
+                .join(format!("{file}.toml"));
+            let scene = load_scene(path.to_str().unwrap()).unwrap();
+            let Light::Point { position, .. } = scene.lights[0] else {
+                panic!("{file}: {:?}", scene.lights)
+            };
+            let (d, _, m) = first_hit(&scene, position, Vec3::Y).unwrap();
+            assert_eq!(m.name, lamp, "{file}");
+            assert!(d > 0.04 && d < 0.06, "{file}: {d} below the lamp");
+        }
+    }
+
+    /// The settings error for `text`, checked to name the settings file.
+    fn parse_error(text: &str) -> String {
+        let path = Path::new("/settings/bad.toml");
+        match Settings::parse(text, path) {
+            Err(e @ SceneError::Settings { .. }) => {
+                let message = e.to_string();
+                assert!(message.starts_with("/settings/bad.toml: "), "{message}");
+                message
+            }
+            other => panic!("{text}: {other:?}"),
+        }
+    }
+
+    #[test]
+    fn invalid_settings_are_errors_naming_the_file() {
+        let spot = |keys: &str| {
+            format!("scene = \"a.obj\"\n[[lights]]\ntype = \"spot\"\nposition = [0, 5, 0]\nintensity = 1\n{keys}\n")
+        };
+        let camera = |keys: &str| format!("scene = \"a.obj\"\n[camera]\n{keys}\n");
+        let material = |keys: &str| format!("scene = \"a.obj\"\n[[materials]]\n{keys}\n");
+        let cases = [
+            ("scene = \"a.obj\"\nlight = 1\n".to_string(), "unknown field `light`"),
+            ("scene = \"a.obj\"\nscene = \"b.obj\"\n".into(), "duplicate key"),
+            ("scene = \n".into(), "line 1"),
+            ("replace_lights = false\n".into(), "missing field `scene`"),
+            ("scene = \"a.fbx\"\n".into(), "'a.fbx' is not a .gltf, .glb or .obj file"),
+            ("scene = \"other.toml\"\n".into(), "not a .gltf, .glb or .obj file"),
+            ("scene = \"a.obj\"\nreplace_lights = true\n".into(), "without light"),
+            (camera("position = [0, 0, 0]\ntarget = [0, 0, -1]\nfov = 40"), "unknown field `fov`"),
+            (camera("position = [0, 0, 0]\ntarget = [0, 0, -1]\nyfov_deg = 0"), "yfov_deg 0 is outside (0, 180)"),
+            (camera("position = [0, 0, 0]\ntarget = [0, 0, -1]\nyfov_deg = 180"), "yfov_deg 180"),
+            (camera("position = [0, 0, 0]\ntarget = [0, 0, 0]\nyfov_deg = 40"), "[camera]: target equals position"),
+            (camera("position = [0, 0, 0]\ntarget = [0, 1, 0]\nyfov_deg = 40"), "up is parallel"),
+            (camera("position = [0, 0, 0]\ntarget = [0, 0, -1]\nyfov_deg = 40\nznear = 0"), "znear 0"),
+            (camera("position = [0, 0, 0]\ntarget = [0, 0, -1]\nyfov_deg = 40\nznear = 2\nzfar = 1"), "znear 2 and zfar 1"),
+            (camera("position = [0, nan, 0]\ntarget = [0, 0, -1]\nyfov_deg = 40"), "position [0, NaN, 0] is not finite"),
+            (spot("direction = [0, -1, 0]\nintensty = 2"), "unknown field `intensty`"),
+            (spot("direction = [0, -1, 0]\nouter_cone_deg = 120"), "[[lights]] #1: outer_cone_deg 120 is outside (0, 90]"),
+            (spot("direction = [0, -1, 0]\nouter_cone_deg = 0"), "outer_cone_deg 0"),
+            (spot("direction = [0, -1, 0]\ninner_cone_deg = 30\nouter_cone_deg = 20"), "inner_cone_deg 30 is outside [0, outer_cone_deg = 20]"),
+            (spot("direction = [0, -1, 0]\ninner_cone_deg = -1"), "inner_cone_deg -1"),
+            (spot("direction = [0, -1, 0]\ntarget = [0, 0, 0]"), "exactly one of direction and target"),
+            (spot(""), "exactly one of direction and target"),
+            (spot("direction = [0, 0, 0]"), "direction is the zero vector"),
+            (spot("target = [0, 5, 0]"), "target equals position"),
+            ("scene = \"a.obj\"\n[[lights]]\ntype = \"area\"\n".into(), "unknown variant `area`"),
+            ("scene = \"a.obj\"\n[[lights]]\ntype = \"point\"\nposition = [0, 1, 0]\nintensity = -1\n".into(), "intensity [-1, -1, -1] must be finite and at least 0"),
+            ("scene = \"a.obj\"\n[[lights]]\ntype = \"point\"\nposition = [0, 1, 0]\nintensity = inf\n".into(), "must be finite"),
+            ("scene = \"a.obj\"\n[[lights]]\ntype = \"point\"\nposition = [0, 1, 0]\nintensity = [1, 2]\n".into(), "a number or an array of three numbers"),
+            ("scene = \"a.obj\"\n[[lights]]\ntype = \"point\"\nposition = [0, 1, 0]\n".into(), "missing field `intensity`"),
+            ("scene = \"a.obj\"\n[[lights]]\ntype = \"point\"\nposition = [0, 1, 0]\nintensity = 1\n[[lights]]\ntype = \"directional\"\ndirection = [0, 0, 0]\nirradiance = 1\n".into(), "[[lights]] #2: direction is the zero vector"),
+            (material("name = \"floor\"\nroughnes = 0.5"), "unknown field `roughnes`"),
+            (material("name = \"floor\""), "'floor' sets nothing"),
+            (material("name = \"\"\nalpha = 0.5"), "name is empty"),
+            (material("name = \"floor\"\nalpha = 0"), "'floor': alpha 0 is outside (0, 1]"),
+            (material("name = \"floor\"\nalpha = 1.5"), "alpha 1.5 is outside (0, 1]"),
+            (material("name = \"floor\"\nroughness = -0.1"), "roughness -0.1"),
+            (material("name = \"floor\"\nalpha = 0.1\nroughness = 0.3"), "not both"),
+            (material("name = \"floor\"\nkd = 1.5"), "kd [1.5, 1.5, 1.5] is outside [0, 1]"),
+            (material("name = \"floor\"\nf0 = [0.1, -0.1, 0.1]"), "f0 [0.1, -0.1, 0.1]"),
+            (material("name = \"floor\"\neta = 0"), "eta 0 must be finite and above 0"),
+            (material("name = \"floor\"\ndouble_sided = 1"), "invalid type"),
+        ];
+        for (text, expected) in cases {
+            let message = parse_error(&text);
+            assert!(message.contains(expected), "{text}\n-> {message}");
+        }
+    }
+
+    #[test]
+    fn overrides_lights_and_camera_apply() {
+        let text = r#"
+            scene = "room.glb"
+            [camera]
+            position = [0, 1, 3]
+            target = [0, 1, 0]
+            yfov_deg = 50
+            [[lights]]
+            type = "spot"
+            position = [0, 1.9, 0]
+            direction = [0, -1, 0]
+            intensity = [1, 2, 3]
+            outer_cone_deg = 90
+            [[materials]]
+            name = "white"
+            kd = 0.5
+            alpha = 0.3
+            [[materials]]
+            name = "*ee*"
+            roughness = 0.5
+            double_sided = true
+            [[materials]]
+            name = "c*"
+            alpha = 1e-4
+            eta = 1.5
+        "#;
+        let settings = Settings::parse(text, Path::new("/x/glossy room.toml")).unwrap();
+        assert_eq!(settings.scene, Path::new("/x/room.glb"));
+        assert!(settings.replace_lights);
+        let mut scene = builtin("default").unwrap();
+        settings.apply(&mut scene).unwrap();
+        assert_eq!(scene.name, "glossy room");
+        assert_eq!(scene.camera.as_ref().unwrap().yfov, 50f32.to_radians());
+        assert_eq!(scene.lights.len(), 1);
+        assert!(
+            scene.lights[0].is_valid(),
+            "a 90 degree cone is a valid spot"
+        );
+        assert!(scene.validate_for_render().is_ok());
+        let brdf = |name: &str| {
+            let m = scene.materials.iter().find(|m| m.name == name).unwrap();
+            (m.brdf_at(None, &[]), m.eta, m.double_sided)
+        };
+        let (white, _, _) = brdf("white");
+        assert_eq!((white.kd, white.alpha), (Vec3::splat(0.5), 0.3));
+        let (green, _, green_two_sided) = brdf("green");
+        assert_eq!(
+            (green.kd, green.alpha, green_two_sided),
+            (Vec3::new(0.1, 0.7, 0.1), 0.25, true)
+        );
+        let (copper, eta, _) = brdf("copper");
+        assert_eq!((copper.alpha, eta), (ALPHA_MIN, Some(1.5)));
+        assert!(scene.report.warnings.iter().any(|w| w.contains("'copper'")));
+        let (red, _, red_two_sided) = brdf("red");
+        assert_eq!((red.alpha, red_two_sided), (1.0, false));
+    }
+
+    #[test]
+    fn lights_are_replaced_added_or_kept() {
+        let point = "[[lights]]\ntype = \"point\"\nposition = [0, 1, 0]\nintensity = 2\n";
+        let count = |text: &str| {
+            let mut scene = builtin("default").unwrap();
+            let settings = Settings::parse(text, Path::new("s.toml")).unwrap();
+            settings.apply(&mut scene).unwrap();
+            scene.lights.len()
+        };
+        let own = builtin("default").unwrap().lights.len();
+        assert_eq!(count("scene = \"a.obj\"\n"), own);
+        assert_eq!(count(&format!("scene = \"a.obj\"\n{point}{point}")), 2);
+        let added = format!("scene = \"a.obj\"\nreplace_lights = false\n{point}");
+        assert_eq!(count(&added), own + 1);
+        assert_eq!(count("scene = \"a.obj\"\nreplace_lights = false\n"), own);
+    }
+
+    #[test]
+    fn an_override_matching_nothing_fails_without_changing_the_scene() {
+        let text = "scene = \"room.obj\"\n[[materials]]\nname = \"white\"\nalpha = 0.2\n[[materials]]\nname = \"marble*\"\nalpha = 0.2\n";
+        let settings = Settings::parse(text, Path::new("/s/marble.toml")).unwrap();
+        let mut scene = builtin("default").unwrap();
+        let e = settings.apply(&mut scene).unwrap_err();
+        let message = e.to_string();
+        assert!(matches!(e, SceneError::Settings { .. }));
+        assert!(message.starts_with("/s/marble.toml: "), "{message}");
+        assert!(message.contains("[[materials]] #2: 'marble*' matches no material of /s/room.obj (its materials: white, red, green, copper, blue)"), "{message}");
+        assert_eq!(scene, builtin("default").unwrap());
+    }
+
+    #[test]
+    fn metallic_roughness_materials_are_overridden() {
+        let metal = || Material {
+            name: "head".into(),
+            model: MaterialModel::MetallicRoughness {
+                base_color: Vec3::new(1.0, 0.8, 0.0),
+                base_color_texture: Some(0),
+                metallic: 1.0,
+                roughness: 0.5,
+                metallic_roughness_texture: None,
+            },
+            eta: None,
+            double_sided: true,
+        };
+        let o = |alpha, f0| MaterialOverride {
+            pattern: "head".into(),
+            kd: None,
+            f0,
+            alpha,
+            eta: None,
+            double_sided: None,
+        };
+        // alpha alone keeps the model and sets roughness = sqrt(alpha).
+        let mut m = metal();
+        assert!(o(Some(0.04), None).apply_to(&mut m).is_empty());
+        assert!(
+            matches!(m.model, MaterialModel::MetallicRoughness { roughness, .. } if (roughness - 0.2).abs() < 1e-6)
+        );
+        // f0 turns it into kd, F0, alpha from its factors, then sets F0.
+        let mut m = metal();
+        assert!(o(None, Some(Vec3::splat(0.5))).apply_to(&mut m).is_empty());
+        assert_eq!(
+            m.model,
+            MaterialModel::Direct {
+                kd: Vec3::ZERO,
+                kd_texture: Some(0),
+                f0: Vec3::splat(0.5),
+                alpha: 0.25
+            }
+        );
+        // Without f0, the base-colour texture of a metal no longer tints F0: a warning says so.
+        let mut m = metal();
+        let kd = MaterialOverride {
+            kd: Some(Vec3::ONE),
+            ..o(None, None)
+        };
+        assert_eq!(kd.apply_to(&mut m).len(), 1);
+    }
+
+    #[test]
+    fn files_that_are_missing_or_broken_are_errors_naming_them() {
+        let dir = std::env::temp_dir().join(format!("slc-core-settings-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let missing_settings = dir.join("absent.toml");
+        assert!(matches!(
+            load_scene(missing_settings.to_str().unwrap()),
+            Err(SceneError::Io { path, .. }) if path == missing_settings
+        ));
+        for (file, text, expected) in [
+            (
+                "missing.toml",
+                "scene = \"nowhere/room.obj\"\n",
+                "nowhere/room.obj not found",
+            ),
+            (
+                "broken.toml",
+                "scene = \"room.obj\"\n[camera\n",
+                "TOML parse error",
+            ),
+        ] {
+            let path = dir.join(file);
+            std::fs::write(&path, text).unwrap();
+            match load_scene(path.to_str().unwrap()) {
+                Err(e @ SceneError::Settings { .. }) => {
+                    let message = e.to_string();
+                    assert!(
+                        message.starts_with(&format!("{}: ", path.display())),
+                        "{message}"
+                    );
+                    assert!(message.contains(expected), "{message}");
+                }
+                other => panic!("{file}: {other:?}"),
+            }
+        }
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    #[test]
+    fn globs() {
+        for (pattern, name, matches) in [
+            ("sp_00_pod", "sp_00_pod", true),
+            ("sp_00_po", "sp_00_pod", false),
+            ("sp_00_pod", "sp_00_po", false),
+            ("sp_*", "sp_00_pod", true),
+            ("*pod", "sp_00_pod", true),
+            ("*_00_*", "sp_00_pod", true),
+            ("sp*pod*", "sp_00_pod", true),
+            ("*", "", true),
+            ("", "", true),
+            ("a*a", "a", false),
+            ("a*b*c", "abc", true),
+            ("a*b*c", "acb", false),
+            ("**", "x", true),
+        ] {
+            assert_eq!(glob_match(pattern, name), matches, "{pattern} {name}");
+        }
+    }
+}

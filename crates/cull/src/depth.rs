@@ -1,0 +1,150 @@
+//! Depth clusters of a tile: Modified HalfZ (Stewart, "Compute-based tiled culling", GPU
+//! Pro 6; paper section 5.1) or exponential depth slices (clustered shading, paper section 7).
+use rayon::prelude::*;
+
+/// Most clusters a tile can have: one per exponential depth slice.
+pub(crate) const MAX_CLUSTERS: usize = 32;
+
+/// A G-buffer sample of a tile: its pixel index, view depth and (once split) its cluster.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Sample {
+    pub pixel: u32,
+    pub z: f64,
+    pub cluster: u8,
+}
+
+/// How a tile's samples are split by depth.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) enum DepthSplit {
+    /// Modified HalfZ: half_z = (z_min + z_max) / 2; samples with z < half_z form the near
+    /// cluster [z_min, max z < half_z], the others the far cluster [min z >= half_z, z_max].
+    HalfZ,
+    /// [`MAX_CLUSTERS`] slices growing exponentially from `near` (slice k holds depths in
+    /// near · ratio^(k/32) .. near · ratio^((k+1)/32)); `scale` = 32 / ln(ratio).
+    Slices { near: f64, scale: f64 },
+}
+
+impl DepthSplit {
+    /// Exponential slices spanning `[near, far]`, the depth range of the samples to split.
+    pub(crate) fn slices(near: f64, far: f64) -> Self {
+        let log_ratio = (far / near).ln();
+        let scale = if log_ratio > 0.0 {
+            MAX_CLUSTERS as f64 / log_ratio
+        } else {
+            0.0
+        };
+        Self::Slices { near, scale }
+    }
+
+    /// Assigns each sample its cluster and returns each cluster's depth range [lo, hi] (the
+    /// extremes of its samples), in order of depth; empty clusters are dropped and the
+    /// clusters numbered consecutively. `samples` must not be empty.
+    pub(crate) fn split(&self, samples: &mut [Sample], ranges: &mut Vec<[f64; 2]>) {
+        let (lo, hi) = samples
+            .iter()
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), s| {
+                (lo.min(s.z), hi.max(s.z))
+            });
+        let mut slots = [[f64::INFINITY, f64::NEG_INFINITY]; MAX_CLUSTERS];
+        for s in samples.iter_mut() {
+            let key = self.key(s.z, lo, hi);
+            s.cluster = key as u8;
+            slots[key] = [slots[key][0].min(s.z), slots[key][1].max(s.z)];
+        }
+        // Renumber the occupied slots 0, 1, ... in depth order.
+        let mut renumber = [0u8; MAX_CLUSTERS];
+        ranges.clear();
+        for (key, slot) in slots.iter().enumerate() {
+            if slot[0] <= slot[1] {
+                renumber[key] = ranges.len() as u8;
+                ranges.push(*slot);
+            }
+        }
+        for s in samples.iter_mut() {
+            s.cluster = renumber[s.cluster as usize];
+        }
+    }
+
+    /// The slot of depth `z` in a tile whose samples span [lo, hi].
+    #[inline]
+    fn key(&self, z: f64, lo: f64, hi: f64) -> usize {
+        match *self {
+            Self::HalfZ => usize::from(z >= 0.5 * (lo + hi)),
+            Self::Slices { near, scale } => {
+                let k = ((z / near).ln() * scale).floor();
+                // Depths below `near` (only by rounding) go to slice 0, beyond `far` to 31.
+                k.clamp(0.0, (MAX_CLUSTERS - 1) as f64) as usize
+            }
+        }
+    }
+}
+
+/// The smallest and largest of the given depths, in parallel; `None` if there are none.
+pub(crate) fn depth_range(depths: impl ParallelIterator<Item = f64>) -> Option<(f64, f64)> {
+    let (lo, hi) = depths
+        .map(|z| (z, z))
+        .reduce(
+            || (f64::INFINITY, f64::NEG_INFINITY),
+            |a, b| (a.0.min(b.0), a.1.max(b.1)),
+        );
+    (lo <= hi).then_some((lo, hi))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn samples(z: &[f64]) -> Vec<Sample> {
+        z.iter()
+            .enumerate()
+            .map(|(i, &z)| Sample {
+                pixel: i as u32,
+                z,
+                cluster: 0,
+            })
+            .collect()
+    }
+
+    #[test]
+    fn half_z_splits_at_the_middle_of_the_range() {
+        let mut s = samples(&[1.0, 1.5, 2.9, 3.0, 9.0, 10.0]);
+        let mut ranges = Vec::new();
+        DepthSplit::HalfZ.split(&mut s, &mut ranges);
+        // half_z = 5.5: near [1, 3], far [9, 10].
+        assert_eq!(ranges, vec![[1.0, 3.0], [9.0, 10.0]]);
+        let clusters: Vec<u8> = s.iter().map(|s| s.cluster).collect();
+        assert_eq!(clusters, vec![0, 0, 0, 0, 1, 1]);
+    }
+
+    #[test]
+    fn half_z_of_a_flat_tile_is_one_cluster() {
+        let mut s = samples(&[4.0, 4.0, 4.0]);
+        let mut ranges = Vec::new();
+        DepthSplit::HalfZ.split(&mut s, &mut ranges);
+        assert_eq!(ranges, vec![[4.0, 4.0]]);
+        assert!(s.iter().all(|s| s.cluster == 0));
+    }
+
+    #[test]
+    fn slices_are_exponential_and_every_sample_is_in_its_range() {
+        let split = DepthSplit::slices(0.5, 500.0);
+        let z: Vec<f64> = (0..400).map(|i| 0.5 * 1000f64.powf(i as f64 / 399.0)).collect();
+        let mut s = samples(&z);
+        let mut ranges = Vec::new();
+        split.split(&mut s, &mut ranges);
+        assert_eq!(ranges.len(), MAX_CLUSTERS);
+        for w in ranges.windows(2) {
+            assert!(w[0][1] < w[1][0], "ordered, disjoint");
+            // Each slice spans a factor 1000^(1/32) ≈ 1.24.
+            assert!(w[1][1] / w[1][0] < 1.25);
+        }
+        for s in &s {
+            let [lo, hi] = ranges[s.cluster as usize];
+            assert!(lo <= s.z && s.z <= hi);
+        }
+        let flat = DepthSplit::slices(2.0, 2.0);
+        let mut one = samples(&[2.0, 2.0]);
+        flat.split(&mut one, &mut ranges);
+        assert_eq!(ranges, vec![[2.0, 2.0]]);
+    }
+}

@@ -1,0 +1,127 @@
+//! # slc-cull
+//!
+//! CPU light culling for stochastic light culling of virtual point lights (Tokuyoshi and
+//! Harada, "Stochastic Light Culling for VPLs on GGX Microsurfaces"; equation and section
+//! numbers refer to that paper). Each VPL can only contribute within its random range
+//! (eq. 5), which slc-bounds encloses in a sphere (diffuse VPLs, section 6; glossy baselines,
+//! section 7) or a GGX spheroid (eq. 12-15). A culler turns a G-buffer, a camera and the VPLs
+//! into per-pixel light lists ([`slc_core::LightLists`]) that never leave out a VPL whose
+//! probability p(ωo, l) > ξ at the pixel, so shading stays unbiased.
+//!
+//! Strategies ([`CULLER_NAMES`], [`culler_by_name`]):
+//! - `none` ([`NoCulling`]): every VPL of the pixel's interleaved subregion (section 6).
+//! - `sphere`, `enclosing-sphere`, `ellipsoid` ([`SphereCuller`], [`EnclosingSphereCuller`],
+//!   [`EllipsoidCuller`]): tiled culling with Modified HalfZ (section 5.1), 16x16 tiles of
+//!   each subregion image, two depth clusters per tile; glossy VPLs bounded by the r/α sphere,
+//!   the sphere around the spheroid, or the spheroid itself tested in its stretched and
+//!   rotated space (eq. 16-17, section 5.2).
+//! - `clustered`, `clustered-sphere`, `clustered-enclosing-sphere` ([`ClusteredCuller`]): the
+//!   same tiles cut into 32 exponential depth slices.
+//!
+//! [`metrics`] measures light lists against the brute-force truth (true and false positives,
+//! misses, lights per pixel, false discovery rate). Everything runs in parallel with rayon
+//! and in f64 where geometry is compared, with the small documented slack of
+//! `vpl_bounds::BOUND_SLACK` and `frusta::FRUSTUM_SLACK`, so float rounding never culls a
+//! contributing VPL.
+//!
+//! ```
+//! use glam::Vec3;
+//! use slc_bounds::{Brdf, Fresnel};
+//! use slc_core::{Camera, CullInput, GBuffer, GSample, Interleaving, Vpl, VplLobe};
+//!
+//! // A camera 4 units above a floor (y = 0) looking straight down; a 32x32 G-buffer of the
+//! // floor from each pixel's centre ray.
+//! let camera = Camera::look_at(Vec3::new(0.0, 4.0, 0.0), Vec3::ZERO, Vec3::Z, 1.0).unwrap();
+//! let brdf = Brdf { kd: Vec3::splat(0.5), fresnel: Fresnel::Schlick(Vec3::splat(0.04)), alpha: 0.3 };
+//! let (w, h) = (32, 32);
+//! let samples = (0..w * h)
+//!     .map(|p| {
+//!         let dir = camera.ray_direction(p % w, p / w, 0.5, 0.5, w, h);
+//!         let position = camera.position + dir * (camera.position.y / -dir.y);
+//!         let depth = camera.view_depth(position);
+//!         Some(GSample { position, normal: Vec3::Y, geometric_normal: Vec3::Y, omega_o: -dir, depth, brdf })
+//!     })
+//!     .collect();
+//! let gbuffer = GBuffer { width: w, height: h, samples };
+//!
+//! // A diffuse VPL half a unit above the floor's centre, facing down, and one above the
+//! // camera facing up.
+//! let lamp = Vpl {
+//!     position: Vec3::new(0.0, 0.5, 0.0), normal: Vec3::NEG_Y, omega_i: Vec3::NEG_Y,
+//!     flux: Vec3::ONE, brdf, lobe: VplLobe::Diffuse, id: 0, xi: 0.5,
+//! };
+//! let above = Vpl { position: Vec3::new(0.0, 10.0, 0.0), normal: Vec3::Y, omega_i: Vec3::Y, id: 2, ..lamp };
+//! let vpls = [lamp, above];
+//! let input = CullInput {
+//!     gbuffer: &gbuffer, camera: &camera, vpls: &vpls, delta: 1e-3,
+//!     interleaving: Interleaving { k: 1, seed: 0 },
+//! };
+//! let lists = slc_cull::culler_by_name("ellipsoid").unwrap().cull(&input)?;
+//! let centre = (h / 2 * w + w / 2) as usize;
+//! assert_eq!(lists.for_pixel(centre), &[0]);
+//! assert!(lists.indices.iter().all(|&i| i == 0), "the VPL above the camera is culled");
+//!
+//! let m = slc_cull::metrics::measure(&input, &lists)?;
+//! assert_eq!(m.missed_pairs, 0);
+//! assert!(m.true_positive_pairs > 0);
+//! # Ok::<(), slc_core::CullError>(())
+//! ```
+mod depth;
+mod frusta;
+mod lists;
+pub mod metrics;
+mod partition;
+pub mod strategies;
+mod tiled;
+mod tiles;
+pub mod view;
+mod vpl_bounds;
+
+pub use strategies::clustered::ClusteredCuller;
+pub use strategies::ellipsoid::EllipsoidCuller;
+pub use strategies::enclosing_sphere::EnclosingSphereCuller;
+pub use strategies::none::NoCulling;
+pub use strategies::sphere::SphereCuller;
+pub use view::CullView;
+pub use vpl_bounds::GlossyBound;
+
+use slc_core::Culler;
+
+/// The names [`culler_by_name`] knows, as the command line spells them.
+pub const CULLER_NAMES: &[&str] = &[
+    "none",
+    "sphere",
+    "enclosing-sphere",
+    "ellipsoid",
+    "clustered",
+    "clustered-sphere",
+    "clustered-enclosing-sphere",
+];
+
+/// The strategy called `name` (one of [`CULLER_NAMES`]), or `None`.
+pub fn culler_by_name(name: &str) -> Option<Box<dyn Culler>> {
+    let clustered = |glossy_bound| Box::new(ClusteredCuller { glossy_bound }) as Box<dyn Culler>;
+    Some(match name {
+        "none" => Box::new(NoCulling),
+        "sphere" => Box::new(SphereCuller),
+        "enclosing-sphere" => Box::new(EnclosingSphereCuller),
+        "ellipsoid" => Box::new(EllipsoidCuller),
+        "clustered" => clustered(GlossyBound::Ellipsoid),
+        "clustered-sphere" => clustered(GlossyBound::Sphere),
+        "clustered-enclosing-sphere" => clustered(GlossyBound::EnclosingSphere),
+        _ => return None,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_name_gives_the_strategy_of_that_name() {
+        for &name in CULLER_NAMES {
+            assert_eq!(culler_by_name(name).unwrap().name(), name);
+        }
+        assert!(culler_by_name("bogus").is_none());
+    }
+}

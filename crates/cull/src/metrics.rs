@@ -1,0 +1,253 @@
+//! Culling metrics by brute force: every light list against the truth of every (pixel, VPL)
+//! pair of the pixel's interleaved subregion (paper section 7, Fig. 9-10: lights per pixel
+//! and false discovery rate).
+//!
+//! A pair *contributes* when the VPL is in the pixel's subregion and the roulette of eq. (3)
+//! accepts it there: p(ωo, l) > ξ with p of eq. (2), `I = scalar_intensity(vpl.intensity(ωo))`,
+//! ωo the unit direction from the VPL to the pixel's G-buffer position and l² its squared
+//! distance, computed exactly as the shader does. A pair at distance 0 has no direction and
+//! contributes nothing. The truth does not use any bound of this crate or of slc-bounds.
+use crate::lists::pixel_count;
+use crate::partition::Partition;
+use glam::Vec3;
+use rayon::prelude::*;
+use slc_bounds::{scalar_intensity, StochasticParams};
+use slc_core::{CullError, CullInput, GSample, LightLists, Vpl, VplLobe, NO_LIST};
+use std::f64::consts::PI;
+
+/// How well a set of light lists culls, against the brute-force truth.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct CullMetrics {
+    /// Listed pairs that contribute.
+    pub true_positive_pairs: u64,
+    /// Listed pairs that do not contribute (including VPLs of another subregion and repeated
+    /// entries).
+    pub false_positive_pairs: u64,
+    /// Contributing pairs that are not listed: culling errors that bias the estimate; must be 0.
+    pub missed_pairs: u64,
+    /// Mean list length over all pixels (pixels without a G-buffer sample count as 0).
+    pub lights_per_pixel_mean: f64,
+    /// FP / (TP + FP) over all pairs; 0 when nothing is listed.
+    pub false_discovery_rate: f64,
+    /// List length of every pixel (row-major), for heat maps.
+    pub lights_per_pixel: Vec<u32>,
+    /// FP / (TP + FP) of every pixel (row-major), 0 where nothing is listed.
+    pub fdr_per_pixel: Vec<f32>,
+}
+
+/// The metrics of `lists` for `input`; see [`measure_all`].
+pub fn measure(input: &CullInput, lists: &LightLists) -> Result<CullMetrics, CullError> {
+    Ok(measure_all(input, &[lists])?.remove(0))
+}
+
+/// The metrics of several sets of light lists for the same input, evaluating each pair's
+/// truth once: O(pixels x VPLs per subregion), in parallel over rows. Errors when δ or a ξ
+/// is out of its domain, or when a set of lists does not fit the input.
+pub fn measure_all(
+    input: &CullInput,
+    lists: &[&LightLists],
+) -> Result<Vec<CullMetrics>, CullError> {
+    let pixels = pixel_count(input.gbuffer)?;
+    let partition = Partition::new(input.vpls, input.interleaving)?;
+    for l in lists {
+        check_lists(l, pixels, input.vpls.len())?;
+    }
+    let roulette = input
+        .vpls
+        .iter()
+        .map(|v| Roulette::new(v, input.delta))
+        .collect::<Result<Vec<_>, _>>()?;
+    let m = lists.len();
+    let width = input.gbuffer.width as usize;
+    // Per pixel and list set: [listed, true positives, missed].
+    let mut stats = vec![[0u32; 3]; pixels * m];
+    if pixels > 0 && m > 0 {
+        stats.par_chunks_mut(width * m).enumerate().for_each_init(
+            || (Vec::new(), Vec::new()),
+            |(truth, sorted), (y, row)| {
+                for x in 0..width {
+                    let p = y * width + x;
+                    truth.clear();
+                    if let Some(g) = &input.gbuffer.samples[p] {
+                        let s = input.interleaving.pixel_subregion(x as u32, y as u32);
+                        truth.extend(partition.of(s).iter().copied().filter(|&i| {
+                            roulette[i as usize].accepts(g, &input.vpls[i as usize])
+                        }));
+                    }
+                    for (k, l) in lists.iter().enumerate() {
+                        let listed = l.for_pixel(p);
+                        let tp = matches(listed, truth, sorted);
+                        row[x * m + k] = [listed.len() as u32, tp, truth.len() as u32 - tp];
+                    }
+                }
+            },
+        );
+    }
+    Ok((0..m)
+        .map(|k| summarize(stats.iter().skip(k).step_by(m.max(1)), pixels))
+        .collect())
+}
+
+/// Totals and per-pixel arrays of one list set from its per-pixel [listed, TP, missed].
+fn summarize<'a>(stats: impl Iterator<Item = &'a [u32; 3]>, pixels: usize) -> CullMetrics {
+    let mut m = CullMetrics {
+        lights_per_pixel: Vec::with_capacity(pixels),
+        fdr_per_pixel: Vec::with_capacity(pixels),
+        ..CullMetrics::default()
+    };
+    let mut listed_total = 0u64;
+    for &[listed, tp, missed] in stats {
+        let fp = listed - tp;
+        m.true_positive_pairs += u64::from(tp);
+        m.false_positive_pairs += u64::from(fp);
+        m.missed_pairs += u64::from(missed);
+        listed_total += u64::from(listed);
+        m.lights_per_pixel.push(listed);
+        m.fdr_per_pixel.push(ratio(u64::from(fp), u64::from(listed)) as f32);
+    }
+    m.lights_per_pixel_mean = ratio(listed_total, pixels as u64);
+    m.false_discovery_rate = ratio(m.false_positive_pairs, listed_total);
+    m
+}
+
+/// `a / b`, 0 when b = 0.
+fn ratio(a: u64, b: u64) -> f64 {
+    if b == 0 {
+        0.0
+    } else {
+        a as f64 / b as f64
+    }
+}
+
+/// The number of distinct entries of `listed` that are in `truth` (ascending): the true
+/// positives. `listed` is sorted into `scratch` first unless already ascending.
+fn matches(listed: &[u32], truth: &[u32], scratch: &mut Vec<u32>) -> u32 {
+    let listed = if listed.is_sorted() {
+        listed
+    } else {
+        scratch.clear();
+        scratch.extend_from_slice(listed);
+        scratch.sort_unstable();
+        scratch
+    };
+    let (mut j, mut tp) = (0, 0);
+    for &t in truth {
+        while j < listed.len() && listed[j] < t {
+            j += 1;
+        }
+        if j < listed.len() && listed[j] == t {
+            tp += 1;
+        }
+    }
+    tp
+}
+
+/// One VPL's roulette: its (δ, ξ), and a squared distance beyond which it cannot be accepted,
+/// to skip most pairs without evaluating the BRDF. The cut-off is independent of every bound
+/// under test: p > ξ needs l² < I/(δ ξ), and I(ωo) <= I_max with I_max = max(Φ kd)/π for a
+/// diffuse VPL and max(Φ)/(4π α² (ωi·n)) for a glossy one (eq. 4, 6: F <= 1, G2 <= 1,
+/// D <= 1/(π α²)); it is doubled for safety.
+struct Roulette {
+    params: StochasticParams,
+    reach_sq: f64,
+}
+
+impl Roulette {
+    fn new(vpl: &Vpl, delta: f32) -> Result<Self, CullError> {
+        let params = StochasticParams::new(delta, vpl.xi)?;
+        let cos_i = f64::from(vpl.normal.dot(vpl.omega_i));
+        let flux = vpl.flux.as_dvec3();
+        let peak = match vpl.lobe {
+            VplLobe::Diffuse => (flux * vpl.brdf.kd.as_dvec3()).max_element() / PI,
+            VplLobe::Glossy => {
+                let alpha = f64::from(vpl.brdf.alpha);
+                flux.max_element() / (4.0 * PI * alpha * alpha * cos_i)
+            }
+        };
+        let reach_sq = if cos_i > 0.0 {
+            2.0 * peak / (f64::from(delta) * f64::from(vpl.xi))
+        } else {
+            // One-sided BRDF: nothing is reflected, so nothing is accepted.
+            -1.0
+        };
+        Ok(Self { params, reach_sq })
+    }
+
+    /// Whether the roulette of eq. (3) accepts `vpl` at the G-buffer sample `g`.
+    #[inline]
+    fn accepts(&self, g: &GSample, vpl: &Vpl) -> bool {
+        let d: Vec3 = g.position - vpl.position;
+        let l2 = d.length_squared();
+        // NaN reach (absurd inputs) never skips: the comparison is false.
+        if l2 <= 0.0 || f64::from(l2) > self.reach_sq {
+            return false;
+        }
+        let omega = d / l2.sqrt();
+        let p = self
+            .params
+            .probability(scalar_intensity(vpl.intensity(omega)), l2);
+        p > self.params.xi()
+    }
+}
+
+/// Whether `lists` is well formed for `pixels` pixels and `vpl_count` VPLs.
+fn check_lists(lists: &LightLists, pixels: usize, vpl_count: usize) -> Result<(), CullError> {
+    let bad = |why: &str| Err(CullError::Input(format!("malformed light lists: {why}")));
+    if lists.pixel_list.len() != pixels {
+        return bad("one list number per pixel expected");
+    }
+    let offsets_ok = lists.offsets.windows(2).all(|w| w[0] <= w[1])
+        && lists.offsets.first().is_none_or(|&o| o == 0)
+        && lists.offsets.last().map_or(0, |&o| o as usize) == lists.indices.len();
+    if !offsets_ok {
+        return bad("offsets must ascend from 0 to the number of indices");
+    }
+    if lists
+        .pixel_list
+        .iter()
+        .any(|&l| l != NO_LIST && l as usize >= lists.len())
+    {
+        return bad("a pixel refers to a list that does not exist");
+    }
+    if lists.indices.iter().any(|&i| i as usize >= vpl_count) {
+        return bad("a VPL index is out of range");
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn matches_counts_distinct_true_entries() {
+        let mut s = Vec::new();
+        assert_eq!(matches(&[1, 3, 5, 7], &[3, 4, 7, 9], &mut s), 2);
+        assert_eq!(matches(&[7, 3, 3, 1], &[3, 7], &mut s), 2, "unsorted, duplicated");
+        assert_eq!(matches(&[], &[1], &mut s), 0);
+        assert_eq!(matches(&[1], &[], &mut s), 0);
+    }
+
+    #[test]
+    fn malformed_lists_are_errors() {
+        let good = LightLists {
+            offsets: vec![0, 2],
+            indices: vec![0, 1],
+            pixel_list: vec![0, NO_LIST],
+        };
+        assert!(check_lists(&good, 2, 2).is_ok());
+        assert!(check_lists(&good, 3, 2).is_err());
+        assert!(check_lists(&good, 2, 1).is_err());
+        let dangling = LightLists {
+            pixel_list: vec![1, 0],
+            ..good.clone()
+        };
+        assert!(check_lists(&dangling, 2, 2).is_err());
+        let short = LightLists {
+            offsets: vec![0, 3],
+            ..good
+        };
+        assert!(check_lists(&short, 2, 2).is_err());
+        assert!(check_lists(&LightLists::default(), 0, 0).is_ok());
+    }
+}

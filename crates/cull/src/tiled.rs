@@ -1,0 +1,170 @@
+//! The culling loop every bound-based strategy shares: per tile of each interleaved
+//! subregion, the depth clusters of its G-buffer samples, then every bound of the subregion's
+//! VPLs tested against every cluster; tiles run in parallel.
+use crate::depth::{depth_range, DepthSplit, Sample, MAX_CLUSTERS};
+use crate::frusta::TileFrusta;
+use crate::lists::{assemble, pixel_count, ListChunk};
+use crate::partition::Partition;
+use crate::tiles::{tiles, Tile};
+use crate::view::CullView;
+use crate::vpl_bounds::{subregion_bounds, GlossyBound, SubregionBounds};
+use glam::DVec2;
+use rayon::prelude::*;
+use slc_core::{CullError, CullInput, GBuffer, LightLists, NO_LIST};
+
+/// How a tile is divided in depth.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Clustering {
+    /// Two clusters per tile, Modified HalfZ (section 5.1).
+    HalfZ,
+    /// Up to 32 clusters per tile: exponential slices of the G-buffer's depth range.
+    ExponentialSlices,
+}
+
+/// What every tile reads.
+struct Frame<'a> {
+    gbuffer: &'a GBuffer,
+    view: CullView,
+    bounds: Vec<SubregionBounds>,
+    split: DepthSplit,
+    k: u32,
+}
+
+/// Culls `input` with `glossy` bounds for glossy VPLs (the section-6 sphere for diffuse ones)
+/// and the given depth clustering. Each existing cluster gets one list (ascending VPL
+/// indices, `NO_LIST` when empty); each pixel with a sample the list of its cluster.
+pub(crate) fn cull(
+    input: &CullInput,
+    glossy: GlossyBound,
+    clustering: Clustering,
+) -> Result<LightLists, CullError> {
+    let pixels = pixel_count(input.gbuffer)?;
+    let partition = Partition::new(input.vpls, input.interleaving)?;
+    let (width, height) = (input.gbuffer.width, input.gbuffer.height);
+    if pixels == 0 {
+        return assemble(Vec::new(), 0);
+    }
+    let view = CullView::new(input.camera, width, height)?;
+    let bounds = subregion_bounds(input.vpls, &partition, input.delta, &view, glossy)?;
+    let split = match clustering {
+        Clustering::HalfZ => DepthSplit::HalfZ,
+        Clustering::ExponentialSlices => {
+            let depths = input
+                .gbuffer
+                .samples
+                .par_iter()
+                .flatten()
+                .map(|g| view.to_view(g.position).z)
+                .filter(|&z| z > 0.0 && z.is_finite());
+            depth_range(depths).map_or(DepthSplit::HalfZ, |(lo, hi)| DepthSplit::slices(lo, hi))
+        }
+    };
+    let frame = Frame {
+        gbuffer: input.gbuffer,
+        view,
+        bounds,
+        split,
+        k: input.interleaving.k,
+    };
+    let chunks = tiles(width, height, frame.k)
+        .par_iter()
+        .try_fold(Worker::default, |mut worker, tile| {
+            worker.cull_tile(tile, &frame)?;
+            Ok::<_, CullError>(worker)
+        })
+        .map(|worker| worker.map(|w| w.chunk))
+        .collect::<Result<Vec<_>, _>>()?;
+    assemble(chunks, pixels)
+}
+
+/// One piece of the parallel loop: its lists so far and scratch reused from tile to tile.
+#[derive(Default)]
+struct Worker {
+    chunk: ListChunk,
+    samples: Vec<Sample>,
+    ranges: Vec<[f64; 2]>,
+    frusta: TileFrusta,
+    /// Per cluster, the spheres and the ellipsoids that touch it (ascending VPL indices).
+    sphere_hits: [Vec<u32>; MAX_CLUSTERS],
+    ellipsoid_hits: [Vec<u32>; MAX_CLUSTERS],
+}
+
+impl Worker {
+    fn cull_tile(&mut self, tile: &Tile, frame: &Frame) -> Result<(), CullError> {
+        let Some((lo, hi)) = self.gather(tile, frame)? else {
+            return Ok(());
+        };
+        frame.split.split(&mut self.samples, &mut self.ranges);
+        self.frusta.set(lo, hi, &self.ranges);
+        let clusters = self.ranges.len();
+        for hits in self.sphere_hits[..clusters]
+            .iter_mut()
+            .chain(&mut self.ellipsoid_hits[..clusters])
+        {
+            hits.clear();
+        }
+        let bounds = &frame.bounds[tile.subregion(frame.k) as usize];
+        for s in &bounds.spheres {
+            scatter(self.frusta.sphere_hits(s), s.index, &mut self.sphere_hits);
+        }
+        for e in &bounds.ellipsoids {
+            scatter(self.frusta.ellipsoid_hits(e), e.index, &mut self.ellipsoid_hits);
+        }
+        let mut list_of = [NO_LIST; MAX_CLUSTERS];
+        for (c, list) in list_of[..clusters].iter_mut().enumerate() {
+            *list = self
+                .chunk
+                .push_merged(&self.sphere_hits[c], &self.ellipsoid_hits[c]);
+        }
+        self.chunk.pixels.extend(
+            self.samples
+                .iter()
+                .map(|s| (s.pixel, list_of[s.cluster as usize])),
+        );
+        Ok(())
+    }
+
+    /// Collects the tile's samples with their view depths and returns the tile's image-plane
+    /// rectangle: the bounding rectangle of its pixels' footprints, grown to contain every
+    /// sample's own projection (so a G-buffer made with another pixel convention is still
+    /// covered); `None` if no pixel has a sample. Errors on a sample not in front of the
+    /// camera.
+    fn gather(&mut self, tile: &Tile, frame: &Frame) -> Result<Option<(DVec2, DVec2)>, CullError> {
+        let [x0, y0, x1, y1] = tile.screen_rect(frame.k);
+        let (mut lo, mut hi) = frame.view.image_rect(x0, y0, x1, y1);
+        self.samples.clear();
+        let width = frame.gbuffer.width;
+        for [x, y] in tile.pixels(frame.k) {
+            let pixel = y * width + x;
+            let Some(g) = &frame.gbuffer.samples[pixel as usize] else {
+                continue;
+            };
+            let p = frame.view.to_view(g.position);
+            if !(p.z > 0.0 && p.is_finite()) {
+                return Err(CullError::Input(format!(
+                    "G-buffer sample of pixel ({x}, {y}) is not in front of the camera \
+                     (view depth {})",
+                    p.z
+                )));
+            }
+            let uv = DVec2::new(p.x, p.y) / p.z;
+            lo = lo.min(uv);
+            hi = hi.max(uv);
+            self.samples.push(Sample {
+                pixel,
+                z: p.z,
+                cluster: 0,
+            });
+        }
+        Ok((!self.samples.is_empty()).then_some((lo, hi)))
+    }
+}
+
+/// Appends `index` to the hit list of every cluster in `mask`.
+#[inline]
+fn scatter(mut mask: u32, index: u32, hits: &mut [Vec<u32>; MAX_CLUSTERS]) {
+    while mask != 0 {
+        hits[mask.trailing_zeros() as usize].push(index);
+        mask &= mask - 1;
+    }
+}

@@ -1,0 +1,112 @@
+//! Screen tiles in interleaved subregion images (paper sections 5 and 6, Fig. 8).
+//!
+//! With K x K interleaving, pixel (x, y) belongs to subregion (x mod K, y mod K) and sits at
+//! (x div K, y div K) of that subregion's image. Tiles are [`TILE_SIZE`]² pixels of a
+//! subregion image, so a tile covers screen pixels with stride K and spans up to 16K x 16K
+//! screen pixels; it is culled against its subregion's VPLs only. K = 1 gives ordinary tiles.
+use slc_core::TILE_SIZE;
+
+/// One tile: `count` pixels of subregion `(sx, sy)`'s image starting at `first` (in
+/// subregion coordinates).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) struct Tile {
+    sub: [u32; 2],
+    first: [u32; 2],
+    count: [u32; 2],
+}
+
+/// Every tile of a `width` x `height` image with interleaving factor `k`, subregion by
+/// subregion (row-major in the K x K grid), row-major within each subregion. Subregions of an
+/// image smaller than K, or not a multiple of it, are smaller or empty.
+pub(crate) fn tiles(width: u32, height: u32, k: u32) -> Vec<Tile> {
+    let mut out = Vec::new();
+    for sy in 0..k.min(height) {
+        for sx in 0..k.min(width) {
+            // Size of the subregion image: pixels sx, sx + K, ... below the width.
+            let size = [(width - sx).div_ceil(k), (height - sy).div_ceil(k)];
+            for ty in 0..size[1].div_ceil(TILE_SIZE) {
+                for tx in 0..size[0].div_ceil(TILE_SIZE) {
+                    let first = [tx * TILE_SIZE, ty * TILE_SIZE];
+                    out.push(Tile {
+                        sub: [sx, sy],
+                        first,
+                        count: [
+                            TILE_SIZE.min(size[0] - first[0]),
+                            TILE_SIZE.min(size[1] - first[1]),
+                        ],
+                    });
+                }
+            }
+        }
+    }
+    out
+}
+
+impl Tile {
+    /// The tile's subregion, row-major in the K x K grid (as `Interleaving::pixel_subregion`).
+    #[inline]
+    pub(crate) fn subregion(&self, k: u32) -> u32 {
+        self.sub[1] * k + self.sub[0]
+    }
+
+    /// The screen pixels `[x0, x1) x [y0, y1)` bounding the tile's pixels' footprints.
+    pub(crate) fn screen_rect(&self, k: u32) -> [u32; 4] {
+        let [x0, y0] = self.screen(k, 0, 0);
+        let [x1, y1] = self.screen(k, self.count[0] - 1, self.count[1] - 1);
+        [x0, y0, x1 + 1, y1 + 1]
+    }
+
+    /// The tile's screen pixels (x, y), row by row.
+    pub(crate) fn pixels(&self, k: u32) -> impl Iterator<Item = [u32; 2]> + '_ {
+        (0..self.count[1])
+            .flat_map(move |b| (0..self.count[0]).map(move |a| self.screen(k, a, b)))
+    }
+
+    /// Screen coordinates of the tile's pixel (a, b).
+    #[inline]
+    fn screen(&self, k: u32, a: u32, b: u32) -> [u32; 2] {
+        [
+            self.sub[0] + k * (self.first[0] + a),
+            self.sub[1] + k * (self.first[1] + b),
+        ]
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use slc_core::Interleaving;
+
+    #[test]
+    fn tiles_cover_every_pixel_once_in_its_subregion() {
+        for (w, h) in [(1, 1), (5, 3), (16, 16), (17, 33), (100, 37), (64, 64)] {
+            for k in [1, 2, 3, 4, 8] {
+                let il = Interleaving { k, seed: 0 };
+                let mut seen = vec![0u32; (w * h) as usize];
+                for tile in tiles(w, h, k) {
+                    let [x0, y0, x1, y1] = tile.screen_rect(k);
+                    assert!(x1 - x0 <= TILE_SIZE * k && y1 - y0 <= TILE_SIZE * k);
+                    let mut n = 0;
+                    for [x, y] in tile.pixels(k) {
+                        assert!(x < w && y < h, "{w}x{h} K {k}: ({x}, {y})");
+                        assert!((x0..x1).contains(&x) && (y0..y1).contains(&y));
+                        assert_eq!(il.pixel_subregion(x, y), tile.subregion(k));
+                        seen[(y * w + x) as usize] += 1;
+                        n += 1;
+                    }
+                    assert!(n > 0 && n <= TILE_SIZE * TILE_SIZE);
+                }
+                assert!(seen.iter().all(|&c| c == 1), "{w}x{h} K {k}");
+            }
+        }
+    }
+
+    #[test]
+    fn full_hd_with_k_8_has_the_papers_tile_count() {
+        // 1920x1080 with 8x8 subregions of 240x135 pixels: 15 x 9 tiles each, 8,640 tiles
+        // (the last row of each subregion's tiles is 7 pixels high).
+        let t = tiles(1920, 1080, 8);
+        assert_eq!(t.len(), 64 * 15 * 9);
+        assert_eq!(t.iter().filter(|t| t.count == [16, 7]).count(), 64 * 15);
+    }
+}

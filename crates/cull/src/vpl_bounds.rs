@@ -1,0 +1,280 @@
+//! The bound each VPL is culled with, computed once per cull in the culling view space:
+//! the section-6 sphere for diffuse VPLs, and for glossy VPLs the sphere r/α around q, the
+//! sphere r_u around c (section 7) or the GGX spheroid (eq. 12-15) as its stretched and
+//! rotated test space BS, BS·c (eq. 16-17, section 5.2).
+use crate::partition::Partition;
+use crate::view::CullView;
+use glam::{DVec3, Vec3};
+use rayon::prelude::*;
+use slc_bounds::{DiffuseLobe, GlossyLobe, Sphere, Spheroid, StochasticParams, TestSpace};
+use slc_core::{CullError, Vpl, VplLobe};
+
+/// Relative growth of every bound (radii and semi-axes times 1 + 1e-3). The bounds of
+/// `slc-bounds` are exact in real arithmetic but stored in f32, and the shading (and the
+/// brute-force truth of `metrics`) evaluates p(ωo, l) of eq. (2) in f32: for the sharpest lobe
+/// (α = 1e-3) rounding ωo by one ulp changes the GGX term by a few 1e-4 relative, so the
+/// accepted region can stick out of the exact range l_max(ωo) of eq. (5) by about 1e-4. A
+/// 1e-3 growth covers that with margin and costs about 0.3% more volume.
+pub(crate) const BOUND_SLACK: f64 = 1e-3;
+
+/// Which bound a glossy VPL is culled with; diffuse VPLs always use the sphere of section 6.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum GlossyBound {
+    /// The sphere of radius r/α around the VPL position q (section 7, after Tokuyoshi and
+    /// Harada 2016: the maximum of s(ωo) in eq. (12)).
+    Sphere,
+    /// The sphere of radius r_u around the spheroid's centre c, enclosing the spheroid
+    /// (section 7).
+    EnclosingSphere,
+    /// The GGX bounding spheroid of eq. (12)-(15), tested as a unit sphere in its stretched
+    /// and rotated space (eq. 16-17).
+    Ellipsoid,
+}
+
+/// A sphere in view space: centre, squared radius, and the VPL's index in the input.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct ViewSphere {
+    pub center: DVec3,
+    pub radius_sq: f64,
+    pub index: u32,
+}
+
+/// An ellipsoid's test space (section 5.2): the columns of BS (BS e_x, BS e_y, BS e_z) and
+/// the transformed centre BS·c, for the view-space ellipsoid; inside it the ellipsoid is the
+/// unit ball around BS·c.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct ViewEllipsoid {
+    pub columns: [DVec3; 3],
+    pub center: DVec3,
+    pub index: u32,
+}
+
+/// One VPL's bound. `Empty` (zero flux, ωi·n <= 0, kd = 0 for a diffuse VPL) is never listed.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) enum VplBound {
+    Empty,
+    Sphere(ViewSphere),
+    Ellipsoid(ViewEllipsoid),
+}
+
+impl VplBound {
+    /// The bound of VPL `index` for δ = `delta` (eq. 2) in the culling view.
+    ///
+    /// The slc-bounds constructors build the bound around the origin, and it is moved to the
+    /// VPL in f64 (`R (q − eye + local centre)`), so its position is as precise as the
+    /// G-buffer samples', whatever the world coordinates.
+    pub(crate) fn new(
+        vpl: &Vpl,
+        index: u32,
+        delta: f32,
+        view: &CullView,
+        glossy: GlossyBound,
+    ) -> Result<Self, CullError> {
+        if !(vpl.position.is_finite() && vpl.omega_i.is_finite()) {
+            return Err(CullError::Input(format!(
+                "VPL {index} has a non-finite position or incoming direction"
+            )));
+        }
+        let params = StochasticParams::new(delta, vpl.xi)?;
+        let q = view.relative(vpl.position);
+        match vpl.lobe {
+            VplLobe::Diffuse => {
+                // The diffuse BRDF is one-sided: nothing is reflected for ωi below the surface.
+                if vpl.normal.dot(vpl.omega_i) <= 0.0 {
+                    return Ok(Self::Empty);
+                }
+                let lobe = DiffuseLobe::new(Vec3::ZERO, vpl.normal, vpl.flux, vpl.brdf.kd)?;
+                Ok(Self::sphere(view, q, Sphere::diffuse(&lobe, &params)?, index))
+            }
+            VplLobe::Glossy => {
+                let lobe = GlossyLobe::new(
+                    Vec3::ZERO,
+                    vpl.normal,
+                    vpl.omega_i,
+                    vpl.brdf.alpha,
+                    vpl.flux,
+                    vpl.brdf.fresnel,
+                )?;
+                match glossy {
+                    GlossyBound::Sphere => Ok(Self::sphere(
+                        view,
+                        q,
+                        Sphere::around_vpl(&lobe, &params)?,
+                        index,
+                    )),
+                    GlossyBound::EnclosingSphere => {
+                        let spheroid = Spheroid::new(&lobe, &params)?;
+                        Ok(Self::sphere(view, q, Sphere::enclosing(&spheroid), index))
+                    }
+                    GlossyBound::Ellipsoid => {
+                        Self::ellipsoid(view, q, &Spheroid::new(&lobe, &params)?, index)
+                    }
+                }
+            }
+        }
+    }
+
+    /// A sphere built around the origin, moved to the camera-relative VPL position `q`.
+    fn sphere(view: &CullView, q: DVec3, sphere: Sphere, index: u32) -> Self {
+        if sphere.is_empty() {
+            return Self::Empty;
+        }
+        let radius = f64::from(sphere.radius) * (1.0 + BOUND_SLACK);
+        Self::Sphere(ViewSphere {
+            center: view.rotate(q + sphere.center.as_dvec3()),
+            radius_sq: radius * radius,
+            index,
+        })
+    }
+
+    /// The test space of eq. (16)-(17) of a spheroid built around the origin, moved to the
+    /// camera-relative VPL position `q`. BS comes from [`TestSpace::new`] (with the view
+    /// rotation applied to R, section 5.1); BS·c is formed here in f64.
+    fn ellipsoid(
+        view: &CullView,
+        q: DVec3,
+        spheroid: &Spheroid,
+        index: u32,
+    ) -> Result<Self, CullError> {
+        if spheroid.is_empty() {
+            return Ok(Self::Empty);
+        }
+        let semi_axes = (spheroid.semi_axes().as_dvec3() * (1.0 + BOUND_SLACK)).as_vec3();
+        let rotation = view.rotation() * spheroid.rotation();
+        // The centre passed here only feeds TestSpace's own f32 BS·c, which is not used.
+        let bs = TestSpace::new(rotation, semi_axes, Vec3::ZERO)?
+            .matrix()
+            .as_dmat3();
+        let center = view.rotate(q + spheroid.center().as_dvec3());
+        Ok(Self::Ellipsoid(ViewEllipsoid {
+            columns: [bs.x_axis, bs.y_axis, bs.z_axis],
+            center: bs * center,
+            index,
+        }))
+    }
+}
+
+/// The non-empty bounds of one subregion's VPLs, spheres and ellipsoids apart (each ascending
+/// in the VPL index), so the culling loops run without a branch on the kind.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub(crate) struct SubregionBounds {
+    pub spheres: Vec<ViewSphere>,
+    pub ellipsoids: Vec<ViewEllipsoid>,
+}
+
+/// Every VPL's bound (in parallel), grouped by interleaved subregion.
+pub(crate) fn subregion_bounds(
+    vpls: &[Vpl],
+    partition: &Partition,
+    delta: f32,
+    view: &CullView,
+    glossy: GlossyBound,
+) -> Result<Vec<SubregionBounds>, CullError> {
+    let bounds = vpls
+        .par_iter()
+        .enumerate()
+        .map(|(i, vpl)| VplBound::new(vpl, i as u32, delta, view, glossy))
+        .collect::<Result<Vec<_>, _>>()?;
+    Ok((0..partition.subregions() as u32)
+        .map(|s| {
+            let mut out = SubregionBounds::default();
+            for &i in partition.of(s) {
+                match bounds[i as usize] {
+                    VplBound::Empty => {}
+                    VplBound::Sphere(b) => out.spheres.push(b),
+                    VplBound::Ellipsoid(b) => out.ellipsoids.push(b),
+                }
+            }
+            out
+        })
+        .collect())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use slc_bounds::{Brdf, Fresnel};
+    use slc_core::Camera;
+
+    fn view() -> CullView {
+        let cam = Camera::look_at(Vec3::new(100.0, 1.0, 3.0), Vec3::new(100.0, 1.0, 0.0), Vec3::Y, 1.0)
+            .unwrap();
+        CullView::new(&cam, 32, 32).unwrap()
+    }
+
+    fn vpl(lobe: VplLobe, omega_i: Vec3, flux: Vec3, alpha: f32) -> Vpl {
+        Vpl {
+            position: Vec3::new(100.2, 0.5, -0.3),
+            normal: Vec3::Z,
+            omega_i,
+            flux,
+            brdf: Brdf {
+                kd: Vec3::splat(0.5),
+                fresnel: Fresnel::Schlick(Vec3::splat(0.9)),
+                alpha,
+            },
+            lobe,
+            id: 0,
+            xi: 0.3,
+        }
+    }
+
+    #[test]
+    fn nothing_reflected_gives_an_empty_bound() {
+        let v = view();
+        let below = Vec3::new(0.6, 0.0, -0.8);
+        for glossy in [GlossyBound::Sphere, GlossyBound::EnclosingSphere, GlossyBound::Ellipsoid] {
+            for lobe in [VplLobe::Diffuse, VplLobe::Glossy] {
+                let dark = vpl(lobe, Vec3::Z, Vec3::ZERO, 0.2);
+                assert_eq!(VplBound::new(&dark, 0, 1e-3, &v, glossy).unwrap(), VplBound::Empty);
+                let back = vpl(lobe, below, Vec3::ONE, 0.2);
+                assert_eq!(VplBound::new(&back, 0, 1e-3, &v, glossy).unwrap(), VplBound::Empty);
+            }
+        }
+    }
+
+    /// The view-space bounds agree with the world-space ones of slc-bounds: points of the
+    /// spheroid are inside the test space's unit ball, points of the spheres inside them.
+    #[test]
+    fn view_space_bounds_match_world_bounds() {
+        let v = view();
+        let wi = Vec3::new(0.3, 0.4, 0.866).normalize();
+        let g = vpl(VplLobe::Glossy, wi, Vec3::splat(3.0), 0.05);
+        let params = StochasticParams::new(1e-3, g.xi).unwrap();
+        let lobe = GlossyLobe::new(g.position, g.normal, wi, 0.05, g.flux, g.brdf.fresnel).unwrap();
+        let spheroid = Spheroid::new(&lobe, &params).unwrap();
+        let VplBound::Ellipsoid(e) = VplBound::new(&g, 0, 1e-3, &v, GlossyBound::Ellipsoid).unwrap()
+        else {
+            panic!("ellipsoid expected")
+        };
+        let bs = glam::DMat3::from_cols(e.columns[0], e.columns[1], e.columns[2]);
+        for k in 0..200 {
+            let t = k as f32 * 0.7;
+            let dir = Vec3::new(t.sin() * (t * 0.3).cos(), t.cos(), t.sin() * (t * 0.3).sin());
+            let p = spheroid.center() + spheroid.rotation() * (spheroid.semi_axes() * dir.normalize());
+            let d = (bs * v.to_view(p) - e.center).length();
+            assert!(d <= 1.0 && d > 0.99, "{d}");
+        }
+        let VplBound::Sphere(s) = VplBound::new(&g, 0, 1e-3, &v, GlossyBound::Sphere).unwrap() else {
+            panic!("sphere expected")
+        };
+        let r = f64::from(Sphere::around_vpl(&lobe, &params).unwrap().radius);
+        assert!((s.center - v.to_view(g.position)).length() < 1e-9);
+        assert!((s.radius_sq.sqrt() / r - 1.0 - BOUND_SLACK).abs() < 1e-6);
+    }
+
+    #[test]
+    fn invalid_vpls_are_errors() {
+        let v = view();
+        let mut bad = vpl(VplLobe::Glossy, Vec3::Z, Vec3::ONE, 0.2);
+        bad.xi = 0.0;
+        assert!(VplBound::new(&bad, 0, 1e-3, &v, GlossyBound::Ellipsoid).is_err());
+        let mut nan = vpl(VplLobe::Diffuse, Vec3::Z, Vec3::ONE, 0.2);
+        nan.position.x = f32::NAN;
+        assert!(VplBound::new(&nan, 0, 1e-3, &v, GlossyBound::Ellipsoid).is_err());
+        let rough = vpl(VplLobe::Glossy, Vec3::Z, Vec3::ONE, 0.0);
+        assert!(VplBound::new(&rough, 0, 1e-3, &v, GlossyBound::Ellipsoid).is_err());
+        let ok = vpl(VplLobe::Glossy, Vec3::Z, Vec3::ONE, 0.2);
+        assert!(VplBound::new(&ok, 0, 0.0, &v, GlossyBound::Sphere).is_err());
+    }
+}

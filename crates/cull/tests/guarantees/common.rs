@@ -1,0 +1,322 @@
+//! Scenes, VPLs and the checks shared by the guarantee tests.
+use glam::Vec3;
+use slc_bounds::{Brdf, Fresnel};
+use slc_core::{
+    builtin, load_scene, Camera, CullInput, Culler, GBuffer, GSample, Interleaving, LightLists,
+    Light, Material, MaterialModel, Scene, Vpl, VplLobe, NO_LIST,
+};
+use slc_cpu_ref::gbuffer::{trace_gbuffer, PixelSample};
+use slc_cpu_ref::rsm::{trace_rsm, TexelSample};
+use slc_cpu_ref::vpls::{generate_vpls, LobeSelection};
+use slc_cpu_ref::Tracer;
+use slc_cull::metrics::{measure_all, CullMetrics};
+use slc_cull::{culler_by_name, CULLER_NAMES};
+
+/// A small deterministic generator (xorshift64*), uniform floats in [0, 1).
+pub struct Rng(u64);
+
+impl Rng {
+    pub fn new(seed: u64) -> Self {
+        Self(seed.wrapping_mul(0x9E37_79B9_7F4A_7C15) | 1)
+    }
+
+    pub fn f32(&mut self) -> f32 {
+        self.0 ^= self.0 >> 12;
+        self.0 ^= self.0 << 25;
+        self.0 ^= self.0 >> 27;
+        ((self.0.wrapping_mul(0x2545_F491_4F6C_DD1D) >> 40) as f32) / (1u64 << 24) as f32
+    }
+
+    pub fn range(&mut self, a: f32, b: f32) -> f32 {
+        a + (b - a) * self.f32()
+    }
+
+    /// 10^U(lo, hi).
+    pub fn log(&mut self, lo: f32, hi: f32) -> f32 {
+        10f32.powf(self.range(lo, hi))
+    }
+
+    pub fn below(&mut self, n: u32) -> u32 {
+        ((self.f32() * n as f32) as u32).min(n - 1)
+    }
+
+    pub fn chance(&mut self, p: f32) -> bool {
+        self.f32() < p
+    }
+
+    pub fn unit(&mut self) -> Vec3 {
+        loop {
+            let v = Vec3::new(
+                self.range(-1.0, 1.0),
+                self.range(-1.0, 1.0),
+                self.range(-1.0, 1.0),
+            );
+            if v.length_squared() > 1e-4 && v.length_squared() <= 1.0 {
+                return v.normalize();
+            }
+        }
+    }
+}
+
+/// A G-buffer of the floor plane y = 0 seen by `camera`, one ray per pixel through a random
+/// point of the pixel (often exactly on its corner or edges); rays that miss the floor see sky.
+pub fn floor_gbuffer(camera: &Camera, width: u32, height: u32, rng: &mut Rng) -> GBuffer {
+    let brdf = Brdf {
+        kd: Vec3::splat(0.5),
+        fresnel: Fresnel::Schlick(Vec3::splat(0.04)),
+        alpha: 0.5,
+    };
+    let jitter = |rng: &mut Rng| match rng.below(4) {
+        0 => 0.0,
+        1 => 1.0 - f32::EPSILON / 2.0,
+        _ => rng.f32(),
+    };
+    let samples = (0..width * height)
+        .map(|p| {
+            let (s, t) = (jitter(rng), jitter(rng));
+            let dir = camera.ray_direction(p % width, p / width, s, t, width, height);
+            let t_hit = -camera.position.y / dir.y;
+            (dir.y < 0.0 && t_hit.is_finite()).then(|| {
+                let position = camera.position + dir * t_hit;
+                GSample {
+                    position: Vec3::new(position.x, 0.0, position.z),
+                    normal: Vec3::Y,
+                    geometric_normal: Vec3::Y,
+                    omega_o: -dir,
+                    depth: camera.view_depth(position),
+                    brdf,
+                }
+            })
+        })
+        .collect();
+    GBuffer {
+        width,
+        height,
+        samples,
+    }
+}
+
+/// A random camera above the floor looking at it from 0.3..3 units up (the horizon is often in
+/// view, so part of the image is sky).
+pub fn floor_camera(rng: &mut Rng) -> Camera {
+    let eye = Vec3::new(rng.range(-1.0, 1.0), rng.range(0.3, 3.0), rng.range(2.0, 5.0));
+    let target = Vec3::new(rng.range(-2.0, 2.0), rng.range(-0.5, 1.5), rng.range(-6.0, 0.0));
+    Camera::look_at(eye, target, Vec3::Y, rng.range(20.0, 100.0).to_radians()).unwrap()
+}
+
+/// `n` random VPLs in a room around the floor: on the walls x = ±4, the back wall z = −8, the
+/// ceiling y = 3, just above the floor, or anywhere (also behind the camera); random normals
+/// and incoming directions (one in five below the surface), random lobes, α from 1e-3 to 1,
+/// flux from 1e-4 to 10 (one in ten zero), Schlick or dielectric Fresnel, ξ in (0, 1).
+pub fn room_vpls(rng: &mut Rng, n: u32) -> Vec<Vpl> {
+    (0..n)
+        .map(|id| {
+            let (position, normal) = match rng.below(6) {
+                0 => (Vec3::new(-4.0, rng.range(0.0, 3.0), rng.range(-8.0, 6.0)), Vec3::X),
+                1 => (Vec3::new(4.0, rng.range(0.0, 3.0), rng.range(-8.0, 6.0)), Vec3::NEG_X),
+                2 => (Vec3::new(rng.range(-4.0, 4.0), rng.range(0.0, 3.0), -8.0), Vec3::Z),
+                3 => (Vec3::new(rng.range(-4.0, 4.0), 3.0, rng.range(-8.0, 6.0)), Vec3::NEG_Y),
+                4 => (
+                    Vec3::new(rng.range(-4.0, 4.0), rng.log(-4.0, -1.0), rng.range(-8.0, 6.0)),
+                    Vec3::Y,
+                ),
+                _ => (
+                    Vec3::new(rng.range(-6.0, 6.0), rng.range(-1.0, 5.0), rng.range(-10.0, 10.0)),
+                    rng.unit(),
+                ),
+            };
+            let mut omega_i = rng.unit();
+            if (omega_i.dot(normal) < 0.0) != rng.chance(0.2) {
+                omega_i = -omega_i;
+            }
+            let flux = if rng.chance(0.1) {
+                Vec3::ZERO
+            } else {
+                Vec3::new(rng.log(-4.0, 1.0), rng.log(-4.0, 1.0), rng.log(-4.0, 1.0))
+            };
+            let fresnel = if rng.chance(0.7) {
+                Fresnel::Schlick(Vec3::new(rng.f32(), rng.f32(), rng.f32()))
+            } else {
+                Fresnel::Dielectric(rng.range(1.1, 2.5))
+            };
+            let kd = if rng.chance(0.1) {
+                Vec3::ZERO
+            } else {
+                Vec3::new(rng.f32(), rng.f32(), rng.f32())
+            };
+            Vpl {
+                position,
+                normal,
+                omega_i,
+                flux,
+                brdf: Brdf {
+                    kd,
+                    fresnel,
+                    alpha: rng.log(-3.0, 0.0),
+                },
+                lobe: if rng.chance(0.5) {
+                    VplLobe::Diffuse
+                } else {
+                    VplLobe::Glossy
+                },
+                id,
+                xi: rng.range(1e-6, 1.0 - 1e-6),
+            }
+        })
+        .collect()
+}
+
+/// Every strategy's lists for `input` and their metrics, after checking what every strategy
+/// must guarantee: no contributing pair missed, well-formed ascending lists without repeats,
+/// only the pixel's own subregion's VPLs, no list for a pixel without a sample, finite
+/// metrics. Returns (name, metrics) in the order of `CULLER_NAMES`.
+pub fn check_all(input: &CullInput, label: &str) -> Vec<(&'static str, CullMetrics)> {
+    let lists: Vec<LightLists> = CULLER_NAMES
+        .iter()
+        .map(|&name| {
+            let culler: Box<dyn Culler> = culler_by_name(name).unwrap();
+            culler
+                .cull(input)
+                .unwrap_or_else(|e| panic!("{label}: {name} failed: {e}"))
+        })
+        .collect();
+    let refs: Vec<&LightLists> = lists.iter().collect();
+    let metrics = measure_all(input, &refs).unwrap();
+    let contributing = metrics[0].true_positive_pairs + metrics[0].missed_pairs;
+    let w = input.gbuffer.width.max(1);
+    for ((name, l), m) in CULLER_NAMES.iter().zip(&lists).zip(&metrics) {
+        assert_eq!(
+            m.missed_pairs, 0,
+            "{label}: {name} culled {} contributing pairs",
+            m.missed_pairs
+        );
+        assert_eq!(m.true_positive_pairs, contributing, "{label}: {name}");
+        assert!(m.lights_per_pixel_mean.is_finite() && m.false_discovery_rate.is_finite());
+        assert!(m.fdr_per_pixel.iter().all(|f| f.is_finite()));
+        for (p, sample) in input.gbuffer.samples.iter().enumerate() {
+            let list = l.for_pixel(p);
+            if sample.is_none() {
+                assert_eq!(l.pixel_list[p], NO_LIST, "{label}: {name}: sky pixel {p}");
+            }
+            assert!(list.windows(2).all(|w| w[0] < w[1]), "{label}: {name}: order");
+            let s = input
+                .interleaving
+                .pixel_subregion(p as u32 % w, p as u32 / w);
+            for &i in list {
+                let vpl = &input.vpls[i as usize];
+                assert_eq!(input.interleaving.vpl_subregion(vpl.id), s, "{label}: {name}");
+            }
+        }
+    }
+    CULLER_NAMES.iter().copied().zip(metrics).collect()
+}
+
+/// The metrics of the named strategy in the output of [`check_all`].
+pub fn of<'a>(all: &'a [(&'static str, CullMetrics)], name: &str) -> &'a CullMetrics {
+    &all.iter().find(|(n, _)| *n == name).unwrap().1
+}
+
+/// A scene's G-buffer (jittered primary rays) and VPLs from reflective shadow maps of `rsm`²
+/// texels per face.
+pub fn frame(
+    scene: &Scene,
+    camera: &Camera,
+    (width, height): (u32, u32),
+    rsm: u32,
+    lobes: LobeSelection,
+) -> (GBuffer, Vec<Vpl>) {
+    let tracer = Tracer::new(scene);
+    let gbuffer = trace_gbuffer(
+        scene,
+        &tracer,
+        camera,
+        width,
+        height,
+        PixelSample::Jittered { seed: 5, index: 0 },
+    );
+    let maps: Vec<_> = scene
+        .lights
+        .iter()
+        .map(|l| trace_rsm(scene, &tracer, l, rsm, TexelSample::Centre))
+        .collect();
+    (gbuffer, generate_vpls(&maps, 11, lobes))
+}
+
+/// The built-in default scene (the glossy Cornell room with a copper panel).
+pub fn default_scene() -> (Scene, Camera) {
+    let scene = builtin("default").unwrap();
+    let camera = scene.camera_or_default();
+    (scene, camera)
+}
+
+/// The default scene with a glossy floor (kd 0.1, F0 0.9, α 0.1): floor VPLs throw glossy
+/// reflections onto the walls.
+pub fn glossy_floor_scene() -> (Scene, Camera) {
+    let (mut scene, camera) = default_scene();
+    let floor = scene.meshes.iter().position(|m| m.name == "floor").unwrap();
+    scene.materials.push(Material::direct(
+        "glossy floor",
+        Vec3::splat(0.1),
+        Vec3::splat(0.9),
+        0.1,
+    ));
+    scene.meshes[floor].material = scene.materials.len() - 1;
+    (scene, camera)
+}
+
+/// Dabrovic Sponza from `shared/scenes` with what the OBJ lacks: a point light of 60 W/sr in
+/// the middle of the atrium, a camera inside it looking along its long (x) axis, and a
+/// glossy layer on every material (F0 0.04 to 0.9, α from 1e-3 to 1 by material), so both
+/// lobes of VPL are exercised.
+pub fn sponza() -> (Scene, Camera) {
+    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../../../shared/scenes/sponza/sponza.obj");
+    let mut scene = load_scene(path).unwrap_or_else(|e| panic!("{path}: {e}"));
+    scene.lights = vec![Light::Point {
+        position: Vec3::new(0.0, 6.0, 0.0),
+        intensity: Vec3::splat(60.0),
+    }];
+    let alphas = [1e-3, 0.02, 0.1, 0.3, 1.0];
+    for (i, m) in scene.materials.iter_mut().enumerate() {
+        if let MaterialModel::Direct { f0, alpha, .. } = &mut m.model {
+            *f0 = Vec3::splat([0.04, 0.3, 0.9][i % 3]);
+            *alpha = alphas[i % alphas.len()];
+        }
+    }
+    let camera = Camera::look_at(
+        Vec3::new(-12.0, 2.5, 0.3),
+        Vec3::new(10.0, 4.0, -0.3),
+        Vec3::Y,
+        60f32.to_radians(),
+    )
+    .unwrap();
+    (scene, camera)
+}
+
+/// A cull input with interleaving factor `k` (seed 3).
+pub fn input<'a>(
+    gbuffer: &'a GBuffer,
+    camera: &'a Camera,
+    vpls: &'a [Vpl],
+    delta: f32,
+    k: u32,
+) -> CullInput<'a> {
+    CullInput {
+        gbuffer,
+        camera,
+        vpls,
+        delta,
+        interleaving: Interleaving { k, seed: 3 },
+    }
+}
+
+/// One line of metrics for the test log.
+pub fn line(name: &str, m: &CullMetrics) -> String {
+    format!(
+        "{name:>27}: FP {:>10}  TP {:>8}  missed {}  lights/pixel {:>8.2}  FDR {:.4}",
+        m.false_positive_pairs,
+        m.true_positive_pairs,
+        m.missed_pairs,
+        m.lights_per_pixel_mean,
+        m.false_discovery_rate
+    )
+}

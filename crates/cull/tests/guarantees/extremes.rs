@@ -1,0 +1,214 @@
+//! Extreme inputs: sky and empty tiles, VPLs behind the camera, zero flux, the sharpest lobes,
+//! extreme δ, no VPLs, a 1x1 image, sizes that are multiples of neither 16 nor K, and invalid
+//! inputs (errors, never panics).
+use crate::common::*;
+use glam::Vec3;
+use slc_core::{Camera, CullInput, GBuffer, Interleaving, VplLobe, NO_LIST};
+use slc_cull::{culler_by_name, CULLER_NAMES};
+
+/// A camera 1.5 units above the floor looking at the horizon: the upper half is sky, so
+/// whole tiles are empty and others are cut by the horizon.
+fn horizon_camera() -> Camera {
+    Camera::look_at(
+        Vec3::new(0.0, 1.5, 4.0),
+        Vec3::new(0.0, 1.5, -10.0),
+        Vec3::Y,
+        70f32.to_radians(),
+    )
+    .unwrap()
+}
+
+#[test]
+fn sky_and_empty_tiles() {
+    let mut rng = Rng::new(2);
+    let camera = horizon_camera();
+    let gbuffer = floor_gbuffer(&camera, 67, 45, &mut rng);
+    let sky = gbuffer.samples.iter().filter(|s| s.is_none()).count();
+    assert!(sky > 1000 && sky < 67 * 45 - 1000, "{sky} sky pixels");
+    let vpls = room_vpls(&mut rng, 200);
+    for k in [1, 2, 3] {
+        check_all(&input(&gbuffer, &camera, &vpls, 1e-3, k), "horizon");
+    }
+    // All sky: no lists at all.
+    let all_sky = GBuffer {
+        samples: vec![None; gbuffer.samples.len()],
+        ..gbuffer
+    };
+    for &name in CULLER_NAMES {
+        let lists = culler_by_name(name)
+            .unwrap()
+            .cull(&input(&all_sky, &camera, &vpls, 1e-3, 2))
+            .unwrap();
+        assert!(lists.pixel_list.iter().all(|&l| l == NO_LIST), "{name}");
+    }
+}
+
+#[test]
+fn vpls_behind_the_camera_are_never_listed_unless_they_reach() {
+    let mut rng = Rng::new(3);
+    let camera = horizon_camera();
+    let gbuffer = floor_gbuffer(&camera, 40, 30, &mut rng);
+    // VPLs 30 units behind the camera, so weak that every bound stays within a unit of
+    // them (r <= sqrt(Φ (2/α) / (4π δ ξ)) = 0.025 and r/α <= 0.5 for α >= 0.05, eq. 12).
+    let mut vpls = room_vpls(&mut rng, 150);
+    for v in &mut vpls {
+        v.position = camera.position - 30.0 * camera.forward + rng.unit();
+        v.flux = Vec3::splat(1e-6);
+        v.xi = 0.5;
+        v.brdf.alpha = v.brdf.alpha.max(0.05);
+    }
+    let far = input(&gbuffer, &camera, &vpls, 1e-2, 1);
+    check_all(&far, "far behind");
+    for &name in &CULLER_NAMES[1..] {
+        let lists = culler_by_name(name).unwrap().cull(&far).unwrap();
+        assert!(lists.indices.is_empty(), "{name} listed a VPL behind the camera");
+    }
+    // Strong VPLs just behind the camera do reach the floor in view: listed where they must.
+    for v in &mut vpls {
+        v.position = camera.position - 0.5 * camera.forward + 0.3 * rng.unit();
+        v.flux = Vec3::splat(5.0);
+    }
+    let all = check_all(&input(&gbuffer, &camera, &vpls, 1e-3, 2), "just behind");
+    assert!(of(&all, "none").true_positive_pairs > 1000);
+}
+
+#[test]
+fn zero_flux_and_unlit_vpls_are_never_listed() {
+    let mut rng = Rng::new(4);
+    let camera = floor_camera(&mut rng);
+    let gbuffer = floor_gbuffer(&camera, 48, 32, &mut rng);
+    let mut vpls = room_vpls(&mut rng, 200);
+    for (i, v) in vpls.iter_mut().enumerate() {
+        if i % 2 == 0 {
+            v.flux = Vec3::ZERO;
+        } else {
+            // Lit from below the surface: the one-sided BRDF reflects nothing.
+            v.omega_i = -v.normal;
+        }
+    }
+    let dark = input(&gbuffer, &camera, &vpls, 1e-6, 1);
+    check_all(&dark, "dark");
+    for &name in &CULLER_NAMES[1..] {
+        let lists = culler_by_name(name).unwrap().cull(&dark).unwrap();
+        assert!(lists.indices.is_empty(), "{name} listed a dark VPL");
+    }
+}
+
+/// The sharpest lobe the project allows (α = 1e-3) with δ at both ends of its range,
+/// aimed at the floor in view so the needle-like spheroids cross it.
+#[test]
+fn sharpest_lobes_and_extreme_delta() {
+    let mut rng = Rng::new(5);
+    for case in 0..6 {
+        let camera = floor_camera(&mut rng);
+        let gbuffer = floor_gbuffer(&camera, 64, 48, &mut rng);
+        let mut vpls = room_vpls(&mut rng, 200);
+        for v in &mut vpls {
+            v.lobe = VplLobe::Glossy;
+            v.brdf.alpha = 1e-3;
+            // Mirror the incoming direction of a point on the floor in view.
+            let target = Vec3::new(rng.range(-3.0, 3.0), 0.0, rng.range(-6.0, 3.0));
+            let out = (target - v.position).normalize();
+            let reflected = 2.0 * out.dot(v.normal) * v.normal - out;
+            if reflected.dot(v.normal) > 0.0 {
+                v.omega_i = reflected;
+            }
+        }
+        for delta in [1e-6, 1e-1] {
+            for k in [1, 3] {
+                let label = format!("alpha 1e-3, case {case}, delta {delta}, K {k}");
+                let all = check_all(&input(&gbuffer, &camera, &vpls, delta, k), &label);
+                if delta == 1e-6 {
+                    assert!(of(&all, "none").true_positive_pairs > 0, "{label}");
+                }
+            }
+        }
+    }
+}
+
+#[test]
+fn tiny_and_odd_images_and_no_vpls() {
+    let mut rng = Rng::new(6);
+    let camera = Camera::look_at(
+        Vec3::new(0.0, 2.0, 3.0),
+        Vec3::new(0.0, 0.0, -2.0),
+        Vec3::Y,
+        60f32.to_radians(),
+    )
+    .unwrap();
+    let vpls = room_vpls(&mut rng, 120);
+    for (w, h) in [(1, 1), (1, 7), (5, 3), (17, 33), (31, 16), (33, 47)] {
+        let gbuffer = floor_gbuffer(&camera, w, h, &mut rng);
+        for k in [1, 2, 3, 5, 8] {
+            let label = format!("{w}x{h}, K {k}");
+            check_all(&input(&gbuffer, &camera, &vpls, 1e-3, k), &label);
+            let all = check_all(&input(&gbuffer, &camera, &[], 1e-3, k), &label);
+            assert!(all.iter().all(|(_, m)| m.lights_per_pixel_mean == 0.0));
+        }
+    }
+    let empty = GBuffer {
+        width: 0,
+        height: 0,
+        samples: Vec::new(),
+    };
+    for &name in CULLER_NAMES {
+        let lists = culler_by_name(name)
+            .unwrap()
+            .cull(&input(&empty, &camera, &vpls, 1e-3, 4))
+            .unwrap();
+        assert!(lists.pixel_list.is_empty() && lists.is_empty(), "{name}");
+    }
+}
+
+#[test]
+fn invalid_inputs_are_errors_not_panics() {
+    let mut rng = Rng::new(7);
+    let camera = horizon_camera();
+    let gbuffer = floor_gbuffer(&camera, 20, 20, &mut rng);
+    let vpls = room_vpls(&mut rng, 50);
+    let cull = |input: &CullInput| -> Vec<bool> {
+        CULLER_NAMES
+            .iter()
+            .map(|&n| culler_by_name(n).unwrap().cull(input).is_err())
+            .collect()
+    };
+    let bounded = |errs: Vec<bool>| errs[1..].iter().all(|&e| e);
+    // δ and ξ out of their domains: only the bound-based strategies look at them.
+    for delta in [0.0, -1.0, f32::NAN, f32::INFINITY] {
+        assert!(bounded(cull(&input(&gbuffer, &camera, &vpls, delta, 2))));
+    }
+    let mut bad_xi = vpls.clone();
+    bad_xi[3].xi = 1.0;
+    assert!(bounded(cull(&input(&gbuffer, &camera, &bad_xi, 1e-3, 2))));
+    let mut nan = vpls.clone();
+    nan[7].position = Vec3::NAN;
+    assert!(bounded(cull(&input(&gbuffer, &camera, &nan, 1e-3, 2))));
+    // Every strategy refuses a G-buffer of the wrong size and K = 0.
+    let short = GBuffer {
+        samples: gbuffer.samples[1..].to_vec(),
+        ..gbuffer.clone()
+    };
+    assert!(cull(&input(&short, &camera, &vpls, 1e-3, 2)).iter().all(|&e| e));
+    let no_k = CullInput {
+        interleaving: Interleaving { k: 0, seed: 0 },
+        ..input(&gbuffer, &camera, &vpls, 1e-3, 2)
+    };
+    assert!(cull(&no_k).iter().all(|&e| e));
+    // A sample behind the camera, or a broken camera.
+    let mut behind = gbuffer.clone();
+    if let Some(s) = behind.samples.iter_mut().flatten().next() {
+        s.position = camera.position - camera.forward;
+    }
+    assert!(bounded(cull(&input(&behind, &camera, &vpls, 1e-3, 2))));
+    let broken = Camera {
+        forward: Vec3::ZERO,
+        ..camera.clone()
+    };
+    assert!(bounded(cull(&input(&gbuffer, &broken, &vpls, 1e-3, 2))));
+    // The metrics refuse lists that do not fit the input.
+    let ok = input(&gbuffer, &camera, &vpls, 1e-3, 2);
+    let mut lists = culler_by_name("ellipsoid").unwrap().cull(&ok).unwrap();
+    assert!(slc_cull::metrics::measure(&ok, &lists).is_ok());
+    lists.pixel_list.pop();
+    assert!(slc_cull::metrics::measure(&ok, &lists).is_err());
+}

@@ -1,0 +1,71 @@
+//! No strategy ever culls a contributing VPL (missed pairs = 0 against the brute-force truth).
+use crate::common::*;
+use slc_cpu_ref::vpls::LobeSelection;
+
+/// Random rooms: a floor G-buffer by ray casting (jittered on pixel corners and edges, sky
+/// above the horizon), VPLs on the walls, ceiling and floor and anywhere around (also behind
+/// the camera), random lobes, α from 1e-3 to 1, δ from 1e-6 to 1e-1, K from 1 to 5, image
+/// sizes from 1 to 90 pixels.
+#[test]
+fn synthetic_rooms_never_miss() {
+    let mut rng = Rng::new(1);
+    let (mut contributing, mut listed_none, mut listed_ellipsoid) = (0u64, 0u64, 0u64);
+    for case in 0..48 {
+        let camera = floor_camera(&mut rng);
+        let (w, h) = (1 + rng.below(90), 1 + rng.below(70));
+        let gbuffer = floor_gbuffer(&camera, w, h, &mut rng);
+        let count = rng.below(240);
+        let vpls = room_vpls(&mut rng, count);
+        let delta = rng.log(-6.0, -1.0);
+        let k = 1 + rng.below(5);
+        let label = format!("room {case} ({w}x{h}, {count} VPLs, delta {delta:.1e}, K {k})");
+        let all = check_all(&input(&gbuffer, &camera, &vpls, delta, k), &label);
+        contributing += of(&all, "none").true_positive_pairs;
+        listed_none += of(&all, "none").true_positive_pairs + of(&all, "none").false_positive_pairs;
+        let e = of(&all, "ellipsoid");
+        listed_ellipsoid += e.true_positive_pairs + e.false_positive_pairs;
+    }
+    println!(
+        "rooms: {contributing} contributing pairs, {listed_ellipsoid} listed by ellipsoid, \
+         {listed_none} by none"
+    );
+    // The test has teeth: many pairs contribute, and culling removes most of the others.
+    assert!(contributing > 100_000, "{contributing}");
+    assert!(listed_ellipsoid < listed_none / 2, "{listed_ellipsoid} vs {listed_none}");
+}
+
+/// The built-in default scene (jittered G-buffer, VPLs of both lobes), K = 1 and 4, δ from
+/// 1e-5 to 1e-1.
+#[test]
+fn default_scene_never_misses() {
+    let (scene, camera) = default_scene();
+    let (gbuffer, vpls) = frame(&scene, &camera, (96, 72), 12, LobeSelection::Both);
+    for (k, delta) in [(1, 1e-3), (4, 1e-3), (4, 1e-5), (4, 1e-1), (1, 1e-2)] {
+        let label = format!("default scene, K {k}, delta {delta}");
+        let all = check_all(&input(&gbuffer, &camera, &vpls, delta, k), &label);
+        println!("{label}, {} VPLs", vpls.len());
+        for (name, m) in &all {
+            println!("{}", line(name, m));
+        }
+        assert!(of(&all, "none").true_positive_pairs > 10_000);
+    }
+}
+
+/// Dabrovic Sponza (with a point light, a camera in the atrium and glossy layers of α from
+/// 1e-3 to 1), K = 1 and 4.
+#[test]
+fn sponza_never_misses() {
+    let (scene, camera) = sponza();
+    let (gbuffer, vpls) = frame(&scene, &camera, (120, 72), 10, LobeSelection::Both);
+    let seen = gbuffer.samples.iter().flatten().count();
+    assert!(seen > gbuffer.samples.len() / 2, "the camera sees the atrium: {seen}");
+    for (k, delta) in [(1, 1e-3), (4, 1e-3), (4, 1e-2)] {
+        let label = format!("sponza, K {k}, delta {delta}");
+        let all = check_all(&input(&gbuffer, &camera, &vpls, delta, k), &label);
+        println!("{label}, {} VPLs", vpls.len());
+        for (name, m) in &all {
+            println!("{}", line(name, m));
+        }
+        assert!(of(&all, "none").true_positive_pairs > 10_000);
+    }
+}
