@@ -54,7 +54,8 @@ pub struct FrameArgs {
 impl FrameArgs {
     /// Loads the scene, printing its loader warnings.
     pub fn load(&self) -> Result<Scene, String> {
-        let scene = load_scene(self.scene.as_deref().unwrap_or("default")).map_err(|e| e.to_string())?;
+        let scene =
+            load_scene(self.scene.as_deref().unwrap_or("default")).map_err(|e| e.to_string())?;
         for w in &scene.report.warnings {
             eprintln!("warning: {w}");
         }
@@ -86,5 +87,10 @@ pub fn culling_name(name: &str) -> Result<&'static str, String> {
         .iter()
         .find(|n| **n == name)
         .copied()
-        .ok_or_else(|| format!("unknown culling strategy '{name}' (one of {})", slc_cull::CULLER_NAMES.join(", ")))
+        .ok_or_else(|| {
+            format!(
+                "unknown culling strategy '{name}' (one of {})",
+                slc_cull::CULLER_NAMES.join(", ")
+            )
+        })
 }

@@ -24,7 +24,11 @@ pub struct CompareArgs {
     #[arg(long, default_value = "compare")]
     pub out: PathBuf,
     /// Strategies to compare, comma separated.
-    #[arg(long, value_delimiter = ',', default_value = "none,sphere,enclosing-sphere,ellipsoid,clustered")]
+    #[arg(
+        long,
+        value_delimiter = ',',
+        default_value = "none,sphere,enclosing-sphere,ellipsoid,clustered"
+    )]
     pub culling: Vec<String>,
     #[arg(long, default_value_t = 1e-3)]
     pub delta: f32,
@@ -58,20 +62,40 @@ struct Row {
 pub fn run(args: &CompareArgs) -> Result<(), String> {
     let scene = args.frame.load()?;
     scene.validate_for_render().map_err(|e| e.to_string())?;
-    let names = args.culling.iter().map(|n| culling_name(n)).collect::<Result<Vec<_>, _>>()?;
+    let names = args
+        .culling
+        .iter()
+        .map(|n| culling_name(n))
+        .collect::<Result<Vec<_>, _>>()?;
     let f = &args.frame;
-    let base = Stochastic { delta: args.delta, culling: "none", interleave: args.interleave, denoise: !args.no_denoise, metrics: true };
+    let base = Stochastic {
+        delta: args.delta,
+        culling: "none",
+        interleave: args.interleave,
+        denoise: !args.no_denoise,
+        metrics: true,
+    };
     let settings = f.settings(Method::Stochastic(base), 1);
     settings.validate().map_err(|e| e.to_string())?;
     let pixels = f.width as u64 * f.height as u64;
-    eprintln!("preparing {} ({}x{}, RSM {}²)", scene.name, f.width, f.height, f.rsm);
+    eprintln!(
+        "preparing {} ({}x{}, RSM {}²)",
+        scene.name, f.width, f.height, f.rsm
+    );
     let p = prepare(&scene, &settings, Tracer::new(&scene), None);
     eprintln!("{} VPLs", p.vpls.len());
 
     let reference = (!args.no_reference)
         .then(|| {
             let bar = bar(pixels, "all-VPL reference".into());
-            let r = shade_vpls(&p.tracer, &p.gbuffer, &p.vpls, VplEstimator::Exact, f.visibility, &|n| bar.inc(n));
+            let r = shade_vpls(
+                &p.tracer,
+                &p.gbuffer,
+                &p.vpls,
+                VplEstimator::Exact,
+                f.visibility,
+                &|n| bar.inc(n),
+            );
             bar.finish_and_clear();
             r
         })
@@ -81,28 +105,73 @@ pub fn run(args: &CompareArgs) -> Result<(), String> {
         let total = p.direct.add(r);
         let dir = args.out.join("reference_vpl");
         let images = write_frame(&dir, &p.direct, r, &total)?;
-        let facts = FrameFacts { scene: &scene, args: f, method: Method::VplReference, spp: 1, vpl_count: p.vpls.len(), timings: &p.timings, metrics: None, images: &images };
+        let facts = FrameFacts {
+            scene: &scene,
+            args: f,
+            method: Method::VplReference,
+            spp: 1,
+            vpl_count: p.vpls.len(),
+            timings: &p.timings,
+            metrics: None,
+            images: &images,
+        };
         Report::new(&facts).write(&dir.join("report.json"))?;
     }
 
     // The unculled estimate with the same K, δ and ξ: a strategy that misses nothing equals it.
-    let unculled = shade_stochastic(&p, &Stochastic { denoise: false, metrics: false, ..base }, f.seed, f.visibility, &|_| {}).map_err(|e| e.to_string())?.indirect;
+    let unculled = shade_stochastic(
+        &p,
+        &Stochastic {
+            denoise: false,
+            metrics: false,
+            ..base
+        },
+        f.seed,
+        f.visibility,
+        &|_| {},
+    )
+    .map_err(|e| e.to_string())?
+    .indirect;
     let mut rows = Vec::new();
     for name in names {
-        let s = Stochastic { culling: name, ..base };
+        let s = Stochastic {
+            culling: name,
+            ..base
+        };
         let bar = bar(pixels, format!("{name}"));
-        let out = shade_stochastic(&p, &s, f.seed, f.visibility, &|n| bar.inc(n)).map_err(|e| e.to_string())?;
+        let out = shade_stochastic(&p, &s, f.seed, f.visibility, &|n| bar.inc(n))
+            .map_err(|e| e.to_string())?;
         bar.finish_and_clear();
         let m = out.metrics.as_ref().expect("metrics were asked for");
-        let denoised_unculled = if s.denoise { cross_bilateral(&unculled, &p.gbuffer, BilateralParams::default()) } else { unculled.clone() };
+        let denoised_unculled = if s.denoise {
+            cross_bilateral(&unculled, &p.gbuffer, BilateralParams::default())
+        } else {
+            unculled.clone()
+        };
         let total = p.direct.add(&out.indirect);
         let dir = args.out.join(name);
         let images = write_frame(&dir, &p.direct, &out.indirect, &total)?;
-        let heat = heat_map(f.width, f.height, &m.lights_per_pixel, &m.fdr_per_pixel, args.heat_max);
-        heat.save(dir.join("heatmap.png")).map_err(|e| format!("{}: {e}", dir.display()))?;
+        let heat = heat_map(
+            f.width,
+            f.height,
+            &m.lights_per_pixel,
+            &m.fdr_per_pixel,
+            args.heat_max,
+        );
+        heat.save(dir.join("heatmap.png"))
+            .map_err(|e| format!("{}: {e}", dir.display()))?;
         let mut timings = p.timings.clone();
         timings.merge(&out.timings);
-        let facts = FrameFacts { scene: &scene, args: f, method: Method::Stochastic(s), spp: 1, vpl_count: p.vpls.len(), timings: &timings, metrics: Some(m), images: &images };
+        let facts = FrameFacts {
+            scene: &scene,
+            args: f,
+            method: Method::Stochastic(s),
+            spp: 1,
+            vpl_count: p.vpls.len(),
+            timings: &timings,
+            metrics: Some(m),
+            images: &images,
+        };
         Report::new(&facts).write(&dir.join("report.json"))?;
         rows.push(Row {
             name,
@@ -120,13 +189,17 @@ pub fn run(args: &CompareArgs) -> Result<(), String> {
         eprintln!("{name}: done");
     }
     write_table(args, &scene.name, p.vpls.len(), &rows)?;
-    side_by_side(&rows).save(args.out.join("side_by_side.png")).map_err(|e| e.to_string())?;
+    side_by_side(&rows)
+        .save(args.out.join("side_by_side.png"))
+        .map_err(|e| e.to_string())?;
     println!("wrote {}", args.out.display());
     Ok(())
 }
 
 fn ms(t: &Timings, name: &str) -> f64 {
-    t.0.iter().find(|(n, _)| *n == name).map_or(0.0, |(_, v)| *v)
+    t.0.iter()
+        .find(|(n, _)| *n == name)
+        .map_or(0.0, |(_, v)| *v)
 }
 
 fn write_table(args: &CompareArgs, scene: &str, vpls: usize, rows: &[Row]) -> Result<(), String> {
@@ -151,7 +224,11 @@ fn write_table(args: &CompareArgs, scene: &str, vpls: usize, rows: &[Row]) -> Re
     let _ = writeln!(md, "|---|---|---|---|---|---|---|---|---|---|---|---|");
     let fmt_opt = |v: Option<f32>| v.map_or("n/a".to_string(), |v| format!("{v:.3e}"));
     for r in rows {
-        let (c, s, d) = (ms(&r.timings, "culling"), ms(&r.timings, "shading"), ms(&r.timings, "denoise"));
+        let (c, s, d) = (
+            ms(&r.timings, "culling"),
+            ms(&r.timings, "shading"),
+            ms(&r.timings, "denoise"),
+        );
         let _ = writeln!(
             md,
             "| {} | {c:.1} | {s:.1} | {d:.1} | {:.1} | {:.1} | {} | {} | {} | {:.3} | {} | {} |",
@@ -172,7 +249,9 @@ fn write_table(args: &CompareArgs, scene: &str, vpls: usize, rows: &[Row]) -> Re
 
 /// Totals in the top row, heat maps below, one column per strategy.
 fn side_by_side(rows: &[Row]) -> RgbImage {
-    let (w, h) = rows.first().map_or((1, 1), |r| (r.total.width, r.total.height));
+    let (w, h) = rows
+        .first()
+        .map_or((1, 1), |r| (r.total.width, r.total.height));
     let mut out = RgbImage::new(w * rows.len().max(1) as u32, 2 * h);
     for (i, r) in rows.iter().enumerate() {
         let png = crate::output::to_srgb8(&r.total);

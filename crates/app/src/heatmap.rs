@@ -21,7 +21,13 @@ fn hue_to_rgb(hue: f32, value: f32) -> [f32; 3] {
 /// The heat-map colour of a pixel with `lights` listed VPLs and false discovery rate `fdr`.
 pub fn heat_colour(lights: u32, fdr: f32, max_lights: u32) -> Rgb<u8> {
     let value = (lights as f32 / max_lights.max(1) as f32).clamp(0.0, 1.0);
-    let hue = 240.0 * (1.0 - if fdr.is_finite() { fdr.clamp(0.0, 1.0) } else { 0.0 });
+    let hue = 240.0
+        * (1.0
+            - if fdr.is_finite() {
+                fdr.clamp(0.0, 1.0)
+            } else {
+                0.0
+            });
     let c = hue_to_rgb(hue, value);
     Rgb(c.map(|v| (v * 255.0 + 0.5) as u8))
 }

@@ -12,7 +12,11 @@ mod sweep_cmd;
 use clap::{Parser, Subcommand};
 
 #[derive(Parser)]
-#[command(name = "slc", version, about = "Stochastic light culling for VPLs on GGX microsurfaces: render, compare, sweep")]
+#[command(
+    name = "slc",
+    version,
+    about = "Stochastic light culling for VPLs on GGX microsurfaces: render, compare, sweep"
+)]
 struct Cli {
     #[command(subcommand)]
     command: Command,

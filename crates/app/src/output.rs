@@ -38,15 +38,23 @@ pub fn to_srgb8(image: &Image) -> image::RgbImage {
 
 /// Writes an 8-bit sRGB PNG of a linear image (see [`to_srgb8`]).
 pub fn write_png(path: &Path, image: &Image) -> Result<(), String> {
-    to_srgb8(image).save(path).map_err(|e| format!("{}: cannot write PNG: {e}", path.display()))
+    to_srgb8(image)
+        .save(path)
+        .map_err(|e| format!("{}: cannot write PNG: {e}", path.display()))
 }
 
 /// Writes a frame's folder: `direct`, `indirect` and `total`, each as EXR and PNG; returns the
 /// images by name (total included) for the report.
-pub fn write_frame<'a>(dir: &Path, direct: &'a Image, indirect: &'a Image, total: &'a Image) -> Result<[(&'static str, &'a Image); 3], String> {
-    std::fs::create_dir_all(dir).map_err(|e| format!("{}: cannot create folder: {e}", dir.display()))?;
+pub fn write_frame<'a>(
+    dir: &Path,
+    direct: &'a Image,
+    indirect: &'a Image,
+    total: &'a Image,
+) -> Result<[(&'static str, &'a Image); 3], String> {
+    std::fs::create_dir_all(dir)
+        .map_err(|e| format!("{}: cannot create folder: {e}", dir.display()))?;
     let images = [("direct", direct), ("indirect", indirect), ("total", total)];
-        for (name, img) in images {
+    for (name, img) in images {
         write_exr(&dir.join(format!("{name}.exr")), img)?;
         write_png(&dir.join(format!("{name}.png")), img)?;
     }

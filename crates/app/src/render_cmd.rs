@@ -60,14 +60,26 @@ pub fn run(args: &RenderArgs) -> Result<(), String> {
     };
     let settings = args.frame.settings(method, args.spp);
     let f = &args.frame;
-    let progress = bar(f.width as u64 * f.height as u64 * args.spp as u64, format!("rendering {}", scene.name));
+    let progress = bar(
+        f.width as u64 * f.height as u64 * args.spp as u64,
+        format!("rendering {}", scene.name),
+    );
     let frame = render(&scene, &settings, &|n| progress.inc(n)).map_err(|e| e.to_string())?;
     progress.finish_and_clear();
 
     let total = frame.direct.add(&frame.indirect);
     let images = write_frame(&args.out, &frame.direct, &frame.indirect, &total)?;
     let timings = &frame.timings;
-    let facts = FrameFacts { scene: &scene, args: f, method, spp: args.spp, vpl_count: frame.vpl_count, timings, metrics: frame.metrics.as_ref(), images: &images };
+    let facts = FrameFacts {
+        scene: &scene,
+        args: f,
+        method,
+        spp: args.spp,
+        vpl_count: frame.vpl_count,
+        timings,
+        metrics: frame.metrics.as_ref(),
+        images: &images,
+    };
     Report::new(&facts).write(&args.out.join("report.json"))?;
     let m = total.mean();
     println!(

@@ -101,9 +101,19 @@ impl Report {
             visibility: f.args.visibility || f.method == Method::Path,
             spp: f.spp,
             rsm: f.args.rsm,
-            timings_ms: f.timings.0.iter().map(|(k, v)| (k.to_string(), *v)).chain([("total".to_string(), f.timings.total())]).collect(),
+            timings_ms: f
+                .timings
+                .0
+                .iter()
+                .map(|(k, v)| (k.to_string(), *v))
+                .chain([("total".to_string(), f.timings.total())])
+                .collect(),
             metrics: f.metrics.into(),
-            image_means: f.images.iter().map(|(n, i)| (*n, i.mean().to_array())).collect(),
+            image_means: f
+                .images
+                .iter()
+                .map(|(n, i)| (*n, i.mean().to_array()))
+                .collect(),
             skipped_triangles: f.scene.report.skipped.total(),
             warnings: f.scene.report.warnings.clone(),
         }
@@ -111,6 +121,7 @@ impl Report {
 
     pub fn write(&self, path: &Path) -> Result<(), String> {
         let json = serde_json::to_string_pretty(self).map_err(|e| e.to_string())?;
-        std::fs::write(path, json + "\n").map_err(|e| format!("{}: cannot write report: {e}", path.display()))
+        std::fs::write(path, json + "\n")
+            .map_err(|e| format!("{}: cannot write report: {e}", path.display()))
     }
 }

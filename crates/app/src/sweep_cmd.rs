@@ -24,10 +24,18 @@ pub struct SweepArgs {
     #[arg(long, default_value = "sweep")]
     pub out: PathBuf,
     /// Values of δ, comma separated.
-    #[arg(long, value_delimiter = ',', default_value = "1e-4,3e-4,1e-3,3e-3,1e-2")]
+    #[arg(
+        long,
+        value_delimiter = ',',
+        default_value = "1e-4,3e-4,1e-3,3e-3,1e-2"
+    )]
     pub delta: Vec<f32>,
     /// Strategies, comma separated; the first is the equal-time reference.
-    #[arg(long, value_delimiter = ',', default_value = "ellipsoid,sphere,enclosing-sphere,clustered")]
+    #[arg(
+        long,
+        value_delimiter = ',',
+        default_value = "ellipsoid,sphere,enclosing-sphere,clustered"
+    )]
     pub culling: Vec<String>,
     #[arg(long, default_value_t = 8)]
     pub interleave: u32,
@@ -56,33 +64,79 @@ impl Point {
 pub fn run(args: &SweepArgs) -> Result<(), String> {
     let scene = args.frame.load()?;
     scene.validate_for_render().map_err(|e| e.to_string())?;
-    let names = args.culling.iter().map(|n| culling_name(n)).collect::<Result<Vec<_>, _>>()?;
+    let names = args
+        .culling
+        .iter()
+        .map(|n| culling_name(n))
+        .collect::<Result<Vec<_>, _>>()?;
     if names.is_empty() || args.delta.is_empty() || args.repeat == 0 {
         return Err("sweep needs at least one strategy, one δ and one repetition".into());
     }
     let f = &args.frame;
-    let base = Stochastic { delta: args.delta[0], culling: names[0], interleave: args.interleave, denoise: !args.no_denoise, metrics: false };
+    let base = Stochastic {
+        delta: args.delta[0],
+        culling: names[0],
+        interleave: args.interleave,
+        denoise: !args.no_denoise,
+        metrics: false,
+    };
     for &delta in &args.delta {
-        f.settings(Method::Stochastic(Stochastic { delta, ..base }), 1).validate().map_err(|e| e.to_string())?;
+        f.settings(Method::Stochastic(Stochastic { delta, ..base }), 1)
+            .validate()
+            .map_err(|e| e.to_string())?;
     }
-    let p = prepare(&scene, &f.settings(Method::Stochastic(base), 1), Tracer::new(&scene), None);
+    let p = prepare(
+        &scene,
+        &f.settings(Method::Stochastic(base), 1),
+        Tracer::new(&scene),
+        None,
+    );
     let pixels = f.width as u64 * f.height as u64;
     let reference = {
         let bar = bar(pixels, "all-VPL reference".into());
-        let r = shade_vpls(&p.tracer, &p.gbuffer, &p.vpls, VplEstimator::Exact, f.visibility, &|n| bar.inc(n)).map_err(|e| e.to_string())?;
+        let r = shade_vpls(
+            &p.tracer,
+            &p.gbuffer,
+            &p.vpls,
+            VplEstimator::Exact,
+            f.visibility,
+            &|n| bar.inc(n),
+        )
+        .map_err(|e| e.to_string())?;
         bar.finish_and_clear();
         r
     };
     let mut points = Vec::new();
-    let progress = bar((names.len() * args.delta.len() * args.repeat as usize) as u64, "sweep".into());
+    let progress = bar(
+        (names.len() * args.delta.len() * args.repeat as usize) as u64,
+        "sweep".into(),
+    );
     for &strategy in &names {
         for &delta in &args.delta {
-            let s = Stochastic { delta, culling: strategy, ..base };
+            let s = Stochastic {
+                delta,
+                culling: strategy,
+                ..base
+            };
             let mut best: Option<Point> = None;
             for _ in 0..args.repeat {
-                let out = shade_stochastic(&p, &s, f.seed, f.visibility, &|_| {}).map_err(|e| e.to_string())?;
-                let t = |n: &str| out.timings.0.iter().find(|(k, _)| *k == n).map_or(0.0, |(_, v)| *v);
-                let point = Point { strategy, delta, culling_ms: t("culling"), shading_ms: t("shading"), rmse: out.indirect.rmse(&reference), total: p.direct.add(&out.indirect) };
+                let out = shade_stochastic(&p, &s, f.seed, f.visibility, &|_| {})
+                    .map_err(|e| e.to_string())?;
+                let t = |n: &str| {
+                    out.timings
+                        .0
+                        .iter()
+                        .find(|(k, _)| *k == n)
+                        .map_or(0.0, |(_, v)| *v)
+                };
+                let point = Point {
+                    strategy,
+                    delta,
+                    culling_ms: t("culling"),
+                    shading_ms: t("shading"),
+                    rmse: out.indirect.rmse(&reference),
+                    total: p.direct.add(&out.indirect),
+                };
                 if best.as_ref().is_none_or(|b| point.time_ms() < b.time_ms()) {
                     best = Some(point);
                 }
@@ -93,17 +147,49 @@ pub fn run(args: &SweepArgs) -> Result<(), String> {
     }
     progress.finish_and_clear();
     std::fs::create_dir_all(&args.out).map_err(|e| format!("{}: {e}", args.out.display()))?;
-    let mut csv = String::from("strategy,delta,culling_ms,shading_ms,culling_plus_shading_ms,rmse_vs_all_vpl\n");
+    let mut csv = String::from(
+        "strategy,delta,culling_ms,shading_ms,culling_plus_shading_ms,rmse_vs_all_vpl\n",
+    );
     for pt in &points {
-        let _ = writeln!(csv, "{},{},{:.3},{:.3},{:.3},{:.6e}", pt.strategy, pt.delta, pt.culling_ms, pt.shading_ms, pt.time_ms(), pt.rmse);
+        let _ = writeln!(
+            csv,
+            "{},{},{:.3},{:.3},{:.3},{:.6e}",
+            pt.strategy,
+            pt.delta,
+            pt.culling_ms,
+            pt.shading_ms,
+            pt.time_ms(),
+            pt.rmse
+        );
     }
     std::fs::write(args.out.join("sweep.csv"), csv).map_err(|e| e.to_string())?;
     let series: Vec<Series> = names
         .iter()
-        .map(|&n| Series { name: n.to_string(), points: points.iter().filter(|p| p.strategy == n).map(|p| (p.time_ms(), p.rmse as f64)).collect() })
+        .map(|&n| Series {
+            name: n.to_string(),
+            points: points
+                .iter()
+                .filter(|p| p.strategy == n)
+                .map(|p| (p.time_ms(), p.rmse as f64))
+                .collect(),
+        })
         .collect();
-    let title = format!("{}: RMSE vs culling + shading time, δ in {:?}", scene.name, args.delta);
-    std::fs::write(args.out.join("sweep.svg"), line_plot_svg(&title, "culling + shading (ms)", "RMSE of indirect vs all VPLs", &series, true, true)).map_err(|e| e.to_string())?;
+    let title = format!(
+        "{}: RMSE vs culling + shading time, δ in {:?}",
+        scene.name, args.delta
+    );
+    std::fs::write(
+        args.out.join("sweep.svg"),
+        line_plot_svg(
+            &title,
+            "culling + shading (ms)",
+            "RMSE of indirect vs all VPLs",
+            &series,
+            true,
+            true,
+        ),
+    )
+    .map_err(|e| e.to_string())?;
     equal_time(args, &names, &points)?;
     println!("wrote {}", args.out.display());
     Ok(())
@@ -116,11 +202,24 @@ fn equal_time(args: &SweepArgs, names: &[&'static str], points: &[Point]) -> Res
     let target = first[first.len() / 2].time_ms();
     let picks: Vec<&Point> = names
         .iter()
-        .filter_map(|&n| points.iter().filter(|p| p.strategy == n).min_by(|a, b| (a.time_ms() - target).abs().total_cmp(&(b.time_ms() - target).abs())))
+        .filter_map(|&n| {
+            points.iter().filter(|p| p.strategy == n).min_by(|a, b| {
+                (a.time_ms() - target)
+                    .abs()
+                    .total_cmp(&(b.time_ms() - target).abs())
+            })
+        })
         .collect();
     let mut md = format!("# Equal-time comparison\n\nTarget: {target:.1} ms of culling + shading (the median run of `{}`).\n\n| strategy | δ | culling + shading ms | RMSE vs all VPLs |\n|---|---|---|---|\n", names[0]);
     for p in &picks {
-        let _ = writeln!(md, "| {} | {} | {:.1} | {:.4e} |", p.strategy, p.delta, p.time_ms(), p.rmse);
+        let _ = writeln!(
+            md,
+            "| {} | {} | {:.1} | {:.4e} |",
+            p.strategy,
+            p.delta,
+            p.time_ms(),
+            p.rmse
+        );
     }
     md.push_str("\n`equal_time.png`: the total images in this order, left to right.\n");
     std::fs::write(args.out.join("equal_time.md"), md).map_err(|e| e.to_string())?;
@@ -129,5 +228,7 @@ fn equal_time(args: &SweepArgs, names: &[&'static str], points: &[Point]) -> Res
     for (i, p) in picks.iter().enumerate() {
         image::imageops::replace(&mut strip, &to_srgb8(&p.total), (i as u32 * w) as i64, 0);
     }
-    strip.save(args.out.join("equal_time.png")).map_err(|e| e.to_string())
+    strip
+        .save(args.out.join("equal_time.png"))
+        .map_err(|e| e.to_string())
 }

@@ -146,7 +146,7 @@ mod tests {
                 && matches!(b.fresnel, slc_bounds::Fresnel::Schlick(f0) if f0.min_element() > 0.5)
         });
         assert!(
-            matches!(metal.unwrap().model, MaterialModel::Direct { alpha, .. } if (0.1..=0.2).contains(&alpha))
+            matches!(metal.unwrap().model, MaterialModel::Direct { alpha, .. } if (0.05..=0.2).contains(&alpha))
         );
     }
 

@@ -18,8 +18,8 @@ pub struct BilateralParams {
     pub sigma_spatial: f32,
     /// Standard deviation of the relative depth difference |z - z'| / z.
     pub sigma_depth: f32,
-    /// Exponent of the normal weight max(n·n', 0)^k.
-    pub normal_power: f32,
+    /// Exponent of the normal weight max(n·n', 0)^(2^k): k squarings.
+    pub normal_squarings: u32,
 }
 
 impl Default for BilateralParams {
@@ -28,7 +28,7 @@ impl Default for BilateralParams {
             radius: 8,
             sigma_spatial: 4.0,
             sigma_depth: 0.05,
-            normal_power: 32.0,
+            normal_squarings: 5,
         }
     }
 }
@@ -42,6 +42,13 @@ pub fn cross_bilateral(image: &Image, gbuffer: &GBuffer, params: BilateralParams
     let (w, h) = (image.width as i64, image.height as i64);
     let r = params.radius as i64;
     let inv_2ss = 1.0 / (2.0 * params.sigma_spatial * params.sigma_spatial);
+    let side = (2 * r + 1) as usize;
+    let spatial: Vec<f32> = (0..side * side)
+        .map(|k| {
+            let (dx, dy) = ((k % side) as i64 - r, (k / side) as i64 - r);
+            (-((dx * dx + dy * dy) as f32) * inv_2ss).exp()
+        })
+        .collect();
     let inv_2sd = 1.0 / (2.0 * params.sigma_depth * params.sigma_depth);
     let demodulated: Vec<Vec3> = image
         .pixels
@@ -64,11 +71,13 @@ pub fn cross_bilateral(image: &Image, gbuffer: &GBuffer, params: BilateralParams
                     let Some(gq) = &gbuffer.samples[q] else {
                         continue;
                     };
-                    let d2 = ((xx - x).pow(2) + (yy - y).pow(2)) as f32;
+                    let ws = spatial[((yy - y + r) * (2 * r + 1) + (xx - x + r)) as usize];
                     let dz = (gq.depth - g.depth) / g.depth.max(1e-6);
-                    let cos = g.normal.dot(gq.normal).max(0.0);
-                    let wq =
-                        (-d2 * inv_2ss - dz * dz * inv_2sd).exp() * cos.powf(params.normal_power);
+                    let mut wn = g.normal.dot(gq.normal).max(0.0);
+                    for _ in 0..params.normal_squarings {
+                        wn *= wn;
+                    }
+                    let wq = ws * wn * (-dz * dz * inv_2sd).exp();
                     sum += demodulated[q] * wq;
                     weight += wq;
                 }

@@ -46,7 +46,10 @@ pub mod vpl_shading;
 pub mod vpls;
 pub mod watertight;
 
-pub use render::{prepare, render, shade_stochastic, Frame, Method, Prepared, RenderError, RenderSettings, Stochastic, StochasticFrame, Timings};
+pub use render::{
+    prepare, render, shade_stochastic, Frame, Method, Prepared, RenderError, RenderSettings,
+    Stochastic, StochasticFrame, Timings,
+};
 pub use tracer::Tracer;
 pub use vpl_shading::VplEstimator;
 pub use vpls::LobeSelection;

@@ -14,7 +14,9 @@ use crate::vpl_shading::{shade_lists, shade_vpls, VplEstimator};
 use crate::vpls::{generate_vpls, LobeSelection};
 use rayon::prelude::*;
 use slc_core::rng::pcg_hash;
-use slc_core::{Camera, CullError, CullInput, GBuffer, Image, Interleaving, Scene, SceneError, Vpl};
+use slc_core::{
+    Camera, CullError, CullInput, GBuffer, Image, Interleaving, Scene, SceneError, Vpl,
+};
 use slc_cull::metrics::{measure, CullMetrics};
 use std::time::Instant;
 
@@ -109,7 +111,11 @@ impl RenderSettings {
                 return bad("the interleaving K must be in 1..=64");
             }
             if slc_cull::culler_by_name(s.culling).is_none() {
-                return Err(RenderError::Settings(format!("unknown culling strategy '{}' (one of {})", s.culling, slc_cull::CULLER_NAMES.join(", "))));
+                return Err(RenderError::Settings(format!(
+                    "unknown culling strategy '{}' (one of {})",
+                    s.culling,
+                    slc_cull::CULLER_NAMES.join(", ")
+                )));
             }
         }
         Ok(())
@@ -159,19 +165,51 @@ pub struct Prepared {
 
 /// Traces the G-buffer and the RSMs, makes the VPLs (ξ from `seed`) and the direct light.
 /// `pass` = `None` samples pixel and texel centres; `Some(p)` jitters both for pass p.
-pub fn prepare(scene: &Scene, settings: &RenderSettings, tracer: Tracer, pass: Option<u32>) -> Prepared {
+pub fn prepare(
+    scene: &Scene,
+    settings: &RenderSettings,
+    tracer: Tracer,
+    pass: Option<u32>,
+) -> Prepared {
     let (w, h) = (settings.width, settings.height);
     let camera = scene.camera_or_default();
     let mut timings = Timings::default();
     let (sample, texel_sample, seed) = match pass {
         None => (PixelSample::Centre, TexelSample::Centre, settings.seed),
-        Some(p) => (PixelSample::Jittered { seed: settings.seed, index: p }, TexelSample::Jittered { seed: settings.seed, pass: p }, settings.seed ^ pcg_hash(p)),
+        Some(p) => (
+            PixelSample::Jittered {
+                seed: settings.seed,
+                index: p,
+            },
+            TexelSample::Jittered {
+                seed: settings.seed,
+                pass: p,
+            },
+            settings.seed ^ pcg_hash(p),
+        ),
     };
-    let gbuffer = timings.time("gbuffer", || trace_gbuffer(scene, &tracer, &camera, w, h, sample));
-    let maps: Vec<_> = timings.time("rsm", || scene.lights.iter().map(|l| trace_rsm(scene, &tracer, l, settings.rsm_resolution, texel_sample)).collect());
-    let vpls = timings.time("vpl_generation", || generate_vpls(&maps, seed, settings.lobes));
+    let gbuffer = timings.time("gbuffer", || {
+        trace_gbuffer(scene, &tracer, &camera, w, h, sample)
+    });
+    let maps: Vec<_> = timings.time("rsm", || {
+        scene
+            .lights
+            .iter()
+            .map(|l| trace_rsm(scene, &tracer, l, settings.rsm_resolution, texel_sample))
+            .collect()
+    });
+    let vpls = timings.time("vpl_generation", || {
+        generate_vpls(&maps, seed, settings.lobes)
+    });
     let direct = timings.time("direct", || shade_direct(&tracer, &scene.lights, &gbuffer));
-    Prepared { camera, tracer, gbuffer, vpls, direct, timings }
+    Prepared {
+        camera,
+        tracer,
+        gbuffer,
+        vpls,
+        direct,
+        timings,
+    }
 }
 
 /// The result of shading a prepared frame stochastically.
@@ -182,23 +220,61 @@ pub struct StochasticFrame {
 }
 
 /// Culls and shades a prepared frame with the stochastic estimate, then denoises.
-pub fn shade_stochastic(p: &Prepared, s: &Stochastic, seed: u32, visibility: bool, progress: &(dyn Fn(u64) + Sync)) -> Result<StochasticFrame, RenderError> {
-    let culler = slc_cull::culler_by_name(s.culling).ok_or_else(|| RenderError::Settings(format!("unknown culling strategy '{}'", s.culling)))?;
-    let interleaving = Interleaving { k: s.interleave, seed };
-    let input = CullInput { gbuffer: &p.gbuffer, camera: &p.camera, vpls: &p.vpls, delta: s.delta, interleaving };
+pub fn shade_stochastic(
+    p: &Prepared,
+    s: &Stochastic,
+    seed: u32,
+    visibility: bool,
+    progress: &(dyn Fn(u64) + Sync),
+) -> Result<StochasticFrame, RenderError> {
+    let culler = slc_cull::culler_by_name(s.culling).ok_or_else(|| {
+        RenderError::Settings(format!("unknown culling strategy '{}'", s.culling))
+    })?;
+    let interleaving = Interleaving {
+        k: s.interleave,
+        seed,
+    };
+    let input = CullInput {
+        gbuffer: &p.gbuffer,
+        camera: &p.camera,
+        vpls: &p.vpls,
+        delta: s.delta,
+        interleaving,
+    };
     let mut timings = Timings::default();
     let lists = timings.time("culling", || culler.cull(&input))?;
-    let mut indirect = timings.time("shading", || shade_lists(&p.tracer, &p.gbuffer, &p.vpls, &lists, interleaving, s.delta, visibility, progress))?;
+    let mut indirect = timings.time("shading", || {
+        shade_lists(
+            &p.tracer,
+            &p.gbuffer,
+            &p.vpls,
+            &lists,
+            interleaving,
+            s.delta,
+            visibility,
+            progress,
+        )
+    })?;
     if s.denoise {
-        indirect = timings.time("denoise", || cross_bilateral(&indirect, &p.gbuffer, BilateralParams::default()));
+        indirect = timings.time("denoise", || {
+            cross_bilateral(&indirect, &p.gbuffer, BilateralParams::default())
+        });
     }
-        let metrics = s.metrics.then(|| measure(&input, &lists)).transpose()?;
-    Ok(StochasticFrame { indirect, metrics, timings })
+    let metrics = s.metrics.then(|| measure(&input, &lists)).transpose()?;
+    Ok(StochasticFrame {
+        indirect,
+        metrics,
+        timings,
+    })
 }
 
 /// Renders `scene`. `progress` is called with the number of pixel-passes finished; the total is
 /// `width * height * spp`.
-pub fn render(scene: &Scene, settings: &RenderSettings, progress: &(dyn Fn(u64) + Sync)) -> Result<Frame, RenderError> {
+pub fn render(
+    scene: &Scene,
+    settings: &RenderSettings,
+    progress: &(dyn Fn(u64) + Sync),
+) -> Result<Frame, RenderError> {
     settings.validate()?;
     scene.validate_for_render()?;
     let (w, h) = (settings.width, settings.height);
@@ -215,7 +291,19 @@ pub fn render(scene: &Scene, settings: &RenderSettings, progress: &(dyn Fn(u64) 
                 (0..h)
                     .into_par_iter()
                     .flat_map_iter(|j| {
-                        let row: Vec<_> = (0..w).map(|i| trace_pixel_sample(scene, tracer, &camera, j * w + i, (w, h), settings.seed, pass)).collect();
+                        let row: Vec<_> = (0..w)
+                            .map(|i| {
+                                trace_pixel_sample(
+                                    scene,
+                                    tracer,
+                                    &camera,
+                                    j * w + i,
+                                    (w, h),
+                                    settings.seed,
+                                    pass,
+                                )
+                            })
+                            .collect();
                         progress(w as u64);
                         row
                     })
@@ -228,7 +316,14 @@ pub fn render(scene: &Scene, settings: &RenderSettings, progress: &(dyn Fn(u64) 
             continue;
         }
         let jitter = (settings.spp > 1).then_some(pass);
-        let p = prepare(scene, settings, tracer.take().expect("the tracer comes back after each pass"), jitter);
+        let p = prepare(
+            scene,
+            settings,
+            tracer
+                .take()
+                .expect("the tracer comes back after each pass"),
+            jitter,
+        );
         timings.merge(&p.timings);
         vpl_count = p.vpls.len();
         let ind = match settings.method {
@@ -239,7 +334,16 @@ pub fn render(scene: &Scene, settings: &RenderSettings, progress: &(dyn Fn(u64) 
                 metrics = f.metrics;
                 f.indirect
             }
-            _ => timings.time("vpl_shading", || shade_vpls(&p.tracer, &p.gbuffer, &p.vpls, VplEstimator::Exact, settings.visibility, progress))?,
+            _ => timings.time("vpl_shading", || {
+                shade_vpls(
+                    &p.tracer,
+                    &p.gbuffer,
+                    &p.vpls,
+                    VplEstimator::Exact,
+                    settings.visibility,
+                    progress,
+                )
+            })?,
         };
         direct = direct.add(&p.direct);
         indirect = indirect.add(&ind);
@@ -249,5 +353,11 @@ pub fn render(scene: &Scene, settings: &RenderSettings, progress: &(dyn Fn(u64) 
     for p in direct.pixels.iter_mut().chain(indirect.pixels.iter_mut()) {
         *p *= inv;
     }
-    Ok(Frame { direct, indirect, vpl_count, timings, metrics })
+    Ok(Frame {
+        direct,
+        indirect,
+        vpl_count,
+        timings,
+        metrics,
+    })
 }

@@ -10,7 +10,13 @@ use slc_cpu_ref::{render, Method, RenderError, RenderSettings, Stochastic, Trace
 
 /// The stochastic estimate without culling, interleaving or denoising.
 fn unculled(delta: f32) -> Stochastic {
-    Stochastic { delta, culling: "none", interleave: 1, denoise: false, metrics: false }
+    Stochastic {
+        delta,
+        culling: "none",
+        interleave: 1,
+        denoise: false,
+        metrics: false,
+    }
 }
 use std::f32::consts::PI;
 
@@ -284,7 +290,12 @@ fn zero_flux_renders_black() {
     }];
     for method in [
         Method::Stochastic(unculled(1e-3)),
-        Method::Stochastic(Stochastic { culling: "ellipsoid", interleave: 4, denoise: true, ..unculled(1e-3) }),
+        Method::Stochastic(Stochastic {
+            culling: "ellipsoid",
+            interleave: 4,
+            denoise: true,
+            ..unculled(1e-3)
+        }),
         Method::VplReference,
         Method::Path,
     ] {
@@ -345,8 +356,20 @@ fn bad_settings_and_scenes_are_errors() {
             method: Method::Stochastic(unculled(-1.0)),
             ..ok.clone()
         },
-        RenderSettings { method: Method::Stochastic(Stochastic { interleave: 0, ..unculled(1e-3) }), ..ok.clone() },
-        RenderSettings { method: Method::Stochastic(Stochastic { culling: "octree", ..unculled(1e-3) }), ..ok.clone() },
+        RenderSettings {
+            method: Method::Stochastic(Stochastic {
+                interleave: 0,
+                ..unculled(1e-3)
+            }),
+            ..ok.clone()
+        },
+        RenderSettings {
+            method: Method::Stochastic(Stochastic {
+                culling: "octree",
+                ..unculled(1e-3)
+            }),
+            ..ok.clone()
+        },
     ] {
         assert!(
             matches!(render(&s, &bad, &|_| {}), Err(RenderError::Settings(_))),

@@ -44,7 +44,10 @@ fn main() {
             delta: 1e-3,
             interleaving: Interleaving { k, seed: 0 },
         };
-        println!("K = {k} ({} VPLs per subregion)", vpls.len() / (k * k) as usize);
+        println!(
+            "K = {k} ({} VPLs per subregion)",
+            vpls.len() / (k * k) as usize
+        );
         for &name in CULLER_NAMES {
             let culler = culler_by_name(name).expect("known name");
             let mut best = Duration::MAX;

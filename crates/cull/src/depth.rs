@@ -81,12 +81,10 @@ impl DepthSplit {
 
 /// The smallest and largest of the given depths, in parallel; `None` if there are none.
 pub(crate) fn depth_range(depths: impl ParallelIterator<Item = f64>) -> Option<(f64, f64)> {
-    let (lo, hi) = depths
-        .map(|z| (z, z))
-        .reduce(
-            || (f64::INFINITY, f64::NEG_INFINITY),
-            |a, b| (a.0.min(b.0), a.1.max(b.1)),
-        );
+    let (lo, hi) = depths.map(|z| (z, z)).reduce(
+        || (f64::INFINITY, f64::NEG_INFINITY),
+        |a, b| (a.0.min(b.0), a.1.max(b.1)),
+    );
     (lo <= hi).then_some((lo, hi))
 }
 
@@ -128,7 +126,9 @@ mod tests {
     #[test]
     fn slices_are_exponential_and_every_sample_is_in_its_range() {
         let split = DepthSplit::slices(0.5, 500.0);
-        let z: Vec<f64> = (0..400).map(|i| 0.5 * 1000f64.powf(i as f64 / 399.0)).collect();
+        let z: Vec<f64> = (0..400)
+            .map(|i| 0.5 * 1000f64.powf(i as f64 / 399.0))
+            .collect();
         let mut s = samples(&z);
         let mut ranges = Vec::new();
         split.split(&mut s, &mut ranges);

@@ -157,7 +157,11 @@ mod tests {
         );
         let (z0, z1) = (rng.range(0.1, 10.0), rng.range(0.1, 10.0));
         let tile = TileFrustum::new(a.min(b), a.max(b), z0.min(z1), z0.max(z1)).unwrap();
-        let axis = Vec3::new(rng.range(-1.0, 1.0), rng.range(-1.0, 1.0), rng.range(-1.0, 1.0));
+        let axis = Vec3::new(
+            rng.range(-1.0, 1.0),
+            rng.range(-1.0, 1.0),
+            rng.range(-1.0, 1.0),
+        );
         let rotation = Mat3::from_quat(Quat::from_axis_angle(
             axis.try_normalize().unwrap_or(Vec3::Z),
             rng.range(0.0, 6.28),
@@ -165,7 +169,11 @@ mod tests {
         let alpha = 10f32.powf(rng.range(-3.0, 0.0));
         let r = rng.range(0.05, 2.0);
         let semi = Vec3::new((1.0 + alpha * alpha) / (2.0 * alpha) * r, r, r);
-        let center = Vec3::new(rng.range(-6.0, 6.0), rng.range(-6.0, 6.0), rng.range(-2.0, 12.0));
+        let center = Vec3::new(
+            rng.range(-6.0, 6.0),
+            rng.range(-6.0, 6.0),
+            rng.range(-2.0, 12.0),
+        );
         (tile, rotation, semi, center)
     }
 
@@ -192,7 +200,10 @@ mod tests {
             let space = TestSpace::new(rotation, semi, center).unwrap();
             let ours = f.ellipsoid_hits(&ellipsoid(&space, center)) == 1;
             let reference = space.intersects(&tile);
-            assert!(ours || !reference, "missed: {tile:?} {rotation:?} {semi} {center}");
+            assert!(
+                ours || !reference,
+                "missed: {tile:?} {rotation:?} {semi} {center}"
+            );
             if ours != reference {
                 // Only a near-tangent case may differ: shrink the slack away and it agrees.
                 let grown = TestSpace::new(rotation, semi * 1.0001, center).unwrap();
@@ -229,13 +240,21 @@ mod tests {
                 [f64::from(tile.z_min()), f64::from(split)],
                 [f64::from(split), f64::from(tile.z_max())],
             ];
-            f.set(tile.rect_min().as_dvec2(), tile.rect_max().as_dvec2(), &ranges);
+            f.set(
+                tile.rect_min().as_dvec2(),
+                tile.rect_max().as_dvec2(),
+                &ranges,
+            );
             let space = TestSpace::new(rotation, semi, center).unwrap();
             let e = ellipsoid(&space, center);
             let m = DMat3::from_cols(e.columns[0], e.columns[1], e.columns[2]);
             let mask = f.ellipsoid_hits(&e);
             for _ in 0..50 {
-                let d = Vec3::new(rng.range(-1.0, 1.0), rng.range(-1.0, 1.0), rng.range(-1.0, 1.0));
+                let d = Vec3::new(
+                    rng.range(-1.0, 1.0),
+                    rng.range(-1.0, 1.0),
+                    rng.range(-1.0, 1.0),
+                );
                 if d.length_squared() > 1.0 {
                     continue;
                 }
@@ -245,7 +264,10 @@ mod tests {
                 }
                 assert!((m * p.as_dvec3() - e.center).length() <= 1.0 + 1e-5);
                 let cluster = usize::from(f64::from(p.z) >= f64::from(split));
-                assert!(mask & (1 << cluster) != 0, "point {p} of cluster {cluster} missed");
+                assert!(
+                    mask & (1 << cluster) != 0,
+                    "point {p} of cluster {cluster} missed"
+                );
                 checked += 1;
             }
         }

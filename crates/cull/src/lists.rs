@@ -39,7 +39,10 @@ impl ListChunk {
 
 /// Numbers the chunks' lists consecutively (chunk by chunk) and builds the compressed rows;
 /// pixels no chunk decided get `NO_LIST`.
-pub(crate) fn assemble(chunks: Vec<ListChunk>, pixel_count: usize) -> Result<LightLists, CullError> {
+pub(crate) fn assemble(
+    chunks: Vec<ListChunk>,
+    pixel_count: usize,
+) -> Result<LightLists, CullError> {
     let list_count: usize = chunks.iter().map(|c| c.lens.len()).sum();
     let total: usize = chunks.iter().map(|c| c.indices.len()).sum();
     if u32::try_from(total).is_err() || u32::try_from(list_count).is_err() {

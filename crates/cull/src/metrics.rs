@@ -70,9 +70,11 @@ pub fn measure_all(
                     truth.clear();
                     if let Some(g) = &input.gbuffer.samples[p] {
                         let s = input.interleaving.pixel_subregion(x as u32, y as u32);
-                        truth.extend(partition.of(s).iter().copied().filter(|&i| {
-                            roulette[i as usize].accepts(g, &input.vpls[i as usize])
-                        }));
+                        truth.extend(
+                            partition.of(s).iter().copied().filter(|&i| {
+                                roulette[i as usize].accepts(g, &input.vpls[i as usize])
+                            }),
+                        );
                     }
                     for (k, l) in lists.iter().enumerate() {
                         let listed = l.for_pixel(p);
@@ -103,7 +105,8 @@ fn summarize<'a>(stats: impl Iterator<Item = &'a [u32; 3]>, pixels: usize) -> Cu
         m.missed_pairs += u64::from(missed);
         listed_total += u64::from(listed);
         m.lights_per_pixel.push(listed);
-        m.fdr_per_pixel.push(ratio(u64::from(fp), u64::from(listed)) as f32);
+        m.fdr_per_pixel
+            .push(ratio(u64::from(fp), u64::from(listed)) as f32);
     }
     m.lights_per_pixel_mean = ratio(listed_total, pixels as u64);
     m.false_discovery_rate = ratio(m.false_positive_pairs, listed_total);
@@ -223,7 +226,11 @@ mod tests {
     fn matches_counts_distinct_true_entries() {
         let mut s = Vec::new();
         assert_eq!(matches(&[1, 3, 5, 7], &[3, 4, 7, 9], &mut s), 2);
-        assert_eq!(matches(&[7, 3, 3, 1], &[3, 7], &mut s), 2, "unsorted, duplicated");
+        assert_eq!(
+            matches(&[7, 3, 3, 1], &[3, 7], &mut s),
+            2,
+            "unsorted, duplicated"
+        );
         assert_eq!(matches(&[], &[1], &mut s), 0);
         assert_eq!(matches(&[1], &[], &mut s), 0);
     }

@@ -108,7 +108,11 @@ impl Worker {
             scatter(self.frusta.sphere_hits(s), s.index, &mut self.sphere_hits);
         }
         for e in &bounds.ellipsoids {
-            scatter(self.frusta.ellipsoid_hits(e), e.index, &mut self.ellipsoid_hits);
+            scatter(
+                self.frusta.ellipsoid_hits(e),
+                e.index,
+                &mut self.ellipsoid_hits,
+            );
         }
         let mut list_of = [NO_LIST; MAX_CLUSTERS];
         for (c, list) in list_of[..clusters].iter_mut().enumerate() {

@@ -58,8 +58,7 @@ impl Tile {
 
     /// The tile's screen pixels (x, y), row by row.
     pub(crate) fn pixels(&self, k: u32) -> impl Iterator<Item = [u32; 2]> + '_ {
-        (0..self.count[1])
-            .flat_map(move |b| (0..self.count[0]).map(move |a| self.screen(k, a, b)))
+        (0..self.count[1]).flat_map(move |b| (0..self.count[0]).map(move |a| self.screen(k, a, b)))
     }
 
     /// Screen coordinates of the tile's pixel (a, b).

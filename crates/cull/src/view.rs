@@ -120,10 +120,7 @@ fn orthonormal_basis(camera: &Camera) -> Option<Mat3> {
         return None;
     }
     let forward = camera.forward.normalize();
-    let right = camera
-        .right
-        .reject_from_normalized(forward)
-        .normalize();
+    let right = camera.right.reject_from_normalized(forward).normalize();
     Some(Mat3::from_cols(right, forward.cross(right), forward).transpose())
 }
 

@@ -84,7 +84,12 @@ impl VplBound {
                     return Ok(Self::Empty);
                 }
                 let lobe = DiffuseLobe::new(Vec3::ZERO, vpl.normal, vpl.flux, vpl.brdf.kd)?;
-                Ok(Self::sphere(view, q, Sphere::diffuse(&lobe, &params)?, index))
+                Ok(Self::sphere(
+                    view,
+                    q,
+                    Sphere::diffuse(&lobe, &params)?,
+                    index,
+                ))
             }
             VplLobe::Glossy => {
                 let lobe = GlossyLobe::new(
@@ -197,8 +202,13 @@ mod tests {
     use slc_core::Camera;
 
     fn view() -> CullView {
-        let cam = Camera::look_at(Vec3::new(100.0, 1.0, 3.0), Vec3::new(100.0, 1.0, 0.0), Vec3::Y, 1.0)
-            .unwrap();
+        let cam = Camera::look_at(
+            Vec3::new(100.0, 1.0, 3.0),
+            Vec3::new(100.0, 1.0, 0.0),
+            Vec3::Y,
+            1.0,
+        )
+        .unwrap();
         CullView::new(&cam, 32, 32).unwrap()
     }
 
@@ -223,12 +233,22 @@ mod tests {
     fn nothing_reflected_gives_an_empty_bound() {
         let v = view();
         let below = Vec3::new(0.6, 0.0, -0.8);
-        for glossy in [GlossyBound::Sphere, GlossyBound::EnclosingSphere, GlossyBound::Ellipsoid] {
+        for glossy in [
+            GlossyBound::Sphere,
+            GlossyBound::EnclosingSphere,
+            GlossyBound::Ellipsoid,
+        ] {
             for lobe in [VplLobe::Diffuse, VplLobe::Glossy] {
                 let dark = vpl(lobe, Vec3::Z, Vec3::ZERO, 0.2);
-                assert_eq!(VplBound::new(&dark, 0, 1e-3, &v, glossy).unwrap(), VplBound::Empty);
+                assert_eq!(
+                    VplBound::new(&dark, 0, 1e-3, &v, glossy).unwrap(),
+                    VplBound::Empty
+                );
                 let back = vpl(lobe, below, Vec3::ONE, 0.2);
-                assert_eq!(VplBound::new(&back, 0, 1e-3, &v, glossy).unwrap(), VplBound::Empty);
+                assert_eq!(
+                    VplBound::new(&back, 0, 1e-3, &v, glossy).unwrap(),
+                    VplBound::Empty
+                );
             }
         }
     }
@@ -243,19 +263,26 @@ mod tests {
         let params = StochasticParams::new(1e-3, g.xi).unwrap();
         let lobe = GlossyLobe::new(g.position, g.normal, wi, 0.05, g.flux, g.brdf.fresnel).unwrap();
         let spheroid = Spheroid::new(&lobe, &params).unwrap();
-        let VplBound::Ellipsoid(e) = VplBound::new(&g, 0, 1e-3, &v, GlossyBound::Ellipsoid).unwrap()
+        let VplBound::Ellipsoid(e) =
+            VplBound::new(&g, 0, 1e-3, &v, GlossyBound::Ellipsoid).unwrap()
         else {
             panic!("ellipsoid expected")
         };
         let bs = glam::DMat3::from_cols(e.columns[0], e.columns[1], e.columns[2]);
         for k in 0..200 {
             let t = k as f32 * 0.7;
-            let dir = Vec3::new(t.sin() * (t * 0.3).cos(), t.cos(), t.sin() * (t * 0.3).sin());
-            let p = spheroid.center() + spheroid.rotation() * (spheroid.semi_axes() * dir.normalize());
+            let dir = Vec3::new(
+                t.sin() * (t * 0.3).cos(),
+                t.cos(),
+                t.sin() * (t * 0.3).sin(),
+            );
+            let p =
+                spheroid.center() + spheroid.rotation() * (spheroid.semi_axes() * dir.normalize());
             let d = (bs * v.to_view(p) - e.center).length();
             assert!(d <= 1.0 && d > 0.99, "{d}");
         }
-        let VplBound::Sphere(s) = VplBound::new(&g, 0, 1e-3, &v, GlossyBound::Sphere).unwrap() else {
+        let VplBound::Sphere(s) = VplBound::new(&g, 0, 1e-3, &v, GlossyBound::Sphere).unwrap()
+        else {
             panic!("sphere expected")
         };
         let r = f64::from(Sphere::around_vpl(&lobe, &params).unwrap().radius);

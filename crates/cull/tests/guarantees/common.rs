@@ -2,8 +2,8 @@
 use glam::Vec3;
 use slc_bounds::{Brdf, Fresnel};
 use slc_core::{
-    builtin, load_scene, Camera, CullInput, Culler, GBuffer, GSample, Interleaving, LightLists,
-    Light, Material, MaterialModel, Scene, Vpl, VplLobe, NO_LIST,
+    builtin, load_scene, Camera, CullInput, Culler, GBuffer, GSample, Interleaving, Light,
+    LightLists, Material, MaterialModel, Scene, Vpl, VplLobe, NO_LIST,
 };
 use slc_cpu_ref::gbuffer::{trace_gbuffer, PixelSample};
 use slc_cpu_ref::rsm::{trace_rsm, TexelSample};
@@ -99,8 +99,16 @@ pub fn floor_gbuffer(camera: &Camera, width: u32, height: u32, rng: &mut Rng) ->
 /// A random camera above the floor looking at it from 0.3..3 units up (the horizon is often in
 /// view, so part of the image is sky).
 pub fn floor_camera(rng: &mut Rng) -> Camera {
-    let eye = Vec3::new(rng.range(-1.0, 1.0), rng.range(0.3, 3.0), rng.range(2.0, 5.0));
-    let target = Vec3::new(rng.range(-2.0, 2.0), rng.range(-0.5, 1.5), rng.range(-6.0, 0.0));
+    let eye = Vec3::new(
+        rng.range(-1.0, 1.0),
+        rng.range(0.3, 3.0),
+        rng.range(2.0, 5.0),
+    );
+    let target = Vec3::new(
+        rng.range(-2.0, 2.0),
+        rng.range(-0.5, 1.5),
+        rng.range(-6.0, 0.0),
+    );
     Camera::look_at(eye, target, Vec3::Y, rng.range(20.0, 100.0).to_radians()).unwrap()
 }
 
@@ -112,16 +120,36 @@ pub fn room_vpls(rng: &mut Rng, n: u32) -> Vec<Vpl> {
     (0..n)
         .map(|id| {
             let (position, normal) = match rng.below(6) {
-                0 => (Vec3::new(-4.0, rng.range(0.0, 3.0), rng.range(-8.0, 6.0)), Vec3::X),
-                1 => (Vec3::new(4.0, rng.range(0.0, 3.0), rng.range(-8.0, 6.0)), Vec3::NEG_X),
-                2 => (Vec3::new(rng.range(-4.0, 4.0), rng.range(0.0, 3.0), -8.0), Vec3::Z),
-                3 => (Vec3::new(rng.range(-4.0, 4.0), 3.0, rng.range(-8.0, 6.0)), Vec3::NEG_Y),
+                0 => (
+                    Vec3::new(-4.0, rng.range(0.0, 3.0), rng.range(-8.0, 6.0)),
+                    Vec3::X,
+                ),
+                1 => (
+                    Vec3::new(4.0, rng.range(0.0, 3.0), rng.range(-8.0, 6.0)),
+                    Vec3::NEG_X,
+                ),
+                2 => (
+                    Vec3::new(rng.range(-4.0, 4.0), rng.range(0.0, 3.0), -8.0),
+                    Vec3::Z,
+                ),
+                3 => (
+                    Vec3::new(rng.range(-4.0, 4.0), 3.0, rng.range(-8.0, 6.0)),
+                    Vec3::NEG_Y,
+                ),
                 4 => (
-                    Vec3::new(rng.range(-4.0, 4.0), rng.log(-4.0, -1.0), rng.range(-8.0, 6.0)),
+                    Vec3::new(
+                        rng.range(-4.0, 4.0),
+                        rng.log(-4.0, -1.0),
+                        rng.range(-8.0, 6.0),
+                    ),
                     Vec3::Y,
                 ),
                 _ => (
-                    Vec3::new(rng.range(-6.0, 6.0), rng.range(-1.0, 5.0), rng.range(-10.0, 10.0)),
+                    Vec3::new(
+                        rng.range(-6.0, 6.0),
+                        rng.range(-1.0, 5.0),
+                        rng.range(-10.0, 10.0),
+                    ),
                     rng.unit(),
                 ),
             };
@@ -198,13 +226,20 @@ pub fn check_all(input: &CullInput, label: &str) -> Vec<(&'static str, CullMetri
             if sample.is_none() {
                 assert_eq!(l.pixel_list[p], NO_LIST, "{label}: {name}: sky pixel {p}");
             }
-            assert!(list.windows(2).all(|w| w[0] < w[1]), "{label}: {name}: order");
+            assert!(
+                list.windows(2).all(|w| w[0] < w[1]),
+                "{label}: {name}: order"
+            );
             let s = input
                 .interleaving
                 .pixel_subregion(p as u32 % w, p as u32 / w);
             for &i in list {
                 let vpl = &input.vpls[i as usize];
-                assert_eq!(input.interleaving.vpl_subregion(vpl.id), s, "{label}: {name}");
+                assert_eq!(
+                    input.interleaving.vpl_subregion(vpl.id),
+                    s,
+                    "{label}: {name}"
+                );
             }
         }
     }
@@ -269,7 +304,10 @@ pub fn glossy_floor_scene() -> (Scene, Camera) {
 /// glossy layer on every material (F0 0.04 to 0.9, α from 1e-3 to 1 by material), so both
 /// lobes of VPL are exercised.
 pub fn sponza() -> (Scene, Camera) {
-    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../../../shared/scenes/sponza/sponza.obj");
+    let path = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../../../shared/scenes/sponza/sponza.obj"
+    );
     let mut scene = load_scene(path).unwrap_or_else(|e| panic!("{path}: {e}"));
     scene.lights = vec![Light::Point {
         position: Vec3::new(0.0, 6.0, 0.0),

@@ -61,7 +61,10 @@ fn vpls_behind_the_camera_are_never_listed_unless_they_reach() {
     check_all(&far, "far behind");
     for &name in &CULLER_NAMES[1..] {
         let lists = culler_by_name(name).unwrap().cull(&far).unwrap();
-        assert!(lists.indices.is_empty(), "{name} listed a VPL behind the camera");
+        assert!(
+            lists.indices.is_empty(),
+            "{name} listed a VPL behind the camera"
+        );
     }
     // Strong VPLs just behind the camera do reach the floor in view: listed where they must.
     for v in &mut vpls {
@@ -188,7 +191,9 @@ fn invalid_inputs_are_errors_not_panics() {
         samples: gbuffer.samples[1..].to_vec(),
         ..gbuffer.clone()
     };
-    assert!(cull(&input(&short, &camera, &vpls, 1e-3, 2)).iter().all(|&e| e));
+    assert!(cull(&input(&short, &camera, &vpls, 1e-3, 2))
+        .iter()
+        .all(|&e| e));
     let no_k = CullInput {
         interleaving: Interleaving { k: 0, seed: 0 },
         ..input(&gbuffer, &camera, &vpls, 1e-3, 2)

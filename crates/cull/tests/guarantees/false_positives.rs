@@ -18,7 +18,12 @@ enum Vpls {
 
 /// Culls one frame (384x288 pixels, 6 x 64² RSM texels, δ = 1e-3) with every strategy,
 /// prints their metrics and returns them.
-fn compare(label: &str, (scene, camera): (Scene, Camera), which: Vpls, k: u32) -> Vec<(&'static str, CullMetrics)> {
+fn compare(
+    label: &str,
+    (scene, camera): (Scene, Camera),
+    which: Vpls,
+    k: u32,
+) -> Vec<(&'static str, CullMetrics)> {
     let lobes = match which {
         Vpls::All => LobeSelection::Both,
         Vpls::SmoothGlossy => LobeSelection::Glossy,
@@ -28,7 +33,10 @@ fn compare(label: &str, (scene, camera): (Scene, Camera), which: Vpls, k: u32) -
         vpls.retain(|v| v.lobe == VplLobe::Glossy && v.brdf.alpha < 1.0);
     }
     let all = check_all(&input(&gbuffer, &camera, &vpls, 1e-3, k), label);
-    println!("{label} ({which:?}): 384x288, {} VPLs, delta 1e-3, K {k}", vpls.len());
+    println!(
+        "{label} ({which:?}): 384x288, {} VPLs, delta 1e-3, K {k}",
+        vpls.len()
+    );
     for (name, m) in &all {
         println!("{}", line(name, m));
     }

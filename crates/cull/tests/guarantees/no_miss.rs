@@ -31,7 +31,10 @@ fn synthetic_rooms_never_miss() {
     );
     // The test has teeth: many pairs contribute, and culling removes most of the others.
     assert!(contributing > 100_000, "{contributing}");
-    assert!(listed_ellipsoid < listed_none / 2, "{listed_ellipsoid} vs {listed_none}");
+    assert!(
+        listed_ellipsoid < listed_none / 2,
+        "{listed_ellipsoid} vs {listed_none}"
+    );
 }
 
 /// The built-in default scene (jittered G-buffer, VPLs of both lobes), K = 1 and 4, δ from
@@ -58,7 +61,10 @@ fn sponza_never_misses() {
     let (scene, camera) = sponza();
     let (gbuffer, vpls) = frame(&scene, &camera, (120, 72), 10, LobeSelection::Both);
     let seen = gbuffer.samples.iter().flatten().count();
-    assert!(seen > gbuffer.samples.len() / 2, "the camera sees the atrium: {seen}");
+    assert!(
+        seen > gbuffer.samples.len() / 2,
+        "the camera sees the atrium: {seen}"
+    );
     for (k, delta) in [(1, 1e-3), (4, 1e-3), (4, 1e-2)] {
         let label = format!("sponza, K {k}, delta {delta}");
         let all = check_all(&input(&gbuffer, &camera, &vpls, delta, k), &label);
