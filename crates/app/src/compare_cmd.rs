@@ -138,7 +138,7 @@ pub fn run(args: &CompareArgs) -> Result<(), String> {
             culling: name,
             ..base
         };
-        let bar = bar(pixels, format!("{name}"));
+        let bar = bar(pixels, name.to_string());
         let out = shade_stochastic(&p, &s, f.seed, f.visibility, &|n| bar.inc(n))
             .map_err(|e| e.to_string())?;
         bar.finish_and_clear();
@@ -243,7 +243,13 @@ fn write_table(args: &CompareArgs, scene: &str, vpls: usize, rows: &[Row]) -> Re
             fmt_opt(r.rmse_reference)
         );
     }
-    let _ = writeln!(md, "\nHeat maps (`*/heatmap.png`, bottom row of `side_by_side.png`): brightness = VPLs per pixel (full at {}), colour = false discovery rate from blue (0) to red (1).", args.heat_max);
+    let order: Vec<&str> = rows.iter().map(|r| r.name).collect();
+    let _ = writeln!(
+        md,
+        "\n`side_by_side.png`, left to right: {}; totals on top, heat maps below.",
+        order.join(", ")
+    );
+    let _ = writeln!(md, "\nHeat maps (`*/heatmap.png`): brightness = VPLs per pixel (full at {}), colour = false discovery rate from blue (0) to red (1).", args.heat_max);
     std::fs::write(args.out.join("report.md"), md).map_err(|e| e.to_string())
 }
 

@@ -40,7 +40,9 @@ fn render_writes_images_and_report() {
         "\"height\": 16",
         "\"seed\": 3",
         "\"delta\": 0.001",
-        "\"culling\": \"none\"",
+        "\"culling\": \"ellipsoid\"",
+        "\"interleave\": 8",
+        "\"denoise\": true",
         "\"shader\": \"vpl\"",
         "\"total\":",
         "\"false_discovery_rate\": null",
@@ -97,4 +99,84 @@ fn bad_input_is_a_clear_error() {
         .unwrap();
     assert!(!o.status.success());
     assert!(String::from_utf8_lossy(&o.stderr).contains("width"));
+}
+
+#[test]
+fn compare_writes_a_folder_per_strategy_a_table_and_heat_maps() {
+    let out = out_dir("compare");
+    let ok = slc()
+        .args([
+            "compare",
+            "--width",
+            "32",
+            "--height",
+            "24",
+            "--rsm",
+            "4",
+            "--interleave",
+            "2",
+            "--culling",
+            "none,sphere,ellipsoid,clustered",
+            "--out",
+        ])
+        .arg(&out)
+        .status()
+        .unwrap();
+    assert!(ok.success());
+    for s in ["none", "sphere", "ellipsoid", "clustered"] {
+        for f in ["total.exr", "total.png", "heatmap.png", "report.json"] {
+            assert!(out.join(s).join(f).is_file(), "{s}/{f} missing");
+        }
+    }
+    assert!(
+        out.join("reference_vpl/total.exr").is_file() && out.join("side_by_side.png").is_file()
+    );
+    let md = std::fs::read_to_string(out.join("report.md")).unwrap();
+    let rows: Vec<&str> = md
+        .lines()
+        .filter(|l| l.starts_with("| ") && !l.starts_with("| strategy"))
+        .collect();
+    assert_eq!(rows.len(), 4, "{md}");
+    for row in rows {
+        // Column 9 is "missed": a strategy that culls a contributing light is a bug.
+        let cells: Vec<&str> = row.split('|').map(str::trim).collect();
+        assert_eq!(cells[9], "0", "{row}");
+    }
+    std::fs::remove_dir_all(&out).ok();
+}
+
+#[test]
+fn sweep_writes_csv_plot_and_equal_time_comparison() {
+    let out = out_dir("sweep");
+    let ok = slc()
+        .args([
+            "sweep",
+            "--width",
+            "32",
+            "--height",
+            "24",
+            "--rsm",
+            "4",
+            "--interleave",
+            "2",
+            "--delta",
+            "1e-3,1e-2",
+            "--culling",
+            "ellipsoid,sphere",
+            "--out",
+        ])
+        .arg(&out)
+        .status()
+        .unwrap();
+    assert!(ok.success());
+    let csv = std::fs::read_to_string(out.join("sweep.csv")).unwrap();
+    assert_eq!(csv.lines().count(), 1 + 2 * 2, "{csv}");
+    assert!(csv
+        .lines()
+        .skip(1)
+        .all(|l| l.split(',').count() == 6 && !l.contains("NaN")));
+    let svg = std::fs::read_to_string(out.join("sweep.svg")).unwrap();
+    assert!(svg.contains("ellipsoid") && svg.contains("sphere"));
+    assert!(out.join("equal_time.md").is_file() && out.join("equal_time.png").is_file());
+    std::fs::remove_dir_all(&out).ok();
 }

@@ -244,16 +244,7 @@ pub fn shade_stochastic(
     let mut timings = Timings::default();
     let lists = timings.time("culling", || culler.cull(&input))?;
     let mut indirect = timings.time("shading", || {
-        shade_lists(
-            &p.tracer,
-            &p.gbuffer,
-            &p.vpls,
-            &lists,
-            interleaving,
-            s.delta,
-            visibility,
-            progress,
-        )
+        shade_lists(&p.tracer, &input, &lists, visibility, progress)
     })?;
     if s.denoise {
         indirect = timings.time("denoise", || {

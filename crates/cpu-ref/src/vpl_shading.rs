@@ -5,7 +5,7 @@ use glam::Vec3;
 use rayon::prelude::*;
 use slc_bounds::stochastic::{scalar_intensity, StochasticParams};
 use slc_bounds::BoundsError;
-use slc_core::{GBuffer, GSample, Image, Interleaving, LightLists, Vpl};
+use slc_core::{CullInput, GBuffer, GSample, Image, LightLists, Vpl};
 
 /// How each VPL's contribution is weighted.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -92,19 +92,17 @@ pub fn shade_vpls(
 /// miss no VPL with p > ξ at the pixel.
 pub fn shade_lists(
     tracer: &Tracer,
-    gbuffer: &GBuffer,
-    vpls: &[Vpl],
+    input: &CullInput,
     lists: &LightLists,
-    interleaving: Interleaving,
-    delta: f32,
     visibility: bool,
     progress: &(dyn Fn(u64) + Sync),
 ) -> Result<Image, BoundsError> {
+    let (gbuffer, vpls) = (input.gbuffer, input.vpls);
     let roulette = vpls
         .iter()
-        .map(|v| StochasticParams::new(delta, v.xi))
+        .map(|v| StochasticParams::new(input.delta, v.xi))
         .collect::<Result<Vec<_>, _>>()?;
-    let scale = interleaving.scale();
+    let scale = input.interleaving.scale();
     let mut image = Image::new(gbuffer.width, gbuffer.height);
     let w = gbuffer.width as usize;
     image

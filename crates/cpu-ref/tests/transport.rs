@@ -171,7 +171,11 @@ fn directional_light_power_is_irradiance_times_area() {
 fn stochastic_estimate_converges_to_the_exact_sum() {
     let s = builtin("default").unwrap();
     let tracer = Tracer::new(&s);
-    let maps = vec![trace_rsm(&s, &tracer, &s.lights[0], 8, TexelSample::Centre)];
+    let maps: Vec<_> = s
+        .lights
+        .iter()
+        .map(|l| trace_rsm(&s, &tracer, l, 8, TexelSample::Centre))
+        .collect();
     let g = trace_gbuffer(
         &s,
         &tracer,
@@ -218,12 +222,15 @@ fn stochastic_estimate_converges_to_the_exact_sum() {
         "delta {delta} must actually reject VPLs for this test to mean anything"
     );
     let n = draws as f64;
+    // Pixels lit only by far lobe tails (1e-19) may see no acceptance in 400 draws: an
+    // absolute floor of 1e-6 of the image mean keeps them from failing a test about bias.
+    let floor = 1e-6 * exact.mean().x as f64;
     for (k, e) in exact.pixels.iter().enumerate() {
         let mean = sum[k] / n;
         let var = (sum_sq[k] / n - mean * mean).max(0.0);
         let se = (var / n).sqrt();
         assert!(
-            (mean - e.x as f64).abs() <= 5.0 * se + 1e-6 * e.x as f64,
+            (mean - e.x as f64).abs() <= 5.0 * se + 1e-6 * e.x as f64 + floor,
             "pixel {k}: mean {mean} vs exact {} (se {se})",
             e.x
         );

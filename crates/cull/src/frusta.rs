@@ -10,11 +10,12 @@
 use crate::vpl_bounds::{ViewEllipsoid, ViewSphere};
 use glam::{DVec2, DVec3};
 
-/// Relative growth of a tile's image-plane rectangle (by 1e-6 (1 + |u|, |v|)) and depth
-/// ranges (by a factor 1 ± 1e-6). The rectangle and ranges are built from the very samples
-/// they must contain, so this only has to cover the f64 rounding of the division to the image
-/// plane, of the box corners and of the test-space mapping (about 1e-16 relative, amplified
-/// at most by the eccentricity 1/(2α) = 500 of the sharpest spheroid): a millionth of a tile.
+/// Relative growth of a tile's frusta: the image-plane rectangle grows on each side by
+/// 1e-6 (1 + its largest |u| or |v|), the depth ranges by the factors 1 ∓ 1e-6. The rectangle
+/// and ranges are built from the very samples they must contain, so this only has to cover
+/// the f64 rounding of the projection to the image plane, of the box corners and of the
+/// test-space mapping (about 1e-16 relative, amplified at most by the eccentricity
+/// 1/(2α) = 500 of the sharpest spheroid): a millionth of a tile's width costs nothing.
 pub(crate) const FRUSTUM_SLACK: f64 = 1e-6;
 
 /// A closed axis-aligned box.
@@ -59,7 +60,7 @@ pub(crate) struct TileFrusta {
 
 impl TileFrusta {
     /// Sets the tile's rectangle `[lo, hi]` at unit depth and its clusters' depth ranges
-    /// (positive, ordered, at most 32), grown by [`FRUSTUM_SLACK`].
+    /// (positive, at most 32), grown by [`FRUSTUM_SLACK`].
     pub(crate) fn set(&mut self, lo: DVec2, hi: DVec2, clusters: &[[f64; 2]]) {
         debug_assert!(!clusters.is_empty() && clusters.len() <= 32);
         let pad = FRUSTUM_SLACK * (1.0 + lo.abs().max(hi.abs()).max_element());
@@ -67,7 +68,12 @@ impl TileFrusta {
         let grow = |[z0, z1]: [f64; 2]| [z0 * (1.0 - FRUSTUM_SLACK), z1 * (1.0 + FRUSTUM_SLACK)];
         self.ranges.clear();
         self.ranges.extend(clusters.iter().map(|&r| grow(r)));
-        self.whole = [self.ranges[0][0], self.ranges[self.ranges.len() - 1][1]];
+        self.whole = self
+            .ranges
+            .iter()
+            .fold([f64::INFINITY, f64::NEG_INFINITY], |[lo, hi], &[a, b]| {
+                [lo.min(a), hi.max(b)]
+            });
         let (rect_lo, rect_hi) = (self.rect[0].extend(1.0), self.rect[1].extend(1.0));
         self.whole_box = Box3::swept(rect_lo, rect_hi, self.whole);
         self.boxes.clear();
@@ -164,7 +170,7 @@ mod tests {
         );
         let rotation = Mat3::from_quat(Quat::from_axis_angle(
             axis.try_normalize().unwrap_or(Vec3::Z),
-            rng.range(0.0, 6.28),
+            rng.range(0.0, std::f32::consts::TAU),
         ));
         let alpha = 10f32.powf(rng.range(-3.0, 0.0));
         let r = rng.range(0.05, 2.0);

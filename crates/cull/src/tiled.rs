@@ -132,7 +132,8 @@ impl Worker {
     /// rectangle: the bounding rectangle of its pixels' footprints, grown to contain every
     /// sample's own projection (so a G-buffer made with another pixel convention is still
     /// covered); `None` if no pixel has a sample. Errors on a sample not in front of the
-    /// camera.
+    /// camera. The depth is the sample's `GSample::depth` recomputed from its position in the
+    /// culling view (f64), so the tile frusta and the VPL bounds see the same geometry.
     fn gather(&mut self, tile: &Tile, frame: &Frame) -> Result<Option<(DVec2, DVec2)>, CullError> {
         let [x0, y0, x1, y1] = tile.screen_rect(frame.k);
         let (mut lo, mut hi) = frame.view.image_rect(x0, y0, x1, y1);

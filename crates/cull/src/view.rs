@@ -77,10 +77,11 @@ impl CullView {
     /// A world point in view space, `R (p − eye)`, in f64.
     #[inline]
     pub fn to_view(&self, world: Vec3) -> DVec3 {
-        self.rotation64 * (world.as_dvec3() - self.eye)
+        self.rotate(self.relative(world))
     }
 
-    /// A world point relative to the eye, `p − eye`, exactly (f32 differences fit in f64).
+    /// A world point relative to the eye, `p − eye`, in f64 (exact unless the two differ in
+    /// magnitude by more than 2^29).
     #[inline]
     pub fn relative(&self, world: Vec3) -> DVec3 {
         world.as_dvec3() - self.eye

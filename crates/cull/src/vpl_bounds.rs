@@ -9,12 +9,13 @@ use rayon::prelude::*;
 use slc_bounds::{DiffuseLobe, GlossyLobe, Sphere, Spheroid, StochasticParams, TestSpace};
 use slc_core::{CullError, Vpl, VplLobe};
 
-/// Relative growth of every bound (radii and semi-axes times 1 + 1e-3). The bounds of
-/// `slc-bounds` are exact in real arithmetic but stored in f32, and the shading (and the
-/// brute-force truth of `metrics`) evaluates p(ωo, l) of eq. (2) in f32: for the sharpest lobe
-/// (α = 1e-3) rounding ωo by one ulp changes the GGX term by a few 1e-4 relative, so the
-/// accepted region can stick out of the exact range l_max(ωo) of eq. (5) by about 1e-4. A
-/// 1e-3 growth covers that with margin and costs about 0.3% more volume.
+/// Relative growth of every bound: radii and semi-axes times 1 + 1e-3. slc-bounds computes
+/// the bounds exactly in f64 but stores them, and their rotations, in f32; the view rotation is
+/// f32 too, and one ulp (6e-8) of rotation tilts the needle-like spheroid of α = 1e-3
+/// (r_u = 500 r, eq. 13) by 3e-5 of its thin radius at its far end. The shader (and the truth
+/// in `metrics`) evaluates p(ωo, l) of eq. (2) in f32 as well. Without growth the tests find
+/// contributing pairs outside the bounds (still some at 2e-5, none at 1e-4); 1e-3 keeps a
+/// factor of 10 of margin for about 0.3% more volume.
 pub(crate) const BOUND_SLACK: f64 = 1e-3;
 
 /// Which bound a glossy VPL is culled with; diffuse VPLs always use the sphere of section 6.

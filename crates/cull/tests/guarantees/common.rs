@@ -113,8 +113,9 @@ pub fn floor_camera(rng: &mut Rng) -> Camera {
 }
 
 /// `n` random VPLs in a room around the floor: on the walls x = ±4, the back wall z = −8, the
-/// ceiling y = 3, just above the floor, or anywhere (also behind the camera); random normals
-/// and incoming directions (one in five below the surface), random lobes, α from 1e-3 to 1,
+/// ceiling y = 3, hanging 1e-3 to 0.3 above the floor facing it (small lit discs), or
+/// anywhere (also behind the camera) with random normals; random incoming directions (one in
+/// five below the surface), random lobes, α from 1e-3 to 1,
 /// flux from 1e-4 to 10 (one in ten zero), Schlick or dielectric Fresnel, ξ in (0, 1).
 pub fn room_vpls(rng: &mut Rng, n: u32) -> Vec<Vpl> {
     (0..n)
@@ -136,13 +137,14 @@ pub fn room_vpls(rng: &mut Rng, n: u32) -> Vec<Vpl> {
                     Vec3::new(rng.range(-4.0, 4.0), 3.0, rng.range(-8.0, 6.0)),
                     Vec3::NEG_Y,
                 ),
+                // Hanging just above the floor, facing it: small lit discs, tile edges matter.
                 4 => (
                     Vec3::new(
                         rng.range(-4.0, 4.0),
-                        rng.log(-4.0, -1.0),
+                        rng.log(-3.0, -0.5),
                         rng.range(-8.0, 6.0),
                     ),
-                    Vec3::Y,
+                    Vec3::NEG_Y,
                 ),
                 _ => (
                     Vec3::new(

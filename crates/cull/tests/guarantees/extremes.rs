@@ -43,6 +43,33 @@ fn sky_and_empty_tiles() {
     }
 }
 
+/// A G-buffer whose samples stray up to two pixels outside their own pixel (another
+/// renderer's pixel convention, a wide reconstruction filter): tiles grow to contain them.
+#[test]
+fn samples_outside_their_pixels() {
+    let mut rng = Rng::new(8);
+    for case in 0..8 {
+        let camera = floor_camera(&mut rng);
+        let (w, h) = (40 + rng.below(30), 30 + rng.below(20));
+        let mut gbuffer = floor_gbuffer(&camera, w, h, &mut rng);
+        for (p, s) in gbuffer.samples.iter_mut().enumerate() {
+            let (x, y) = (p as u32 % w, p as u32 / w);
+            let (u, v) = (rng.range(-2.0, 3.0), rng.range(-2.0, 3.0));
+            let dir = camera.ray_direction(x, y, u, v, w, h);
+            if let (Some(s), true) = (s.as_mut(), dir.y < 0.0) {
+                s.position = camera.position + dir * (-camera.position.y / dir.y);
+                s.depth = camera.view_depth(s.position);
+            }
+        }
+        let vpls = room_vpls(&mut rng, 200);
+        for k in [1, 2] {
+            let label = format!("stray {case}, K {k}");
+            let all = check_all(&input(&gbuffer, &camera, &vpls, 1e-1, k), &label);
+            println!("{label}: {}", line("ellipsoid", of(&all, "ellipsoid")));
+        }
+    }
+}
+
 #[test]
 fn vpls_behind_the_camera_are_never_listed_unless_they_reach() {
     let mut rng = Rng::new(3);
@@ -102,7 +129,7 @@ fn zero_flux_and_unlit_vpls_are_never_listed() {
 #[test]
 fn sharpest_lobes_and_extreme_delta() {
     let mut rng = Rng::new(5);
-    for case in 0..6 {
+    for case in 0..12 {
         let camera = floor_camera(&mut rng);
         let gbuffer = floor_gbuffer(&camera, 64, 48, &mut rng);
         let mut vpls = room_vpls(&mut rng, 200);

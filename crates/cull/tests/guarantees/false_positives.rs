@@ -56,19 +56,23 @@ fn ratio(all: &[(&'static str, CullMetrics)]) -> f64 {
 
 #[test]
 fn ellipsoids_beat_spheres_on_the_default_scene() {
-    // Measured: FP 1,480,874 (ellipsoid) vs 4,366,129 (sphere), 66% fewer.
+    // Measured: FP 6,094,352 (ellipsoid) vs 21,299,371 (sphere), ratio 0.29, for the glossy
+    // VPLs of the copper panel.
     let smooth = compare("default scene", default_scene(), Vpls::SmoothGlossy, 4);
-    assert!(ratio(&smooth) < 0.45, "FP ratio {}", ratio(&smooth));
-    // With every VPL the walls' α = 1 lobes (where the spheroid is the sphere) dominate.
+    assert!(ratio(&smooth) < 0.4, "FP ratio {}", ratio(&smooth));
+    // With every VPL the diffuse ones and the walls' α = 1 lobes (where the spheroid is the
+    // sphere) dominate. Measured: 15,504,777 vs 18,024,348, ratio 0.86.
     let all = compare("default scene", default_scene(), Vpls::All, 8);
-    assert!(ratio(&all) < 1.0, "FP ratio {}", ratio(&all));
+    assert!(ratio(&all) < 0.95, "FP ratio {}", ratio(&all));
 }
 
 #[test]
 fn ellipsoids_beat_spheres_on_a_glossy_floor() {
-    // Measured: FP 2,937,404 (ellipsoid) vs 11,374,865 (sphere), 74% fewer.
+    // Measured: FP 7,261,769 (ellipsoid) vs 28,586,088 (sphere), ratio 0.25, for the glossy
+    // VPLs of the floor and the copper panel.
     let smooth = compare("glossy floor", glossy_floor_scene(), Vpls::SmoothGlossy, 4);
     assert!(ratio(&smooth) < 0.35, "FP ratio {}", ratio(&smooth));
+    // Every VPL. Measured: 15,570,475 vs 19,391,359, ratio 0.80.
     let all = compare("glossy floor", glossy_floor_scene(), Vpls::All, 8);
-    assert!(ratio(&all) < 0.97, "FP ratio {}", ratio(&all));
+    assert!(ratio(&all) < 0.9, "FP ratio {}", ratio(&all));
 }

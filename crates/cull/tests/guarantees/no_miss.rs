@@ -2,15 +2,15 @@
 use crate::common::*;
 use slc_cpu_ref::vpls::LobeSelection;
 
-/// Random rooms: a floor G-buffer by ray casting (jittered on pixel corners and edges, sky
-/// above the horizon), VPLs on the walls, ceiling and floor and anywhere around (also behind
-/// the camera), random lobes, α from 1e-3 to 1, δ from 1e-6 to 1e-1, K from 1 to 5, image
-/// sizes from 1 to 90 pixels.
+/// 300 random rooms: a floor G-buffer by ray casting (jittered, often exactly on pixel corners
+/// and edges; sky above the horizon), VPLs on the walls and ceiling, hanging just above the
+/// floor and anywhere around (also behind the camera), random lobes, α from 1e-3 to 1, δ from
+/// 1e-6 to 1e-1, K from 1 to 5, image sizes from 1 to 90 pixels.
 #[test]
 fn synthetic_rooms_never_miss() {
     let mut rng = Rng::new(1);
     let (mut contributing, mut listed_none, mut listed_ellipsoid) = (0u64, 0u64, 0u64);
-    for case in 0..48 {
+    for case in 0..300 {
         let camera = floor_camera(&mut rng);
         let (w, h) = (1 + rng.below(90), 1 + rng.below(70));
         let gbuffer = floor_gbuffer(&camera, w, h, &mut rng);
@@ -37,41 +37,48 @@ fn synthetic_rooms_never_miss() {
     );
 }
 
-/// The built-in default scene (jittered G-buffer, VPLs of both lobes), K = 1 and 4, δ from
+/// The built-in default scene (jittered G-buffer, VPLs of both lobes), K = 1, 4 and 8, δ from
 /// 1e-5 to 1e-1.
 #[test]
 fn default_scene_never_misses() {
     let (scene, camera) = default_scene();
-    let (gbuffer, vpls) = frame(&scene, &camera, (96, 72), 12, LobeSelection::Both);
-    for (k, delta) in [(1, 1e-3), (4, 1e-3), (4, 1e-5), (4, 1e-1), (1, 1e-2)] {
+    let (gbuffer, vpls) = frame(&scene, &camera, (160, 120), 16, LobeSelection::Both);
+    for (k, delta) in [
+        (1, 1e-3),
+        (4, 1e-3),
+        (4, 1e-5),
+        (4, 1e-1),
+        (1, 1e-2),
+        (8, 1e-3),
+    ] {
         let label = format!("default scene, K {k}, delta {delta}");
         let all = check_all(&input(&gbuffer, &camera, &vpls, delta, k), &label);
         println!("{label}, {} VPLs", vpls.len());
         for (name, m) in &all {
             println!("{}", line(name, m));
         }
-        assert!(of(&all, "none").true_positive_pairs > 10_000);
+        assert!(of(&all, "none").true_positive_pairs > 5_000);
     }
 }
 
 /// Dabrovic Sponza (with a point light, a camera in the atrium and glossy layers of α from
-/// 1e-3 to 1), K = 1 and 4.
+/// 1e-3 to 1), K = 1 and 4, δ from 1e-3 to 1e-1.
 #[test]
 fn sponza_never_misses() {
     let (scene, camera) = sponza();
-    let (gbuffer, vpls) = frame(&scene, &camera, (120, 72), 10, LobeSelection::Both);
+    let (gbuffer, vpls) = frame(&scene, &camera, (160, 96), 12, LobeSelection::Both);
     let seen = gbuffer.samples.iter().flatten().count();
     assert!(
         seen > gbuffer.samples.len() / 2,
         "the camera sees the atrium: {seen}"
     );
-    for (k, delta) in [(1, 1e-3), (4, 1e-3), (4, 1e-2)] {
+    for (k, delta) in [(1, 1e-3), (4, 1e-3), (1, 1e-2), (4, 1e-1)] {
         let label = format!("sponza, K {k}, delta {delta}");
         let all = check_all(&input(&gbuffer, &camera, &vpls, delta, k), &label);
         println!("{label}, {} VPLs", vpls.len());
         for (name, m) in &all {
             println!("{}", line(name, m));
         }
-        assert!(of(&all, "none").true_positive_pairs > 10_000);
+        assert!(of(&all, "none").true_positive_pairs > 5_000);
     }
 }
