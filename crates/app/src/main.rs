@@ -1,5 +1,6 @@
 //! `slc`: single-bounce global illumination with many virtual point lights.
 mod args;
+mod bench_cmd;
 mod compare_cmd;
 mod heatmap;
 mod output;
@@ -15,7 +16,7 @@ use clap::{Parser, Subcommand};
 #[command(
     name = "slc",
     version,
-    about = "Stochastic light culling for VPLs on GGX microsurfaces: render, compare, sweep"
+    about = "Stochastic light culling for VPLs on GGX microsurfaces: render, compare, sweep, bench"
 )]
 struct Cli {
     #[command(subcommand)]
@@ -30,6 +31,8 @@ enum Command {
     Compare(compare_cmd::CompareArgs),
     /// Speed against accuracy over δ per strategy: CSV, SVG plot, equal-time comparison.
     Sweep(sweep_cmd::SweepArgs),
+    /// Per-pass times over resolutions and VPL counts for each strategy: bench.md, bench.csv.
+    Bench(bench_cmd::BenchArgs),
 }
 
 fn main() {
@@ -38,6 +41,7 @@ fn main() {
         Command::Render(args) => render_cmd::run(&args),
         Command::Compare(args) => compare_cmd::run(&args),
         Command::Sweep(args) => sweep_cmd::run(&args),
+        Command::Bench(args) => bench_cmd::run(&args),
     };
     if let Err(e) = result {
         eprintln!("error: {e}");

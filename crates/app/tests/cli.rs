@@ -180,3 +180,31 @@ fn sweep_writes_csv_plot_and_equal_time_comparison() {
     assert!(out.join("equal_time.md").is_file() && out.join("equal_time.png").is_file());
     std::fs::remove_dir_all(&out).ok();
 }
+
+#[test]
+fn bench_writes_a_row_per_resolution_vpl_count_and_strategy() {
+    let out = out_dir("bench");
+    let ok = slc()
+        .args([
+            "bench",
+            "--resolutions",
+            "16x16,24x16",
+            "--rsms",
+            "2,4",
+            "--culling",
+            "ellipsoid,none",
+            "--interleave",
+            "2",
+            "--out",
+        ])
+        .arg(&out)
+        .status()
+        .unwrap();
+    assert!(ok.success());
+    let csv = std::fs::read_to_string(out.join("bench.csv")).unwrap();
+    assert_eq!(csv.lines().count(), 1 + 2 * 2 * 2, "{csv}");
+    assert!(std::fs::read_to_string(out.join("bench.md"))
+        .unwrap()
+        .contains("| 24x16 |"));
+    std::fs::remove_dir_all(&out).ok();
+}

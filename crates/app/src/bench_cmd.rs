@@ -1,0 +1,159 @@
+//! `slc bench`: per-pass times of the stochastic pipeline over resolutions and VPL counts, for
+//! each culling strategy, in one run (so ratios are measured on the same machine state).
+//! Writes `bench.csv` and `bench.md`.
+use crate::args::{culling_name, FrameArgs};
+use clap::Args;
+use slc_cpu_ref::{prepare, shade_stochastic, Method, Stochastic, Tracer};
+use std::fmt::Write;
+use std::path::PathBuf;
+
+#[derive(Args, Debug)]
+pub struct BenchArgs {
+    #[command(flatten)]
+    pub frame: FrameArgs,
+    #[arg(long, default_value = "bench")]
+    pub out: PathBuf,
+    /// Resolutions WxH, comma separated (overrides --width/--height).
+    #[arg(long, value_delimiter = ',', default_value = "1280x720,1920x1080")]
+    pub resolutions: Vec<String>,
+    /// RSM resolutions per face, comma separated (overrides --rsm).
+    #[arg(long, value_delimiter = ',', default_value = "128,256")]
+    pub rsms: Vec<u32>,
+    #[arg(long, value_delimiter = ',', default_value = "ellipsoid,sphere")]
+    pub culling: Vec<String>,
+    #[arg(long, default_value_t = 1e-3)]
+    pub delta: f32,
+    #[arg(long, default_value_t = 8)]
+    pub interleave: u32,
+    /// Timing repetitions of culling + shading; the fastest is kept.
+    #[arg(long, default_value_t = 1)]
+    pub repeat: u32,
+}
+
+fn parse_resolution(s: &str) -> Result<(u32, u32), String> {
+    let (w, h) = s
+        .split_once('x')
+        .ok_or_else(|| format!("resolution '{s}' is not WxH"))?;
+    let p = |v: &str| {
+        v.trim()
+            .parse::<u32>()
+            .map_err(|e| format!("resolution '{s}': {e}"))
+    };
+    Ok((p(w)?, p(h)?))
+}
+
+const PASSES: [&str; 7] = [
+    "gbuffer",
+    "rsm",
+    "vpl_generation",
+    "direct",
+    "culling",
+    "shading",
+    "denoise",
+];
+
+pub fn run(args: &BenchArgs) -> Result<(), String> {
+    let scene = args.frame.load()?;
+    scene.validate_for_render().map_err(|e| e.to_string())?;
+    let names = args
+        .culling
+        .iter()
+        .map(|n| culling_name(n))
+        .collect::<Result<Vec<_>, _>>()?;
+    let resolutions = args
+        .resolutions
+        .iter()
+        .map(|r| parse_resolution(r))
+        .collect::<Result<Vec<_>, _>>()?;
+    if args.repeat == 0 {
+        return Err("--repeat must be at least 1".into());
+    }
+    let mut csv = format!(
+        "scene,width,height,rsm,vpls,culling,{},culling_plus_shading_ms\n",
+        PASSES.map(|p| format!("{p}_ms")).join(",")
+    );
+    let mut md = format!(
+        "# slc bench: {}\n\nCPU backend, {} rayon threads, δ = {}, K = {}, lobes {:?}, best of {} for culling + shading. Milliseconds per pass.\n\n| resolution | VPLs | strategy | {} | culling + shading |\n|---|---|---|{}---|\n",
+        scene.name,
+        rayon::current_num_threads(),
+        args.delta,
+        args.interleave,
+        args.frame.lobes,
+        args.repeat,
+        PASSES.join(" | "),
+        "---|".repeat(PASSES.len())
+    );
+    let mut tracer = Some(Tracer::new(&scene));
+    for &(w, h) in &resolutions {
+        for &rsm in &args.rsms {
+            let frame = FrameArgs {
+                width: w,
+                height: h,
+                rsm,
+                ..args.frame.clone()
+            };
+            let base = Stochastic {
+                delta: args.delta,
+                culling: names[0],
+                interleave: args.interleave,
+                denoise: true,
+                metrics: false,
+            };
+            let settings = frame.settings(Method::Stochastic(base), 1);
+            settings.validate().map_err(|e| e.to_string())?;
+            eprintln!("{w}x{h}, RSM {rsm}²");
+            let p = prepare(
+                &scene,
+                &settings,
+                tracer
+                    .take()
+                    .expect("the tracer is returned after each frame"),
+                None,
+            );
+            for &name in &names {
+                let mut best = None;
+                for _ in 0..args.repeat {
+                    let out = shade_stochastic(
+                        &p,
+                        &Stochastic {
+                            culling: name,
+                            ..base
+                        },
+                        frame.seed,
+                        frame.visibility,
+                        &|_| {},
+                    )
+                    .map_err(|e| e.to_string())?;
+                    let mut t = p.timings.clone();
+                    t.merge(&out.timings);
+                    let ms = |n: &str| t.0.iter().find(|(k, _)| *k == n).map_or(0.0, |(_, v)| *v);
+                    let cs = ms("culling") + ms("shading");
+                    if best.as_ref().is_none_or(|(b, _): &(f64, _)| cs < *b) {
+                        best = Some((cs, PASSES.map(ms)));
+                    }
+                }
+                let (cs, per_pass) = best.expect("at least one repetition");
+                let _ = writeln!(
+                    csv,
+                    "{},{w},{h},{rsm},{},{name},{},{cs:.3}",
+                    scene.name,
+                    p.vpls.len(),
+                    per_pass.map(|v| format!("{v:.3}")).join(",")
+                );
+                let _ = writeln!(
+                    md,
+                    "| {w}x{h} | {} | {name} | {} | {cs:.1} |",
+                    p.vpls.len(),
+                    per_pass.map(|v| format!("{v:.1}")).join(" | ")
+                );
+                eprintln!("  {name}: culling + shading {cs:.1} ms");
+            }
+            tracer = Some(p.tracer);
+        }
+    }
+    std::fs::create_dir_all(&args.out).map_err(|e| format!("{}: {e}", args.out.display()))?;
+    std::fs::write(args.out.join("bench.csv"), csv).map_err(|e| e.to_string())?;
+    std::fs::write(args.out.join("bench.md"), md).map_err(|e| e.to_string())?;
+    println!("wrote {}", args.out.display());
+    Ok(())
+}
