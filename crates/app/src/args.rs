@@ -1,7 +1,7 @@
 //! Command-line options shared by `render`, `compare` and `sweep`.
 use clap::{Args, ValueEnum};
 use slc_core::{load_scene, Scene};
-use slc_cpu_ref::{LobeSelection, RenderSettings};
+use slc_cpu_ref::{LobeSelection, RenderSettings, Stochastic};
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
 pub enum Backend {
@@ -93,4 +93,28 @@ pub fn culling_name(name: &str) -> Result<&'static str, String> {
                 slc_cull::CULLER_NAMES.join(", ")
             )
         })
+}
+
+/// Interleaving and denoising of the stochastic estimate, shared by every command.
+#[derive(Args, Debug, Clone)]
+pub struct PipelineArgs {
+    /// K of K x K interleaved sampling (1 turns it off).
+    #[arg(long, default_value_t = 8)]
+    pub interleave: u32,
+    /// Skip the cross bilateral filter.
+    #[arg(long)]
+    pub no_denoise: bool,
+}
+
+impl PipelineArgs {
+    /// The stochastic estimate with these options.
+    pub fn stochastic(&self, delta: f32, culling: &'static str, metrics: bool) -> Stochastic {
+        Stochastic {
+            delta,
+            culling,
+            interleave: self.interleave,
+            denoise: !self.no_denoise,
+            metrics,
+        }
+    }
 }

@@ -1,7 +1,7 @@
 //! `slc bench`: per-pass times of the stochastic pipeline over resolutions and VPL counts, for
 //! each culling strategy, in one run (so ratios are measured on the same machine state).
 //! Writes `bench.csv` and `bench.md`.
-use crate::args::{culling_name, FrameArgs};
+use crate::args::{culling_name, FrameArgs, PipelineArgs};
 use clap::Args;
 use slc_cpu_ref::{prepare, shade_stochastic, Method, Stochastic, Tracer};
 use std::fmt::Write;
@@ -11,6 +11,8 @@ use std::path::PathBuf;
 pub struct BenchArgs {
     #[command(flatten)]
     pub frame: FrameArgs,
+    #[command(flatten)]
+    pub pipeline: PipelineArgs,
     #[arg(long, default_value = "bench")]
     pub out: PathBuf,
     /// Resolutions WxH, comma separated (overrides --width/--height).
@@ -23,8 +25,6 @@ pub struct BenchArgs {
     pub culling: Vec<String>,
     #[arg(long, default_value_t = 1e-3)]
     pub delta: f32,
-    #[arg(long, default_value_t = 8)]
-    pub interleave: u32,
     /// Timing repetitions of culling + shading; the fastest is kept.
     #[arg(long, default_value_t = 1)]
     pub repeat: u32,
@@ -77,7 +77,7 @@ pub fn run(args: &BenchArgs) -> Result<(), String> {
         scene.name,
         rayon::current_num_threads(),
         args.delta,
-        args.interleave,
+        args.pipeline.interleave,
         args.frame.lobes,
         args.repeat,
         PASSES.join(" | "),
@@ -92,13 +92,7 @@ pub fn run(args: &BenchArgs) -> Result<(), String> {
                 rsm,
                 ..args.frame.clone()
             };
-            let base = Stochastic {
-                delta: args.delta,
-                culling: names[0],
-                interleave: args.interleave,
-                denoise: true,
-                metrics: false,
-            };
+            let base = args.pipeline.stochastic(args.delta, names[0], false);
             let settings = frame.settings(Method::Stochastic(base), 1);
             settings.validate().map_err(|e| e.to_string())?;
             eprintln!("{w}x{h}, RSM {rsm}²");

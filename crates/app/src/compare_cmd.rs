@@ -2,7 +2,7 @@
 //!
 //! Writes one folder per strategy (images, heat map, report.json), `reference_vpl/` (every VPL
 //! with p = 1, the same VPLs), `report.md` with the table, and `side_by_side.png`.
-use crate::args::{culling_name, FrameArgs};
+use crate::args::{culling_name, FrameArgs, PipelineArgs};
 use crate::heatmap::heat_map;
 use crate::output::write_frame;
 use crate::progress::bar;
@@ -20,6 +20,8 @@ use std::path::PathBuf;
 pub struct CompareArgs {
     #[command(flatten)]
     pub frame: FrameArgs,
+    #[command(flatten)]
+    pub pipeline: PipelineArgs,
     /// Output folder.
     #[arg(long, default_value = "compare")]
     pub out: PathBuf,
@@ -32,10 +34,6 @@ pub struct CompareArgs {
     pub culling: Vec<String>,
     #[arg(long, default_value_t = 1e-3)]
     pub delta: f32,
-    #[arg(long, default_value_t = 8)]
-    pub interleave: u32,
-    #[arg(long)]
-    pub no_denoise: bool,
     /// Heat-map brightness saturates at this many VPLs per pixel (256 in the paper's figures).
     #[arg(long, default_value_t = 256)]
     pub heat_max: u32,
@@ -68,13 +66,7 @@ pub fn run(args: &CompareArgs) -> Result<(), String> {
         .map(|n| culling_name(n))
         .collect::<Result<Vec<_>, _>>()?;
     let f = &args.frame;
-    let base = Stochastic {
-        delta: args.delta,
-        culling: "none",
-        interleave: args.interleave,
-        denoise: !args.no_denoise,
-        metrics: true,
-    };
+    let base = args.pipeline.stochastic(args.delta, "none", true);
     let settings = f.settings(Method::Stochastic(base), 1);
     settings.validate().map_err(|e| e.to_string())?;
     let pixels = f.width as u64 * f.height as u64;
@@ -214,8 +206,8 @@ fn write_table(args: &CompareArgs, scene: &str, vpls: usize, rows: &[Row]) -> Re
         f.rsm,
         f.lobes,
         args.delta,
-        args.interleave,
-        !args.no_denoise,
+        args.pipeline.interleave,
+        !args.pipeline.no_denoise,
         f.seed,
         rayon::current_num_threads()
     );

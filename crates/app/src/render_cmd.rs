@@ -1,10 +1,10 @@
 //! `slc render`.
-use crate::args::{culling_name, FrameArgs};
+use crate::args::{culling_name, FrameArgs, PipelineArgs};
 use crate::output::write_frame;
 use crate::progress::bar;
 use crate::report::{FrameFacts, Report};
 use clap::{Args, ValueEnum};
-use slc_cpu_ref::{render, Method, Stochastic};
+use slc_cpu_ref::{render, Method};
 use std::path::PathBuf;
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
@@ -19,21 +19,18 @@ pub enum Reference {
 pub struct RenderArgs {
     #[command(flatten)]
     pub frame: FrameArgs,
+    #[command(flatten)]
+    pub pipeline: PipelineArgs,
     /// Output folder.
     #[arg(long, default_value = "out")]
     pub out: PathBuf,
-    /// Culling strategy: none, sphere, enclosing-sphere, ellipsoid, clustered, clustered-sphere.
+    /// Culling strategy: none, sphere, enclosing-sphere, ellipsoid, clustered (ellipsoids in 3-D
+    /// clusters), clustered-sphere, clustered-enclosing-sphere.
     #[arg(long, default_value = "ellipsoid")]
     pub culling: String,
     /// δ of eq. (2), in the units of I / l² (W sr⁻¹ m⁻²): larger culls more and adds variance.
     #[arg(long, default_value_t = 1e-3)]
     pub delta: f32,
-    /// K of K x K interleaved sampling (1 turns it off).
-    #[arg(long, default_value_t = 8)]
-    pub interleave: u32,
-    /// Skip the cross bilateral filter.
-    #[arg(long)]
-    pub no_denoise: bool,
     /// Measure culling metrics (true/false positives, misses) by brute force.
     #[arg(long)]
     pub metrics: bool,
@@ -50,13 +47,11 @@ pub fn run(args: &RenderArgs) -> Result<(), String> {
     let method = match args.reference {
         Some(Reference::Path) => Method::Path,
         Some(Reference::Vpl) => Method::VplReference,
-        None => Method::Stochastic(Stochastic {
-            delta: args.delta,
-            culling: culling_name(&args.culling)?,
-            interleave: args.interleave,
-            denoise: !args.no_denoise,
-            metrics: args.metrics,
-        }),
+        None => Method::Stochastic(args.pipeline.stochastic(
+            args.delta,
+            culling_name(&args.culling)?,
+            args.metrics,
+        )),
     };
     let settings = args.frame.settings(method, args.spp);
     let f = &args.frame;

@@ -5,7 +5,7 @@
 //! p = 1. Writes `sweep.csv`, `sweep.svg` (RMSE against time, one curve per strategy) and an
 //! equal-time comparison (`equal_time.md`, `equal_time.png`) in the spirit of the supplemental's
 //! Fig. 2: each strategy at the δ whose time is closest to the reference strategy's median run.
-use crate::args::{culling_name, FrameArgs};
+use crate::args::{culling_name, FrameArgs, PipelineArgs};
 use crate::output::to_srgb8;
 use crate::plot::{line_plot_svg, Series};
 use crate::progress::bar;
@@ -21,6 +21,8 @@ use std::path::PathBuf;
 pub struct SweepArgs {
     #[command(flatten)]
     pub frame: FrameArgs,
+    #[command(flatten)]
+    pub pipeline: PipelineArgs,
     #[arg(long, default_value = "sweep")]
     pub out: PathBuf,
     /// Values of δ, comma separated.
@@ -37,10 +39,6 @@ pub struct SweepArgs {
         default_value = "ellipsoid,sphere,enclosing-sphere,clustered"
     )]
     pub culling: Vec<String>,
-    #[arg(long, default_value_t = 8)]
-    pub interleave: u32,
-    #[arg(long)]
-    pub no_denoise: bool,
     /// Timing repetitions per point; the fastest is kept.
     #[arg(long, default_value_t = 1)]
     pub repeat: u32,
@@ -73,13 +71,7 @@ pub fn run(args: &SweepArgs) -> Result<(), String> {
         return Err("sweep needs at least one strategy, one δ and one repetition".into());
     }
     let f = &args.frame;
-    let base = Stochastic {
-        delta: args.delta[0],
-        culling: names[0],
-        interleave: args.interleave,
-        denoise: !args.no_denoise,
-        metrics: false,
-    };
+    let base = args.pipeline.stochastic(args.delta[0], names[0], false);
     for &delta in &args.delta {
         f.settings(Method::Stochastic(Stochastic { delta, ..base }), 1)
             .validate()
