@@ -52,21 +52,34 @@ pub fn microfacet(n: Vec3, omega_i: Vec3, omega_o: Vec3, alpha: f32, fresnel: Fr
     if cos_i <= 0.0 || cos_o <= 0.0 {
         return Vec3::ZERO;
     }
-    // The half vector in f64 from the normalised directions: near the mirror direction at
-    // grazing incidence ωi and ωo are almost opposite, and rounding their f32 sum (of vectors
-    // only unit to 6e-8) would tilt ωh by more than the width of a sharp lobe.
-    let (wi, wo, nd) = (
-        omega_i.as_dvec3(),
-        omega_o.as_dvec3(),
-        n.as_dvec3().normalize(),
-    );
-    let wi = wi / wi.length();
-    let h = (wi + wo / wo.length()).normalize();
-    // sin² θh from the cross product keeps D accurate near its peak even for tiny α.
-    let d = ggx::d_with_sin2(alpha, nd.dot(h) as f32, nd.cross(h).length_squared() as f32);
     // G1/cos for each direction keeps grazing angles finite (no 0/0).
     let g = ggx::g1_over_cos(alpha, cos_i) * ggx::g1_over_cos(alpha, cos_o);
-    fresnel.eval(wi.dot(h) as f32) * (0.25 * d * g)
+    // sin² θh from the cross product keeps D accurate near its peak even for tiny α.
+    let s = omega_i + omega_o;
+    let s2 = s.length_squared();
+    // The f32 sum of (nearly) unit vectors is off by ~1e-7, which tilts ωh by ~1e-7/|s|: far
+    // below the lobe width α unless ωi and ωo are almost opposite (grazing incidence near the
+    // mirror direction) and α is tiny. Only then is the half vector formed in f64.
+    let (d, cos_ih) = if s2 * alpha * alpha > 1e-6 {
+        let h = s / s2.sqrt();
+        (
+            ggx::d_with_sin2(alpha, n.dot(h), n.cross(h).length_squared()),
+            omega_i.dot(h),
+        )
+    } else {
+        let (wi, wo, nd) = (
+            omega_i.as_dvec3(),
+            omega_o.as_dvec3(),
+            n.as_dvec3().normalize(),
+        );
+        let wi = wi / wi.length();
+        let h = (wi + wo / wo.length()).normalize();
+        (
+            ggx::d_with_sin2(alpha, nd.dot(h) as f32, nd.cross(h).length_squared() as f32),
+            wi.dot(h) as f32,
+        )
+    };
+    fresnel.eval(cos_ih) * (0.25 * d * g)
 }
 
 #[cfg(test)]
