@@ -62,6 +62,13 @@ impl FrameArgs {
         Ok(scene)
     }
 
+    /// Loads the scene and checks it can be rendered (geometry, a valid light).
+    pub fn load_renderable(&self) -> Result<Scene, String> {
+        let scene = self.load()?;
+        scene.validate_for_render().map_err(|e| e.to_string())?;
+        Ok(scene)
+    }
+
     /// Render settings for `method`, one pass.
     pub fn settings(&self, method: slc_cpu_ref::Method, spp: u32) -> RenderSettings {
         RenderSettings {
@@ -79,6 +86,11 @@ impl FrameArgs {
             },
         }
     }
+}
+
+/// Maps culling names given on the command line to the library's static names.
+pub fn culling_names(names: &[String]) -> Result<Vec<&'static str>, String> {
+    names.iter().map(|n| culling_name(n)).collect()
 }
 
 /// Maps a culling name given on the command line to the library's static name.

@@ -1,7 +1,7 @@
 //! `slc bench`: per-pass times of the stochastic pipeline over resolutions and VPL counts, for
 //! each culling strategy, in one run (so ratios are measured on the same machine state).
 //! Writes `bench.csv` and `bench.md`.
-use crate::args::{culling_name, FrameArgs, PipelineArgs};
+use crate::args::{culling_names, FrameArgs, PipelineArgs};
 use clap::Args;
 use slc_cpu_ref::{prepare, shade_stochastic, Method, Stochastic, Tracer};
 use std::fmt::Write;
@@ -53,13 +53,8 @@ const PASSES: [&str; 7] = [
 ];
 
 pub fn run(args: &BenchArgs) -> Result<(), String> {
-    let scene = args.frame.load()?;
-    scene.validate_for_render().map_err(|e| e.to_string())?;
-    let names = args
-        .culling
-        .iter()
-        .map(|n| culling_name(n))
-        .collect::<Result<Vec<_>, _>>()?;
+    let scene = args.frame.load_renderable()?;
+    let names = culling_names(&args.culling)?;
     let resolutions = args
         .resolutions
         .iter()

@@ -2,7 +2,7 @@
 //!
 //! Writes one folder per strategy (images, heat map, report.json), `reference_vpl/` (every VPL
 //! with p = 1, the same VPLs), `report.md` with the table, and `side_by_side.png`.
-use crate::args::{culling_name, FrameArgs, PipelineArgs};
+use crate::args::{culling_names, FrameArgs, PipelineArgs};
 use crate::heatmap::heat_map;
 use crate::output::write_frame;
 use crate::progress::bar;
@@ -58,13 +58,8 @@ struct Row {
 }
 
 pub fn run(args: &CompareArgs) -> Result<(), String> {
-    let scene = args.frame.load()?;
-    scene.validate_for_render().map_err(|e| e.to_string())?;
-    let names = args
-        .culling
-        .iter()
-        .map(|n| culling_name(n))
-        .collect::<Result<Vec<_>, _>>()?;
+    let scene = args.frame.load_renderable()?;
+    let names = culling_names(&args.culling)?;
     let f = &args.frame;
     let base = args.pipeline.stochastic(args.delta, "none", true);
     let settings = f.settings(Method::Stochastic(base), 1);

@@ -5,7 +5,7 @@
 //! p = 1. Writes `sweep.csv`, `sweep.svg` (RMSE against time, one curve per strategy) and an
 //! equal-time comparison (`equal_time.md`, `equal_time.png`) in the spirit of the supplemental's
 //! Fig. 2: each strategy at the δ whose time is closest to the reference strategy's median run.
-use crate::args::{culling_name, FrameArgs, PipelineArgs};
+use crate::args::{culling_names, FrameArgs, PipelineArgs};
 use crate::output::to_srgb8;
 use crate::plot::{line_plot_svg, Series};
 use crate::progress::bar;
@@ -60,13 +60,8 @@ impl Point {
 }
 
 pub fn run(args: &SweepArgs) -> Result<(), String> {
-    let scene = args.frame.load()?;
-    scene.validate_for_render().map_err(|e| e.to_string())?;
-    let names = args
-        .culling
-        .iter()
-        .map(|n| culling_name(n))
-        .collect::<Result<Vec<_>, _>>()?;
+    let scene = args.frame.load_renderable()?;
+    let names = culling_names(&args.culling)?;
     if names.is_empty() || args.delta.is_empty() || args.repeat == 0 {
         return Err("sweep needs at least one strategy, one δ and one repetition".into());
     }
