@@ -19,6 +19,9 @@
 //! - [`TestSpace`], [`TileFrustum`] and [`Aabb`]: the stretched and rotated space of eq.
 //!   (16)-(17) in which a spheroid is a unit sphere, tested against the boxes of tile frusta
 //!   as in Modified HalfZ tiled culling (section 5).
+//! - [`sg`]: spherical Gaussian algebra for virtual spherical Gaussian lights (Tokuyoshi 2015):
+//!   [`SphericalGaussian`] products and integrals, Toksvig filtering ([`ToksvigSum`]) and
+//!   analytic SG-light shading of this BRDF ([`SgSurface`]).
 //!
 //! Constructors validate their inputs and report out-of-domain values as [`BoundsError`];
 //! nothing panics or produces NaN or infinity.
@@ -60,6 +63,7 @@ pub mod fresnel;
 pub mod frustum;
 pub mod ggx;
 pub mod glossy;
+pub mod sg;
 pub mod sphere;
 pub mod spheroid;
 pub mod stochastic;
@@ -75,6 +79,7 @@ pub use frame::Frame;
 pub use fresnel::Fresnel;
 pub use frustum::TileFrustum;
 pub use glossy::GlossyLobe;
+pub use sg::{SgSurface, SphericalGaussian, ToksvigSum};
 pub use sphere::Sphere;
 pub use spheroid::Spheroid;
 pub use stochastic::{scalar_intensity, StochasticParams};

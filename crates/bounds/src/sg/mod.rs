@@ -1,0 +1,32 @@
+//! Spherical Gaussian (SG) algebra for virtual spherical Gaussian lights (Tokuyoshi 2015,
+//! "Virtual Spherical Gaussian Lights for Real-time Glossy Indirect Illumination", section 2.2,
+//! 3.1 and 3.2; "VSGL" below).
+//!
+//! - [`SphericalGaussian`]: `c G(ω; ξ, λ) = c exp(λ(ω·ξ − 1))` (VSGL section 2.2), its
+//!   integral [`sg_integral`] `A(λ)` and normalization, scaling, the product of two SGs (the form
+//!   of VSGL eq. 5) and their inner product.
+//! - [`ToksvigSum`]: Toksvig filtering of a set of lobes into one (VSGL section 3.1.1) through
+//!   mean vectors, with the paper's length `λ/(λ+1)` ([`toksvig_mean_length`]) and the exact
+//!   one `coth λ − 1/λ` ([`exact_mean_length`]), and their inverses.
+//! - [`clamped_cosine_sg`] and [`SpecularLobeSg`]: SG approximations of the receiving surface's
+//!   diffuse cosine lobe and of its GGX specular lobe for a view direction (warped NDF of Wang et
+//!   al. 2009), combined by [`SgSurface`] into the analytic shading of VSGL eq. (2) with the
+//!   incoming radiance of eq. (5).
+mod cosine;
+mod integral;
+mod lobe;
+mod product;
+#[cfg(test)]
+mod quadrature;
+mod shading;
+mod specular;
+mod toksvig;
+
+pub use cosine::{clamped_cosine_sg, COSINE_LOBE_AMPLITUDE, COSINE_LOBE_SHARPNESS};
+pub use integral::sg_integral;
+pub use lobe::SphericalGaussian;
+pub use shading::SgSurface;
+pub use specular::{ggx_ndf_sg, SpecularLobeSg};
+pub use toksvig::{
+    exact_mean_length, exact_sharpness, toksvig_mean_length, toksvig_sharpness, MeanMap, ToksvigSum,
+};
