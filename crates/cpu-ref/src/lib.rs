@@ -14,7 +14,7 @@
 //!   VPL-to-pixel shadow rays ([`vpl_shading`]);
 //! - a path-traced one-bounce reference ([`path`]).
 //!
-//! [`render`] runs a whole frame. Its images agree with an independent path tracer (Mitsuba 3)
+//! [`render()`] runs a whole frame ([`prepare`] and [`shade_stochastic`] its stages). Its images agree with an independent path tracer (Mitsuba 3)
 //! within noise: see `tests/reference_cornell_a.rs` at the workspace root.
 //!
 //! ```
