@@ -1,0 +1,258 @@
+// Per-VPL bounds in the culling view (paper sections 5-7), the GPU twin of
+// crates/cull/src/vpl_bounds.rs (which builds them with crates/bounds in f64 and stores f32):
+// - diffuse VPLs: the sphere of section 6, radius (4/27)^(1/4) R around q + (1/27)^(1/4) R n,
+//   R = sqrt(Phi k / (pi delta xi)) (eq. 5; the corrected centre of crates/bounds/src/sphere.rs);
+// - glossy VPLs, by View.glossy: the sphere r/alpha around q (section 7), the sphere r_u around
+//   the spheroid centre c (section 7), or the spheroid of eq. (12)-(15) as its test space BS,
+//   BS c (eq. 16-17, section 5.2).
+// Radii and semi-axes grow by View.slack (BOUND_SLACK); each bound records its VPL's
+// interleaved subregion (vpl_subregion of rng.wgsl, prepended). Structs mirror
+// src/gpu_types.rs; Bound is in bound.wgsl (prepended).
+
+struct Vpl {
+    position_xi: vec4<f32>,
+    normal_alpha: vec4<f32>,
+    omega_i_eta: vec4<f32>,
+    flux: vec4<f32>,
+    kd: vec4<f32>,
+    f0: vec4<f32>,
+    info: vec4<u32>,
+}
+
+struct View {
+    rotation: array<vec4<f32>, 3>,
+    eye: vec4<f32>,
+    delta: f32,
+    glossy: u32,
+    count: u32,
+    slack: f32,
+    k: u32,
+    seed: u32,
+    pad0: u32,
+    pad1: u32,
+}
+
+@group(0) @binding(0) var<uniform> view: View;
+@group(0) @binding(1) var<storage, read> vpls: array<Vpl>;
+@group(0) @binding(2) var<storage, read_write> bounds: array<Bound>;
+
+const PI: f32 = 3.14159265358979;
+const LOBE_DIFFUSE: u32 = 0u;
+const FRESNEL_SCHLICK: u32 = 0u;
+const GLOSSY_SPHERE: u32 = 0u;
+const GLOSSY_ENCLOSING_SPHERE: u32 = 1u;
+// (1/27)^(1/4) and (4/27)^(1/4): centre offset and radius of the diffuse sphere (section 6).
+const DIFFUSE_OFFSET: f32 = 0.43869133765083086;
+const DIFFUSE_RADIUS: f32 = 0.6204032394013997;
+// crates/bounds/src/spheroid.rs MIN_CROSS_SQ: below it omega_w of eq. (14) comes from a frame.
+const MIN_CROSS_SQ: f32 = 1e-6;
+const F32_MAX: f32 = 3.40282347e38;
+
+fn view_rotation() -> mat3x3<f32> {
+    return mat3x3<f32>(view.rotation[0].xyz, view.rotation[1].xyz, view.rotation[2].xyz);
+}
+
+// The largest channel: the scalar intensity convention of crates/bounds (stochastic.rs).
+fn scalar(v: vec3<f32>) -> f32 {
+    return max(v.x, max(v.y, v.z));
+}
+
+// G1(v)/|v.n| of GGX in closed form (eq. 8), finite at grazing incidence.
+fn g1_over_cos(alpha: f32, cos_v: f32) -> f32 {
+    let c = abs(cos_v);
+    let a2 = alpha * alpha;
+    return 2.0 / (c + sqrt((1.0 - a2) * c * c + a2));
+}
+
+// cos of the largest angle between omega_i and a half vector (supplemental, after eq. 2).
+fn cos_theta_h_max(cos_i: f32) -> f32 {
+    let c = clamp(cos_i, 0.0, 1.0);
+    let sin_i = sqrt(max(1.0 - c * c, 0.0));
+    return c / sqrt(2.0 * (1.0 + sin_i));
+}
+
+// Schlick, supplemental eq. (1).
+fn schlick(f0: vec3<f32>, cos_h: f32) -> vec3<f32> {
+    let x = 1.0 - clamp(cos_h, 0.0, 1.0);
+    let x2 = x * x;
+    let m = x2 * x2 * x;
+    return f0 + (vec3<f32>(1.0) - f0) * m;
+}
+
+// Unpolarized dielectric Fresnel, supplemental eq. (3)-(5).
+fn dielectric(eta: f32, cos_h: f32) -> f32 {
+    let c = clamp(cos_h, 0.0, 1.0);
+    let g2 = (eta * eta - 1.0) + c * c;
+    if g2 <= 0.0 {
+        return 1.0;
+    }
+    let g = sqrt(g2);
+    let e2c = eta * eta * c;
+    let perp = (c - g) / (c + g);
+    let par = (g - e2c) / (g + e2c);
+    return 0.5 * (perp * perp + par * par);
+}
+
+// F_max(omega_i): supplemental eq. (2) (Schlick) and eq. (6) (dielectric).
+fn fresnel_max(vpl: Vpl, cos_i: f32) -> vec3<f32> {
+    let c = cos_theta_h_max(cos_i);
+    if vpl.info.y == FRESNEL_SCHLICK {
+        return schlick(vpl.f0.xyz, c);
+    }
+    let eta = vpl.omega_i_eta.w;
+    return vec3<f32>(max(dielectric(eta, 1.0), dielectric(eta, c)));
+}
+
+fn finite(x: f32) -> bool {
+    return abs(x) <= F32_MAX;
+}
+
+fn finite3(v: vec3<f32>) -> bool {
+    return finite(v.x) && finite(v.y) && finite(v.z);
+}
+
+fn empty_bound(index: u32) -> Bound {
+    return Bound(array<vec4<f32>, 3>(vec4<f32>(0.0), vec4<f32>(0.0), vec4<f32>(0.0)),
+                 vec4<f32>(2.0, 0.0, 0.0, 0.0), BOUND_EMPTY, index, 0u, 0u);
+}
+
+fn overflow_bound(index: u32) -> Bound {
+    var b = empty_bound(index);
+    b.kind = BOUND_OVERFLOW;
+    return b;
+}
+
+// A sphere built around the origin (centre `center`, radius `radius`), moved to the
+// camera-relative VPL position q and rotated into the view: R (q + centre).
+fn sphere_bound(q: vec3<f32>, center: vec3<f32>, radius: f32, index: u32) -> Bound {
+    if !(radius > 0.0) {
+        return empty_bound(index);
+    }
+    let grown = radius * (1.0 + view.slack);
+    let c = view_rotation() * (q + center);
+    let r2 = grown * grown;
+    if !(finite3(c) && finite(r2)) {
+        return overflow_bound(index);
+    }
+    return Bound(array<vec4<f32>, 3>(vec4<f32>(0.0), vec4<f32>(0.0), vec4<f32>(0.0)),
+                 vec4<f32>(c, r2), BOUND_SPHERE, index, 0u, 0u);
+}
+
+// The x axis of the frame of Duff et al. 2017 around the unit vector z (crates/bounds frame.rs).
+fn frame_x(z: vec3<f32>) -> vec3<f32> {
+    let s = select(-1.0, 1.0, z.z >= 0.0);
+    let a = -1.0 / (s + z.z);
+    let b = z.x * z.y * a;
+    return vec3<f32>(1.0 + s * z.x * z.x * a, s * b, -s * z.x);
+}
+
+// R = [omega_u, omega_w x omega_u, omega_w] of eq. (14).
+fn spheroid_rotation(omega_u: vec3<f32>, n: vec3<f32>) -> mat3x3<f32> {
+    let cr = cross(omega_u, n);
+    let len_sq = dot(cr, cr);
+    var omega_w: vec3<f32>;
+    if len_sq > MIN_CROSS_SQ {
+        omega_w = cr / sqrt(len_sq);
+    } else {
+        omega_w = frame_x(omega_u);
+    }
+    let omega_v = normalize(cross(omega_w, omega_u));
+    return mat3x3<f32>(omega_u, omega_v, cross(omega_u, omega_v));
+}
+
+// The rotation B of eq. (17) for the stretch S (crates/bounds test_space.rs test_rotation).
+fn test_rotation(s: mat3x3<f32>) -> mat3x3<f32> {
+    let m = max(max(abs(s[0]), abs(s[1])), abs(s[2]));
+    let scale = max(m.x, max(m.y, m.z));
+    let bx = s[0] / scale;
+    let by = s[1] / scale;
+    let len_x = length(bx);
+    let len_y = length(by);
+    let ux = bx / len_x;
+    let uy = by / len_y;
+    let z = normalize(cross(ux, uy));
+    var x: vec3<f32>;
+    var y: vec3<f32>;
+    if len_x > len_y {
+        x = ux;
+        y = cross(z, ux);
+    } else {
+        x = cross(uy, z);
+        y = uy;
+    }
+    return transpose(mat3x3<f32>(x, y, z));
+}
+
+fn diffuse_bound(vpl: Vpl, q: vec3<f32>, index: u32) -> Bound {
+    // One-sided BRDF: nothing reflected for omega_i below the surface.
+    if dot(vpl.normal_alpha.xyz, vpl.omega_i_eta.xyz) <= 0.0 {
+        return empty_bound(index);
+    }
+    let n = normalize(vpl.normal_alpha.xyz);
+    let reflected = scalar(vpl.flux.xyz * vpl.kd.xyz);
+    // sqrt(a / (pi delta xi)) as a quotient of roots: no f32 overflow or underflow in between.
+    let range = sqrt(reflected / PI) / (sqrt(view.delta) * sqrt(vpl.position_xi.w));
+    return sphere_bound(q, (range * DIFFUSE_OFFSET) * n, range * DIFFUSE_RADIUS, index);
+}
+
+fn glossy_bound(vpl: Vpl, q: vec3<f32>, index: u32) -> Bound {
+    let n = normalize(vpl.normal_alpha.xyz);
+    let wi = normalize(vpl.omega_i_eta.xyz);
+    let alpha = vpl.normal_alpha.w;
+    let cos_i = dot(n, wi);
+    let peak = scalar(vpl.flux.xyz * fresnel_max(vpl, cos_i));
+    if cos_i <= 0.0 || peak <= 0.0 {
+        return empty_bound(index);
+    }
+    // r of eq. (12).
+    let r = sqrt(peak * g1_over_cos(alpha, cos_i) / (4.0 * PI))
+        / (sqrt(view.delta) * sqrt(vpl.position_xi.w));
+    if view.glossy == GLOSSY_SPHERE {
+        return sphere_bound(q, vec3<f32>(0.0), r / alpha, index);
+    }
+    // The spheroid of eq. (13)-(15).
+    let omega_u = normalize(2.0 * cos_i * n - wi);
+    let r_u = (1.0 + alpha * alpha) / (2.0 * alpha) * r;
+    let offset = (1.0 - alpha * alpha) / (2.0 * alpha) * r;
+    let c = offset * omega_u;
+    if view.glossy == GLOSSY_ENCLOSING_SPHERE {
+        return sphere_bound(q, c, r_u, index);
+    }
+    // Eq. (16)-(17): S = R diag(1/r_u, 1/r_v, 1/r_w) R^T with R in view space, B, BS and BS c.
+    let rot = view_rotation() * spheroid_rotation(omega_u, n);
+    let semi = vec3<f32>(r_u, r, r) * (1.0 + view.slack);
+    let inv = vec3<f32>(1.0) / semi;
+    let s = rot * mat3x3<f32>(vec3<f32>(inv.x, 0.0, 0.0), vec3<f32>(0.0, inv.y, 0.0),
+                              vec3<f32>(0.0, 0.0, inv.z)) * transpose(rot);
+    let bs = test_rotation(s) * s;
+    let center = bs * (view_rotation() * (q + c));
+    if !(finite3(bs[0]) && finite3(bs[1]) && finite3(bs[2]) && finite3(center)) {
+        return overflow_bound(index);
+    }
+    return Bound(array<vec4<f32>, 3>(vec4<f32>(bs[0], 0.0), vec4<f32>(bs[1], 0.0),
+                                     vec4<f32>(bs[2], 0.0)),
+                 vec4<f32>(center, 1.0), BOUND_ELLIPSOID, index, 0u, 0u);
+}
+
+@compute @workgroup_size(64)
+fn main(
+    @builtin(workgroup_id) wid: vec3<u32>,
+    @builtin(num_workgroups) groups: vec3<u32>,
+    @builtin(local_invocation_index) lid: u32,
+) {
+    let i = (wid.y * groups.x + wid.x) * 64u + lid;
+    if i >= view.count {
+        return;
+    }
+    let vpl = vpls[i];
+    // Camera-relative position first, then the rotation (crates/cull/src/view.rs).
+    let q = vpl.position_xi.xyz - view.eye.xyz;
+    var b: Bound;
+    if vpl.info.x == LOBE_DIFFUSE {
+        b = diffuse_bound(vpl, q, i);
+    } else {
+        b = glossy_bound(vpl, q, i);
+    }
+    b.subregion = vpl_subregion(view.seed, vpl.info.z, view.k);
+    bounds[i] = b;
+}

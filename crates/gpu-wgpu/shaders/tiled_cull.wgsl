@@ -1,0 +1,174 @@
+// Tiled light culling with Modified HalfZ (paper sections 5.1-5.2, supplemental Listing 2),
+// the GPU twin of crates/cull/src/tiled.rs + frusta.rs: one 256-thread workgroup per tile
+// (tiles.wgsl and bound.wgsl prepended). Every bound of the tile's subregion (in the order
+// partition.wgsl made: ascending VPL index, empty bounds left out) is tested
+// against the whole tile's frustum box, then against each cluster's: spheres against the
+// view-space box of the frustum, ellipsoids as the unit ball at BS c against the box of the
+// frustum's image under BS. Hits are compacted in VPL order by a workgroup prefix sum into
+// light lists in workgroup memory, which are flushed to the output when nearly full and at
+// the end, so every list is ascending in the VPL index, like the CPU's.
+// params.mode 0 (count): offsets[2 t + c] = entries of cluster c; mode 1 (write): the lists
+// at the exclusive offsets scan.wgsl made of those counts.
+
+@group(0) @binding(0) var<uniform> params: CullParams;
+@group(0) @binding(1) var<storage, read> frusta: array<TileFrusta>;
+@group(0) @binding(2) var<storage, read> bounds: array<Bound>;
+@group(0) @binding(3) var<storage, read_write> offsets: array<u32>;
+@group(0) @binding(4) var<storage, read_write> lists: array<u32>;
+// The subregions' VPLs (partition.wgsl): subregion s holds order[sub_offsets[s] ..
+// sub_offsets[s + 1]], ascending, empty bounds left out.
+@group(0) @binding(5) var<storage, read> sub_offsets: array<u32>;
+@group(0) @binding(6) var<storage, read> order: array<u32>;
+
+const MODE_WRITE: u32 = 1u;
+const GROUP: u32 = 256u;
+// Entries per cluster list held in workgroup memory (2 x 4 KiB).
+const CAPACITY: u32 = 1024u;
+
+var<workgroup> scan: array<vec2<u32>, 256>;
+var<workgroup> staged: array<array<u32, 1024>, 2>;
+// Entries staged and already flushed, per cluster.
+var<workgroup> staged_count: vec2<u32>;
+var<workgroup> flushed_count: vec2<u32>;
+var<workgroup> tile_mask: u32;
+var<workgroup> sub_range: vec2<u32>;
+
+// The box {z w : w in [lo, hi], z in [z0, z1]} against the ball |p - c|^2 <= r2
+// (frusta.rs Box3::swept + meets_ball; Listing 2's CalculateFrustumAABB and
+// ComputeSquaredDistanceToBox).
+fn meets(lo: vec3<f32>, hi: vec3<f32>, range: vec2<f32>, c: vec3<f32>, r2: f32) -> bool {
+    let box_min = min(lo * range.x, lo * range.y);
+    let box_max = max(hi * range.x, hi * range.y);
+    let gap = max(max(box_min - c, c - box_max), vec3<f32>(0.0));
+    return dot(gap, gap) <= r2;
+}
+
+// Which clusters (x near, y far) the bound may touch: whole tile first, then each cluster.
+fn hits(b: Bound, f: TileFrusta, mask: u32) -> vec2<u32> {
+    var lo: vec3<f32>;
+    var hi: vec3<f32>;
+    var r2: f32;
+    if b.kind == BOUND_SPHERE {
+        lo = vec3<f32>(f.rect.xy, 1.0);
+        hi = vec3<f32>(f.rect.zw, 1.0);
+        r2 = b.center.w;
+    } else if b.kind == BOUND_ELLIPSOID {
+        // The rectangle's corners mapped by BS, bounded (frusta.rs ellipsoid_hits).
+        let u0 = b.bs[0].xyz * f.rect.x;
+        let u1 = b.bs[0].xyz * f.rect.z;
+        let v0 = b.bs[1].xyz * f.rect.y;
+        let v1 = b.bs[1].xyz * f.rect.w;
+        lo = b.bs[2].xyz + min(u0, u1) + min(v0, v1);
+        hi = b.bs[2].xyz + max(u0, u1) + max(v0, v1);
+        r2 = 1.0;
+    } else {
+        return vec2<u32>(0u);
+    }
+    let c = b.center.xyz;
+    let has_near = (mask & 1u) != 0u;
+    let has_far = (mask & 2u) != 0u;
+    let whole = vec2<f32>(select(f.ranges.z, f.ranges.x, has_near),
+                          select(f.ranges.y, f.ranges.w, has_far));
+    if !meets(lo, hi, whole, c, r2) {
+        return vec2<u32>(0u);
+    }
+    if mask != 3u {
+        return vec2<u32>(mask & 1u, mask >> 1u);
+    }
+    return vec2<u32>(select(0u, 1u, meets(lo, hi, f.ranges.xy, c, r2)),
+                     select(0u, 1u, meets(lo, hi, f.ranges.zw, c, r2)));
+}
+
+// Copies the staged lists to the output after what was flushed before.
+fn flush(t: u32, lid: u32) {
+    let n = staged_count;
+    let done = flushed_count;
+    for (var j = lid; j < n.x; j += GROUP) {
+        lists[offsets[2u * t] + done.x + j] = staged[0][j];
+    }
+    for (var j = lid; j < n.y; j += GROUP) {
+        lists[offsets[2u * t + 1u] + done.y + j] = staged[1][j];
+    }
+    workgroupBarrier();
+    if lid == 0u {
+        flushed_count = done + n;
+        staged_count = vec2<u32>(0u);
+    }
+    workgroupBarrier();
+}
+
+@compute @workgroup_size(256)
+fn main(
+    @builtin(workgroup_id) wid: vec3<u32>,
+    @builtin(num_workgroups) groups: vec3<u32>,
+    @builtin(local_invocation_index) lid: u32,
+) {
+    let t = wid.y * groups.x + wid.x;
+    if t >= params.tile_count {
+        return;
+    }
+    let write = params.mode == MODE_WRITE;
+    if lid == 0u {
+        staged_count = vec2<u32>(0u);
+        flushed_count = vec2<u32>(0u);
+        tile_mask = frusta[t].info.x;
+        let s = t / (params.tiles_x * params.tiles_y);
+        sub_range = vec2<u32>(sub_offsets[s], sub_offsets[s + 1u]);
+    }
+    let mask = workgroupUniformLoad(&tile_mask);
+    let range = workgroupUniformLoad(&sub_range);
+    if mask == 0u {
+        if !write && lid == 0u {
+            offsets[2u * t] = 0u;
+            offsets[2u * t + 1u] = 0u;
+        }
+        return;
+    }
+    let f = frusta[t];
+    for (var base = range.x; base < range.y; base += GROUP) {
+        let j = base + lid;
+        var i = 0u;
+        var hit = vec2<u32>(0u);
+        if j < range.y {
+            i = order[j];
+            hit = hits(bounds[i], f, mask);
+        }
+        // Inclusive prefix sum of the hits (Hillis-Steele).
+        scan[lid] = hit;
+        for (var d = 1u; d < GROUP; d <<= 1u) {
+            workgroupBarrier();
+            var v = scan[lid];
+            if lid >= d {
+                v += scan[lid - d];
+            }
+            workgroupBarrier();
+            scan[lid] = v;
+        }
+        workgroupBarrier();
+        let total = scan[GROUP - 1u];
+        let before = scan[lid] - hit;
+        if write {
+            let at = staged_count + before;
+            if hit.x != 0u {
+                staged[0][at.x] = i;
+            }
+            if hit.y != 0u {
+                staged[1][at.y] = i;
+            }
+        }
+        workgroupBarrier();
+        if lid == 0u {
+            staged_count += total;
+        }
+        let n = workgroupUniformLoad(&staged_count);
+        if write && max(n.x, n.y) + GROUP > CAPACITY {
+            flush(t, lid);
+        }
+    }
+    if write {
+        flush(t, lid);
+    } else if lid == 0u {
+        offsets[2u * t] = staged_count.x;
+        offsets[2u * t + 1u] = staged_count.y;
+    }
+}

@@ -1,0 +1,131 @@
+//! Per-VPL bounds in compute (`shaders/bounds.wgsl`): for each VPL the bound the culling
+//! strategies test, in the culling view of `slc_cull::view`, as `slc_cull`'s
+//! `vpl_bounds.rs` computes it on the CPU: the sphere of section 6 for diffuse VPLs, and for
+//! glossy VPLs the sphere r/α around q, the sphere r_u around c (section 7), or the GGX
+//! spheroid of eq. (12)-(15) as its test space BS, BS·c (eq. 16-17), all grown by
+//! `BOUND_SLACK`. The CPU validates the VPLs (as `slc_cull` does) before upload; the GPU
+//! computes in f32 (the CPU in f64 where `slc_bounds` does), which the conformance test
+//! bounds at relative 1e-5.
+use crate::buffers::{output, read_back, uniform, upload, Grid};
+use crate::context::{GpuContext, GpuError};
+use crate::gpu_types::{GpuBound, GpuView, GpuVpl, BOUND_OVERFLOW};
+use slc_core::{Camera, Interleaving, Vpl};
+use slc_cull::GlossyBound;
+
+/// `shaders/rng.wgsl` (for the subregions) and `shaders/bound.wgsl` (the record) followed by
+/// the bounds kernel.
+pub(crate) const SOURCE: &str = concat!(
+    include_str!("../shaders/rng.wgsl"),
+    include_str!("../shaders/bound.wgsl"),
+    include_str!("../shaders/bounds.wgsl")
+);
+const WORKGROUP: u32 = 64;
+
+/// What the bounds depend on besides the VPLs: the camera and image size of the culling
+/// view, δ of eq. (2) and the glossy bound.
+#[derive(Clone, Copy, Debug)]
+pub struct BoundsSettings<'a> {
+    pub camera: &'a Camera,
+    pub width: u32,
+    pub height: u32,
+    pub delta: f32,
+    pub glossy: GlossyBound,
+    /// The interleaved sampling of section 6: each bound records its VPL's subregion.
+    pub interleaving: Interleaving,
+}
+
+/// The bounds of a set of VPLs on the GPU, one [`GpuBound`] per VPL in input order.
+pub struct GpuBounds {
+    pub buffer: wgpu::Buffer,
+    pub count: usize,
+}
+
+/// The compiled bounds pipeline.
+pub struct BoundsPass {
+    pipeline: wgpu::ComputePipeline,
+}
+
+impl BoundsPass {
+    pub fn new(ctx: &GpuContext) -> Result<Self, GpuError> {
+        ctx.scoped("bounds pipeline", || {
+            Ok(Self {
+                pipeline: ctx.compute_pipeline("bounds", SOURCE),
+            })
+        })
+    }
+
+    /// Validates and uploads `vpls`, then computes their bounds (left on the GPU).
+    pub fn run(
+        &self,
+        ctx: &GpuContext,
+        vpls: &[Vpl],
+        settings: &BoundsSettings,
+    ) -> Result<GpuBounds, GpuError> {
+        let count = u32::try_from(vpls.len())
+            .map_err(|_| GpuError::Input(format!("{} VPLs exceed u32 indices", vpls.len())))?;
+        let packed = vpls
+            .iter()
+            .enumerate()
+            .map(|(i, v)| GpuVpl::new(v, i, settings.delta))
+            .collect::<Result<Vec<_>, _>>()?;
+        let view = GpuView::new(
+            settings.camera,
+            settings.width,
+            settings.height,
+            settings.delta,
+            settings.glossy,
+            settings.interleaving,
+            count,
+        )?;
+        let vpl_buffer = upload(ctx, "vpls", &packed)?;
+        let bounds = output::<GpuBound>(ctx, "bounds", vpls.len())?;
+        let grid = Grid::for_items(ctx, u64::from(count), WORKGROUP)?;
+        ctx.scoped("bounds", || {
+            let view_buffer = uniform(ctx, "bounds view", &view);
+            let bind = ctx.bind_group(
+                "bounds",
+                &self.pipeline,
+                &[&view_buffer, &vpl_buffer, &bounds],
+            );
+            let mut encoder = ctx
+                .device
+                .create_command_encoder(&wgpu::CommandEncoderDescriptor {
+                    label: Some("bounds"),
+                });
+            {
+                let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+                    label: Some("bounds"),
+                    timestamp_writes: None,
+                });
+                pass.set_pipeline(&self.pipeline);
+                pass.set_bind_group(0, &bind, &[]);
+                grid.dispatch(&mut pass);
+            }
+            ctx.queue.submit([encoder.finish()]);
+            Ok(())
+        })?;
+        Ok(GpuBounds {
+            buffer: bounds,
+            count: vpls.len(),
+        })
+    }
+
+    /// [`Self::run`] and read the bounds back; a bound that does not fit in f32 is an
+    /// error, as on the CPU (`BoundsError::Overflow`).
+    pub fn compute(
+        &self,
+        ctx: &GpuContext,
+        vpls: &[Vpl],
+        settings: &BoundsSettings,
+    ) -> Result<Vec<GpuBound>, GpuError> {
+        let gpu = self.run(ctx, vpls, settings)?;
+        let bounds: Vec<GpuBound> = read_back(ctx, "bounds", &gpu.buffer, gpu.count)?;
+        if let Some(b) = bounds.iter().find(|b| b.kind == BOUND_OVERFLOW) {
+            return Err(GpuError::Input(format!(
+                "the bound of VPL {} does not fit in f32 (extreme flux, delta or xi)",
+                b.index
+            )));
+        }
+        Ok(bounds)
+    }
+}

@@ -1,0 +1,225 @@
+//! The headless wgpu device every pass runs on, and the errors of the GPU backend.
+//!
+//! Faults are errors, never panics or hangs:
+//! - no adapter: [`GpuError::NoAdapter`], which suggests `--backend cpu`;
+//! - device loss: wgpu's device-lost callback records the reason, and every wait
+//!   ([`GpuContext::wait`]) is bounded by [`WAIT_TIMEOUT`] and checks the record, so a lost
+//!   device gives [`GpuError::DeviceLost`] instead of a hang;
+//! - validation and out-of-memory errors of a pass are caught in error scopes
+//!   ([`GpuContext::scoped`]) and returned as [`GpuError::Wgpu`];
+//! - buffers beyond `max_storage_buffer_binding_size` (128 MiB on lavapipe) are refused
+//!   before allocation ([`GpuError::BufferTooLarge`], see `buffers.rs`);
+//! - more workgroups than one dispatch dimension allows are split into 2-D grids
+//!   (`buffers::Grid`), and beyond 65535² workgroups refused ([`GpuError::TooManyWorkgroups`]).
+use std::sync::{Arc, Mutex};
+use std::time::Duration;
+
+/// The longest a wait for GPU work may take before it is reported as
+/// [`GpuError::Timeout`]: a lost or wedged device must not hang the caller.
+pub const WAIT_TIMEOUT: Duration = Duration::from_secs(120);
+
+/// Everything that can go wrong in the GPU backend.
+#[derive(Debug, thiserror::Error)]
+pub enum GpuError {
+    #[error(
+        "no GPU adapter found ({0}); install a Vulkan driver (on Debian: apt-get install \
+         mesa-vulkan-drivers libvulkan1 for the software rasterizer lavapipe) or render with \
+         --backend cpu"
+    )]
+    NoAdapter(String),
+    #[error("the GPU adapter {adapter} refused the device: {reason}")]
+    RequestDevice { adapter: String, reason: String },
+    #[error("the GPU device was lost ({0}); results are unavailable, try --backend cpu")]
+    DeviceLost(String),
+    #[error("GPU work did not finish within {0:?} (device hung or lost)")]
+    Timeout(Duration),
+    #[error(
+        "buffer {label:?} needs {size} bytes, more than the {limit} bytes one storage binding \
+         allows on this adapter; split the input into smaller batches"
+    )]
+    BufferTooLarge {
+        label: String,
+        size: u64,
+        limit: u64,
+    },
+    #[error(
+        "{groups} workgroups exceed the {max} x {max} grid one dispatch allows; split the input"
+    )]
+    TooManyWorkgroups { groups: u64, max: u32 },
+    #[error("wgpu error in {pass}: {message}")]
+    Wgpu { pass: &'static str, message: String },
+    #[error("reading back {label:?} failed: {message}")]
+    Readback { label: String, message: String },
+    #[error("invalid input to the GPU backend: {0}")]
+    Input(String),
+}
+
+/// A headless device and its queue, with what the passes need to know about the adapter.
+pub struct GpuContext {
+    pub device: wgpu::Device,
+    pub queue: wgpu::Queue,
+    /// The adapter's name and backend, e.g. "llvmpipe (LLVM 15.0.6, 256 bits) (Vulkan)".
+    pub adapter_name: String,
+    /// Whether the device was created with timestamp queries (for per-pass timings).
+    pub timestamps: bool,
+    /// The device's limits (storage binding size, workgroups per dimension, ...).
+    pub limits: wgpu::Limits,
+    lost: Arc<Mutex<Option<String>>>,
+}
+
+impl GpuContext {
+    /// Opens the first adapter wgpu finds (any backend; `WGPU_BACKEND` and `WGPU_ADAPTER_NAME`
+    /// choose one), with the adapter's own limits and, where available, timestamp queries.
+    pub fn new() -> Result<Self, GpuError> {
+        pollster::block_on(Self::new_async())
+    }
+
+    async fn new_async() -> Result<Self, GpuError> {
+        let instance =
+            wgpu::Instance::new(wgpu::InstanceDescriptor::new_without_display_handle_from_env());
+        let adapter = instance
+            .request_adapter(&wgpu::RequestAdapterOptions {
+                power_preference: wgpu::PowerPreference::HighPerformance,
+                ..Default::default()
+            })
+            .await
+            .map_err(|e| GpuError::NoAdapter(e.to_string()))?;
+        let info = adapter.get_info();
+        let adapter_name = format!("{} ({:?})", info.name, info.backend);
+        let timestamps = adapter.features().contains(wgpu::Features::TIMESTAMP_QUERY);
+        let required_features = if timestamps {
+            wgpu::Features::TIMESTAMP_QUERY
+        } else {
+            wgpu::Features::empty()
+        };
+        let limits = adapter.limits();
+        let (device, queue) = adapter
+            .request_device(&wgpu::DeviceDescriptor {
+                label: Some("slc"),
+                required_features,
+                required_limits: limits.clone(),
+                ..Default::default()
+            })
+            .await
+            .map_err(|e| GpuError::RequestDevice {
+                adapter: adapter_name.clone(),
+                reason: e.to_string(),
+            })?;
+        let lost = Arc::new(Mutex::new(None));
+        let record = Arc::clone(&lost);
+        device.set_device_lost_callback(move |reason, message| {
+            if let Ok(mut slot) = record.lock() {
+                *slot = Some(format!("{reason:?}: {message}"));
+            }
+        });
+        Ok(Self {
+            device,
+            queue,
+            adapter_name,
+            timestamps,
+            limits,
+            lost,
+        })
+    }
+
+    /// [`GpuError::DeviceLost`] if the device-lost callback has fired.
+    pub fn check_lost(&self) -> Result<(), GpuError> {
+        match self.lost.lock().ok().and_then(|slot| slot.clone()) {
+            Some(reason) => Err(GpuError::DeviceLost(reason)),
+            None => Ok(()),
+        }
+    }
+
+    /// Waits for all submitted work, at most [`WAIT_TIMEOUT`]; a lost device or a timeout
+    /// is an error.
+    pub fn wait(&self) -> Result<(), GpuError> {
+        self.check_lost()?;
+        let polled = self.device.poll(wgpu::PollType::Wait {
+            submission_index: None,
+            timeout: Some(WAIT_TIMEOUT),
+        });
+        self.check_lost()?;
+        match polled {
+            Ok(_) => Ok(()),
+            Err(wgpu::PollError::Timeout) => Err(GpuError::Timeout(WAIT_TIMEOUT)),
+            Err(e) => Err(GpuError::Wgpu {
+                pass: "poll",
+                message: e.to_string(),
+            }),
+        }
+    }
+
+    /// Runs `f` (pipeline creation, encoding, submission) inside validation and
+    /// out-of-memory error scopes: a wgpu error raised there becomes [`GpuError::Wgpu`]
+    /// naming `pass` instead of a panic in wgpu's default handler.
+    pub fn scoped<T>(
+        &self,
+        pass: &'static str,
+        f: impl FnOnce() -> Result<T, GpuError>,
+    ) -> Result<T, GpuError> {
+        self.check_lost()?;
+        let memory = self.device.push_error_scope(wgpu::ErrorFilter::OutOfMemory);
+        let validation = self.device.push_error_scope(wgpu::ErrorFilter::Validation);
+        let out = f();
+        let errors = [
+            pollster::block_on(validation.pop()),
+            pollster::block_on(memory.pop()),
+        ];
+        if let Some(e) = errors.into_iter().flatten().next() {
+            // A lost device makes every later call invalid: report the loss, not the symptom.
+            // Polling (non-blocking) delivers a pending device-lost callback.
+            let _ = self.device.poll(wgpu::PollType::Poll);
+            self.check_lost()?;
+            return Err(GpuError::Wgpu {
+                pass,
+                message: e.to_string(),
+            });
+        }
+        self.check_lost()?;
+        out
+    }
+}
+
+impl GpuContext {
+    /// A compute pipeline from WGSL `source` with entry point `main` and the layout naga
+    /// derives from the shader (everything in bind group 0).
+    pub fn compute_pipeline(&self, label: &'static str, source: &str) -> wgpu::ComputePipeline {
+        let module = self
+            .device
+            .create_shader_module(wgpu::ShaderModuleDescriptor {
+                label: Some(label),
+                source: wgpu::ShaderSource::Wgsl(source.into()),
+            });
+        self.device
+            .create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+                label: Some(label),
+                layout: None,
+                module: &module,
+                entry_point: Some("main"),
+                compilation_options: Default::default(),
+                cache: None,
+            })
+    }
+
+    /// A bind group for group 0 of `pipeline` with `buffers` at bindings 0, 1, ...
+    pub fn bind_group(
+        &self,
+        label: &'static str,
+        pipeline: &wgpu::ComputePipeline,
+        buffers: &[&wgpu::Buffer],
+    ) -> wgpu::BindGroup {
+        let entries: Vec<_> = buffers
+            .iter()
+            .enumerate()
+            .map(|(i, b)| wgpu::BindGroupEntry {
+                binding: i as u32,
+                resource: b.as_entire_binding(),
+            })
+            .collect();
+        self.device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some(label),
+            layout: &pipeline.get_bind_group_layout(0),
+            entries: &entries,
+        })
+    }
+}

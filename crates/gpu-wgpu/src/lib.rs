@@ -1,0 +1,33 @@
+//! # slc-gpu-wgpu
+//!
+//! The GPU backend of slc on wgpu/WGSL (Tokuyoshi and Harada, "Stochastic Light Culling for
+//! VPLs on GGX Microsurfaces"; equation and section numbers refer to that paper). WGSL lives
+//! in `shaders/` (loaded with `include_str!`), one Rust file per pass; GPU structs in
+//! [`gpu_types`] mirror their WGSL twins with compile-time size checks.
+//!
+//! Passes so far:
+//! - [`rng_pass`]: the counter-based RNG of `slc_core::rng` in WGSL (`shaders/rng.wgsl`),
+//!   bit for bit the same numbers (ξ of eq. 3, interleaved subregions);
+//! - [`bounds_pass`]: per-VPL bounds (section 6 sphere, section 7 spheres, the spheroid's
+//!   test space of eq. 16-17) in the culling view, as `slc_cull` computes them;
+//! - [`partition_pass`]: the VPLs of each interleaved subregion (section 6), a stable
+//!   counting sort on the GPU;
+//! - [`tile_depth_pass`]: Modified HalfZ tile frusta (section 5.1) from G-buffer positions;
+//! - [`tiled_cull_pass`]: tiled culling of interleaved subregions (sections 5-6, Listing 2)
+//!   with workgroup-shared light lists, sized by [`scan_pass`]; the sphere,
+//!   enclosing-sphere and ellipsoid strategies, read back as `slc_core::LightLists`.
+//!
+//! Faults are errors ([`GpuError`]): no adapter (suggests `--backend cpu`), device loss
+//! (no hang: bounded waits), buffers beyond the storage-binding limit (refused), dispatches
+//! beyond 65535 workgroups per dimension (split into 2-D grids, [`buffers::Grid`]).
+pub mod bounds_pass;
+pub mod buffers;
+pub mod context;
+pub mod gpu_types;
+pub mod partition_pass;
+pub mod rng_pass;
+pub mod scan_pass;
+pub mod tile_depth_pass;
+pub mod tiled_cull_pass;
+
+pub use context::{GpuContext, GpuError};

@@ -1,0 +1,86 @@
+//! The VPLs of each interleaved subregion on the GPU (`shaders/partition.wgsl`, paper
+//! section 6): a stable counting sort of the non-empty bounds by subregion, so each tile
+//! reads only its subregion's bounds, in ascending VPL order. Count, scan (`scan_pass`),
+//! write.
+use crate::buffers::{output, uniform, Grid};
+use crate::context::{GpuContext, GpuError};
+use crate::gpu_types::{GpuPartitionParams, CULL_COUNT, CULL_WRITE};
+use crate::scan_pass::ScanPass;
+
+/// `shaders/bound.wgsl` followed by the partition kernel.
+pub(crate) const SOURCE: &str = concat!(
+    include_str!("../shaders/bound.wgsl"),
+    include_str!("../shaders/partition.wgsl")
+);
+
+/// A partition on the GPU: subregion s holds the VPL indices
+/// `order[sub_offsets[s]..sub_offsets[s + 1]]`, ascending; empty bounds are left out.
+pub struct GpuPartition {
+    pub sub_offsets: wgpu::Buffer,
+    pub order: wgpu::Buffer,
+}
+
+/// The compiled partition pipeline.
+pub struct PartitionPass {
+    pipeline: wgpu::ComputePipeline,
+}
+
+impl PartitionPass {
+    pub fn new(ctx: &GpuContext) -> Self {
+        Self {
+            pipeline: ctx.compute_pipeline("partition", SOURCE),
+        }
+    }
+
+    /// Records count, scan and write for `vpl_count` bounds in `subregions` subregions.
+    /// Overflowed bounds are recorded in `status` (`GpuCullStatus::overflow_vpl`); the scan
+    /// also stores its total there, which a later scan overwrites.
+    #[allow(clippy::too_many_arguments)]
+    pub fn encode(
+        &self,
+        ctx: &GpuContext,
+        encoder: &mut wgpu::CommandEncoder,
+        scan: &ScanPass,
+        bounds: &wgpu::Buffer,
+        vpl_count: u32,
+        subregions: u32,
+        status: &wgpu::Buffer,
+    ) -> Result<GpuPartition, GpuError> {
+        let grid = Grid::new(
+            u64::from(subregions),
+            ctx.limits.max_compute_workgroups_per_dimension,
+        )?;
+        let sub_offsets = output::<u32>(ctx, "subregion offsets", subregions as usize + 1)?;
+        let order = output::<u32>(ctx, "subregion order", vpl_count as usize)?;
+        for mode in [CULL_COUNT, CULL_WRITE] {
+            let params = uniform(
+                ctx,
+                "partition params",
+                &GpuPartitionParams {
+                    vpl_count,
+                    subregions,
+                    mode,
+                    pad: 0,
+                },
+            );
+            let bind = ctx.bind_group(
+                "partition",
+                &self.pipeline,
+                &[&params, bounds, &sub_offsets, &order, status],
+            );
+            {
+                let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+                    label: Some("partition"),
+                    timestamp_writes: None,
+                });
+                pass.set_pipeline(&self.pipeline);
+                pass.set_bind_group(0, &bind, &[]);
+                grid.dispatch(&mut pass);
+            }
+            if mode == CULL_COUNT {
+                scan.encode(ctx, encoder, &sub_offsets, subregions, status);
+            }
+        }
+        Ok(GpuPartition { sub_offsets, order })
+    }
+}

@@ -1,0 +1,295 @@
+//! Tiled light culling on the GPU (paper sections 5-6, supplemental Listing 2): per-VPL
+//! bounds (`bounds_pass`), the subregions' VPLs (`partition_pass`), Modified HalfZ tile
+//! frusta (`tile_depth_pass`), then
+//! `shaders/tiled_cull.wgsl` twice, counting and then writing each tile cluster's list, with
+//! the offsets from `scan_pass` in between. Tiles are 16 x 16 pixels of each interleaved
+//! subregion image (section 6, Fig. 8) and test only their subregion's VPLs. The result,
+//! read back, is a [`LightLists`] in the CPU's convention: empty lists are dropped, every
+//! list ascends in the VPL index, and each pixel with a sample points to its cluster's list.
+//!
+//! One count read back between the two culling dispatches sizes the list buffer exactly; a
+//! total beyond the storage-binding limit is refused ([`GpuError::BufferTooLarge`]).
+use crate::bounds_pass::{BoundsPass, BoundsSettings};
+use crate::buffers::{output, read_back, uniform, upload, Grid};
+use crate::context::{GpuContext, GpuError};
+use crate::gpu_types::{
+    GpuCullParams, GpuCullStatus, GpuTileFrusta, CULL_COUNT, CULL_WRITE, FRUSTUM_SLACK, MAX_K,
+};
+use crate::partition_pass::PartitionPass;
+use crate::scan_pass::ScanPass;
+use crate::tile_depth_pass::{TileDepthBuffers, TileDepthPass};
+use slc_core::{CullInput, LightLists, NO_LIST, TILE_SIZE};
+use slc_cull::{CullView, GlossyBound};
+
+/// `shaders/tiles.wgsl` and `shaders/bound.wgsl` followed by the culling kernel.
+pub(crate) const SOURCE: &str = concat!(
+    include_str!("../shaders/tiles.wgsl"),
+    include_str!("../shaders/bound.wgsl"),
+    include_str!("../shaders/tiled_cull.wgsl")
+);
+
+/// The tiled culler's pipelines (sphere, enclosing-sphere and ellipsoid strategies, by the
+/// [`GlossyBound`] passed to [`TiledCuller::cull`]).
+pub struct TiledCuller {
+    bounds: BoundsPass,
+    partition: PartitionPass,
+    depth: TileDepthPass,
+    scan: ScanPass,
+    pipeline: wgpu::ComputePipeline,
+}
+
+impl TiledCuller {
+    pub fn new(ctx: &GpuContext) -> Result<Self, GpuError> {
+        let bounds = BoundsPass::new(ctx)?;
+        ctx.scoped("tiled culling pipelines", || {
+            Ok(Self {
+                bounds,
+                partition: PartitionPass::new(ctx),
+                depth: TileDepthPass::new(ctx),
+                scan: ScanPass::new(ctx),
+                pipeline: ctx.compute_pipeline("tiled cull", SOURCE),
+            })
+        })
+    }
+
+    /// Culls `input` with `glossy` bounds for glossy VPLs (the section-6 sphere for diffuse
+    /// ones) and two Modified HalfZ clusters per tile. Errors on invalid input (as the CPU
+    /// culler), on buffers beyond the device's limits and on device faults.
+    pub fn cull(
+        &self,
+        ctx: &GpuContext,
+        input: &CullInput,
+        glossy: GlossyBound,
+    ) -> Result<LightLists, GpuError> {
+        let g = input.gbuffer;
+        let (width, height) = (g.width, g.height);
+        let pixels = u64::from(width) * u64::from(height);
+        if pixels != g.samples.len() as u64 || u32::try_from(pixels).is_err() {
+            return Err(GpuError::Input(format!(
+                "G-buffer of {width}x{height} pixels has {} samples",
+                g.samples.len()
+            )));
+        }
+        let k = input.interleaving.k;
+        if !(1..=MAX_K).contains(&k) {
+            return Err(GpuError::Input(format!(
+                "interleaving factor K = {k} must lie in 1..={MAX_K}"
+            )));
+        }
+        let vpl_count = u32::try_from(input.vpls.len())
+            .map_err(|_| GpuError::Input(format!("{} VPLs exceed u32", input.vpls.len())))?;
+        if pixels == 0 {
+            return Ok(LightLists {
+                offsets: vec![0],
+                ..LightLists::default()
+            });
+        }
+        let view = CullView::new(input.camera, width, height)
+            .map_err(|e| GpuError::Input(e.to_string()))?;
+        let bounds = self.bounds.run(
+            ctx,
+            input.vpls,
+            &BoundsSettings {
+                camera: input.camera,
+                width,
+                height,
+                delta: input.delta,
+                glossy,
+                interleaving: input.interleaving,
+            },
+        )?;
+        // The uniform per-subregion tile grid, sized for subregion 0 (the largest).
+        let tiles_x = width.div_ceil(k).div_ceil(TILE_SIZE);
+        let tiles_y = height.div_ceil(k).div_ceil(TILE_SIZE);
+        let tile_count = u64::from(k * k) * u64::from(tiles_x) * u64::from(tiles_y);
+        let lists_count = 2 * tile_count;
+        let tile_count = u32::try_from(tile_count)
+            .ok()
+            .filter(|_| u32::try_from(lists_count + 1).is_ok())
+            .ok_or_else(|| GpuError::Input(format!("{tile_count} tiles exceed u32 list ids")))?;
+        let grid = Grid::new(
+            u64::from(tile_count),
+            ctx.limits.max_compute_workgroups_per_dimension,
+        )?;
+        let r = view.rotation();
+        let tan_half = (0.5 * f64::from(input.camera.yfov)).tan();
+        let aspect = f64::from(width) / f64::from(height);
+        let params = |mode| GpuCullParams {
+            rotation: [
+                r.x_axis.extend(0.0).to_array(),
+                r.y_axis.extend(0.0).to_array(),
+                r.z_axis.extend(0.0).to_array(),
+            ],
+            eye: input.camera.position.extend(0.0).to_array(),
+            image: [
+                (aspect * tan_half) as f32,
+                tan_half as f32,
+                width as f32,
+                height as f32,
+            ],
+            width,
+            height,
+            k,
+            tiles_x,
+            tiles_y,
+            tile_count,
+            vpl_count,
+            frustum_slack: FRUSTUM_SLACK,
+            mode,
+            pad: [0; 3],
+        };
+        let positions: Vec<[f32; 4]> = g
+            .samples
+            .iter()
+            .map(|s| {
+                s.as_ref()
+                    .map_or([0.0; 4], |s| s.position.extend(1.0).to_array())
+            })
+            .collect();
+        let positions = upload(ctx, "gbuffer positions", &positions)?;
+        let frusta = output::<GpuTileFrusta>(ctx, "tile frusta", tile_count as usize)?;
+        let pixel_list = output::<u32>(ctx, "pixel lists", pixels as usize)?;
+        let offsets = output::<u32>(ctx, "list offsets", lists_count as usize + 1)?;
+        let status = upload(ctx, "cull status", &[GpuCullStatus::CLEAR])?;
+        let count_params = uniform(ctx, "cull params (count)", &params(CULL_COUNT));
+        // Counting writes no list entry: a placeholder fills the binding.
+        let no_lists = output::<u32>(ctx, "no lists", 1)?;
+        let partition = ctx.scoped("tiled cull (count)", || {
+            let mut encoder = ctx
+                .device
+                .create_command_encoder(&wgpu::CommandEncoderDescriptor {
+                    label: Some("tiled cull (count)"),
+                });
+            let partition = self.partition.encode(
+                ctx,
+                &mut encoder,
+                &self.scan,
+                &bounds.buffer,
+                vpl_count,
+                k * k,
+                &status,
+            )?;
+            self.depth.encode(
+                ctx,
+                &mut encoder,
+                &TileDepthBuffers {
+                    params: &count_params,
+                    positions: &positions,
+                    frusta: &frusta,
+                    pixel_list: &pixel_list,
+                    status: &status,
+                },
+                grid,
+            );
+            self.encode_cull(
+                ctx,
+                &mut encoder,
+                [
+                    &count_params,
+                    &frusta,
+                    &bounds.buffer,
+                    &offsets,
+                    &no_lists,
+                    &partition.sub_offsets,
+                    &partition.order,
+                ],
+                grid,
+            );
+            self.scan
+                .encode(ctx, &mut encoder, &offsets, lists_count as u32, &status);
+            ctx.queue.submit([encoder.finish()]);
+            Ok(partition)
+        })?;
+        let [state] = <[GpuCullStatus; 1]>::try_from(read_back(ctx, "cull status", &status, 1)?)
+            .map_err(|_| GpuError::Readback {
+                label: "cull status".into(),
+                message: "short read".into(),
+            })?;
+        if state.bad_pixel != u32::MAX {
+            return Err(GpuError::Input(format!(
+                "G-buffer sample of pixel ({}, {}) is not in front of the camera",
+                state.bad_pixel % width,
+                state.bad_pixel / width
+            )));
+        }
+        if state.overflow_vpl != u32::MAX {
+            return Err(GpuError::Input(format!(
+                "the bound of VPL {} does not fit in f32 (extreme flux, delta or xi)",
+                state.overflow_vpl
+            )));
+        }
+        if state.total_overflow != 0 {
+            return Err(GpuError::Input(
+                "light-list entries exceed 32-bit offsets".into(),
+            ));
+        }
+        let total = state.total as usize;
+        let lists = output::<u32>(ctx, "light lists", total)?;
+        let write_params = uniform(ctx, "cull params (write)", &params(CULL_WRITE));
+        ctx.scoped("tiled cull (write)", || {
+            let mut encoder = ctx
+                .device
+                .create_command_encoder(&wgpu::CommandEncoderDescriptor {
+                    label: Some("tiled cull (write)"),
+                });
+            self.encode_cull(
+                ctx,
+                &mut encoder,
+                [
+                    &write_params,
+                    &frusta,
+                    &bounds.buffer,
+                    &offsets,
+                    &lists,
+                    &partition.sub_offsets,
+                    &partition.order,
+                ],
+                grid,
+            );
+            ctx.queue.submit([encoder.finish()]);
+            Ok(())
+        })?;
+        let offsets: Vec<u32> = read_back(ctx, "list offsets", &offsets, lists_count as usize + 1)?;
+        let indices: Vec<u32> = read_back(ctx, "light lists", &lists, total)?;
+        let pixel_list: Vec<u32> = read_back(ctx, "pixel lists", &pixel_list, pixels as usize)?;
+        Ok(compact(&offsets, indices, &pixel_list))
+    }
+
+    fn encode_cull(
+        &self,
+        ctx: &GpuContext,
+        encoder: &mut wgpu::CommandEncoder,
+        buffers: [&wgpu::Buffer; 7],
+        tiles: Grid,
+    ) {
+        let bind = ctx.bind_group("tiled cull", &self.pipeline, &buffers);
+        let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+            label: Some("tiled cull"),
+            timestamp_writes: None,
+        });
+        pass.set_pipeline(&self.pipeline);
+        pass.set_bind_group(0, &bind, &[]);
+        tiles.dispatch(&mut pass);
+    }
+}
+
+/// [`LightLists`] from the GPU's fixed two lists per tile: empty lists are dropped (their
+/// pixels get `NO_LIST`, as on the CPU) and the rest renumbered in order.
+fn compact(offsets: &[u32], indices: Vec<u32>, pixel_list: &[u32]) -> LightLists {
+    let mut renumber = vec![NO_LIST; offsets.len().saturating_sub(1)];
+    let mut kept = vec![0u32];
+    for (l, pair) in offsets.windows(2).enumerate() {
+        if pair[1] > pair[0] {
+            renumber[l] = (kept.len() - 1) as u32;
+            kept.push(pair[1]);
+        }
+    }
+    LightLists {
+        offsets: kept,
+        indices,
+        pixel_list: pixel_list
+            .iter()
+            .map(|&l| renumber.get(l as usize).copied().unwrap_or(NO_LIST))
+            .collect(),
+    }
+}

@@ -1,0 +1,10 @@
+//! GPU conformance tests: the GPU passes against the CPU crates for identical inputs.
+//!
+//! They need a wgpu adapter (CI: Mesa's lavapipe, installed by `.ci/run`). Without one,
+//! each test fails when the `CI` environment variable is set, and otherwise prints a notice
+//! and returns (see [`common::gpu`]).
+mod bounds;
+mod common;
+mod faults;
+mod rng;
+mod tiled;

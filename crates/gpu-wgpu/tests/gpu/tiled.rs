@@ -1,0 +1,311 @@
+//! GPU tiled culling against `slc_cull`'s for identical inputs (the CPU's G-buffer and
+//! VPLs uploaded): every pixel's light list must be the same; any entry that differs is
+//! reported with its pixel, subregion, tile and VPL.
+use crate::bounds::{reference, Reference};
+use crate::common::gpu;
+use glam::{DVec2, DVec3, Vec3};
+use slc_core::{
+    builtin, Camera, CullInput, GBuffer, Interleaving, LightLists, Scene, Vpl, VplLobe, TILE_SIZE,
+};
+use slc_cpu_ref::gbuffer::{trace_gbuffer, PixelSample};
+use slc_cpu_ref::rsm::{trace_rsm, TexelSample};
+use slc_cpu_ref::vpls::{generate_vpls, LobeSelection};
+use slc_cpu_ref::Tracer;
+use slc_cull::{culler_by_name, CullView, GlossyBound};
+use slc_gpu_wgpu::tiled_cull_pass::TiledCuller;
+use slc_gpu_wgpu::GpuError;
+
+fn frame(scene: &Scene, camera: &Camera, (w, h): (u32, u32), rsm: u32) -> (GBuffer, Vec<Vpl>) {
+    let tracer = Tracer::new(scene);
+    let gbuffer = trace_gbuffer(
+        scene,
+        &tracer,
+        camera,
+        w,
+        h,
+        PixelSample::Jittered { seed: 5, index: 0 },
+    );
+    let maps: Vec<_> = scene
+        .lights
+        .iter()
+        .map(|l| trace_rsm(scene, &tracer, l, rsm, TexelSample::Centre))
+        .collect();
+    (gbuffer, generate_vpls(&maps, 11, LobeSelection::Both))
+}
+
+/// Largest distance of the bound's surface from the frustum box at which the CPU's f64 test
+/// and the GPU's f32 test may disagree, relative to the scale of the f32 rounding of the
+/// quantities compared: the scales of the bounds' conformance test (tests/gpu/bounds.rs),
+/// where the GPU's errors stay below 3e-7 (f32 rounds at 6e-8).
+const BORDER: f64 = 1e-6;
+
+/// The CPU's f64 frustum (`crates/cull/src/tiled.rs` gather, `depth.rs` HalfZ, `frusta.rs`
+/// set with FRUSTUM_SLACK) of the tile holding pixel (x, y), restricted to the pixel's
+/// cluster: the tile rectangle at unit depth and the cluster's depth range.
+fn cpu_frustum(input: &CullInput, view: &CullView, x: u32, y: u32) -> ([DVec2; 2], [f64; 2]) {
+    const SLACK: f64 = 1e-6;
+    let (w, h, k) = (
+        input.gbuffer.width,
+        input.gbuffer.height,
+        input.interleaving.k,
+    );
+    let (sx, sy) = (x % k, y % k);
+    let first = (
+        (x / k) / TILE_SIZE * TILE_SIZE,
+        (y / k) / TILE_SIZE * TILE_SIZE,
+    );
+    let size = ((w - sx).div_ceil(k), (h - sy).div_ceil(k));
+    let count = (
+        TILE_SIZE.min(size.0 - first.0),
+        TILE_SIZE.min(size.1 - first.1),
+    );
+    let screen = |a: u32, b: u32| (sx + k * (first.0 + a), sy + k * (first.1 + b));
+    let (x0, y0) = screen(0, 0);
+    let (x1, y1) = screen(count.0 - 1, count.1 - 1);
+    let (mut lo, mut hi) = view.image_rect(x0, y0, x1 + 1, y1 + 1);
+    let mut zs = Vec::new();
+    for b in 0..count.1 {
+        for a in 0..count.0 {
+            let (px, py) = screen(a, b);
+            if let Some(g) = &input.gbuffer.samples[(py * w + px) as usize] {
+                let p = view.to_view(g.position);
+                lo = lo.min(DVec2::new(p.x, p.y) / p.z);
+                hi = hi.max(DVec2::new(p.x, p.y) / p.z);
+                zs.push(p.z);
+            }
+        }
+    }
+    let z = view
+        .to_view(
+            input.gbuffer.samples[(y * w + x) as usize]
+                .as_ref()
+                .unwrap()
+                .position,
+        )
+        .z;
+    let (zmin, zmax) = zs
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &z| {
+            (a.min(z), b.max(z))
+        });
+    let half = 0.5 * (zmin + zmax);
+    let near = z < half;
+    let same = zs.iter().filter(|&&v| (v < half) == near);
+    let range = same.fold([f64::INFINITY, f64::NEG_INFINITY], |[a, b], &v| {
+        [a.min(v), b.max(v)]
+    });
+    let pad = SLACK * (1.0 + lo.abs().max(hi.abs()).max_element());
+    (
+        [lo - pad, hi + pad],
+        [range[0] * (1.0 - SLACK), range[1] * (1.0 + SLACK)],
+    )
+}
+
+/// How far outside (> 0) or inside (< 0) the frustum box the CPU's f64 bound of `vpl` is
+/// (`frusta.rs` sphere_hits and ellipsoid_hits), relative to the rounding scale of
+/// [`BORDER`].
+fn cpu_margin(
+    input: &CullInput,
+    view: &CullView,
+    glossy: GlossyBound,
+    vpl: usize,
+    x: u32,
+    y: u32,
+) -> f64 {
+    let ([lo, hi], [z0, z1]) = cpu_frustum(input, view, x, y);
+    let swept = |a: DVec3, b: DVec3| ((a * z0).min(a * z1), (b * z0).max(b * z1));
+    let gap =
+        |(bmin, bmax): (DVec3, DVec3), c: DVec3| (bmin - c).max(c - bmax).max(DVec3::ZERO).length();
+    let inputs =
+        input.vpls[vpl].position.as_dvec3().length() + input.camera.position.as_dvec3().length();
+    match reference(&input.vpls[vpl], input.delta, view, glossy) {
+        Reference::Empty => f64::INFINITY,
+        Reference::Sphere { center, radius } => {
+            let b = swept(lo.extend(1.0), hi.extend(1.0));
+            (gap(b, center) - radius) / (center.length() + radius + inputs)
+        }
+        Reference::Ellipsoid {
+            bs,
+            center,
+            view_center,
+        } => {
+            let (u0, u1) = (bs.x_axis * lo.x, bs.x_axis * hi.x);
+            let (v0, v1) = (bs.y_axis * lo.y, bs.y_axis * hi.y);
+            let ilo = bs.z_axis + u0.min(u1) + v0.min(v1);
+            let ihi = bs.z_axis + u0.max(u1) + v0.max(v1);
+            let norm = (bs.x_axis.length_squared()
+                + bs.y_axis.length_squared()
+                + bs.z_axis.length_squared())
+            .sqrt();
+            (gap(swept(ilo, ihi), center) - 1.0) / (norm * (view_center.length() + inputs))
+        }
+    }
+}
+
+/// Every entry in which the two pixels' lists differ, with where it is, split into the
+/// borderline ones (the CPU's f64 bound lies within [`BORDER`] of the frustum box, where
+/// f32 and f64 may decide differently) and the others.
+fn differences(
+    input: &CullInput,
+    glossy: GlossyBound,
+    cpu: &LightLists,
+    gpu: &LightLists,
+) -> (Vec<String>, Vec<String>) {
+    let (width, k) = (input.gbuffer.width, input.interleaving.k);
+    let view = CullView::new(input.camera, width, input.gbuffer.height).unwrap();
+    let (mut border, mut real) = (Vec::new(), Vec::new());
+    for p in 0..cpu.pixel_list.len() {
+        let (a, b) = (cpu.for_pixel(p), gpu.for_pixel(p));
+        if a == b {
+            continue;
+        }
+        let (x, y) = (p as u32 % width, p as u32 / width);
+        let tile = ((x / k) / TILE_SIZE, (y / k) / TILE_SIZE);
+        let sub = (y % k) * k + x % k;
+        let only = a.iter().filter(|v| !b.contains(v)).map(|&v| (v, "CPU"));
+        let only = only.chain(b.iter().filter(|v| !a.contains(v)).map(|&v| (v, "GPU")));
+        let mut any = false;
+        for (v, side) in only {
+            any = true;
+            let margin = cpu_margin(input, &view, glossy, v as usize, x, y);
+            let text = format!(
+                "pixel ({x}, {y}) subregion {sub} tile {tile:?}: VPL {v} on the {side} only \
+                 (CPU margin {margin:.1e})"
+            );
+            if margin.abs() <= BORDER {
+                border.push(text)
+            } else {
+                real.push(text)
+            }
+        }
+        if !any {
+            real.push(format!("pixel ({x}, {y}): same VPLs in another order"));
+        }
+    }
+    (border, real)
+}
+
+#[test]
+fn tiled_lists_match_the_cpu() {
+    let Some(ctx) = gpu() else { return };
+    let culler = TiledCuller::new(&ctx).unwrap();
+    let scene = builtin("default").unwrap();
+    let camera = scene.camera_or_default();
+    let mut longest_seen = 0;
+    // Sizes with partial tiles and subregions of unequal size (72 x 50 with K = 4, 40 x 23
+    // with K = 3); 320 x 180 with 11k VPLs gives lists of thousands of entries.
+    for (size, k, rsm) in [
+        ((96, 64), 1, 16),
+        ((72, 50), 4, 16),
+        ((40, 23), 3, 16),
+        ((320, 180), 1, 32),
+    ] {
+        let (gbuffer, vpls) = frame(&scene, &camera, size, rsm);
+        for delta in [1e-3f32, 1e-2] {
+            let input = CullInput {
+                gbuffer: &gbuffer,
+                camera: &camera,
+                vpls: &vpls,
+                delta,
+                interleaving: Interleaving { k, seed: 3 },
+            };
+            for (name, glossy) in [
+                ("sphere", GlossyBound::Sphere),
+                ("enclosing-sphere", GlossyBound::EnclosingSphere),
+                ("ellipsoid", GlossyBound::Ellipsoid),
+            ] {
+                let cpu = culler_by_name(name).unwrap().cull(&input).unwrap();
+                let gpu = culler.cull(&ctx, &input, glossy).unwrap();
+                let (border, diff) = differences(&input, glossy, &cpu, &gpu);
+                let entries = cpu.indices.len();
+                let longest = gpu
+                    .offsets
+                    .windows(2)
+                    .map(|w| w[1] - w[0])
+                    .max()
+                    .unwrap_or(0);
+                longest_seen = longest_seen.max(longest);
+                eprintln!(
+                    "{name} {size:?} K {k} delta {delta}: {} VPLs, {entries} CPU entries, {} GPU \
+                     entries, {} borderline and {} other differing",
+                    vpls.len(),
+                    gpu.indices.len(),
+                    border.len(),
+                    diff.len()
+                );
+                for b in border.iter().take(10) {
+                    eprintln!("  borderline: {b}");
+                }
+                assert!(
+                    diff.is_empty(),
+                    "{name} {size:?} K {k} delta {delta}: {} differing entries:\n{}",
+                    diff.len(),
+                    diff.iter().take(20).cloned().collect::<Vec<_>>().join("\n")
+                );
+                assert!(entries > 0);
+            }
+        }
+    }
+    // Lists longer than the 1024 entries tiled_cull.wgsl keeps in workgroup memory: the
+    // flushes in the middle of the loop were exercised.
+    assert!(longest_seen > 1024, "longest list {longest_seen}");
+}
+
+/// Bad input is an error, as on the CPU.
+#[test]
+fn tiled_culling_rejects_bad_input() {
+    let Some(ctx) = gpu() else { return };
+    let culler = TiledCuller::new(&ctx).unwrap();
+    let scene = builtin("default").unwrap();
+    let camera = scene.camera_or_default();
+    let (gbuffer, vpls) = frame(&scene, &camera, (16, 16), 4);
+    let input = CullInput {
+        gbuffer: &gbuffer,
+        camera: &camera,
+        vpls: &vpls,
+        delta: 1e-3,
+        interleaving: Interleaving { k: 1, seed: 0 },
+    };
+    let k0 = CullInput {
+        interleaving: Interleaving { k: 0, seed: 0 },
+        ..input
+    };
+    assert!(matches!(
+        culler.cull(&ctx, &k0, GlossyBound::Ellipsoid),
+        Err(GpuError::Input(_))
+    ));
+    let mut short = gbuffer.clone();
+    short.samples.pop();
+    let bad = CullInput {
+        gbuffer: &short,
+        ..input
+    };
+    assert!(matches!(
+        culler.cull(&ctx, &bad, GlossyBound::Ellipsoid),
+        Err(GpuError::Input(_))
+    ));
+    // A sample behind the camera.
+    let mut behind = gbuffer.clone();
+    let s = behind.samples.iter_mut().flatten().next().unwrap();
+    s.position = camera.position - camera.forward;
+    let bad = CullInput {
+        gbuffer: &behind,
+        ..input
+    };
+    let e = culler.cull(&ctx, &bad, GlossyBound::Sphere).unwrap_err();
+    assert!(e.to_string().contains("not in front of the camera"), "{e}");
+    // A bound beyond f32 (r/α of a huge flux at δ near the smallest normal f32): an error
+    // on both backends.
+    let mut huge = vpls.clone();
+    let glossy = huge.iter().position(|v| v.lobe == VplLobe::Glossy).unwrap();
+    huge[glossy].flux = Vec3::splat(3e38);
+    huge[glossy].brdf.alpha = 1e-3;
+    let bad = CullInput {
+        vpls: &huge,
+        delta: 1e-37,
+        ..input
+    };
+    assert!(culler_by_name("sphere").unwrap().cull(&bad).is_err());
+    let e = culler.cull(&ctx, &bad, GlossyBound::Sphere).unwrap_err();
+    assert!(e.to_string().contains(&format!("VPL {glossy}")), "{e}");
+}
