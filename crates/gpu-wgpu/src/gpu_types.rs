@@ -7,7 +7,7 @@ use crate::context::GpuError;
 use bytemuck::{Pod, Zeroable};
 use glam::Vec3;
 use slc_bounds::{DiffuseLobe, Fresnel, GlossyLobe, StochasticParams};
-use slc_core::{Camera, Interleaving, Vpl, VplLobe};
+use slc_core::{Camera, GSample, Interleaving, Vpl, VplLobe};
 use slc_cull::{CullView, GlossyBound};
 
 /// Parameters of the RNG conformance pass. Keep in sync with `RngParams` in
@@ -49,7 +49,7 @@ pub const FRESNEL_SCHLICK: u32 = 0;
 pub const FRESNEL_DIELECTRIC: u32 = 1;
 
 /// A VPL ([`slc_core::Vpl`]) as the shaders read it. Keep in sync with `Vpl` in
-/// `shaders/bounds.wgsl`.
+/// `shaders/bounds.wgsl` and `shaders/shade.wgsl`.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
 pub struct GpuVpl {
@@ -336,6 +336,81 @@ pub struct GpuPartitionParams {
 }
 const _: () = assert!(std::mem::size_of::<GpuPartitionParams>() == 16);
 
+/// `GpuSample::info[0]`: whether the pixel holds a G-buffer sample (0: empty, e.g. sky).
+pub const SAMPLE_EMPTY: u32 = 0;
+pub const SAMPLE_PRESENT: u32 = 1;
+
+/// One G-buffer pixel ([`slc_core::GSample`] or an empty pixel) as the shading pass reads it.
+/// Keep in sync with `Sample` in `shaders/shade.wgsl`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
+pub struct GpuSample {
+    /// Position x (xyz).
+    pub position: [f32; 4],
+    /// Unit shading normal (xyz) and GGX roughness α (w).
+    pub normal_alpha: [f32; 4],
+    /// Unit direction towards the camera ωo (xyz) and the relative index η of a dielectric
+    /// Fresnel (w).
+    pub omega_o_eta: [f32; 4],
+    /// Diffuse reflectance kd (xyz).
+    pub kd: [f32; 4],
+    /// Schlick F0 (xyz).
+    pub f0: [f32; 4],
+    /// [`SAMPLE_PRESENT`] or [`SAMPLE_EMPTY`], Fresnel model ([`FRESNEL_SCHLICK`],
+    /// [`FRESNEL_DIELECTRIC`]), unused, unused.
+    pub info: [u32; 4],
+}
+const _: () = assert!(std::mem::size_of::<GpuSample>() == 96);
+
+impl GpuSample {
+    /// An empty pixel: shaded black.
+    pub const EMPTY: Self = Self {
+        position: [0.0; 4],
+        normal_alpha: [0.0; 4],
+        omega_o_eta: [0.0; 4],
+        kd: [0.0; 4],
+        f0: [0.0; 4],
+        info: [SAMPLE_EMPTY, 0, 0, 0],
+    };
+
+    /// Packs a G-buffer sample; `None` (nothing seen) gives [`Self::EMPTY`].
+    pub fn new(sample: Option<&GSample>) -> Self {
+        let Some(g) = sample else {
+            return Self::EMPTY;
+        };
+        let (fresnel, f0, eta) = match g.brdf.fresnel {
+            Fresnel::Schlick(f0) => (FRESNEL_SCHLICK, f0, 0.0),
+            Fresnel::Dielectric(eta) => (FRESNEL_DIELECTRIC, Vec3::ZERO, eta),
+        };
+        Self {
+            position: vec4(g.position, 0.0),
+            normal_alpha: vec4(g.normal, g.brdf.alpha),
+            omega_o_eta: vec4(g.omega_o, eta),
+            kd: vec4(g.brdf.kd, 0.0),
+            f0: vec4(f0, 0.0),
+            info: [SAMPLE_PRESENT, fresnel, 0, 0],
+        }
+    }
+}
+
+/// Parameters of the shading pass. Keep in sync with `ShadeParams` in `shaders/shade.wgsl`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
+pub struct GpuShadeParams {
+    pub width: u32,
+    pub height: u32,
+    pub pixel_count: u32,
+    pub vpl_count: u32,
+    /// Number of light lists (list ids at or beyond it shade nothing).
+    pub list_count: u32,
+    /// δ of eq. (2).
+    pub delta: f32,
+    /// K² of the interleaved sampling (section 6, [`Interleaving::scale`]).
+    pub scale: f32,
+    pub pad: u32,
+}
+const _: () = assert!(std::mem::size_of::<GpuShadeParams>() == 32);
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -391,6 +466,13 @@ mod tests {
                 "PartitionParams",
                 size_of::<GpuPartitionParams>(),
             ),
+            (
+                crate::shade_pass::SOURCE,
+                "ShadeParams",
+                size_of::<GpuShadeParams>(),
+            ),
+            (crate::shade_pass::SOURCE, "Sample", size_of::<GpuSample>()),
+            (crate::shade_pass::SOURCE, "Vpl", size_of::<GpuVpl>()),
         ];
         for (source, name, size) in cases {
             assert_eq!(wgsl_size(source, name) as usize, size, "{name}");

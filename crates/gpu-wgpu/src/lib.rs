@@ -15,7 +15,12 @@
 //! - [`tile_depth_pass`]: Modified HalfZ tile frusta (section 5.1) from G-buffer positions;
 //! - [`tiled_cull_pass`]: tiled culling of interleaved subregions (sections 5-6, Listing 2)
 //!   with workgroup-shared light lists, sized by [`scan_pass`]; the sphere,
-//!   enclosing-sphere and ellipsoid strategies, read back as `slc_core::LightLists`.
+//!   enclosing-sphere and ellipsoid strategies, read back as `slc_core::LightLists` or left
+//!   on the GPU for shading;
+//! - [`shade_pass`]: stochastic VPL shading from light lists (eq. 2-4 and 6-8 with the K²
+//!   weight of section 6; `shaders/brdf.wgsl`, `shaders/shade.wgsl`), the twin of
+//!   `slc_cpu_ref::vpl_shading::shade_lists` without visibility, lists uploaded or straight
+//!   from the tiled culler.
 //!
 //! Faults are errors ([`GpuError`]): no adapter (suggests `--backend cpu`), device loss
 //! (no hang: bounded waits), buffers beyond the storage-binding limit (refused), dispatches
@@ -27,6 +32,7 @@ pub mod gpu_types;
 pub mod partition_pass;
 pub mod rng_pass;
 pub mod scan_pass;
+pub mod shade_pass;
 pub mod tile_depth_pass;
 pub mod tiled_cull_pass;
 

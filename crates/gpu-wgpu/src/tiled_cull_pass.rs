@@ -9,6 +9,7 @@
 //!
 //! One count read back between the two culling dispatches sizes the list buffer exactly; a
 //! total beyond the storage-binding limit is refused ([`GpuError::BufferTooLarge`]).
+//! [`TiledCuller::cull_on_gpu`] leaves the lists on the GPU for `shade_pass` instead.
 use crate::bounds_pass::{BoundsPass, BoundsSettings};
 use crate::buffers::{output, read_back, uniform, upload, Grid};
 use crate::context::{GpuContext, GpuError};
@@ -17,6 +18,7 @@ use crate::gpu_types::{
 };
 use crate::partition_pass::PartitionPass;
 use crate::scan_pass::ScanPass;
+use crate::shade_pass::GpuLightLists;
 use crate::tile_depth_pass::{TileDepthBuffers, TileDepthPass};
 use slc_core::{CullInput, LightLists, NO_LIST, TILE_SIZE};
 use slc_cull::{CullView, GlossyBound};
@@ -61,6 +63,34 @@ impl TiledCuller {
         input: &CullInput,
         glossy: GlossyBound,
     ) -> Result<LightLists, GpuError> {
+        let gpu = self.cull_on_gpu(ctx, input, glossy)?;
+        if gpu.pixels == 0 {
+            return Ok(LightLists {
+                offsets: vec![0],
+                ..LightLists::default()
+            });
+        }
+        let offsets: Vec<u32> = read_back(
+            ctx,
+            "list offsets",
+            &gpu.offsets,
+            gpu.list_count as usize + 1,
+        )?;
+        let indices: Vec<u32> = read_back(ctx, "light lists", &gpu.indices, gpu.entries as usize)?;
+        let pixel_list: Vec<u32> =
+            read_back(ctx, "pixel lists", &gpu.pixel_list, gpu.pixels as usize)?;
+        Ok(compact(&offsets, indices, &pixel_list))
+    }
+
+    /// [`Self::cull`] without the readback: the lists stay on the GPU in the CSR layout the
+    /// shading pass reads ([`GpuLightLists`]), two per tile (near and far cluster, possibly
+    /// empty), each pixel pointing to its cluster's list ([`NO_LIST`] without a sample).
+    pub fn cull_on_gpu(
+        &self,
+        ctx: &GpuContext,
+        input: &CullInput,
+        glossy: GlossyBound,
+    ) -> Result<GpuLightLists, GpuError> {
         let g = input.gbuffer;
         let (width, height) = (g.width, g.height);
         let pixels = u64::from(width) * u64::from(height);
@@ -79,9 +109,13 @@ impl TiledCuller {
         let vpl_count = u32::try_from(input.vpls.len())
             .map_err(|_| GpuError::Input(format!("{} VPLs exceed u32", input.vpls.len())))?;
         if pixels == 0 {
-            return Ok(LightLists {
-                offsets: vec![0],
-                ..LightLists::default()
+            return Ok(GpuLightLists {
+                offsets: output::<u32>(ctx, "list offsets", 1)?,
+                indices: output::<u32>(ctx, "light lists", 0)?,
+                pixel_list: output::<u32>(ctx, "pixel lists", 0)?,
+                list_count: 0,
+                entries: 0,
+                pixels: 0,
             });
         }
         let view = CullView::new(input.camera, width, height)
@@ -249,10 +283,14 @@ impl TiledCuller {
             ctx.queue.submit([encoder.finish()]);
             Ok(())
         })?;
-        let offsets: Vec<u32> = read_back(ctx, "list offsets", &offsets, lists_count as usize + 1)?;
-        let indices: Vec<u32> = read_back(ctx, "light lists", &lists, total)?;
-        let pixel_list: Vec<u32> = read_back(ctx, "pixel lists", &pixel_list, pixels as usize)?;
-        Ok(compact(&offsets, indices, &pixel_list))
+        Ok(GpuLightLists {
+            offsets,
+            indices: lists,
+            pixel_list,
+            list_count: lists_count as u32,
+            entries: state.total,
+            pixels: pixels as u32,
+        })
     }
 
     fn encode_cull(

@@ -7,4 +7,5 @@ mod bounds;
 mod common;
 mod faults;
 mod rng;
+mod shade;
 mod tiled;

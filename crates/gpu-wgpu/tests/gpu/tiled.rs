@@ -15,7 +15,7 @@ use slc_cull::{culler_by_name, CullView, GlossyBound};
 use slc_gpu_wgpu::tiled_cull_pass::TiledCuller;
 use slc_gpu_wgpu::GpuError;
 
-fn frame(scene: &Scene, camera: &Camera, (w, h): (u32, u32), rsm: u32) -> (GBuffer, Vec<Vpl>) {
+pub fn frame(scene: &Scene, camera: &Camera, (w, h): (u32, u32), rsm: u32) -> (GBuffer, Vec<Vpl>) {
     let tracer = Tracer::new(scene);
     let gbuffer = trace_gbuffer(
         scene,

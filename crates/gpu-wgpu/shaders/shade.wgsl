@@ -1,0 +1,149 @@
+// Stochastic VPL shading from light lists (paper eq. 3 with interleaved sampling), the GPU
+// twin of crates/cpu-ref/src/vpl_shading.rs shade_lists without visibility: each pixel with a
+// sample sums, over the VPLs of its list,
+//   f_x(n, w_l, w_o) I(w) / l^2 cos theta_x K^2 / p   when p > xi,
+// with I the VPL's intensity of eq. (4) (crates/core/src/vpl.rs) and p = min(I / (delta l^2), 1)
+// of eq. (2) on the largest channel of I. brdf.wgsl is prepended. Structs mirror
+// src/gpu_types.rs; one invocation per pixel, linear workgroup index wid.y * num_workgroups.x
+// + wid.x (buffers::Grid).
+
+struct ShadeParams {
+    width: u32,
+    height: u32,
+    pixel_count: u32,
+    vpl_count: u32,
+    list_count: u32,
+    delta: f32,
+    // K^2 of the interleaved sampling (section 6).
+    scale: f32,
+    pad: u32,
+}
+
+// One G-buffer pixel; info.x = 1 for a sample, 0 for an empty (sky) pixel; info.y the Fresnel
+// model.
+struct Sample {
+    position: vec4<f32>,
+    normal_alpha: vec4<f32>,
+    omega_o_eta: vec4<f32>,
+    kd: vec4<f32>,
+    f0: vec4<f32>,
+    info: vec4<u32>,
+}
+
+struct Vpl {
+    position_xi: vec4<f32>,
+    normal_alpha: vec4<f32>,
+    omega_i_eta: vec4<f32>,
+    flux: vec4<f32>,
+    kd: vec4<f32>,
+    f0: vec4<f32>,
+    info: vec4<u32>,
+}
+
+@group(0) @binding(0) var<uniform> params: ShadeParams;
+@group(0) @binding(1) var<storage, read> samples: array<Sample>;
+@group(0) @binding(2) var<storage, read> vpls: array<Vpl>;
+@group(0) @binding(3) var<storage, read> offsets: array<u32>;
+@group(0) @binding(4) var<storage, read> indices: array<u32>;
+@group(0) @binding(5) var<storage, read> pixel_list: array<u32>;
+// RGB per pixel.
+@group(0) @binding(6) var<storage, read_write> image: array<f32>;
+
+const LOBE_DIFFUSE: u32 = 0u;
+const NO_LIST: u32 = 0xffffffffu;
+const WORKGROUP: u32 = 64u;
+
+fn vpl_material(v: Vpl) -> Material {
+    return Material(v.kd.xyz, FresnelModel(v.info.y, v.f0.xyz, v.omega_i_eta.w), v.normal_alpha.w);
+}
+
+fn sample_material(s: Sample) -> Material {
+    return Material(s.kd.xyz, FresnelModel(s.info.y, s.f0.xyz, s.omega_o_eta.w), s.normal_alpha.w);
+}
+
+// Radiant intensity of eq. (4) towards unit direction w: Phi f(w_i, w) max(w.n, 0), f the
+// VPL's lobe (Vpl::intensity).
+fn vpl_intensity(v: Vpl, w: vec3<f32>) -> vec3<f32> {
+    let n = v.normal_alpha.xyz;
+    let cos_o = dot(n, w);
+    if cos_o <= 0.0 {
+        return vec3<f32>(0.0);
+    }
+    let m = vpl_material(v);
+    var f: vec3<f32>;
+    if v.info.x == LOBE_DIFFUSE {
+        f = brdf_diffuse(m, n, v.omega_i_eta.xyz, w);
+    } else {
+        f = microfacet(n, v.omega_i_eta.xyz, w, m.alpha, m.fresnel);
+    }
+    return v.flux.xyz * f * cos_o;
+}
+
+// p of eq. (2) (StochasticParams::probability): min(I / (delta l^2), 1); 0 for I <= 0.
+fn probability(intensity: f32, distance_sq: f32) -> f32 {
+    if intensity > 0.0 {
+        let p = intensity / (params.delta * distance_sq);
+        if p >= 0.0 && p < 1.0 {
+            return p;
+        }
+        return 1.0;
+    }
+    return 0.0;
+}
+
+// One VPL's contribution to the radiance towards the camera, weighted by the estimator of
+// eq. (3) (1/p if p > xi, else 0): vpl_contribution of vpl_shading.rs.
+fn vpl_contribution(s: Sample, v: Vpl) -> vec3<f32> {
+    let d = s.position.xyz - v.position_xi.xyz;
+    let l2 = length_sq(d);
+    if l2 <= 0.0 {
+        return vec3<f32>(0.0);
+    }
+    let omega = d / sqrt(l2);
+    let n = s.normal_alpha.xyz;
+    let cos_x = -dot(n, omega);
+    if cos_x <= 0.0 {
+        return vec3<f32>(0.0);
+    }
+    let intensity = vpl_intensity(v, omega);
+    let p = probability(max(intensity.x, max(intensity.y, intensity.z)), l2);
+    var weight = 0.0;
+    if p > v.position_xi.w {
+        weight = 1.0 / p;
+    }
+    if weight == 0.0 {
+        return vec3<f32>(0.0);
+    }
+    return brdf_eval(sample_material(s), n, -omega, s.omega_o_eta.xyz) * intensity
+        * (weight * cos_x / l2);
+}
+
+@compute @workgroup_size(64)
+fn main(
+    @builtin(workgroup_id) wid: vec3<u32>,
+    @builtin(num_workgroups) groups: vec3<u32>,
+    @builtin(local_invocation_index) lid: u32,
+) {
+    let pixel = (wid.y * groups.x + wid.x) * WORKGROUP + lid;
+    if pixel >= params.pixel_count {
+        return;
+    }
+    let s = samples[pixel];
+    var sum = vec3<f32>(0.0);
+    let list = pixel_list[pixel];
+    if s.info.x != 0u && list != NO_LIST && list < params.list_count {
+        let end = offsets[list + 1u];
+        for (var e = offsets[list]; e < end; e++) {
+            let k = indices[e];
+            if k < params.vpl_count {
+                let c = vpl_contribution(s, vpls[k]);
+                if any(c != vec3<f32>(0.0)) {
+                    sum += c * params.scale;
+                }
+            }
+        }
+    }
+    image[3u * pixel] = sum.x;
+    image[3u * pixel + 1u] = sum.y;
+    image[3u * pixel + 2u] = sum.z;
+}

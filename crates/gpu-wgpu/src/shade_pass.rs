@@ -1,0 +1,232 @@
+//! Stochastic VPL shading from light lists on the GPU (`shaders/brdf.wgsl`,
+//! `shaders/shade.wgsl`), the twin of `slc_cpu_ref::vpl_shading::shade_lists` without
+//! visibility: each pixel with a G-buffer sample sums, over the VPLs of its list,
+//! `f_x(n, ωl, ωo) I(ω) / l² cos θx · K² / p` when `p > ξ` (paper eq. 3 with the interleaved
+//! sampling of section 6), with I the VPL's intensity of eq. (4), p = min(I / (δ l²), 1) of
+//! eq. (2) on I's largest channel, and the BRDF of eq. (6)-(8) (`slc_bounds::Brdf`).
+//!
+//! The lists come in the CSR layout of [`LightLists`] (offsets, indices, pixel → list), either
+//! uploaded from the CPU ([`ShadePass::shade`]) or left on the GPU by the tiled culler
+//! ([`crate::tiled_cull_pass::TiledCuller::cull_on_gpu`], [`ShadePass::shade_gpu_lists`]),
+//! whose fixed two lists per tile (empty ones included) are the same layout. The result is
+//! read back as an [`Image`]. Buffers beyond the storage-binding limit are refused
+//! ([`GpuError::BufferTooLarge`]); more than 65535 workgroups are split into a 2-D grid.
+//!
+//! f32 throughout, with the CPU's operation order, so results agree to a few ulps (bit for
+//! bit on lavapipe); the one place the CPU uses f64 (the half vector of a smooth lobe near
+//! grazing opposition) is emulated with compensated f32 arithmetic, see `shaders/brdf.wgsl`.
+use crate::buffers::{output, read_back, uniform, upload, Grid};
+use crate::context::{GpuContext, GpuError};
+use crate::gpu_types::{GpuSample, GpuShadeParams, GpuVpl, MAX_K};
+use glam::Vec3;
+use slc_core::{CullInput, Image, LightLists, NO_LIST};
+
+/// `shaders/brdf.wgsl` followed by the shading kernel.
+pub(crate) const SOURCE: &str = concat!(
+    include_str!("../shaders/brdf.wgsl"),
+    include_str!("../shaders/shade.wgsl")
+);
+const WORKGROUP: u32 = 64;
+
+/// Light lists on the GPU in [`LightLists`]' CSR layout: list `l` holds
+/// `indices[offsets[l]..offsets[l + 1]]` (VPL indices), pixel `p` shades with list
+/// `pixel_list[p]` ([`NO_LIST`]: none). Empty lists are allowed.
+pub struct GpuLightLists {
+    pub offsets: wgpu::Buffer,
+    pub indices: wgpu::Buffer,
+    pub pixel_list: wgpu::Buffer,
+    /// Number of lists (`offsets` holds one more entry).
+    pub list_count: u32,
+    /// Number of list entries.
+    pub entries: u32,
+    /// Number of pixels (`pixel_list` entries).
+    pub pixels: u32,
+}
+
+impl GpuLightLists {
+    /// Validates `lists` for `pixels` pixels and `vpl_count` VPLs (what indexing them on the
+    /// CPU would require: offsets ascending within `indices`, list ids below the list count or
+    /// [`NO_LIST`], VPL indices in range) and uploads them.
+    pub fn upload(
+        ctx: &GpuContext,
+        lists: &LightLists,
+        pixels: usize,
+        vpl_count: usize,
+    ) -> Result<Self, GpuError> {
+        let bad = |what: String| Err(GpuError::Input(format!("light lists: {what}")));
+        if lists.pixel_list.len() != pixels {
+            return bad(format!(
+                "{} pixel entries for {pixels} pixels",
+                lists.pixel_list.len()
+            ));
+        }
+        let list_count = lists.len();
+        if lists.offsets.windows(2).any(|w| w[1] < w[0])
+            || lists
+                .offsets
+                .last()
+                .is_some_and(|&e| e as usize > lists.indices.len())
+        {
+            return bad("offsets descend or pass the end of the indices".into());
+        }
+        if let Some(p) = lists
+            .pixel_list
+            .iter()
+            .position(|&l| l != NO_LIST && l as usize >= list_count)
+        {
+            return bad(format!(
+                "pixel {p} names a list beyond the {list_count} lists"
+            ));
+        }
+        if let Some(&v) = lists.indices.iter().find(|&&v| v as usize >= vpl_count) {
+            return bad(format!("VPL index {v} beyond the {vpl_count} VPLs"));
+        }
+        let count = |n: usize, what: &str| {
+            u32::try_from(n).map_err(|_| GpuError::Input(format!("{n} {what} exceed u32")))
+        };
+        let offsets: &[u32] = if lists.offsets.is_empty() {
+            &[0]
+        } else {
+            &lists.offsets
+        };
+        Ok(Self {
+            list_count: count(list_count, "light lists")?,
+            entries: count(lists.indices.len(), "light-list entries")?,
+            pixels: count(pixels, "pixels")?,
+            offsets: upload(ctx, "list offsets", offsets)?,
+            indices: upload(ctx, "light lists", &lists.indices)?,
+            pixel_list: upload(ctx, "pixel lists", &lists.pixel_list)?,
+        })
+    }
+}
+
+/// The compiled shading pipeline.
+pub struct ShadePass {
+    pipeline: wgpu::ComputePipeline,
+}
+
+impl ShadePass {
+    pub fn new(ctx: &GpuContext) -> Result<Self, GpuError> {
+        ctx.scoped("shade pipeline", || {
+            Ok(Self {
+                pipeline: ctx.compute_pipeline("shade", SOURCE),
+            })
+        })
+    }
+
+    /// Shades `input` (G-buffer, VPLs, δ, K) with `lists` uploaded from the CPU: the GPU twin
+    /// of `shade_lists(…, visibility = false, …)`. Errors on invalid input (δ, ξ or a VPL as
+    /// the culler validates them, lists that do not fit the input), on buffers beyond the
+    /// device's limits and on device faults.
+    pub fn shade(
+        &self,
+        ctx: &GpuContext,
+        input: &CullInput,
+        lists: &LightLists,
+    ) -> Result<Image, GpuError> {
+        let gpu = GpuLightLists::upload(ctx, lists, input.gbuffer.samples.len(), input.vpls.len())?;
+        self.shade_gpu_lists(ctx, input, &gpu)
+    }
+
+    /// Shades `input` with lists already on the GPU (e.g. from
+    /// [`crate::tiled_cull_pass::TiledCuller::cull_on_gpu`] for the same input), without
+    /// reading them back.
+    pub fn shade_gpu_lists(
+        &self,
+        ctx: &GpuContext,
+        input: &CullInput,
+        lists: &GpuLightLists,
+    ) -> Result<Image, GpuError> {
+        let g = input.gbuffer;
+        let pixels = u64::from(g.width) * u64::from(g.height);
+        if pixels != g.samples.len() as u64 || u32::try_from(pixels).is_err() {
+            return Err(GpuError::Input(format!(
+                "G-buffer of {}x{} pixels has {} samples",
+                g.width,
+                g.height,
+                g.samples.len()
+            )));
+        }
+        if u64::from(lists.pixels) != pixels {
+            return Err(GpuError::Input(format!(
+                "light lists for {} pixels, G-buffer of {pixels}",
+                lists.pixels
+            )));
+        }
+        let k = input.interleaving.k;
+        if !(1..=MAX_K).contains(&k) {
+            return Err(GpuError::Input(format!(
+                "interleaving factor K = {k} must lie in 1..={MAX_K}"
+            )));
+        }
+        let vpl_count = u32::try_from(input.vpls.len())
+            .map_err(|_| GpuError::Input(format!("{} VPLs exceed u32", input.vpls.len())))?;
+        let mut image = Image::new(g.width, g.height);
+        if pixels == 0 {
+            return Ok(image);
+        }
+        // The same validation as the culler's (δ and ξ of eq. 2-3, the lobes).
+        let vpls = input
+            .vpls
+            .iter()
+            .enumerate()
+            .map(|(i, v)| GpuVpl::new(v, i, input.delta))
+            .collect::<Result<Vec<_>, _>>()?;
+        let samples: Vec<GpuSample> = g
+            .samples
+            .iter()
+            .map(|s| GpuSample::new(s.as_ref()))
+            .collect();
+        let params = GpuShadeParams {
+            width: g.width,
+            height: g.height,
+            pixel_count: pixels as u32,
+            vpl_count,
+            list_count: lists.list_count,
+            delta: input.delta,
+            scale: input.interleaving.scale(),
+            pad: 0,
+        };
+        let samples = upload(ctx, "gbuffer samples", &samples)?;
+        let vpls = upload(ctx, "vpls", &vpls)?;
+        let out = output::<f32>(ctx, "indirect image", 3 * pixels as usize)?;
+        let grid = Grid::for_items(ctx, pixels, WORKGROUP)?;
+        ctx.scoped("shade", || {
+            let params = uniform(ctx, "shade params", &params);
+            let bind = ctx.bind_group(
+                "shade",
+                &self.pipeline,
+                &[
+                    &params,
+                    &samples,
+                    &vpls,
+                    &lists.offsets,
+                    &lists.indices,
+                    &lists.pixel_list,
+                    &out,
+                ],
+            );
+            let mut encoder = ctx
+                .device
+                .create_command_encoder(&wgpu::CommandEncoderDescriptor {
+                    label: Some("shade"),
+                });
+            {
+                let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+                    label: Some("shade"),
+                    timestamp_writes: None,
+                });
+                pass.set_pipeline(&self.pipeline);
+                pass.set_bind_group(0, &bind, &[]);
+                grid.dispatch(&mut pass);
+            }
+            ctx.queue.submit([encoder.finish()]);
+            Ok(())
+        })?;
+        let rgb: Vec<f32> = read_back(ctx, "indirect image", &out, 3 * pixels as usize)?;
+        for (p, c) in image.pixels.iter_mut().zip(rgb.chunks_exact(3)) {
+            *p = Vec3::new(c[0], c[1], c[2]);
+        }
+        Ok(image)
+    }
+}
