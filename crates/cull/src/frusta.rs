@@ -16,7 +16,7 @@ use glam::{DVec2, DVec3};
 /// the f64 rounding of the projection to the image plane, of the box corners and of the
 /// test-space mapping (about 1e-16 relative, amplified at most by the eccentricity
 /// 1/(2α) = 500 of the sharpest spheroid): a millionth of a tile's width costs nothing.
-pub(crate) const FRUSTUM_SLACK: f64 = 1e-6;
+pub const FRUSTUM_SLACK: f64 = 1e-6;
 
 /// A closed axis-aligned box.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]

@@ -77,13 +77,14 @@ mod tiles;
 pub mod view;
 mod vpl_bounds;
 
+pub use frusta::FRUSTUM_SLACK;
 pub use strategies::clustered::ClusteredCuller;
 pub use strategies::ellipsoid::EllipsoidCuller;
 pub use strategies::enclosing_sphere::EnclosingSphereCuller;
 pub use strategies::none::NoCulling;
 pub use strategies::sphere::SphereCuller;
 pub use view::CullView;
-pub use vpl_bounds::GlossyBound;
+pub use vpl_bounds::{GlossyBound, BOUND_SLACK};
 
 use slc_core::Culler;
 

@@ -16,7 +16,7 @@ use slc_core::{CullError, Vpl, VplLobe};
 /// in `metrics`) evaluates p(ωo, l) of eq. (2) in f32 as well. Without growth the tests find
 /// contributing pairs outside the bounds (still some at 2e-5, none at 1e-4); 1e-3 keeps a
 /// factor of 10 of margin for about 0.3% more volume.
-pub(crate) const BOUND_SLACK: f64 = 1e-3;
+pub const BOUND_SLACK: f64 = 1e-3;
 
 /// Which bound a glossy VPL is culled with; diffuse VPLs always use the sphere of section 6.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]

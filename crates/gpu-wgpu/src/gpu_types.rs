@@ -158,9 +158,9 @@ const _: () = assert!(std::mem::size_of::<GpuView>() == 96);
 /// Largest interleaving factor K (as `slc_cull`): K² subregions fit easily in u32.
 pub const MAX_K: u32 = 1024;
 
-/// `slc_cull`'s `BOUND_SLACK`: radii and semi-axes grow by this relative amount so f32
-/// rounding never culls a contributing VPL (see `crates/cull/src/vpl_bounds.rs`).
-pub const BOUND_SLACK: f32 = 1e-3;
+/// [`slc_cull::BOUND_SLACK`] in f32: radii and semi-axes grow by this relative amount so f32
+/// rounding never culls a contributing VPL.
+pub const BOUND_SLACK: f32 = slc_cull::BOUND_SLACK as f32;
 
 impl GpuView {
     /// The view of `camera` for a `width` x `height` image (validated by [`CullView::new`]).
@@ -268,8 +268,8 @@ const _: () = assert!(std::mem::size_of::<GpuCullParams>() == 128);
 pub const CULL_COUNT: u32 = 0;
 pub const CULL_WRITE: u32 = 1;
 
-/// `slc_cull`'s `FRUSTUM_SLACK` (`crates/cull/src/frusta.rs`).
-pub const FRUSTUM_SLACK: f32 = 1e-6;
+/// [`slc_cull::FRUSTUM_SLACK`] in f32: growth of the tile rectangle and depth ranges.
+pub const FRUSTUM_SLACK: f32 = slc_cull::FRUSTUM_SLACK as f32;
 
 /// One tile's frusta after Modified HalfZ (section 5.1): the image-plane rectangle at unit
 /// depth and the depth ranges of its near and far clusters, all grown by the frustum
