@@ -5,7 +5,11 @@ use slc_cpu_ref::{LobeSelection, RenderSettings, Stochastic};
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
 pub enum Backend {
+    /// The CPU reference renderer (rayon).
     Cpu,
+    /// Culling and shading on the GPU (wgpu); G-buffer, RSM, VPLs, direct light and the
+    /// denoiser still run on the CPU in this version.
+    Gpu,
 }
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]

@@ -1,7 +1,9 @@
 //! `slc bench`: per-pass times of the stochastic pipeline over resolutions and VPL counts, for
 //! each culling strategy, in one run (so ratios are measured on the same machine state).
 //! Writes `bench.csv` and `bench.md`.
-use crate::args::{culling_names, FrameArgs, PipelineArgs};
+use crate::args::{culling_names, Backend, FrameArgs, PipelineArgs};
+use crate::gpu_frame::{check_visibility, gpu_bound, GpuFrame};
+use crate::report::Device;
 use clap::Args;
 use slc_cpu_ref::{prepare, shade_stochastic, Method, Stochastic, Tracer};
 use std::fmt::Write;
@@ -63,18 +65,37 @@ pub fn run(args: &BenchArgs) -> Result<(), String> {
     if args.repeat == 0 {
         return Err("--repeat must be at least 1".into());
     }
+    let gpu = match args.frame.backend {
+        Backend::Cpu => None,
+        Backend::Gpu => {
+            check_visibility(args.frame.visibility)?;
+            for name in &names {
+                gpu_bound(name)?;
+            }
+            Some(GpuFrame::new()?)
+        }
+    };
+    let device = gpu.as_ref().map_or_else(Device::cpu, |g| g.device(false));
     let mut csv = format!(
         "scene,width,height,rsm,vpls,culling,{},culling_plus_shading_ms\n",
         PASSES.map(|p| format!("{p}_ms")).join(",")
     );
     let mut md = format!(
-        "# slc bench: {}\n\nCPU backend, {} rayon threads, δ = {}, K = {}, lobes {:?}, best of {} for culling + shading. Milliseconds per pass.\n\n| resolution | VPLs | strategy | {} | culling + shading |\n|---|---|---|{}---|\n",
+        "# slc bench: {}\n\nBackend {}, adapter {}, {} rayon threads, δ = {}, K = {}, lobes {:?}, best of {} for culling + shading. Milliseconds per pass.\n\n{}| resolution | VPLs | strategy | {} | culling + shading |\n|---|---|---|{}---|\n",
         scene.name,
+        device.backend,
+        device.adapter,
         rayon::current_num_threads(),
         args.delta,
         args.pipeline.interleave,
         args.frame.lobes,
         args.repeat,
+        device
+            .notes
+            .iter()
+            .map(|n| format!("- {n}\n"))
+            .chain((!device.notes.is_empty()).then(|| "\n".to_string()))
+            .collect::<String>(),
         PASSES.join(" | "),
         "---|".repeat(PASSES.len())
     );
@@ -102,17 +123,15 @@ pub fn run(args: &BenchArgs) -> Result<(), String> {
             for &name in &names {
                 let mut best = None;
                 for _ in 0..args.repeat {
-                    let out = shade_stochastic(
-                        &p,
-                        &Stochastic {
-                            culling: name,
-                            ..base
-                        },
-                        frame.seed,
-                        frame.visibility,
-                        &|_| {},
-                    )
-                    .map_err(|e| e.to_string())?;
+                    let s = Stochastic {
+                        culling: name,
+                        ..base
+                    };
+                    let out = match &gpu {
+                        None => shade_stochastic(&p, &s, frame.seed, frame.visibility, &|_| {})
+                            .map_err(|e| e.to_string())?,
+                        Some(g) => g.shade(&p, &s, frame.seed)?,
+                    };
                     let mut t = p.timings.clone();
                     t.merge(&out.timings);
                     let ms = |n: &str| t.0.iter().find(|(k, _)| *k == n).map_or(0.0, |(_, v)| *v);

@@ -2,11 +2,12 @@
 //!
 //! Writes one folder per strategy (images, heat map, report.json), `reference_vpl/` (every VPL
 //! with p = 1, the same VPLs), `report.md` with the table, and `side_by_side.png`.
-use crate::args::{culling_names, FrameArgs, PipelineArgs};
+use crate::args::{culling_names, Backend, FrameArgs, PipelineArgs};
+use crate::gpu_frame::{check_visibility, gpu_bound, GpuFrame};
 use crate::heatmap::heat_map;
 use crate::output::write_frame;
 use crate::progress::bar;
-use crate::report::{FrameFacts, Report};
+use crate::report::{Device, FrameFacts, Report};
 use clap::Args;
 use image::RgbImage;
 use slc_core::Image;
@@ -61,6 +62,18 @@ pub fn run(args: &CompareArgs) -> Result<(), String> {
     let scene = args.frame.load_renderable()?;
     let names = culling_names(&args.culling)?;
     let f = &args.frame;
+    let gpu = match f.backend {
+        Backend::Cpu => None,
+        Backend::Gpu => {
+            check_visibility(f.visibility)?;
+            for name in &names {
+                gpu_bound(name)?;
+            }
+            Some(GpuFrame::new()?)
+        }
+    };
+    let device = gpu.as_ref().map_or_else(Device::cpu, |g| g.device(true));
+    let cpu = Device::cpu();
     let base = args.pipeline.stochastic(args.delta, "none", true);
     let settings = f.settings(Method::Stochastic(base), 1);
     settings.validate().map_err(|e| e.to_string())?;
@@ -93,6 +106,7 @@ pub fn run(args: &CompareArgs) -> Result<(), String> {
         let dir = args.out.join("reference_vpl");
         let images = write_frame(&dir, &p.direct, r, &total)?;
         let facts = FrameFacts {
+            device: &cpu,
             scene: &scene,
             args: f,
             method: Method::VplReference,
@@ -125,10 +139,16 @@ pub fn run(args: &CompareArgs) -> Result<(), String> {
             culling: name,
             ..base
         };
-        let bar = bar(pixels, name.to_string());
-        let out = shade_stochastic(&p, &s, f.seed, f.visibility, &|n| bar.inc(n))
-            .map_err(|e| e.to_string())?;
-        bar.finish_and_clear();
+        let out = match &gpu {
+            None => {
+                let bar = bar(pixels, name.to_string());
+                let out = shade_stochastic(&p, &s, f.seed, f.visibility, &|n| bar.inc(n))
+                    .map_err(|e| e.to_string())?;
+                bar.finish_and_clear();
+                out
+            }
+            Some(g) => g.shade(&p, &s, f.seed)?,
+        };
         let m = out.metrics.as_ref().expect("metrics were asked for");
         let denoised_unculled = if s.denoise {
             cross_bilateral(&unculled, &p.gbuffer, BilateralParams::default())
@@ -150,6 +170,7 @@ pub fn run(args: &CompareArgs) -> Result<(), String> {
         let mut timings = p.timings.clone();
         timings.merge(&out.timings);
         let facts = FrameFacts {
+            device: &device,
             scene: &scene,
             args: f,
             method: Method::Stochastic(s),
@@ -175,7 +196,7 @@ pub fn run(args: &CompareArgs) -> Result<(), String> {
         });
         eprintln!("{name}: done");
     }
-    write_table(args, &scene.name, p.vpls.len(), &rows)?;
+    write_table(args, &device, &scene.name, p.vpls.len(), &rows)?;
     side_by_side(&rows)
         .save(args.out.join("side_by_side.png"))
         .map_err(|e| e.to_string())?;
@@ -189,13 +210,21 @@ fn ms(t: &Timings, name: &str) -> f64 {
         .map_or(0.0, |(_, v)| *v)
 }
 
-fn write_table(args: &CompareArgs, scene: &str, vpls: usize, rows: &[Row]) -> Result<(), String> {
+fn write_table(
+    args: &CompareArgs,
+    device: &Device,
+    scene: &str,
+    vpls: usize,
+    rows: &[Row],
+) -> Result<(), String> {
     let f = &args.frame;
     let mut md = String::new();
     let _ = writeln!(md, "# slc compare: {scene}\n");
     let _ = writeln!(
         md,
-        "{}x{}, {vpls} VPLs (RSM {}² per face, lobes {:?}), δ = {}, K = {}, denoise {}, seed {}, {} rayon threads.\n",
+        "Backend {}, adapter {}. {}x{}, {vpls} VPLs (RSM {}² per face, lobes {:?}), δ = {}, K = {}, denoise {}, seed {}, {} rayon threads.\n",
+        device.backend,
+        device.adapter,
         f.width,
         f.height,
         f.rsm,
@@ -207,6 +236,15 @@ fn write_table(args: &CompareArgs, scene: &str, vpls: usize, rows: &[Row]) -> Re
         rayon::current_num_threads()
     );
     let _ = writeln!(md, "Every strategy shades the same G-buffer, VPLs and ξ. \"vs unculled\" is the RMSE of the indirect image against the estimate with no culling (same K, δ, ξ and filter): 0 up to float rounding when nothing contributing was culled. \"vs reference\" is against every VPL with p = 1 (`reference_vpl/`).\n");
+    for note in &device.notes {
+        let _ = writeln!(md, "- {note}");
+    }
+    if !device.notes.is_empty() {
+        let _ = writeln!(
+            md,
+            "- the unculled estimate and `reference_vpl/` were shaded on the CPU\n"
+        );
+    }
     let _ = writeln!(md, "| strategy | culling ms | shading ms | denoise ms | culling + shading ms | lights/pixel | true positives | false positives | missed | FDR | RMSE vs unculled | RMSE vs reference |");
     let _ = writeln!(md, "|---|---|---|---|---|---|---|---|---|---|---|---|");
     let fmt_opt = |v: Option<f32>| v.map_or("n/a".to_string(), |v| format!("{v:.3e}"));

@@ -2,6 +2,7 @@
 mod args;
 mod bench_cmd;
 mod compare_cmd;
+mod gpu_frame;
 mod heatmap;
 mod output;
 mod plot;

@@ -1,10 +1,12 @@
 //! `slc render`.
-use crate::args::{culling_name, FrameArgs, PipelineArgs};
+use crate::args::{culling_name, Backend, FrameArgs, PipelineArgs};
+use crate::gpu_frame::{check_visibility, gpu_bound, GpuFrame};
 use crate::output::write_frame;
 use crate::progress::bar;
-use crate::report::{FrameFacts, Report};
+use crate::report::{Device, FrameFacts, Report};
 use clap::{Args, ValueEnum};
-use slc_cpu_ref::{render, Method};
+use slc_core::Scene;
+use slc_cpu_ref::{render, Frame, Method, RenderSettings};
 use std::path::PathBuf;
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
@@ -55,17 +57,25 @@ pub fn run(args: &RenderArgs) -> Result<(), String> {
     };
     let settings = args.frame.settings(method, args.spp);
     let f = &args.frame;
-    let progress = bar(
-        f.width as u64 * f.height as u64 * args.spp as u64,
-        format!("rendering {}", scene.name),
-    );
-    let frame = render(&scene, &settings, &|n| progress.inc(n)).map_err(|e| e.to_string())?;
-    progress.finish_and_clear();
+    let (frame, device) = match f.backend {
+        Backend::Cpu => (render_cpu(&scene, &settings)?, Device::cpu()),
+        Backend::Gpu => {
+            if args.reference.is_some() {
+                return Err("references are rendered on the CPU only; use --backend cpu".into());
+            }
+            check_visibility(f.visibility)?;
+            gpu_bound(&args.culling)?;
+            let gpu = GpuFrame::new()?;
+            eprintln!("rendering {} on the GPU", scene.name);
+            (gpu.render(&scene, &settings)?, gpu.device(args.metrics))
+        }
+    };
 
     let total = frame.direct.add(&frame.indirect);
     let images = write_frame(&args.out, &frame.direct, &frame.indirect, &total)?;
     let timings = &frame.timings;
     let facts = FrameFacts {
+        device: &device,
         scene: &scene,
         args: f,
         method,
@@ -78,8 +88,9 @@ pub fn run(args: &RenderArgs) -> Result<(), String> {
     Report::new(&facts).write(&args.out.join("report.json"))?;
     let m = total.mean();
     println!(
-        "{}: {}x{}, {} VPLs, {:.0} ms; mean total radiance ({:.4}, {:.4}, {:.4}); wrote {}",
+        "{} ({}): {}x{}, {} VPLs, {:.0} ms; mean total radiance ({:.4}, {:.4}, {:.4}); wrote {}",
         scene.name,
+        device.adapter,
         f.width,
         f.height,
         frame.vpl_count,
@@ -90,4 +101,15 @@ pub fn run(args: &RenderArgs) -> Result<(), String> {
         args.out.display()
     );
     Ok(())
+}
+
+/// Renders on the CPU with a progress bar.
+fn render_cpu(scene: &Scene, settings: &RenderSettings) -> Result<Frame, String> {
+    let progress = bar(
+        settings.width as u64 * settings.height as u64 * settings.spp as u64,
+        format!("rendering {}", scene.name),
+    );
+    let frame = render(scene, settings, &|n| progress.inc(n)).map_err(|e| e.to_string())?;
+    progress.finish_and_clear();
+    Ok(frame)
 }

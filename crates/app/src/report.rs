@@ -12,8 +12,12 @@ use std::path::Path;
 pub struct Report {
     pub scene: String,
     pub backend: &'static str,
-    /// The device that rendered: the CPU backend names its thread count.
+    /// The device that rendered: the CPU backend names its thread count, the GPU backend its
+    /// wgpu adapter.
     pub adapter: String,
+    /// Where each pass ran and how it was timed, when the backend is not all one device
+    /// (empty for the CPU).
+    pub notes: Vec<String>,
     pub width: u32,
     pub height: u32,
     pub vpl_count: usize,
@@ -62,8 +66,30 @@ impl From<Option<&CullMetrics>> for Metrics {
     }
 }
 
+/// The backend that rendered a frame, as its report names it.
+#[derive(Clone, Debug)]
+pub struct Device {
+    /// `cpu` or `gpu`.
+    pub backend: &'static str,
+    pub adapter: String,
+    /// See [`Report::notes`].
+    pub notes: Vec<String>,
+}
+
+impl Device {
+    /// The CPU reference on rayon's threads.
+    pub fn cpu() -> Self {
+        Device {
+            backend: "cpu",
+            adapter: format!("CPU ({} rayon threads)", rayon::current_num_threads()),
+            notes: Vec::new(),
+        }
+    }
+}
+
 /// What a frame was, for its report.
 pub struct FrameFacts<'a> {
+    pub device: &'a Device,
     pub scene: &'a Scene,
     pub args: &'a FrameArgs,
     pub method: Method,
@@ -82,8 +108,9 @@ impl Report {
         };
         Report {
             scene: f.scene.name.clone(),
-            backend: "cpu",
-            adapter: format!("CPU ({} rayon threads)", rayon::current_num_threads()),
+            backend: f.device.backend,
+            adapter: f.device.adapter.clone(),
+            notes: f.device.notes.clone(),
             width: f.args.width,
             height: f.args.height,
             vpl_count: f.vpl_count,

@@ -60,6 +60,9 @@ impl Point {
 }
 
 pub fn run(args: &SweepArgs) -> Result<(), String> {
+    if args.frame.backend != crate::args::Backend::Cpu {
+        return Err("slc sweep runs on the CPU only in this version; use --backend cpu".into());
+    }
     let scene = args.frame.load_renderable()?;
     let names = culling_names(&args.culling)?;
     if names.is_empty() || args.delta.is_empty() || args.repeat == 0 {

@@ -36,6 +36,7 @@ fn render_writes_images_and_report() {
     for key in [
         "\"scene\": \"cornell-glossy\"",
         "\"backend\": \"cpu\"",
+        "\"notes\": []",
         "\"width\": 24",
         "\"height\": 16",
         "\"seed\": 3",
@@ -206,5 +207,190 @@ fn bench_writes_a_row_per_resolution_vpl_count_and_strategy() {
     assert!(std::fs::read_to_string(out.join("bench.md"))
         .unwrap()
         .contains("| 24x16 |"));
+    std::fs::remove_dir_all(&out).ok();
+}
+
+/// Whether a GPU adapter is there for the `--backend gpu` tests. None: with `CI` set the test
+/// fails (CI installs lavapipe, so a missing adapter is a broken setup); otherwise a notice is
+/// printed and the test passes without checking (as `crates/gpu-wgpu/tests/gpu/common.rs`).
+fn gpu_available() -> bool {
+    use slc_gpu_wgpu::{GpuContext, GpuError};
+    match GpuContext::new() {
+        Ok(_) => true,
+        Err(e @ GpuError::NoAdapter(_)) => {
+            if std::env::var_os("CI").is_some() {
+                panic!("CI is set but no GPU adapter was found: {e}");
+            }
+            eprintln!("notice: GPU test skipped, no adapter ({e})");
+            false
+        }
+        Err(e) => panic!("GPU device could not be created: {e}"),
+    }
+}
+
+/// The RGB pixels of the first layer of an EXR file.
+fn read_exr(path: &std::path::Path) -> Vec<[f32; 3]> {
+    use exr::prelude::*;
+    let img = read_first_rgba_layer_from_file(
+        path,
+        |res, _| (res.width(), vec![[0.0; 3]; res.width() * res.height()]),
+        |(w, px), pos, (r, g, b, _a): (f32, f32, f32, f32)| px[pos.y() * *w + pos.x()] = [r, g, b],
+    )
+    .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    img.layer_data.channel_data.pixels.1
+}
+
+#[test]
+fn gpu_render_equals_the_cpu_render_and_names_its_adapter() {
+    if !gpu_available() {
+        return;
+    }
+    let frame = [
+        "render",
+        "--width",
+        "48",
+        "--height",
+        "32",
+        "--rsm",
+        "4",
+        "--interleave",
+        "2",
+        "--seed",
+        "5",
+        "--metrics",
+    ];
+    let (cpu, gpu) = (out_dir("render-cpu"), out_dir("render-gpu"));
+    for (backend, out) in [("cpu", &cpu), ("gpu", &gpu)] {
+        let o = slc()
+            .args(frame)
+            .args(["--backend", backend, "--out"])
+            .arg(out)
+            .output()
+            .unwrap();
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    }
+    for f in [
+        "direct.exr",
+        "indirect.exr",
+        "total.exr",
+        "total.png",
+        "report.json",
+    ] {
+        assert!(gpu.join(f).is_file(), "{f} missing");
+    }
+    let report: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(gpu.join("report.json")).unwrap()).unwrap();
+    assert_eq!(report["backend"], "gpu", "{report}");
+    assert!(
+        report["adapter"].as_str().is_some_and(|a| !a.is_empty()),
+        "{report}"
+    );
+    assert!(
+        report["notes"].as_array().is_some_and(|n| !n.is_empty()),
+        "{report}"
+    );
+    for pass in ["culling", "shading", "denoise", "total"] {
+        assert!(report["timings_ms"][pass].is_number(), "{pass}: {report}");
+    }
+    let cpu_report: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(cpu.join("report.json")).unwrap()).unwrap();
+    assert_eq!(cpu_report["notes"], serde_json::json!([]));
+    assert_eq!(report["metrics"], cpu_report["metrics"]);
+    let (a, b) = (
+        read_exr(&cpu.join("indirect.exr")),
+        read_exr(&gpu.join("indirect.exr")),
+    );
+    assert_eq!(a.len(), 48 * 32);
+    assert_eq!(a.len(), b.len());
+    let scale = a
+        .iter()
+        .flatten()
+        .fold(0f32, |m, v| m.max(v.abs()))
+        .max(1e-6);
+    for (i, (c, g)) in a.iter().zip(&b).enumerate() {
+        for ch in 0..3 {
+            let err = (c[ch] - g[ch]).abs();
+            assert!(
+                err <= 1e-4 * c[ch].abs().max(1e-3 * scale),
+                "pixel {i} channel {ch}: cpu {} gpu {}",
+                c[ch],
+                g[ch]
+            );
+        }
+    }
+    std::fs::remove_dir_all(&cpu).ok();
+    std::fs::remove_dir_all(&gpu).ok();
+}
+
+#[test]
+fn gpu_backend_refuses_what_it_lacks_and_suggests_the_cpu() {
+    for extra in [
+        &["--culling", "none"][..],
+        &["--culling", "clustered"],
+        &["--visibility"],
+        &["--reference", "path"],
+    ] {
+        let o = slc()
+            .args([
+                "render",
+                "--width",
+                "8",
+                "--height",
+                "8",
+                "--backend",
+                "gpu",
+            ])
+            .args(extra)
+            .arg("--out")
+            .arg(out_dir("gpu-refused"))
+            .output()
+            .unwrap();
+        assert!(!o.status.success(), "{extra:?}");
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert!(err.contains("--backend cpu"), "{extra:?}: {err}");
+    }
+}
+
+#[test]
+fn gpu_compare_names_backend_and_adapter_and_misses_nothing() {
+    if !gpu_available() {
+        return;
+    }
+    let out = out_dir("compare-gpu");
+    let o = slc()
+        .args([
+            "compare",
+            "--backend",
+            "gpu",
+            "--width",
+            "32",
+            "--height",
+            "24",
+            "--rsm",
+            "4",
+            "--interleave",
+            "2",
+            "--culling",
+            "sphere,ellipsoid",
+            "--no-reference",
+            "--out",
+        ])
+        .arg(&out)
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let md = std::fs::read_to_string(out.join("report.md")).unwrap();
+    assert!(md.contains("Backend gpu, adapter "), "{md}");
+    let rows: Vec<&str> = md
+        .lines()
+        .filter(|l| l.starts_with("| ") && !l.starts_with("| strategy"))
+        .collect();
+    assert_eq!(rows.len(), 2, "{md}");
+    for row in rows {
+        let cells: Vec<&str> = row.split('|').map(str::trim).collect();
+        assert_eq!(cells[9], "0", "{row}");
+    }
+    let report = std::fs::read_to_string(out.join("ellipsoid/report.json")).unwrap();
+    assert!(report.contains("\"backend\": \"gpu\""), "{report}");
     std::fs::remove_dir_all(&out).ok();
 }
