@@ -44,6 +44,7 @@ pub mod sampling;
 pub mod tracer;
 pub mod vpl_shading;
 pub mod vpls;
+pub mod vsgl;
 pub mod watertight;
 
 pub use render::{

@@ -1,0 +1,96 @@
+//! The parameters of one virtual spherical Gaussian light (VSGL section 3.1).
+use super::sums::ClusterSums;
+use core::f32::consts::TAU;
+use glam::Vec3;
+use slc_bounds::{BoundsError, SphericalGaussian, ToksvigSum};
+
+/// A VSGL: the radiant intensity `I_v(ω) ≈ c_d G(ω; ξ_d, λ_d) + c_s G(ω; ξ_s, λ_s)` of a
+/// cluster of VPLs (section 3.1.1, one SG per BRDF component) and its isotropic Gaussian
+/// positional distribution `(μ_v, σ_v²)` (section 3.1.2).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Vsgl {
+    /// `c_v = Σ Φ_i R_{d,i} / A(λ_v)` of the diffuse lobe, per channel.
+    pub c_diffuse: Vec3,
+    /// `ξ_v = ξ̄_v/|ξ̄_v|` of the diffuse lobe (+z for a zero mean vector).
+    pub xi_diffuse: Vec3,
+    /// `λ_v` of the diffuse lobe, from `|ξ̄_v|` by the map's inverse (`|ξ̄_v|/(1 − |ξ̄_v|)`).
+    pub lambda_diffuse: f32,
+    /// `c_v` of the specular lobe, per channel.
+    pub c_specular: Vec3,
+    /// `ξ_v` of the specular lobe.
+    pub xi_specular: Vec3,
+    /// `λ_v` of the specular lobe.
+    pub lambda_specular: f32,
+    /// `μ_v = Σ w_i x_i / Σ w_i` (zero for an empty cluster).
+    pub mu: Vec3,
+    /// `σ_v² = Σ w_i |x_i|² / Σ w_i − |μ_v|²`, clamped to at least the floor given.
+    pub sigma2: f32,
+    /// The positional weight `Σ w_i`, the total of the RGB channels of `Σ Φ_i (R_d + R_s)`.
+    pub weight: f32,
+}
+
+impl Vsgl {
+    /// The VSGL of a cluster: the Toksvig back-conversion of its lobe buffers (section 3.1.1,
+    /// with the map the sums were built with) and its weighted mean and variance (3.1.2).
+    ///
+    /// A single VPL has `σ_v² = 0`, for which eq. (1) and the `λ_σ = d²/σ_v²` of eq. (4)
+    /// diverge (the VSGL degenerates into the VPL): `σ_v²` is clamped to `sigma2_floor` (≥ 0),
+    /// which should be a small positive area, e.g. the squared world size of a level-0 texel's
+    /// footprint or `1e-8` of the squared scene diagonal. Fails with [`BoundsError::Overflow`]
+    /// if a coefficient leaves the `f32` range.
+    pub fn from_sums(sums: &ClusterSums, sigma2_floor: f32) -> Result<Self, BoundsError> {
+        let (xi_diffuse, lambda_diffuse, c_diffuse) =
+            filtered(&sums.diffuse_lobe, sums.diffuse_weight.as_vec3())?;
+        let (xi_specular, lambda_specular, c_specular) =
+            filtered(&sums.specular_lobe, sums.specular_weight.as_vec3())?;
+        let weight = sums.weight();
+        let (mu, sigma2) = if weight > 0.0 {
+            let mu = sums.weighted_position / weight;
+            let sigma2 = sums.weighted_squared_norm / weight - mu.length_squared();
+            (mu.as_vec3(), sigma2.max(0.0) as f32)
+        } else {
+            (Vec3::ZERO, 0.0)
+        };
+        Ok(Self {
+            c_diffuse,
+            xi_diffuse,
+            lambda_diffuse,
+            c_specular,
+            xi_specular,
+            lambda_specular,
+            mu,
+            sigma2: sigma2.max(sigma2_floor),
+            weight: weight as f32,
+        })
+    }
+
+    /// The radiant intensity `I_v(ω) ≈ c_d G(ω; ξ_d, λ_d) + c_s G(ω; ξ_s, λ_s)` towards the
+    /// unit direction `omega` (section 3.1.1), per channel.
+    pub fn intensity(&self, omega: Vec3) -> Vec3 {
+        let g = |axis, sharpness| {
+            SphericalGaussian {
+                axis,
+                sharpness,
+                amplitude: 1.0,
+            }
+            .eval(omega)
+        };
+        self.c_diffuse * g(self.xi_diffuse, self.lambda_diffuse)
+            + self.c_specular * g(self.xi_specular, self.lambda_specular)
+    }
+
+    /// The coefficients `c_v/(2π σ_v²)` of the emitted radiance of eq. (1) (and of `c_in` in
+    /// eq. 5), `[diffuse, specular]`; infinite for `σ_v² = 0` (see [`Vsgl::from_sums`]).
+    pub fn emitted_coefficients(&self) -> [Vec3; 2] {
+        let k = 1.0 / (TAU * self.sigma2);
+        [self.c_diffuse * k, self.c_specular * k]
+    }
+}
+
+/// `(ξ_v, λ_v, c_v)` of one lobe buffer: the axis and sharpness of the filtered lobe and the
+/// RGB weight `Σ Φ_i R_i` over `A(λ_v)` (the scalar lobe's amplitude is the total over `A`).
+fn filtered(lobe: &ToksvigSum, rgb_weight: Vec3) -> Result<(Vec3, f32, Vec3), BoundsError> {
+    let sg = lobe.to_lobe()?;
+    let c = rgb_weight / slc_bounds::sg::sg_integral(sg.sharpness);
+    Ok((sg.axis, sg.sharpness, c))
+}

@@ -1,0 +1,25 @@
+//! Virtual spherical Gaussian lights (Tokuyoshi 2015, "Virtual Spherical Gaussian Lights for
+//! Real-time Glossy Indirect Illumination"; "VSGL" below) built from a reflective shadow map.
+//!
+//! - [`TexelLobes`]: the per-VPL quantities of VSGL section 3.1.1 for one RSM texel, the
+//!   reflectances `R_d`, `R_s` and the normalized lobes `G(ω; ξ_i, λ_i)/A(λ_i)` of its diffuse
+//!   and specular radiant intensity.
+//! - [`ClusterSums`]: the buffers of VSGL Fig. 4 (diffuse and specular weights, the weighted
+//!   Toksvig mean vectors, the weighted position and squared norm), summable over any set of
+//!   texels.
+//! - [`MipRsm`]: the mipmapped reflective shadow map of VSGL section 4.1, one sum-based pyramid
+//!   per RSM face: each texel of level `l` is a quadtree cluster of up to `4^l` VPLs.
+//! - [`Vsgl`]: the light of one cluster, VSGL section 3.1 (`c_v`, `ξ_v`, `λ_v` per lobe, the
+//!   positional mean `μ_v` and variance `σ_v²`, and the coefficient `c_v/(2πσ_v²)` of eq. 1).
+mod light;
+mod mip;
+mod sums;
+mod texel;
+
+pub use light::Vsgl;
+pub use mip::MipRsm;
+pub use sums::ClusterSums;
+pub use texel::TexelLobes;
+
+#[cfg(test)]
+mod tests;
