@@ -36,9 +36,7 @@ struct View {
 @group(0) @binding(1) var<storage, read> vpls: array<Vpl>;
 @group(0) @binding(2) var<storage, read_write> bounds: array<Bound>;
 
-const PI: f32 = 3.14159265358979;
 const LOBE_DIFFUSE: u32 = 0u;
-const FRESNEL_SCHLICK: u32 = 0u;
 const GLOSSY_SPHERE: u32 = 0u;
 const GLOSSY_ENCLOSING_SPHERE: u32 = 1u;
 // (1/27)^(1/4) and (4/27)^(1/4): centre offset and radius of the diffuse sphere (section 6).
@@ -57,13 +55,6 @@ fn scalar(v: vec3<f32>) -> f32 {
     return max(v.x, max(v.y, v.z));
 }
 
-// G1(v)/|v.n| of GGX in closed form (eq. 8), finite at grazing incidence.
-fn g1_over_cos(alpha: f32, cos_v: f32) -> f32 {
-    let c = abs(cos_v);
-    let a2 = alpha * alpha;
-    return 2.0 / (c + sqrt((1.0 - a2) * c * c + a2));
-}
-
 // cos of the largest angle between omega_i and a half vector (supplemental, after eq. 2).
 fn cos_theta_h_max(cos_i: f32) -> f32 {
     let c = clamp(cos_i, 0.0, 1.0);
@@ -71,36 +62,14 @@ fn cos_theta_h_max(cos_i: f32) -> f32 {
     return c / sqrt(2.0 * (1.0 + sin_i));
 }
 
-// Schlick, supplemental eq. (1).
-fn schlick(f0: vec3<f32>, cos_h: f32) -> vec3<f32> {
-    let x = 1.0 - clamp(cos_h, 0.0, 1.0);
-    let x2 = x * x;
-    let m = x2 * x2 * x;
-    return f0 + (vec3<f32>(1.0) - f0) * m;
-}
-
-// Unpolarized dielectric Fresnel, supplemental eq. (3)-(5).
-fn dielectric(eta: f32, cos_h: f32) -> f32 {
-    let c = clamp(cos_h, 0.0, 1.0);
-    let g2 = (eta * eta - 1.0) + c * c;
-    if g2 <= 0.0 {
-        return 1.0;
-    }
-    let g = sqrt(g2);
-    let e2c = eta * eta * c;
-    let perp = (c - g) / (c + g);
-    let par = (g - e2c) / (g + e2c);
-    return 0.5 * (perp * perp + par * par);
-}
-
 // F_max(omega_i): supplemental eq. (2) (Schlick) and eq. (6) (dielectric).
 fn fresnel_max(vpl: Vpl, cos_i: f32) -> vec3<f32> {
     let c = cos_theta_h_max(cos_i);
     if vpl.info.y == FRESNEL_SCHLICK {
-        return schlick(vpl.f0.xyz, c);
+        return fresnel_schlick(vpl.f0.xyz, c);
     }
     let eta = vpl.omega_i_eta.w;
-    return vec3<f32>(max(dielectric(eta, 1.0), dielectric(eta, c)));
+    return vec3<f32>(max(fresnel_dielectric(eta, 1.0), fresnel_dielectric(eta, c)));
 }
 
 fn finite(x: f32) -> bool {
@@ -205,7 +174,7 @@ fn glossy_bound(vpl: Vpl, q: vec3<f32>, index: u32) -> Bound {
         return empty_bound(index);
     }
     // r of eq. (12).
-    let r = sqrt(peak * g1_over_cos(alpha, cos_i) / (4.0 * PI))
+    let r = sqrt(peak * ggx_g1_over_cos(alpha, cos_i) / (4.0 * PI))
         / (sqrt(view.delta) * sqrt(vpl.position_xi.w));
     if view.glossy == GLOSSY_SPHERE {
         return sphere_bound(q, vec3<f32>(0.0), r / alpha, index);

@@ -1,7 +1,7 @@
 // The surface BRDF of crates/bounds (brdf.rs, ggx.rs, fresnel.rs) in WGSL: the one-sided
 // Lambertian diffuse kd/pi plus the GGX microfacet lobe of eq. (6) with D of eq. (7) and the
 // separable Smith G2 = G1(wi) G1(wo) of eq. (8). Every formula keeps the CPU's operation order
-// so f32 results agree to a few ulps. Prepended to shade.wgsl.
+// so f32 results agree to a few ulps. Prepended to shade.wgsl, after fresnel_ggx.wgsl.
 //
 // One place needs care: where the CPU forms the half vector in f64 (|wi + wo|^2 alpha^2 <=
 // 1e-6: wi and wo almost opposite, i.e. grazing incidence near the mirror direction, with a
@@ -13,9 +13,7 @@
 // would undo TwoSum and fall back to the plain f32 error in that domain only; elsewhere both
 // sides evaluate the same f32 formulas.
 
-const PI: f32 = 3.14159265358979;
 const FRAC_1_PI: f32 = 0.318309886183791;
-const FRESNEL_SCHLICK: u32 = 0u;
 
 // The Fresnel model of eq. (6): Schlick with RGB F0 (supplemental eq. 1) or the unpolarised
 // dielectric factor with relative index eta (supplemental eq. 3-5). Mirrors
@@ -41,37 +39,6 @@ fn ggx_d_with_sin2(alpha: f32, cos_m: f32, sin2_m: f32) -> f32 {
     let a2 = alpha * alpha;
     let denom = a2 * cos_m * cos_m + max(sin2_m, 0.0);
     return a2 / (PI * denom * denom);
-}
-
-// G1(v) / |v.n| of eq. (8): 2 / (|cos| + sqrt((1 - a2) cos^2 + a2)), finite at grazing
-// incidence (ggx.rs g1_over_cos).
-fn ggx_g1_over_cos(alpha: f32, cos_v: f32) -> f32 {
-    let c = abs(cos_v);
-    let a2 = alpha * alpha;
-    return 2.0 / (c + sqrt((1.0 - a2) * c * c + a2));
-}
-
-// Schlick, supplemental eq. (1): F0 + (1 - F0) (1 - cos)^5 (x^5 as powi: (x^2)^2 x).
-fn fresnel_schlick(f0: vec3<f32>, cos_h: f32) -> vec3<f32> {
-    let x = 1.0 - clamp(cos_h, 0.0, 1.0);
-    let x2 = x * x;
-    let m = x2 * x2 * x;
-    return f0 + (vec3<f32>(1.0) - f0) * m;
-}
-
-// The unpolarised dielectric Fresnel factor, supplemental eq. (3)-(5); total internal
-// reflection gives 1 (fresnel.rs dielectric).
-fn fresnel_dielectric(eta: f32, cos_h: f32) -> f32 {
-    let c = clamp(cos_h, 0.0, 1.0);
-    let g2 = (eta * eta - 1.0) + c * c;
-    if g2 <= 0.0 {
-        return 1.0;
-    }
-    let g = sqrt(g2);
-    let e2c = eta * eta * c;
-    let perp = (c - g) / (c + g);
-    let par = (g - e2c) / (g + e2c);
-    return 0.5 * (perp * perp + par * par);
 }
 
 fn fresnel_eval(f: FresnelModel, cos_h: f32) -> vec3<f32> {

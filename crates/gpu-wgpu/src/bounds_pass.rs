@@ -17,6 +17,7 @@ use slc_cull::GlossyBound;
 pub(crate) const SOURCE: &str = concat!(
     include_str!("../shaders/rng.wgsl"),
     include_str!("../shaders/bound.wgsl"),
+    include_str!("../shaders/fresnel_ggx.wgsl"),
     include_str!("../shaders/bounds.wgsl")
 );
 const WORKGROUP: u32 = 64;
@@ -82,26 +83,12 @@ impl BoundsPass {
         let grid = Grid::for_items(ctx, u64::from(count), WORKGROUP)?;
         ctx.scoped("bounds", || {
             let view_buffer = uniform(ctx, "bounds view", &view);
-            let bind = ctx.bind_group(
+            ctx.dispatch(
                 "bounds",
                 &self.pipeline,
                 &[&view_buffer, &vpl_buffer, &bounds],
+                grid,
             );
-            let mut encoder = ctx
-                .device
-                .create_command_encoder(&wgpu::CommandEncoderDescriptor {
-                    label: Some("bounds"),
-                });
-            {
-                let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
-                    label: Some("bounds"),
-                    timestamp_writes: None,
-                });
-                pass.set_pipeline(&self.pipeline);
-                pass.set_bind_group(0, &bind, &[]);
-                grid.dispatch(&mut pass);
-            }
-            ctx.queue.submit([encoder.finish()]);
             Ok(())
         })?;
         Ok(GpuBounds {

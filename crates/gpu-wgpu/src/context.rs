@@ -11,6 +11,7 @@
 //!   before allocation ([`GpuError::BufferTooLarge`], see `buffers.rs`);
 //! - more workgroups than one dispatch dimension allows are split into 2-D grids
 //!   (`buffers::Grid`), and beyond 65535² workgroups refused ([`GpuError::TooManyWorkgroups`]).
+use crate::buffers::Grid;
 use std::sync::{Arc, Mutex};
 use std::time::Duration;
 
@@ -199,6 +200,41 @@ impl GpuContext {
                 compilation_options: Default::default(),
                 cache: None,
             })
+    }
+
+    /// Records one compute pass of `pipeline` over `grid`, with `buffers` bound at 0, 1, ... of
+    /// group 0 (see [`GpuContext::bind_group`]).
+    pub fn encode_dispatch(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+        label: &'static str,
+        pipeline: &wgpu::ComputePipeline,
+        buffers: &[&wgpu::Buffer],
+        grid: Grid,
+    ) {
+        let bind = self.bind_group(label, pipeline, buffers);
+        let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+            label: Some(label),
+            timestamp_writes: None,
+        });
+        pass.set_pipeline(pipeline);
+        pass.set_bind_group(0, &bind, &[]);
+        grid.dispatch(&mut pass);
+    }
+
+    /// [`GpuContext::encode_dispatch`] in a command buffer of its own, submitted at once.
+    pub fn dispatch(
+        &self,
+        label: &'static str,
+        pipeline: &wgpu::ComputePipeline,
+        buffers: &[&wgpu::Buffer],
+        grid: Grid,
+    ) {
+        let mut encoder = self
+            .device
+            .create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some(label) });
+        self.encode_dispatch(&mut encoder, label, pipeline, buffers, grid);
+        self.queue.submit([encoder.finish()]);
     }
 
     /// A bind group for group 0 of `pipeline` with `buffers` at bindings 0, 1, ...

@@ -63,20 +63,13 @@ impl PartitionPass {
                     pad: 0,
                 },
             );
-            let bind = ctx.bind_group(
+            ctx.encode_dispatch(
+                encoder,
                 "partition",
                 &self.pipeline,
                 &[&params, bounds, &sub_offsets, &order, status],
+                grid,
             );
-            {
-                let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
-                    label: Some("partition"),
-                    timestamp_writes: None,
-                });
-                pass.set_pipeline(&self.pipeline);
-                pass.set_bind_group(0, &bind, &[]);
-                grid.dispatch(&mut pass);
-            }
             if mode == CULL_COUNT {
                 scan.encode(ctx, encoder, &sub_offsets, subregions, status);
             }

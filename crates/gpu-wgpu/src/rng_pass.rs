@@ -64,20 +64,7 @@ impl RngPass {
                     pad: [0; 3],
                 },
             );
-            let bind = ctx.bind_group("rng", &self.pipeline, &[&params, &samples]);
-            let mut encoder = ctx
-                .device
-                .create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("rng") });
-            {
-                let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
-                    label: Some("rng"),
-                    timestamp_writes: None,
-                });
-                pass.set_pipeline(&self.pipeline);
-                pass.set_bind_group(0, &bind, &[]);
-                grid.dispatch(&mut pass);
-            }
-            ctx.queue.submit([encoder.finish()]);
+            ctx.dispatch("rng", &self.pipeline, &[&params, &samples], grid);
             Ok(())
         })?;
         read_back(ctx, "rng samples", &samples, count as usize)

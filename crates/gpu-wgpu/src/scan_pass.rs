@@ -1,6 +1,6 @@
 //! Exclusive prefix sum of u32 counts into offsets (`shaders/scan.wgsl`), in place, with the
 //! total appended: the light-list offsets from the per-tile list lengths.
-use crate::buffers::uniform;
+use crate::buffers::{uniform, Grid};
 use crate::context::GpuContext;
 use crate::gpu_types::GpuScanParams;
 
@@ -29,13 +29,12 @@ impl ScanPass {
         status: &wgpu::Buffer,
     ) {
         let params = uniform(ctx, "scan params", &GpuScanParams { count, pad: [0; 3] });
-        let bind = ctx.bind_group("scan", &self.pipeline, &[&params, values, status]);
-        let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
-            label: Some("scan"),
-            timestamp_writes: None,
-        });
-        pass.set_pipeline(&self.pipeline);
-        pass.set_bind_group(0, &bind, &[]);
-        pass.dispatch_workgroups(1, 1, 1);
+        ctx.encode_dispatch(
+            encoder,
+            "scan",
+            &self.pipeline,
+            &[&params, values, status],
+            Grid { x: 1, y: 1 },
+        );
     }
 }

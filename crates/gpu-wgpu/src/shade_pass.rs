@@ -23,6 +23,7 @@ use slc_core::{CullInput, Image, LightLists, NO_LIST};
 
 /// `shaders/brdf.wgsl` followed by the shading kernel.
 pub(crate) const SOURCE: &str = concat!(
+    include_str!("../shaders/fresnel_ggx.wgsl"),
     include_str!("../shaders/brdf.wgsl"),
     include_str!("../shaders/shade.wgsl")
 );
@@ -193,7 +194,7 @@ impl ShadePass {
         let grid = Grid::for_items(ctx, pixels, WORKGROUP)?;
         ctx.scoped("shade", || {
             let params = uniform(ctx, "shade params", &params);
-            let bind = ctx.bind_group(
+            ctx.dispatch(
                 "shade",
                 &self.pipeline,
                 &[
@@ -205,22 +206,8 @@ impl ShadePass {
                     &lists.pixel_list,
                     &out,
                 ],
+                grid,
             );
-            let mut encoder = ctx
-                .device
-                .create_command_encoder(&wgpu::CommandEncoderDescriptor {
-                    label: Some("shade"),
-                });
-            {
-                let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
-                    label: Some("shade"),
-                    timestamp_writes: None,
-                });
-                pass.set_pipeline(&self.pipeline);
-                pass.set_bind_group(0, &bind, &[]);
-                grid.dispatch(&mut pass);
-            }
-            ctx.queue.submit([encoder.finish()]);
             Ok(())
         })?;
         let rgb: Vec<f32> = read_back(ctx, "indirect image", &out, 3 * pixels as usize)?;

@@ -44,7 +44,8 @@ impl TileDepthPass {
         buffers: &TileDepthBuffers,
         tiles: Grid,
     ) {
-        let bind = ctx.bind_group(
+        ctx.encode_dispatch(
+            encoder,
             "tile depth",
             &self.pipeline,
             &[
@@ -54,13 +55,7 @@ impl TileDepthPass {
                 buffers.pixel_list,
                 buffers.status,
             ],
+            tiles,
         );
-        let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
-            label: Some("tile depth"),
-            timestamp_writes: None,
-        });
-        pass.set_pipeline(&self.pipeline);
-        pass.set_bind_group(0, &bind, &[]);
-        tiles.dispatch(&mut pass);
     }
 }

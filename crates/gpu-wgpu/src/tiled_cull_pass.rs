@@ -300,14 +300,7 @@ impl TiledCuller {
         buffers: [&wgpu::Buffer; 7],
         tiles: Grid,
     ) {
-        let bind = ctx.bind_group("tiled cull", &self.pipeline, &buffers);
-        let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
-            label: Some("tiled cull"),
-            timestamp_writes: None,
-        });
-        pass.set_pipeline(&self.pipeline);
-        pass.set_bind_group(0, &bind, &[]);
-        tiles.dispatch(&mut pass);
+        ctx.encode_dispatch(encoder, "tiled cull", &self.pipeline, &buffers, tiles);
     }
 }
 
