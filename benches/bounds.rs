@@ -5,8 +5,24 @@ mod common;
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
 use glam::Affine3A;
 use slc_bounds::{DiffuseLobe, GlossyLobe, Sphere, Spheroid, StochasticParams, TestSpace};
-use slc_core::VplLobe;
+use slc_core::{Vpl, VplLobe};
 use std::hint::black_box;
+
+/// A glossy VPL's lobe, its (δ, ξ) and its spheroid (eq. 12-15).
+fn glossy_bound(v: &Vpl, delta: f32) -> (GlossyLobe, StochasticParams, Spheroid) {
+    let lobe = GlossyLobe::new(
+        v.position,
+        v.normal,
+        v.omega_i,
+        v.brdf.alpha,
+        v.flux,
+        v.brdf.fresnel,
+    )
+    .unwrap();
+    let params = StochasticParams::new(delta, v.xi).unwrap();
+    let spheroid = Spheroid::new(&lobe, &params).unwrap();
+    (lobe, params, spheroid)
+}
 
 fn bounds(c: &mut Criterion) {
     let (_, _, vpls) = common::default_scene_vpls(64);
@@ -19,17 +35,7 @@ fn bounds(c: &mut Criterion) {
     g.bench_function("spheroid_and_test_space", |b| {
         b.iter(|| {
             for v in &glossy {
-                let lobe = GlossyLobe::new(
-                    v.position,
-                    v.normal,
-                    v.omega_i,
-                    v.brdf.alpha,
-                    v.flux,
-                    v.brdf.fresnel,
-                )
-                .unwrap();
-                let params = StochasticParams::new(delta, v.xi).unwrap();
-                let s = Spheroid::new(&lobe, &params).unwrap();
+                let (_, _, s) = glossy_bound(v, delta);
                 black_box(TestSpace::from_spheroid(&s, view).unwrap());
             }
         })
@@ -37,17 +43,7 @@ fn bounds(c: &mut Criterion) {
     g.bench_function("baseline_spheres", |b| {
         b.iter(|| {
             for v in &glossy {
-                let lobe = GlossyLobe::new(
-                    v.position,
-                    v.normal,
-                    v.omega_i,
-                    v.brdf.alpha,
-                    v.flux,
-                    v.brdf.fresnel,
-                )
-                .unwrap();
-                let params = StochasticParams::new(delta, v.xi).unwrap();
-                let s = Spheroid::new(&lobe, &params).unwrap();
+                let (lobe, params, s) = glossy_bound(v, delta);
                 black_box((
                     Sphere::around_vpl(&lobe, &params).unwrap(),
                     Sphere::enclosing(&s),
