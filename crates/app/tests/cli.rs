@@ -1,9 +1,20 @@
 //! The `slc` command as a user runs it: outputs, report fields and errors.
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::process::Command;
 
 fn slc() -> Command {
     Command::new(env!("CARGO_BIN_EXE_slc"))
+}
+
+/// Runs `slc ARGS --out OUT` (ARGS split at spaces) and asserts it succeeded.
+fn run_ok(args: &str, out: &Path) {
+    let status = slc()
+        .args(args.split(' '))
+        .arg("--out")
+        .arg(out)
+        .status()
+        .unwrap();
+    assert!(status.success(), "slc {args} failed");
 }
 
 fn out_dir(name: &str) -> PathBuf {
@@ -15,14 +26,7 @@ fn out_dir(name: &str) -> PathBuf {
 #[test]
 fn render_writes_images_and_report() {
     let out = out_dir("render");
-    let status = slc()
-        .args([
-            "render", "--width", "24", "--height", "16", "--rsm", "4", "--seed", "3", "--out",
-        ])
-        .arg(&out)
-        .status()
-        .unwrap();
-    assert!(status.success());
+    run_ok("render --width 24 --height 16 --rsm 4 --seed 3", &out);
     for f in [
         "direct.exr",
         "indirect.exr",
@@ -58,23 +62,7 @@ fn render_writes_images_and_report() {
 #[test]
 fn references_are_named_in_the_report() {
     let out = out_dir("reference");
-    let ok = slc()
-        .args([
-            "render",
-            "--width",
-            "8",
-            "--height",
-            "8",
-            "--reference",
-            "path",
-            "--spp",
-            "2",
-            "--out",
-        ])
-        .arg(&out)
-        .status()
-        .unwrap();
-    assert!(ok.success());
+    run_ok("render --width 8 --height 8 --reference path --spp 2", &out);
     let report = std::fs::read_to_string(out.join("report.json")).unwrap();
     assert!(
         report.contains("\"reference\": \"path\"") && report.contains("\"delta\": null"),
@@ -105,25 +93,7 @@ fn bad_input_is_a_clear_error() {
 #[test]
 fn compare_writes_a_folder_per_strategy_a_table_and_heat_maps() {
     let out = out_dir("compare");
-    let ok = slc()
-        .args([
-            "compare",
-            "--width",
-            "32",
-            "--height",
-            "24",
-            "--rsm",
-            "4",
-            "--interleave",
-            "2",
-            "--culling",
-            "none,sphere,ellipsoid,clustered",
-            "--out",
-        ])
-        .arg(&out)
-        .status()
-        .unwrap();
-    assert!(ok.success());
+    run_ok("compare --width 32 --height 24 --rsm 4 --interleave 2 --culling none,sphere,ellipsoid,clustered", &out);
     for s in ["none", "sphere", "ellipsoid", "clustered"] {
         for f in ["total.exr", "total.png", "heatmap.png", "report.json"] {
             assert!(out.join(s).join(f).is_file(), "{s}/{f} missing");
@@ -149,27 +119,7 @@ fn compare_writes_a_folder_per_strategy_a_table_and_heat_maps() {
 #[test]
 fn sweep_writes_csv_plot_and_equal_time_comparison() {
     let out = out_dir("sweep");
-    let ok = slc()
-        .args([
-            "sweep",
-            "--width",
-            "32",
-            "--height",
-            "24",
-            "--rsm",
-            "4",
-            "--interleave",
-            "2",
-            "--delta",
-            "1e-3,1e-2",
-            "--culling",
-            "ellipsoid,sphere",
-            "--out",
-        ])
-        .arg(&out)
-        .status()
-        .unwrap();
-    assert!(ok.success());
+    run_ok("sweep --width 32 --height 24 --rsm 4 --interleave 2 --delta 1e-3,1e-2 --culling ellipsoid,sphere", &out);
     let csv = std::fs::read_to_string(out.join("sweep.csv")).unwrap();
     assert_eq!(csv.lines().count(), 1 + 2 * 2, "{csv}");
     assert!(csv
@@ -185,23 +135,10 @@ fn sweep_writes_csv_plot_and_equal_time_comparison() {
 #[test]
 fn bench_writes_a_row_per_resolution_vpl_count_and_strategy() {
     let out = out_dir("bench");
-    let ok = slc()
-        .args([
-            "bench",
-            "--resolutions",
-            "16x16,24x16",
-            "--rsms",
-            "2,4",
-            "--culling",
-            "ellipsoid,none",
-            "--interleave",
-            "2",
-            "--out",
-        ])
-        .arg(&out)
-        .status()
-        .unwrap();
-    assert!(ok.success());
+    run_ok(
+        "bench --resolutions 16x16,24x16 --rsms 2,4 --culling ellipsoid,none --interleave 2",
+        &out,
+    );
     let csv = std::fs::read_to_string(out.join("bench.csv")).unwrap();
     assert_eq!(csv.lines().count(), 1 + 2 * 2 * 2, "{csv}");
     assert!(std::fs::read_to_string(out.join("bench.md"))
