@@ -11,7 +11,6 @@ use crate::report::{Device, FrameFacts, Report};
 use clap::Args;
 use image::RgbImage;
 use slc_core::Image;
-use slc_cpu_ref::denoise::{cross_bilateral, BilateralParams};
 use slc_cpu_ref::vpl_shading::{shade_vpls, VplEstimator};
 use slc_cpu_ref::{prepare, shade_stochastic, Method, Stochastic, Timings, Tracer};
 use std::fmt::Write;
@@ -119,11 +118,11 @@ pub fn run(args: &CompareArgs) -> Result<(), String> {
         Report::new(&facts).write(&dir.join("report.json"))?;
     }
 
-    // The unculled estimate with the same K, δ and ξ: a strategy that misses nothing equals it.
+    // The unculled estimate with the same K, δ, ξ and filter: a strategy that misses nothing
+    // equals it.
     let unculled = shade_stochastic(
         &p,
         &Stochastic {
-            denoise: false,
             metrics: false,
             ..base
         },
@@ -150,11 +149,6 @@ pub fn run(args: &CompareArgs) -> Result<(), String> {
             Some(g) => g.shade(&p, &s, f.seed)?,
         };
         let m = out.metrics.as_ref().expect("metrics were asked for");
-        let denoised_unculled = if s.denoise {
-            cross_bilateral(&unculled, &p.gbuffer, BilateralParams::default())
-        } else {
-            unculled.clone()
-        };
         let total = p.direct.add(&out.indirect);
         let dir = args.out.join(name);
         let images = write_frame(&dir, &p.direct, &out.indirect, &total)?;
@@ -189,7 +183,7 @@ pub fn run(args: &CompareArgs) -> Result<(), String> {
             fp: m.false_positive_pairs,
             missed: m.missed_pairs,
             fdr: m.false_discovery_rate,
-            rmse_unculled: Some(out.indirect.rmse(&denoised_unculled)),
+            rmse_unculled: Some(out.indirect.rmse(&unculled)),
             rmse_reference: reference.as_ref().map(|r| out.indirect.rmse(r)),
             total,
             heat,
