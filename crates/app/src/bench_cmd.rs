@@ -127,13 +127,24 @@ pub fn run(args: &BenchArgs) -> Result<(), String> {
                         culling: name,
                         ..base
                     };
-                    let out = match &gpu {
-                        None => shade_stochastic(&p, &s, frame.seed, frame.visibility, &|_| {})
-                            .map_err(|e| e.to_string())?,
+                    let (out, gpu_timings) = match &gpu {
+                        None => (
+                            shade_stochastic(&p, &s, frame.seed, frame.visibility, &|_| {})
+                                .map_err(|e| e.to_string())?,
+                            None,
+                        ),
                         Some(g) => g.shade(&p, &s, frame.seed)?,
                     };
                     let mut t = p.timings.clone();
                     t.merge(&out.timings);
+                    // The GPU's own times of its passes replace the wall clock where the
+                    // adapter has timestamp queries.
+                    if let Some(g) = &gpu_timings {
+                        for (name, ms) in &g.0 {
+                            t.0.retain(|(n, _)| n != name);
+                            t.add(name, *ms);
+                        }
+                    }
                     let ms = |n: &str| t.0.iter().find(|(k, _)| *k == n).map_or(0.0, |(_, v)| *v);
                     let cs = ms("culling") + ms("shading");
                     if best.as_ref().is_none_or(|(b, _): &(f64, _)| cs < *b) {

@@ -112,6 +112,7 @@ pub fn run(args: &CompareArgs) -> Result<(), String> {
             spp: 1,
             vpl_count: p.vpls.len(),
             timings: &p.timings,
+            gpu_timings: None,
             metrics: None,
             images: &images,
         };
@@ -144,10 +145,11 @@ pub fn run(args: &CompareArgs) -> Result<(), String> {
                 let out = shade_stochastic(&p, &s, f.seed, f.visibility, &|n| bar.inc(n))
                     .map_err(|e| e.to_string())?;
                 bar.finish_and_clear();
-                out
+                (out, None)
             }
             Some(g) => g.shade(&p, &s, f.seed)?,
         };
+        let (out, gpu_timings) = out;
         let m = out.metrics.as_ref().expect("metrics were asked for");
         let total = p.direct.add(&out.indirect);
         let dir = args.out.join(name);
@@ -171,6 +173,7 @@ pub fn run(args: &CompareArgs) -> Result<(), String> {
             spp: 1,
             vpl_count: p.vpls.len(),
             timings: &timings,
+            gpu_timings: gpu_timings.as_ref(),
             metrics: Some(m),
             images: &images,
         };

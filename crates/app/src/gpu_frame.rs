@@ -2,8 +2,10 @@
 //! (BVH, G-buffer, RSM, VPLs, direct light), the GPU (wgpu) culls with tiled light lists that
 //! stay on the GPU and shades from them, and the CPU's cross bilateral filter denoises.
 //!
-//! Pass times are wall clock around each GPU call, uploads, readbacks and the wait for
-//! completion included (no timestamp queries), under the CPU's pass names.
+//! Pass times (`timings_ms`) are wall clock around each GPU call, uploads, readbacks and the
+//! wait for completion included, under the CPU's pass names; where the adapter has timestamp
+//! queries the GPU's execution time of the same passes is returned beside them
+//! (`gpu_timings_ms` in the report).
 use crate::report::Device;
 use slc_core::rng::pcg_hash;
 use slc_core::{CullInput, Image, Interleaving, Scene};
@@ -80,9 +82,17 @@ impl GpuFrame {
                 self.ctx.adapter_name
             ),
             "bvh, gbuffer, rsm, vpl_generation, direct and denoise ran on the CPU".to_string(),
-            "GPU pass times are wall clock around the GPU work (uploads, readbacks and the wait \
-             for completion included), not timestamp queries"
-                .to_string(),
+            if self.ctx.timestamps {
+                "timings_ms of GPU passes are wall clock around the GPU work (uploads, readbacks \
+                 and the wait for completion included); gpu_timings_ms are the GPU's execution \
+                 times of the same passes from timestamp queries"
+                    .to_string()
+            } else {
+                "this adapter has no timestamp queries: GPU pass times are wall clock around the \
+                 GPU work (uploads, readbacks and the wait for completion included) and \
+                 gpu_timings_ms is null"
+                    .to_string()
+            },
         ];
         if metrics {
             notes.push(
@@ -99,13 +109,14 @@ impl GpuFrame {
     }
 
     /// Culls and shades a prepared frame on the GPU, then denoises on the CPU: the GPU twin
-    /// of `slc_cpu_ref::shade_stochastic` without visibility.
+    /// of `slc_cpu_ref::shade_stochastic` without visibility. Also returns the GPU's
+    /// timestamp times of its passes, where the adapter has timestamp queries.
     pub fn shade(
         &self,
         p: &Prepared,
         s: &Stochastic,
         seed: u32,
-    ) -> Result<StochasticFrame, String> {
+    ) -> Result<(StochasticFrame, Option<Timings>), String> {
         let glossy = gpu_bound(s.culling)?;
         let input = CullInput {
             gbuffer: &p.gbuffer,
@@ -119,16 +130,21 @@ impl GpuFrame {
         };
         let gpu = |e: slc_gpu_wgpu::GpuError| e.to_string();
         let mut timings = Timings::default();
+        let profiling = self.ctx.start_profiling();
+        self.ctx.set_stage("culling");
         let lists = timings.time("culling", || {
             let lists = self.culler.cull_on_gpu(&self.ctx, &input, glossy)?;
             self.ctx.wait()?;
             Ok(lists)
         });
         let lists = lists.map_err(gpu)?;
+        self.ctx.set_stage("shading");
         let indirect = timings.time("shading", || {
             self.shader.shade_gpu_lists(&self.ctx, &input, &lists)
         });
         let mut indirect = indirect.map_err(gpu)?;
+        let profile = self.ctx.finish_profiling().map_err(gpu)?;
+        let gpu_timings = profiling.then(|| Timings(profile.stages));
         if s.denoise {
             indirect = timings.time("denoise", || {
                 cross_bilateral(&indirect, &p.gbuffer, BilateralParams::default())
@@ -140,16 +156,24 @@ impl GpuFrame {
         } else {
             None
         };
-        Ok(StochasticFrame {
-            indirect,
-            metrics,
-            timings,
-        })
+        Ok((
+            StochasticFrame {
+                indirect,
+                metrics,
+                timings,
+            },
+            gpu_timings,
+        ))
     }
 
     /// Renders `scene` with the stochastic estimate of `settings` as `slc_cpu_ref::render`
-    /// does (the same passes, jitter and seeds for `spp` > 1), culling and shading on the GPU.
-    pub fn render(&self, scene: &Scene, settings: &RenderSettings) -> Result<Frame, String> {
+    /// does (the same passes, jitter and seeds for `spp` > 1), culling and shading on the GPU;
+    /// with the GPU's timestamp times of its passes, summed over the passes, where it has them.
+    pub fn render(
+        &self,
+        scene: &Scene,
+        settings: &RenderSettings,
+    ) -> Result<(Frame, Option<Timings>), String> {
         settings.validate().map_err(|e| e.to_string())?;
         scene.validate_for_render().map_err(|e| e.to_string())?;
         check_visibility(settings.visibility)?;
@@ -162,6 +186,7 @@ impl GpuFrame {
         let mut direct = Image::new(w, h);
         let mut indirect = Image::new(w, h);
         let (mut vpl_count, mut metrics) = (0, None);
+        let mut gpu_timings: Option<Timings> = None;
         for pass in 0..settings.spp {
             let jitter = (settings.spp > 1).then_some(pass);
             let taken = tracer
@@ -171,8 +196,11 @@ impl GpuFrame {
             timings.merge(&p.timings);
             vpl_count = p.vpls.len();
             let seed = jitter.map_or(settings.seed, |j| settings.seed ^ pcg_hash(j));
-            let f = self.shade(&p, &s, seed)?;
+            let (f, gpu) = self.shade(&p, &s, seed)?;
             timings.merge(&f.timings);
+            if let Some(g) = gpu {
+                gpu_timings.get_or_insert_with(Timings::default).merge(&g);
+            }
             metrics = f.metrics;
             direct = direct.add(&p.direct);
             indirect = indirect.add(&f.indirect);
@@ -182,12 +210,15 @@ impl GpuFrame {
         for px in direct.pixels.iter_mut().chain(indirect.pixels.iter_mut()) {
             *px *= inv;
         }
-        Ok(Frame {
-            direct,
-            indirect,
-            vpl_count,
-            timings,
-            metrics,
-        })
+        Ok((
+            Frame {
+                direct,
+                indirect,
+                vpl_count,
+                timings,
+                metrics,
+            },
+            gpu_timings,
+        ))
     }
 }

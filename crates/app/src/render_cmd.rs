@@ -57,8 +57,8 @@ pub fn run(args: &RenderArgs) -> Result<(), String> {
     };
     let settings = args.frame.settings(method, args.spp);
     let f = &args.frame;
-    let (frame, device) = match f.backend {
-        Backend::Cpu => (render_cpu(&scene, &settings)?, Device::cpu()),
+    let (frame, gpu_timings, device) = match f.backend {
+        Backend::Cpu => (render_cpu(&scene, &settings)?, None, Device::cpu()),
         Backend::Gpu => {
             if args.reference.is_some() {
                 return Err("references are rendered on the CPU only; use --backend cpu".into());
@@ -67,7 +67,8 @@ pub fn run(args: &RenderArgs) -> Result<(), String> {
             gpu_bound(&args.culling)?;
             let gpu = GpuFrame::new()?;
             eprintln!("rendering {} on the GPU", scene.name);
-            (gpu.render(&scene, &settings)?, gpu.device(args.metrics))
+            let (frame, gpu_timings) = gpu.render(&scene, &settings)?;
+            (frame, gpu_timings, gpu.device(args.metrics))
         }
     };
 
@@ -82,6 +83,7 @@ pub fn run(args: &RenderArgs) -> Result<(), String> {
         spp: args.spp,
         vpl_count: frame.vpl_count,
         timings,
+        gpu_timings: gpu_timings.as_ref(),
         metrics: frame.metrics.as_ref(),
         images: &images,
     };

@@ -37,6 +37,9 @@ pub struct Report {
     pub spp: u32,
     pub rsm: u32,
     pub timings_ms: BTreeMap<String, f64>,
+    /// GPU execution time per pass from timestamp queries (the GPU backend on an adapter that
+    /// has them, `total` included); `null` otherwise, with a note saying why.
+    pub gpu_timings_ms: Option<BTreeMap<String, f64>>,
     pub metrics: Metrics,
     /// Mean RGB of each written image.
     pub image_means: BTreeMap<&'static str, [f32; 3]>,
@@ -96,8 +99,18 @@ pub struct FrameFacts<'a> {
     pub spp: u32,
     pub vpl_count: usize,
     pub timings: &'a Timings,
+    /// The GPU's timestamp times of its passes, where it has them.
+    pub gpu_timings: Option<&'a Timings>,
     pub metrics: Option<&'a CullMetrics>,
     pub images: &'a [(&'static str, &'a Image)],
+}
+
+/// Milliseconds per pass and their `total`.
+fn per_pass(t: &Timings) -> BTreeMap<String, f64> {
+    t.0.iter()
+        .map(|(k, v)| (k.to_string(), *v))
+        .chain([("total".to_string(), t.total())])
+        .collect()
 }
 
 impl Report {
@@ -128,13 +141,8 @@ impl Report {
             visibility: f.args.visibility || f.method == Method::Path,
             spp: f.spp,
             rsm: f.args.rsm,
-            timings_ms: f
-                .timings
-                .0
-                .iter()
-                .map(|(k, v)| (k.to_string(), *v))
-                .chain([("total".to_string(), f.timings.total())])
-                .collect(),
+            timings_ms: per_pass(f.timings),
+            gpu_timings_ms: f.gpu_timings.map(per_pass),
             metrics: f.metrics.into(),
             image_means: f
                 .images

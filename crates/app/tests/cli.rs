@@ -229,9 +229,20 @@ fn gpu_render_equals_the_cpu_render_and_names_its_adapter() {
     for pass in ["culling", "shading", "denoise", "total"] {
         assert!(report["timings_ms"][pass].is_number(), "{pass}: {report}");
     }
+    // Timestamp times where the adapter has them (lavapipe does), `null` and a note otherwise.
+    let gpu_timings = &report["gpu_timings_ms"];
+    if gpu_timings.is_null() {
+        assert!(report["notes"].to_string().contains("no timestamp queries"));
+    } else {
+        for pass in ["culling", "shading", "total"] {
+            let ms = gpu_timings[pass].as_f64().unwrap_or(-1.0);
+            assert!(ms > 0.0, "{pass}: {report}");
+        }
+    }
     let cpu_report: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(cpu.join("report.json")).unwrap()).unwrap();
     assert_eq!(cpu_report["notes"], serde_json::json!([]));
+    assert!(cpu_report["gpu_timings_ms"].is_null());
     assert_eq!(report["metrics"], cpu_report["metrics"]);
     let (a, b) = (
         read_exr(&cpu.join("indirect.exr")),

@@ -12,6 +12,7 @@
 //! - more workgroups than one dispatch dimension allows are split into 2-D grids
 //!   (`buffers::Grid`), and beyond 65535² workgroups refused ([`GpuError::TooManyWorkgroups`]).
 use crate::buffers::Grid;
+use crate::profiler::Profiler;
 use std::sync::{Arc, Mutex};
 use std::time::Duration;
 
@@ -66,6 +67,8 @@ pub struct GpuContext {
     /// The device's limits (storage binding size, workgroups per dimension, ...).
     pub limits: wgpu::Limits,
     lost: Arc<Mutex<Option<String>>>,
+    /// The running timestamp profile, if any (`profiler.rs`).
+    pub(crate) profiler: Mutex<Option<Profiler>>,
 }
 
 impl GpuContext {
@@ -120,6 +123,7 @@ impl GpuContext {
             timestamps,
             limits,
             lost,
+            profiler: Mutex::new(None),
         })
     }
 
@@ -203,7 +207,7 @@ impl GpuContext {
     }
 
     /// Records one compute pass of `pipeline` over `grid`, with `buffers` bound at 0, 1, ... of
-    /// group 0 (see [`GpuContext::bind_group`]).
+    /// group 0 (see [`GpuContext::bind_group`]); timed while profiling (`profiler.rs`).
     pub fn encode_dispatch(
         &self,
         encoder: &mut wgpu::CommandEncoder,
@@ -213,9 +217,16 @@ impl GpuContext {
         grid: Grid,
     ) {
         let bind = self.bind_group(label, pipeline, buffers);
+        let timed = self.compute_timestamps(label);
         let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
             label: Some(label),
-            timestamp_writes: None,
+            timestamp_writes: timed
+                .as_ref()
+                .map(|(set, index)| wgpu::ComputePassTimestampWrites {
+                    query_set: set,
+                    beginning_of_pass_write_index: Some(*index),
+                    end_of_pass_write_index: Some(index + 1),
+                }),
         });
         pass.set_pipeline(pipeline);
         pass.set_bind_group(0, &bind, &[]);

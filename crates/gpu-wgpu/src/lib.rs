@@ -22,6 +22,9 @@
 //!   `slc_cpu_ref::vpl_shading::shade_lists` without visibility, lists uploaded or straight
 //!   from the tiled culler.
 //!
+//! Per-pass GPU times come from timestamp queries where the adapter has them
+//! ([`profiler`]: `start_profiling`, `set_stage`, `finish_profiling`).
+//!
 //! Faults are errors ([`GpuError`]): no adapter (suggests `--backend cpu`), device loss
 //! (no hang: bounded waits), buffers beyond the storage-binding limit (refused), dispatches
 //! beyond 65535 workgroups per dimension (split into 2-D grids, [`buffers::Grid`]).
@@ -30,6 +33,7 @@ pub mod buffers;
 pub mod context;
 pub mod gpu_types;
 pub mod partition_pass;
+pub mod profiler;
 pub mod rng_pass;
 pub mod scan_pass;
 pub mod shade_pass;
@@ -37,3 +41,4 @@ pub mod tile_depth_pass;
 pub mod tiled_cull_pass;
 
 pub use context::{GpuContext, GpuError};
+pub use profiler::GpuProfile;

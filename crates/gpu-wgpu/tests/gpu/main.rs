@@ -6,6 +6,7 @@
 mod bounds;
 mod common;
 mod faults;
+mod profile;
 mod rng;
 mod shade;
 mod tiled;

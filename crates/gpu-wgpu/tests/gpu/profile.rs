@@ -1,0 +1,88 @@
+//! Timestamp profiling (`profiler.rs`): passes are attributed to the stage set before them,
+//! their durations are plausible against the wall clock, and nothing is recorded outside a
+//! profile.
+use crate::common::gpu;
+use crate::tiled::frame;
+use slc_core::{builtin, CullInput, Interleaving};
+use slc_cull::GlossyBound;
+use slc_gpu_wgpu::shade_pass::ShadePass;
+use slc_gpu_wgpu::tiled_cull_pass::TiledCuller;
+use std::time::Instant;
+
+#[test]
+fn stages_sum_their_passes_within_the_wall_clock() {
+    let Some(ctx) = gpu() else { return };
+    let culler = TiledCuller::new(&ctx).unwrap();
+    let shader = ShadePass::new(&ctx).unwrap();
+    let scene = builtin("default").unwrap();
+    let camera = scene.camera_or_default();
+    let (gbuffer, vpls) = frame(&scene, &camera, (160, 120), 32);
+    let input = CullInput {
+        gbuffer: &gbuffer,
+        camera: &camera,
+        vpls: &vpls,
+        delta: 1e-3,
+        interleaving: Interleaving { k: 2, seed: 3 },
+    };
+    // Warm up (pipeline caches, first allocations) before the timed run.
+    let lists = culler
+        .cull_on_gpu(&ctx, &input, GlossyBound::Ellipsoid)
+        .unwrap();
+    shader.shade_gpu_lists(&ctx, &input, &lists).unwrap();
+
+    if !ctx.start_profiling() {
+        eprintln!("notice: {} has no timestamp queries", ctx.adapter_name);
+        assert_eq!(ctx.finish_profiling().unwrap(), Default::default());
+        return;
+    }
+    let wall = Instant::now();
+    ctx.set_stage("culling");
+    let lists = culler
+        .cull_on_gpu(&ctx, &input, GlossyBound::Ellipsoid)
+        .unwrap();
+    ctx.set_stage("shading");
+    let image = shader.shade_gpu_lists(&ctx, &input, &lists).unwrap();
+    let wall_ms = wall.elapsed().as_secs_f64() * 1e3;
+    let profile = ctx.finish_profiling().unwrap();
+    assert!(image.mean().max_element() > 0.0);
+
+    let stages: Vec<&str> = profile.stages.iter().map(|(s, _)| *s).collect();
+    assert_eq!(stages, ["culling", "shading"], "{profile:?}");
+    assert_eq!(profile.untimed, 0);
+    // The culler runs several passes, the shader one; every pass took some time.
+    let culling_passes: u32 = profile
+        .passes
+        .iter()
+        .filter(|p| p.0 == "culling")
+        .map(|p| p.3)
+        .sum();
+    assert!(culling_passes >= 4, "{profile:?}");
+    for (stage, label, ms, _) in &profile.passes {
+        assert!(*ms > 0.0 && ms.is_finite(), "{stage}/{label}: {ms} ms");
+    }
+    for (stage, ms) in &profile.stages {
+        let sum: f64 = profile
+            .passes
+            .iter()
+            .filter(|p| p.0 == *stage)
+            .map(|p| p.2)
+            .sum();
+        assert!(
+            (sum - ms).abs() <= 1e-9 * ms.max(1.0),
+            "{stage}: {ms} vs {sum}"
+        );
+    }
+    // GPU execution cannot outlast the wall clock around submission and readback; a wrong
+    // timestamp period (e.g. ns taken for µs) breaks this or the lower bound.
+    let gpu_ms: f64 = profile.stages.iter().map(|s| s.1).sum();
+    eprintln!("GPU {gpu_ms:.3} ms of {wall_ms:.3} ms wall: {profile:?}");
+    assert!(
+        gpu_ms <= wall_ms * 1.02 + 0.05,
+        "{gpu_ms} ms GPU in {wall_ms} ms"
+    );
+    assert!(gpu_ms >= wall_ms * 1e-3, "{gpu_ms} ms GPU in {wall_ms} ms");
+
+    // Outside a profile nothing is recorded.
+    shader.shade_gpu_lists(&ctx, &input, &lists).unwrap();
+    assert_eq!(ctx.finish_profiling().unwrap(), Default::default());
+}
