@@ -144,7 +144,7 @@ impl GpuFrame {
         });
         let mut indirect = indirect.map_err(gpu)?;
         let profile = self.ctx.finish_profiling().map_err(gpu)?;
-        let gpu_timings = profiling.then(|| Timings(profile.stages));
+        let gpu_timings = profiling.then_some(Timings(profile.stages));
         if s.denoise {
             indirect = timings.time("denoise", || {
                 cross_bilateral(&indirect, &p.gbuffer, BilateralParams::default())
