@@ -20,7 +20,13 @@
 //! - [`shade_pass`]: stochastic VPL shading from light lists (eq. 2-4 and 6-8 with the K²
 //!   weight of section 6; `shaders/brdf.wgsl`, `shaders/shade.wgsl`), the twin of
 //!   `slc_cpu_ref::vpl_shading::shade_lists` without visibility, lists uploaded or straight
-//!   from the tiled culler.
+//!   from the tiled culler;
+//! - [`scene_upload`]: the scene (triangles, normals, texture coordinates, materials and
+//!   textures) in storage buffers, [`scene_upload::GpuScene`];
+//! - [`visibility_pass`]: the nearest triangle per pixel by rasterization (depth test), from
+//!   a camera or a light face;
+//! - [`gbuffer_pass`]: the rasterized G-buffer (twin of `slc_cpu_ref::gbuffer`), left on the
+//!   GPU in the layout culling and shading read, or read back as `slc_core::GBuffer`.
 //!
 //! Faults are errors ([`GpuError`]): no adapter (suggests `--backend cpu`), device loss
 //! (no hang: bounded waits), buffers beyond the storage-binding limit (refused), dispatches
@@ -28,12 +34,16 @@
 pub mod bounds_pass;
 pub mod buffers;
 pub mod context;
+pub mod gbuffer_pass;
 pub mod gpu_types;
 pub mod partition_pass;
+pub mod raster_types;
 pub mod rng_pass;
 pub mod scan_pass;
+pub mod scene_upload;
 pub mod shade_pass;
 pub mod tile_depth_pass;
 pub mod tiled_cull_pass;
+pub mod visibility_pass;
 
 pub use context::{GpuContext, GpuError};

@@ -6,6 +6,8 @@
 mod bounds;
 mod common;
 mod faults;
+mod raster_common;
+mod raster_gbuffer;
 mod rng;
 mod shade;
 mod tiled;

@@ -1,0 +1,147 @@
+//! `#[repr(C)]` twins of the WGSL structs of the rasterized passes (scene upload, G-buffer,
+//! RSM, VPL generation, direct light). Each names the WGSL file whose struct of the same
+//! name must keep the same fields in the same order; a compile-time check holds its size,
+//! and `tests::sizes_match_the_wgsl_twins` compares it with the layout naga computes. As in
+//! `gpu_types`, only 4-byte scalars and 4-vectors are used, never vec3.
+use bytemuck::{Pod, Zeroable};
+
+/// No texture (`GpuMaterial::info[1]`, `info[2]`): the lookup gives 1, as
+/// `Material::brdf_at` does for an absent or unknown texture.
+pub const NO_TEXTURE: u32 = u32::MAX;
+/// `GpuMaterial::info[0]`: `MaterialModel::Direct` or `MaterialModel::MetallicRoughness`.
+pub const MATERIAL_DIRECT: u32 = 0;
+pub const MATERIAL_METALLIC_ROUGHNESS: u32 = 1;
+/// `GpuMaterial::info[3]` bits: two-sided, and a dielectric Fresnel (`Material::eta`).
+pub const MATERIAL_DOUBLE_SIDED: u32 = 1;
+pub const MATERIAL_DIELECTRIC: u32 = 2;
+/// `GpuTriangle::info[0]` bits: the mesh has per-vertex normals, texture coordinates.
+pub const TRIANGLE_NORMALS: u32 = 1;
+pub const TRIANGLE_UVS: u32 = 2;
+
+/// One mesh vertex in world space. Keep in sync with `Vertex` in `shaders/scene_types.wgsl`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
+pub struct GpuVertex {
+    /// Position (xyz) and texture coordinate u (w).
+    pub position_u: [f32; 4],
+    /// Shading normal (xyz, zero if the mesh has none) and texture coordinate v (w).
+    pub normal_v: [f32; 4],
+}
+const _: () = assert!(std::mem::size_of::<GpuVertex>() == 32);
+
+/// One triangle of the flattened scene. Keep in sync with `Triangle` in
+/// `shaders/scene_types.wgsl`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Pod, Zeroable)]
+pub struct GpuTriangle {
+    /// Global vertex indices (xyz) and the material index (w).
+    pub vertices: [u32; 4],
+    /// [`TRIANGLE_NORMALS`] | [`TRIANGLE_UVS`] (x), unused.
+    pub info: [u32; 4],
+}
+const _: () = assert!(std::mem::size_of::<GpuTriangle>() == 32);
+
+/// A material (`slc_core::Material`) as `shaders/scene.wgsl` evaluates it. Keep in sync with
+/// `SceneMaterial` in `shaders/scene_types.wgsl`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
+pub struct GpuMaterial {
+    /// kd (direct) or the base colour (metallic-roughness), xyz.
+    pub color: [f32; 4],
+    /// F0 (xyz) and α (w) of a direct material.
+    pub f0_alpha: [f32; 4],
+    /// Metallic, roughness, η (dielectric), unused.
+    pub params: [f32; 4],
+    /// Model, colour texture, metallic-roughness texture ([`NO_TEXTURE`]: none), flags
+    /// ([`MATERIAL_DOUBLE_SIDED`] | [`MATERIAL_DIELECTRIC`]).
+    pub info: [u32; 4],
+}
+const _: () = assert!(std::mem::size_of::<GpuMaterial>() == 64);
+
+/// Where a texture's RGB texels start in the texel array (in floats) and its size. Keep in
+/// sync with `TextureInfo` in `shaders/scene_types.wgsl`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Pod, Zeroable)]
+pub struct GpuTextureInfo {
+    pub offset: u32,
+    pub width: u32,
+    pub height: u32,
+    pub pad: u32,
+}
+const _: () = assert!(std::mem::size_of::<GpuTextureInfo>() == 16);
+
+/// The projection the visibility pass rasterizes with: a pinhole (camera, RSM face) or an
+/// orthographic view (directional light). A point p maps to x = (p − o)·right / extent_x,
+/// y = (p − o)·up / extent_y at unit depth z = (p − o)·forward. Keep in sync with
+/// `RasterView` in `shaders/visibility.wgsl`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
+pub struct GpuRasterView {
+    /// Eye, light or orthographic plane origin o (xyz).
+    pub origin: [f32; 4],
+    /// Right axis (xyz) and 1 / extent_x (w).
+    pub right: [f32; 4],
+    /// Up axis (xyz) and 1 / extent_y (w).
+    pub up: [f32; 4],
+    /// Forward axis (xyz) and the near plane (pinhole) or 1 / depth range (orthographic).
+    pub forward: [f32; 4],
+    /// NDC shift of the sub-pixel offset (xy), 1 for orthographic (z), unused.
+    pub shift: [f32; 4],
+}
+const _: () = assert!(std::mem::size_of::<GpuRasterView>() == 80);
+
+/// The camera rays of the G-buffer resolve (`slc_core::Camera::ray_direction`). Keep in sync
+/// with `GbufferParams` in `shaders/gbuffer.wgsl`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
+pub struct GpuGbufferParams {
+    pub position: [f32; 4],
+    pub forward: [f32; 4],
+    pub right: [f32; 4],
+    pub up: [f32; 4],
+    /// (W / H, tan(yfov / 2), s, t) with (s, t) the sub-pixel offset.
+    pub frame: [f32; 4],
+    pub width: u32,
+    pub height: u32,
+    pub pad: [u32; 2],
+}
+const _: () = assert!(std::mem::size_of::<GpuGbufferParams>() == 96);
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use wgpu::naga;
+
+    /// The size naga gives the WGSL struct `name` of `source`.
+    fn wgsl_size(source: &str, name: &str) -> u32 {
+        let module = naga::front::wgsl::parse_str(source).unwrap();
+        let span = module.types.iter().find_map(|(_, ty)| match &ty.inner {
+            naga::TypeInner::Struct { span, .. } if ty.name.as_deref() == Some(name) => Some(*span),
+            _ => None,
+        });
+        span.unwrap_or_else(|| panic!("no struct {name}"))
+    }
+
+    /// Every Rust struct has the size of its WGSL twin as the shader compiler lays it out.
+    #[test]
+    fn sizes_match_the_wgsl_twins() {
+        use std::mem::size_of;
+        let gbuffer = crate::gbuffer_pass::SOURCE;
+        let cases = [
+            (gbuffer, "Vertex", size_of::<GpuVertex>()),
+            (gbuffer, "Triangle", size_of::<GpuTriangle>()),
+            (gbuffer, "SceneMaterial", size_of::<GpuMaterial>()),
+            (gbuffer, "TextureInfo", size_of::<GpuTextureInfo>()),
+            (gbuffer, "GbufferParams", size_of::<GpuGbufferParams>()),
+            (gbuffer, "Sample", size_of::<crate::gpu_types::GpuSample>()),
+            (
+                crate::visibility_pass::SOURCE,
+                "RasterView",
+                size_of::<GpuRasterView>(),
+            ),
+        ];
+        for (source, name, size) in cases {
+            assert_eq!(wgsl_size(source, name) as usize, size, "{name}");
+        }
+    }
+}
