@@ -26,7 +26,12 @@
 //! - [`visibility_pass`]: the nearest triangle per pixel by rasterization (depth test), from
 //!   a camera or a light face;
 //! - [`gbuffer_pass`]: the rasterized G-buffer (twin of `slc_cpu_ref::gbuffer`), left on the
-//!   GPU in the layout culling and shading read, or read back as `slc_core::GBuffer`.
+//!   GPU in the layout culling and shading read, or read back as `slc_core::GBuffer`;
+//! - [`rsm_pass`]: reflective shadow maps by rasterization (twin of `slc_cpu_ref::rsm`,
+//!   point light = six faces, spot = one, directional = orthographic), whose depth is kept
+//!   as a shadow map;
+//! - [`vpl_gen_pass`]: VPLs from RSM texels in compute (twin of `slc_cpu_ref::vpls`, same
+//!   ids and ξ), compacted by a scan.
 //!
 //! Faults are errors ([`GpuError`]): no adapter (suggests `--backend cpu`), device loss
 //! (no hang: bounded waits), buffers beyond the storage-binding limit (refused), dispatches
@@ -39,11 +44,13 @@ pub mod gpu_types;
 pub mod partition_pass;
 pub mod raster_types;
 pub mod rng_pass;
+pub mod rsm_pass;
 pub mod scan_pass;
 pub mod scene_upload;
 pub mod shade_pass;
 pub mod tile_depth_pass;
 pub mod tiled_cull_pass;
 pub mod visibility_pass;
+pub mod vpl_gen_pass;
 
 pub use context::{GpuContext, GpuError};

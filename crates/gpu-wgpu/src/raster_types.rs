@@ -107,6 +107,87 @@ pub struct GpuGbufferParams {
 }
 const _: () = assert!(std::mem::size_of::<GpuGbufferParams>() == 96);
 
+/// `GpuRsmParams::info[0]`: how a face's texels get their flux.
+pub const RSM_POINT: u32 = 0;
+pub const RSM_SPOT: u32 = 1;
+pub const RSM_DIRECTIONAL: u32 = 2;
+
+/// One face of a reflective shadow map (`slc_cpu_ref::rsm`'s `Face` with its light) for the
+/// RSM resolve. Keep in sync with `RsmParams` in `shaders/rsm.wgsl`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
+pub struct GpuRsmParams {
+    /// Light position or orthographic plane origin (xyz), face extent e (w).
+    pub origin: [f32; 4],
+    /// Face axes (xyz); w: texel size 2 / n (forward), unused (right, up).
+    pub forward: [f32; 4],
+    pub right: [f32; 4],
+    pub up: [f32; 4],
+    /// Radiant intensity (point, spot) or the flux of every texel (directional), rgb.
+    pub light: [f32; 4],
+    /// Spot axis (xyz) and cos of the outer cone angle (w).
+    pub spot: [f32; 4],
+    /// [`RSM_POINT`], [`RSM_SPOT`] or [`RSM_DIRECTIONAL`]; resolution n; first texel of the
+    /// face; unused.
+    pub info: [u32; 4],
+    /// `max(cos inner − cos outer, 1e-3)` of the spot falloff (x), unused.
+    pub falloff: [f32; 4],
+}
+const _: () = assert!(std::mem::size_of::<GpuRsmParams>() == 128);
+
+/// What one RSM texel saw (`slc_cpu_ref::rsm::RsmTexel`, or nothing). Keep in sync with
+/// `RsmTexel` in `shaders/rsm.wgsl` and `shaders/vpl_gen.wgsl`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
+pub struct GpuRsmTexel {
+    /// Position (xyz), 1 where the texel holds a photon, 0 where not (w).
+    pub position: [f32; 4],
+    /// Unit shading normal (xyz) and GGX α (w).
+    pub normal_alpha: [f32; 4],
+    /// ωi towards the light (xyz) and η of a dielectric Fresnel (w).
+    pub omega_i_eta: [f32; 4],
+    /// Flux Φ (rgb).
+    pub flux: [f32; 4],
+    pub kd: [f32; 4],
+    pub f0: [f32; 4],
+    /// Fresnel model (`gpu_types::FRESNEL_SCHLICK`, `FRESNEL_DIELECTRIC`), unused.
+    pub info: [u32; 4],
+}
+const _: () = assert!(std::mem::size_of::<GpuRsmTexel>() == 112);
+
+/// The nearest surface along one shadow-map texel's ray, whichever side it faces (the RSM's
+/// depth kept as a shadow map). Keep in sync with `ShadowTexel` in `shaders/rsm.wgsl` and
+/// `shaders/direct.wgsl`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
+pub struct GpuShadowTexel {
+    /// Hit position (xyz), 1 for a hit, 0 for none (w).
+    pub position: [f32; 4],
+    /// The hit triangle's unit geometric normal (xyz).
+    pub normal: [f32; 4],
+}
+const _: () = assert!(std::mem::size_of::<GpuShadowTexel>() == 32);
+
+/// Parameters of VPL generation. Keep in sync with `VplGenParams` in `shaders/vpl_gen.wgsl`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
+pub struct GpuVplGenParams {
+    /// Texels of this map.
+    pub texel_count: u32,
+    /// Texels of the maps before it (VPL ids 2 (base + k), 2 (base + k) + 1).
+    pub base: u32,
+    /// Seed of ξ (`rng::vpl_xi`).
+    pub seed: u32,
+    /// Bit 0: diffuse VPLs wanted, bit 1: glossy.
+    pub lobes: u32,
+    /// `gpu_types::CULL_COUNT` or `CULL_WRITE`.
+    pub mode: u32,
+    /// `cos_theta_h_max(1)` of `Fresnel::max_over_half_vectors(1)`.
+    pub cos_h_max: f32,
+    pub pad: [u32; 2],
+}
+const _: () = assert!(std::mem::size_of::<GpuVplGenParams>() == 32);
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -127,6 +208,8 @@ mod tests {
     fn sizes_match_the_wgsl_twins() {
         use std::mem::size_of;
         let gbuffer = crate::gbuffer_pass::SOURCE;
+        let rsm = crate::rsm_pass::SOURCE;
+        let vpl_gen = crate::vpl_gen_pass::SOURCE;
         let cases = [
             (gbuffer, "Vertex", size_of::<GpuVertex>()),
             (gbuffer, "Triangle", size_of::<GpuTriangle>()),
@@ -139,6 +222,12 @@ mod tests {
                 "RasterView",
                 size_of::<GpuRasterView>(),
             ),
+            (rsm, "RsmParams", size_of::<GpuRsmParams>()),
+            (rsm, "RsmTexel", size_of::<GpuRsmTexel>()),
+            (rsm, "ShadowTexel", size_of::<GpuShadowTexel>()),
+            (vpl_gen, "RsmTexel", size_of::<GpuRsmTexel>()),
+            (vpl_gen, "VplGenParams", size_of::<GpuVplGenParams>()),
+            (vpl_gen, "Vpl", size_of::<crate::gpu_types::GpuVpl>()),
         ];
         for (source, name, size) in cases {
             assert_eq!(wgsl_size(source, name) as usize, size, "{name}");

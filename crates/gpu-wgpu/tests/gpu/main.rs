@@ -8,6 +8,7 @@ mod common;
 mod faults;
 mod raster_common;
 mod raster_gbuffer;
+mod raster_rsm;
 mod rng;
 mod shade;
 mod tiled;
