@@ -31,7 +31,9 @@
 //!   point light = six faces, spot = one, directional = orthographic), whose depth is kept
 //!   as a shadow map;
 //! - [`vpl_gen_pass`]: VPLs from RSM texels in compute (twin of `slc_cpu_ref::vpls`, same
-//!   ids and ξ), compacted by a scan.
+//!   ids and ξ), compacted by a scan;
+//! - [`direct_pass`]: direct light per G-buffer pixel (twin of `slc_cpu_ref::direct`) with
+//!   the RSM depth as shadow maps instead of shadow rays.
 //!
 //! Faults are errors ([`GpuError`]): no adapter (suggests `--backend cpu`), device loss
 //! (no hang: bounded waits), buffers beyond the storage-binding limit (refused), dispatches
@@ -39,6 +41,7 @@
 pub mod bounds_pass;
 pub mod buffers;
 pub mod context;
+pub mod direct_pass;
 pub mod gbuffer_pass;
 pub mod gpu_types;
 pub mod partition_pass;

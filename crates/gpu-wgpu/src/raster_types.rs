@@ -188,6 +188,34 @@ pub struct GpuVplGenParams {
 }
 const _: () = assert!(std::mem::size_of::<GpuVplGenParams>() == 32);
 
+/// `GpuDirectParams::info[0]`: the light's kind.
+pub const LIGHT_POINT: u32 = 0;
+pub const LIGHT_SPOT: u32 = 1;
+pub const LIGHT_DIRECTIONAL: u32 = 2;
+
+/// One light and its shadow map for the direct-light pass. Keep in sync with `DirectParams`
+/// in `shaders/direct.wgsl`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
+pub struct GpuDirectParams {
+    /// Light position (point, spot) or travel direction (directional), xyz.
+    pub light: [f32; 4],
+    /// Spot axis (xyz) and cos of the outer cone angle (w).
+    pub spot: [f32; 4],
+    /// Intensity or irradiance (rgb) and `max(cos inner − cos outer, 1e-3)` (w).
+    pub radiometry: [f32; 4],
+    /// Shadow-map origin (xyz) and face extent (w).
+    pub origin: [f32; 4],
+    /// Forward, right and up of each face (at most six).
+    pub axes: [[f32; 4]; 18],
+    /// Kind ([`LIGHT_POINT`], [`LIGHT_SPOT`], [`LIGHT_DIRECTIONAL`]), faces, resolution,
+    /// pixel count.
+    pub info: [u32; 4],
+    /// Absolute shadow bias (x), relative shadow bias (y), 1 for an orthographic map (z).
+    pub shadow: [f32; 4],
+}
+const _: () = assert!(std::mem::size_of::<GpuDirectParams>() == 384);
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -210,6 +238,7 @@ mod tests {
         let gbuffer = crate::gbuffer_pass::SOURCE;
         let rsm = crate::rsm_pass::SOURCE;
         let vpl_gen = crate::vpl_gen_pass::SOURCE;
+        let direct = crate::direct_pass::SOURCE;
         let cases = [
             (gbuffer, "Vertex", size_of::<GpuVertex>()),
             (gbuffer, "Triangle", size_of::<GpuTriangle>()),
@@ -228,6 +257,9 @@ mod tests {
             (vpl_gen, "RsmTexel", size_of::<GpuRsmTexel>()),
             (vpl_gen, "VplGenParams", size_of::<GpuVplGenParams>()),
             (vpl_gen, "Vpl", size_of::<crate::gpu_types::GpuVpl>()),
+            (direct, "DirectParams", size_of::<GpuDirectParams>()),
+            (direct, "ShadowTexel", size_of::<GpuShadowTexel>()),
+            (direct, "Sample", size_of::<crate::gpu_types::GpuSample>()),
         ];
         for (source, name, size) in cases {
             assert_eq!(wgsl_size(source, name) as usize, size, "{name}");

@@ -7,6 +7,7 @@ mod bounds;
 mod common;
 mod faults;
 mod raster_common;
+mod raster_frame;
 mod raster_gbuffer;
 mod raster_rsm;
 mod rng;

@@ -62,6 +62,23 @@ pub fn sponza() -> (Scene, Camera) {
     (scene, camera)
 }
 
+/// The default scene with its spot and point lights, a directional light and a wide spot.
+pub fn lit_scene() -> Scene {
+    let (mut scene, _) = default_scene();
+    scene.lights.push(Light::Directional {
+        direction: Vec3::new(0.3, -1.0, -0.4).normalize(),
+        irradiance: Vec3::new(1.0, 0.8, 0.6),
+    });
+    scene.lights.push(Light::Spot {
+        position: Vec3::new(-0.5, 1.8, 0.5),
+        direction: Vec3::new(0.2, -1.0, -0.3).normalize(),
+        intensity: Vec3::splat(3.0),
+        inner_cone_angle: 60f32.to_radians(),
+        outer_cone_angle: 85f32.to_radians(),
+    });
+    scene
+}
+
 /// The largest absolute coordinate of the scene, at least 1 (`GpuScene::extent`).
 pub fn extent(scene: &Scene) -> f32 {
     let (lo, hi) = scene.bounds().unwrap();

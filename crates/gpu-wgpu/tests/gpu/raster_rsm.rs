@@ -15,10 +15,10 @@
 //! texel's; ids on both sides have bit-identical ξ and the same lobe, and outside edge
 //! texels agree as their texels do; total flux per channel within `TOTAL_FLUX_TOLERANCE`.
 use crate::common::gpu;
-use crate::raster_common::{default_scene, edge_pixels, extent, fraction};
+use crate::raster_common::{default_scene, edge_pixels, extent, fraction, lit_scene};
 use glam::Vec3;
 use slc_bounds::Fresnel;
-use slc_core::{GBuffer, GSample, Light, Scene, Vpl};
+use slc_core::{GBuffer, GSample, Light, Vpl};
 use slc_cpu_ref::rsm::{trace_rsm, Rsm, TexelSample};
 use slc_cpu_ref::vpls::generate_vpls;
 use slc_cpu_ref::{LobeSelection, Tracer};
@@ -37,23 +37,6 @@ const TOTAL_FLUX_TOLERANCE: f32 = 2e-3;
 const MAX_EDGE_FRACTION: f64 = 0.3;
 const RESOLUTION: u32 = 32;
 const SEED: u32 = 11;
-
-/// The default scene with its spot and point lights, a directional light and a wide spot.
-fn lit_scene() -> Scene {
-    let (mut scene, _) = default_scene();
-    scene.lights.push(Light::Directional {
-        direction: Vec3::new(0.3, -1.0, -0.4).normalize(),
-        irradiance: Vec3::new(1.0, 0.8, 0.6),
-    });
-    scene.lights.push(Light::Spot {
-        position: Vec3::new(-0.5, 1.8, 0.5),
-        direction: Vec3::new(0.2, -1.0, -0.3).normalize(),
-        intensity: Vec3::splat(3.0),
-        inner_cone_angle: 60f32.to_radians(),
-        outer_cone_angle: 85f32.to_radians(),
-    });
-    scene
-}
 
 /// A texel as a G-buffer sample, so that `edge_pixels` classifies texels (ωi as ωo, the
 /// distance from the ray origin unused).
