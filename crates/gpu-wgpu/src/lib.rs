@@ -20,7 +20,20 @@
 //! - [`shade_pass`]: stochastic VPL shading from light lists (eq. 2-4 and 6-8 with the K²
 //!   weight of section 6; `shaders/brdf.wgsl`, `shaders/shade.wgsl`), the twin of
 //!   `slc_cpu_ref::vpl_shading::shade_lists` without visibility, lists uploaded or straight
-//!   from the tiled culler.
+//!   from the tiled culler;
+//! - [`scene_upload`]: the scene (triangles, normals, texture coordinates, materials and
+//!   textures) in storage buffers, [`scene_upload::GpuScene`];
+//! - [`visibility_pass`]: the nearest triangle per pixel by rasterization (depth test), from
+//!   a camera or a light face;
+//! - [`gbuffer_pass`]: the rasterized G-buffer (twin of `slc_cpu_ref::gbuffer`), left on the
+//!   GPU in the layout culling and shading read, or read back as `slc_core::GBuffer`;
+//! - [`rsm_pass`]: reflective shadow maps by rasterization (twin of `slc_cpu_ref::rsm`,
+//!   point light = six faces, spot = one, directional = orthographic), whose depth is kept
+//!   as a shadow map;
+//! - [`vpl_gen_pass`]: VPLs from RSM texels in compute (twin of `slc_cpu_ref::vpls`, same
+//!   ids and ξ), compacted by a scan;
+//! - [`direct_pass`]: direct light per G-buffer pixel (twin of `slc_cpu_ref::direct`) with
+//!   the RSM depth as shadow maps instead of shadow rays.
 //!
 //! Per-pass GPU times come from timestamp queries where the adapter has them
 //! ([`profiler`]: `start_profiling`, `set_stage`, `finish_profiling`).
@@ -31,14 +44,21 @@
 pub mod bounds_pass;
 pub mod buffers;
 pub mod context;
+pub mod direct_pass;
+pub mod gbuffer_pass;
 pub mod gpu_types;
 pub mod partition_pass;
 pub mod profiler;
+pub mod raster_types;
 pub mod rng_pass;
+pub mod rsm_pass;
 pub mod scan_pass;
+pub mod scene_upload;
 pub mod shade_pass;
 pub mod tile_depth_pass;
 pub mod tiled_cull_pass;
+pub mod visibility_pass;
+pub mod vpl_gen_pass;
 
 pub use context::{GpuContext, GpuError};
 pub use profiler::GpuProfile;

@@ -17,9 +17,10 @@
 //! grazing opposition) is emulated with compensated f32 arithmetic, see `shaders/brdf.wgsl`.
 use crate::buffers::{output, read_back, uniform, upload, Grid};
 use crate::context::{GpuContext, GpuError};
+use crate::gbuffer_pass::GpuGBuffer;
 use crate::gpu_types::{GpuSample, GpuShadeParams, GpuVpl, MAX_K};
 use glam::Vec3;
-use slc_core::{CullInput, Image, LightLists, NO_LIST};
+use slc_core::{CullInput, Image, Interleaving, LightLists, Vpl, NO_LIST};
 
 /// `shaders/brdf.wgsl` followed by the shading kernel.
 pub(crate) const SOURCE: &str = concat!(
@@ -101,6 +102,15 @@ impl GpuLightLists {
     }
 }
 
+/// What shading needs besides the G-buffer samples.
+struct Frame<'a> {
+    width: u32,
+    height: u32,
+    vpls: &'a [Vpl],
+    delta: f32,
+    interleaving: Interleaving,
+}
+
 /// The compiled shading pipeline.
 pub struct ShadePass {
     pipeline: wgpu::ComputePipeline,
@@ -148,6 +158,52 @@ impl ShadePass {
                 g.samples.len()
             )));
         }
+        let samples: Vec<GpuSample> = g
+            .samples
+            .iter()
+            .map(|s| GpuSample::new(s.as_ref()))
+            .collect();
+        let samples = upload(ctx, "gbuffer samples", &samples)?;
+        let frame = Frame {
+            width: g.width,
+            height: g.height,
+            vpls: input.vpls,
+            delta: input.delta,
+            interleaving: input.interleaving,
+        };
+        self.shade_samples(ctx, &samples, &frame, lists)
+    }
+
+    /// [`Self::shade_gpu_lists`] for a G-buffer rendered on the GPU
+    /// ([`crate::gbuffer_pass::GbufferPass`]), read where it lies.
+    pub fn shade_gpu_gbuffer(
+        &self,
+        ctx: &GpuContext,
+        gbuffer: &GpuGBuffer,
+        vpls: &[Vpl],
+        delta: f32,
+        interleaving: Interleaving,
+        lists: &GpuLightLists,
+    ) -> Result<Image, GpuError> {
+        let frame = Frame {
+            width: gbuffer.width,
+            height: gbuffer.height,
+            vpls,
+            delta,
+            interleaving,
+        };
+        self.shade_samples(ctx, &gbuffer.samples, &frame, lists)
+    }
+
+    /// Shades the [`GpuSample`]s in `samples` (one per pixel of the frame).
+    fn shade_samples(
+        &self,
+        ctx: &GpuContext,
+        samples: &wgpu::Buffer,
+        input: &Frame,
+        lists: &GpuLightLists,
+    ) -> Result<Image, GpuError> {
+        let pixels = u64::from(input.width) * u64::from(input.height);
         if u64::from(lists.pixels) != pixels {
             return Err(GpuError::Input(format!(
                 "light lists for {} pixels, G-buffer of {pixels}",
@@ -162,7 +218,7 @@ impl ShadePass {
         }
         let vpl_count = u32::try_from(input.vpls.len())
             .map_err(|_| GpuError::Input(format!("{} VPLs exceed u32", input.vpls.len())))?;
-        let mut image = Image::new(g.width, g.height);
+        let mut image = Image::new(input.width, input.height);
         if pixels == 0 {
             return Ok(image);
         }
@@ -173,14 +229,9 @@ impl ShadePass {
             .enumerate()
             .map(|(i, v)| GpuVpl::new(v, i, input.delta))
             .collect::<Result<Vec<_>, _>>()?;
-        let samples: Vec<GpuSample> = g
-            .samples
-            .iter()
-            .map(|s| GpuSample::new(s.as_ref()))
-            .collect();
         let params = GpuShadeParams {
-            width: g.width,
-            height: g.height,
+            width: input.width,
+            height: input.height,
             pixel_count: pixels as u32,
             vpl_count,
             list_count: lists.list_count,
@@ -188,7 +239,6 @@ impl ShadePass {
             scale: input.interleaving.scale(),
             pad: 0,
         };
-        let samples = upload(ctx, "gbuffer samples", &samples)?;
         let vpls = upload(ctx, "vpls", &vpls)?;
         let out = output::<f32>(ctx, "indirect image", 3 * pixels as usize)?;
         let grid = Grid::for_items(ctx, pixels, WORKGROUP)?;
@@ -199,7 +249,7 @@ impl ShadePass {
                 &self.pipeline,
                 &[
                     &params,
-                    &samples,
+                    samples,
                     &vpls,
                     &lists.offsets,
                     &lists.indices,

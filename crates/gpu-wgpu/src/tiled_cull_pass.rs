@@ -13,6 +13,7 @@
 use crate::bounds_pass::{BoundsPass, BoundsSettings};
 use crate::buffers::{output, read_back, uniform, upload, Grid};
 use crate::context::{GpuContext, GpuError};
+use crate::gbuffer_pass::GpuGBuffer;
 use crate::gpu_types::{
     GpuCullParams, GpuCullStatus, GpuTileFrusta, CULL_COUNT, CULL_WRITE, FRUSTUM_SLACK, MAX_K,
 };
@@ -20,7 +21,7 @@ use crate::partition_pass::PartitionPass;
 use crate::scan_pass::ScanPass;
 use crate::shade_pass::GpuLightLists;
 use crate::tile_depth_pass::{TileDepthBuffers, TileDepthPass};
-use slc_core::{CullInput, LightLists, NO_LIST, TILE_SIZE};
+use slc_core::{Camera, CullInput, Interleaving, LightLists, Vpl, NO_LIST, TILE_SIZE};
 use slc_cull::{CullView, GlossyBound};
 
 /// `shaders/tiles.wgsl` and `shaders/bound.wgsl` followed by the culling kernel.
@@ -92,14 +93,77 @@ impl TiledCuller {
         glossy: GlossyBound,
     ) -> Result<GpuLightLists, GpuError> {
         let g = input.gbuffer;
-        let (width, height) = (g.width, g.height);
-        let pixels = u64::from(width) * u64::from(height);
+        let pixels = u64::from(g.width) * u64::from(g.height);
         if pixels != g.samples.len() as u64 || u32::try_from(pixels).is_err() {
             return Err(GpuError::Input(format!(
-                "G-buffer of {width}x{height} pixels has {} samples",
+                "G-buffer of {}x{} pixels has {} samples",
+                g.width,
+                g.height,
                 g.samples.len()
             )));
         }
+        let positions: Vec<[f32; 4]> = g
+            .samples
+            .iter()
+            .map(|s| {
+                s.as_ref()
+                    .map_or([0.0; 4], |s| s.position.extend(1.0).to_array())
+            })
+            .collect();
+        let positions = upload(ctx, "gbuffer positions", &positions)?;
+        self.cull_positions(
+            ctx,
+            &positions,
+            &Frame {
+                width: g.width,
+                height: g.height,
+                camera: input.camera,
+                vpls: input.vpls,
+                delta: input.delta,
+                interleaving: input.interleaving,
+            },
+            glossy,
+        )
+    }
+
+    /// [`Self::cull_on_gpu`] for a G-buffer rendered on the GPU
+    /// ([`crate::gbuffer_pass::GbufferPass`]), read where it lies (its camera is the
+    /// culling view).
+    pub fn cull_gpu_gbuffer(
+        &self,
+        ctx: &GpuContext,
+        gbuffer: &GpuGBuffer,
+        vpls: &[Vpl],
+        delta: f32,
+        interleaving: Interleaving,
+        glossy: GlossyBound,
+    ) -> Result<GpuLightLists, GpuError> {
+        self.cull_positions(
+            ctx,
+            &gbuffer.positions,
+            &Frame {
+                width: gbuffer.width,
+                height: gbuffer.height,
+                camera: &gbuffer.camera,
+                vpls,
+                delta,
+                interleaving,
+            },
+            glossy,
+        )
+    }
+
+    /// Culls with the G-buffer positions already on the GPU (`[x, y, z, 1]`, zero where a
+    /// pixel has no sample).
+    fn cull_positions(
+        &self,
+        ctx: &GpuContext,
+        positions: &wgpu::Buffer,
+        input: &Frame,
+        glossy: GlossyBound,
+    ) -> Result<GpuLightLists, GpuError> {
+        let (width, height) = (input.width, input.height);
+        let pixels = u64::from(width) * u64::from(height);
         let k = input.interleaving.k;
         if !(1..=MAX_K).contains(&k) {
             return Err(GpuError::Input(format!(
@@ -172,15 +236,6 @@ impl TiledCuller {
             mode,
             pad: [0; 3],
         };
-        let positions: Vec<[f32; 4]> = g
-            .samples
-            .iter()
-            .map(|s| {
-                s.as_ref()
-                    .map_or([0.0; 4], |s| s.position.extend(1.0).to_array())
-            })
-            .collect();
-        let positions = upload(ctx, "gbuffer positions", &positions)?;
         let frusta = output::<GpuTileFrusta>(ctx, "tile frusta", tile_count as usize)?;
         let pixel_list = output::<u32>(ctx, "pixel lists", pixels as usize)?;
         let offsets = output::<u32>(ctx, "list offsets", lists_count as usize + 1)?;
@@ -208,7 +263,7 @@ impl TiledCuller {
                 &mut encoder,
                 &TileDepthBuffers {
                     params: &count_params,
-                    positions: &positions,
+                    positions,
                     frusta: &frusta,
                     pixel_list: &pixel_list,
                     status: &status,
@@ -302,6 +357,16 @@ impl TiledCuller {
     ) {
         ctx.encode_dispatch(encoder, "tiled cull", &self.pipeline, &buffers, tiles);
     }
+}
+
+/// What culling needs besides the G-buffer positions.
+struct Frame<'a> {
+    width: u32,
+    height: u32,
+    camera: &'a Camera,
+    vpls: &'a [Vpl],
+    delta: f32,
+    interleaving: Interleaving,
 }
 
 /// [`LightLists`] from the GPU's fixed two lists per tile: empty lists are dropped (their

@@ -1,0 +1,108 @@
+// VPL generation, the GPU twin of crates/cpu-ref/src/vpls.rs generate_vpls: texel k of one
+// light's map (global texel index base + k over the concatenated maps) makes a diffuse VPL
+// with id 2 (base + k) where kd > 0 and a glossy VPL with id 2 (base + k) + 1 where the
+// specular layer reflects (max over half vectors of F at normal incidence > 0,
+// Fresnel::max_over_half_vectors(1)), each if the lobe is wanted; xi = vpl_xi(seed, id)
+// (rng.wgsl). Run twice like the tiled culler: CULL_COUNT writes each texel's VPL count,
+// the scan (scan.wgsl) turns counts into offsets, CULL_WRITE writes the VPLs at their
+// offsets: the same order as the CPU (texel-major, diffuse before glossy), compacted.
+// rng.wgsl and fresnel_ggx.wgsl are prepended; structs mirror src/raster_types.rs and
+// src/gpu_types.rs.
+
+struct VplGenParams {
+    texel_count: u32,
+    base: u32,
+    seed: u32,
+    // bit 0 diffuse, bit 1 glossy
+    lobes: u32,
+    mode: u32,
+    cos_h_max: f32,
+    pad0: u32,
+    pad1: u32,
+}
+
+struct RsmTexel {
+    position: vec4<f32>,
+    normal_alpha: vec4<f32>,
+    omega_i_eta: vec4<f32>,
+    flux: vec4<f32>,
+    kd: vec4<f32>,
+    f0: vec4<f32>,
+    info: vec4<u32>,
+}
+
+struct Vpl {
+    position_xi: vec4<f32>,
+    normal_alpha: vec4<f32>,
+    omega_i_eta: vec4<f32>,
+    flux: vec4<f32>,
+    kd: vec4<f32>,
+    f0: vec4<f32>,
+    info: vec4<u32>,
+}
+
+@group(0) @binding(0) var<uniform> params: VplGenParams;
+@group(0) @binding(1) var<storage, read> texels: array<RsmTexel>;
+// Counts (CULL_COUNT) or offsets after the scan (CULL_WRITE), per global texel.
+@group(0) @binding(2) var<storage, read_write> counts: array<u32>;
+@group(0) @binding(3) var<storage, read_write> vpls: array<Vpl>;
+
+const CULL_COUNT: u32 = 0u;
+const LOBE_DIFFUSE: u32 = 0u;
+const LOBE_GLOSSY: u32 = 1u;
+const WORKGROUP: u32 = 64u;
+
+fn max3(v: vec3<f32>) -> f32 {
+    return max(v.x, max(v.y, v.z));
+}
+
+// Fresnel::max_over_half_vectors(1) > 0 for the texel's Fresnel model.
+fn reflects(t: RsmTexel) -> bool {
+    let c = params.cos_h_max;
+    if t.info.x == FRESNEL_SCHLICK {
+        return max3(fresnel_schlick(t.f0.xyz, c)) > 0.0;
+    }
+    let eta = t.omega_i_eta.w;
+    return max(fresnel_dielectric(eta, 1.0), fresnel_dielectric(eta, c)) > 0.0;
+}
+
+fn make_vpl(t: RsmTexel, lobe: u32, id: u32) -> Vpl {
+    return Vpl(
+        vec4<f32>(t.position.xyz, vpl_xi(params.seed, id)),
+        t.normal_alpha,
+        t.omega_i_eta,
+        t.flux,
+        t.kd,
+        t.f0,
+        vec4<u32>(lobe, t.info.x, id, 0u),
+    );
+}
+
+@compute @workgroup_size(64)
+fn main(
+    @builtin(workgroup_id) wid: vec3<u32>,
+    @builtin(num_workgroups) groups: vec3<u32>,
+    @builtin(local_invocation_index) lid: u32,
+) {
+    let k = (wid.y * groups.x + wid.x) * WORKGROUP + lid;
+    if k >= params.texel_count {
+        return;
+    }
+    let t = texels[k];
+    let lit = t.position.w != 0.0;
+    let diffuse = lit && (params.lobes & 1u) != 0u && max3(t.kd.xyz) > 0.0;
+    let glossy = lit && (params.lobes & 2u) != 0u && reflects(t);
+    let g = params.base + k;
+    if params.mode == CULL_COUNT {
+        counts[g] = u32(diffuse) + u32(glossy);
+        return;
+    }
+    var at = counts[g];
+    if diffuse {
+        vpls[at] = make_vpl(t, LOBE_DIFFUSE, 2u * g);
+        at += 1u;
+    }
+    if glossy {
+        vpls[at] = make_vpl(t, LOBE_GLOSSY, 2u * g + 1u);
+    }
+}

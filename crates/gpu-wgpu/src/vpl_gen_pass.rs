@@ -1,0 +1,193 @@
+//! VPL generation in compute (`shaders/vpl_gen.wgsl`), GPU twin of
+//! `slc_cpu_ref::vpls::generate_vpls`: one diffuse VPL (id 2k, where kd > 0) and one glossy
+//! VPL (id 2k + 1, where the specular layer reflects) per lit texel k of the concatenated
+//! maps, ξ = `rng::vpl_xi(seed, id)` (paper eq. 3) from `shaders/rng.wgsl`, compacted in the
+//! CPU's order by a count pass, an exclusive scan (`scan_pass`) and a write pass. The one
+//! count read back in between sizes the VPL buffer exactly.
+use crate::buffers::{output, read_back, uniform, upload, Grid};
+use crate::context::{GpuContext, GpuError};
+use crate::gpu_types::{
+    GpuCullStatus, GpuVpl, CULL_COUNT, CULL_WRITE, FRESNEL_DIELECTRIC, LOBE_DIFFUSE,
+};
+use crate::raster_types::GpuVplGenParams;
+use crate::rsm_pass::GpuRsm;
+use crate::scan_pass::ScanPass;
+use glam::Vec3;
+use slc_bounds::{fresnel::cos_theta_h_max, Brdf, Fresnel};
+use slc_core::{Vpl, VplLobe};
+
+/// `shaders/rng.wgsl` and `shaders/fresnel_ggx.wgsl` followed by the generation kernel.
+pub(crate) const SOURCE: &str = concat!(
+    include_str!("../shaders/rng.wgsl"),
+    include_str!("../shaders/fresnel_ggx.wgsl"),
+    include_str!("../shaders/vpl_gen.wgsl")
+);
+const WORKGROUP: u32 = 64;
+
+/// Which lobes become VPLs (`slc_cpu_ref::LobeSelection`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum VplLobes {
+    Both,
+    Diffuse,
+    Glossy,
+}
+
+impl VplLobes {
+    fn mask(self) -> u32 {
+        match self {
+            VplLobes::Both => 3,
+            VplLobes::Diffuse => 1,
+            VplLobes::Glossy => 2,
+        }
+    }
+}
+
+/// VPLs on the GPU in the [`GpuVpl`] layout the bounds and shading passes read.
+pub struct GpuVpls {
+    pub buffer: wgpu::Buffer,
+    pub count: u32,
+}
+
+impl GpuVpls {
+    /// The VPLs as `slc_core::Vpl`s, in the CPU's order.
+    pub fn read_back(&self, ctx: &GpuContext) -> Result<Vec<Vpl>, GpuError> {
+        let raw: Vec<GpuVpl> = read_back(ctx, "vpls", &self.buffer, self.count as usize)?;
+        Ok(raw.iter().map(unpack).collect())
+    }
+}
+
+fn unpack(v: &GpuVpl) -> Vpl {
+    let v3 = |a: [f32; 4]| Vec3::new(a[0], a[1], a[2]);
+    let fresnel = if v.info[1] == FRESNEL_DIELECTRIC {
+        Fresnel::Dielectric(v.omega_i_eta[3])
+    } else {
+        Fresnel::Schlick(v3(v.f0))
+    };
+    Vpl {
+        position: v3(v.position_xi),
+        normal: v3(v.normal_alpha),
+        omega_i: v3(v.omega_i_eta),
+        flux: v3(v.flux),
+        brdf: Brdf {
+            kd: v3(v.kd),
+            fresnel,
+            alpha: v.normal_alpha[3],
+        },
+        lobe: if v.info[0] == LOBE_DIFFUSE {
+            VplLobe::Diffuse
+        } else {
+            VplLobe::Glossy
+        },
+        id: v.info[2],
+        xi: v.position_xi[3],
+    }
+}
+
+/// The compiled generation and scan pipelines.
+pub struct VplGenPass {
+    pipeline: wgpu::ComputePipeline,
+    scan: ScanPass,
+}
+
+impl VplGenPass {
+    pub fn new(ctx: &GpuContext) -> Result<Self, GpuError> {
+        ctx.scoped("vpl generation pipelines", || {
+            Ok(Self {
+                pipeline: ctx.compute_pipeline("vpl generation", SOURCE),
+                scan: ScanPass::new(ctx),
+            })
+        })
+    }
+
+    /// The VPLs of `maps` (one per light, in light order) with ξ from `seed`. Errors when the
+    /// texels exceed 32-bit VPL ids, on buffers beyond the device's limits and on device
+    /// faults.
+    pub fn generate(
+        &self,
+        ctx: &GpuContext,
+        maps: &[GpuRsm],
+        seed: u32,
+        lobes: VplLobes,
+    ) -> Result<GpuVpls, GpuError> {
+        let total: usize = maps.iter().map(GpuRsm::texel_count).sum();
+        let total = u32::try_from(total)
+            .ok()
+            .filter(|t| t.checked_mul(2).is_some())
+            .ok_or_else(|| GpuError::Input(format!("{total} RSM texels exceed 32-bit VPL ids")))?;
+        let counts = output::<u32>(ctx, "vpl offsets", total as usize + 1)?;
+        let status = upload(ctx, "vpl status", &[GpuCullStatus::CLEAR])?;
+        let passes = |mode| -> Result<Vec<(wgpu::Buffer, Grid, &GpuRsm)>, GpuError> {
+            let mut base = 0;
+            let mut out = Vec::with_capacity(maps.len());
+            for map in maps {
+                let texel_count = map.texel_count() as u32;
+                let params = GpuVplGenParams {
+                    texel_count,
+                    base,
+                    seed,
+                    lobes: lobes.mask(),
+                    mode,
+                    cos_h_max: cos_theta_h_max(1.0),
+                    pad: [0; 2],
+                };
+                let grid = Grid::for_items(ctx, u64::from(texel_count), WORKGROUP)?;
+                out.push((uniform(ctx, "vpl generation params", &params), grid, map));
+                base += texel_count;
+            }
+            Ok(out)
+        };
+        let count_passes = passes(CULL_COUNT)?;
+        let no_vpls = output::<GpuVpl>(ctx, "no vpls", 1)?;
+        ctx.scoped("vpl generation (count)", || {
+            let mut encoder = ctx
+                .device
+                .create_command_encoder(&wgpu::CommandEncoderDescriptor {
+                    label: Some("vpl generation (count)"),
+                });
+            for (params, grid, map) in &count_passes {
+                ctx.encode_dispatch(
+                    &mut encoder,
+                    "vpl count",
+                    &self.pipeline,
+                    &[params, &map.texels, &counts, &no_vpls],
+                    *grid,
+                );
+            }
+            self.scan.encode(ctx, &mut encoder, &counts, total, &status);
+            ctx.queue.submit([encoder.finish()]);
+            Ok(())
+        })?;
+        let [state] = <[GpuCullStatus; 1]>::try_from(read_back(ctx, "vpl status", &status, 1)?)
+            .map_err(|_| GpuError::Readback {
+                label: "vpl status".into(),
+                message: "short read".into(),
+            })?;
+        if state.total_overflow != 0 {
+            return Err(GpuError::Input("VPL count exceeds u32".into()));
+        }
+        let vpls = output::<GpuVpl>(ctx, "vpls", state.total as usize)?;
+        let write_passes = passes(CULL_WRITE)?;
+        ctx.scoped("vpl generation (write)", || {
+            let mut encoder = ctx
+                .device
+                .create_command_encoder(&wgpu::CommandEncoderDescriptor {
+                    label: Some("vpl generation (write)"),
+                });
+            for (params, grid, map) in &write_passes {
+                ctx.encode_dispatch(
+                    &mut encoder,
+                    "vpl write",
+                    &self.pipeline,
+                    &[params, &map.texels, &counts, &vpls],
+                    *grid,
+                );
+            }
+            ctx.queue.submit([encoder.finish()]);
+            Ok(())
+        })?;
+        Ok(GpuVpls {
+            buffer: vpls,
+            count: state.total,
+        })
+    }
+}
