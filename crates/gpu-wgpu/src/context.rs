@@ -220,13 +220,7 @@ impl GpuContext {
         let timed = self.compute_timestamps(label);
         let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
             label: Some(label),
-            timestamp_writes: timed
-                .as_ref()
-                .map(|(set, index)| wgpu::ComputePassTimestampWrites {
-                    query_set: set,
-                    beginning_of_pass_write_index: Some(*index),
-                    end_of_pass_write_index: Some(index + 1),
-                }),
+            timestamp_writes: timed.as_ref().map(crate::profiler::compute_pass_writes),
         });
         pass.set_pipeline(pipeline);
         pass.set_bind_group(0, &bind, &[]);

@@ -171,3 +171,14 @@ pub fn render_pass_writes(
         end_of_pass_write_index: Some(index + 1),
     }
 }
+
+/// The compute-pass form of a `(query set, first index)` pair.
+pub(crate) fn compute_pass_writes(
+    (set, index): &(wgpu::QuerySet, u32),
+) -> wgpu::ComputePassTimestampWrites<'_> {
+    wgpu::ComputePassTimestampWrites {
+        query_set: set,
+        beginning_of_pass_write_index: Some(*index),
+        end_of_pass_write_index: Some(index + 1),
+    }
+}

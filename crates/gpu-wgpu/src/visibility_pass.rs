@@ -186,6 +186,7 @@ impl VisibilityPass {
                 entry(2, uniform.as_entire_binding()),
             ],
         });
+        let timed = ctx.render_timestamps("visibility");
         let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
             label: Some("visibility"),
             color_attachments: &[Some(wgpu::RenderPassColorAttachment {
@@ -205,7 +206,7 @@ impl VisibilityPass {
                 }),
                 stencil_ops: None,
             }),
-            timestamp_writes: None,
+            timestamp_writes: timed.as_ref().map(crate::profiler::render_pass_writes),
             occlusion_query_set: None,
             multiview_mask: None,
         });
@@ -258,9 +259,10 @@ impl Resolve<'_> {
             layout: &self.pipeline.get_bind_group_layout(0),
             entries: &entries,
         });
+        let timed = ctx.compute_timestamps(self.label);
         let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
             label: Some(self.label),
-            timestamp_writes: None,
+            timestamp_writes: timed.as_ref().map(crate::profiler::compute_pass_writes),
         });
         pass.set_pipeline(self.pipeline);
         pass.set_bind_group(0, &bind, &[]);
