@@ -2,7 +2,7 @@
 //! each culling strategy, in one run (so ratios are measured on the same machine state).
 //! Writes `bench.csv` and `bench.md`.
 use crate::args::{culling_names, Backend, FrameArgs, PipelineArgs};
-use crate::gpu_frame::{check_visibility, gpu_bound, GpuFrame};
+use crate::gpu_frame::{check_visibility, gpu_bound, GpuFrame, GpuPrepared};
 use crate::report::Device;
 use clap::Args;
 use slc_cpu_ref::{prepare, shade_stochastic, Method, Stochastic, Tracer};
@@ -99,7 +99,9 @@ pub fn run(args: &BenchArgs) -> Result<(), String> {
         PASSES.join(" | "),
         "---|".repeat(PASSES.len())
     );
-    let mut tracer = Some(Tracer::new(&scene));
+    // The CPU keeps one BVH for every frame; the GPU one scene upload.
+    let mut tracer = gpu.is_none().then(|| Tracer::new(&scene));
+    let gpu_scene = gpu.as_ref().map(|g| g.upload(&scene)).transpose()?;
     for &(w, h) in &resolutions {
         for &rsm in &args.rsms {
             let frame = FrameArgs {
@@ -112,14 +114,18 @@ pub fn run(args: &BenchArgs) -> Result<(), String> {
             let settings = frame.settings(Method::Stochastic(base), 1);
             settings.validate().map_err(|e| e.to_string())?;
             eprintln!("{w}x{h}, RSM {rsm}²");
-            let p = prepare(
-                &scene,
-                &settings,
-                tracer
-                    .take()
-                    .expect("the tracer is returned after each frame"),
-                None,
-            );
+            let prepared = match (&gpu, &gpu_scene) {
+                (Some(g), Some(gs)) => Prepared::Gpu(g, g.prepare(&scene, gs, &settings, None)?),
+                _ => Prepared::Cpu(prepare(
+                    &scene,
+                    &settings,
+                    tracer
+                        .take()
+                        .expect("the tracer is returned after each frame"),
+                    None,
+                )),
+            };
+            let vpl_count = prepared.vpl_count();
             for &name in &names {
                 let mut best = None;
                 for _ in 0..args.repeat {
@@ -127,15 +133,23 @@ pub fn run(args: &BenchArgs) -> Result<(), String> {
                         culling: name,
                         ..base
                     };
-                    let (out, gpu_timings) = match &gpu {
-                        None => (
-                            shade_stochastic(&p, &s, frame.seed, frame.visibility, &|_| {})
+                    let (mut t, out, gpu_timings) = match &prepared {
+                        Prepared::Gpu(g, p) => {
+                            let (out, shade_gpu) = g.shade(p, &s, frame.seed)?;
+                            let gpu_timings = shade_gpu.map(|t| {
+                                let mut all = p.gpu_timings.clone().unwrap_or_default();
+                                all.merge(&t);
+                                all
+                            });
+                            (p.timings.clone(), out, gpu_timings)
+                        }
+                        Prepared::Cpu(p) => (
+                            p.timings.clone(),
+                            shade_stochastic(p, &s, frame.seed, frame.visibility, &|_| {})
                                 .map_err(|e| e.to_string())?,
                             None,
                         ),
-                        Some(g) => g.shade(&p, &s, frame.seed)?,
                     };
-                    let mut t = p.timings.clone();
                     t.merge(&out.timings);
                     // The GPU's own times of its passes replace the wall clock where the
                     // adapter has timestamp queries.
@@ -154,20 +168,20 @@ pub fn run(args: &BenchArgs) -> Result<(), String> {
                 let (cs, per_pass) = best.expect("at least one repetition");
                 let _ = writeln!(
                     csv,
-                    "{},{w},{h},{rsm},{},{name},{},{cs:.3}",
+                    "{},{w},{h},{rsm},{vpl_count},{name},{},{cs:.3}",
                     scene.name,
-                    p.vpls.len(),
                     per_pass.map(|v| format!("{v:.3}")).join(",")
                 );
                 let _ = writeln!(
                     md,
-                    "| {w}x{h} | {} | {name} | {} | {cs:.1} |",
-                    p.vpls.len(),
+                    "| {w}x{h} | {vpl_count} | {name} | {} | {cs:.1} |",
                     per_pass.map(|v| format!("{v:.1}")).join(" | ")
                 );
                 eprintln!("  {name}: culling + shading {cs:.1} ms");
             }
-            tracer = Some(p.tracer);
+            if let Prepared::Cpu(p) = prepared {
+                tracer = Some(p.tracer);
+            }
         }
     }
     std::fs::create_dir_all(&args.out).map_err(|e| format!("{}: {e}", args.out.display()))?;
@@ -175,4 +189,19 @@ pub fn run(args: &BenchArgs) -> Result<(), String> {
     std::fs::write(args.out.join("bench.md"), md).map_err(|e| e.to_string())?;
     println!("wrote {}", args.out.display());
     Ok(())
+}
+
+/// A frame prepared by the backend that benchmarks it.
+enum Prepared<'g> {
+    Cpu(slc_cpu_ref::Prepared),
+    Gpu(&'g GpuFrame, GpuPrepared),
+}
+
+impl Prepared<'_> {
+    fn vpl_count(&self) -> usize {
+        match self {
+            Prepared::Cpu(p) => p.vpls.len(),
+            Prepared::Gpu(_, p) => p.vpls.len(),
+        }
+    }
 }

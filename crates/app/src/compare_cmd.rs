@@ -81,7 +81,16 @@ pub fn run(args: &CompareArgs) -> Result<(), String> {
         "preparing {} ({}x{}, RSM {}²)",
         scene.name, f.width, f.height, f.rsm
     );
-    let p = prepare(&scene, &settings, Tracer::new(&scene), None);
+    // The GPU prepares its own frame (rasterized G-buffer, its RSMs and VPLs); the CPU's
+    // reference and unculled estimate read that frame back.
+    let on_gpu = gpu
+        .as_ref()
+        .map(|g| g.prepare(&scene, &g.upload(&scene)?, &settings, None))
+        .transpose()?;
+    let p = match (&gpu, &on_gpu) {
+        (Some(g), Some(gp)) => g.to_cpu(gp, Tracer::new(&scene))?,
+        _ => prepare(&scene, &settings, Tracer::new(&scene), None),
+    };
     eprintln!("{} VPLs", p.vpls.len());
 
     let reference = (!args.no_reference)
@@ -147,9 +156,21 @@ pub fn run(args: &CompareArgs) -> Result<(), String> {
                 bar.finish_and_clear();
                 (out, None)
             }
-            Some(g) => g.shade(&p, &s, f.seed)?,
+            Some(g) => {
+                let gp = on_gpu.as_ref().expect("prepared on the GPU");
+                g.shade(gp, &s, f.seed)?
+            }
         };
-        let (out, gpu_timings) = out;
+        let (out, shade_gpu_timings) = out;
+        // The GPU's times of this strategy's frame: the shared preparation and its own passes.
+        let gpu_timings = shade_gpu_timings.map(|t| {
+            let mut all = on_gpu
+                .as_ref()
+                .and_then(|gp| gp.gpu_timings.clone())
+                .unwrap_or_default();
+            all.merge(&t);
+            all
+        });
         let m = out.metrics.as_ref().expect("metrics were asked for");
         let total = p.direct.add(&out.indirect);
         let dir = args.out.join(name);

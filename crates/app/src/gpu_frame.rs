@@ -1,23 +1,33 @@
-//! The `--backend gpu` frame of this version, a hybrid: the CPU reference prepares the frame
-//! (BVH, G-buffer, RSM, VPLs, direct light), the GPU (wgpu) culls with tiled light lists that
-//! stay on the GPU and shades from them, and the CPU's cross bilateral filter denoises.
+//! The `--backend gpu` frame: every pass on the GPU (wgpu) — the rasterized G-buffer, the
+//! RSMs (also the shadow maps), VPL generation, direct light, tiled culling with light lists
+//! that stay on the GPU, and shading — as `slc_cpu_ref::render` composes the CPU passes.
+//! What comes back to the CPU: the VPLs once per frame (the culler's bounds pass reads them
+//! from the CPU), the images, and the G-buffer where the CPU's cross bilateral filter or the
+//! brute-force metrics need it.
 //!
-//! Pass times (`timings_ms`) are wall clock around each GPU call, uploads, readbacks and the
+//! Pass times (`timings_ms`) are wall clock around each pass, its uploads, readbacks and the
 //! wait for completion included, under the CPU's pass names; where the adapter has timestamp
 //! queries the GPU's execution time of the same passes is returned beside them
 //! (`gpu_timings_ms` in the report).
 use crate::report::Device;
-use slc_core::rng::pcg_hash;
-use slc_core::{CullInput, Image, Interleaving, Scene};
+use slc_core::rng::{pcg_hash, stream, uniform};
+use slc_core::{Camera, CullInput, GBuffer, Image, Interleaving, Scene, Vpl};
 use slc_cpu_ref::denoise::{cross_bilateral, BilateralParams};
 use slc_cpu_ref::{
-    prepare, Frame, Method, Prepared, RenderSettings, Stochastic, StochasticFrame, Timings, Tracer,
+    Frame, LobeSelection, Method, Prepared, RenderSettings, Stochastic, StochasticFrame, Timings,
+    Tracer,
 };
 use slc_cull::metrics::measure;
 use slc_cull::GlossyBound;
+use slc_gpu_wgpu::direct_pass::DirectPass;
+use slc_gpu_wgpu::gbuffer_pass::{GbufferPass, GpuGBuffer};
+use slc_gpu_wgpu::rsm_pass::RsmPass;
+use slc_gpu_wgpu::scene_upload::GpuScene;
 use slc_gpu_wgpu::shade_pass::ShadePass;
 use slc_gpu_wgpu::tiled_cull_pass::TiledCuller;
-use slc_gpu_wgpu::GpuContext;
+use slc_gpu_wgpu::vpl_gen_pass::{VplGenPass, VplLobes};
+use slc_gpu_wgpu::{GpuContext, GpuError};
+use std::cell::OnceCell;
 
 /// The culling strategies the GPU backend has, with the glossy bound each uses.
 const GPU_STRATEGIES: [(&str, GlossyBound); 3] = [
@@ -52,9 +62,41 @@ pub fn check_visibility(visibility: bool) -> Result<(), String> {
     Ok(())
 }
 
+fn gpu_err(e: GpuError) -> String {
+    e.to_string()
+}
+
+/// A frame prepared on the GPU up to its VPLs and direct light: the twin of
+/// `slc_cpu_ref::Prepared`, its G-buffer left on the GPU.
+pub struct GpuPrepared {
+    pub camera: Camera,
+    pub gbuffer: GpuGBuffer,
+    pub vpls: Vec<Vpl>,
+    pub direct: Image,
+    pub timings: Timings,
+    /// Timestamp times of the passes, where the adapter has them.
+    pub gpu_timings: Option<Timings>,
+    /// The G-buffer read back, once something on the CPU needs it.
+    cpu_gbuffer: OnceCell<GBuffer>,
+}
+
+impl GpuPrepared {
+    fn cpu_gbuffer(&self, ctx: &GpuContext) -> Result<&GBuffer, String> {
+        if let Some(g) = self.cpu_gbuffer.get() {
+            return Ok(g);
+        }
+        let g = self.gbuffer.read_back(ctx).map_err(gpu_err)?;
+        Ok(self.cpu_gbuffer.get_or_init(|| g))
+    }
+}
+
 /// The device and the compiled GPU passes, created once per command.
 pub struct GpuFrame {
     ctx: GpuContext,
+    gbuffer: GbufferPass,
+    rsm: RsmPass,
+    vpl_gen: VplGenPass,
+    direct: DirectPass,
     culler: TiledCuller,
     shader: ShadePass,
 }
@@ -63,13 +105,15 @@ impl GpuFrame {
     /// Opens the adapter and compiles the passes; no adapter is an error suggesting
     /// `--backend cpu`.
     pub fn new() -> Result<Self, String> {
-        let ctx = GpuContext::new().map_err(|e| e.to_string())?;
-        let culler = TiledCuller::new(&ctx).map_err(|e| e.to_string())?;
-        let shader = ShadePass::new(&ctx).map_err(|e| e.to_string())?;
+        let ctx = GpuContext::new().map_err(gpu_err)?;
         Ok(Self {
+            gbuffer: GbufferPass::new(&ctx).map_err(gpu_err)?,
+            rsm: RsmPass::new(&ctx).map_err(gpu_err)?,
+            vpl_gen: VplGenPass::new(&ctx).map_err(gpu_err)?,
+            direct: DirectPass::new(&ctx).map_err(gpu_err)?,
+            culler: TiledCuller::new(&ctx).map_err(gpu_err)?,
+            shader: ShadePass::new(&ctx).map_err(gpu_err)?,
             ctx,
-            culler,
-            shader,
         })
     }
 
@@ -77,15 +121,24 @@ impl GpuFrame {
     pub fn device(&self, metrics: bool) -> Device {
         let mut notes = vec![
             format!(
-                "culling (tiled, light lists kept on the GPU) and shading ran on the GPU \
-                 ({})",
+                "G-buffer and RSMs by rasterization (visibility buffer resolved by the pixel's \
+                 own ray), VPL generation, direct light with the RSM depth as shadow maps, \
+                 tiled culling (light lists kept on the GPU) and shading ran on the GPU ({})",
                 self.ctx.adapter_name
             ),
-            "bvh, gbuffer, rsm, vpl_generation, direct and denoise ran on the CPU".to_string(),
-            if self.ctx.timestamps {
+            "the scene upload and the cross bilateral filter ran on the CPU; the VPLs are read \
+             back once per frame for the culler's bounds pass"
+                .to_string(),
+            if self.ctx.timestamps_trusted {
                 "timings_ms of GPU passes are wall clock around the GPU work (uploads, readbacks \
                  and the wait for completion included); gpu_timings_ms are the GPU's execution \
                  times of the same passes from timestamp queries"
+                    .to_string()
+            } else if self.ctx.timestamps {
+                "this adapter's timestamp queries are not used: on a CPU adapter (lavapipe) they \
+                 stop bracketing compute work once a render pass has run; GPU pass times are \
+                 wall clock around the GPU work (uploads, readbacks and the wait for completion \
+                 included) and gpu_timings_ms is null"
                     .to_string()
             } else {
                 "this adapter has no timestamp queries: GPU pass times are wall clock around the \
@@ -108,50 +161,146 @@ impl GpuFrame {
         }
     }
 
+    /// Uploads `scene`'s triangles, materials and textures.
+    pub fn upload(&self, scene: &Scene) -> Result<GpuScene, String> {
+        GpuScene::upload(&self.ctx, scene).map_err(gpu_err)
+    }
+
+    /// Times `f` under `name` (wall clock, waiting for the GPU) and attributes its passes to
+    /// the stage `name`.
+    fn pass<T>(
+        &self,
+        timings: &mut Timings,
+        name: &'static str,
+        f: impl FnOnce() -> Result<T, GpuError>,
+    ) -> Result<T, String> {
+        self.ctx.set_stage(name);
+        timings
+            .time(name, || {
+                let out = f()?;
+                self.ctx.wait()?;
+                Ok(out)
+            })
+            .map_err(gpu_err)
+    }
+
+    /// Rasterizes the G-buffer and the RSMs, makes the VPLs and the direct light: the GPU twin
+    /// of `slc_cpu_ref::prepare`. `pass` = `None` samples pixel and texel centres; `Some(p)`
+    /// shifts every pixel's sample by one offset for pass p (a rasterizer has one sub-pixel
+    /// offset per frame, where the CPU jitters each pixel) and keeps texel centres, with the
+    /// CPU's per-pass VPL seed.
+    pub fn prepare(
+        &self,
+        scene: &Scene,
+        gpu_scene: &GpuScene,
+        settings: &RenderSettings,
+        pass: Option<u32>,
+    ) -> Result<GpuPrepared, String> {
+        let (w, h) = (settings.width, settings.height);
+        let camera = scene.camera_or_default();
+        let (offset, seed) = match pass {
+            None => ((0.5, 0.5), settings.seed),
+            Some(p) => (
+                (
+                    uniform(settings.seed, u32::MAX, stream::PIXEL, 2 * p),
+                    uniform(settings.seed, u32::MAX, stream::PIXEL, 2 * p + 1),
+                ),
+                settings.seed ^ pcg_hash(p),
+            ),
+        };
+        let lobes = match settings.lobes {
+            LobeSelection::Both => VplLobes::Both,
+            LobeSelection::Diffuse => VplLobes::Diffuse,
+            LobeSelection::Glossy => VplLobes::Glossy,
+        };
+        let ctx = &self.ctx;
+        let profiling = ctx.timestamps_trusted && ctx.start_profiling();
+        let mut timings = Timings::default();
+        let gbuffer = self.pass(&mut timings, "gbuffer", || {
+            self.gbuffer.render(ctx, gpu_scene, &camera, w, h, offset)
+        })?;
+        let maps = self.pass(&mut timings, "rsm", || {
+            scene
+                .lights
+                .iter()
+                .map(|l| self.rsm.render(ctx, gpu_scene, l, settings.rsm_resolution))
+                .collect::<Result<Vec<_>, _>>()
+        })?;
+        let vpls = self.pass(&mut timings, "vpl_generation", || {
+            self.vpl_gen
+                .generate(ctx, &maps, seed, lobes)?
+                .read_back(ctx)
+        })?;
+        let direct = self.pass(&mut timings, "direct", || {
+            self.direct.render(ctx, gpu_scene, &gbuffer, &maps)
+        })?;
+        let profile = ctx.finish_profiling().map_err(gpu_err)?;
+        Ok(GpuPrepared {
+            camera,
+            gbuffer,
+            vpls,
+            direct,
+            timings,
+            gpu_timings: profiling.then_some(Timings(profile.stages)),
+            cpu_gbuffer: OnceCell::new(),
+        })
+    }
+
+    /// The prepared frame as the CPU reference's `Prepared` (G-buffer read back), for what
+    /// only the CPU computes: the all-VPL reference and the unculled estimate of
+    /// `slc compare`.
+    pub fn to_cpu(&self, p: &GpuPrepared, tracer: Tracer) -> Result<Prepared, String> {
+        Ok(Prepared {
+            camera: p.camera.clone(),
+            tracer,
+            gbuffer: p.cpu_gbuffer(&self.ctx)?.clone(),
+            vpls: p.vpls.clone(),
+            direct: p.direct.clone(),
+            timings: p.timings.clone(),
+        })
+    }
+
     /// Culls and shades a prepared frame on the GPU, then denoises on the CPU: the GPU twin
     /// of `slc_cpu_ref::shade_stochastic` without visibility. Also returns the GPU's
-    /// timestamp times of its passes, where the adapter has timestamp queries.
+    /// timestamp times of its passes, where the adapter has them.
     pub fn shade(
         &self,
-        p: &Prepared,
+        p: &GpuPrepared,
         s: &Stochastic,
         seed: u32,
     ) -> Result<(StochasticFrame, Option<Timings>), String> {
         let glossy = gpu_bound(s.culling)?;
-        let input = CullInput {
-            gbuffer: &p.gbuffer,
-            camera: &p.camera,
-            vpls: &p.vpls,
-            delta: s.delta,
-            interleaving: Interleaving {
-                k: s.interleave,
-                seed,
-            },
+        let interleaving = Interleaving {
+            k: s.interleave,
+            seed,
         };
-        let gpu = |e: slc_gpu_wgpu::GpuError| e.to_string();
+        let ctx = &self.ctx;
         let mut timings = Timings::default();
-        let profiling = self.ctx.start_profiling();
-        self.ctx.set_stage("culling");
-        let lists = timings.time("culling", || {
-            let lists = self.culler.cull_on_gpu(&self.ctx, &input, glossy)?;
-            self.ctx.wait()?;
-            Ok(lists)
-        });
-        let lists = lists.map_err(gpu)?;
-        self.ctx.set_stage("shading");
-        let indirect = timings.time("shading", || {
-            self.shader.shade_gpu_lists(&self.ctx, &input, &lists)
-        });
-        let mut indirect = indirect.map_err(gpu)?;
-        let profile = self.ctx.finish_profiling().map_err(gpu)?;
-        let gpu_timings = profiling.then_some(Timings(profile.stages));
+        let profiling = ctx.timestamps_trusted && ctx.start_profiling();
+        let lists = self.pass(&mut timings, "culling", || {
+            self.culler
+                .cull_gpu_gbuffer(ctx, &p.gbuffer, &p.vpls, s.delta, interleaving, glossy)
+        })?;
+        let mut indirect = self.pass(&mut timings, "shading", || {
+            self.shader
+                .shade_gpu_gbuffer(ctx, &p.gbuffer, &p.vpls, s.delta, interleaving, &lists)
+        })?;
+        let profile = ctx.finish_profiling().map_err(gpu_err)?;
         if s.denoise {
+            let gbuffer = p.cpu_gbuffer(ctx)?;
             indirect = timings.time("denoise", || {
-                cross_bilateral(&indirect, &p.gbuffer, BilateralParams::default())
+                cross_bilateral(&indirect, gbuffer, BilateralParams::default())
             });
         }
         let metrics = if s.metrics {
-            let read = self.culler.cull(&self.ctx, &input, glossy).map_err(gpu)?;
+            let input = CullInput {
+                gbuffer: p.cpu_gbuffer(ctx)?,
+                camera: &p.camera,
+                vpls: &p.vpls,
+                delta: s.delta,
+                interleaving,
+            };
+            let read = self.culler.cull(ctx, &input, glossy).map_err(gpu_err)?;
             Some(measure(&input, &read).map_err(|e| e.to_string())?)
         } else {
             None
@@ -162,13 +311,14 @@ impl GpuFrame {
                 metrics,
                 timings,
             },
-            gpu_timings,
+            profiling.then_some(Timings(profile.stages)),
         ))
     }
 
     /// Renders `scene` with the stochastic estimate of `settings` as `slc_cpu_ref::render`
-    /// does (the same passes, jitter and seeds for `spp` > 1), culling and shading on the GPU;
-    /// with the GPU's timestamp times of its passes, summed over the passes, where it has them.
+    /// does (the same passes and seeds for `spp` > 1), every pass but the filter on the GPU;
+    /// with the GPU's timestamp times of its passes, summed over the passes, where it has
+    /// them.
     pub fn render(
         &self,
         scene: &Scene,
@@ -182,29 +332,29 @@ impl GpuFrame {
         };
         let (w, h) = (settings.width, settings.height);
         let mut timings = Timings::default();
-        let mut tracer = Some(timings.time("bvh", || Tracer::new(scene)));
+        let gpu_scene = timings.time("upload", || self.upload(scene))?;
         let mut direct = Image::new(w, h);
         let mut indirect = Image::new(w, h);
         let (mut vpl_count, mut metrics) = (0, None);
         let mut gpu_timings: Option<Timings> = None;
+        let mut add_gpu = |t: Option<Timings>| {
+            if let Some(t) = t {
+                gpu_timings.get_or_insert_with(Timings::default).merge(&t);
+            }
+        };
         for pass in 0..settings.spp {
             let jitter = (settings.spp > 1).then_some(pass);
-            let taken = tracer
-                .take()
-                .expect("the tracer comes back after each pass");
-            let p = prepare(scene, settings, taken, jitter);
+            let p = self.prepare(scene, &gpu_scene, settings, jitter)?;
             timings.merge(&p.timings);
+            add_gpu(p.gpu_timings.clone());
             vpl_count = p.vpls.len();
             let seed = jitter.map_or(settings.seed, |j| settings.seed ^ pcg_hash(j));
             let (f, gpu) = self.shade(&p, &s, seed)?;
             timings.merge(&f.timings);
-            if let Some(g) = gpu {
-                gpu_timings.get_or_insert_with(Timings::default).merge(&g);
-            }
+            add_gpu(gpu);
             metrics = f.metrics;
             direct = direct.add(&p.direct);
             indirect = indirect.add(&f.indirect);
-            tracer = Some(p.tracer);
         }
         let inv = 1.0 / settings.spp as f32;
         for px in direct.pixels.iter_mut().chain(indirect.pixels.iter_mut()) {

@@ -178,7 +178,11 @@ fn read_exr(path: &std::path::Path) -> Vec<[f32; 3]> {
 }
 
 #[test]
-fn gpu_render_equals_the_cpu_render_and_names_its_adapter() {
+fn gpu_render_agrees_with_the_cpu_render_and_names_its_adapter() {
+    /// Relative difference of image means allowed between the rasterized and the ray-traced
+    /// frame (48 x 32 pixels, RSM 4²: edge pixels and texels weigh heavily; measured on
+    /// lavapipe: 1.4e-2 at most).
+    const TOLERANCE_OF_MEAN: f64 = 0.03;
     if !gpu_available() {
         return;
     }
@@ -232,7 +236,7 @@ fn gpu_render_equals_the_cpu_render_and_names_its_adapter() {
     // Timestamp times where the adapter has them (lavapipe does), `null` and a note otherwise.
     let gpu_timings = &report["gpu_timings_ms"];
     if gpu_timings.is_null() {
-        assert!(report["notes"].to_string().contains("no timestamp queries"));
+        assert!(report["notes"].to_string().contains("timestamp queries"));
     } else {
         for pass in ["culling", "shading", "total"] {
             let ms = gpu_timings[pass].as_f64().unwrap_or(-1.0);
@@ -243,24 +247,29 @@ fn gpu_render_equals_the_cpu_render_and_names_its_adapter() {
         serde_json::from_str(&std::fs::read_to_string(cpu.join("report.json")).unwrap()).unwrap();
     assert_eq!(cpu_report["notes"], serde_json::json!([]));
     assert!(cpu_report["gpu_timings_ms"].is_null());
-    assert_eq!(report["metrics"], cpu_report["metrics"]);
-    let (a, b) = (
-        read_exr(&cpu.join("indirect.exr")),
-        read_exr(&gpu.join("indirect.exr")),
-    );
-    assert_eq!(a.len(), 48 * 32);
-    assert_eq!(a.len(), b.len());
-    let scale = a
-        .iter()
-        .flatten()
-        .fold(0f32, |m, v| m.max(v.abs()))
-        .max(1e-6);
-    for (i, (c, g)) in a.iter().zip(&b).enumerate() {
+    // The GPU rasterizes its own G-buffer and RSM (the per-pixel conformance of those passes
+    // is in crates/gpu-wgpu/tests/gpu/raster_*.rs): here the frames must agree on average
+    // and the GPU's culling must miss nothing.
+    assert_eq!(report["metrics"]["missed_pairs"], 0, "{report}");
+    assert!(report["metrics"]["true_positive_pairs"].as_u64().unwrap() > 0);
+    for image in ["direct.exr", "indirect.exr"] {
+        let mean = |p: &std::path::Path| {
+            let px = read_exr(p);
+            let n = px.len() as f64;
+            px.iter().fold([0f64; 3], |m, v| {
+                [0, 1, 2].map(|c| m[c] + f64::from(v[c]) / n)
+            })
+        };
+        let (c, g) = (mean(&cpu.join(image)), mean(&gpu.join(image)));
         for ch in 0..3 {
-            let err = (c[ch] - g[ch]).abs();
+            let rel = (c[ch] - g[ch]).abs() / c[ch];
+            eprintln!(
+                "{image} channel {ch}: cpu {} gpu {} ({rel:.2e})",
+                c[ch], g[ch]
+            );
             assert!(
-                err <= 1e-4 * c[ch].abs().max(1e-3 * scale),
-                "pixel {i} channel {ch}: cpu {} gpu {}",
+                rel <= TOLERANCE_OF_MEAN,
+                "{image} channel {ch}: cpu {} gpu {}",
                 c[ch],
                 g[ch]
             );

@@ -64,6 +64,11 @@ pub struct GpuContext {
     pub adapter_name: String,
     /// Whether the device was created with timestamp queries (for per-pass timings).
     pub timestamps: bool,
+    /// Whether those timestamps measure execution: false on CPU adapters, where lavapipe's
+    /// stop bracketing the work of compute passes once a render pass has run (measured: 0.09
+    /// ms of timestamp time for 1.1 s of compute, `tests/gpu/profile.rs`). Callers report
+    /// wall clock instead.
+    pub timestamps_trusted: bool,
     /// The device's limits (storage binding size, workgroups per dimension, ...).
     pub limits: wgpu::Limits,
     lost: Arc<Mutex<Option<String>>>,
@@ -91,6 +96,7 @@ impl GpuContext {
         let info = adapter.get_info();
         let adapter_name = format!("{} ({:?})", info.name, info.backend);
         let timestamps = adapter.features().contains(wgpu::Features::TIMESTAMP_QUERY);
+        let timestamps_trusted = timestamps && info.device_type != wgpu::DeviceType::Cpu;
         let required_features = if timestamps {
             wgpu::Features::TIMESTAMP_QUERY
         } else {
@@ -121,6 +127,7 @@ impl GpuContext {
             queue,
             adapter_name,
             timestamps,
+            timestamps_trusted,
             limits,
             lost,
             profiler: Mutex::new(None),

@@ -1,10 +1,13 @@
 //! Timestamp profiling (`profiler.rs`): passes are attributed to the stage set before them,
 //! their durations are plausible against the wall clock, and nothing is recorded outside a
-//! profile.
+//! profile. The first test runs compute passes only, where lavapipe's timestamps do measure
+//! execution; the second shows why they are not trusted on CPU adapters after a render pass.
 use crate::common::gpu;
 use crate::tiled::frame;
 use slc_core::{builtin, CullInput, Interleaving};
 use slc_cull::GlossyBound;
+use slc_gpu_wgpu::gbuffer_pass::GbufferPass;
+use slc_gpu_wgpu::scene_upload::GpuScene;
 use slc_gpu_wgpu::shade_pass::ShadePass;
 use slc_gpu_wgpu::tiled_cull_pass::TiledCuller;
 use std::time::Instant;
@@ -85,4 +88,63 @@ fn stages_sum_their_passes_within_the_wall_clock() {
     // Outside a profile nothing is recorded.
     shader.shade_gpu_lists(&ctx, &input, &lists).unwrap();
     assert_eq!(ctx.finish_profiling().unwrap(), Default::default());
+}
+
+/// The whole chain after a render pass (rasterized G-buffer → culling → shading): on an
+/// adapter whose timestamps are trusted they account for the work within the wall clock; on
+/// a CPU adapter (lavapipe) they stop bracketing compute work once a render pass has run,
+/// which is why `timestamps_trusted` is false there: the measurement is printed, and the
+/// test checks that the context does not claim otherwise.
+#[test]
+fn timestamps_after_a_render_pass() {
+    let Some(ctx) = gpu() else { return };
+    let culler = TiledCuller::new(&ctx).unwrap();
+    let shader = ShadePass::new(&ctx).unwrap();
+    let scene = builtin("default").unwrap();
+    let camera = scene.camera_or_default();
+    let (_, vpls) = frame(&scene, &camera, (8, 8), 32);
+    let gpu_scene = GpuScene::upload(&ctx, &scene).unwrap();
+    let gbuffer = GbufferPass::new(&ctx)
+        .unwrap()
+        .render(&ctx, &gpu_scene, &camera, 160, 120, (0.5, 0.5))
+        .unwrap();
+    let k = Interleaving { k: 2, seed: 3 };
+    let run = || {
+        let lists = culler
+            .cull_gpu_gbuffer(&ctx, &gbuffer, &vpls, 1e-3, k, GlossyBound::Ellipsoid)
+            .unwrap();
+        shader
+            .shade_gpu_gbuffer(&ctx, &gbuffer, &vpls, 1e-3, k, &lists)
+            .unwrap()
+    };
+    run(); // warm up
+    if !ctx.start_profiling() {
+        eprintln!("notice: {} has no timestamp queries", ctx.adapter_name);
+        return;
+    }
+    let wall = Instant::now();
+    let image = run();
+    let wall_ms = wall.elapsed().as_secs_f64() * 1e3;
+    let gpu_ms: f64 = ctx
+        .finish_profiling()
+        .unwrap()
+        .stages
+        .iter()
+        .map(|s| s.1)
+        .sum();
+    assert!(image.mean().max_element() > 0.0);
+    eprintln!(
+        "{}: timestamps {gpu_ms:.3} ms for {wall_ms:.3} ms wall after a render pass \
+         (trusted: {})",
+        ctx.adapter_name, ctx.timestamps_trusted
+    );
+    if ctx.timestamps_trusted {
+        assert!(
+            gpu_ms <= wall_ms * 1.02 + 0.05,
+            "{gpu_ms} ms GPU in {wall_ms} ms"
+        );
+        assert!(gpu_ms >= wall_ms * 1e-3, "{gpu_ms} ms GPU in {wall_ms} ms");
+    } else {
+        assert!(ctx.adapter_name.contains("llvmpipe") || !ctx.timestamps);
+    }
 }
