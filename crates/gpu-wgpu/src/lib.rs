@@ -21,14 +21,26 @@
 //!   weight of section 6; `shaders/brdf.wgsl`, `shaders/shade.wgsl`), the twin of
 //!   `slc_cpu_ref::vpl_shading::shade_lists` without visibility, lists uploaded or straight
 //!   from the tiled culler.
+//! - [`none_cull_pass`]: no culling (every VPL of the pixel's subregion), the twin of
+//!   `slc_cull`'s `none`;
+//! - [`clustered_cull_pass`]: clustered culling (32 exponential depth slices per tile,
+//!   section 7), the twin of `slc_cull`'s `clustered`, `clustered-sphere` and
+//!   `clustered-enclosing-sphere`, with its structs in [`cull_types`];
+//! - [`culler`]: every strategy of `slc_cull::CULLER_NAMES` by name ([`culler::GpuCuller`]);
+//!   [`cull_frame`] holds what the culling passes share.
 //!
 //! Faults are errors ([`GpuError`]): no adapter (suggests `--backend cpu`), device loss
 //! (no hang: bounded waits), buffers beyond the storage-binding limit (refused), dispatches
 //! beyond 65535 workgroups per dimension (split into 2-D grids, [`buffers::Grid`]).
 pub mod bounds_pass;
 pub mod buffers;
+pub mod clustered_cull_pass;
 pub mod context;
+pub mod cull_frame;
+pub mod cull_types;
+pub mod culler;
 pub mod gpu_types;
+pub mod none_cull_pass;
 pub mod partition_pass;
 pub mod rng_pass;
 pub mod scan_pass;
