@@ -27,7 +27,10 @@
 //!   section 7), the twin of `slc_cull`'s `clustered`, `clustered-sphere` and
 //!   `clustered-enclosing-sphere`, with its structs in [`cull_types`];
 //! - [`culler`]: every strategy of `slc_cull::CULLER_NAMES` by name ([`culler::GpuCuller`]);
-//!   [`cull_frame`] holds what the culling passes share.
+//!   [`cull_frame`] holds what the culling passes share;
+//! - [`denoise_pass`]: the cross bilateral filter guided by depth and normal (section 6),
+//!   the twin of `slc_cpu_ref::denoise::cross_bilateral`, on GPU buffers or uploaded images
+//!   (struct in [`denoise_types`]).
 //!
 //! Faults are errors ([`GpuError`]): no adapter (suggests `--backend cpu`), device loss
 //! (no hang: bounded waits), buffers beyond the storage-binding limit (refused), dispatches
@@ -39,6 +42,8 @@ pub mod context;
 pub mod cull_frame;
 pub mod cull_types;
 pub mod culler;
+pub mod denoise_pass;
+pub mod denoise_types;
 pub mod gpu_types;
 pub mod none_cull_pass;
 pub mod partition_pass;

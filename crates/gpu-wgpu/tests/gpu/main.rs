@@ -7,6 +7,7 @@ mod bounds;
 mod clustered;
 mod common;
 mod culler;
+mod denoise;
 mod faults;
 mod rng;
 mod shade;
