@@ -185,7 +185,7 @@ fn clustered_lists_match_the_cpu() {
     let mut most_slices = 0;
     // Partial tiles and unequal subregions (72 x 50 with K = 4, 40 x 23 with K = 3), sky
     // pixels, images smaller than K, one pixel, no VPLs; 1,000 VPLs and more give each tile
-    // several chunks of 256 bounds.
+    // several chunks of 256 bounds, 320 x 180 with 11k VPLs lists of thousands of entries.
     for (size, k, rsm, sky, no_vpls) in [
         ((96, 64), 1, 16, false, false),
         ((72, 50), 4, 16, false, false),
@@ -194,6 +194,7 @@ fn clustered_lists_match_the_cpu() {
         ((3, 2), 4, 4, false, false),
         ((1, 1), 1, 4, false, false),
         ((40, 23), 3, 8, true, true),
+        ((320, 180), 1, 32, false, false),
     ] {
         let (gbuffer, vpls) = frame(&scene, &camera, size, rsm);
         let gbuffer = if sky { with_sky(&gbuffer) } else { gbuffer };
