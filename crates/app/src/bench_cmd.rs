@@ -2,7 +2,7 @@
 //! each culling strategy, in one run (so ratios are measured on the same machine state).
 //! Writes `bench.csv` and `bench.md`.
 use crate::args::{culling_names, Backend, FrameArgs, PipelineArgs};
-use crate::gpu_frame::{check_visibility, gpu_bound, GpuFrame, GpuPrepared};
+use crate::gpu_frame::{check_visibility, gpu_strategy, GpuFrame, GpuPrepared};
 use crate::report::Device;
 use clap::Args;
 use slc_cpu_ref::{prepare, shade_stochastic, Method, Stochastic, Tracer};
@@ -70,7 +70,7 @@ pub fn run(args: &BenchArgs) -> Result<(), String> {
         Backend::Gpu => {
             check_visibility(args.frame.visibility)?;
             for name in &names {
-                gpu_bound(name)?;
+                gpu_strategy(name)?;
             }
             Some(GpuFrame::new()?)
         }

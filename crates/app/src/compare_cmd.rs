@@ -3,7 +3,7 @@
 //! Writes one folder per strategy (images, heat map, report.json), `reference_vpl/` (every VPL
 //! with p = 1, the same VPLs), `report.md` with the table, and `side_by_side.png`.
 use crate::args::{culling_names, Backend, FrameArgs, PipelineArgs};
-use crate::gpu_frame::{check_visibility, gpu_bound, GpuFrame};
+use crate::gpu_frame::{check_visibility, gpu_strategy, GpuFrame};
 use crate::heatmap::heat_map;
 use crate::output::write_frame;
 use crate::progress::bar;
@@ -66,7 +66,7 @@ pub fn run(args: &CompareArgs) -> Result<(), String> {
         Backend::Gpu => {
             check_visibility(f.visibility)?;
             for name in &names {
-                gpu_bound(name)?;
+                gpu_strategy(name)?;
             }
             Some(GpuFrame::new()?)
         }

@@ -1,9 +1,10 @@
 //! The `--backend gpu` frame: every pass on the GPU (wgpu) — the rasterized G-buffer, the
-//! RSMs (also the shadow maps), VPL generation, direct light, tiled culling with light lists
-//! that stay on the GPU, and shading — as `slc_cpu_ref::render` composes the CPU passes.
-//! What comes back to the CPU: the VPLs once per frame (the culler's bounds pass reads them
-//! from the CPU), the images, and the G-buffer where the CPU's cross bilateral filter or the
-//! brute-force metrics need it.
+//! RSMs (also the shadow maps), VPL generation, direct light, culling by any strategy with
+//! light lists that stay on the GPU, shading and the cross bilateral filter — as
+//! `slc_cpu_ref::render` composes the CPU passes. What comes back to the CPU: the VPLs once
+//! per frame (the culler's bounds pass reads them from the CPU), the images, and the
+//! G-buffer and lists where the brute-force metrics or `slc compare`'s CPU reference need
+//! them.
 //!
 //! Pass times (`timings_ms`) are wall clock around each pass, its uploads, readbacks and the
 //! wait for completion included, under the CPU's pass names; where the adapter has timestamp
@@ -12,44 +13,33 @@
 use crate::report::Device;
 use slc_core::rng::{pcg_hash, stream, uniform};
 use slc_core::{Camera, CullInput, GBuffer, Image, Interleaving, Scene, Vpl};
-use slc_cpu_ref::denoise::{cross_bilateral, BilateralParams};
 use slc_cpu_ref::{
     Frame, LobeSelection, Method, Prepared, RenderSettings, Stochastic, StochasticFrame, Timings,
     Tracer,
 };
 use slc_cull::metrics::measure;
-use slc_cull::GlossyBound;
+use slc_gpu_wgpu::cull_frame::{read_lists, CullFrame};
+use slc_gpu_wgpu::culler::{GpuCuller, Strategy};
+use slc_gpu_wgpu::denoise_pass::{BilateralSettings, DenoisePass, Guide};
 use slc_gpu_wgpu::direct_pass::DirectPass;
 use slc_gpu_wgpu::gbuffer_pass::{GbufferPass, GpuGBuffer};
 use slc_gpu_wgpu::rsm_pass::RsmPass;
 use slc_gpu_wgpu::scene_upload::GpuScene;
+use slc_gpu_wgpu::shade_pass::read_image;
 use slc_gpu_wgpu::shade_pass::ShadePass;
-use slc_gpu_wgpu::tiled_cull_pass::TiledCuller;
 use slc_gpu_wgpu::vpl_gen_pass::{VplGenPass, VplLobes};
 use slc_gpu_wgpu::{GpuContext, GpuError};
 use std::cell::OnceCell;
 
-/// The culling strategies the GPU backend has, with the glossy bound each uses.
-const GPU_STRATEGIES: [(&str, GlossyBound); 3] = [
-    ("sphere", GlossyBound::Sphere),
-    ("enclosing-sphere", GlossyBound::EnclosingSphere),
-    ("ellipsoid", GlossyBound::Ellipsoid),
-];
-
-/// The glossy bound of `culling` on the GPU, or an error naming the strategies it has.
-pub fn gpu_bound(culling: &str) -> Result<GlossyBound, String> {
-    GPU_STRATEGIES
-        .iter()
-        .find(|(n, _)| *n == culling)
-        .map(|(_, b)| *b)
-        .ok_or_else(|| {
-            let names: Vec<&str> = GPU_STRATEGIES.iter().map(|(n, _)| *n).collect();
-            format!(
-                "culling strategy '{culling}' is not available with --backend gpu (it has {}); \
-                 choose one of those or render with --backend cpu",
-                names.join(", ")
-            )
-        })
+/// The GPU twin of the CPU culling strategy `culling` (every name of
+/// `slc_cull::CULLER_NAMES` has one).
+pub fn gpu_strategy(culling: &str) -> Result<Strategy, String> {
+    Strategy::by_name(culling).ok_or_else(|| {
+        format!(
+            "unknown culling strategy '{culling}' (choose one of {})",
+            slc_cull::CULLER_NAMES.join(", ")
+        )
+    })
 }
 
 /// Refuses options the GPU backend does not have yet: shadow rays between VPLs and pixels.
@@ -97,8 +87,9 @@ pub struct GpuFrame {
     rsm: RsmPass,
     vpl_gen: VplGenPass,
     direct: DirectPass,
-    culler: TiledCuller,
+    culler: GpuCuller,
     shader: ShadePass,
+    denoiser: DenoisePass,
 }
 
 impl GpuFrame {
@@ -111,8 +102,9 @@ impl GpuFrame {
             rsm: RsmPass::new(&ctx).map_err(gpu_err)?,
             vpl_gen: VplGenPass::new(&ctx).map_err(gpu_err)?,
             direct: DirectPass::new(&ctx).map_err(gpu_err)?,
-            culler: TiledCuller::new(&ctx).map_err(gpu_err)?,
+            culler: GpuCuller::new(&ctx).map_err(gpu_err)?,
             shader: ShadePass::new(&ctx).map_err(gpu_err)?,
+            denoiser: DenoisePass::new(&ctx).map_err(gpu_err)?,
             ctx,
         })
     }
@@ -121,13 +113,14 @@ impl GpuFrame {
     pub fn device(&self, metrics: bool) -> Device {
         let mut notes = vec![
             format!(
-                "G-buffer and RSMs by rasterization (visibility buffer resolved by the pixel's \
-                 own ray), VPL generation, direct light with the RSM depth as shadow maps, \
-                 tiled culling (light lists kept on the GPU) and shading ran on the GPU ({})",
+                "every pass ran on the GPU ({}): G-buffer and RSMs by rasterization (visibility \
+                 buffer resolved by the pixel's own ray), VPL generation, direct light with the \
+                 RSM depth as shadow maps, culling (light lists kept on the GPU), shading and \
+                 the cross bilateral filter",
                 self.ctx.adapter_name
             ),
-            "the scene upload and the cross bilateral filter ran on the CPU; the VPLs are read \
-             back once per frame for the culler's bounds pass"
+            "the VPLs are read back once per frame for the culler's bounds pass; the images \
+             are read back at the end of the frame"
                 .to_string(),
             if self.ctx.timestamps_trusted {
                 "timings_ms of GPU passes are wall clock around the GPU work (uploads, readbacks \
@@ -149,8 +142,8 @@ impl GpuFrame {
         ];
         if metrics {
             notes.push(
-                "metrics were measured on the GPU's light lists, read back from a second, \
-                 untimed culling run of the same input"
+                "metrics were measured by brute force on the CPU against the GPU's light lists \
+                 and G-buffer, read back after the timed passes"
                     .to_string(),
             );
         }
@@ -260,38 +253,46 @@ impl GpuFrame {
         })
     }
 
-    /// Culls and shades a prepared frame on the GPU, then denoises on the CPU: the GPU twin
-    /// of `slc_cpu_ref::shade_stochastic` without visibility. Also returns the GPU's
-    /// timestamp times of its passes, where the adapter has them.
+    /// Culls, shades and denoises a prepared frame on the GPU: the GPU twin of
+    /// `slc_cpu_ref::shade_stochastic` without visibility. Also returns the GPU's timestamp
+    /// times of its passes, where the adapter has trustworthy ones.
     pub fn shade(
         &self,
         p: &GpuPrepared,
         s: &Stochastic,
         seed: u32,
     ) -> Result<(StochasticFrame, Option<Timings>), String> {
-        let glossy = gpu_bound(s.culling)?;
+        let strategy = gpu_strategy(s.culling)?;
         let interleaving = Interleaving {
             k: s.interleave,
             seed,
         };
         let ctx = &self.ctx;
+        let g = &p.gbuffer;
         let mut timings = Timings::default();
         let profiling = ctx.timestamps_trusted && ctx.start_profiling();
         let lists = self.pass(&mut timings, "culling", || {
-            self.culler
-                .cull_gpu_gbuffer(ctx, &p.gbuffer, &p.vpls, s.delta, interleaving, glossy)
+            let frame = CullFrame::on_gpu(g, &p.vpls, s.delta, interleaving);
+            self.culler.cull_frame(ctx, &frame, strategy)
         })?;
-        let mut indirect = self.pass(&mut timings, "shading", || {
+        let mut rgb = self.pass(&mut timings, "shading", || {
             self.shader
-                .shade_gpu_gbuffer(ctx, &p.gbuffer, &p.vpls, s.delta, interleaving, &lists)
+                .shade_gpu_gbuffer_on_gpu(ctx, g, &p.vpls, s.delta, interleaving, &lists)
         })?;
-        let profile = ctx.finish_profiling().map_err(gpu_err)?;
         if s.denoise {
-            let gbuffer = p.cpu_gbuffer(ctx)?;
-            indirect = timings.time("denoise", || {
-                cross_bilateral(&indirect, gbuffer, BilateralParams::default())
-            });
+            rgb = self.pass(&mut timings, "denoise", || {
+                let guide = Guide {
+                    samples: &g.samples,
+                    width: g.width,
+                    height: g.height,
+                    camera: &g.camera,
+                };
+                self.denoiser
+                    .filter_on_gpu(ctx, &rgb, &guide, &BilateralSettings::default())
+            })?;
         }
+        let profile = ctx.finish_profiling().map_err(gpu_err)?;
+        let indirect = read_image(ctx, &rgb, g.width, g.height).map_err(gpu_err)?;
         let metrics = if s.metrics {
             let input = CullInput {
                 gbuffer: p.cpu_gbuffer(ctx)?,
@@ -300,7 +301,7 @@ impl GpuFrame {
                 delta: s.delta,
                 interleaving,
             };
-            let read = self.culler.cull(ctx, &input, glossy).map_err(gpu_err)?;
+            let read = read_lists(ctx, &lists).map_err(gpu_err)?;
             Some(measure(&input, &read).map_err(|e| e.to_string())?)
         } else {
             None

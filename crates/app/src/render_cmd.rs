@@ -1,6 +1,6 @@
 //! `slc render`.
 use crate::args::{culling_name, Backend, FrameArgs, PipelineArgs};
-use crate::gpu_frame::{check_visibility, gpu_bound, GpuFrame};
+use crate::gpu_frame::{check_visibility, gpu_strategy, GpuFrame};
 use crate::output::write_frame;
 use crate::progress::bar;
 use crate::report::{Device, FrameFacts, Report};
@@ -64,7 +64,7 @@ pub fn run(args: &RenderArgs) -> Result<(), String> {
                 return Err("references are rendered on the CPU only; use --backend cpu".into());
             }
             check_visibility(f.visibility)?;
-            gpu_bound(&args.culling)?;
+            gpu_strategy(&args.culling)?;
             let gpu = GpuFrame::new()?;
             eprintln!("rendering {} on the GPU", scene.name);
             let (frame, gpu_timings) = gpu.render(&scene, &settings)?;

@@ -1,8 +1,8 @@
 // Tiled light culling with Modified HalfZ (paper sections 5.1-5.2, supplemental Listing 2),
 // the GPU twin of crates/cull/src/tiled.rs + frusta.rs: one 256-thread workgroup per tile
-// (tiles.wgsl and bound.wgsl prepended). Every bound of the tile's subregion (in the order
-// partition.wgsl made: ascending VPL index, empty bounds left out) is tested
-// against the whole tile's frustum box, then against each cluster's: spheres against the
+// (tiles.wgsl, bound.wgsl and frustum_tests.wgsl prepended). Every bound of the tile's
+// subregion (in the order partition.wgsl made: ascending VPL index, empty bounds left out)
+// is tested against the whole tile's frustum box, then against each cluster's: spheres against the
 // view-space box of the frustum, ellipsoids as the unit ball at BS c against the box of the
 // frustum's image under BS. Hits are compacted in VPL order by a workgroup prefix sum into
 // light lists in workgroup memory, which are flushed to the output when nearly full and at
@@ -33,50 +33,25 @@ var<workgroup> flushed_count: vec2<u32>;
 var<workgroup> tile_mask: u32;
 var<workgroup> sub_range: vec2<u32>;
 
-// The box {z w : w in [lo, hi], z in [z0, z1]} against the ball |p - c|^2 <= r2
-// (frusta.rs Box3::swept + meets_ball; Listing 2's CalculateFrustumAABB and
-// ComputeSquaredDistanceToBox).
-fn meets(lo: vec3<f32>, hi: vec3<f32>, range: vec2<f32>, c: vec3<f32>, r2: f32) -> bool {
-    let box_min = min(lo * range.x, lo * range.y);
-    let box_max = max(hi * range.x, hi * range.y);
-    let gap = max(max(box_min - c, c - box_max), vec3<f32>(0.0));
-    return dot(gap, gap) <= r2;
-}
-
-// Which clusters (x near, y far) the bound may touch: whole tile first, then each cluster.
+// Which clusters (x near, y far) the bound may touch: whole tile first, then each cluster
+// (frustum_tests.wgsl).
 fn hits(b: Bound, f: TileFrusta, mask: u32) -> vec2<u32> {
-    var lo: vec3<f32>;
-    var hi: vec3<f32>;
-    var r2: f32;
-    if b.kind == BOUND_SPHERE {
-        lo = vec3<f32>(f.rect.xy, 1.0);
-        hi = vec3<f32>(f.rect.zw, 1.0);
-        r2 = b.center.w;
-    } else if b.kind == BOUND_ELLIPSOID {
-        // The rectangle's corners mapped by BS, bounded (frusta.rs ellipsoid_hits).
-        let u0 = b.bs[0].xyz * f.rect.x;
-        let u1 = b.bs[0].xyz * f.rect.z;
-        let v0 = b.bs[1].xyz * f.rect.y;
-        let v1 = b.bs[1].xyz * f.rect.w;
-        lo = b.bs[2].xyz + min(u0, u1) + min(v0, v1);
-        hi = b.bs[2].xyz + max(u0, u1) + max(v0, v1);
-        r2 = 1.0;
-    } else {
+    var test: BoundBox;
+    if !bound_box(b, f.rect, &test) {
         return vec2<u32>(0u);
     }
-    let c = b.center.xyz;
     let has_near = (mask & 1u) != 0u;
     let has_far = (mask & 2u) != 0u;
     let whole = vec2<f32>(select(f.ranges.z, f.ranges.x, has_near),
                           select(f.ranges.y, f.ranges.w, has_far));
-    if !meets(lo, hi, whole, c, r2) {
+    if !box_meets(test, whole) {
         return vec2<u32>(0u);
     }
     if mask != 3u {
         return vec2<u32>(mask & 1u, mask >> 1u);
     }
-    return vec2<u32>(select(0u, 1u, meets(lo, hi, f.ranges.xy, c, r2)),
-                     select(0u, 1u, meets(lo, hi, f.ranges.zw, c, r2)));
+    return vec2<u32>(select(0u, 1u, box_meets(test, f.ranges.xy)),
+                     select(0u, 1u, box_meets(test, f.ranges.zw)));
 }
 
 // Copies the staged lists to the output after what was flushed before.

@@ -33,7 +33,17 @@
 //! - [`vpl_gen_pass`]: VPLs from RSM texels in compute (twin of `slc_cpu_ref::vpls`, same
 //!   ids and ξ), compacted by a scan;
 //! - [`direct_pass`]: direct light per G-buffer pixel (twin of `slc_cpu_ref::direct`) with
-//!   the RSM depth as shadow maps instead of shadow rays.
+//!   the RSM depth as shadow maps instead of shadow rays;
+//! - [`none_cull_pass`]: no culling (every VPL of the pixel's subregion), the twin of
+//!   `slc_cull`'s `none`;
+//! - [`clustered_cull_pass`]: clustered culling (32 exponential depth slices per tile,
+//!   section 7), the twin of `slc_cull`'s `clustered`, `clustered-sphere` and
+//!   `clustered-enclosing-sphere`, with its structs in [`cull_types`];
+//! - [`culler`]: every strategy of `slc_cull::CULLER_NAMES` by name ([`culler::GpuCuller`]);
+//!   [`cull_frame`] holds what the culling passes share;
+//! - [`denoise_pass`]: the cross bilateral filter guided by depth and normal (section 6),
+//!   the twin of `slc_cpu_ref::denoise::cross_bilateral`, on GPU buffers or uploaded images
+//!   (struct in [`denoise_types`]).
 //!
 //! Per-pass GPU times come from timestamp queries where the adapter has them
 //! ([`profiler`]: `start_profiling`, `set_stage`, `finish_profiling`).
@@ -43,10 +53,17 @@
 //! beyond 65535 workgroups per dimension (split into 2-D grids, [`buffers::Grid`]).
 pub mod bounds_pass;
 pub mod buffers;
+pub mod clustered_cull_pass;
 pub mod context;
+pub mod cull_frame;
+pub mod cull_types;
+pub mod culler;
+pub mod denoise_pass;
+pub mod denoise_types;
 pub mod direct_pass;
 pub mod gbuffer_pass;
 pub mod gpu_types;
+pub mod none_cull_pass;
 pub mod partition_pass;
 pub mod profiler;
 pub mod raster_types;

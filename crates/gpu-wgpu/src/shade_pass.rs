@@ -195,7 +195,30 @@ impl ShadePass {
         self.shade_samples(ctx, &gbuffer.samples, &frame, lists)
     }
 
-    /// Shades the [`GpuSample`]s in `samples` (one per pixel of the frame).
+    /// [`Self::shade_gpu_gbuffer`] without the readback: the image stays on the GPU as RGB,
+    /// 3 f32 per pixel row-major (what `denoise_pass::DenoisePass::filter_on_gpu` reads; see
+    /// [`read_image`]).
+    pub fn shade_gpu_gbuffer_on_gpu(
+        &self,
+        ctx: &GpuContext,
+        gbuffer: &GpuGBuffer,
+        vpls: &[Vpl],
+        delta: f32,
+        interleaving: Interleaving,
+        lists: &GpuLightLists,
+    ) -> Result<wgpu::Buffer, GpuError> {
+        let frame = Frame {
+            width: gbuffer.width,
+            height: gbuffer.height,
+            vpls,
+            delta,
+            interleaving,
+        };
+        self.shade_samples_on_gpu(ctx, &gbuffer.samples, &frame, lists)
+    }
+
+    /// Shades the [`GpuSample`]s in `samples` (one per pixel of the frame) and reads the
+    /// image back.
     fn shade_samples(
         &self,
         ctx: &GpuContext,
@@ -203,6 +226,18 @@ impl ShadePass {
         input: &Frame,
         lists: &GpuLightLists,
     ) -> Result<Image, GpuError> {
+        let out = self.shade_samples_on_gpu(ctx, samples, input, lists)?;
+        read_image(ctx, &out, input.width, input.height)
+    }
+
+    /// Shades the [`GpuSample`]s in `samples` into an RGB buffer left on the GPU.
+    fn shade_samples_on_gpu(
+        &self,
+        ctx: &GpuContext,
+        samples: &wgpu::Buffer,
+        input: &Frame,
+        lists: &GpuLightLists,
+    ) -> Result<wgpu::Buffer, GpuError> {
         let pixels = u64::from(input.width) * u64::from(input.height);
         if u64::from(lists.pixels) != pixels {
             return Err(GpuError::Input(format!(
@@ -218,9 +253,8 @@ impl ShadePass {
         }
         let vpl_count = u32::try_from(input.vpls.len())
             .map_err(|_| GpuError::Input(format!("{} VPLs exceed u32", input.vpls.len())))?;
-        let mut image = Image::new(input.width, input.height);
         if pixels == 0 {
-            return Ok(image);
+            return output::<f32>(ctx, "indirect image", 0);
         }
         // The same validation as the culler's (δ and ξ of eq. 2-3, the lobes).
         let vpls = input
@@ -260,10 +294,25 @@ impl ShadePass {
             );
             Ok(())
         })?;
-        let rgb: Vec<f32> = read_back(ctx, "indirect image", &out, 3 * pixels as usize)?;
-        for (p, c) in image.pixels.iter_mut().zip(rgb.chunks_exact(3)) {
-            *p = Vec3::new(c[0], c[1], c[2]);
-        }
-        Ok(image)
+        Ok(out)
     }
+}
+
+/// A `width` x `height` image from an RGB buffer on the GPU (3 f32 per pixel, row-major).
+pub fn read_image(
+    ctx: &GpuContext,
+    rgb: &wgpu::Buffer,
+    width: u32,
+    height: u32,
+) -> Result<Image, GpuError> {
+    let mut image = Image::new(width, height);
+    let pixels = image.pixels.len();
+    if pixels == 0 {
+        return Ok(image);
+    }
+    let rgb: Vec<f32> = read_back(ctx, "image", rgb, 3 * pixels)?;
+    for (p, c) in image.pixels.iter_mut().zip(rgb.chunks_exact(3)) {
+        *p = Vec3::new(c[0], c[1], c[2]);
+    }
+    Ok(image)
 }

@@ -4,7 +4,10 @@
 //! each test fails when the `CI` environment variable is set, and otherwise prints a notice
 //! and returns (see [`common::gpu`]).
 mod bounds;
+mod clustered;
 mod common;
+mod culler;
+mod denoise;
 mod faults;
 mod profile;
 mod raster_common;

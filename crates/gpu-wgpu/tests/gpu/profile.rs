@@ -6,6 +6,7 @@ use crate::common::gpu;
 use crate::tiled::frame;
 use slc_core::{builtin, CullInput, Interleaving};
 use slc_cull::GlossyBound;
+use slc_gpu_wgpu::cull_frame::CullFrame;
 use slc_gpu_wgpu::gbuffer_pass::GbufferPass;
 use slc_gpu_wgpu::scene_upload::GpuScene;
 use slc_gpu_wgpu::shade_pass::ShadePass;
@@ -111,7 +112,11 @@ fn timestamps_after_a_render_pass() {
     let k = Interleaving { k: 2, seed: 3 };
     let run = || {
         let lists = culler
-            .cull_gpu_gbuffer(&ctx, &gbuffer, &vpls, 1e-3, k, GlossyBound::Ellipsoid)
+            .cull_frame(
+                &ctx,
+                &CullFrame::on_gpu(&gbuffer, &vpls, 1e-3, k),
+                GlossyBound::Ellipsoid,
+            )
             .unwrap();
         shader
             .shade_gpu_gbuffer(&ctx, &gbuffer, &vpls, 1e-3, k, &lists)

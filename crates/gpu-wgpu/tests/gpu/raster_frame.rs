@@ -29,6 +29,7 @@ use slc_cpu_ref::direct::shade_direct;
 use slc_cpu_ref::render::{prepare, shade_stochastic, Method, RenderSettings, Stochastic};
 use slc_cpu_ref::{LobeSelection, Tracer};
 use slc_cull::GlossyBound;
+use slc_gpu_wgpu::cull_frame::CullFrame;
 use slc_gpu_wgpu::direct_pass::DirectPass;
 use slc_gpu_wgpu::gbuffer_pass::GbufferPass;
 use slc_gpu_wgpu::rsm_pass::RsmPass;
@@ -151,12 +152,9 @@ fn rasterized_gpu_frame_matches_the_cpu_frame() {
         .unwrap();
     let lists = TiledCuller::new(&ctx)
         .unwrap()
-        .cull_gpu_gbuffer(
+        .cull_frame(
             &ctx,
-            &gbuffer,
-            &vpls,
-            stochastic.delta,
-            interleaving,
+            &CullFrame::on_gpu(&gbuffer, &vpls, stochastic.delta, interleaving),
             GlossyBound::Ellipsoid,
         )
         .unwrap();

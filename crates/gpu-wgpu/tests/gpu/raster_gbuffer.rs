@@ -21,11 +21,11 @@ use slc_core::{Camera, CullInput, GBuffer, GSample, Interleaving, Mesh, Scene};
 use slc_cpu_ref::gbuffer::{trace_gbuffer, PixelSample};
 use slc_cpu_ref::render::{prepare, Method, RenderSettings};
 use slc_cpu_ref::{LobeSelection, Tracer};
-use slc_cull::GlossyBound;
+use slc_gpu_wgpu::cull_frame::{read_lists, CullFrame};
+use slc_gpu_wgpu::culler::{GpuCuller, Strategy};
 use slc_gpu_wgpu::gbuffer_pass::GbufferPass;
 use slc_gpu_wgpu::scene_upload::GpuScene;
 use slc_gpu_wgpu::shade_pass::ShadePass;
-use slc_gpu_wgpu::tiled_cull_pass::TiledCuller;
 use slc_gpu_wgpu::{GpuContext, GpuError};
 
 const POSITION_TOLERANCE: f32 = 1e-4;
@@ -324,7 +324,7 @@ fn culling_and_shading_read_the_gpu_gbuffer_in_place() {
     let read = gbuffer.read_back(&ctx).unwrap();
     let interleaving = Interleaving { k: 2, seed: 9 };
     let delta = 1e-3;
-    let culler = TiledCuller::new(&ctx).unwrap();
+    let culler = GpuCuller::new(&ctx).unwrap();
     let shader = ShadePass::new(&ctx).unwrap();
     let input = CullInput {
         gbuffer: &read,
@@ -333,26 +333,30 @@ fn culling_and_shading_read_the_gpu_gbuffer_in_place() {
         delta,
         interleaving,
     };
-    let uploaded = culler
-        .cull_on_gpu(&ctx, &input, GlossyBound::Ellipsoid)
-        .unwrap();
-    let want = shader.shade_gpu_lists(&ctx, &input, &uploaded).unwrap();
-    let lists = culler
-        .cull_gpu_gbuffer(
-            &ctx,
-            &gbuffer,
-            &vpls,
-            delta,
-            interleaving,
-            GlossyBound::Ellipsoid,
-        )
-        .unwrap();
-    assert_eq!(lists.entries, uploaded.entries);
-    let got = shader
-        .shade_gpu_gbuffer(&ctx, &gbuffer, &vpls, delta, interleaving, &lists)
-        .unwrap();
-    assert!(want.mean().max_element() > 0.0);
-    assert_eq!(got, want);
+    // Every strategy: the tiled, clustered and unculled passes all read positions.
+    for &name in slc_cull::CULLER_NAMES {
+        let strategy = Strategy::by_name(name).unwrap();
+        let uploaded = culler.cull_on_gpu(&ctx, &input, strategy).unwrap();
+        let want = shader.shade_gpu_lists(&ctx, &input, &uploaded).unwrap();
+        let lists = culler
+            .cull_frame(
+                &ctx,
+                &CullFrame::on_gpu(&gbuffer, &vpls, delta, interleaving),
+                strategy,
+            )
+            .unwrap();
+        assert_eq!(lists.entries, uploaded.entries, "{name}");
+        assert_eq!(
+            read_lists(&ctx, &lists).unwrap(),
+            read_lists(&ctx, &uploaded).unwrap(),
+            "{name}"
+        );
+        let got = shader
+            .shade_gpu_gbuffer(&ctx, &gbuffer, &vpls, delta, interleaving, &lists)
+            .unwrap();
+        assert!(want.mean().max_element() > 0.0, "{name}");
+        assert_eq!(got, want, "{name}");
+    }
 }
 
 #[test]

@@ -11,7 +11,7 @@ use slc_cpu_ref::gbuffer::{trace_gbuffer, PixelSample};
 use slc_cpu_ref::rsm::{trace_rsm, TexelSample};
 use slc_cpu_ref::vpls::{generate_vpls, LobeSelection};
 use slc_cpu_ref::Tracer;
-use slc_cull::{culler_by_name, CullView, GlossyBound};
+use slc_cull::{culler_by_name, CullView, GlossyBound, FRUSTUM_SLACK};
 use slc_gpu_wgpu::tiled_cull_pass::TiledCuller;
 use slc_gpu_wgpu::GpuError;
 
@@ -39,11 +39,10 @@ pub fn frame(scene: &Scene, camera: &Camera, (w, h): (u32, u32), rsm: u32) -> (G
 /// where the GPU's errors stay below 3e-7 (f32 rounds at 6e-8).
 const BORDER: f64 = 1e-6;
 
-/// The CPU's f64 frustum (`crates/cull/src/tiled.rs` gather, `depth.rs` HalfZ, `frusta.rs`
-/// set with FRUSTUM_SLACK) of the tile holding pixel (x, y), restricted to the pixel's
-/// cluster: the tile rectangle at unit depth and the cluster's depth range.
-fn cpu_frustum(input: &CullInput, view: &CullView, x: u32, y: u32) -> ([DVec2; 2], [f64; 2]) {
-    const SLACK: f64 = 1e-6;
+/// The CPU's f64 tile (`crates/cull/src/tiled.rs` gather, `frusta.rs` set with
+/// FRUSTUM_SLACK) holding pixel (x, y): its rectangle at unit depth, grown, and the view
+/// depths of its samples.
+pub fn cpu_tile(input: &CullInput, view: &CullView, x: u32, y: u32) -> ([DVec2; 2], Vec<f64>) {
     let (w, h, k) = (
         input.gbuffer.width,
         input.gbuffer.height,
@@ -75,14 +74,32 @@ fn cpu_frustum(input: &CullInput, view: &CullView, x: u32, y: u32) -> ([DVec2; 2
             }
         }
     }
-    let z = view
-        .to_view(
-            input.gbuffer.samples[(y * w + x) as usize]
-                .as_ref()
-                .unwrap()
-                .position,
-        )
-        .z;
+    let pad = FRUSTUM_SLACK * (1.0 + lo.abs().max(hi.abs()).max_element());
+    ([lo - pad, hi + pad], zs)
+}
+
+/// A cluster's depth range: the extremes of `zs`, grown by FRUSTUM_SLACK (`frusta.rs` set).
+pub fn grown_range<'a>(zs: impl Iterator<Item = &'a f64>) -> [f64; 2] {
+    let [a, b] = zs.fold([f64::INFINITY, f64::NEG_INFINITY], |[a, b], &v| {
+        [a.min(v), b.max(v)]
+    });
+    [a * (1.0 - FRUSTUM_SLACK), b * (1.0 + FRUSTUM_SLACK)]
+}
+
+/// The view depth of pixel (x, y)'s sample in the CPU's f64 culling view.
+pub fn cpu_depth(input: &CullInput, view: &CullView, x: u32, y: u32) -> f64 {
+    let w = input.gbuffer.width;
+    let g = input.gbuffer.samples[(y * w + x) as usize]
+        .as_ref()
+        .unwrap();
+    view.to_view(g.position).z
+}
+
+/// The CPU's f64 frustum of pixel (x, y)'s Modified HalfZ cluster (`depth.rs` HalfZ): the
+/// tile rectangle and the cluster's depth range, and the cluster's name.
+fn half_z_frustum(input: &CullInput, view: &CullView, x: u32, y: u32) -> (Frustum, String) {
+    let (rect, zs) = cpu_tile(input, view, x, y);
+    let z = cpu_depth(input, view, x, y);
     let (zmin, zmax) = zs
         .iter()
         .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &z| {
@@ -90,29 +107,24 @@ fn cpu_frustum(input: &CullInput, view: &CullView, x: u32, y: u32) -> ([DVec2; 2
         });
     let half = 0.5 * (zmin + zmax);
     let near = z < half;
-    let same = zs.iter().filter(|&&v| (v < half) == near);
-    let range = same.fold([f64::INFINITY, f64::NEG_INFINITY], |[a, b], &v| {
-        [a.min(v), b.max(v)]
-    });
-    let pad = SLACK * (1.0 + lo.abs().max(hi.abs()).max_element());
-    (
-        [lo - pad, hi + pad],
-        [range[0] * (1.0 - SLACK), range[1] * (1.0 + SLACK)],
-    )
+    let range = grown_range(zs.iter().filter(|&&v| (v < half) == near));
+    let name = if near { "near" } else { "far" };
+    ((rect, range), format!("{name} cluster"))
 }
 
-/// How far outside (> 0) or inside (< 0) the frustum box the CPU's f64 bound of `vpl` is
-/// (`frusta.rs` sphere_hits and ellipsoid_hits), relative to the rounding scale of
+/// A cluster frustum: the tile rectangle at unit depth and the cluster's depth range.
+pub type Frustum = ([DVec2; 2], [f64; 2]);
+
+/// How far outside (> 0) or inside (< 0) the cluster `frustum`'s box the CPU's f64 bound of
+/// `vpl` is (`frusta.rs` sphere_hits and ellipsoid_hits), relative to the rounding scale of
 /// [`BORDER`].
 fn cpu_margin(
     input: &CullInput,
     view: &CullView,
     glossy: GlossyBound,
     vpl: usize,
-    x: u32,
-    y: u32,
+    ([lo, hi], [z0, z1]): Frustum,
 ) -> f64 {
-    let ([lo, hi], [z0, z1]) = cpu_frustum(input, view, x, y);
     let swept = |a: DVec3, b: DVec3| ((a * z0).min(a * z1), (b * z0).max(b * z1));
     let gap =
         |(bmin, bmax): (DVec3, DVec3), c: DVec3| (bmin - c).max(c - bmax).max(DVec3::ZERO).length();
@@ -143,13 +155,16 @@ fn cpu_margin(
 }
 
 /// Every entry in which the two pixels' lists differ, with where it is, split into the
-/// borderline ones (the CPU's f64 bound lies within [`BORDER`] of the frustum box, where
-/// f32 and f64 may decide differently) and the others.
-fn differences(
+/// borderline ones (the CPU's f64 bound lies within [`BORDER`] of the pixel's cluster
+/// frustum box, `frustum(x, y)` with the cluster's name, where f32 and f64 may decide
+/// differently; or `frustum` gives `None`: the pixel's cluster is itself decided within
+/// rounding) and the others.
+pub fn differences(
     input: &CullInput,
     glossy: GlossyBound,
     cpu: &LightLists,
     gpu: &LightLists,
+    frustum: impl Fn(&CullView, u32, u32) -> Option<(Frustum, String)>,
 ) -> (Vec<String>, Vec<String>) {
     let (width, k) = (input.gbuffer.width, input.interleaving.k);
     let view = CullView::new(input.camera, width, input.gbuffer.height).unwrap();
@@ -165,12 +180,20 @@ fn differences(
         let only = a.iter().filter(|v| !b.contains(v)).map(|&v| (v, "CPU"));
         let only = only.chain(b.iter().filter(|v| !a.contains(v)).map(|&v| (v, "GPU")));
         let mut any = false;
+        let cluster = frustum(&view, x, y);
         for (v, side) in only {
             any = true;
-            let margin = cpu_margin(input, &view, glossy, v as usize, x, y);
+            let Some((f, cluster)) = &cluster else {
+                border.push(format!(
+                    "pixel ({x}, {y}) subregion {sub} tile {tile:?}: VPL {v} on the {side} \
+                     only, in a cluster decided within rounding"
+                ));
+                continue;
+            };
+            let margin = cpu_margin(input, &view, glossy, v as usize, *f);
             let text = format!(
-                "pixel ({x}, {y}) subregion {sub} tile {tile:?}: VPL {v} on the {side} only \
-                 (CPU margin {margin:.1e})"
+                "pixel ({x}, {y}) subregion {sub} tile {tile:?} {cluster}: VPL {v} on the \
+                 {side} only (CPU margin {margin:.1e})"
             );
             if margin.abs() <= BORDER {
                 border.push(text)
@@ -216,7 +239,9 @@ fn tiled_lists_match_the_cpu() {
             ] {
                 let cpu = culler_by_name(name).unwrap().cull(&input).unwrap();
                 let gpu = culler.cull(&ctx, &input, glossy).unwrap();
-                let (border, diff) = differences(&input, glossy, &cpu, &gpu);
+                let (border, diff) = differences(&input, glossy, &cpu, &gpu, |view, x, y| {
+                    Some(half_z_frustum(&input, view, x, y))
+                });
                 let entries = cpu.indices.len();
                 let longest = gpu
                     .offsets

@@ -1,0 +1,255 @@
+//! What the GPU culling passes share (`tiled_cull_pass`, `clustered_cull_pass`,
+//! `none_cull_pass`): their input ([`CullFrame`]: G-buffer positions on the GPU, camera, VPLs,
+//! δ, interleaving), the input checks of the CPU cullers (`slc_cull`'s `pixel_count` and
+//! `partition::check`), the uniform per-subregion tile grid and its [`GpuCullParams`], the
+//! G-buffer positions the tile passes read, the fault record they write, and the readback of
+//! [`GpuLightLists`] as a [`LightLists`] in the CPU's convention.
+use crate::buffers::{output, read_back, upload};
+use crate::context::{GpuContext, GpuError};
+use crate::gbuffer_pass::GpuGBuffer;
+use crate::gpu_types::{GpuCullParams, GpuCullStatus, FRUSTUM_SLACK, MAX_K};
+use crate::shade_pass::GpuLightLists;
+use slc_core::{Camera, CullInput, Interleaving, LightLists, Vpl, NO_LIST, TILE_SIZE};
+use slc_cull::CullView;
+
+/// What every GPU culler reads: the G-buffer's world positions on the GPU and what culling
+/// needs besides, from a CPU [`CullInput`] ([`CullFrame::upload`]) or a G-buffer rasterized
+/// on the GPU ([`CullFrame::on_gpu`], read where it lies).
+pub struct CullFrame<'a> {
+    pub width: u32,
+    pub height: u32,
+    pub camera: &'a Camera,
+    pub vpls: &'a [Vpl],
+    /// δ of eq. (2).
+    pub delta: f32,
+    pub interleaving: Interleaving,
+    /// `[x, y, z, 1]` per pixel, zero where the pixel has no sample.
+    pub positions: wgpu::Buffer,
+}
+
+impl<'a> CullFrame<'a> {
+    /// `input` with its G-buffer positions uploaded; a G-buffer whose sample count does not
+    /// match its size is an error (as the CPU cullers' first check).
+    pub fn upload(ctx: &GpuContext, input: &CullInput<'a>) -> Result<Self, GpuError> {
+        let g = input.gbuffer;
+        if u64::from(g.width) * u64::from(g.height) != g.samples.len() as u64 {
+            return Err(GpuError::Input(format!(
+                "G-buffer of {}x{} pixels has {} samples",
+                g.width,
+                g.height,
+                g.samples.len()
+            )));
+        }
+        let positions: Vec<[f32; 4]> = g
+            .samples
+            .iter()
+            .map(|s| {
+                s.as_ref()
+                    .map_or([0.0; 4], |s| s.position.extend(1.0).to_array())
+            })
+            .collect();
+        Ok(Self {
+            width: g.width,
+            height: g.height,
+            camera: input.camera,
+            vpls: input.vpls,
+            delta: input.delta,
+            interleaving: input.interleaving,
+            positions: upload(ctx, "gbuffer positions", &positions)?,
+        })
+    }
+
+    /// A G-buffer rendered on the GPU ([`crate::gbuffer_pass::GbufferPass`]); its camera is
+    /// the culling view.
+    pub fn on_gpu(
+        gbuffer: &'a GpuGBuffer,
+        vpls: &'a [Vpl],
+        delta: f32,
+        interleaving: Interleaving,
+    ) -> Self {
+        Self {
+            width: gbuffer.width,
+            height: gbuffer.height,
+            camera: &gbuffer.camera,
+            vpls,
+            delta,
+            interleaving,
+            positions: gbuffer.positions.clone(),
+        }
+    }
+}
+
+/// The validated sizes of a culling input.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) struct CullSizes {
+    pub pixels: u32,
+    pub k: u32,
+    pub vpl_count: u32,
+}
+
+/// The checks every CPU culler makes first (the sample count was checked when the frame was
+/// made): pixel indices in u32, 1 <= K <= [`MAX_K`], a VPL count in u32.
+pub(crate) fn check_input(frame: &CullFrame) -> Result<CullSizes, GpuError> {
+    let pixels = u32::try_from(u64::from(frame.width) * u64::from(frame.height)).map_err(|_| {
+        GpuError::Input(format!(
+            "G-buffer of {}x{} pixels exceeds u32 pixel indices",
+            frame.width, frame.height
+        ))
+    })?;
+    let k = frame.interleaving.k;
+    if !(1..=MAX_K).contains(&k) {
+        return Err(GpuError::Input(format!(
+            "interleaving factor K = {k} must lie in 1..={MAX_K}"
+        )));
+    }
+    let vpl_count = u32::try_from(frame.vpls.len())
+        .map_err(|_| GpuError::Input(format!("{} VPLs exceed u32", frame.vpls.len())))?;
+    Ok(CullSizes {
+        pixels,
+        k,
+        vpl_count,
+    })
+}
+
+/// Lists of an image without pixels: no list, no entry.
+pub(crate) fn no_lists(ctx: &GpuContext) -> Result<GpuLightLists, GpuError> {
+    Ok(GpuLightLists {
+        offsets: output::<u32>(ctx, "list offsets", 1)?,
+        indices: output::<u32>(ctx, "light lists", 0)?,
+        pixel_list: output::<u32>(ctx, "pixel lists", 0)?,
+        list_count: 0,
+        entries: 0,
+        pixels: 0,
+    })
+}
+
+/// The uniform per-subregion tile grid (`GpuCullParams`): `tiles_x` x `tiles_y` tiles of
+/// [`TILE_SIZE`]² pixels per subregion image, sized for subregion 0 (the largest), and their
+/// count over the K² subregions, with `lists_per_tile` lists each; an error when the list
+/// ids (and one offset past them) do not fit u32.
+pub(crate) fn tile_grid(
+    frame: &CullFrame,
+    lists_per_tile: u32,
+) -> Result<(u32, u32, u32), GpuError> {
+    let (w, h, k) = (frame.width, frame.height, frame.interleaving.k);
+    let tiles_x = w.div_ceil(k).div_ceil(TILE_SIZE);
+    let tiles_y = h.div_ceil(k).div_ceil(TILE_SIZE);
+    let tiles = u64::from(k * k) * u64::from(tiles_x) * u64::from(tiles_y);
+    let tile_count = u32::try_from(tiles)
+        .ok()
+        .filter(|_| u32::try_from(u64::from(lists_per_tile) * tiles + 1).is_ok())
+        .ok_or_else(|| GpuError::Input(format!("{tiles} tiles exceed u32 list ids")))?;
+    Ok((tiles_x, tiles_y, tile_count))
+}
+
+/// The tile passes' parameters for `frame` on the grid of [`tile_grid`], in `mode`.
+pub(crate) fn cull_params(
+    frame: &CullFrame,
+    view: &CullView,
+    (tiles_x, tiles_y, tile_count): (u32, u32, u32),
+    mode: u32,
+) -> GpuCullParams {
+    let (width, height) = (frame.width, frame.height);
+    let r = view.rotation();
+    let tan_half = (0.5 * f64::from(frame.camera.yfov)).tan();
+    let aspect = f64::from(width) / f64::from(height);
+    GpuCullParams {
+        rotation: [
+            r.x_axis.extend(0.0).to_array(),
+            r.y_axis.extend(0.0).to_array(),
+            r.z_axis.extend(0.0).to_array(),
+        ],
+        eye: frame.camera.position.extend(0.0).to_array(),
+        image: [
+            (aspect * tan_half) as f32,
+            tan_half as f32,
+            width as f32,
+            height as f32,
+        ],
+        width,
+        height,
+        k: frame.interleaving.k,
+        tiles_x,
+        tiles_y,
+        tile_count,
+        vpl_count: frame.vpls.len() as u32,
+        frustum_slack: FRUSTUM_SLACK,
+        mode,
+        pad: [0; 3],
+    }
+}
+
+/// Reads the fault record back and turns its faults into errors (as the CPU cullers: a
+/// sample not in front of the camera, a bound beyond f32, entries beyond u32); returns the
+/// total the last scan stored.
+pub(crate) fn read_status(
+    ctx: &GpuContext,
+    status: &wgpu::Buffer,
+    width: u32,
+) -> Result<u32, GpuError> {
+    let [state] = <[GpuCullStatus; 1]>::try_from(read_back(ctx, "cull status", status, 1)?)
+        .map_err(|_| GpuError::Readback {
+            label: "cull status".into(),
+            message: "short read".into(),
+        })?;
+    if state.bad_pixel != u32::MAX {
+        return Err(GpuError::Input(format!(
+            "G-buffer sample of pixel ({}, {}) is not in front of the camera",
+            state.bad_pixel % width,
+            state.bad_pixel / width
+        )));
+    }
+    if state.overflow_vpl != u32::MAX {
+        return Err(GpuError::Input(format!(
+            "the bound of VPL {} does not fit in f32 (extreme flux, delta or xi)",
+            state.overflow_vpl
+        )));
+    }
+    if state.total_overflow != 0 {
+        return Err(GpuError::Input(
+            "light-list entries exceed 32-bit offsets".into(),
+        ));
+    }
+    Ok(state.total)
+}
+
+/// Reads `gpu` back as [`LightLists`] in the CPU's convention: empty lists dropped (their
+/// pixels get [`NO_LIST`]) and the rest renumbered in order.
+pub fn read_lists(ctx: &GpuContext, gpu: &GpuLightLists) -> Result<LightLists, GpuError> {
+    if gpu.pixels == 0 {
+        return Ok(LightLists {
+            offsets: vec![0],
+            ..LightLists::default()
+        });
+    }
+    let offsets: Vec<u32> = read_back(
+        ctx,
+        "list offsets",
+        &gpu.offsets,
+        gpu.list_count as usize + 1,
+    )?;
+    let indices: Vec<u32> = read_back(ctx, "light lists", &gpu.indices, gpu.entries as usize)?;
+    let pixel_list: Vec<u32> = read_back(ctx, "pixel lists", &gpu.pixel_list, gpu.pixels as usize)?;
+    Ok(compact(&offsets, indices, &pixel_list))
+}
+
+/// [`LightLists`] from lists that may be empty: empty lists are dropped (their pixels get
+/// `NO_LIST`, as on the CPU) and the rest renumbered in order.
+fn compact(offsets: &[u32], indices: Vec<u32>, pixel_list: &[u32]) -> LightLists {
+    let mut renumber = vec![NO_LIST; offsets.len().saturating_sub(1)];
+    let mut kept = vec![0u32];
+    for (l, pair) in offsets.windows(2).enumerate() {
+        if pair[1] > pair[0] {
+            renumber[l] = (kept.len() - 1) as u32;
+            kept.push(pair[1]);
+        }
+    }
+    LightLists {
+        offsets: kept,
+        indices,
+        pixel_list: pixel_list
+            .iter()
+            .map(|&l| renumber.get(l as usize).copied().unwrap_or(NO_LIST))
+            .collect(),
+    }
+}

@@ -1,0 +1,92 @@
+//! `GpuCuller`: every strategy of `slc_cull::CULLER_NAMES` by name, and its lists left on
+//! the GPU read by the shading pass.
+use crate::common::gpu;
+use crate::tiled::frame;
+use slc_core::{builtin, CullInput, Interleaving};
+use slc_cull::{culler_by_name, CULLER_NAMES};
+use slc_gpu_wgpu::culler::{GpuCuller, Strategy};
+use slc_gpu_wgpu::shade_pass::ShadePass;
+
+/// Each name runs its own strategy: the GPU's lists by name equal the CPU strategy's of the
+/// same name but for a few entries decided within rounding (classified in `tiled.rs` and
+/// `clustered.rs`); every other strategy's lists differ in hundreds of entries or more.
+#[test]
+fn every_strategy_by_name_matches_the_cpu_strategy_of_that_name() {
+    let Some(ctx) = gpu() else { return };
+    let culler = GpuCuller::new(&ctx).unwrap();
+    let scene = builtin("default").unwrap();
+    let camera = scene.camera_or_default();
+    let (gbuffer, vpls) = frame(&scene, &camera, (72, 50), 16);
+    let input = CullInput {
+        gbuffer: &gbuffer,
+        camera: &camera,
+        vpls: &vpls,
+        delta: 1e-3,
+        interleaving: Interleaving { k: 2, seed: 4 },
+    };
+    let cpu: Vec<_> = CULLER_NAMES
+        .iter()
+        .map(|name| culler_by_name(name).unwrap().cull(&input).unwrap())
+        .collect();
+    for (i, &name) in CULLER_NAMES.iter().enumerate() {
+        let strategy = Strategy::by_name(name).unwrap();
+        let gpu = culler.cull(&ctx, &input, strategy).unwrap();
+        let differing = |other: &slc_core::LightLists| -> usize {
+            (0..gpu.pixel_list.len())
+                .map(|p| {
+                    let (a, b) = (gpu.for_pixel(p), other.for_pixel(p));
+                    a.iter().filter(|v| !b.contains(v)).count()
+                        + b.iter().filter(|v| !a.contains(v)).count()
+                })
+                .sum()
+        };
+        let own = differing(&cpu[i]);
+        let entries: usize = (0..gbuffer.samples.len())
+            .map(|p| cpu[i].for_pixel(p).len())
+            .sum();
+        eprintln!("{name}: {entries} pixel-VPL pairs on the CPU, {own} differing");
+        assert!(own <= 10 && own * 10_000 <= entries, "{name}: {own}");
+        for (j, other) in CULLER_NAMES.iter().enumerate().filter(|&(j, _)| j != i) {
+            let d = differing(&cpu[j]);
+            assert!(d > 100, "{name} looks like {other}: {d} differing entries");
+        }
+    }
+}
+
+/// The lists of every strategy left on the GPU (32 per tile for the clustered ones, one per
+/// subregion without culling) shade exactly like the same lists read back and uploaded.
+#[test]
+fn shading_reads_every_strategys_lists_on_the_gpu() {
+    let Some(ctx) = gpu() else { return };
+    let culler = GpuCuller::new(&ctx).unwrap();
+    let shade = ShadePass::new(&ctx).unwrap();
+    let scene = builtin("default").unwrap();
+    let camera = scene.camera_or_default();
+    let (gbuffer, vpls) = frame(&scene, &camera, (40, 23), 16);
+    for k in [1, 3] {
+        let input = CullInput {
+            gbuffer: &gbuffer,
+            camera: &camera,
+            vpls: &vpls,
+            delta: 1e-3,
+            interleaving: Interleaving { k, seed: 2 },
+        };
+        for &name in CULLER_NAMES {
+            let strategy = Strategy::by_name(name).unwrap();
+            let on_gpu = culler.cull_on_gpu(&ctx, &input, strategy).unwrap();
+            let direct = shade.shade_gpu_lists(&ctx, &input, &on_gpu).unwrap();
+            let lists = culler.cull(&ctx, &input, strategy).unwrap();
+            let uploaded = shade.shade(&ctx, &input, &lists).unwrap();
+            assert_eq!(direct.pixels, uploaded.pixels, "{name} K {k}");
+            let lit = direct
+                .pixels
+                .iter()
+                .filter(|p| p.max_element() > 0.0)
+                .count();
+            assert!(
+                lit * 2 > direct.pixels.len(),
+                "{name} K {k}: {lit} lit pixels"
+            );
+        }
+    }
+}
