@@ -7,8 +7,8 @@ use slc_cpu_ref::{LobeSelection, RenderSettings, Stochastic};
 pub enum Backend {
     /// The CPU reference renderer (rayon).
     Cpu,
-    /// Culling and shading on the GPU (wgpu); G-buffer, RSM, VPLs, direct light and the
-    /// denoiser still run on the CPU in this version.
+    /// The whole frame on the GPU (wgpu): rasterized G-buffer and RSMs, VPLs, direct light
+    /// with shadow maps, culling, shading and the filter.
     Gpu,
 }
 
