@@ -283,6 +283,7 @@ impl GpuFrame {
             rgb = self.pass(&mut timings, "denoise", || {
                 let guide = Guide {
                     samples: &g.samples,
+                    positions: &g.positions,
                     width: g.width,
                     height: g.height,
                     camera: &g.camera,

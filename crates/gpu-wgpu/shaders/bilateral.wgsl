@@ -27,22 +27,13 @@ struct BilateralParams {
     pad: u32,
 }
 
-// One G-buffer pixel (GpuSample, as shade.wgsl reads it); info.x = 1 for a sample, info.y the
-// Fresnel model.
-struct Sample {
-    position: vec4<f32>,
-    normal_alpha: vec4<f32>,
-    omega_o_eta: vec4<f32>,
-    kd: vec4<f32>,
-    f0: vec4<f32>,
-    info: vec4<u32>,
-}
-
 @group(0) @binding(0) var<uniform> params: BilateralParams;
 @group(0) @binding(1) var<storage, read> samples: array<Sample>;
 // RGB per pixel: the image (axis 0) or the x pass's output (axis 1).
 @group(0) @binding(2) var<storage, read> values: array<f32>;
 @group(0) @binding(3) var<storage, read_write> filtered: array<f32>;
+// The G-buffer positions [x, y, z, 1] (gsample.wgsl).
+@group(0) @binding(4) var<storage, read> positions: array<vec4<f32>>;
 
 const SAMPLE_PRESENT: u32 = 1u;
 const WORKGROUP: u32 = 64u;
@@ -55,14 +46,14 @@ fn value(p: u32) -> vec3<f32> {
 // reflectance).
 fn reflectance(s: Sample) -> vec3<f32> {
     var f = vec3<f32>(fresnel_dielectric(s.omega_o_eta.w, 1.0));
-    if s.info.y == FRESNEL_SCHLICK {
-        f = fresnel_schlick(s.f0.xyz, 1.0);
+    if s.fresnel == FRESNEL_SCHLICK {
+        f = fresnel_schlick(s.f0, 1.0);
     }
-    return max(s.kd.xyz + f, vec3<f32>(1e-3));
+    return max(s.kd + f, vec3<f32>(1e-3));
 }
 
-fn depth(s: Sample) -> f32 {
-    return dot(s.position.xyz - params.eye.xyz, params.forward.xyz);
+fn depth(p: u32) -> f32 {
+    return dot(positions[p].xyz - params.eye.xyz, params.forward.xyz);
 }
 
 @compute @workgroup_size(64)
@@ -77,12 +68,12 @@ fn main(
     }
     let g = samples[p];
     var out = value(p);
-    if g.info.x == SAMPLE_PRESENT {
+    if g.present == SAMPLE_PRESENT {
         let x = i32(p % params.width);
         let y = i32(p / params.width);
         let step = select(vec2<i32>(0, 1), vec2<i32>(1, 0), params.axis == 0u);
         let r = i32(params.radius);
-        let z = depth(g);
+        let z = depth(p);
         let n = g.normal_alpha.xyz;
         var sum = vec3<f32>(0.0);
         var weight = 0.0;
@@ -94,10 +85,10 @@ fn main(
             }
             let q = u32(yy) * params.width + u32(xx);
             let gq = samples[q];
-            if gq.info.x != SAMPLE_PRESENT {
+            if gq.present != SAMPLE_PRESENT {
                 continue;
             }
-            let dz = (depth(gq) - z) / max(z, 1e-6);
+            let dz = (depth(q) - z) / max(z, 1e-6);
             var wn = max(dot(n, gq.normal_alpha.xyz), 0.0);
             for (var i = 0u; i < params.normal_squarings; i++) {
                 wn *= wn;

@@ -33,15 +33,6 @@ struct DirectParams {
     shadow: vec4<f32>,
 }
 
-struct Sample {
-    position: vec4<f32>,
-    normal_alpha: vec4<f32>,
-    omega_o_eta: vec4<f32>,
-    kd: vec4<f32>,
-    f0: vec4<f32>,
-    info: vec4<u32>,
-}
-
 struct ShadowTexel {
     position: vec4<f32>,
     normal: vec4<f32>,
@@ -53,6 +44,8 @@ struct ShadowTexel {
 @group(0) @binding(3) var<storage, read> shadow: array<ShadowTexel>;
 // RGB per pixel, accumulated over the lights.
 @group(0) @binding(4) var<storage, read_write> image: array<f32>;
+// The G-buffer positions [x, y, z, 1] (gsample.wgsl).
+@group(0) @binding(5) var<storage, read> positions: array<vec4<f32>>;
 
 const LIGHT_SPOT: u32 = 1u;
 const LIGHT_DIRECTIONAL: u32 = 2u;
@@ -174,10 +167,10 @@ fn main(
         return;
     }
     let s = samples[pixel];
-    if s.info.x == 0u {
+    if s.present == 0u {
         return;
     }
-    let x = s.position.xyz;
+    let x = positions[pixel].xyz;
     let n = s.normal_alpha.xyz;
     let inc = incident(x);
     if !inc.valid {
@@ -190,7 +183,7 @@ fn main(
     if !visible(x) {
         return;
     }
-    let m = Material(s.kd.xyz, FresnelModel(s.info.y, s.f0.xyz, s.omega_o_eta.w), s.normal_alpha.w);
+    let m = Material(s.kd, FresnelModel(s.fresnel, s.f0, s.omega_o_eta.w), s.normal_alpha.w);
     let c = brdf_eval(m, n, inc.omega_i, s.omega_o_eta.xyz) * inc.irradiance * cos_l;
     image[3u * pixel] += c.x;
     image[3u * pixel + 1u] += c.y;

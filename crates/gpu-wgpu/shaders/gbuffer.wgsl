@@ -20,15 +20,6 @@ struct GbufferParams {
     pad1: u32,
 }
 
-struct Sample {
-    position: vec4<f32>,
-    normal_alpha: vec4<f32>,
-    omega_o_eta: vec4<f32>,
-    kd: vec4<f32>,
-    f0: vec4<f32>,
-    info: vec4<u32>,
-}
-
 @group(0) @binding(5) var<uniform> params: GbufferParams;
 @group(0) @binding(6) var ids: texture_2d<u32>;
 @group(0) @binding(7) var<storage, read_write> samples: array<Sample>;
@@ -51,8 +42,7 @@ fn main(@builtin(global_invocation_id) gid: vec3<u32>) {
     }
     let pixel = gid.y * params.width + gid.x;
     let id = textureLoad(ids, vec2<i32>(gid.xy), 0).x;
-    var out = Sample(vec4<f32>(0.0), vec4<f32>(0.0), vec4<f32>(0.0), vec4<f32>(0.0),
-                     vec4<f32>(0.0), vec4<u32>(0u));
+    var out = Sample(vec4<f32>(0.0), vec4<f32>(0.0), vec3<f32>(0.0), 0u, vec3<f32>(0.0), 0u);
     var normal = vec4<f32>(0.0);
     var position = vec4<f32>(0.0);
     if id != 0u {
@@ -60,12 +50,12 @@ fn main(@builtin(global_invocation_id) gid: vec3<u32>) {
         let s = surface(id - 1u, params.position.xyz, dir);
         if s.hit && s.front {
             out = Sample(
-                vec4<f32>(s.position, 0.0),
                 vec4<f32>(s.shading_normal, s.brdf.alpha),
                 vec4<f32>(-dir, s.brdf.eta),
-                vec4<f32>(s.brdf.kd, 0.0),
-                vec4<f32>(s.brdf.f0, 0.0),
-                vec4<u32>(1u, s.brdf.fresnel_kind, 0u, 0u),
+                s.brdf.kd,
+                1u,
+                s.brdf.f0,
+                s.brdf.fresnel_kind,
             );
             normal = vec4<f32>(s.geometric_normal, 0.0);
             position = vec4<f32>(s.position, 1.0);

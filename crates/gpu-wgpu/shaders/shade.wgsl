@@ -19,17 +19,6 @@ struct ShadeParams {
     pad: u32,
 }
 
-// One G-buffer pixel; info.x = 1 for a sample, 0 for an empty (sky) pixel; info.y the Fresnel
-// model.
-struct Sample {
-    position: vec4<f32>,
-    normal_alpha: vec4<f32>,
-    omega_o_eta: vec4<f32>,
-    kd: vec4<f32>,
-    f0: vec4<f32>,
-    info: vec4<u32>,
-}
-
 struct Vpl {
     position_xi: vec4<f32>,
     normal_alpha: vec4<f32>,
@@ -48,6 +37,8 @@ struct Vpl {
 @group(0) @binding(5) var<storage, read> pixel_list: array<u32>;
 // RGB per pixel.
 @group(0) @binding(6) var<storage, read_write> image: array<f32>;
+// The G-buffer positions [x, y, z, 1] (gsample.wgsl).
+@group(0) @binding(7) var<storage, read> positions: array<vec4<f32>>;
 
 const LOBE_DIFFUSE: u32 = 0u;
 const NO_LIST: u32 = 0xffffffffu;
@@ -58,7 +49,7 @@ fn vpl_material(v: Vpl) -> Material {
 }
 
 fn sample_material(s: Sample) -> Material {
-    return Material(s.kd.xyz, FresnelModel(s.info.y, s.f0.xyz, s.omega_o_eta.w), s.normal_alpha.w);
+    return Material(s.kd, FresnelModel(s.fresnel, s.f0, s.omega_o_eta.w), s.normal_alpha.w);
 }
 
 // Radiant intensity of eq. (4) towards unit direction w: Phi f(w_i, w) max(w.n, 0), f the
@@ -93,8 +84,8 @@ fn probability(intensity: f32, distance_sq: f32) -> f32 {
 
 // One VPL's contribution to the radiance towards the camera, weighted by the estimator of
 // eq. (3) (1/p if p > xi, else 0): vpl_contribution of vpl_shading.rs.
-fn vpl_contribution(s: Sample, v: Vpl) -> vec3<f32> {
-    let d = s.position.xyz - v.position_xi.xyz;
+fn vpl_contribution(s: Sample, x: vec3<f32>, v: Vpl) -> vec3<f32> {
+    let d = x - v.position_xi.xyz;
     let l2 = length_sq(d);
     if l2 <= 0.0 {
         return vec3<f32>(0.0);
@@ -129,14 +120,15 @@ fn main(
         return;
     }
     let s = samples[pixel];
+    let x = positions[pixel].xyz;
     var sum = vec3<f32>(0.0);
     let list = pixel_list[pixel];
-    if s.info.x != 0u && list != NO_LIST && list < params.list_count {
+    if s.present != 0u && list != NO_LIST && list < params.list_count {
         let end = offsets[list + 1u];
         for (var e = offsets[list]; e < end; e++) {
             let k = indices[e];
             if k < params.vpl_count {
-                let c = vpl_contribution(s, vpls[k]);
+                let c = vpl_contribution(s, x, vpls[k]);
                 if any(c != vec3<f32>(0.0)) {
                     sum += c * params.scale;
                 }

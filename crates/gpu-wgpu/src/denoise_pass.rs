@@ -14,13 +14,14 @@
 use crate::buffers::{output, read_back, uniform, upload, Grid};
 use crate::context::{GpuContext, GpuError};
 use crate::denoise_types::{GpuBilateralParams, PASS_HORIZONTAL, PASS_VERTICAL};
-use crate::gpu_types::GpuSample;
+use crate::gpu_types::{gpu_position, GpuSample};
 use glam::Vec3;
 use slc_core::{Camera, GBuffer, Image};
 
 /// `shaders/fresnel_ggx.wgsl` (F(1) of the reflectance) followed by the filter kernel.
 pub(crate) const SOURCE: &str = concat!(
     include_str!("../shaders/fresnel_ggx.wgsl"),
+    include_str!("../shaders/gsample.wgsl"),
     include_str!("../shaders/bilateral.wgsl")
 );
 const WORKGROUP: u32 = 64;
@@ -61,6 +62,8 @@ impl Default for BilateralSettings {
 pub struct Guide<'a> {
     /// One [`GpuSample`] per pixel, row-major (e.g. the shading pass's input).
     pub samples: &'a wgpu::Buffer,
+    /// `[x, y, z, 1]` per pixel, zero without a sample (e.g. `GpuGBuffer::positions`).
+    pub positions: &'a wgpu::Buffer,
     pub width: u32,
     pub height: u32,
     /// The camera the G-buffer was seen from (its position and forward axis give depths).
@@ -124,11 +127,16 @@ impl DenoisePass {
         };
         let rgb_bytes = 3 * 4 * pixels;
         let sample_bytes = std::mem::size_of::<GpuSample>() as u64 * pixels;
-        if image.size() < rgb_bytes || guide.samples.size() < sample_bytes {
+        if image.size() < rgb_bytes
+            || guide.samples.size() < sample_bytes
+            || guide.positions.size() < 16 * pixels
+        {
             return bad(format!(
-                "image buffer of {} bytes or G-buffer of {} bytes too small for {}x{} pixels",
+                "image buffer of {} bytes, G-buffer of {} bytes or positions of {} bytes too \
+                 small for {}x{} pixels",
                 image.size(),
                 guide.samples.size(),
+                guide.positions.size(),
                 guide.width,
                 guide.height
             ));
@@ -167,7 +175,7 @@ impl DenoisePass {
                     &mut encoder,
                     label,
                     &self.pipeline,
-                    &[params, guide.samples, from, to],
+                    &[params, guide.samples, from, to, guide.positions],
                     grid,
                 );
             }
@@ -236,8 +244,15 @@ impl DenoisePass {
             .collect();
         let rgb = upload(ctx, "image", &rgb)?;
         let samples = upload(ctx, "gbuffer samples", &samples)?;
+        let positions: Vec<[f32; 4]> = gbuffer
+            .samples
+            .iter()
+            .map(|s| gpu_position(s.as_ref()))
+            .collect();
+        let positions = upload(ctx, "gbuffer positions", &positions)?;
         let guide = Guide {
             samples: &samples,
+            positions: &positions,
             width: gbuffer.width,
             height: gbuffer.height,
             camera,

@@ -23,6 +23,7 @@ use slc_core::{Image, Light};
 pub(crate) const SOURCE: &str = concat!(
     include_str!("../shaders/fresnel_ggx.wgsl"),
     include_str!("../shaders/brdf.wgsl"),
+    include_str!("../shaders/gsample.wgsl"),
     include_str!("../shaders/direct.wgsl")
 );
 const WORKGROUP: u32 = 64;
@@ -83,6 +84,7 @@ impl DirectPass {
                         &gbuffer.geometric_normals,
                         &map.shadow,
                         &out,
+                        &gbuffer.positions,
                     ],
                     grid,
                 );

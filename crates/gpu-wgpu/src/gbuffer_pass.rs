@@ -26,6 +26,7 @@ use slc_core::{Camera, GBuffer, GSample};
 pub(crate) const SOURCE: &str = concat!(
     include_str!("../shaders/scene_types.wgsl"),
     include_str!("../shaders/scene.wgsl"),
+    include_str!("../shaders/gsample.wgsl"),
     include_str!("../shaders/gbuffer.wgsl")
 );
 
@@ -60,10 +61,12 @@ impl GpuGBuffer {
             &self.geometric_normals,
             self.pixels(),
         )?;
+        let positions: Vec<[f32; 4]> =
+            read_back(ctx, "gbuffer positions", &self.positions, self.pixels())?;
         let samples = samples
             .iter()
-            .zip(&normals)
-            .map(|(s, ng)| (s.info[0] != SAMPLE_EMPTY).then(|| self.unpack(s, ng)))
+            .zip(normals.iter().zip(&positions))
+            .map(|(s, (ng, x))| (s.present != SAMPLE_EMPTY).then(|| self.unpack(s, ng, x)))
             .collect();
         Ok(GBuffer {
             width: self.width,
@@ -72,13 +75,13 @@ impl GpuGBuffer {
         })
     }
 
-    fn unpack(&self, s: &GpuSample, ng: &[f32; 4]) -> GSample {
+    fn unpack(&self, s: &GpuSample, ng: &[f32; 4], x: &[f32; 4]) -> GSample {
         let v = |a: [f32; 4]| Vec3::new(a[0], a[1], a[2]);
-        let position = v(s.position);
-        let fresnel = if s.info[1] == FRESNEL_DIELECTRIC {
+        let position = v(*x);
+        let fresnel = if s.fresnel == FRESNEL_DIELECTRIC {
             Fresnel::Dielectric(s.omega_o_eta[3])
         } else {
-            Fresnel::Schlick(v(s.f0))
+            Fresnel::Schlick(Vec3::from_array(s.f0))
         };
         GSample {
             position,
@@ -87,7 +90,7 @@ impl GpuGBuffer {
             omega_o: v(s.omega_o_eta),
             depth: self.camera.view_depth(position),
             brdf: Brdf {
-                kd: v(s.kd),
+                kd: Vec3::from_array(s.kd),
                 fresnel,
                 alpha: s.normal_alpha[3],
             },

@@ -336,44 +336,45 @@ pub struct GpuPartitionParams {
 }
 const _: () = assert!(std::mem::size_of::<GpuPartitionParams>() == 16);
 
-/// `GpuSample::info[0]`: whether the pixel holds a G-buffer sample (0: empty, e.g. sky).
+/// `GpuSample::present`: whether the pixel holds a G-buffer sample (0: empty, e.g. sky).
 pub const SAMPLE_EMPTY: u32 = 0;
 pub const SAMPLE_PRESENT: u32 = 1;
 
 /// One G-buffer pixel ([`slc_core::GSample`] or an empty pixel) as the shading pass reads it.
-/// Keep in sync with `Sample` in `shaders/shade.wgsl`.
+/// Keep in sync with `Sample` in `shaders/gsample.wgsl` (64 bytes: a 1920 x 1080 G-buffer fits
+/// lavapipe's 128 MiB storage binding).
 #[repr(C)]
 #[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
 pub struct GpuSample {
-    /// Position x (xyz).
-    pub position: [f32; 4],
     /// Unit shading normal (xyz) and GGX roughness α (w).
     pub normal_alpha: [f32; 4],
     /// Unit direction towards the camera ωo (xyz) and the relative index η of a dielectric
     /// Fresnel (w).
     pub omega_o_eta: [f32; 4],
-    /// Diffuse reflectance kd (xyz).
-    pub kd: [f32; 4],
-    /// Schlick F0 (xyz).
-    pub f0: [f32; 4],
-    /// [`SAMPLE_PRESENT`] or [`SAMPLE_EMPTY`], Fresnel model ([`FRESNEL_SCHLICK`],
-    /// [`FRESNEL_DIELECTRIC`]), unused, unused.
-    pub info: [u32; 4],
+    /// Diffuse reflectance kd.
+    pub kd: [f32; 3],
+    /// [`SAMPLE_PRESENT`] or [`SAMPLE_EMPTY`].
+    pub present: u32,
+    /// Schlick F0.
+    pub f0: [f32; 3],
+    /// The Fresnel model: [`FRESNEL_SCHLICK`] or [`FRESNEL_DIELECTRIC`].
+    pub fresnel: u32,
 }
-const _: () = assert!(std::mem::size_of::<GpuSample>() == 96);
+const _: () = assert!(std::mem::size_of::<GpuSample>() == 64);
 
 impl GpuSample {
     /// An empty pixel: shaded black.
     pub const EMPTY: Self = Self {
-        position: [0.0; 4],
         normal_alpha: [0.0; 4],
         omega_o_eta: [0.0; 4],
-        kd: [0.0; 4],
-        f0: [0.0; 4],
-        info: [SAMPLE_EMPTY, 0, 0, 0],
+        kd: [0.0; 3],
+        present: SAMPLE_EMPTY,
+        f0: [0.0; 3],
+        fresnel: 0,
     };
 
-    /// Packs a G-buffer sample; `None` (nothing seen) gives [`Self::EMPTY`].
+    /// Packs a G-buffer sample (its position goes to the separate positions array,
+    /// [`gpu_position`]); `None` (nothing seen) gives [`Self::EMPTY`].
     pub fn new(sample: Option<&GSample>) -> Self {
         let Some(g) = sample else {
             return Self::EMPTY;
@@ -383,14 +384,20 @@ impl GpuSample {
             Fresnel::Dielectric(eta) => (FRESNEL_DIELECTRIC, Vec3::ZERO, eta),
         };
         Self {
-            position: vec4(g.position, 0.0),
             normal_alpha: vec4(g.normal, g.brdf.alpha),
             omega_o_eta: vec4(g.omega_o, eta),
-            kd: vec4(g.brdf.kd, 0.0),
-            f0: vec4(f0, 0.0),
-            info: [SAMPLE_PRESENT, fresnel, 0, 0],
+            kd: g.brdf.kd.to_array(),
+            present: SAMPLE_PRESENT,
+            f0: f0.to_array(),
+            fresnel,
         }
     }
+}
+
+/// A G-buffer sample's entry in the positions array every pass reads beside the
+/// [`GpuSample`]s: `[x, y, z, 1]`, zero where the pixel has no sample.
+pub fn gpu_position(sample: Option<&GSample>) -> [f32; 4] {
+    sample.map_or([0.0; 4], |s| s.position.extend(1.0).to_array())
 }
 
 /// Parameters of the shading pass. Keep in sync with `ShadeParams` in `shaders/shade.wgsl`.

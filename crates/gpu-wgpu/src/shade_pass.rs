@@ -18,7 +18,7 @@
 use crate::buffers::{output, read_back, uniform, upload, Grid};
 use crate::context::{GpuContext, GpuError};
 use crate::gbuffer_pass::GpuGBuffer;
-use crate::gpu_types::{GpuSample, GpuShadeParams, GpuVpl, MAX_K};
+use crate::gpu_types::{gpu_position, GpuSample, GpuShadeParams, GpuVpl, MAX_K};
 use glam::Vec3;
 use slc_core::{CullInput, Image, Interleaving, LightLists, Vpl, NO_LIST};
 
@@ -26,6 +26,7 @@ use slc_core::{CullInput, Image, Interleaving, LightLists, Vpl, NO_LIST};
 pub(crate) const SOURCE: &str = concat!(
     include_str!("../shaders/fresnel_ggx.wgsl"),
     include_str!("../shaders/brdf.wgsl"),
+    include_str!("../shaders/gsample.wgsl"),
     include_str!("../shaders/shade.wgsl")
 );
 const WORKGROUP: u32 = 64;
@@ -164,6 +165,8 @@ impl ShadePass {
             .map(|s| GpuSample::new(s.as_ref()))
             .collect();
         let samples = upload(ctx, "gbuffer samples", &samples)?;
+        let positions: Vec<[f32; 4]> = g.samples.iter().map(|s| gpu_position(s.as_ref())).collect();
+        let positions = upload(ctx, "gbuffer positions", &positions)?;
         let frame = Frame {
             width: g.width,
             height: g.height,
@@ -171,7 +174,7 @@ impl ShadePass {
             delta: input.delta,
             interleaving: input.interleaving,
         };
-        self.shade_samples(ctx, &samples, &frame, lists)
+        self.shade_samples(ctx, (&samples, &positions), &frame, lists)
     }
 
     /// [`Self::shade_gpu_lists`] for a G-buffer rendered on the GPU
@@ -192,7 +195,7 @@ impl ShadePass {
             delta,
             interleaving,
         };
-        self.shade_samples(ctx, &gbuffer.samples, &frame, lists)
+        self.shade_samples(ctx, (&gbuffer.samples, &gbuffer.positions), &frame, lists)
     }
 
     /// [`Self::shade_gpu_gbuffer`] without the readback: the image stays on the GPU as RGB,
@@ -214,27 +217,28 @@ impl ShadePass {
             delta,
             interleaving,
         };
-        self.shade_samples_on_gpu(ctx, &gbuffer.samples, &frame, lists)
+        self.shade_samples_on_gpu(ctx, (&gbuffer.samples, &gbuffer.positions), &frame, lists)
     }
 
-    /// Shades the [`GpuSample`]s in `samples` (one per pixel of the frame) and reads the
-    /// image back.
+    /// Shades the [`GpuSample`]s and positions in `g` (one per pixel of the frame) and reads
+    /// the image back.
     fn shade_samples(
         &self,
         ctx: &GpuContext,
-        samples: &wgpu::Buffer,
+        g: (&wgpu::Buffer, &wgpu::Buffer),
         input: &Frame,
         lists: &GpuLightLists,
     ) -> Result<Image, GpuError> {
-        let out = self.shade_samples_on_gpu(ctx, samples, input, lists)?;
+        let out = self.shade_samples_on_gpu(ctx, g, input, lists)?;
         read_image(ctx, &out, input.width, input.height)
     }
 
-    /// Shades the [`GpuSample`]s in `samples` into an RGB buffer left on the GPU.
+    /// Shades the [`GpuSample`]s and positions in `(samples, positions)` into an RGB buffer
+    /// left on the GPU.
     fn shade_samples_on_gpu(
         &self,
         ctx: &GpuContext,
-        samples: &wgpu::Buffer,
+        (samples, positions): (&wgpu::Buffer, &wgpu::Buffer),
         input: &Frame,
         lists: &GpuLightLists,
     ) -> Result<wgpu::Buffer, GpuError> {
@@ -289,6 +293,7 @@ impl ShadePass {
                     &lists.indices,
                     &lists.pixel_list,
                     &out,
+                    positions,
                 ],
                 grid,
             );

@@ -284,8 +284,10 @@ fn filter_rejects_bad_input() {
     )
     .unwrap();
     let rgb = output::<f32>(&ctx, "image", 90).unwrap();
+    let positions = output::<[f32; 4]>(&ctx, "positions", 30).unwrap();
     let guide = Guide {
         samples: &samples,
+        positions: &positions,
         width: 6,
         height: 5,
         camera: &camera,
