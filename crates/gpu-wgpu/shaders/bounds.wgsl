@@ -9,16 +9,6 @@
 // interleaved subregion (vpl_subregion of rng.wgsl, prepended). Structs mirror
 // src/gpu_types.rs; Bound is in bound.wgsl (prepended).
 
-struct Vpl {
-    position_xi: vec4<f32>,
-    normal_alpha: vec4<f32>,
-    omega_i_eta: vec4<f32>,
-    flux: vec4<f32>,
-    kd: vec4<f32>,
-    f0: vec4<f32>,
-    info: vec4<u32>,
-}
-
 struct View {
     rotation: array<vec4<f32>, 3>,
     eye: vec4<f32>,

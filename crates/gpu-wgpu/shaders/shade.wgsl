@@ -19,16 +19,6 @@ struct ShadeParams {
     pad: u32,
 }
 
-struct Vpl {
-    position_xi: vec4<f32>,
-    normal_alpha: vec4<f32>,
-    omega_i_eta: vec4<f32>,
-    flux: vec4<f32>,
-    kd: vec4<f32>,
-    f0: vec4<f32>,
-    info: vec4<u32>,
-}
-
 @group(0) @binding(0) var<uniform> params: ShadeParams;
 @group(0) @binding(1) var<storage, read> samples: array<Sample>;
 @group(0) @binding(2) var<storage, read> vpls: array<Vpl>;

@@ -31,16 +31,6 @@ struct RsmTexel {
     info: vec4<u32>,
 }
 
-struct Vpl {
-    position_xi: vec4<f32>,
-    normal_alpha: vec4<f32>,
-    omega_i_eta: vec4<f32>,
-    flux: vec4<f32>,
-    kd: vec4<f32>,
-    f0: vec4<f32>,
-    info: vec4<u32>,
-}
-
 @group(0) @binding(0) var<uniform> params: VplGenParams;
 @group(0) @binding(1) var<storage, read> texels: array<RsmTexel>;
 // Counts (CULL_COUNT) or offsets after the scan (CULL_WRITE), per global texel.

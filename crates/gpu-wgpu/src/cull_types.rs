@@ -45,17 +45,7 @@ const _: () = assert!(std::mem::size_of::<GpuClusterFrusta>() == 288);
 #[cfg(test)]
 mod tests {
     use super::*;
-    use wgpu::naga;
-
-    /// The size naga gives the WGSL struct `name` of `source`.
-    fn wgsl_size(source: &str, name: &str) -> usize {
-        let module = naga::front::wgsl::parse_str(source).unwrap();
-        let span = module.types.iter().find_map(|(_, ty)| match &ty.inner {
-            naga::TypeInner::Struct { span, .. } if ty.name.as_deref() == Some(name) => Some(*span),
-            _ => None,
-        });
-        span.unwrap_or_else(|| panic!("no struct {name}")) as usize
-    }
+    use crate::gpu_types::wgsl_size;
 
     /// Every Rust struct has the size of its WGSL twin as the shader compiler lays it out.
     #[test]

@@ -36,18 +36,8 @@ const _: () = assert!(std::mem::size_of::<GpuBilateralParams>() == 64);
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::gpu_types::wgsl_size;
     use crate::gpu_types::GpuSample;
-    use wgpu::naga;
-
-    /// The size naga gives the WGSL struct `name` of `source`.
-    fn wgsl_size(source: &str, name: &str) -> usize {
-        let module = naga::front::wgsl::parse_str(source).unwrap();
-        let span = module.types.iter().find_map(|(_, ty)| match &ty.inner {
-            naga::TypeInner::Struct { span, .. } if ty.name.as_deref() == Some(name) => Some(*span),
-            _ => None,
-        });
-        span.unwrap_or_else(|| panic!("no struct {name}")) as usize
-    }
 
     /// The Rust structs have the sizes of their WGSL twins as the shader compiler lays them
     /// out (the filter reads the G-buffer as `GpuSample`).

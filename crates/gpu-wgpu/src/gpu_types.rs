@@ -49,7 +49,7 @@ pub const FRESNEL_SCHLICK: u32 = 0;
 pub const FRESNEL_DIELECTRIC: u32 = 1;
 
 /// A VPL ([`slc_core::Vpl`]) as the shaders read it. Keep in sync with `Vpl` in
-/// `shaders/bounds.wgsl` and `shaders/shade.wgsl`.
+/// `shaders/gvpl.wgsl`.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
 pub struct GpuVpl {
@@ -420,18 +420,8 @@ const _: () = assert!(std::mem::size_of::<GpuShadeParams>() == 32);
 
 #[cfg(test)]
 mod tests {
+    use super::wgsl_size;
     use super::*;
-    use wgpu::naga;
-
-    /// The size naga gives the WGSL struct `name` of `source`.
-    fn wgsl_size(source: &str, name: &str) -> u32 {
-        let module = naga::front::wgsl::parse_str(source).unwrap();
-        let span = module.types.iter().find_map(|(_, ty)| match &ty.inner {
-            naga::TypeInner::Struct { span, .. } if ty.name.as_deref() == Some(name) => Some(*span),
-            _ => None,
-        });
-        span.unwrap_or_else(|| panic!("no struct {name}"))
-    }
 
     /// Every Rust struct has the size of its WGSL twin as the shader compiler lays it out.
     #[test]
@@ -482,7 +472,20 @@ mod tests {
             (crate::shade_pass::SOURCE, "Vpl", size_of::<GpuVpl>()),
         ];
         for (source, name, size) in cases {
-            assert_eq!(wgsl_size(source, name) as usize, size, "{name}");
+            assert_eq!(wgsl_size(source, name), size, "{name}");
         }
     }
+}
+
+/// The size naga gives the WGSL struct `name` of `source`: what the layout tests of every
+/// `*_types.rs` compare their Rust twins with.
+#[cfg(test)]
+pub(crate) fn wgsl_size(source: &str, name: &str) -> usize {
+    use wgpu::naga;
+    let module = naga::front::wgsl::parse_str(source).unwrap();
+    let span = module.types.iter().find_map(|(_, ty)| match &ty.inner {
+        naga::TypeInner::Struct { span, .. } if ty.name.as_deref() == Some(name) => Some(*span),
+        _ => None,
+    });
+    span.unwrap_or_else(|| panic!("no struct {name}")) as usize
 }

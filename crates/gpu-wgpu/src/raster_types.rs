@@ -219,17 +219,7 @@ const _: () = assert!(std::mem::size_of::<GpuDirectParams>() == 384);
 #[cfg(test)]
 mod tests {
     use super::*;
-    use wgpu::naga;
-
-    /// The size naga gives the WGSL struct `name` of `source`.
-    fn wgsl_size(source: &str, name: &str) -> u32 {
-        let module = naga::front::wgsl::parse_str(source).unwrap();
-        let span = module.types.iter().find_map(|(_, ty)| match &ty.inner {
-            naga::TypeInner::Struct { span, .. } if ty.name.as_deref() == Some(name) => Some(*span),
-            _ => None,
-        });
-        span.unwrap_or_else(|| panic!("no struct {name}"))
-    }
+    use crate::gpu_types::wgsl_size;
 
     /// Every Rust struct has the size of its WGSL twin as the shader compiler lays it out.
     #[test]
@@ -262,7 +252,7 @@ mod tests {
             (direct, "Sample", size_of::<crate::gpu_types::GpuSample>()),
         ];
         for (source, name, size) in cases {
-            assert_eq!(wgsl_size(source, name) as usize, size, "{name}");
+            assert_eq!(wgsl_size(source, name), size, "{name}");
         }
     }
 }

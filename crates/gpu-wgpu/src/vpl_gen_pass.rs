@@ -20,6 +20,7 @@ use slc_core::{Vpl, VplLobe};
 pub(crate) const SOURCE: &str = concat!(
     include_str!("../shaders/rng.wgsl"),
     include_str!("../shaders/fresnel_ggx.wgsl"),
+    include_str!("../shaders/gvpl.wgsl"),
     include_str!("../shaders/vpl_gen.wgsl")
 );
 const WORKGROUP: u32 = 64;

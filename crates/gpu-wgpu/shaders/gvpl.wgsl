@@ -1,0 +1,12 @@
+// One VPL (GpuVpl in src/gpu_types.rs): position q and xi of eq. (3), normal n and GGX alpha,
+// omega_i and a dielectric's eta, RGB flux, kd, Schlick F0; info = (lobe, Fresnel model, VPL
+// id, unused).
+struct Vpl {
+    position_xi: vec4<f32>,
+    normal_alpha: vec4<f32>,
+    omega_i_eta: vec4<f32>,
+    flux: vec4<f32>,
+    kd: vec4<f32>,
+    f0: vec4<f32>,
+    info: vec4<u32>,
+}
