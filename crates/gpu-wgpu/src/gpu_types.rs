@@ -418,6 +418,19 @@ pub struct GpuShadeParams {
 }
 const _: () = assert!(std::mem::size_of::<GpuShadeParams>() == 32);
 
+/// The size naga gives the WGSL struct `name` of `source`: what the layout tests of every
+/// `*_types.rs` compare their Rust twins with.
+#[cfg(test)]
+pub(crate) fn wgsl_size(source: &str, name: &str) -> usize {
+    use wgpu::naga;
+    let module = naga::front::wgsl::parse_str(source).unwrap();
+    let span = module.types.iter().find_map(|(_, ty)| match &ty.inner {
+        naga::TypeInner::Struct { span, .. } if ty.name.as_deref() == Some(name) => Some(*span),
+        _ => None,
+    });
+    span.unwrap_or_else(|| panic!("no struct {name}")) as usize
+}
+
 #[cfg(test)]
 mod tests {
     use super::wgsl_size;
@@ -475,17 +488,4 @@ mod tests {
             assert_eq!(wgsl_size(source, name), size, "{name}");
         }
     }
-}
-
-/// The size naga gives the WGSL struct `name` of `source`: what the layout tests of every
-/// `*_types.rs` compare their Rust twins with.
-#[cfg(test)]
-pub(crate) fn wgsl_size(source: &str, name: &str) -> usize {
-    use wgpu::naga;
-    let module = naga::front::wgsl::parse_str(source).unwrap();
-    let span = module.types.iter().find_map(|(_, ty)| match &ty.inner {
-        naga::TypeInner::Struct { span, .. } if ty.name.as_deref() == Some(name) => Some(*span),
-        _ => None,
-    });
-    span.unwrap_or_else(|| panic!("no struct {name}")) as usize
 }
