@@ -8,18 +8,34 @@
 //!   Toksvig mean vectors, the weighted position and squared norm), summable over any set of
 //!   texels.
 //! - [`MipRsm`]: the mipmapped reflective shadow map of VSGL section 4.1, one sum-based pyramid
-//!   per RSM face: each texel of level `l` is a quadtree cluster of up to `4^l` VPLs.
+//!   per RSM face laid out by a [`Quadtree`]: each texel of level `l` is a cluster of up to
+//!   `4^l` VPLs.
 //! - [`Vsgl`]: the light of one cluster, VSGL section 3.1 (`c_v`, `ξ_v`, `λ_v` per lobe, the
 //!   positional mean `μ_v` and variance `σ_v²`, and the coefficient `c_v/(2πσ_v²)` of eq. 1).
+//! - [`ImportanceMap`] and [`FilteredSampler`]: filtered importance sampling of clusters
+//!   (section 4.2), by hierarchical sample warping of [`sample_points`] down the quadtree of
+//!   importance masses, stopping at the level `l = l_max − ½ log2(N p(s))`.
+mod error;
+mod importance;
 mod light;
 mod mip;
+mod quadtree;
+mod sampling;
 mod sums;
 mod texel;
 
+pub use error::VsglError;
+pub use importance::ImportanceMap;
 pub use light::Vsgl;
 pub use mip::MipRsm;
+pub use quadtree::Quadtree;
+pub use sampling::{
+    sample_points, Cluster, FilteredSampler, Footprint, SampleSet, WeightedCluster,
+};
 pub use sums::ClusterSums;
 pub use texel::TexelLobes;
 
+#[cfg(test)]
+mod sampling_tests;
 #[cfg(test)]
 mod tests;

@@ -385,3 +385,26 @@ fn the_specular_lobe_approximates_the_true_intensity() {
         }
     }
 }
+
+#[test]
+fn flux_importance_is_the_mip_weight() {
+    // The paper's p(s) ∝ Φ (R_d + R_s) computed from the RSM equals the mip's positional
+    // weights, at every level.
+    for rsm in default_rsms(6) {
+        let mip = MipRsm::build(&rsm, MeanMap::Toksvig).unwrap();
+        let from_rsm = ImportanceMap::flux(&rsm).unwrap();
+        assert_eq!(from_rsm, ImportanceMap::from_mip(&mip));
+        for face in 0..mip.faces() {
+            for level in 0..mip.levels() {
+                let size = mip.size(level);
+                for y in 0..size {
+                    for x in 0..size {
+                        let w = mip.sums(face, level, x, y).weight();
+                        let m = from_rsm.mass(face, level, x, y);
+                        assert!((w - m).abs() <= 1e-12 * w.max(1.0), "{w} {m}");
+                    }
+                }
+            }
+        }
+    }
+}
