@@ -188,6 +188,7 @@ impl GpuFrame {
             vpl_count,
             timings,
             metrics,
+            sampled_lights: None,
         })
     }
 }

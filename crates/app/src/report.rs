@@ -123,7 +123,7 @@ impl Report {
             reference: match f.method {
                 Method::VplReference => Some("vpl"),
                 Method::Path => Some("path"),
-                Method::Stochastic(_) => None,
+                Method::Stochastic(_) | Method::Vsgl(_) | Method::SampledVpls(_) => None,
             },
             visibility: f.args.visibility || f.method == Method::Path,
             spp: f.spp,

@@ -15,15 +15,23 @@
 //! - [`ImportanceMap`] and [`FilteredSampler`]: filtered importance sampling of clusters
 //!   (section 4.2), by hierarchical sample warping of [`sample_points`] down the quadtree of
 //!   importance masses, stopping at the level `l = l_max − ½ log2(N p(s))`.
+//! - [`vsgl_radiance`] and [`shade_vsgls`]: shading (section 3.2, eq. 2-5), the incoming
+//!   radiance of a VSGL as one SG against the receiver's diffuse + GGX lobe, with an optional
+//!   shadow ray to `μ_v`.
+//! - [`bidirectional_importance`]: the optional importance of section 4.3, estimated with
+//!   VSGLs generated on the G-buffer ([`camera_rsm`]).
+mod bidirectional;
 mod error;
 mod importance;
 mod light;
 mod mip;
 mod quadtree;
 mod sampling;
+mod shading;
 mod sums;
 mod texel;
 
+pub use bidirectional::{bidirectional_importance, camera_rsm, FLUX_SHARE};
 pub use error::VsglError;
 pub use importance::ImportanceMap;
 pub use light::Vsgl;
@@ -32,10 +40,13 @@ pub use quadtree::Quadtree;
 pub use sampling::{
     sample_points, Cluster, FilteredSampler, Footprint, SampleSet, WeightedCluster,
 };
-pub use sums::ClusterSums;
+pub use shading::{shade_vsgls, vsgl_radiance};
+pub use sums::{footprint_variance, ClusterSums};
 pub use texel::TexelLobes;
 
 #[cfg(test)]
 mod sampling_tests;
+#[cfg(test)]
+mod shading_tests;
 #[cfg(test)]
 mod tests;
