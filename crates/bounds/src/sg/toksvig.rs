@@ -68,7 +68,7 @@ fn clamp_length(r: f32) -> f32 {
 }
 
 /// `coth λ − 1/λ`, with its series below 1e-3 where the difference cancels.
-fn langevin(l: f64) -> f64 {
+pub(crate) fn langevin(l: f64) -> f64 {
     if l < 1e-3 {
         l / 3.0 - l * l * l / 45.0
     } else {
