@@ -56,7 +56,10 @@ fn away_facing(l: f64) -> f64 {
         return 0.25 - l / 6.0;
     }
     let e = (-l).exp();
-    // 1 − e^{−λ}(1 + λ), from expm1 to keep its digits for small λ.
+    if l >= 1.0 {
+        return e * (1.0 - e * (1.0 + l)) / (l * (1.0 - e * e));
+    }
+    // 1 − e^{−λ}(1 + λ) and 1 − e^{−2λ} from expm1, to keep their digits for small λ.
     let numerator = -(-l).exp_m1() - l * e;
     e * numerator / (l * -(-2.0 * l).exp_m1())
 }

@@ -16,37 +16,77 @@ use slc_core::{GBuffer, Image};
 /// `L_in(ω) ≈ c_v/(2πσ_v²) G(ω; −ξ_v, λ_v) G(ω; ξ_μ, λ_σ)`, `ξ_μ = (μ_v − x_p)/|μ_v − x_p|`,
 /// `λ_σ = |μ_v − x_p|²/σ_v²` (eq. 4),
 ///
-/// a product of two SGs and so one SG, shaded in closed form by `surface` ([`SgSurface`]:
-/// diffuse cosine and warped GGX lobes). A receiver at `μ_v` itself sees the constant
-/// `λ_σ = 0`. Fails for a `σ_v²` that is not positive and finite, or when a lobe leaves the
-/// `f32` range.
+/// a product of two SGs and so one SG, shaded in closed form by `surface` ([`SgSurface`]: the
+/// SG's irradiance for the diffuse term, the warped GGX lobe for the specular one). A receiver
+/// at `μ_v` itself sees the constant `λ_σ = 0`. Fails for a `σ_v²` that is not positive and
+/// finite, or when a lobe leaves the `f32` range.
 pub fn vsgl_radiance(surface: &SgSurface, x_p: Vec3, vsgl: &Vsgl) -> Result<Vec3, VsglError> {
-    let sigma2 = vsgl.sigma2;
-    if !(sigma2 > 0.0 && sigma2.is_finite()) {
-        return Err(VsglError::Variance(sigma2));
-    }
-    let d = vsgl.mu - x_p;
-    let r2 = d.length_squared();
-    let (xi_mu, lambda_sigma) = if r2 > 0.0 {
-        (d / r2.sqrt(), r2 / sigma2)
-    } else {
-        (Vec3::Z, 0.0)
-    };
-    let position = SphericalGaussian::new(xi_mu, lambda_sigma, 1.0 / (TAU * sigma2))?;
-    let mut radiance = Vec3::ZERO;
-    for (c, xi, lambda) in [
-        (vsgl.c_diffuse, vsgl.xi_diffuse, vsgl.lambda_diffuse),
-        (vsgl.c_specular, vsgl.xi_specular, vsgl.lambda_specular),
-    ] {
-        if c == Vec3::ZERO {
-            continue;
+    Emitter::new(vsgl)?.radiance(surface, x_p)
+}
+
+/// A VSGL prepared for shading many receivers: its position and the emitted lobes
+/// `G(ω; −ξ_v, λ_v)` of eq. (5) with their coefficients `c_v`, zero lobes left out.
+struct Emitter {
+    mu: Vec3,
+    sigma2: f32,
+    /// `1/(2πσ_v²)`, the coefficient of eq. (1) and (5).
+    density: f32,
+    lobes: [(Vec3, SphericalGaussian); 2],
+    count: usize,
+}
+
+impl Emitter {
+    fn new(vsgl: &Vsgl) -> Result<Self, VsglError> {
+        let sigma2 = vsgl.sigma2;
+        let density = 1.0 / (TAU * sigma2);
+        if !(sigma2 > 0.0 && density.is_finite()) {
+            return Err(VsglError::Variance(sigma2));
         }
-        // I_v(−ω) ∝ G(−ω; ξ_v, λ_v) = G(ω; −ξ_v, λ_v): the light leaving μ_v towards x_p.
-        let emitted = SphericalGaussian::new(-xi, lambda, 1.0)?;
-        let incoming = emitted.product(&position)?;
-        radiance += c * surface.radiance(&incoming);
+        let unused = (Vec3::ZERO, SphericalGaussian::new(Vec3::Z, 0.0, 0.0)?);
+        let mut lobes = [unused; 2];
+        let mut count = 0;
+        for (c, xi, lambda) in [
+            (vsgl.c_diffuse, vsgl.xi_diffuse, vsgl.lambda_diffuse),
+            (vsgl.c_specular, vsgl.xi_specular, vsgl.lambda_specular),
+        ] {
+            if c != Vec3::ZERO {
+                // I_v(−ω) ∝ G(−ω; ξ_v, λ_v) = G(ω; −ξ_v, λ_v): the light leaving μ_v towards x_p.
+                lobes[count] = (c, SphericalGaussian::new(-xi, lambda, 1.0)?);
+                count += 1;
+            }
+        }
+        Ok(Self {
+            mu: vsgl.mu,
+            sigma2,
+            density,
+            lobes,
+            count,
+        })
     }
-    Ok(radiance)
+
+    fn radiance(&self, surface: &SgSurface, x_p: Vec3) -> Result<Vec3, VsglError> {
+        let d = self.mu - x_p;
+        let r2 = d.length_squared();
+        let position = if r2 > 0.0 {
+            let sharpness = r2 / self.sigma2;
+            if !sharpness.is_finite() {
+                return Err(slc_bounds::BoundsError::Overflow("VSGL λ_σ").into());
+            }
+            // d / |d| is a unit vector: the literal skips `new`'s check in the inner loop.
+            SphericalGaussian {
+                axis: d / r2.sqrt(),
+                sharpness,
+                amplitude: self.density,
+            }
+        } else {
+            SphericalGaussian::new(Vec3::Z, 0.0, self.density)?
+        };
+        let mut radiance = Vec3::ZERO;
+        for (c, emitted) in &self.lobes[..self.count] {
+            radiance += *c * surface.radiance(&emitted.product(&position)?);
+        }
+        Ok(radiance)
+    }
 }
 
 /// Indirect radiance at every pixel of `gbuffer` from every VSGL of `vsgls` (their weights
@@ -61,6 +101,10 @@ pub fn shade_vsgls(
     visibility: bool,
     progress: &(dyn Fn(u64) + Sync),
 ) -> Result<Image, VsglError> {
+    let emitters = vsgls
+        .iter()
+        .map(Emitter::new)
+        .collect::<Result<Vec<_>, _>>()?;
     let mut image = Image::new(gbuffer.width, gbuffer.height);
     let w = gbuffer.width as usize;
     image
@@ -72,9 +116,9 @@ pub fn shade_vsgls(
                 let Some(g) = g else { continue };
                 let surface = SgSurface::new(g.normal, g.omega_o, &g.brdf)?;
                 let from = tracer.lift(g.position, g.geometric_normal);
-                for vsgl in vsgls {
-                    let c = vsgl_radiance(&surface, g.position, vsgl)?;
-                    if c != Vec3::ZERO && (!visibility || tracer.unoccluded(from, vsgl.mu)) {
+                for emitter in &emitters {
+                    let c = emitter.radiance(&surface, g.position)?;
+                    if c != Vec3::ZERO && (!visibility || tracer.unoccluded(from, emitter.mu)) {
                         *o += c;
                     }
                 }
