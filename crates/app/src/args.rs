@@ -1,7 +1,7 @@
 //! Command-line options shared by `render`, `compare` and `sweep`.
 use clap::{Args, ValueEnum};
 use slc_core::{load_scene, Scene};
-use slc_cpu_ref::{LobeSelection, RenderSettings, Stochastic};
+use slc_cpu_ref::{Importance, LightSampling, LobeSelection, RenderSettings, Stochastic};
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
 pub enum Backend {
@@ -14,7 +14,48 @@ pub enum Backend {
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
 pub enum Shader {
+    /// VPLs with the stochastic estimate and culling (or a reference).
     Vpl,
+    /// Virtual spherical Gaussian lights sampled from mipmapped RSMs (Tokuyoshi 2015); CPU only.
+    Vsgl,
+}
+
+/// The message for `--shader vsgl` where only the CPU has it.
+pub const VSGL_CPU_ONLY: &str =
+    "--shader vsgl runs on the CPU only in this version; render with --backend cpu";
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum ImportanceKind {
+    /// p(s) ∝ Φ (R_d + R_s), the VSGL paper's default (section 4.2).
+    Flux,
+    /// Estimated with VSGLs generated on the G-buffer (section 4.3), mixed with 10 % flux.
+    Bidirectional,
+}
+
+/// How sampled lights (VSGLs, or VPLs at equal count) are drawn from the RSMs.
+#[derive(Args, Debug, Clone)]
+pub struct ImportanceArgs {
+    /// The importance VSGLs are sampled with.
+    #[arg(long, value_enum, default_value_t = ImportanceKind::Flux)]
+    pub vsgl_importance: ImportanceKind,
+    /// VSGLs generated on the G-buffer to estimate the bidirectional importance.
+    #[arg(long, default_value_t = 1024)]
+    pub camera_vsgls: u32,
+}
+
+impl ImportanceArgs {
+    /// `count` lights with this importance.
+    pub fn sampling(&self, count: u32) -> LightSampling {
+        LightSampling {
+            count,
+            importance: match self.vsgl_importance {
+                ImportanceKind::Flux => Importance::Flux,
+                ImportanceKind::Bidirectional => Importance::Bidirectional {
+                    camera_vsgls: self.camera_vsgls,
+                },
+            },
+        }
+    }
 }
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]

@@ -1,7 +1,7 @@
 //! `slc bench`: per-pass times of the stochastic pipeline over resolutions and VPL counts, for
 //! each culling strategy, in one run (so ratios are measured on the same machine state).
 //! Writes `bench.csv` and `bench.md`.
-use crate::args::{culling_names, Backend, FrameArgs, PipelineArgs};
+use crate::args::{culling_names, Backend, FrameArgs, PipelineArgs, Shader};
 use crate::gpu_frame::{check_visibility, gpu_strategy, GpuFrame, GpuPrepared};
 use crate::report::Device;
 use clap::Args;
@@ -55,6 +55,13 @@ const PASSES: [&str; 7] = [
 ];
 
 pub fn run(args: &BenchArgs) -> Result<(), String> {
+    if args.frame.shader == Shader::Vsgl {
+        return Err(
+            "slc bench times the VPL passes; the VSGL passes are timed by \
+                    slc sweep --shader vsgl (vsgl_sweep.md)"
+                .into(),
+        );
+    }
     let scene = args.frame.load_renderable()?;
     let names = culling_names(&args.culling)?;
     let resolutions = args

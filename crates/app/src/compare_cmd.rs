@@ -1,13 +1,18 @@
 //! `slc compare`: every culling strategy on the same G-buffer, VPLs and ξ, side by side.
 //!
 //! Writes one folder per strategy (images, heat map, report.json), `reference_vpl/` (every VPL
-//! with p = 1, the same VPLs), `report.md` with the table, and `side_by_side.png`.
-use crate::args::{culling_names, Backend, FrameArgs, PipelineArgs};
+//! with p = 1, the same VPLs), `report.md` with the table, and `side_by_side.png`. With
+//! `--shader vsgl` also `vsgl/` and `vpl_sampled/`: `--vsgls N` VSGLs and N VPLs sampled by the
+//! same importance, with their own table in `report.md`.
+use crate::args::{
+    culling_names, Backend, FrameArgs, ImportanceArgs, PipelineArgs, Shader, VSGL_CPU_ONLY,
+};
 use crate::gpu_frame::{check_visibility, gpu_strategy, GpuFrame};
 use crate::heatmap::heat_map;
 use crate::output::write_frame;
 use crate::progress::bar;
 use crate::report::{Device, FrameFacts, Report};
+use crate::sampled::{pass_ms, ESTIMATORS, PASSES};
 use clap::Args;
 use image::RgbImage;
 use slc_core::Image;
@@ -22,6 +27,11 @@ pub struct CompareArgs {
     pub frame: FrameArgs,
     #[command(flatten)]
     pub pipeline: PipelineArgs,
+    #[command(flatten)]
+    pub importance: ImportanceArgs,
+    /// With --shader vsgl: the number of VSGLs, and of VPLs sampled at equal count.
+    #[arg(long, default_value_t = 1024)]
+    pub vsgls: u32,
     /// Output folder.
     #[arg(long, default_value = "compare")]
     pub out: PathBuf,
@@ -64,6 +74,9 @@ pub fn run(args: &CompareArgs) -> Result<(), String> {
     let gpu = match f.backend {
         Backend::Cpu => None,
         Backend::Gpu => {
+            if f.shader == Shader::Vsgl {
+                return Err(VSGL_CPU_ONLY.into());
+            }
             check_visibility(f.visibility)?;
             for name in &names {
                 gpu_strategy(name)?;
@@ -123,6 +136,7 @@ pub fn run(args: &CompareArgs) -> Result<(), String> {
             timings: &p.timings,
             gpu_timings: None,
             metrics: None,
+            sampled_lights: None,
             images: &images,
         };
         Report::new(&facts).write(&dir.join("report.json"))?;
@@ -196,6 +210,7 @@ pub fn run(args: &CompareArgs) -> Result<(), String> {
             timings: &timings,
             gpu_timings: gpu_timings.as_ref(),
             metrics: Some(m),
+            sampled_lights: None,
             images: &images,
         };
         Report::new(&facts).write(&dir.join("report.json"))?;
@@ -214,7 +229,12 @@ pub fn run(args: &CompareArgs) -> Result<(), String> {
         });
         eprintln!("{name}: done");
     }
-    write_table(args, &device, &scene.name, p.vpls.len(), &rows)?;
+    let sampled = if f.shader == Shader::Vsgl {
+        sampled_lights(args, &scene, &p, reference.as_ref())?
+    } else {
+        String::new()
+    };
+    write_table(args, &device, &scene.name, p.vpls.len(), &rows, &sampled)?;
     side_by_side(&rows)
         .save(args.out.join("side_by_side.png"))
         .map_err(|e| e.to_string())?;
@@ -222,10 +242,61 @@ pub fn run(args: &CompareArgs) -> Result<(), String> {
     Ok(())
 }
 
-fn ms(t: &Timings, name: &str) -> f64 {
-    t.0.iter()
-        .find(|(n, _)| *n == name)
-        .map_or(0.0, |(_, v)| *v)
+/// Shades the prepared frame with `--vsgls` VSGLs and as many sampled VPLs, writes their
+/// folders, and returns their section of `report.md`.
+fn sampled_lights(
+    args: &CompareArgs,
+    scene: &slc_core::Scene,
+    p: &slc_cpu_ref::Prepared,
+    reference: Option<&Image>,
+) -> Result<String, String> {
+    let f = &args.frame;
+    let sampling = args.importance.sampling(args.vsgls);
+    let cpu = Device::cpu();
+    let mut md = format!(
+        "\n## Sampled lights\n\n{} lights sampled from the RSMs by {} importance (the same \
+         points for both): VSGLs at the filtered mip level, and VPLs of single texels (unbiased). \
+         Times in ms; RMSE of the indirect image against every VPL with p = 1.\n\n\
+         | estimator | distinct lights |",
+        args.vsgls,
+        sampling.importance.name()
+    );
+    for (_, row) in PASSES {
+        let _ = write!(md, " {row} ms |");
+    }
+    md.push_str(" total ms | RMSE vs reference |\n|---|---|---|---|---|---|---|---|\n");
+    for e in ESTIMATORS {
+        eprintln!("{}: {} lights", e.name(), args.vsgls);
+        let out = e.shade(p, &sampling, f.seed, f.visibility)?;
+        let total = p.direct.add(&out.indirect);
+        let dir = args.out.join(e.name());
+        let images = write_frame(&dir, &p.direct, &out.indirect, &total)?;
+        let mut timings = p.timings.clone();
+        timings.merge(&out.timings);
+        let facts = FrameFacts {
+            device: &cpu,
+            scene,
+            args: f,
+            method: e.method(sampling),
+            spp: 1,
+            vpl_count: p.vpls.len(),
+            timings: &timings,
+            gpu_timings: None,
+            metrics: None,
+            sampled_lights: Some(out.lights),
+            images: &images,
+        };
+        Report::new(&facts).write(&dir.join("report.json"))?;
+        let _ = write!(md, "| {} | {} |", e.name(), out.lights);
+        for (pass, _) in PASSES {
+            let _ = write!(md, " {:.1} |", pass_ms(&out.timings, pass));
+        }
+        let rmse = reference.map_or("n/a".to_string(), |r| {
+            format!("{:.3e}", out.indirect.rmse(r))
+        });
+        let _ = writeln!(md, " {:.1} | {rmse} |", out.timings.total());
+    }
+    Ok(md)
 }
 
 fn write_table(
@@ -234,6 +305,7 @@ fn write_table(
     scene: &str,
     vpls: usize,
     rows: &[Row],
+    sampled: &str,
 ) -> Result<(), String> {
     let f = &args.frame;
     let mut md = String::new();
@@ -268,9 +340,9 @@ fn write_table(
     let fmt_opt = |v: Option<f32>| v.map_or("n/a".to_string(), |v| format!("{v:.3e}"));
     for r in rows {
         let (c, s, d) = (
-            ms(&r.timings, "culling"),
-            ms(&r.timings, "shading"),
-            ms(&r.timings, "denoise"),
+            pass_ms(&r.timings, "culling"),
+            pass_ms(&r.timings, "shading"),
+            pass_ms(&r.timings, "denoise"),
         );
         let _ = writeln!(
             md,
@@ -293,6 +365,7 @@ fn write_table(
         order.join(", ")
     );
     let _ = writeln!(md, "\nHeat maps (`*/heatmap.png`): brightness = VPLs per pixel (full at {}), colour = false discovery rate from blue (0) to red (1).", args.heat_max);
+    md.push_str(sampled);
     std::fs::write(args.out.join("report.md"), md).map_err(|e| e.to_string())
 }
 

@@ -247,6 +247,9 @@ impl GpuFrame {
             camera: p.camera.clone(),
             tracer,
             gbuffer: p.cpu_gbuffer(&self.ctx)?.clone(),
+            // The GPU's RSMs stay on the GPU: VSGLs (which need them on the CPU) are refused
+            // with --backend gpu.
+            maps: Vec::new(),
             vpls: p.vpls.clone(),
             direct: p.direct.clone(),
             timings: p.timings.clone(),
@@ -369,6 +372,7 @@ impl GpuFrame {
                 vpl_count,
                 timings,
                 metrics,
+                sampled_lights: None,
             },
             gpu_timings,
         ))

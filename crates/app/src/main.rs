@@ -9,7 +9,9 @@ mod plot;
 mod progress;
 mod render_cmd;
 mod report;
+mod sampled;
 mod sweep_cmd;
+mod vsgl_sweep;
 
 use clap::{Parser, Subcommand};
 
@@ -30,7 +32,8 @@ enum Command {
     Render(render_cmd::RenderArgs),
     /// Every culling strategy on the same VPLs: images, heat maps, report.md, side-by-side.
     Compare(compare_cmd::CompareArgs),
-    /// Speed against accuracy over δ per strategy: CSV, SVG plot, equal-time comparison.
+    /// Speed against accuracy over δ per strategy (CSV, SVG plot, equal-time comparison), or
+    /// with --shader vsgl error against light count for VSGLs and equal-count VPLs.
     Sweep(sweep_cmd::SweepArgs),
     /// Per-pass times over resolutions and VPL counts for each strategy: bench.md, bench.csv.
     Bench(bench_cmd::BenchArgs),

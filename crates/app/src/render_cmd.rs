@@ -1,5 +1,7 @@
 //! `slc render`.
-use crate::args::{culling_name, Backend, FrameArgs, PipelineArgs};
+use crate::args::{
+    culling_name, Backend, FrameArgs, ImportanceArgs, PipelineArgs, Shader, VSGL_CPU_ONLY,
+};
 use crate::gpu_frame::{check_visibility, gpu_strategy, GpuFrame};
 use crate::output::write_frame;
 use crate::progress::bar;
@@ -23,6 +25,11 @@ pub struct RenderArgs {
     pub frame: FrameArgs,
     #[command(flatten)]
     pub pipeline: PipelineArgs,
+    #[command(flatten)]
+    pub importance: ImportanceArgs,
+    /// With --shader vsgl: the number of VSGLs sampled from the RSMs.
+    #[arg(long, default_value_t = 1024)]
+    pub vsgls: u32,
     /// Output folder.
     #[arg(long, default_value = "out")]
     pub out: PathBuf,
@@ -46,10 +53,16 @@ pub struct RenderArgs {
 
 pub fn run(args: &RenderArgs) -> Result<(), String> {
     let scene = args.frame.load()?;
-    let method = match args.reference {
-        Some(Reference::Path) => Method::Path,
-        Some(Reference::Vpl) => Method::VplReference,
-        None => Method::Stochastic(args.pipeline.stochastic(
+    let method = match (args.reference, args.frame.shader) {
+        (Some(_), Shader::Vsgl) => {
+            return Err("--reference renders every VPL or paths, not VSGLs: \
+                        leave out --shader vsgl or --reference"
+                .into())
+        }
+        (Some(Reference::Path), _) => Method::Path,
+        (Some(Reference::Vpl), _) => Method::VplReference,
+        (None, Shader::Vsgl) => Method::Vsgl(args.importance.sampling(args.vsgls)),
+        (None, Shader::Vpl) => Method::Stochastic(args.pipeline.stochastic(
             args.delta,
             culling_name(&args.culling)?,
             args.metrics,
@@ -60,6 +73,9 @@ pub fn run(args: &RenderArgs) -> Result<(), String> {
     let (frame, gpu_timings, device) = match f.backend {
         Backend::Cpu => (render_cpu(&scene, &settings)?, None, Device::cpu()),
         Backend::Gpu => {
+            if f.shader == Shader::Vsgl {
+                return Err(VSGL_CPU_ONLY.into());
+            }
             if args.reference.is_some() {
                 return Err("references are rendered on the CPU only; use --backend cpu".into());
             }
@@ -85,17 +101,21 @@ pub fn run(args: &RenderArgs) -> Result<(), String> {
         timings,
         gpu_timings: gpu_timings.as_ref(),
         metrics: frame.metrics.as_ref(),
+        sampled_lights: frame.sampled_lights,
         images: &images,
     };
     Report::new(&facts).write(&args.out.join("report.json"))?;
     let m = total.mean();
+    let lights = match frame.sampled_lights {
+        Some(n) if f.shader == Shader::Vsgl => format!("{n} VSGLs of {} samples", args.vsgls),
+        _ => format!("{} VPLs", frame.vpl_count),
+    };
     println!(
-        "{} ({}): {}x{}, {} VPLs, {:.0} ms; mean total radiance ({:.4}, {:.4}, {:.4}); wrote {}",
+        "{} ({}): {}x{}, {lights}, {:.0} ms; mean total radiance ({:.4}, {:.4}, {:.4}); wrote {}",
         scene.name,
         device.adapter,
         f.width,
         f.height,
-        frame.vpl_count,
         timings.total(),
         m.x,
         m.y,

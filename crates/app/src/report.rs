@@ -3,7 +3,7 @@
 use crate::args::FrameArgs;
 use serde::Serialize;
 use slc_core::{Image, Scene};
-use slc_cpu_ref::{Method, Timings};
+use slc_cpu_ref::{Importance, Method, Timings};
 use slc_cull::metrics::CullMetrics;
 use std::collections::BTreeMap;
 use std::path::Path;
@@ -26,7 +26,19 @@ pub struct Report {
     pub seed: u32,
     /// The culling strategy; `null` for the references.
     pub culling: Option<&'static str>,
+    /// `vsgl` for virtual spherical Gaussian lights, `vpl` otherwise.
     pub shader: &'static str,
+    /// N, the number of sampled lights (VSGLs, or VPLs sampled by the same importance at equal
+    /// count); `null` for the other methods.
+    pub light_samples: Option<u32>,
+    /// The importance the lights were sampled with, `flux` or `bidirectional`; `null` for the
+    /// other methods.
+    pub importance: Option<&'static str>,
+    /// VSGLs generated on the G-buffer for the bidirectional importance; `null` otherwise.
+    pub camera_vsgls: Option<u32>,
+    /// Distinct lights shaded (samples of the same cluster merged; a sampled texel gives up to
+    /// two VPLs); `null` for the other methods.
+    pub sampled_lights: Option<usize>,
     /// K of K x K interleaved sampling; `null` for the references.
     pub interleave: Option<u32>,
     /// Whether the cross bilateral filter ran; `null` for the references.
@@ -102,6 +114,8 @@ pub struct FrameFacts<'a> {
     /// The GPU's timestamp times of its passes, where it has them.
     pub gpu_timings: Option<&'a Timings>,
     pub metrics: Option<&'a CullMetrics>,
+    /// Distinct sampled lights, for the VSGL and sampled-VPL methods.
+    pub sampled_lights: Option<usize>,
     pub images: &'a [(&'static str, &'a Image)],
 }
 
@@ -119,6 +133,10 @@ impl Report {
             Method::Stochastic(s) => Some(s),
             _ => None,
         };
+        let sampling = match f.method {
+            Method::Vsgl(l) | Method::SampledVpls(l) => Some(l),
+            _ => None,
+        };
         Report {
             scene: f.scene.name.clone(),
             backend: f.device.backend,
@@ -130,13 +148,23 @@ impl Report {
             delta: stochastic.map(|s| s.delta),
             seed: f.args.seed,
             culling: stochastic.map(|s| s.culling),
-            shader: "vpl",
+            shader: match f.method {
+                Method::Vsgl(_) => "vsgl",
+                _ => "vpl",
+            },
+            light_samples: sampling.map(|l| l.count),
+            importance: sampling.map(|l| l.importance.name()),
+            camera_vsgls: sampling.and_then(|l| match l.importance {
+                Importance::Bidirectional { camera_vsgls } => Some(camera_vsgls),
+                Importance::Flux => None,
+            }),
+            sampled_lights: f.sampled_lights,
             interleave: stochastic.map(|s| s.interleave),
             denoise: stochastic.map(|s| s.denoise),
             reference: match f.method {
                 Method::VplReference => Some("vpl"),
                 Method::Path => Some("path"),
-                Method::Stochastic(_) => None,
+                Method::Stochastic(_) | Method::Vsgl(_) | Method::SampledVpls(_) => None,
             },
             visibility: f.args.visibility || f.method == Method::Path,
             spp: f.spp,

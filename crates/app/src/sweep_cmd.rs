@@ -5,10 +5,12 @@
 //! p = 1. Writes `sweep.csv`, `sweep.svg` (RMSE against time, one curve per strategy) and an
 //! equal-time comparison (`equal_time.md`, `equal_time.png`) in the spirit of the supplemental's
 //! Fig. 2: each strategy at the δ whose time is closest to the reference strategy's median run.
-use crate::args::{culling_names, FrameArgs, PipelineArgs};
+//! With `--shader vsgl` it sweeps light counts instead ([`crate::vsgl_sweep`]).
+use crate::args::{culling_names, FrameArgs, ImportanceArgs, PipelineArgs, Shader};
 use crate::output::to_srgb8;
 use crate::plot::{line_plot_svg, Series};
 use crate::progress::bar;
+use crate::sampled::pass_ms;
 use clap::Args;
 use image::RgbImage;
 use slc_core::Image;
@@ -42,6 +44,15 @@ pub struct SweepArgs {
     /// Timing repetitions per point; the fastest is kept.
     #[arg(long, default_value_t = 1)]
     pub repeat: u32,
+    #[command(flatten)]
+    pub importance: ImportanceArgs,
+    /// With --shader vsgl: light counts N, comma separated (N VSGLs against N sampled VPLs).
+    #[arg(long, value_delimiter = ',', default_value = "256,1024,4096,16384")]
+    pub vsgls: Vec<u32>,
+    /// With --shader vsgl: point sets (seeds seed, seed + 1, ...) whose squared errors are
+    /// averaged per N.
+    #[arg(long, default_value_t = 1)]
+    pub seeds: u32,
 }
 
 struct Point {
@@ -62,6 +73,9 @@ impl Point {
 pub fn run(args: &SweepArgs) -> Result<(), String> {
     if args.frame.backend != crate::args::Backend::Cpu {
         return Err("slc sweep runs on the CPU only in this version; use --backend cpu".into());
+    }
+    if args.frame.shader == Shader::Vsgl {
+        return crate::vsgl_sweep::run(args);
     }
     let scene = args.frame.load_renderable()?;
     let names = culling_names(&args.culling)?;
@@ -112,18 +126,11 @@ pub fn run(args: &SweepArgs) -> Result<(), String> {
             for _ in 0..args.repeat {
                 let out = shade_stochastic(&p, &s, f.seed, f.visibility, &|_| {})
                     .map_err(|e| e.to_string())?;
-                let t = |n: &str| {
-                    out.timings
-                        .0
-                        .iter()
-                        .find(|(k, _)| *k == n)
-                        .map_or(0.0, |(_, v)| *v)
-                };
                 let point = Point {
                     strategy,
                     delta,
-                    culling_ms: t("culling"),
-                    shading_ms: t("shading"),
+                    culling_ms: pass_ms(&out.timings, "culling"),
+                    shading_ms: pass_ms(&out.timings, "shading"),
                     rmse: out.indirect.rmse(&reference),
                     total: p.direct.add(&out.indirect),
                 };

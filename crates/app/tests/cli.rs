@@ -133,6 +133,125 @@ fn sweep_writes_csv_plot_and_equal_time_comparison() {
 }
 
 #[test]
+fn render_with_vsgls_reports_the_sampled_lights() {
+    let out = out_dir("render-vsgl");
+    run_ok(
+        "render --shader vsgl --vsgls 32 --width 16 --height 12 --rsm 4 --seed 2",
+        &out,
+    );
+    let report: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("report.json")).unwrap()).unwrap();
+    assert_eq!(report["shader"], "vsgl", "{report}");
+    assert_eq!(report["light_samples"], 32, "{report}");
+    assert_eq!(report["importance"], "flux", "{report}");
+    assert!(report["camera_vsgls"].is_null() && report["delta"].is_null());
+    assert!(report["culling"].is_null() && report["interleave"].is_null());
+    let lights = report["sampled_lights"].as_u64().unwrap();
+    assert!(lights > 0 && lights <= 32, "{report}");
+    for pass in [
+        "vsgl_mip",
+        "importance_map",
+        "light_sampling",
+        "light_shading",
+    ] {
+        assert!(report["timings_ms"][pass].is_number(), "{pass}: {report}");
+    }
+    assert!(report["image_means"]["indirect"][1].as_f64().unwrap() > 0.0);
+    let out2 = out_dir("render-vsgl-bidirectional");
+    run_ok(
+        "render --shader vsgl --vsgls 32 --vsgl-importance bidirectional --camera-vsgls 16 --width 16 --height 12 --rsm 4",
+        &out2,
+    );
+    let report = std::fs::read_to_string(out2.join("report.json")).unwrap();
+    assert!(
+        report.contains("\"importance\": \"bidirectional\"")
+            && report.contains("\"camera_vsgls\": 16"),
+        "{report}"
+    );
+    std::fs::remove_dir_all(&out).ok();
+    std::fs::remove_dir_all(&out2).ok();
+}
+
+#[test]
+fn compare_with_vsgls_adds_vsgl_and_equal_count_vpl_folders() {
+    let out = out_dir("compare-vsgl");
+    run_ok("compare --shader vsgl --vsgls 24 --width 24 --height 16 --rsm 4 --interleave 2 --culling ellipsoid", &out);
+    for dir in ["vsgl", "vpl_sampled"] {
+        for f in ["total.exr", "total.png", "report.json"] {
+            assert!(out.join(dir).join(f).is_file(), "{dir}/{f} missing");
+        }
+    }
+    let report = std::fs::read_to_string(out.join("vsgl/report.json")).unwrap();
+    assert!(report.contains("\"shader\": \"vsgl\""), "{report}");
+    let md = std::fs::read_to_string(out.join("report.md")).unwrap();
+    let section = md
+        .split("## Sampled lights")
+        .nth(1)
+        .expect("no sampled-lights section");
+    let rows: Vec<&str> = section
+        .lines()
+        .filter(|l| l.starts_with("| vsgl") || l.starts_with("| vpl_sampled"))
+        .collect();
+    assert_eq!(rows.len(), 2, "{md}");
+    for row in rows {
+        // The last column is the RMSE against every VPL: a number.
+        let cells: Vec<&str> = row.split('|').map(str::trim).collect();
+        let rmse: f64 = cells[cells.len() - 2].parse().unwrap_or(f64::NAN);
+        assert!(rmse.is_finite() && rmse > 0.0, "{row}");
+    }
+    std::fs::remove_dir_all(&out).ok();
+}
+
+#[test]
+fn sweep_with_vsgls_writes_error_against_light_count() {
+    let out = out_dir("sweep-vsgl");
+    run_ok(
+        "sweep --shader vsgl --vsgls 8,32 --seeds 2 --width 16 --height 12 --rsm 4",
+        &out,
+    );
+    let csv = std::fs::read_to_string(out.join("vsgl_sweep.csv")).unwrap();
+    assert_eq!(csv.lines().count(), 1 + 2 * 2, "{csv}");
+    for line in csv.lines().skip(1) {
+        let cells: Vec<&str> = line.split(',').collect();
+        assert_eq!(cells.len(), 9, "{line}");
+        assert!(["vsgl", "vpl_sampled"].contains(&cells[1]), "{line}");
+        let rmse: f64 = cells[8].parse().unwrap();
+        assert!(rmse.is_finite() && rmse > 0.0, "{line}");
+    }
+    let md = std::fs::read_to_string(out.join("vsgl_sweep.md")).unwrap();
+    assert!(
+        md.contains("| 32 | ") && md.contains("VSGL overhead"),
+        "{md}"
+    );
+    let svg = std::fs::read_to_string(out.join("vsgl_sweep.svg")).unwrap();
+    assert!(svg.contains("vsgl") && svg.contains("vpl_sampled"));
+    std::fs::remove_dir_all(&out).ok();
+}
+
+#[test]
+fn vsgl_options_that_do_not_fit_are_clear_errors() {
+    for (args, says) in [
+        ("render --shader vsgl --reference vpl", "--reference"),
+        ("render --shader vsgl --lobes diffuse", "lobes"),
+        (
+            "render --shader vsgl --vsgl-importance bidirectional --camera-vsgls 0",
+            "camera VSGLs",
+        ),
+        ("bench --shader vsgl", "sweep --shader vsgl"),
+    ] {
+        let o = slc()
+            .args(args.split(' '))
+            .args(["--width", "8", "--height", "8", "--rsm", "2", "--out"])
+            .arg(out_dir("vsgl-refused"))
+            .output()
+            .unwrap();
+        assert!(!o.status.success(), "{args}");
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert!(err.contains(says), "{args}: {err}");
+    }
+}
+
+#[test]
 fn bench_writes_a_row_per_resolution_vpl_count_and_strategy() {
     let out = out_dir("bench");
     run_ok(
@@ -281,7 +400,11 @@ fn gpu_render_agrees_with_the_cpu_render_and_names_its_adapter() {
 
 #[test]
 fn gpu_backend_refuses_what_it_lacks_and_suggests_the_cpu() {
-    for extra in [&["--visibility"][..], &["--reference", "path"]] {
+    for extra in [
+        &["--visibility"][..],
+        &["--reference", "path"],
+        &["--shader", "vsgl"],
+    ] {
         let o = slc()
             .args([
                 "render",

@@ -14,6 +14,9 @@ pub mod stream {
     pub const PIXEL: u32 = 2;
     /// The interleaved-sampling subregion of a VPL, index = VPL id.
     pub const INTERLEAVE: u32 = 3;
+    /// The random shift of a set of VSGL or resampled-VPL sample points (VSGL section 4.2),
+    /// index = the set (lights, or the camera side of the bidirectional importance).
+    pub const VSGL_POINTS: u32 = 4;
 }
 
 /// The PCG hash of Jarzynski and Olano, "Hash Functions for GPU Rendering", JCGT 9(3), 2020.

@@ -12,7 +12,10 @@
 //! - direct light with shadow rays ([`direct`]);
 //! - shading by every VPL, exactly or with the stochastic estimator of eq. (3), with or without
 //!   VPL-to-pixel shadow rays ([`vpl_shading`]);
-//! - a path-traced one-bounce reference ([`path`]).
+//! - a path-traced one-bounce reference ([`path`]);
+//! - virtual spherical Gaussian lights (Tokuyoshi 2015) from mipmapped RSMs, sampled by
+//!   filtered importance and shaded analytically, and VPLs sampled by the same importance at
+//!   equal count ([`vsgl`], [`sampled_lights`]).
 //!
 //! [`render()`] runs a whole frame ([`prepare`] and [`shade_stochastic`] its stages). Its images agree with an independent path tracer (Mitsuba 3)
 //! within noise: see `tests/reference_cornell_a.rs` at the workspace root.
@@ -40,6 +43,7 @@ pub mod gbuffer;
 pub mod path;
 pub mod render;
 pub mod rsm;
+pub mod sampled_lights;
 pub mod sampling;
 pub mod tracer;
 pub mod vpl_shading;
@@ -51,6 +55,7 @@ pub use render::{
     prepare, render, shade_stochastic, Frame, Method, Prepared, RenderError, RenderSettings,
     Stochastic, StochasticFrame, Timings,
 };
+pub use sampled_lights::{Importance, LightSampling, SampledFrame};
 pub use tracer::Tracer;
 pub use vpl_shading::VplEstimator;
 pub use vpls::LobeSelection;

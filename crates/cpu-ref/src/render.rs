@@ -1,6 +1,7 @@
 //! One frame of the CPU reference: G-buffer, reflective shadow maps, VPLs, direct light and
-//! indirect light by VPLs (exact, or stochastic with culling, interleaving and denoising) or by
-//! path tracing, averaged over `spp` passes.
+//! indirect light by VPLs (exact, or stochastic with culling, interleaving and denoising), by
+//! lights sampled from the RSMs (VSGLs, or VPLs at equal count), or by path tracing, averaged
+//! over `spp` passes.
 //!
 //! The stages are public so that a comparison can prepare a frame once and shade it with
 //! every culling strategy from the same G-buffer, VPLs and ξ ([`prepare`], [`shade_stochastic`]).
@@ -8,10 +9,12 @@ use crate::denoise::{cross_bilateral, BilateralParams};
 use crate::direct::shade_direct;
 use crate::gbuffer::{trace_gbuffer, PixelSample};
 use crate::path::trace_pixel_sample;
-use crate::rsm::{trace_rsm, TexelSample};
+use crate::rsm::{trace_rsm, Rsm, TexelSample};
+use crate::sampled_lights::{shade_sampled_vpls, shade_vsgl, LightSampling};
 use crate::tracer::Tracer;
 use crate::vpl_shading::{shade_lists, shade_vpls, VplEstimator};
 use crate::vpls::{generate_vpls, LobeSelection};
+use crate::vsgl::VsglError;
 use rayon::prelude::*;
 use slc_core::rng::pcg_hash;
 use slc_core::{
@@ -44,7 +47,16 @@ pub enum Method {
     Stochastic(Stochastic),
     /// Path-traced one-bounce reference (no VPLs).
     Path,
+    /// Virtual spherical Gaussian lights sampled from the mipmapped RSMs (Tokuyoshi 2015,
+    /// [`crate::sampled_lights::shade_vsgl`]).
+    Vsgl(LightSampling),
+    /// VPLs of texels sampled with the same importance and points as [`Method::Vsgl`], the
+    /// equal-count VPL estimator ([`crate::sampled_lights::shade_sampled_vpls`]).
+    SampledVpls(LightSampling),
 }
+
+/// The largest number of sampled lights (or camera-side VSGLs) a frame accepts.
+pub const MAX_SAMPLED_LIGHTS: u32 = 1 << 24;
 
 /// What to render.
 #[derive(Clone, Debug, PartialEq)]
@@ -75,6 +87,8 @@ pub struct Frame {
     pub timings: Timings,
     /// Culling metrics of the last pass, when asked for.
     pub metrics: Option<CullMetrics>,
+    /// Distinct sampled lights shaded in the last pass (VSGL and sampled-VPL methods).
+    pub sampled_lights: Option<usize>,
 }
 
 /// Errors of rendering.
@@ -86,6 +100,8 @@ pub enum RenderError {
     Bounds(#[from] slc_bounds::BoundsError),
     #[error(transparent)]
     Cull(#[from] CullError),
+    #[error(transparent)]
+    Vsgl(#[from] VsglError),
     #[error("invalid render settings: {0}")]
     Settings(String),
 }
@@ -116,6 +132,24 @@ impl RenderSettings {
                     s.culling,
                     slc_cull::CULLER_NAMES.join(", ")
                 )));
+            }
+        }
+        if let Method::Vsgl(l) | Method::SampledVpls(l) = self.method {
+            if l.count > MAX_SAMPLED_LIGHTS {
+                return Err(RenderError::Settings(format!(
+                    "at most {MAX_SAMPLED_LIGHTS} sampled lights"
+                )));
+            }
+            if let crate::sampled_lights::Importance::Bidirectional { camera_vsgls } = l.importance
+            {
+                if camera_vsgls == 0 || camera_vsgls > MAX_SAMPLED_LIGHTS {
+                    return Err(RenderError::Settings(format!(
+                        "the bidirectional importance needs 1..={MAX_SAMPLED_LIGHTS} camera VSGLs"
+                    )));
+                }
+            }
+            if self.lobes != LobeSelection::Both {
+                return bad("sampled lights (VSGLs) carry both lobes: the lobes must be both");
             }
         }
         Ok(())
@@ -158,6 +192,8 @@ pub struct Prepared {
     pub camera: Camera,
     pub tracer: Tracer,
     pub gbuffer: GBuffer,
+    /// The reflective shadow maps, one per light in the scene's order.
+    pub maps: Vec<Rsm>,
     pub vpls: Vec<Vpl>,
     pub direct: Image,
     pub timings: Timings,
@@ -206,6 +242,7 @@ pub fn prepare(
         camera,
         tracer,
         gbuffer,
+        maps,
         vpls,
         direct,
         timings,
@@ -273,7 +310,7 @@ pub fn render(
     let mut tracer = Some(timings.time("bvh", || Tracer::new(scene)));
     let mut direct = Image::new(w, h);
     let mut indirect = Image::new(w, h);
-    let (mut vpl_count, mut metrics) = (0, None);
+    let (mut vpl_count, mut metrics, mut sampled_lights) = (0, None, None);
     for pass in 0..settings.spp {
         if settings.method == Method::Path {
             let camera = scene.camera_or_default();
@@ -317,12 +354,23 @@ pub fn render(
         );
         timings.merge(&p.timings);
         vpl_count = p.vpls.len();
+        let seed = jitter.map_or(settings.seed, |j| settings.seed ^ pcg_hash(j));
         let ind = match settings.method {
             Method::Stochastic(s) => {
-                let seed = jitter.map_or(settings.seed, |j| settings.seed ^ pcg_hash(j));
                 let f = shade_stochastic(&p, &s, seed, settings.visibility, progress)?;
                 timings.merge(&f.timings);
                 metrics = f.metrics;
+                f.indirect
+            }
+            Method::Vsgl(l) | Method::SampledVpls(l) => {
+                let shade = if matches!(settings.method, Method::Vsgl(_)) {
+                    shade_vsgl
+                } else {
+                    shade_sampled_vpls
+                };
+                let f = shade(&p, &l, seed, settings.visibility, progress)?;
+                timings.merge(&f.timings);
+                sampled_lights = Some(f.lights);
                 f.indirect
             }
             _ => timings.time("vpl_shading", || {
@@ -350,5 +398,6 @@ pub fn render(
         vpl_count,
         timings,
         metrics,
+        sampled_lights,
     })
 }

@@ -26,6 +26,11 @@ pub struct RsmTexel {
     pub omega_i: Vec3,
     /// Radiant flux carried by the texel's photon (W per channel).
     pub flux: Vec3,
+    /// Cross-section of the light's beam through the texel where it meets the surface (m²):
+    /// the texel's solid angle times the squared distance (perspective maps) or its area
+    /// (orthographic maps). The surface patch the texel stands for is this area over the
+    /// cosine of incidence.
+    pub cross_section: f32,
     pub brdf: Brdf,
 }
 
@@ -153,7 +158,9 @@ pub fn trace_rsm(
             let e = face.extent;
             let x = (-1.0 + (i as f32 + s) * texel_size) * e;
             let y = (1.0 - (j as f32 + t) * texel_size) * e;
-            let (ray_origin, dir, flux) = if orthographic {
+            // The beam's cross-section is `beam` (orthographic) or `beam` times the squared
+            // distance (perspective, `beam` a solid angle).
+            let (ray_origin, dir, flux, beam) = if orthographic {
                 let area = (texel_size * e) * (texel_size * e);
                 let irradiance = match *light {
                     Light::Directional { irradiance, .. } => irradiance,
@@ -163,6 +170,7 @@ pub fn trace_rsm(
                     origin + x * face.right + y * face.up,
                     face.forward,
                     irradiance * area,
+                    area,
                 )
             } else {
                 let dir = (face.forward + x * face.right + y * face.up).normalize();
@@ -191,18 +199,24 @@ pub fn trace_rsm(
                         unreachable!("directional lights are orthographic")
                     }
                 };
-                (origin, dir, intensity * solid_angle)
+                (origin, dir, intensity * solid_angle, solid_angle)
             };
             if flux.max_element() <= 0.0 {
                 return None;
             }
             let hit = tracer.intersect(scene, ray_origin, dir, f32::INFINITY)?;
+            let cross_section = if orthographic {
+                beam
+            } else {
+                beam * hit.distance * hit.distance
+            };
             hit.front.then_some(RsmTexel {
                 position: hit.position,
                 normal: hit.shading_normal,
                 geometric_normal: hit.geometric_normal,
                 omega_i: -dir,
                 flux,
+                cross_section,
                 brdf: hit.brdf,
             })
         })

@@ -12,11 +12,14 @@ pub fn sg_integral(sharpness: f32) -> f32 {
     integral_f64(f64::from(sharpness)) as f32
 }
 
-/// [`sg_integral`] in `f64`, for the combined sharpness of two lobes.
+/// [`sg_integral`] in `f64`, for the combined sharpness of two lobes; above λ = 20,
+/// `1 − e^{−2λ}` is 1 to `f64` precision.
 pub(crate) fn integral_f64(sharpness: f64) -> f64 {
     let l = sharpness.max(0.0);
     if l == 0.0 {
         4.0 * PI
+    } else if l > 20.0 {
+        TAU / l
     } else {
         -TAU * (-2.0 * l).exp_m1() / l
     }

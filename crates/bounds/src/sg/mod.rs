@@ -8,12 +8,16 @@
 //! - [`ToksvigSum`]: Toksvig filtering of a set of lobes into one (VSGL section 3.1.1) through
 //!   mean vectors, with the paper's length `λ/(λ+1)` ([`toksvig_mean_length`]) and the exact
 //!   one `coth λ − 1/λ` ([`exact_mean_length`]), and their inverses.
-//! - [`clamped_cosine_sg`] and [`SpecularLobeSg`]: SG approximations of the receiving surface's
-//!   diffuse cosine lobe and of its GGX specular lobe for a view direction (warped NDF of Wang et
-//!   al. 2009), combined by [`SgSurface`] into the analytic shading of VSGL eq. (2) with the
-//!   incoming radiance of eq. (5).
+//! - [`clamped_cosine_sg`]: the SG fit of the clamped cosine (its sharpness shapes the diffuse
+//!   lobe of a VPL's radiant intensity).
+//! - [`SphericalGaussian::irradiance`] ([`normalized_sg_irradiance`]): the diffuse receiver's
+//!   `∫ L_in(ω) max(ω·n, 0) dω` for an SG light, clamped at the horizon (Hill's fit with exact
+//!   limits), and [`SpecularLobeSg`], its GGX specular lobe for a view direction (warped NDF of
+//!   Wang et al. 2009), combined by [`SgSurface`] into the analytic shading of VSGL eq. (2)
+//!   with the incoming radiance of eq. (5).
 mod cosine;
 mod integral;
+mod irradiance;
 mod lobe;
 mod product;
 #[cfg(test)]
@@ -24,6 +28,7 @@ mod toksvig;
 
 pub use cosine::{clamped_cosine_sg, COSINE_LOBE_AMPLITUDE, COSINE_LOBE_SHARPNESS};
 pub use integral::sg_integral;
+pub use irradiance::normalized_sg_irradiance;
 pub use lobe::SphericalGaussian;
 pub use shading::SgSurface;
 pub use specular::{ggx_ndf_sg, SpecularLobeSg};

@@ -67,10 +67,13 @@ fn clamp_length(r: f32) -> f32 {
     }
 }
 
-/// `coth λ − 1/λ`, with its series below 1e-3 where the difference cancels.
-fn langevin(l: f64) -> f64 {
+/// `coth λ − 1/λ`, with its series below 1e-3 where the difference cancels; above λ = 20,
+/// `coth λ = 1 + 2e^{−2λ} + …` is 1 to `f64` precision.
+pub(crate) fn langevin(l: f64) -> f64 {
     if l < 1e-3 {
         l / 3.0 - l * l * l / 45.0
+    } else if l > 20.0 {
+        1.0 - 1.0 / l
     } else {
         1.0 / l.tanh() - 1.0 / l
     }

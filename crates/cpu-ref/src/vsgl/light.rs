@@ -64,6 +64,17 @@ impl Vsgl {
         })
     }
 
+    /// The VSGL with its radiant intensity and weight multiplied by `factor` (position and
+    /// variance kept): a sampled cluster with its Monte Carlo weight `1/(N P)` (section 4.2).
+    pub fn scaled(self, factor: f32) -> Self {
+        Self {
+            c_diffuse: self.c_diffuse * factor,
+            c_specular: self.c_specular * factor,
+            weight: self.weight * factor,
+            ..self
+        }
+    }
+
     /// The radiant intensity `I_v(ω) ≈ c_d G(ω; ξ_d, λ_d) + c_s G(ω; ξ_s, λ_s)` towards the
     /// unit direction `omega` (section 3.1.1), per channel.
     pub fn intensity(&self, omega: Vec3) -> Vec3 {

@@ -12,8 +12,11 @@ use slc_bounds::{BoundsError, SphericalGaussian, ToksvigSum};
 /// - (c) diffuse lobe and (d) specular lobe: [`ToksvigSum`]s holding `Σ w_i ξ̄_i` and `Σ w_i`
 ///   with the scalar weight `w_i` the total of the RGB channels of (a) resp. (b) ("for
 ///   simplicity", Fig. 4), `ξ̄_i` the lobe's mean vector under the chosen [`MeanMap`];
-/// - (e) weighted position `Σ w_i x_i` and (f) weighted squared norm `Σ w_i |x_i|²`, with
-///   `w_i` the total of the RGB channels of `Φ_i (R_{d,i} + R_{s,i})` (section 3.1.2).
+/// - (e) weighted position `Σ w_i x_i` and (f) weighted squared norm `Σ w_i (|x_i|² + s_i²)`,
+///   with `w_i` the total of the RGB channels of `Φ_i (R_{d,i} + R_{s,i})` (section 3.1.2) and
+///   `s_i²` the variance of the surface patch texel `i` stands for ([`footprint_variance`]):
+///   by the law of total variance, `σ_v²` is then the variance of the cluster's patches, not
+///   only of its texel centres, and a single texel is a small area light rather than a point.
 ///
 /// Every field is a plain sum, so clusters add ([`ClusterSums::merge`]) as mip levels do.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -63,7 +66,7 @@ impl ClusterSums {
         sums.diffuse_weight = diffuse_weight;
         sums.specular_weight = specular_weight;
         sums.weighted_position = w * x;
-        sums.weighted_squared_norm = w * x.length_squared();
+        sums.weighted_squared_norm = w * (x.length_squared() + footprint_variance(texel));
         Ok(sums)
     }
 
@@ -81,6 +84,21 @@ impl ClusterSums {
     pub fn weight(&self) -> f64 {
         (self.diffuse_weight + self.specular_weight).element_sum()
     }
+}
+
+/// The smallest cosine of incidence of [`footprint_variance`]: a patch is stretched at most
+/// 100 times (grazing texels would otherwise have an unbounded variance).
+const MIN_FOOTPRINT_COS: f64 = 0.01;
+
+/// The positional variance of the surface patch an RSM texel stands for: its beam's square
+/// cross-section `a²` ([`RsmTexel::cross_section`]) meets the surface at the cosine
+/// `c = |n_g · ω_i|` (at least [`MIN_FOOTPRINT_COS`]), a rectangle of sides `a` and `a/c`,
+/// whose uniform distribution has the variance `(a² + a²/c²)/12` (the sum of `side²/12` over
+/// its two axes).
+pub fn footprint_variance(texel: &RsmTexel) -> f64 {
+    let a2 = f64::from(texel.cross_section.max(0.0));
+    let c = f64::from(texel.geometric_normal.dot(texel.omega_i).abs()).max(MIN_FOOTPRINT_COS);
+    a2 * (1.0 + 1.0 / (c * c)) / 12.0
 }
 
 /// The normalized `lobe` scaled to integral `weight` (a zero weight adds nothing).

@@ -63,9 +63,12 @@ fn direct_vsgl(rsm: &Rsm, face: u32, x: [u32; 2], y: [u32; 2], map: MeanMap) -> 
             ms += s.element_sum() * mean(l.specular_lobe);
             let wi = (d + s).element_sum();
             let p = t.position.as_dvec3();
+            // The patch of a texel of cross-section a² at incidence c: (a² + a²/c²)/12.
+            let c = f64::from(t.geometric_normal.dot(t.omega_i).abs()).max(0.01);
+            let patch = f64::from(t.cross_section) * (1.0 + 1.0 / (c * c)) / 12.0;
             w += wi;
             wx += wi * p;
-            wxx += wi * p.length_squared();
+            wxx += wi * (p.length_squared() + patch);
         }
     }
     let lobe = |m: DVec3, rgb: DVec3| {
@@ -168,7 +171,8 @@ fn mip_texels_equal_the_vsgl_of_the_texels_they_cover() {
 
 #[test]
 fn a_single_texel_is_its_vpl() {
-    // (b) Level 0: μ is the position, σ² the floor, c·A(λ) the texel's RGB weights.
+    // (b) Level 0: μ is the position, σ² the variance of its patch (or the floor), c·A(λ) the
+    // texel's RGB weights.
     let rsm = &default_rsms(8)[0];
     let mip = MipRsm::build(rsm, MeanMap::Toksvig).unwrap();
     let mut lit = 0;
@@ -183,7 +187,11 @@ fn a_single_texel_is_its_vpl() {
         }
         lit += 1;
         assert!(close3(v.mu, t.position, 1e-6, 1e-6), "{v:?} {t:?}");
-        assert_eq!(v.sigma2, FLOOR);
+        let patch = footprint_variance(t) as f32;
+        assert!(
+            patch > 0.0 && close(v.sigma2, patch.max(FLOOR), 1e-3, 0.0),
+            "{v:?}"
+        );
         let cd = v.c_diffuse * sg_integral(v.lambda_diffuse);
         let cs = v.c_specular * sg_integral(v.lambda_specular);
         assert!(
@@ -209,7 +217,7 @@ fn a_single_texel_is_its_vpl() {
             assert!(close3(v.xi_specular, l.specular_lobe.axis, 0.0, 1e-4));
         }
         let [ed, es] = v.emitted_coefficients();
-        let k = 1.0 / (2.0 * core::f32::consts::PI * FLOOR);
+        let k = 1.0 / (2.0 * core::f32::consts::PI * v.sigma2);
         assert!(close3(ed, v.c_diffuse * k, 1e-6, 0.0) && close3(es, v.c_specular * k, 1e-6, 0.0));
     }
     assert!(lit > 10, "{lit} lit texels");
@@ -222,6 +230,7 @@ fn plane_texel(position: Vec3, flux: f32) -> RsmTexel {
         geometric_normal: Vec3::Z,
         omega_i: Vec3::new(0.3, 0.0, 1.0).normalize(),
         flux: Vec3::splat(flux),
+        cross_section: 0.0,
         brdf: Brdf {
             kd: Vec3::new(0.5, 0.4, 0.3),
             fresnel: Fresnel::Schlick(Vec3::splat(0.04)),
@@ -384,4 +393,61 @@ fn the_specular_lobe_approximates_the_true_intensity() {
             }
         }
     }
+}
+
+#[test]
+fn flux_importance_is_the_mip_weight() {
+    // The paper's p(s) ∝ Φ (R_d + R_s) computed from the RSM equals the mip's positional
+    // weights, at every level.
+    for rsm in default_rsms(6) {
+        let mip = MipRsm::build(&rsm, MeanMap::Toksvig).unwrap();
+        let from_rsm = ImportanceMap::flux(&rsm).unwrap();
+        assert_eq!(from_rsm, ImportanceMap::from_mip(&mip));
+        for face in 0..mip.faces() {
+            for level in 0..mip.levels() {
+                let size = mip.size(level);
+                for y in 0..size {
+                    for x in 0..size {
+                        let w = mip.sums(face, level, x, y).weight();
+                        let m = from_rsm.mass(face, level, x, y);
+                        assert!((w - m).abs() <= 1e-12 * w.max(1.0), "{w} {m}");
+                    }
+                }
+            }
+        }
+    }
+}
+
+#[test]
+fn texel_patches_add_their_variance() {
+    // A texel of cross-section 1.2 met at cos 0.5 stands for a 1.095 × 2.191 rectangle:
+    // variance 1.2 (1 + 4)/12 = 0.5. Two such texels 3 apart with weights 1 and 3 have
+    // σ² = 27/16 (their centres) + 0.5 (their patches), the law of total variance.
+    let mut a = plane_texel(Vec3::new(1.0, 1.0, 0.0), 1.0);
+    a.cross_section = 1.2;
+    a.omega_i = Vec3::new(0.75f32.sqrt(), 0.0, 0.5);
+    assert!((footprint_variance(&a) - 0.5).abs() < 1e-6);
+    let mut b = a;
+    b.position = Vec3::new(4.0, 1.0, 0.0);
+    b.flux = Vec3::splat(3.0);
+    let mut texels = vec![None; 4];
+    texels[0] = Some(a);
+    texels[3] = Some(b);
+    let rsm = Rsm {
+        resolution: 2,
+        faces: 1,
+        texels,
+    };
+    let mip = MipRsm::build(&rsm, MeanMap::Toksvig).unwrap();
+    assert!(close(
+        mip.vsgl(0, 0, 0, 0, 0.0).unwrap().sigma2,
+        0.5,
+        1e-5,
+        0.0
+    ));
+    let top = mip.vsgl(0, 1, 0, 0, 0.0).unwrap();
+    assert!(close(top.sigma2, 27.0 / 16.0 + 0.5, 1e-5, 0.0), "{top:?}");
+    // At grazing incidence the stretch is capped at 100.
+    a.omega_i = Vec3::X;
+    assert!((footprint_variance(&a) - 1.2 * (1.0 + 1e4) / 12.0).abs() < 1e-3);
 }

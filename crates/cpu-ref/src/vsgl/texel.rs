@@ -15,7 +15,7 @@ pub struct TexelLobes {
     /// `G(ω; n, 2.133)/A(2.133)`: the shape of the cosine SG fit
     /// ([`slc_bounds::sg::clamped_cosine_sg`]) with unit integral. So `R_d G/A` keeps the
     /// energy of the true intensity exactly (the un-normalized fit `1.17 G` integrates 8.2 %
-    /// above π) at the price of a peak 7.5 % below `kd/π` (`1/A(2.133) = 0.3443` vs `1/π`).
+    /// above π) at the price of a peak 8.2 % above `kd/π` (`1/A(2.133) = 0.3443` vs `1/π`).
     pub diffuse_lobe: SphericalGaussian,
     /// `R_s`: the integral of the specular SG approximation of `ρ_s(ω'_i, ω) ⟨ω, n⟩`, per
     /// channel (the specular directional albedo as the SG sees it).

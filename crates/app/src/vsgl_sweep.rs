@@ -1,0 +1,229 @@
+//! `slc sweep --shader vsgl`: error against light count for VSGLs and for VPLs sampled at equal
+//! count (the VSGL paper's Fig. 9), and the per-frame cost of each pass (its Table 1).
+//!
+//! For each N of `--vsgls`, shades one prepared frame (same G-buffer and RSMs) with N VSGLs
+//! and with the VPLs of N texels sampled by the same importance and points, and records the
+//! RMSE of the indirect image against every VPL with p = 1 (root of the mean squared error over
+//! `--seeds` point sets) and the fastest of `--repeat` × `--seeds` runs' pass times. Writes
+//! `vsgl_sweep.csv`, `vsgl_sweep.md` (both tables) and `vsgl_sweep.svg` (RMSE against N).
+use crate::plot::{line_plot_svg, Series};
+use crate::progress::bar;
+use crate::sampled::{pass_ms, Estimator, ESTIMATORS, PASSES};
+use crate::sweep_cmd::SweepArgs;
+use slc_cpu_ref::vpl_shading::{shade_vpls, VplEstimator};
+use slc_cpu_ref::{prepare, Method, Timings, Tracer};
+use std::fmt::Write;
+use std::time::Instant;
+
+struct Point {
+    count: u32,
+    estimator: Estimator,
+    lights: usize,
+    /// The fastest run's pass times.
+    timings: Timings,
+    rmse: f32,
+}
+
+pub fn run(args: &SweepArgs) -> Result<(), String> {
+    let f = &args.frame;
+    if args.vsgls.is_empty() || args.repeat == 0 || args.seeds == 0 {
+        return Err(
+            "sweep --shader vsgl needs at least one --vsgls count, one repetition and one seed"
+                .into(),
+        );
+    }
+    let scene = f.load_renderable()?;
+    for &n in &args.vsgls {
+        f.settings(Method::Vsgl(args.importance.sampling(n)), 1)
+            .validate()
+            .map_err(|e| e.to_string())?;
+    }
+    let p = prepare(
+        &scene,
+        &f.settings(Method::VplReference, 1),
+        Tracer::new(&scene),
+        None,
+    );
+    let texels: usize = p
+        .maps
+        .iter()
+        .map(|m| m.texels.iter().flatten().count())
+        .sum();
+    let pixels = f.width as u64 * f.height as u64;
+    let start = Instant::now();
+    let reference = {
+        let bar = bar(pixels, "all-VPL reference".into());
+        let r = shade_vpls(
+            &p.tracer,
+            &p.gbuffer,
+            &p.vpls,
+            VplEstimator::Exact,
+            f.visibility,
+            &|n| bar.inc(n),
+        )
+        .map_err(|e| e.to_string())?;
+        bar.finish_and_clear();
+        r
+    };
+    let reference_ms = start.elapsed().as_secs_f64() * 1e3;
+    let runs = args.vsgls.len() * ESTIMATORS.len() * (args.seeds * args.repeat) as usize;
+    let progress = bar(runs as u64, "sweep".into());
+    let mut points = Vec::new();
+    for &count in &args.vsgls {
+        let sampling = args.importance.sampling(count);
+        for estimator in ESTIMATORS {
+            let (mut squared, mut best, mut lights) = (0.0f64, None::<Timings>, 0);
+            for seed in f.seed..f.seed + args.seeds {
+                for repetition in 0..args.repeat {
+                    let out = estimator.shade(&p, &sampling, seed, f.visibility)?;
+                    if repetition == 0 {
+                        squared += f64::from(out.indirect.rmse(&reference)).powi(2);
+                        lights = out.lights;
+                    }
+                    if best
+                        .as_ref()
+                        .is_none_or(|b| out.timings.total() < b.total())
+                    {
+                        best = Some(out.timings);
+                    }
+                    progress.inc(1);
+                }
+            }
+            points.push(Point {
+                count,
+                estimator,
+                lights,
+                timings: best.unwrap_or_default(),
+                rmse: (squared / f64::from(args.seeds)).sqrt() as f32,
+            });
+        }
+    }
+    progress.finish_and_clear();
+    std::fs::create_dir_all(&args.out).map_err(|e| format!("{}: {e}", args.out.display()))?;
+    write_csv(args, &points)?;
+    write_tables(
+        args,
+        &scene.name,
+        texels,
+        p.vpls.len(),
+        reference_ms,
+        &points,
+    )?;
+    let series: Vec<Series> = ESTIMATORS
+        .iter()
+        .map(|&e| Series {
+            name: e.name().to_string(),
+            points: points
+                .iter()
+                .filter(|p| p.estimator == e)
+                .map(|p| (f64::from(p.count), f64::from(p.rmse)))
+                .collect(),
+        })
+        .collect();
+    let title = format!(
+        "{}: RMSE vs light count ({} importance)",
+        scene.name,
+        args.importance.sampling(0).importance.name()
+    );
+    std::fs::write(
+        args.out.join("vsgl_sweep.svg"),
+        line_plot_svg(
+            &title,
+            "lights N",
+            "RMSE of indirect vs all VPLs",
+            &series,
+            true,
+            true,
+        ),
+    )
+    .map_err(|e| e.to_string())?;
+    println!("wrote {}", args.out.display());
+    Ok(())
+}
+
+fn write_csv(args: &SweepArgs, points: &[Point]) -> Result<(), String> {
+    let mut csv = String::from("n,estimator,distinct_lights");
+    for (pass, _) in PASSES {
+        let _ = write!(csv, ",{pass}_ms");
+    }
+    csv.push_str(",total_ms,rmse_vs_all_vpl\n");
+    for p in points {
+        let _ = write!(csv, "{},{},{}", p.count, p.estimator.name(), p.lights);
+        for (pass, _) in PASSES {
+            let _ = write!(csv, ",{:.3}", pass_ms(&p.timings, pass));
+        }
+        let _ = writeln!(csv, ",{:.3},{:.6e}", p.timings.total(), p.rmse);
+    }
+    std::fs::write(args.out.join("vsgl_sweep.csv"), csv).map_err(|e| e.to_string())
+}
+
+fn write_tables(
+    args: &SweepArgs,
+    scene: &str,
+    texels: usize,
+    vpls: usize,
+    reference_ms: f64,
+    points: &[Point],
+) -> Result<(), String> {
+    let f = &args.frame;
+    let find = |n: u32, e: Estimator| points.iter().find(|p| p.count == n && p.estimator == e);
+    let mut md = format!("# VSGLs against VPLs at equal count: {scene}\n\n");
+    let _ = writeln!(
+        md,
+        "{}x{}, RSM {}² per face ({texels} lit texels, {vpls} VPLs), {} importance{}, visibility {}, seeds {}..{}, {} rayon threads. \
+         The reference is every VPL with p = 1 ({reference_ms:.0} ms). \"VPLs\" are the VPLs of N texels sampled by the same importance \
+         and the same points as the N VSGLs (unbiased, weight 1/(N p)); a sampled texel gives up to two VPLs (diffuse and glossy), \
+         a VSGL two lobes. No interleaving, no denoising.\n",
+        f.width,
+        f.height,
+        f.rsm,
+        args.importance.sampling(0).importance.name(),
+        match args.importance.sampling(0).importance {
+            slc_cpu_ref::Importance::Bidirectional { camera_vsgls } =>
+                format!(" ({camera_vsgls} camera VSGLs)"),
+            slc_cpu_ref::Importance::Flux => String::new(),
+        },
+        f.visibility,
+        f.seed,
+        f.seed + args.seeds - 1,
+        rayon::current_num_threads()
+    );
+    md.push_str("## RMSE of the indirect image against every VPL\n\n| N | VPLs | VSGLs | VSGL / VPL |\n|---|---|---|---|\n");
+    for &n in &args.vsgls {
+        if let (Some(v), Some(s)) = (find(n, Estimator::Vpl), find(n, Estimator::Vsgl)) {
+            let _ = writeln!(
+                md,
+                "| {n} | {:.4e} | {:.4e} | {:.3} |",
+                v.rmse,
+                s.rmse,
+                s.rmse / v.rmse
+            );
+        }
+    }
+    let _ = writeln!(
+        md,
+        "\n## Milliseconds per frame (fastest of {} runs), as the paper's Table 1\n",
+        args.repeat * args.seeds
+    );
+    md.push_str("| N | estimator | distinct lights |");
+    for (_, row) in PASSES {
+        let _ = write!(md, " {row} |");
+    }
+    md.push_str(" total | VSGL overhead |\n|---|---|---|---|---|---|---|---|---|\n");
+    for &n in &args.vsgls {
+        let vpl_total = find(n, Estimator::Vpl).map(|p| p.timings.total());
+        for e in ESTIMATORS {
+            let Some(p) = find(n, e) else { continue };
+            let _ = write!(md, "| {n} | {} | {} |", e.name(), p.lights);
+            for (pass, _) in PASSES {
+                let _ = write!(md, " {:.2} |", pass_ms(&p.timings, pass));
+            }
+            let overhead = match (e, vpl_total) {
+                (Estimator::Vsgl, Some(v)) => format!("{:+.2}", p.timings.total() - v),
+                _ => String::new(),
+            };
+            let _ = writeln!(md, " {:.2} | {overhead} |", p.timings.total());
+        }
+    }
+    std::fs::write(args.out.join("vsgl_sweep.md"), md).map_err(|e| e.to_string())
+}

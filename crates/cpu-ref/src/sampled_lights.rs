@@ -1,0 +1,189 @@
+//! N lights sampled from a prepared frame's reflective shadow maps by importance (VSGL section
+//! 4.2): virtual spherical Gaussian lights, or, for comparison at equal count, VPLs.
+//!
+//! Both estimators warp the same stratified points ([`sample_points`]) through the same
+//! importance ([`Importance`]); they differ only in where the warp stops. VSGLs stop at the
+//! filtered mip level of section 4.2 and shade the cluster's VSGL analytically (eq. 2-5); VPLs
+//! go down to single texels and shade that texel's diffuse and glossy VPLs exactly (eq. 4 of the
+//! culling paper), as Ritschel et al. 2011 resample VPLs from an RSM. Each sample weighs
+//! `1/(N P)`, so the VPL estimate is unbiased against every VPL with p = 1 and the VSGL
+//! estimate carries the total flux unbiased; "N lights" means N samples, each one VSGL with
+//! its two lobes or one texel with its (up to) two VPLs.
+use crate::render::{Prepared, Timings};
+use crate::tracer::Tracer;
+use crate::vpl_shading::{shade_vpls, VplEstimator};
+use crate::vsgl::{
+    bidirectional_importance, sample_points, shade_vsgls, FilteredSampler, Footprint,
+    ImportanceMap, MipRsm, SampleSet, Vsgl, VsglError, WeightedCluster,
+};
+use slc_bounds::sg::MeanMap;
+use slc_core::{Image, Vpl};
+
+/// The importance `p(s)` the lights are sampled with.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Importance {
+    /// `p(s) ∝ Φ_i (R_{d,i} + R_{s,i})`, the paper's default (section 4.2).
+    Flux,
+    /// Estimated with `camera_vsgls` VSGLs generated on the G-buffer (section 4.3), mixed with
+    /// the flux importance ([`crate::vsgl::FLUX_SHARE`]).
+    Bidirectional { camera_vsgls: u32 },
+}
+
+impl Importance {
+    /// `flux` or `bidirectional`, as reports name it.
+    pub fn name(&self) -> &'static str {
+        match self {
+            Self::Flux => "flux",
+            Self::Bidirectional { .. } => "bidirectional",
+        }
+    }
+}
+
+/// `count` lights sampled with `importance`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct LightSampling {
+    pub count: u32,
+    pub importance: Importance,
+}
+
+/// A frame's indirect light from sampled lights, with what it cost.
+pub struct SampledFrame {
+    pub indirect: Image,
+    /// Distinct lights shaded: VSGLs, or VPLs (two per texel where both lobes reflect).
+    /// Samples that reach the same cluster are merged into one light with their weights added.
+    pub lights: usize,
+    /// `vsgl_mip` (VSGL only), `importance_map`, `light_sampling` and `light_shading`, the
+    /// VSGL overheads of the paper's Table 1.
+    pub timings: Timings,
+}
+
+/// The floor of a VSGL's positional variance `σ_v²` (a single VPL has none, where eq. 1 and
+/// 4 diverge): the square of the tracer's ray offset, the length below which the renderer
+/// treats points as coincident. Level-0 VSGLs are then point lights up to the SG fits.
+pub fn sigma2_floor(tracer: &Tracer) -> f32 {
+    tracer.epsilon() * tracer.epsilon()
+}
+
+/// Indirect light from `s.count` VSGLs (sections 3-4): the mipmapped RSMs (section 4.1), the
+/// importance, filtered importance sampling of clusters (4.2, points from `seed`) and the
+/// analytic shading of eq. (2)-(5), with a shadow ray to each `μ_v` if `visibility`.
+pub fn shade_vsgl(
+    p: &Prepared,
+    s: &LightSampling,
+    seed: u32,
+    visibility: bool,
+    progress: &(dyn Fn(u64) + Sync),
+) -> Result<SampledFrame, VsglError> {
+    let mut timings = Timings::default();
+    let floor = sigma2_floor(&p.tracer);
+    let mips = timings.time("vsgl_mip", || {
+        p.maps
+            .iter()
+            .map(|rsm| MipRsm::build(rsm, MeanMap::Toksvig))
+            .collect::<Result<Vec<_>, _>>()
+    })?;
+    let importance = timings.time("importance_map", || match s.importance {
+        Importance::Flux => Ok(mips.iter().map(ImportanceMap::from_mip).collect()),
+        Importance::Bidirectional { camera_vsgls } => {
+            bidirectional_importance(&p.gbuffer, &p.camera, &p.maps, camera_vsgls, seed, floor)
+        }
+    })?;
+    let vsgls = timings.time("light_sampling", || {
+        sample(&importance, s.count, seed, Footprint::Filtered)
+            .iter()
+            .map(|w| {
+                let c = w.cluster;
+                let v = mips[c.map as usize].vsgl(c.face, c.level, c.x, c.y, floor)?;
+                Ok(v.scaled(w.weight as f32))
+            })
+            .collect::<Result<Vec<Vsgl>, VsglError>>()
+    })?;
+    let indirect = timings.time("light_shading", || {
+        shade_vsgls(&p.tracer, &p.gbuffer, &vsgls, visibility, progress)
+    })?;
+    Ok(SampledFrame {
+        indirect,
+        lights: vsgls.len(),
+        timings,
+    })
+}
+
+/// Indirect light from `s.count` texels' VPLs sampled with the same importance and points as
+/// [`shade_vsgl`] but down to single texels ([`Footprint::Texel`]), each VPL's flux times its
+/// weight `1/(N P)`, shaded exactly (with shadow rays if `visibility`): unbiased against
+/// every VPL with p = 1.
+pub fn shade_sampled_vpls(
+    p: &Prepared,
+    s: &LightSampling,
+    seed: u32,
+    visibility: bool,
+    progress: &(dyn Fn(u64) + Sync),
+) -> Result<SampledFrame, VsglError> {
+    let mut timings = Timings::default();
+    let importance = timings.time("importance_map", || match s.importance {
+        Importance::Flux => p.maps.iter().map(ImportanceMap::flux).collect(),
+        Importance::Bidirectional { camera_vsgls } => bidirectional_importance(
+            &p.gbuffer,
+            &p.camera,
+            &p.maps,
+            camera_vsgls,
+            seed,
+            sigma2_floor(&p.tracer),
+        ),
+    })?;
+    let vpls = timings.time("light_sampling", || {
+        texel_vpls(p, &sample(&importance, s.count, seed, Footprint::Texel))
+    });
+    let indirect = timings.time("light_shading", || {
+        shade_vpls(
+            &p.tracer,
+            &p.gbuffer,
+            &vpls,
+            VplEstimator::Exact,
+            visibility,
+            progress,
+        )
+    })?;
+    Ok(SampledFrame {
+        indirect,
+        lights: vpls.len(),
+        timings,
+    })
+}
+
+/// The clusters `count` points of [`SampleSet::Lights`] warp to.
+fn sample(
+    importance: &[ImportanceMap],
+    count: u32,
+    seed: u32,
+    footprint: Footprint,
+) -> Vec<WeightedCluster> {
+    let points = sample_points(count, seed, SampleSet::Lights);
+    FilteredSampler::new(importance).sample(&points, footprint)
+}
+
+/// The VPLs of sampled level-0 texels, fluxes times the samples' weights. Texel `(x, y)` of
+/// face `f` of map `m` is texel `k = Σ_{m' < m} |texels of m'| + (f N + y) N + x` of the
+/// concatenated maps, whose VPLs have ids `2k` and `2k + 1` (`crate::vpls::generate_vpls`).
+fn texel_vpls(p: &Prepared, samples: &[WeightedCluster]) -> Vec<Vpl> {
+    let mut bases = Vec::with_capacity(p.maps.len());
+    let mut base = 0u32;
+    for rsm in &p.maps {
+        bases.push(base);
+        base += rsm.texels.len() as u32;
+    }
+    let mut vpls = Vec::with_capacity(2 * samples.len());
+    for s in samples {
+        let c = s.cluster;
+        let n = p.maps[c.map as usize].resolution;
+        let k = bases[c.map as usize] + (c.face * n + c.y) * n + c.x;
+        for id in [2 * k, 2 * k + 1] {
+            if let Ok(i) = p.vpls.binary_search_by_key(&id, |v| v.id) {
+                let mut vpl = p.vpls[i];
+                vpl.flux *= s.weight as f32;
+                vpls.push(vpl);
+            }
+        }
+    }
+    vpls
+}
