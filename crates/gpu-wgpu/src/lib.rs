@@ -43,7 +43,10 @@
 //!   [`cull_frame`] holds what the culling passes share;
 //! - [`denoise_pass`]: the cross bilateral filter guided by depth and normal (section 6),
 //!   the twin of `slc_cpu_ref::denoise::cross_bilateral`, on GPU buffers or uploaded images
-//!   (struct in [`denoise_types`]).
+//!   (struct in [`denoise_types`]);
+//! - [`vsgl_shade_pass`]: shading by virtual spherical Gaussian lights (Tokuyoshi 2015,
+//!   section 3.2, eq. 2-5; `shaders/sg.wgsl`, `shaders/vsgl_shade.wgsl`), the twin of
+//!   `slc_cpu_ref::vsgl::shade_vsgls` without visibility (structs in [`vsgl_types`]).
 //!
 //! Per-pass GPU times come from timestamp queries where the adapter has them
 //! ([`profiler`]: `start_profiling`, `set_stage`, `finish_profiling`).
@@ -76,6 +79,8 @@ pub mod tile_depth_pass;
 pub mod tiled_cull_pass;
 pub mod visibility_pass;
 pub mod vpl_gen_pass;
+pub mod vsgl_shade_pass;
+pub mod vsgl_types;
 
 pub use context::{GpuContext, GpuError};
 pub use profiler::GpuProfile;

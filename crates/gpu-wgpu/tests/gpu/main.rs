@@ -17,3 +17,4 @@ mod raster_rsm;
 mod rng;
 mod shade;
 mod tiled;
+mod vsgl;

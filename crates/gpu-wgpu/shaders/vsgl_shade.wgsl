@@ -1,0 +1,181 @@
+// Shading by virtual spherical Gaussian lights (Tokuyoshi 2015, section 3.2, eq. 2-5), the GPU
+// twin of crates/cpu-ref/src/vsgl/shading.rs shade_vsgls without visibility: each pixel with
+// a sample sums, over the VSGLs, for each lobe c_v G(w; xi_v, lambda_v) of the VSGL's radiant
+// intensity, c_v times the reflected radiance of the incoming SG of eq. (5)
+//   L_in(w) = 1/(2 pi sigma_v^2) G(w; -xi_v, lambda_v) G(w; xi_mu, lambda_sigma),
+//   xi_mu = (mu_v - x_p)/|mu_v - x_p|, lambda_sigma = |mu_v - x_p|^2 / sigma_v^2 (eq. 4),
+// a product of two SGs, shaded in closed form as crates/bounds/src/sg/shading.rs SgSurface
+// does: kd/pi times its irradiance plus the warped GGX lobe's weight times an inner product
+// (specular.rs SpecularLobeSg). fresnel_ggx.wgsl, sg.wgsl and gsample.wgsl come first.
+// Structs mirror src/vsgl_types.rs; one invocation per pixel, linear workgroup index
+// wid.y * num_workgroups.x + wid.x (buffers::Grid).
+
+struct VsglParams {
+    pixel_count: u32,
+    vsgl_count: u32,
+    pad0: u32,
+    pad1: u32,
+}
+
+// One VSGL prepared for shading (shading.rs Emitter): mu_v and sigma_v^2, and per lobe
+// c_v (rgb, zero for a lobe left out) and the emitted lobe's axis -xi_v with lambda_v.
+struct Vsgl {
+    mu_sigma2: vec4<f32>,
+    // c_v of the diffuse lobe (xyz), 1 / (2 pi sigma_v^2) of eq. (1) and (5) (w).
+    diffuse_c_density: vec4<f32>,
+    diffuse_lobe: vec4<f32>,
+    specular_c: vec4<f32>,
+    specular_lobe: vec4<f32>,
+}
+
+// The fault record: smallest pixel whose surface is outside the SG math's domain, smallest
+// VSGL whose lambda_sigma or product left f32 (u32::MAX: none).
+struct VsglStatus {
+    bad_pixel: atomic<u32>,
+    overflow_vsgl: atomic<u32>,
+    pad0: u32,
+    pad1: u32,
+}
+
+@group(0) @binding(0) var<uniform> params: VsglParams;
+@group(0) @binding(1) var<storage, read> samples: array<Sample>;
+@group(0) @binding(2) var<storage, read> positions: array<vec4<f32>>;
+@group(0) @binding(3) var<storage, read> vsgls: array<Vsgl>;
+// RGB per pixel.
+@group(0) @binding(4) var<storage, read_write> image: array<f32>;
+@group(0) @binding(5) var<storage, read_write> status: VsglStatus;
+
+const WORKGROUP: u32 = 64u;
+// specular.rs MIN_COS_O: views more grazing are warped as at this cosine.
+const MIN_COS_O: f32 = 1e-6;
+// check.rs UNIT_TOLERANCE: a unit vector's length within this of 1.
+const UNIT_TOLERANCE: f32 = 1e-3;
+
+// The receiver of shading.rs SgSurface: kd/pi (zero when viewed from below), its normal, and
+// the specular lobe of SpecularLobeSg with its weight.
+struct Surface {
+    kd_over_pi: vec3<f32>,
+    normal: vec3<f32>,
+    lobe: Sg,
+    weight: vec3<f32>,
+}
+
+fn finite3(v: vec3<f32>) -> bool {
+    return sg_finite(v.x) && sg_finite(v.y) && sg_finite(v.z);
+}
+
+// Whether the sample is inside the domain SgSurface::new accepts (check.rs): unit normal and
+// view, kd finite and >= 0, alpha in (0, 1], F0 in [0, 1] or eta finite and > 0, and a GGX
+// SG sharpness 2/alpha^2 that fits f32.
+fn valid_surface(s: Sample) -> bool {
+    let n = s.normal_alpha.xyz;
+    let wo = s.omega_o_eta.xyz;
+    let alpha = s.normal_alpha.w;
+    if !(finite3(n) && finite3(wo) && finite3(s.kd)) {
+        return false;
+    }
+    if abs(length(n) - 1.0) > UNIT_TOLERANCE || abs(length(wo) - 1.0) > UNIT_TOLERANCE {
+        return false;
+    }
+    if !(alpha > 0.0 && alpha <= 1.0) || !sg_finite(2.0 / (alpha * alpha)) || any(s.kd < vec3<f32>(0.0)) {
+        return false;
+    }
+    if s.fresnel == FRESNEL_SCHLICK {
+        return all(s.f0 >= vec3<f32>(0.0)) && all(s.f0 <= vec3<f32>(1.0));
+    }
+    let eta = s.omega_o_eta.w;
+    return eta > 0.0 && sg_finite(eta);
+}
+
+// SgSurface::new with SpecularLobeSg::new and ggx_ndf_sg: D(h) ~ 1/(pi a^2) G(h; n, 2/a^2)
+// moved to the mirror direction with its sharpness over 4 wo.n, weight
+// F(wo.n) G1(wo.n)^2 / (4 wo.n); a view below the surface shades to zero.
+fn make_surface(s: Sample) -> Surface {
+    let n = s.normal_alpha.xyz / length(s.normal_alpha.xyz);
+    let wo = s.omega_o_eta.xyz / length(s.omega_o_eta.xyz);
+    let alpha = s.normal_alpha.w;
+    let a2 = alpha * alpha;
+    let cos_o = dot(n, wo);
+    if cos_o <= 0.0 {
+        return Surface(vec3<f32>(0.0), n, Sg(n, 2.0 / a2, 0.0), vec3<f32>(0.0));
+    }
+    let c = max(cos_o, MIN_COS_O);
+    var mirror = normalize(2.0 * cos_o * n - wo);
+    if !finite3(mirror) {
+        mirror = n;
+    }
+    let g = ggx_g1_over_cos(alpha, c);
+    var f: vec3<f32>;
+    if s.fresnel == FRESNEL_SCHLICK {
+        f = fresnel_schlick(s.f0, c);
+    } else {
+        f = vec3<f32>(fresnel_dielectric(s.omega_o_eta.w, c));
+    }
+    let lobe = Sg(mirror, (2.0 / a2) / (4.0 * c), 1.0 / (PI * a2));
+    return Surface(s.kd * (1.0 / PI), n, lobe, f * (0.25 * g * g * c));
+}
+
+// SgSurface::radiance: diffuse + specular of VSGL eq. (2) for the incoming SG light, each
+// saturated at F32_MAX.
+fn surface_radiance(surface: Surface, light: Sg) -> vec3<f32> {
+    let diffuse = min(surface.kd_over_pi * sg_irradiance(light, surface.normal), vec3<f32>(F32_MAX));
+    let specular = min(surface.weight * sg_inner_product(light, surface.lobe), vec3<f32>(F32_MAX));
+    return min(diffuse + specular, vec3<f32>(F32_MAX));
+}
+
+@compute @workgroup_size(64)
+fn main(
+    @builtin(workgroup_id) wid: vec3<u32>,
+    @builtin(num_workgroups) groups: vec3<u32>,
+    @builtin(local_invocation_index) lid: u32,
+) {
+    let pixel = (wid.y * groups.x + wid.x) * WORKGROUP + lid;
+    if pixel >= params.pixel_count {
+        return;
+    }
+    let s = samples[pixel];
+    var sum = vec3<f32>(0.0);
+    if s.present != 0u {
+        if valid_surface(s) {
+            let surface = make_surface(s);
+            let x = positions[pixel].xyz;
+            for (var v = 0u; v < params.vsgl_count; v++) {
+                let e = vsgls[v];
+                let sigma2 = e.mu_sigma2.w;
+                let density = e.diffuse_c_density.w;
+                // Emitter::radiance: the positional SG of eq. (4); constant at mu_v itself.
+                let d = e.mu_sigma2.xyz - x;
+                let r2 = dot(d, d);
+                var position = Sg(vec3<f32>(0.0, 0.0, 1.0), 0.0, density);
+                if r2 > 0.0 {
+                    position = Sg(d / sqrt(r2), r2 / sigma2, density);
+                    if !sg_finite(position.sharpness) {
+                        atomicMin(&status.overflow_vsgl, v);
+                        break;
+                    }
+                }
+                var radiance = vec3<f32>(0.0);
+                let lobes = array<vec4<f32>, 2>(e.diffuse_lobe, e.specular_lobe);
+                let colours = array<vec3<f32>, 2>(e.diffuse_c_density.xyz, e.specular_c.xyz);
+                for (var k = 0u; k < 2u; k++) {
+                    let c = colours[k];
+                    if all(c == vec3<f32>(0.0)) {
+                        continue;
+                    }
+                    let emitted = Sg(lobes[k].xyz, lobes[k].w, 1.0);
+                    let light = sg_product(emitted, position);
+                    if !(sg_finite(light.sharpness) && sg_finite(light.amplitude)) {
+                        atomicMin(&status.overflow_vsgl, v);
+                    }
+                    radiance += c * surface_radiance(surface, light);
+                }
+                sum += radiance;
+            }
+        } else {
+            atomicMin(&status.bad_pixel, pixel);
+        }
+    }
+    image[3u * pixel] = sum.x;
+    image[3u * pixel + 1u] = sum.y;
+    image[3u * pixel + 2u] = sum.z;
+}

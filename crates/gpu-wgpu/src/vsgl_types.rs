@@ -1,0 +1,189 @@
+//! `#[repr(C)]` twins of the WGSL structs of the VSGL shading pass (`shaders/vsgl_shade.wgsl`),
+//! in the convention of [`crate::gpu_types`] (a compile-time size check and a unit test
+//! against the layout naga computes from the shader), and the validation that turns a VSGL
+//! into its GPU form as `slc_cpu_ref::vsgl`'s `Emitter::new` prepares it.
+use crate::context::GpuError;
+use bytemuck::{Pod, Zeroable};
+use core::f32::consts::TAU;
+use glam::Vec3;
+use slc_bounds::SphericalGaussian;
+
+/// One lobe `c_v G(ω; ξ_v, λ_v)` of a VSGL's radiant intensity (VSGL section 3.1.1): the
+/// fields `c_diffuse`, `xi_diffuse`, `lambda_diffuse` (or the specular ones) of
+/// `slc_cpu_ref::vsgl::Vsgl`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct VsglLobe {
+    /// `c_v` per channel (already times the sample's Monte Carlo weight).
+    pub c: Vec3,
+    /// The lobe axis `ξ_v` (unit within 1e-3).
+    pub xi: Vec3,
+    /// The sharpness `λ_v` (finite, ≥ 0).
+    pub lambda: f32,
+}
+
+/// A VSGL as the shading pass takes it: positional mean `μ_v`, variance `σ_v²` (section
+/// 3.1.2) and its `[diffuse, specular]` lobes.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct VsglInput {
+    pub mu: Vec3,
+    pub sigma2: f32,
+    pub lobes: [VsglLobe; 2],
+}
+
+/// Parameters of the VSGL shading pass. Keep in sync with `VsglParams` in
+/// `shaders/vsgl_shade.wgsl`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Pod, Zeroable)]
+pub struct GpuVsglParams {
+    pub pixel_count: u32,
+    pub vsgl_count: u32,
+    pub pad: [u32; 2],
+}
+const _: () = assert!(std::mem::size_of::<GpuVsglParams>() == 16);
+
+/// A VSGL prepared for shading, the twin of `Emitter` in `crates/cpu-ref/src/vsgl/shading.rs`.
+/// Keep in sync with `Vsgl` in `shaders/vsgl_shade.wgsl`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
+pub struct GpuVsgl {
+    /// `μ_v` (xyz) and `σ_v²` (w).
+    pub mu_sigma2: [f32; 4],
+    /// `c_v` of the diffuse lobe (xyz; zero: left out) and `1/(2πσ_v²)` of eq. (1) and (5) (w).
+    pub diffuse_c_density: [f32; 4],
+    /// The emitted diffuse lobe's axis `−ξ_v` (xyz) and `λ_v` (w).
+    pub diffuse_lobe: [f32; 4],
+    /// `c_v` of the specular lobe (xyz; zero: left out).
+    pub specular_c: [f32; 4],
+    /// The emitted specular lobe's axis `−ξ_v` (xyz) and `λ_v` (w).
+    pub specular_lobe: [f32; 4],
+}
+const _: () = assert!(std::mem::size_of::<GpuVsgl>() == 80);
+
+impl GpuVsgl {
+    /// Packs VSGL `index` after the CPU's checks (`Emitter::new`): `σ_v²` positive with a
+    /// finite `1/(2πσ_v²)`, each used lobe (non-zero `c_v`) a valid SG `G(ω; −ξ_v, λ_v)`
+    /// (axis renormalised as the CPU does); beyond the CPU, `μ_v` and `c_v` must be finite and
+    /// `c_v` non-negative, so that no NaN reaches the image.
+    pub fn new(vsgl: &VsglInput, index: usize) -> Result<Self, GpuError> {
+        let bad = |what: String| GpuError::Input(format!("VSGL {index}: {what}"));
+        let sigma2 = vsgl.sigma2;
+        let density = 1.0 / (TAU * sigma2);
+        if !(sigma2 > 0.0 && density.is_finite()) {
+            return Err(bad(format!(
+                "the positional variance must be positive and finite, got {sigma2}"
+            )));
+        }
+        if !vsgl.mu.is_finite() {
+            return Err(bad(format!("μ_v {} is not finite", vsgl.mu)));
+        }
+        let mut packed = [([0.0f32; 4], [0.0f32; 4]); 2];
+        for (lobe, out) in vsgl.lobes.iter().zip(&mut packed) {
+            if !(lobe.c.is_finite() && lobe.c.min_element() >= 0.0) {
+                return Err(bad(format!("c_v {} is not finite and >= 0", lobe.c)));
+            }
+            if lobe.c == Vec3::ZERO {
+                continue;
+            }
+            let sg = SphericalGaussian::new(-lobe.xi, lobe.lambda, 1.0)
+                .map_err(|e| bad(e.to_string()))?;
+            *out = (
+                [lobe.c.x, lobe.c.y, lobe.c.z, 0.0],
+                [sg.axis.x, sg.axis.y, sg.axis.z, sg.sharpness],
+            );
+        }
+        let [(cd, ld), (cs, ls)] = packed;
+        Ok(Self {
+            mu_sigma2: [vsgl.mu.x, vsgl.mu.y, vsgl.mu.z, sigma2],
+            diffuse_c_density: [cd[0], cd[1], cd[2], density],
+            diffuse_lobe: ld,
+            specular_c: cs,
+            specular_lobe: ls,
+        })
+    }
+}
+
+/// The fault record of the VSGL shading pass. Keep in sync with `VsglStatus` in
+/// `shaders/vsgl_shade.wgsl`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Pod, Zeroable)]
+pub struct GpuVsglStatus {
+    /// Smallest pixel whose surface is outside the SG math's domain (`u32::MAX`: none).
+    pub bad_pixel: u32,
+    /// Smallest VSGL whose `λ_σ` or SG product left `f32` at some pixel (`u32::MAX`: none).
+    pub overflow_vsgl: u32,
+    pub pad: [u32; 2],
+}
+const _: () = assert!(std::mem::size_of::<GpuVsglStatus>() == 16);
+
+impl GpuVsglStatus {
+    /// The initial record: no faults.
+    pub const CLEAR: Self = Self {
+        bad_pixel: u32::MAX,
+        overflow_vsgl: u32::MAX,
+        pad: [0; 2],
+    };
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::gpu_types::{wgsl_size, GpuSample};
+
+    /// The Rust structs have the sizes of their WGSL twins as the shader compiler lays them
+    /// out.
+    #[test]
+    fn sizes_match_the_wgsl_twins() {
+        use std::mem::size_of;
+        let source = crate::vsgl_shade_pass::SOURCE;
+        assert_eq!(wgsl_size(source, "VsglParams"), size_of::<GpuVsglParams>());
+        assert_eq!(wgsl_size(source, "Vsgl"), size_of::<GpuVsgl>());
+        assert_eq!(wgsl_size(source, "VsglStatus"), size_of::<GpuVsglStatus>());
+        assert_eq!(wgsl_size(source, "Sample"), size_of::<GpuSample>());
+    }
+
+    fn input(sigma2: f32) -> VsglInput {
+        let lobe = VsglLobe {
+            c: Vec3::ONE,
+            xi: Vec3::Z,
+            lambda: 2.0,
+        };
+        VsglInput {
+            mu: Vec3::ZERO,
+            sigma2,
+            lobes: [lobe; 2],
+        }
+    }
+
+    /// The CPU's refusals (σ² not positive, 1/(2πσ²) infinite, invalid lobes) and the
+    /// non-finite values the GPU refuses besides; zero lobes skip the lobe checks.
+    #[test]
+    fn packing_refuses_out_of_domain_vsgls() {
+        let ok = GpuVsgl::new(&input(0.5), 0).unwrap();
+        assert_eq!(ok.diffuse_lobe, [0.0, 0.0, -1.0, 2.0]);
+        assert_eq!(ok.diffuse_c_density[3], 1.0 / (TAU * 0.5));
+        for s in [0.0, -1.0, f32::NAN, 1e-45] {
+            assert!(GpuVsgl::new(&input(s), 0).is_err(), "σ² {s}");
+        }
+        let mut v = input(1.0);
+        v.mu.x = f32::INFINITY;
+        assert!(GpuVsgl::new(&v, 0).is_err());
+        for (c, xi, lambda) in [
+            (Vec3::splat(f32::NAN), Vec3::Z, 1.0),
+            (-Vec3::X, Vec3::Z, 1.0),
+            (Vec3::ONE, Vec3::ZERO, 1.0),
+            (Vec3::ONE, Vec3::Z, -1.0),
+            (Vec3::ONE, Vec3::Z, f32::INFINITY),
+        ] {
+            let mut v = input(1.0);
+            v.lobes[1] = VsglLobe { c, xi, lambda };
+            assert!(GpuVsgl::new(&v, 3).is_err(), "{c} {xi} {lambda}");
+        }
+        let mut zero = input(1.0);
+        zero.lobes[1] = VsglLobe {
+            c: Vec3::ZERO,
+            xi: Vec3::ZERO,
+            lambda: f32::NAN,
+        };
+        assert_eq!(GpuVsgl::new(&zero, 0).unwrap().specular_lobe, [0.0; 4]);
+    }
+}
