@@ -16,13 +16,14 @@ pub enum Backend {
 pub enum Shader {
     /// VPLs with the stochastic estimate and culling (or a reference).
     Vpl,
-    /// Virtual spherical Gaussian lights sampled from mipmapped RSMs (Tokuyoshi 2015); CPU only.
+    /// Virtual spherical Gaussian lights sampled from mipmapped RSMs (Tokuyoshi 2015); `slc render`
+    /// on either backend (the GPU without visibility), `slc compare` and `sweep` on the CPU.
     Vsgl,
 }
 
-/// The message for `--shader vsgl` where only the CPU has it.
-pub const VSGL_CPU_ONLY: &str =
-    "--shader vsgl runs on the CPU only in this version; render with --backend cpu";
+/// The message for `slc compare --shader vsgl` on the GPU, which only the CPU has.
+pub const VSGL_CPU_ONLY: &str = "slc compare --shader vsgl runs on the CPU only in this version; \
+     compare with --backend cpu (slc render --backend gpu --shader vsgl renders VSGLs on the GPU)";
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
 pub enum ImportanceKind {

@@ -4,18 +4,27 @@
 //! `slc_cpu_ref::render` composes the CPU passes. What comes back to the CPU: the VPLs once
 //! per frame (the culler's bounds pass reads them from the CPU), the images, and the
 //! G-buffer and lists where the brute-force metrics or `slc compare`'s CPU reference need
-//! them.
+//! them. With `--shader vsgl` the RSMs are read back instead of culling: the VSGLs are built
+//! and sampled on the CPU (`slc_cpu_ref::vsgl`) and shaded on the GPU without visibility
+//! (`slc_gpu_wgpu::vsgl_shade_pass`).
 //!
 //! Pass times (`timings_ms`) are wall clock around each pass, its uploads, readbacks and the
 //! wait for completion included, under the CPU's pass names; where the adapter has timestamp
 //! queries the GPU's execution time of the same passes is returned beside them
 //! (`gpu_timings_ms` in the report).
+use crate::gpu_vsgl::{cpu_rsm, vsgl_input};
 use crate::report::Device;
+use slc_bounds::sg::MeanMap;
 use slc_core::rng::{pcg_hash, stream, uniform};
 use slc_core::{Camera, CullInput, GBuffer, Image, Interleaving, Scene, Vpl};
+use slc_cpu_ref::sampled_lights::{Importance, SampledFrame};
+use slc_cpu_ref::vsgl::{
+    bidirectional_importance, sample_points, FilteredSampler, Footprint, ImportanceMap, MipRsm,
+    SampleSet, Vsgl,
+};
 use slc_cpu_ref::{
-    Frame, LobeSelection, Method, Prepared, RenderSettings, Stochastic, StochasticFrame, Timings,
-    Tracer,
+    Frame, LightSampling, LobeSelection, Method, Prepared, RenderSettings, Stochastic,
+    StochasticFrame, Timings, Tracer,
 };
 use slc_cull::metrics::measure;
 use slc_gpu_wgpu::cull_frame::{read_lists, CullFrame};
@@ -23,11 +32,12 @@ use slc_gpu_wgpu::culler::{GpuCuller, Strategy};
 use slc_gpu_wgpu::denoise_pass::{BilateralSettings, DenoisePass, Guide};
 use slc_gpu_wgpu::direct_pass::DirectPass;
 use slc_gpu_wgpu::gbuffer_pass::{GbufferPass, GpuGBuffer};
-use slc_gpu_wgpu::rsm_pass::RsmPass;
+use slc_gpu_wgpu::rsm_pass::{GpuRsm, RsmPass};
 use slc_gpu_wgpu::scene_upload::GpuScene;
 use slc_gpu_wgpu::shade_pass::read_image;
 use slc_gpu_wgpu::shade_pass::ShadePass;
 use slc_gpu_wgpu::vpl_gen_pass::{VplGenPass, VplLobes};
+use slc_gpu_wgpu::vsgl_shade_pass::{GpuVsgls, VsglShadePass};
 use slc_gpu_wgpu::{GpuContext, GpuError};
 use std::cell::OnceCell;
 
@@ -42,12 +52,15 @@ pub fn gpu_strategy(culling: &str) -> Result<Strategy, String> {
     })
 }
 
-/// Refuses options the GPU backend does not have yet: shadow rays between VPLs and pixels.
+/// Refuses options the GPU backend does not have yet: shadow rays between VPLs and pixels,
+/// or shadow maps to VSGLs' mean positions `μ_v` (VSGL eq. 3's `V(x_p, μ_v)`).
 pub fn check_visibility(visibility: bool) -> Result<(), String> {
     if visibility {
-        return Err("--visibility (shadow rays to VPLs) is not on the GPU yet; \
-                    render with --backend cpu"
-            .into());
+        return Err(
+            "--visibility (shadow rays to VPLs, shadow maps to VSGLs) is not on the \
+                    GPU yet; render with --backend cpu"
+                .into(),
+        );
     }
     Ok(())
 }
@@ -61,6 +74,8 @@ fn gpu_err(e: GpuError) -> String {
 pub struct GpuPrepared {
     pub camera: Camera,
     pub gbuffer: GpuGBuffer,
+    /// The RSMs, one per light in the scene's order (VSGLs are built from them).
+    pub maps: Vec<GpuRsm>,
     pub vpls: Vec<Vpl>,
     pub direct: Image,
     pub timings: Timings,
@@ -89,6 +104,7 @@ pub struct GpuFrame {
     direct: DirectPass,
     culler: GpuCuller,
     shader: ShadePass,
+    vsgl_shader: VsglShadePass,
     denoiser: DenoisePass,
 }
 
@@ -104,6 +120,7 @@ impl GpuFrame {
             direct: DirectPass::new(&ctx).map_err(gpu_err)?,
             culler: GpuCuller::new(&ctx).map_err(gpu_err)?,
             shader: ShadePass::new(&ctx).map_err(gpu_err)?,
+            vsgl_shader: VsglShadePass::new(&ctx).map_err(gpu_err)?,
             denoiser: DenoisePass::new(&ctx).map_err(gpu_err)?,
             ctx,
         })
@@ -231,6 +248,7 @@ impl GpuFrame {
         Ok(GpuPrepared {
             camera,
             gbuffer,
+            maps,
             vpls,
             direct,
             timings,
@@ -247,9 +265,12 @@ impl GpuFrame {
             camera: p.camera.clone(),
             tracer,
             gbuffer: p.cpu_gbuffer(&self.ctx)?.clone(),
-            // The GPU's RSMs stay on the GPU: VSGLs (which need them on the CPU) are refused
-            // with --backend gpu.
-            maps: Vec::new(),
+            maps: p
+                .maps
+                .iter()
+                .map(|m| cpu_rsm(&self.ctx, m))
+                .collect::<Result<_, _>>()
+                .map_err(gpu_err)?,
             vpls: p.vpls.clone(),
             direct: p.direct.clone(),
             timings: p.timings.clone(),
@@ -320,6 +341,85 @@ impl GpuFrame {
         ))
     }
 
+    /// Indirect light from `s.count` VSGLs on a prepared frame, as
+    /// `slc_cpu_ref::sampled_lights::shade_vsgl` computes it without visibility: the RSMs read
+    /// back (`rsm_readback`), the Toksvig mipmaps (`vsgl_mip`), the flux or bidirectional
+    /// importance (`importance_map`; the latter reads the G-buffer back) and the filtered
+    /// importance sampling of clusters (`light_sampling`) on the CPU, then the analytic
+    /// shading of eq. (2)-(5) on the GPU (`light_shading`, VSGL upload included). `epsilon` is
+    /// the scene's ray offset ([`Tracer::scene_epsilon`]): `σ_v²` is floored at its square,
+    /// as the CPU's `sigma2_floor` does.
+    pub fn shade_vsgl(
+        &self,
+        p: &GpuPrepared,
+        s: &LightSampling,
+        seed: u32,
+        epsilon: f32,
+    ) -> Result<SampledFrame, String> {
+        let ctx = &self.ctx;
+        let mut timings = Timings::default();
+        let floor = epsilon * epsilon;
+        let maps = self.pass(&mut timings, "rsm_readback", || {
+            p.maps
+                .iter()
+                .map(|m| cpu_rsm(ctx, m))
+                .collect::<Result<Vec<_>, _>>()
+        })?;
+        let mips = timings
+            .time("vsgl_mip", || {
+                maps.iter()
+                    .map(|rsm| MipRsm::build(rsm, MeanMap::Toksvig))
+                    .collect::<Result<Vec<_>, _>>()
+            })
+            .map_err(|e| e.to_string())?;
+        let importance = match s.importance {
+            Importance::Flux => timings.time("importance_map", || {
+                mips.iter().map(ImportanceMap::from_mip).collect::<Vec<_>>()
+            }),
+            Importance::Bidirectional { camera_vsgls } => {
+                let gbuffer = p.cpu_gbuffer(ctx)?;
+                timings
+                    .time("importance_map", || {
+                        bidirectional_importance(
+                            gbuffer,
+                            &p.camera,
+                            &maps,
+                            camera_vsgls,
+                            seed,
+                            floor,
+                        )
+                    })
+                    .map_err(|e| e.to_string())?
+            }
+        };
+        let vsgls = timings
+            .time("light_sampling", || {
+                let points = sample_points(s.count, seed, SampleSet::Lights);
+                FilteredSampler::new(&importance)
+                    .sample(&points, Footprint::Filtered)
+                    .iter()
+                    .map(|w| {
+                        let c = w.cluster;
+                        let v = mips[c.map as usize].vsgl(c.face, c.level, c.x, c.y, floor)?;
+                        Ok(v.scaled(w.weight as f32))
+                    })
+                    .collect::<Result<Vec<Vsgl>, slc_bounds::BoundsError>>()
+            })
+            .map_err(|e| e.to_string())?;
+        let g = &p.gbuffer;
+        let rgb = self.pass(&mut timings, "light_shading", || {
+            let inputs: Vec<_> = vsgls.iter().map(vsgl_input).collect();
+            let uploaded = GpuVsgls::upload(ctx, &inputs)?;
+            self.vsgl_shader.shade_gpu_gbuffer_on_gpu(ctx, g, &uploaded)
+        })?;
+        let indirect = read_image(ctx, &rgb, g.width, g.height).map_err(gpu_err)?;
+        Ok(SampledFrame {
+            indirect,
+            lights: vsgls.len(),
+            timings,
+        })
+    }
+
     /// Renders `scene` with the stochastic estimate of `settings` as `slc_cpu_ref::render`
     /// does (the same passes and seeds for `spp` > 1), every pass but the filter on the GPU;
     /// with the GPU's timestamp times of its passes, summed over the passes, where it has
@@ -332,15 +432,19 @@ impl GpuFrame {
         settings.validate().map_err(|e| e.to_string())?;
         scene.validate_for_render().map_err(|e| e.to_string())?;
         check_visibility(settings.visibility)?;
-        let Method::Stochastic(s) = settings.method else {
-            return Err("references are rendered on the CPU only; use --backend cpu".into());
-        };
+        if !matches!(settings.method, Method::Stochastic(_) | Method::Vsgl(_)) {
+            return Err(
+                "references and sampled VPLs are rendered on the CPU only; use --backend cpu"
+                    .into(),
+            );
+        }
+        let epsilon = Tracer::scene_epsilon(scene);
         let (w, h) = (settings.width, settings.height);
         let mut timings = Timings::default();
         let gpu_scene = timings.time("upload", || self.upload(scene))?;
         let mut direct = Image::new(w, h);
         let mut indirect = Image::new(w, h);
-        let (mut vpl_count, mut metrics) = (0, None);
+        let (mut vpl_count, mut metrics, mut sampled_lights) = (0, None, None);
         let mut gpu_timings: Option<Timings> = None;
         let mut add_gpu = |t: Option<Timings>| {
             if let Some(t) = t {
@@ -354,12 +458,24 @@ impl GpuFrame {
             add_gpu(p.gpu_timings.clone());
             vpl_count = p.vpls.len();
             let seed = jitter.map_or(settings.seed, |j| settings.seed ^ pcg_hash(j));
-            let (f, gpu) = self.shade(&p, &s, seed)?;
-            timings.merge(&f.timings);
-            add_gpu(gpu);
-            metrics = f.metrics;
+            let ind = match settings.method {
+                Method::Vsgl(l) => {
+                    let f = self.shade_vsgl(&p, &l, seed, epsilon)?;
+                    timings.merge(&f.timings);
+                    sampled_lights = Some(f.lights);
+                    f.indirect
+                }
+                Method::Stochastic(s) => {
+                    let (f, gpu) = self.shade(&p, &s, seed)?;
+                    timings.merge(&f.timings);
+                    add_gpu(gpu);
+                    metrics = f.metrics;
+                    f.indirect
+                }
+                other => return Err(format!("{other:?} is not rendered on the GPU")),
+            };
             direct = direct.add(&p.direct);
-            indirect = indirect.add(&f.indirect);
+            indirect = indirect.add(&ind);
         }
         let inv = 1.0 / settings.spp as f32;
         for px in direct.pixels.iter_mut().chain(indirect.pixels.iter_mut()) {
@@ -372,7 +488,7 @@ impl GpuFrame {
                 vpl_count,
                 timings,
                 metrics,
-                sampled_lights: None,
+                sampled_lights,
             },
             gpu_timings,
         ))

@@ -3,6 +3,7 @@ mod args;
 mod bench_cmd;
 mod compare_cmd;
 mod gpu_frame;
+mod gpu_vsgl;
 mod heatmap;
 mod output;
 mod plot;

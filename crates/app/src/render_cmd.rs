@@ -1,7 +1,5 @@
 //! `slc render`.
-use crate::args::{
-    culling_name, Backend, FrameArgs, ImportanceArgs, PipelineArgs, Shader, VSGL_CPU_ONLY,
-};
+use crate::args::{culling_name, Backend, FrameArgs, ImportanceArgs, PipelineArgs, Shader};
 use crate::gpu_frame::{check_visibility, gpu_strategy, GpuFrame};
 use crate::output::write_frame;
 use crate::progress::bar;
@@ -73,14 +71,13 @@ pub fn run(args: &RenderArgs) -> Result<(), String> {
     let (frame, gpu_timings, device) = match f.backend {
         Backend::Cpu => (render_cpu(&scene, &settings)?, None, Device::cpu()),
         Backend::Gpu => {
-            if f.shader == Shader::Vsgl {
-                return Err(VSGL_CPU_ONLY.into());
-            }
             if args.reference.is_some() {
                 return Err("references are rendered on the CPU only; use --backend cpu".into());
             }
             check_visibility(f.visibility)?;
-            gpu_strategy(&args.culling)?;
+            if f.shader == Shader::Vpl {
+                gpu_strategy(&args.culling)?;
+            }
             let gpu = GpuFrame::new()?;
             eprintln!("rendering {} on the GPU", scene.name);
             let (frame, gpu_timings) = gpu.render(&scene, &settings)?;

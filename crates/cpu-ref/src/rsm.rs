@@ -87,7 +87,7 @@ fn cube_faces() -> Vec<Face> {
 
 /// Solid angle of the rectangle [x0, x1] x [y0, y1] on the plane at unit distance:
 /// `F(x1,y1) - F(x0,y1) - F(x1,y0) + F(x0,y0)` with `F(x, y) = atan2(xy, sqrt(x² + y² + 1))`.
-fn rectangle_solid_angle(x0: f32, x1: f32, y0: f32, y1: f32) -> f32 {
+pub fn rectangle_solid_angle(x0: f32, x1: f32, y0: f32, y1: f32) -> f32 {
     let f = |x: f64, y: f64| (x * y).atan2((x * x + y * y + 1.0).sqrt());
     let (x0, x1, y0, y1) = (x0 as f64, x1 as f64, y0 as f64, y1 as f64);
     (f(x1, y1) - f(x0, y1) - f(x1, y0) + f(x0, y0)).abs() as f32

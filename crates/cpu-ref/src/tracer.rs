@@ -55,9 +55,6 @@ impl Tracer {
                 });
             }
         }
-        let extent = scene.bounds().map_or(1.0, |(lo, hi)| {
-            lo.abs().max(hi.abs()).max_element().max(1.0)
-        });
         let bvh = build_cwbvh_from_tris(
             &tris,
             BvhBuildParams::medium_build(),
@@ -70,8 +67,17 @@ impl Tracer {
             bvh,
             tris,
             prims,
-            epsilon: 2e-5 * extent,
+            epsilon: Self::scene_epsilon(scene),
         }
+    }
+
+    /// The origin offset a tracer of `scene` uses to leave a surface ([`Tracer::epsilon`]),
+    /// without building one: 2e-5 of the largest coordinate's magnitude (at least 1).
+    pub fn scene_epsilon(scene: &Scene) -> f32 {
+        let extent = scene.bounds().map_or(1.0, |(lo, hi)| {
+            lo.abs().max(hi.abs()).max_element().max(1.0)
+        });
+        2e-5 * extent
     }
 
     /// The origin offset used to leave a surface.
