@@ -65,6 +65,13 @@ pub fn check_visibility(visibility: bool) -> Result<(), String> {
     Ok(())
 }
 
+/// The report note of a GPU VSGL frame: what ran where, and the missing visibility.
+pub const VSGL_GPU_NOTE: &str =
+    "--shader vsgl: the RSMs were read back, the VSGLs built and sampled on the CPU (vsgl_mip, \
+     importance_map, light_sampling) and shaded on the GPU (light_shading) instead of culling \
+     and VPL shading; GPU VSGL shading has no visibility term (the paper's shadow maps to each \
+     VSGL's mean position are not implemented)";
+
 fn gpu_err(e: GpuError) -> String {
     e.to_string()
 }

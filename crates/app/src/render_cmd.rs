@@ -1,6 +1,6 @@
 //! `slc render`.
 use crate::args::{culling_name, Backend, FrameArgs, ImportanceArgs, PipelineArgs, Shader};
-use crate::gpu_frame::{check_visibility, gpu_strategy, GpuFrame};
+use crate::gpu_frame::{check_visibility, gpu_strategy, GpuFrame, VSGL_GPU_NOTE};
 use crate::output::write_frame;
 use crate::progress::bar;
 use crate::report::{Device, FrameFacts, Report};
@@ -81,7 +81,11 @@ pub fn run(args: &RenderArgs) -> Result<(), String> {
             let gpu = GpuFrame::new()?;
             eprintln!("rendering {} on the GPU", scene.name);
             let (frame, gpu_timings) = gpu.render(&scene, &settings)?;
-            (frame, gpu_timings, gpu.device(args.metrics))
+            let mut device = gpu.device(args.metrics);
+            if f.shader == Shader::Vsgl {
+                device.notes.push(VSGL_GPU_NOTE.into());
+            }
+            (frame, gpu_timings, device)
         }
     };
 

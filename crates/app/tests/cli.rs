@@ -348,6 +348,10 @@ fn gpu_vsgl_render_agrees_with_the_cpu_vsgl_render() {
         assert_eq!(report["backend"], "gpu", "{report}");
         assert_eq!(report["shader"], "vsgl", "{report}");
         assert!(report["sampled_lights"].as_u64().unwrap() > 0, "{report}");
+        assert!(
+            report["notes"].to_string().contains("no visibility term"),
+            "{report}"
+        );
         for pass in [
             "rsm_readback",
             "vsgl_mip",
