@@ -51,8 +51,8 @@ impl DiffuseEmission {
 /// a product of two SGs and so one SG, shaded in closed form by `surface` ([`SgSurface`]: the
 /// SG's irradiance for the diffuse term, the warped GGX lobe for the specular one); the
 /// diffuse lobe as `diffuse` says. A receiver at `μ_v` itself sees the constant `λ_σ = 0` (and
-/// the clamped diffuse intensity averaged over directions, a quarter of its peak). Fails for
-/// a `σ_v²` that is not positive and finite, or when a lobe leaves the `f32` range.
+/// the clamped diffuse intensity averaged over all directions, `Σ Φ R_d/(4π)`). Fails for a
+/// `σ_v²` that is not positive and finite, or when a lobe leaves the `f32` range.
 pub fn vsgl_radiance(
     surface: &SgSurface,
     x_p: Vec3,
