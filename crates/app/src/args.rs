@@ -1,6 +1,7 @@
 //! Command-line options shared by `render`, `compare` and `sweep`.
 use clap::{Args, ValueEnum};
 use slc_core::{load_scene, Scene};
+use slc_cpu_ref::vsgl::DiffuseEmission;
 use slc_cpu_ref::{Importance, LightSampling, LobeSelection, RenderSettings, Stochastic};
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
@@ -33,7 +34,16 @@ pub enum ImportanceKind {
     Bidirectional,
 }
 
-/// How sampled lights (VSGLs, or VPLs at equal count) are drawn from the RSMs.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum DiffuseKind {
+    /// The diffuse intensity as the clamped cosine convolved with the cluster's normals: exact
+    /// for one texel, nothing beyond a flat cluster's horizon.
+    Clamped,
+    /// The paper's Toksvig-filtered diffuse SG (section 3.1.1, eq. 5).
+    Sg,
+}
+
+/// How sampled lights (VSGLs, or VPLs at equal count) are drawn from the RSMs and shaded.
 #[derive(Args, Debug, Clone)]
 pub struct ImportanceArgs {
     /// The importance VSGLs are sampled with.
@@ -42,6 +52,9 @@ pub struct ImportanceArgs {
     /// VSGLs generated on the G-buffer to estimate the bidirectional importance.
     #[arg(long, default_value_t = 1024)]
     pub camera_vsgls: u32,
+    /// The form of a VSGL's diffuse radiant intensity.
+    #[arg(long, value_enum, default_value_t = DiffuseKind::Clamped)]
+    pub vsgl_diffuse: DiffuseKind,
 }
 
 impl ImportanceArgs {
@@ -54,6 +67,10 @@ impl ImportanceArgs {
                 ImportanceKind::Bidirectional => Importance::Bidirectional {
                     camera_vsgls: self.camera_vsgls,
                 },
+            },
+            diffuse: match self.vsgl_diffuse {
+                DiffuseKind::Clamped => DiffuseEmission::ClampedCosine,
+                DiffuseKind::Sg => DiffuseEmission::Sg,
             },
         }
     }

@@ -255,11 +255,12 @@ fn sampled_lights(
     let cpu = Device::cpu();
     let mut md = format!(
         "\n## Sampled lights\n\n{} lights sampled from the RSMs by {} importance (the same \
-         points for both): VSGLs at the filtered mip level, and VPLs of single texels (unbiased). \
-         Times in ms; RMSE of the indirect image against every VPL with p = 1.\n\n\
-         | estimator | distinct lights |",
+         points for both): VSGLs at the filtered mip level (diffuse intensity {}), and VPLs of \
+         single texels (unbiased). Times in ms; RMSE of the indirect image against every VPL \
+         with p = 1.\n\n| estimator | distinct lights |",
         args.vsgls,
-        sampling.importance.name()
+        sampling.importance.name(),
+        sampling.diffuse.name()
     );
     for (_, row) in PASSES {
         let _ = write!(md, " {row} ms |");

@@ -394,6 +394,7 @@ impl GpuFrame {
                             camera_vsgls,
                             seed,
                             floor,
+                            s.diffuse,
                         )
                     })
                     .map_err(|e| e.to_string())?
@@ -415,7 +416,7 @@ impl GpuFrame {
             .map_err(|e| e.to_string())?;
         let g = &p.gbuffer;
         let rgb = self.pass(&mut timings, "light_shading", || {
-            let inputs: Vec<_> = vsgls.iter().map(vsgl_input).collect();
+            let inputs: Vec<_> = vsgls.iter().map(|v| vsgl_input(v, s.diffuse)).collect();
             let uploaded = GpuVsgls::upload(ctx, &inputs)?;
             self.vsgl_shader.shade_gpu_gbuffer_on_gpu(ctx, g, &uploaded)
         })?;

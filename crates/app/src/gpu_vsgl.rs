@@ -4,7 +4,7 @@
 use glam::Vec3;
 use slc_bounds::{Brdf, Fresnel};
 use slc_cpu_ref::rsm::{rectangle_solid_angle, Rsm, RsmTexel};
-use slc_cpu_ref::vsgl::Vsgl;
+use slc_cpu_ref::vsgl::{DiffuseEmission, Vsgl};
 use slc_gpu_wgpu::gpu_types::FRESNEL_SCHLICK;
 use slc_gpu_wgpu::rsm_pass::GpuRsm;
 use slc_gpu_wgpu::vsgl_types::{VsglInput, VsglLobe};
@@ -81,8 +81,12 @@ pub fn cpu_rsm(ctx: &GpuContext, rsm: &GpuRsm) -> Result<Rsm, GpuError> {
 }
 
 /// A CPU VSGL as `slc_gpu_wgpu::vsgl_shade_pass` takes it.
-pub fn vsgl_input(v: &Vsgl) -> VsglInput {
+pub fn vsgl_input(v: &Vsgl, diffuse: DiffuseEmission) -> VsglInput {
     VsglInput {
+        clamped_diffuse: match diffuse {
+            DiffuseEmission::Sg => None,
+            DiffuseEmission::ClampedCosine => Some(v.normal_concentration),
+        },
         mu: v.mu,
         sigma2: v.sigma2,
         lobes: [

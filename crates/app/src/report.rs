@@ -36,6 +36,9 @@ pub struct Report {
     pub importance: Option<&'static str>,
     /// VSGLs generated on the G-buffer for the bidirectional importance; `null` otherwise.
     pub camera_vsgls: Option<u32>,
+    /// The form of the VSGLs' diffuse intensity, `clamped` or `sg` (the paper's); `null` for
+    /// the other methods.
+    pub vsgl_diffuse: Option<&'static str>,
     /// Distinct lights shaded (samples of the same cluster merged; a sampled texel gives up to
     /// two VPLs); `null` for the other methods.
     pub sampled_lights: Option<usize>,
@@ -158,6 +161,10 @@ impl Report {
                 Importance::Bidirectional { camera_vsgls } => Some(camera_vsgls),
                 Importance::Flux => None,
             }),
+            vsgl_diffuse: match f.method {
+                Method::Vsgl(l) => Some(l.diffuse.name()),
+                _ => None,
+            },
             sampled_lights: f.sampled_lights,
             interleave: stochastic.map(|s| s.interleave),
             denoise: stochastic.map(|s| s.denoise),

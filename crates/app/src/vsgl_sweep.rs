@@ -170,7 +170,7 @@ fn write_tables(
     let mut md = format!("# VSGLs against VPLs at equal count: {scene}\n\n");
     let _ = writeln!(
         md,
-        "{}x{}, RSM {}² per face ({texels} lit texels, {vpls} VPLs), {} importance{}, visibility {}, seeds {}..{}, {} rayon threads. \
+        "{}x{}, RSM {}² per face ({texels} lit texels, {vpls} VPLs), {} importance{}, VSGL diffuse intensity {}, visibility {}, seeds {}..{}, {} rayon threads. \
          The reference is every VPL with p = 1 ({reference_ms:.0} ms). \"VPLs\" are the VPLs of N texels sampled by the same importance \
          and the same points as the N VSGLs (unbiased, weight 1/(N p)); a sampled texel gives up to two VPLs (diffuse and glossy), \
          a VSGL two lobes. No interleaving, no denoising.\n",
@@ -183,6 +183,7 @@ fn write_tables(
                 format!(" ({camera_vsgls} camera VSGLs)"),
             slc_cpu_ref::Importance::Flux => String::new(),
         },
+        args.importance.sampling(0).diffuse.name(),
         f.visibility,
         f.seed,
         f.seed + args.seeds - 1,

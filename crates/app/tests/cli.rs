@@ -144,6 +144,7 @@ fn render_with_vsgls_reports_the_sampled_lights() {
     assert_eq!(report["shader"], "vsgl", "{report}");
     assert_eq!(report["light_samples"], 32, "{report}");
     assert_eq!(report["importance"], "flux", "{report}");
+    assert_eq!(report["vsgl_diffuse"], "clamped", "{report}");
     assert!(report["camera_vsgls"].is_null() && report["delta"].is_null());
     assert!(report["culling"].is_null() && report["interleave"].is_null());
     let lights = report["sampled_lights"].as_u64().unwrap();
@@ -159,13 +160,14 @@ fn render_with_vsgls_reports_the_sampled_lights() {
     assert!(report["image_means"]["indirect"][1].as_f64().unwrap() > 0.0);
     let out2 = out_dir("render-vsgl-bidirectional");
     run_ok(
-        "render --shader vsgl --vsgls 32 --vsgl-importance bidirectional --camera-vsgls 16 --width 16 --height 12 --rsm 4",
+        "render --shader vsgl --vsgls 32 --vsgl-importance bidirectional --camera-vsgls 16 --vsgl-diffuse sg --width 16 --height 12 --rsm 4",
         &out2,
     );
     let report = std::fs::read_to_string(out2.join("report.json")).unwrap();
     assert!(
         report.contains("\"importance\": \"bidirectional\"")
-            && report.contains("\"camera_vsgls\": 16"),
+            && report.contains("\"camera_vsgls\": 16")
+            && report.contains("\"vsgl_diffuse\": \"sg\""),
         "{report}"
     );
     std::fs::remove_dir_all(&out).ok();

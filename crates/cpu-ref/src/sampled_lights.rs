@@ -13,8 +13,8 @@ use crate::render::{Prepared, Timings};
 use crate::tracer::Tracer;
 use crate::vpl_shading::{shade_vpls, VplEstimator};
 use crate::vsgl::{
-    bidirectional_importance, sample_points, shade_vsgls, FilteredSampler, Footprint,
-    ImportanceMap, MipRsm, SampleSet, Vsgl, VsglError, WeightedCluster,
+    bidirectional_importance, sample_points, shade_vsgls, DiffuseEmission, FilteredSampler,
+    Footprint, ImportanceMap, MipRsm, SampleSet, Vsgl, VsglError, WeightedCluster,
 };
 use slc_bounds::sg::MeanMap;
 use slc_core::{Image, Vpl};
@@ -39,11 +39,13 @@ impl Importance {
     }
 }
 
-/// `count` lights sampled with `importance`.
+/// `count` lights sampled with `importance`; VSGLs, and the camera-side VSGLs of the
+/// bidirectional importance, shade their diffuse lobes as `diffuse` says.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct LightSampling {
     pub count: u32,
     pub importance: Importance,
+    pub diffuse: DiffuseEmission,
 }
 
 /// A frame's indirect light from sampled lights, with what it cost.
@@ -84,9 +86,15 @@ pub fn shade_vsgl(
     })?;
     let importance = timings.time("importance_map", || match s.importance {
         Importance::Flux => Ok(mips.iter().map(ImportanceMap::from_mip).collect()),
-        Importance::Bidirectional { camera_vsgls } => {
-            bidirectional_importance(&p.gbuffer, &p.camera, &p.maps, camera_vsgls, seed, floor)
-        }
+        Importance::Bidirectional { camera_vsgls } => bidirectional_importance(
+            &p.gbuffer,
+            &p.camera,
+            &p.maps,
+            camera_vsgls,
+            seed,
+            floor,
+            s.diffuse,
+        ),
     })?;
     let vsgls = timings.time("light_sampling", || {
         sample(&importance, s.count, seed, Footprint::Filtered)
@@ -99,7 +107,9 @@ pub fn shade_vsgl(
             .collect::<Result<Vec<Vsgl>, VsglError>>()
     })?;
     let indirect = timings.time("light_shading", || {
-        shade_vsgls(&p.tracer, &p.gbuffer, &vsgls, visibility, progress)
+        shade_vsgls(
+            &p.tracer, &p.gbuffer, &vsgls, s.diffuse, visibility, progress,
+        )
     })?;
     Ok(SampledFrame {
         indirect,
@@ -129,6 +139,7 @@ pub fn shade_sampled_vpls(
             camera_vsgls,
             seed,
             sigma2_floor(&p.tracer),
+            s.diffuse,
         ),
     })?;
     let vpls = timings.time("light_sampling", || {

@@ -4,7 +4,7 @@ use glam::Vec3;
 use slc_core::{builtin, Image};
 use slc_cpu_ref::sampled_lights::{shade_sampled_vpls, shade_vsgl, sigma2_floor};
 use slc_cpu_ref::vpl_shading::{shade_vpls, vpl_contribution};
-use slc_cpu_ref::vsgl::{bidirectional_importance, ImportanceMap};
+use slc_cpu_ref::vsgl::{bidirectional_importance, DiffuseEmission, ImportanceMap};
 use slc_cpu_ref::{
     prepare, render, Importance, LightSampling, LobeSelection, Method, Prepared, RenderError,
     RenderSettings, Tracer, VplEstimator,
@@ -60,6 +60,7 @@ fn sampled_vpls_are_unbiased() {
         let s = LightSampling {
             count: 8,
             importance,
+            diffuse: DiffuseEmission::default(),
         };
         let n = truth.pixels.len();
         let (mut sum, mut sum2) = (vec![Vec3::ZERO; n], vec![Vec3::ZERO; n]);
@@ -108,17 +109,18 @@ fn sampled_vpls_are_unbiased() {
 #[test]
 fn vsgls_carry_the_energy_of_the_vpls() {
     // The VSGL image against every VPL: at N = 4 × texels most clusters are single texels and
-    // the image mean is that of the VPLs up to the SG fits (the cosine fits overestimate near
-    // the normal, see the shading tests); with 16 VSGLs (a few faces' worth of clusters) the
-    // energy is still there, only redistributed. Measured ratios are printed.
+    // the image mean is that of the VPLs up to the SG fits (measured ratios 0.95-0.98 per
+    // channel, relative RMSE 0.20); with 16 VSGLs, each a large cluster, the energy is still
+    // there, only redistributed (0.85-0.90, relative RMSE 0.47). Printed with `--nocapture`.
     let p = prepared(32, 32, 8);
     let truth = reference(&p);
     let want = truth.mean();
     let mut previous_rmse = f32::INFINITY;
-    for (count, lo, hi) in [(16, 0.6, 1.6), (4 * texels(&p), 0.9, 1.3)] {
+    for (count, lo, hi) in [(16, 0.75, 1.2), (4 * texels(&p), 0.9, 1.1)] {
         let s = LightSampling {
             count,
             importance: FLUX,
+            diffuse: DiffuseEmission::default(),
         };
         let f = shade_vsgl(&p, &s, 3, false, &|_| {}).unwrap();
         assert!(f.indirect.is_finite_non_negative());
@@ -152,6 +154,7 @@ fn vsgls_are_deterministic_and_finite_at_n_0_and_1() {
         let s = LightSampling {
             count,
             importance: BIDIRECTIONAL,
+            diffuse: DiffuseEmission::default(),
         };
         shade_vsgl(&p, &s, seed, true, &|_| {}).unwrap()
     };
@@ -187,7 +190,7 @@ fn bidirectional_importance_follows_what_the_camera_sees() {
     // as the estimate has none): Σ over pixels of both VPLs' contributions. Sampling texels by
     // the estimate from 256 camera VSGLs (section 4.3) estimates the image's total with a
     // lower variance than sampling them by flux: measured relative variances (second moment
-    // minus 1) 0.131 by flux, 0.053 bidirectional.
+    // minus 1) 0.131 by flux, 0.040 bidirectional.
     let p = prepared(24, 24, 8);
     let exact: Vec<f64> = {
         let mut per_texel = vec![0.0f64; texels(&p) as usize];
@@ -220,6 +223,7 @@ fn bidirectional_importance_follows_what_the_camera_sees() {
         256,
         1,
         sigma2_floor(&p.tracer),
+        DiffuseEmission::default(),
     )
     .unwrap();
     let (mf, mb) = (
@@ -240,6 +244,7 @@ fn render_runs_both_sampled_methods_and_checks_their_settings() {
     let sampling = LightSampling {
         count: 64,
         importance: FLUX,
+        diffuse: DiffuseEmission::default(),
     };
     for method in [Method::Vsgl(sampling), Method::SampledVpls(sampling)] {
         let mut s = settings(16, 12, 4, method);
@@ -263,6 +268,7 @@ fn render_runs_both_sampled_methods_and_checks_their_settings() {
         Method::Vsgl(LightSampling {
             count: 4,
             importance: Importance::Bidirectional { camera_vsgls: 0 },
+            diffuse: DiffuseEmission::default(),
         }),
     );
     assert!(matches!(

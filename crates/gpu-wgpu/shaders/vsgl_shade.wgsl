@@ -157,9 +157,10 @@ fn main(
                 var radiance = vec3<f32>(0.0);
                 let lobes = array<vec4<f32>, 2>(e.diffuse_lobe, e.specular_lobe);
                 let colours = array<vec3<f32>, 2>(e.diffuse_c_density.xyz, e.specular_c.xyz);
+                let clamped = e.specular_c.w != 0.0;
                 for (var k = 0u; k < 2u; k++) {
                     let c = colours[k];
-                    if all(c == vec3<f32>(0.0)) {
+                    if all(c == vec3<f32>(0.0)) || (clamped && k == 0u) {
                         continue;
                     }
                     let emitted = Sg(lobes[k].xyz, lobes[k].w, 1.0);
@@ -168,6 +169,19 @@ fn main(
                         atomicMin(&status.overflow_vsgl, v);
                     }
                     radiance += c * surface_radiance(surface, light);
+                }
+                // The clamped-cosine diffuse intensity (DiffuseEmission::ClampedCosine): the
+                // peak times the vMF-convolved clamped cosine towards the receiver (a quarter
+                // at mu_v itself), carried by the positional SG.
+                let peak = e.diffuse_c_density.xyz;
+                if clamped && any(peak != vec3<f32>(0.0)) {
+                    var towards = 0.25;
+                    if r2 > 0.0 {
+                        towards = sg_normalized_irradiance(e.diffuse_lobe.w, -dot(e.diffuse_lobe.xyz, position.axis));
+                    }
+                    if towards > 0.0 {
+                        radiance += peak * towards * surface_radiance(surface, position);
+                    }
                 }
                 sum += radiance;
             }

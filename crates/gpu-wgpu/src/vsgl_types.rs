@@ -4,8 +4,9 @@
 //! into its GPU form as `slc_cpu_ref::vsgl`'s `Emitter::new` prepares it.
 use crate::context::GpuError;
 use bytemuck::{Pod, Zeroable};
-use core::f32::consts::TAU;
+use core::f32::consts::{FRAC_1_PI, TAU};
 use glam::Vec3;
+use slc_bounds::sg::sg_integral;
 use slc_bounds::SphericalGaussian;
 
 /// One lobe `c_v G(ω; ξ_v, λ_v)` of a VSGL's radiant intensity (VSGL section 3.1.1): the
@@ -28,6 +29,11 @@ pub struct VsglInput {
     pub mu: Vec3,
     pub sigma2: f32,
     pub lobes: [VsglLobe; 2],
+    /// How the diffuse lobe emits (`slc_cpu_ref::vsgl::DiffuseEmission`): `None` as the
+    /// paper's SG, `Some(κ)` as the clamped cosine convolved with a von Mises-Fisher normal
+    /// distribution of concentration κ (`Vsgl::normal_concentration`) about `ξ_v`, of peak
+    /// `c_v A(λ_v)/π`.
+    pub clamped_diffuse: Option<f32>,
 }
 
 /// Parameters of the VSGL shading pass. Keep in sync with `VsglParams` in
@@ -52,7 +58,9 @@ pub struct GpuVsgl {
     pub diffuse_c_density: [f32; 4],
     /// The emitted diffuse lobe's axis `−ξ_v` (xyz) and `λ_v` (w).
     pub diffuse_lobe: [f32; 4],
-    /// `c_v` of the specular lobe (xyz; zero: left out).
+    /// `c_v` of the specular lobe (xyz; zero: left out); w: 1 when the diffuse lobe is the
+    /// clamped cosine (then `diffuse_c_density.xyz` is its peak `c_v A(λ_v)/π` and
+    /// `diffuse_lobe` holds `ξ_v` and κ), 0 for the SG.
     pub specular_c: [f32; 4],
     /// The emitted specular lobe's axis `−ξ_v` (xyz) and `λ_v` (w).
     pub specular_lobe: [f32; 4],
@@ -77,21 +85,49 @@ impl GpuVsgl {
             return Err(bad(format!("μ_v {} is not finite", vsgl.mu)));
         }
         let mut packed = [([0.0f32; 4], [0.0f32; 4]); 2];
-        for (lobe, out) in vsgl.lobes.iter().zip(&mut packed) {
+        for (k, (lobe, out)) in vsgl.lobes.iter().zip(&mut packed).enumerate() {
             if !(lobe.c.is_finite() && lobe.c.min_element() >= 0.0) {
                 return Err(bad(format!("c_v {} is not finite and >= 0", lobe.c)));
             }
             if lobe.c == Vec3::ZERO {
                 continue;
             }
-            let sg = SphericalGaussian::new(-lobe.xi, lobe.lambda, 1.0)
-                .map_err(|e| bad(e.to_string()))?;
-            *out = (
-                [lobe.c.x, lobe.c.y, lobe.c.z, 0.0],
-                [sg.axis.x, sg.axis.y, sg.axis.z, sg.sharpness],
-            );
+            *out = match vsgl.clamped_diffuse {
+                Some(kappa) if k == 0 => {
+                    // Emitter::new's ClampedDiffuse: the peak c_v A(λ_v)/π, the normal ξ_v.
+                    if !(lobe.xi.is_finite() && lobe.lambda.is_finite() && lobe.lambda >= 0.0)
+                        || kappa.is_nan()
+                    {
+                        return Err(bad(format!(
+                            "diffuse axis {} or λ {} or concentration {kappa} invalid",
+                            lobe.xi, lobe.lambda
+                        )));
+                    }
+                    let peak = lobe.c * (sg_integral(lobe.lambda) * FRAC_1_PI);
+                    if !peak.is_finite() {
+                        return Err(bad(format!("diffuse peak {peak} is not finite")));
+                    }
+                    (
+                        [peak.x, peak.y, peak.z, 0.0],
+                        [lobe.xi.x, lobe.xi.y, lobe.xi.z, kappa],
+                    )
+                }
+                _ => {
+                    let sg = SphericalGaussian::new(-lobe.xi, lobe.lambda, 1.0)
+                        .map_err(|e| bad(e.to_string()))?;
+                    (
+                        [lobe.c.x, lobe.c.y, lobe.c.z, 0.0],
+                        [sg.axis.x, sg.axis.y, sg.axis.z, sg.sharpness],
+                    )
+                }
+            };
         }
-        let [(cd, ld), (cs, ls)] = packed;
+        let [(cd, ld), (mut cs, ls)] = packed;
+        cs[3] = if vsgl.clamped_diffuse.is_some() {
+            1.0
+        } else {
+            0.0
+        };
         Ok(Self {
             mu_sigma2: [vsgl.mu.x, vsgl.mu.y, vsgl.mu.z, sigma2],
             diffuse_c_density: [cd[0], cd[1], cd[2], density],
@@ -151,6 +187,7 @@ mod tests {
             mu: Vec3::ZERO,
             sigma2,
             lobes: [lobe; 2],
+            clamped_diffuse: None,
         }
     }
 
@@ -185,5 +222,22 @@ mod tests {
             lambda: f32::NAN,
         };
         assert_eq!(GpuVsgl::new(&zero, 0).unwrap().specular_lobe, [0.0; 4]);
+        // The clamped diffuse emission: its peak c A(λ)/π, the normal ξ (not −ξ) and κ, the
+        // flag in specular_c.w; a NaN concentration is refused.
+        let clamped = VsglInput {
+            clamped_diffuse: Some(40.0),
+            ..input(1.0)
+        };
+        let packed = GpuVsgl::new(&clamped, 0).unwrap();
+        let peak = sg_integral(2.0) * FRAC_1_PI;
+        assert_eq!(packed.diffuse_c_density[..3], [peak; 3]);
+        assert_eq!(packed.diffuse_lobe, [0.0, 0.0, 1.0, 40.0]);
+        assert_eq!(packed.specular_c[3], 1.0);
+        assert_eq!(ok.specular_c[3], 0.0);
+        let nan = VsglInput {
+            clamped_diffuse: Some(f32::NAN),
+            ..input(1.0)
+        };
+        assert!(GpuVsgl::new(&nan, 0).is_err());
     }
 }

@@ -172,6 +172,11 @@ impl ToksvigSum {
         self.weight
     }
 
+    /// The mean-vector map the sum was made with.
+    pub fn map(&self) -> MeanMap {
+        self.map
+    }
+
     /// The weighted average mean vector `ξ̄_v = Σ w_i ξ̄_i / Σ w_i`; zero for an empty sum.
     pub fn mean_vector(&self) -> Vec3 {
         if self.weight > 0.0 {

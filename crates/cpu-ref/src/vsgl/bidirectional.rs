@@ -2,10 +2,9 @@
 //! G-buffer estimate how much each RSM texel's VPLs reach the image.
 use super::error::VsglError;
 use super::importance::ImportanceMap;
-use super::light::Vsgl;
 use super::mip::MipRsm;
 use super::sampling::{sample_points, FilteredSampler, Footprint, SampleSet};
-use super::shading::vsgl_radiance;
+use super::shading::{DiffuseEmission, Emitter};
 use super::sums::ClusterSums;
 use crate::rsm::{Rsm, RsmTexel};
 use glam::Vec3;
@@ -66,6 +65,7 @@ pub fn bidirectional_importance(
     camera_vsgls: u32,
     seed: u32,
     sigma2_floor: f32,
+    diffuse: DiffuseEmission,
 ) -> Result<Vec<ImportanceMap>, VsglError> {
     let camera_mip = MipRsm::build(&camera_rsm(gbuffer, camera), MeanMap::Toksvig)?;
     let camera_importance = [ImportanceMap::from_mip(&camera_mip)];
@@ -76,9 +76,9 @@ pub fn bidirectional_importance(
         .map(|s| {
             let c = s.cluster;
             let v = camera_mip.vsgl(c.face, c.level, c.x, c.y, sigma2_floor)?;
-            Ok(v.scaled(s.weight as f32))
+            Emitter::new(&v.scaled(s.weight as f32), diffuse)
         })
-        .collect::<Result<Vec<Vsgl>, VsglError>>()?;
+        .collect::<Result<Vec<Emitter>, VsglError>>()?;
     // (view, flux) masses per texel of every map.
     let masses = maps
         .iter()
@@ -122,12 +122,12 @@ pub fn bidirectional_importance(
 
 /// The view importance (the texel's flux times the radiance the camera VSGLs send it, RGB
 /// total) and the flux importance of one texel.
-fn texel_masses(t: &RsmTexel, vsgls: &[Vsgl]) -> Result<(f64, f64), VsglError> {
+fn texel_masses(t: &RsmTexel, vsgls: &[Emitter]) -> Result<(f64, f64), VsglError> {
     let flux = ClusterSums::from_texel(t, MeanMap::Toksvig)?.weight();
     let surface = SgSurface::new(t.normal, t.omega_i, &t.brdf)?;
     let mut radiance = Vec3::ZERO;
     for v in vsgls {
-        radiance += vsgl_radiance(&surface, t.position, v)?;
+        radiance += v.radiance(&surface, t.position)?;
     }
     let view = f64::from((t.flux * radiance).element_sum());
     Ok((view, flux))

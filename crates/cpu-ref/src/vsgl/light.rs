@@ -2,6 +2,7 @@
 use super::sums::ClusterSums;
 use core::f32::consts::TAU;
 use glam::Vec3;
+use slc_bounds::sg::{exact_sharpness, COSINE_LOBE_SHARPNESS};
 use slc_bounds::{BoundsError, SphericalGaussian, ToksvigSum};
 
 /// A VSGL: the radiant intensity `I_v(ω) ≈ c_d G(ω; ξ_d, λ_d) + c_s G(ω; ξ_s, λ_s)` of a
@@ -15,6 +16,11 @@ pub struct Vsgl {
     pub xi_diffuse: Vec3,
     /// `λ_v` of the diffuse lobe, from `|ξ̄_v|` by the map's inverse (`|ξ̄_v|/(1 − |ξ̄_v|)`).
     pub lambda_diffuse: f32,
+    /// The concentration κ of the cluster's normals (weighted by `Φ R_d`) about `ξ_d`: the
+    /// von Mises-Fisher sharpness whose mean length `coth κ − 1/κ` is that of the mean normal,
+    /// `|ξ̄_v|` over the mean length of one texel's diffuse lobe. Infinite (at most 1.7e7) for
+    /// coplanar texels. [`super::DiffuseEmission::ClampedCosine`] uses it.
+    pub normal_concentration: f32,
     /// `c_v` of the specular lobe, per channel.
     pub c_specular: Vec3,
     /// `ξ_v` of the specular lobe.
@@ -41,6 +47,9 @@ impl Vsgl {
     pub fn from_sums(sums: &ClusterSums, sigma2_floor: f32) -> Result<Self, BoundsError> {
         let (xi_diffuse, lambda_diffuse, c_diffuse) =
             filtered(&sums.diffuse_lobe, sums.diffuse_weight.as_vec3())?;
+        let texel_mean = sums.diffuse_lobe.map().length(COSINE_LOBE_SHARPNESS);
+        let mean_normal = sums.diffuse_lobe.mean_vector().length() / texel_mean;
+        let normal_concentration = exact_sharpness(mean_normal);
         let (xi_specular, lambda_specular, c_specular) =
             filtered(&sums.specular_lobe, sums.specular_weight.as_vec3())?;
         let weight = sums.weight();
@@ -55,6 +64,7 @@ impl Vsgl {
             c_diffuse,
             xi_diffuse,
             lambda_diffuse,
+            normal_concentration,
             c_specular,
             xi_specular,
             lambda_specular,

@@ -3,11 +3,43 @@
 use super::error::VsglError;
 use super::light::Vsgl;
 use crate::tracer::Tracer;
-use core::f32::consts::TAU;
+use core::f32::consts::{FRAC_1_PI, TAU};
 use glam::Vec3;
 use rayon::prelude::*;
+use slc_bounds::sg::{normalized_sg_irradiance, sg_integral};
 use slc_bounds::{SgSurface, SphericalGaussian};
 use slc_core::{GBuffer, Image};
+
+/// How a VSGL's diffuse radiant intensity enters its incoming radiance.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum DiffuseEmission {
+    /// The paper's (section 3.1.1 and eq. 5): the Toksvig-filtered SG `c_d G(ω; ξ_d, λ_d)`,
+    /// multiplied with the position SG. The SG does not vanish beyond the cluster's horizon
+    /// (`e^{−2.133}` = 12 % of its peak in the tangent plane of a flat cluster), which lights
+    /// receivers beside and below the cluster that its VPLs cannot reach.
+    Sg,
+    /// The diffuse intensity of texels whose normals are distributed as a von Mises-Fisher
+    /// lobe about `ξ_d` with the cluster's concentration κ
+    /// ([`Vsgl::normal_concentration`]): `I_d(ω) = Σ Φ R_d / π · E(κ, ξ_d·ω)`, the clamped
+    /// cosine convolved with that lobe ([`normalized_sg_irradiance`]), evaluated towards the
+    /// receiver along the position SG's axis, which then carries it: `L_in(ω) ≈ I_d(−ξ_μ)
+    /// G(ω; ξ_μ, λ_σ)/(2πσ_v²)`. Exact for a single texel (its VPL's `kd/π max(cos, 0)`) and
+    /// zero beyond the horizon of a flat cluster; it keeps the total `Σ Φ R_d`. It ignores the
+    /// variation of `I_d` across the position SG, which matters only for large clusters seen
+    /// from nearby.
+    #[default]
+    ClampedCosine,
+}
+
+impl DiffuseEmission {
+    /// `sg` or `clamped`, as the command line and reports name it.
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Sg => "sg",
+            Self::ClampedCosine => "clamped",
+        }
+    }
+}
 
 /// The radiance reflected towards the receiver's view by one VSGL (eq. 2), without visibility:
 /// for each lobe `c_v G(ω; ξ_v, λ_v)` of the VSGL's radiant intensity, the incoming radiance of
@@ -17,26 +49,42 @@ use slc_core::{GBuffer, Image};
 /// `λ_σ = |μ_v − x_p|²/σ_v²` (eq. 4),
 ///
 /// a product of two SGs and so one SG, shaded in closed form by `surface` ([`SgSurface`]: the
-/// SG's irradiance for the diffuse term, the warped GGX lobe for the specular one). A receiver
-/// at `μ_v` itself sees the constant `λ_σ = 0`. Fails for a `σ_v²` that is not positive and
-/// finite, or when a lobe leaves the `f32` range.
-pub fn vsgl_radiance(surface: &SgSurface, x_p: Vec3, vsgl: &Vsgl) -> Result<Vec3, VsglError> {
-    Emitter::new(vsgl)?.radiance(surface, x_p)
+/// SG's irradiance for the diffuse term, the warped GGX lobe for the specular one); the
+/// diffuse lobe as `diffuse` says. A receiver at `μ_v` itself sees the constant `λ_σ = 0` (and
+/// the clamped diffuse intensity averaged over all directions, `Σ Φ R_d/(4π)`). Fails for a
+/// `σ_v²` that is not positive and finite, or when a lobe leaves the `f32` range.
+pub fn vsgl_radiance(
+    surface: &SgSurface,
+    x_p: Vec3,
+    vsgl: &Vsgl,
+    diffuse: DiffuseEmission,
+) -> Result<Vec3, VsglError> {
+    Emitter::new(vsgl, diffuse)?.radiance(surface, x_p)
 }
 
-/// A VSGL prepared for shading many receivers: its position and the emitted lobes
-/// `G(ω; −ξ_v, λ_v)` of eq. (5) with their coefficients `c_v`, zero lobes left out.
-struct Emitter {
+/// A VSGL's diffuse intensity in the [`DiffuseEmission::ClampedCosine`] form.
+struct ClampedDiffuse {
+    /// `Σ Φ R_d / π`, per channel.
+    peak: Vec3,
+    normal: Vec3,
+    concentration: f32,
+}
+
+/// A VSGL prepared for shading many receivers: its position, the emitted SG lobes
+/// `G(ω; −ξ_v, λ_v)` of eq. (5) with their coefficients `c_v` (zero lobes left out) and the
+/// clamped diffuse intensity when it replaces the diffuse SG.
+pub(crate) struct Emitter {
     mu: Vec3,
     sigma2: f32,
     /// `1/(2πσ_v²)`, the coefficient of eq. (1) and (5).
     density: f32,
     lobes: [(Vec3, SphericalGaussian); 2],
     count: usize,
+    clamped: Option<ClampedDiffuse>,
 }
 
 impl Emitter {
-    fn new(vsgl: &Vsgl) -> Result<Self, VsglError> {
+    pub(crate) fn new(vsgl: &Vsgl, diffuse: DiffuseEmission) -> Result<Self, VsglError> {
         let sigma2 = vsgl.sigma2;
         let density = 1.0 / (TAU * sigma2);
         if !(sigma2 > 0.0 && density.is_finite()) {
@@ -45,14 +93,35 @@ impl Emitter {
         let unused = (Vec3::ZERO, SphericalGaussian::new(Vec3::Z, 0.0, 0.0)?);
         let mut lobes = [unused; 2];
         let mut count = 0;
-        for (c, xi, lambda) in [
-            (vsgl.c_diffuse, vsgl.xi_diffuse, vsgl.lambda_diffuse),
-            (vsgl.c_specular, vsgl.xi_specular, vsgl.lambda_specular),
+        let mut clamped = None;
+        let sg_diffuse = diffuse == DiffuseEmission::Sg;
+        for (c, xi, lambda, as_sg) in [
+            (
+                vsgl.c_diffuse,
+                vsgl.xi_diffuse,
+                vsgl.lambda_diffuse,
+                sg_diffuse,
+            ),
+            (
+                vsgl.c_specular,
+                vsgl.xi_specular,
+                vsgl.lambda_specular,
+                true,
+            ),
         ] {
-            if c != Vec3::ZERO {
+            if c == Vec3::ZERO {
+                continue;
+            }
+            if as_sg {
                 // I_v(−ω) ∝ G(−ω; ξ_v, λ_v) = G(ω; −ξ_v, λ_v): the light leaving μ_v towards x_p.
                 lobes[count] = (c, SphericalGaussian::new(-xi, lambda, 1.0)?);
                 count += 1;
+            } else {
+                clamped = Some(ClampedDiffuse {
+                    peak: c * (sg_integral(lambda) * FRAC_1_PI),
+                    normal: xi,
+                    concentration: vsgl.normal_concentration,
+                });
             }
         }
         Ok(Self {
@@ -61,10 +130,12 @@ impl Emitter {
             density,
             lobes,
             count,
+            clamped,
         })
     }
 
-    fn radiance(&self, surface: &SgSurface, x_p: Vec3) -> Result<Vec3, VsglError> {
+    /// [`vsgl_radiance`] at the receiver `surface` at `x_p`.
+    pub(crate) fn radiance(&self, surface: &SgSurface, x_p: Vec3) -> Result<Vec3, VsglError> {
         let d = self.mu - x_p;
         let r2 = d.length_squared();
         let position = if r2 > 0.0 {
@@ -85,12 +156,22 @@ impl Emitter {
         for (c, emitted) in &self.lobes[..self.count] {
             radiance += *c * surface.radiance(&emitted.product(&position)?);
         }
+        if let Some(diffuse) = &self.clamped {
+            let towards_receiver = if r2 > 0.0 {
+                normalized_sg_irradiance(diffuse.concentration, -diffuse.normal.dot(position.axis))
+            } else {
+                0.25
+            };
+            if towards_receiver > 0.0 {
+                radiance += diffuse.peak * towards_receiver * surface.radiance(&position);
+            }
+        }
         Ok(radiance)
     }
 }
 
 /// Indirect radiance at every pixel of `gbuffer` from every VSGL of `vsgls` (their weights
-/// already applied), by [`vsgl_radiance`]; with `visibility`, each VSGL that contributes is
+/// already applied), by [`vsgl_radiance`] with `diffuse`; with `visibility`, each VSGL that contributes is
 /// tested with a shadow ray from the pixel to its mean position `μ_v` (VSGL eq. 3,
 /// `V(x_p, μ_v)`). Pixels without a surface stay black. `progress` is called with the number
 /// of pixels finished.
@@ -98,12 +179,13 @@ pub fn shade_vsgls(
     tracer: &Tracer,
     gbuffer: &GBuffer,
     vsgls: &[Vsgl],
+    diffuse: DiffuseEmission,
     visibility: bool,
     progress: &(dyn Fn(u64) + Sync),
 ) -> Result<Image, VsglError> {
     let emitters = vsgls
         .iter()
-        .map(Emitter::new)
+        .map(|v| Emitter::new(v, diffuse))
         .collect::<Result<Vec<_>, _>>()?;
     let mut image = Image::new(gbuffer.width, gbuffer.height);
     let w = gbuffer.width as usize;

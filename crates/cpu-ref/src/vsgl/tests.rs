@@ -4,7 +4,7 @@ use crate::rsm::{trace_rsm, Rsm, RsmTexel, TexelSample};
 use crate::Tracer;
 use core::f64::consts::PI;
 use glam::{DVec3, Vec3};
-use slc_bounds::sg::{sg_integral, MeanMap};
+use slc_bounds::sg::{exact_mean_length, sg_integral, MeanMap};
 use slc_bounds::{Brdf, Fresnel};
 
 const FLOOR: f32 = 1e-6;
@@ -43,6 +43,7 @@ fn sphere_integral(axis: Vec3, f: impl Fn(Vec3) -> f64) -> f64 {
 fn direct_vsgl(rsm: &Rsm, face: u32, x: [u32; 2], y: [u32; 2], map: MeanMap) -> Vsgl {
     let n = rsm.resolution;
     let (mut wd, mut ws, mut md, mut ms) = (DVec3::ZERO, DVec3::ZERO, DVec3::ZERO, DVec3::ZERO);
+    let mut normals = DVec3::ZERO;
     let (mut w, mut wx, mut wxx) = (0.0, DVec3::ZERO, 0.0);
     for row in y[0]..y[1].min(n) {
         for col in x[0]..x[1].min(n) {
@@ -60,6 +61,7 @@ fn direct_vsgl(rsm: &Rsm, face: u32, x: [u32; 2], y: [u32; 2], map: MeanMap) -> 
                 sg.axis.as_dvec3() * f64::from(map.length(sg.sharpness))
             };
             md += d.element_sum() * mean(l.diffuse_lobe);
+            normals += d.element_sum() * t.normal.as_dvec3();
             ms += s.element_sum() * mean(l.specular_lobe);
             let wi = (d + s).element_sum();
             let p = t.position.as_dvec3();
@@ -90,10 +92,16 @@ fn direct_vsgl(rsm: &Rsm, face: u32, x: [u32; 2], y: [u32; 2], map: MeanMap) -> 
     } else {
         0.0
     };
+    let mean_normal = if wd.element_sum() > 0.0 {
+        (normals / wd.element_sum()).length() as f32
+    } else {
+        0.0
+    };
     Vsgl {
         c_diffuse,
         xi_diffuse,
         lambda_diffuse,
+        normal_concentration: slc_bounds::sg::exact_sharpness(mean_normal),
         c_specular,
         xi_specular,
         lambda_specular,
@@ -120,7 +128,13 @@ fn assert_vsgl_eq(a: &Vsgl, b: &Vsgl, scale: f32, what: &str) {
         && (a.lambda_specular < 1e-3 || close3(a.xi_specular, b.xi_specular, 0.0, 1e-4))
         && close3(a.mu, b.mu, 0.0, 1e-5 * scale)
         && close(a.sigma2, b.sigma2, 1e-3, 1e-6 * scale * scale)
-        && close(a.weight, b.weight, 1e-5, 1e-9);
+        && close(a.weight, b.weight, 1e-5, 1e-9)
+        && close(
+            exact_mean_length(a.normal_concentration),
+            exact_mean_length(b.normal_concentration),
+            0.0,
+            1e-5,
+        );
     assert!(ok, "{what}: mip {a:?} != direct {b:?}");
 }
 
@@ -450,4 +464,44 @@ fn texel_patches_add_their_variance() {
     // At grazing incidence the stretch is capped at 100.
     a.omega_i = Vec3::X;
     assert!((footprint_variance(&a) - 1.2 * (1.0 + 1e4) / 12.0).abs() < 1e-3);
+}
+
+#[test]
+fn the_normal_concentration_matches_the_mean_normal() {
+    // Coplanar texels: κ at its cap. Two equal texels with normals 90° apart: the mean normal
+    // has length cos 45°, and κ is the vMF sharpness with that mean length.
+    let flat = Rsm {
+        resolution: 2,
+        faces: 1,
+        texels: vec![Some(plane_texel(Vec3::ZERO, 1.0)); 4],
+    };
+    let v = MipRsm::build(&flat, MeanMap::Toksvig)
+        .unwrap()
+        .vsgl(0, 1, 0, 0, FLOOR)
+        .unwrap();
+    assert!(v.normal_concentration > 1e6, "{v:?}");
+    for map in [MeanMap::Toksvig, MeanMap::Exact] {
+        let mut a = plane_texel(Vec3::ZERO, 1.0);
+        a.omega_i = Vec3::new(1.0, 0.0, 1.0).normalize();
+        let mut b = a;
+        a.normal = Vec3::Z;
+        b.normal = Vec3::X;
+        let rsm = Rsm {
+            resolution: 2,
+            faces: 1,
+            texels: vec![Some(a), Some(b), None, None],
+        };
+        let v = MipRsm::build(&rsm, map)
+            .unwrap()
+            .vsgl(0, 1, 0, 0, FLOOR)
+            .unwrap();
+        let mean = slc_bounds::sg::exact_mean_length(v.normal_concentration);
+        assert!((mean - 0.5f32.sqrt()).abs() < 1e-4, "{map:?}: {v:?} {mean}");
+        assert!(close3(
+            v.xi_diffuse,
+            Vec3::new(1.0, 0.0, 1.0).normalize(),
+            0.0,
+            1e-5
+        ));
+    }
 }

@@ -24,8 +24,8 @@ use slc_cpu_ref::gbuffer::{trace_gbuffer, PixelSample};
 use slc_cpu_ref::rsm::{trace_rsm, TexelSample};
 use slc_cpu_ref::sampled_lights::sigma2_floor;
 use slc_cpu_ref::vsgl::{
-    bidirectional_importance, sample_points, shade_vsgls, FilteredSampler, Footprint,
-    ImportanceMap, MipRsm, SampleSet, Vsgl,
+    bidirectional_importance, sample_points, shade_vsgls, DiffuseEmission, FilteredSampler,
+    Footprint, ImportanceMap, MipRsm, SampleSet, Vsgl,
 };
 use slc_cpu_ref::Tracer;
 use slc_gpu_wgpu::buffers::upload;
@@ -38,9 +38,14 @@ use slc_gpu_wgpu::{GpuContext, GpuError};
 const TOLERANCE: f32 = 1e-4;
 const FLOOR_OF_MEAN: f32 = 1e-3;
 
-/// A CPU VSGL as the pass takes it.
-fn input(v: &Vsgl) -> VsglInput {
+/// Both forms of the diffuse emission, the default first.
+const EMISSIONS: [DiffuseEmission; 2] = [DiffuseEmission::ClampedCosine, DiffuseEmission::Sg];
+
+/// A CPU VSGL as the pass takes it, with `diffuse` emission.
+fn input(v: &Vsgl, diffuse: DiffuseEmission) -> VsglInput {
     VsglInput {
+        clamped_diffuse: (diffuse == DiffuseEmission::ClampedCosine)
+            .then_some(v.normal_concentration),
         mu: v.mu,
         sigma2: v.sigma2,
         lobes: [
@@ -82,16 +87,24 @@ fn worst_error(gpu: &Image, cpu: &Image) -> (f32, usize) {
 }
 
 /// Shades `vsgls` on `gbuffer` on both backends and holds them to the tolerance.
-fn agree(ctx: &GpuContext, tracer: &Tracer, gbuffer: &GBuffer, vsgls: &[Vsgl], what: &str) -> f32 {
-    let cpu = shade_vsgls(tracer, gbuffer, vsgls, false, &|_| {}).unwrap();
-    let inputs: Vec<_> = vsgls.iter().map(input).collect();
+fn agree(
+    ctx: &GpuContext,
+    tracer: &Tracer,
+    gbuffer: &GBuffer,
+    vsgls: &[Vsgl],
+    diffuse: DiffuseEmission,
+    what: &str,
+) -> f32 {
+    let cpu = shade_vsgls(tracer, gbuffer, vsgls, diffuse, false, &|_| {}).unwrap();
+    let inputs: Vec<_> = vsgls.iter().map(|v| input(v, diffuse)).collect();
     let pass = VsglShadePass::new(ctx).unwrap();
     let gpu = pass
         .shade(ctx, gbuffer, &GpuVsgls::upload(ctx, &inputs).unwrap())
         .unwrap();
     let (worst, p) = worst_error(&gpu, &cpu);
     println!(
-        "{what}: {} VSGLs, worst {worst:.3e} at pixel {p} (gpu {}, cpu {}), mean {}",
+        "{what} ({}): {} VSGLs, worst {worst:.3e} at pixel {p} (gpu {}, cpu {}), mean {}",
+        diffuse.name(),
         vsgls.len(),
         gpu.pixels[p],
         cpu.pixels[p],
@@ -130,23 +143,26 @@ fn vsgl_shading_matches_the_cpu_on_the_default_scene() {
         .map(|m| MipRsm::build(m, MeanMap::Toksvig).unwrap())
         .collect();
     let flux: Vec<_> = mips.iter().map(ImportanceMap::from_mip).collect();
-    let bidirectional = bidirectional_importance(&gbuffer, &camera, &maps, 64, 7, floor).unwrap();
     let mut worst = 0.0f32;
-    for (name, importance) in [("flux", &flux), ("bidirectional", &bidirectional)] {
-        for count in [16, 256, 4096] {
-            let points = sample_points(count, 7, SampleSet::Lights);
-            let vsgls: Vec<Vsgl> = FilteredSampler::new(importance)
-                .sample(&points, Footprint::Filtered)
-                .iter()
-                .map(|w| {
-                    let c = w.cluster;
-                    let v = mips[c.map as usize]
-                        .vsgl(c.face, c.level, c.x, c.y, floor)
-                        .unwrap();
-                    v.scaled(w.weight as f32)
-                })
-                .collect();
-            worst = worst.max(agree(&ctx, &tracer, &gbuffer, &vsgls, name));
+    for diffuse in EMISSIONS {
+        let bidirectional =
+            bidirectional_importance(&gbuffer, &camera, &maps, 64, 7, floor, diffuse).unwrap();
+        for (name, importance) in [("flux", &flux), ("bidirectional", &bidirectional)] {
+            for count in [16, 256, 4096] {
+                let points = sample_points(count, 7, SampleSet::Lights);
+                let vsgls: Vec<Vsgl> = FilteredSampler::new(importance)
+                    .sample(&points, Footprint::Filtered)
+                    .iter()
+                    .map(|w| {
+                        let c = w.cluster;
+                        let v = mips[c.map as usize]
+                            .vsgl(c.face, c.level, c.x, c.y, floor)
+                            .unwrap();
+                        v.scaled(w.weight as f32)
+                    })
+                    .collect();
+                worst = worst.max(agree(&ctx, &tracer, &gbuffer, &vsgls, diffuse, name));
+            }
         }
     }
     println!("default scene: worst {worst:.3e}");
@@ -201,7 +217,8 @@ fn extreme_gbuffer() -> GBuffer {
     }
 }
 
-/// VSGLs of extreme parameters: λ from 0 to 1e6 on both lobes, σ² from 1e-6 to 10, μ_v on a
+/// VSGLs of extreme parameters: λ from 0 to 1e6 on both lobes, normal concentrations κ from 0
+/// to 1.7e7 (the clamped diffuse emission), σ² from 1e-6 to 10, μ_v on a
 /// receiver (the constant positional lobe), near and far above the plane and below it, zero
 /// lobes, lobes facing the plane and away from it.
 fn extreme_vsgls() -> Vec<Vsgl> {
@@ -229,6 +246,9 @@ fn extreme_vsgls() -> Vec<Vsgl> {
                 },
                 xi_diffuse: if k % 4 == 1 { -down } else { down },
                 lambda_diffuse: ld,
+                // Coplanar texels (at most 1.7e7, `Vsgl::normal_concentration`) down to a
+                // broad spread of normals.
+                normal_concentration: [1.7e7, 1e3, 10.0, 0.3, 0.0][k % 5],
                 c_specular: if k % 5 == 2 {
                     Vec3::ZERO
                 } else {
@@ -251,22 +271,36 @@ fn vsgl_shading_matches_the_cpu_on_extremes() {
     let tracer = Tracer::new(&builtin("default").unwrap());
     let gbuffer = extreme_gbuffer();
     let vsgls = extreme_vsgls();
-    agree(&ctx, &tracer, &gbuffer, &vsgls, "extremes");
-    // Each VSGL alone, so no regime hides behind a brighter one.
     let mut worst = 0.0f32;
-    for v in &vsgls {
-        let cpu = shade_vsgls(&tracer, &gbuffer, std::slice::from_ref(v), false, &|_| {}).unwrap();
-        let pass = VsglShadePass::new(&ctx).unwrap();
-        let gpu = pass
-            .shade(
-                &ctx,
+    for diffuse in EMISSIONS {
+        agree(&ctx, &tracer, &gbuffer, &vsgls, diffuse, "extremes");
+        // Each VSGL alone, so no regime hides behind a brighter one.
+        for v in &vsgls {
+            let cpu = shade_vsgls(
+                &tracer,
                 &gbuffer,
-                &GpuVsgls::upload(&ctx, &[input(v)]).unwrap(),
+                std::slice::from_ref(v),
+                diffuse,
+                false,
+                &|_| {},
             )
             .unwrap();
-        let (w, p) = worst_error(&gpu, &cpu);
-        assert!(w <= TOLERANCE, "{v:?}: worst {w} at pixel {p}");
-        worst = worst.max(w);
+            let pass = VsglShadePass::new(&ctx).unwrap();
+            let gpu = pass
+                .shade(
+                    &ctx,
+                    &gbuffer,
+                    &GpuVsgls::upload(&ctx, &[input(v, diffuse)]).unwrap(),
+                )
+                .unwrap();
+            let (w, p) = worst_error(&gpu, &cpu);
+            assert!(
+                w <= TOLERANCE,
+                "{v:?} ({}): worst {w} at pixel {p}",
+                diffuse.name()
+            );
+            worst = worst.max(w);
+        }
     }
     println!("extremes, one VSGL at a time: worst {worst:.3e}");
 }
@@ -279,7 +313,7 @@ fn vsgl_shading_refuses_out_of_domain_input() {
     let Some(ctx) = gpu() else { return };
     let pass = VsglShadePass::new(&ctx).unwrap();
     let gbuffer = extreme_gbuffer();
-    let good = input(&extreme_vsgls()[5]);
+    let good = input(&extreme_vsgls()[5], DiffuseEmission::Sg);
     for sigma2 in [0.0, -1.0, f32::NAN, 1e-45] {
         let r = GpuVsgls::upload(&ctx, &[VsglInput { sigma2, ..good }]);
         assert!(matches!(r, Err(GpuError::Input(_))), "σ² {sigma2}");
