@@ -18,13 +18,9 @@ pub enum Shader {
     /// VPLs with the stochastic estimate and culling (or a reference).
     Vpl,
     /// Virtual spherical Gaussian lights sampled from mipmapped RSMs (Tokuyoshi 2015); `slc render`
-    /// on either backend (the GPU without visibility), `slc compare` and `sweep` on the CPU.
+    /// and `slc compare` on either backend (the GPU without visibility), `sweep` on the CPU.
     Vsgl,
 }
-
-/// The message for `slc compare --shader vsgl` on the GPU, which only the CPU has.
-pub const VSGL_CPU_ONLY: &str = "slc compare --shader vsgl runs on the CPU only in this version; \
-     compare with --backend cpu (slc render --backend gpu --shader vsgl renders VSGLs on the GPU)";
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
 pub enum ImportanceKind {

@@ -4,15 +4,13 @@
 //! with p = 1, the same VPLs), `report.md` with the table, and `side_by_side.png`. With
 //! `--shader vsgl` also `vsgl/` and `vpl_sampled/`: `--vsgls N` VSGLs and N VPLs sampled by the
 //! same importance, with their own table in `report.md`.
-use crate::args::{
-    culling_names, Backend, FrameArgs, ImportanceArgs, PipelineArgs, Shader, VSGL_CPU_ONLY,
-};
-use crate::gpu_frame::{check_visibility, gpu_strategy, GpuFrame};
+use crate::args::{culling_names, Backend, FrameArgs, ImportanceArgs, PipelineArgs, Shader};
+use crate::gpu_frame::{check_visibility, gpu_strategy, GpuFrame, GpuPrepared};
 use crate::heatmap::heat_map;
 use crate::output::write_frame;
 use crate::progress::bar;
 use crate::report::{Device, FrameFacts, Report};
-use crate::sampled::{pass_ms, ESTIMATORS, PASSES};
+use crate::sampled::{pass_ms, Estimator, ESTIMATORS, PASSES};
 use clap::Args;
 use image::RgbImage;
 use slc_core::Image;
@@ -74,9 +72,6 @@ pub fn run(args: &CompareArgs) -> Result<(), String> {
     let gpu = match f.backend {
         Backend::Cpu => None,
         Backend::Gpu => {
-            if f.shader == Shader::Vsgl {
-                return Err(VSGL_CPU_ONLY.into());
-            }
             check_visibility(f.visibility)?;
             for name in &names {
                 gpu_strategy(name)?;
@@ -230,7 +225,8 @@ pub fn run(args: &CompareArgs) -> Result<(), String> {
         eprintln!("{name}: done");
     }
     let sampled = if f.shader == Shader::Vsgl {
-        sampled_lights(args, &scene, &p, reference.as_ref())?
+        let on_gpu = gpu.as_ref().zip(on_gpu.as_ref());
+        sampled_lights(args, &scene, &p, on_gpu, reference.as_ref())?
     } else {
         String::new()
     };
@@ -243,16 +239,20 @@ pub fn run(args: &CompareArgs) -> Result<(), String> {
 }
 
 /// Shades the prepared frame with `--vsgls` VSGLs and as many sampled VPLs, writes their
-/// folders, and returns their section of `report.md`.
+/// folders, and returns their section of `report.md`. With `gpu` (the GPU and the frame it
+/// prepared, of which `p` is the read-back) the VSGLs are shaded on the GPU; the sampled VPLs
+/// always on the CPU.
 fn sampled_lights(
     args: &CompareArgs,
     scene: &slc_core::Scene,
     p: &slc_cpu_ref::Prepared,
+    gpu: Option<(&GpuFrame, &GpuPrepared)>,
     reference: Option<&Image>,
 ) -> Result<String, String> {
     let f = &args.frame;
     let sampling = args.importance.sampling(args.vsgls);
     let cpu = Device::cpu();
+    let gpu_device = gpu.map(|(g, _)| g.vsgl_device());
     let mut md = format!(
         "\n## Sampled lights\n\n{} lights sampled from the RSMs by {} importance (the same \
          points for both): VSGLs at the filtered mip level (diffuse intensity {}), and VPLs of \
@@ -268,14 +268,20 @@ fn sampled_lights(
     md.push_str(" total ms | RMSE vs reference |\n|---|---|---|---|---|---|---|---|\n");
     for e in ESTIMATORS {
         eprintln!("{}: {} lights", e.name(), args.vsgls);
-        let out = e.shade(p, &sampling, f.seed, f.visibility)?;
+        let (out, device) = match (e, gpu) {
+            (Estimator::Vsgl, Some((g, gp))) => (
+                g.shade_vsgl(gp, &sampling, f.seed, Tracer::scene_epsilon(scene))?,
+                gpu_device.as_ref().unwrap_or(&cpu),
+            ),
+            _ => (e.shade(p, &sampling, f.seed, f.visibility)?, &cpu),
+        };
         let total = p.direct.add(&out.indirect);
         let dir = args.out.join(e.name());
         let images = write_frame(&dir, &p.direct, &out.indirect, &total)?;
         let mut timings = p.timings.clone();
         timings.merge(&out.timings);
         let facts = FrameFacts {
-            device: &cpu,
+            device,
             scene,
             args: f,
             method: e.method(sampling),
@@ -288,7 +294,7 @@ fn sampled_lights(
             images: &images,
         };
         Report::new(&facts).write(&dir.join("report.json"))?;
-        let _ = write!(md, "| {} | {} |", e.name(), out.lights);
+        let _ = write!(md, "| {} ({}) | {} |", e.name(), device.backend, out.lights);
         for (pass, _) in PASSES {
             let _ = write!(md, " {:.1} |", pass_ms(&out.timings, pass));
         }

@@ -133,6 +133,13 @@ impl GpuFrame {
         })
     }
 
+    /// What the report of a GPU VSGL frame says: [`Self::device`] and [`VSGL_GPU_NOTE`].
+    pub fn vsgl_device(&self) -> Device {
+        let mut device = self.device(false);
+        device.notes.push(VSGL_GPU_NOTE.into());
+        device
+    }
+
     /// What the report says about this backend: the adapter and where each pass ran.
     pub fn device(&self, metrics: bool) -> Device {
         let mut notes = vec![

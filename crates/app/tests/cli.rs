@@ -494,12 +494,12 @@ fn gpu_render_agrees_with_the_cpu_render_and_names_its_adapter() {
 
 #[test]
 fn gpu_backend_refuses_what_it_lacks_and_suggests_the_cpu() {
-    // `render --shader vsgl` runs on the GPU, without visibility; `compare` does not.
+    // `--shader vsgl` runs on the GPU, without visibility.
     for (command, extra) in [
         ("render", &["--visibility"][..]),
         ("render", &["--reference", "path"]),
         ("render", &["--shader", "vsgl", "--visibility"]),
-        ("compare", &["--shader", "vsgl"]),
+        ("compare", &["--shader", "vsgl", "--visibility"]),
     ] {
         let o = slc()
             .args([command, "--width", "8", "--height", "8", "--backend", "gpu"])
@@ -555,5 +555,50 @@ fn gpu_compare_names_backend_and_adapter_and_misses_nothing() {
     }
     let report = std::fs::read_to_string(out.join("ellipsoid/report.json")).unwrap();
     assert!(report.contains("\"backend\": \"gpu\""), "{report}");
+    std::fs::remove_dir_all(&out).ok();
+}
+
+#[test]
+fn gpu_compare_shades_vsgls_on_the_gpu() {
+    if !gpu_available() {
+        return;
+    }
+    let out = out_dir("compare-gpu-vsgl");
+    let o = slc()
+        .args([
+            "compare",
+            "--backend",
+            "gpu",
+            "--shader",
+            "vsgl",
+            "--vsgls",
+            "32",
+            "--width",
+            "32",
+            "--height",
+            "24",
+            "--rsm",
+            "8",
+            "--culling",
+            "ellipsoid",
+            "--out",
+        ])
+        .arg(&out)
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let md = std::fs::read_to_string(out.join("report.md")).unwrap();
+    assert!(md.contains("| vsgl (gpu) |"), "{md}");
+    assert!(md.contains("| vpl_sampled (cpu) |"), "{md}");
+    let report: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("vsgl/report.json")).unwrap())
+            .unwrap();
+    assert_eq!(report["backend"], "gpu", "{report}");
+    assert!(
+        report["notes"].to_string().contains("no visibility term"),
+        "{report}"
+    );
+    let mean = report["image_means"]["indirect"].as_array().unwrap();
+    assert!(mean.iter().all(|v| v.as_f64().unwrap() > 0.0), "{report}");
     std::fs::remove_dir_all(&out).ok();
 }
