@@ -17,6 +17,9 @@ pub mod stream {
     /// The random shift of a set of VSGL or resampled-VPL sample points (VSGL section 4.2),
     /// index = the set (lights, or the camera side of the bidirectional importance).
     pub const VSGL_POINTS: u32 = 4;
+    /// The caster points of imperfect shadow maps (triangle choice and barycentrics), index =
+    /// point.
+    pub const ISM_CASTERS: u32 = 5;
 }
 
 /// The PCG hash of Jarzynski and Olano, "Hash Functions for GPU Rendering", JCGT 9(3), 2020.

@@ -123,6 +123,62 @@ fn surface_radiance(surface: Surface, light: Sg) -> vec3<f32> {
     return min(diffuse + specular, vec3<f32>(F32_MAX));
 }
 
+// The radiance one VSGL reflects at the receiver (xyz), w = 1 when the positional SG left
+// f32 (the pixel's sum stops there, as it always did).
+fn vsgl_contribution(surface: Surface, x: vec3<f32>, v: u32) -> vec4<f32> {
+    let e = vsgls[v];
+    let sigma2 = e.mu_sigma2.w;
+    let density = e.diffuse_c_density.w;
+    // Emitter::radiance: the positional SG of eq. (4); constant at mu_v itself.
+    let d = e.mu_sigma2.xyz - x;
+    let r2 = dot(d, d);
+    var position = Sg(vec3<f32>(0.0, 0.0, 1.0), 0.0, density);
+    if r2 > 0.0 {
+        position = Sg(d / sqrt(r2), r2 / sigma2, density);
+        if !sg_finite(position.sharpness) {
+            atomicMin(&status.overflow_vsgl, v);
+            return vec4<f32>(0.0, 0.0, 0.0, 1.0);
+        }
+    }
+    var radiance = vec3<f32>(0.0);
+    let lobes = array<vec4<f32>, 2>(e.diffuse_lobe, e.specular_lobe);
+    let colours = array<vec3<f32>, 2>(e.diffuse_c_density.xyz, e.specular_c.xyz);
+    let clamped = e.specular_c.w != 0.0;
+    for (var k = 0u; k < 2u; k++) {
+        let c = colours[k];
+        if all(c == vec3<f32>(0.0)) || (clamped && k == 0u) {
+            continue;
+        }
+        let emitted = Sg(lobes[k].xyz, lobes[k].w, 1.0);
+        let light = sg_product(emitted, position);
+        if !(sg_finite(light.sharpness) && sg_finite(light.amplitude)) {
+            atomicMin(&status.overflow_vsgl, v);
+        }
+        radiance += c * surface_radiance(surface, light);
+    }
+    // The clamped-cosine diffuse intensity (DiffuseEmission::ClampedCosine): the
+    // peak times the vMF-convolved clamped cosine towards the receiver (a quarter
+    // at mu_v itself), carried by the positional SG.
+    let peak = e.diffuse_c_density.xyz;
+    if clamped && any(peak != vec3<f32>(0.0)) {
+        var towards = 0.25;
+        if r2 > 0.0 {
+            towards = sg_normalized_irradiance(e.diffuse_lobe.w, -dot(e.diffuse_lobe.xyz, position.axis));
+        }
+        if towards > 0.0 {
+            radiance += peak * towards * surface_radiance(surface, position);
+        }
+    }
+    return vec4<f32>(radiance, 0.0);
+}
+
+fn write_pixel(pixel: u32, sum: vec3<f32>) {
+    image[3u * pixel] = sum.x;
+    image[3u * pixel + 1u] = sum.y;
+    image[3u * pixel + 2u] = sum.z;
+}
+
+// Without visibility (shade_vsgls(..., visibility = false, ...)).
 @compute @workgroup_size(64)
 fn main(
     @builtin(workgroup_id) wid: vec3<u32>,
@@ -140,56 +196,80 @@ fn main(
             let surface = make_surface(s);
             let x = positions[pixel].xyz;
             for (var v = 0u; v < params.vsgl_count; v++) {
-                let e = vsgls[v];
-                let sigma2 = e.mu_sigma2.w;
-                let density = e.diffuse_c_density.w;
-                // Emitter::radiance: the positional SG of eq. (4); constant at mu_v itself.
-                let d = e.mu_sigma2.xyz - x;
-                let r2 = dot(d, d);
-                var position = Sg(vec3<f32>(0.0, 0.0, 1.0), 0.0, density);
-                if r2 > 0.0 {
-                    position = Sg(d / sqrt(r2), r2 / sigma2, density);
-                    if !sg_finite(position.sharpness) {
-                        atomicMin(&status.overflow_vsgl, v);
-                        break;
-                    }
+                let r = vsgl_contribution(surface, x, v);
+                if r.w != 0.0 {
+                    break;
                 }
-                var radiance = vec3<f32>(0.0);
-                let lobes = array<vec4<f32>, 2>(e.diffuse_lobe, e.specular_lobe);
-                let colours = array<vec3<f32>, 2>(e.diffuse_c_density.xyz, e.specular_c.xyz);
-                let clamped = e.specular_c.w != 0.0;
-                for (var k = 0u; k < 2u; k++) {
-                    let c = colours[k];
-                    if all(c == vec3<f32>(0.0)) || (clamped && k == 0u) {
-                        continue;
-                    }
-                    let emitted = Sg(lobes[k].xyz, lobes[k].w, 1.0);
-                    let light = sg_product(emitted, position);
-                    if !(sg_finite(light.sharpness) && sg_finite(light.amplitude)) {
-                        atomicMin(&status.overflow_vsgl, v);
-                    }
-                    radiance += c * surface_radiance(surface, light);
-                }
-                // The clamped-cosine diffuse intensity (DiffuseEmission::ClampedCosine): the
-                // peak times the vMF-convolved clamped cosine towards the receiver (a quarter
-                // at mu_v itself), carried by the positional SG.
-                let peak = e.diffuse_c_density.xyz;
-                if clamped && any(peak != vec3<f32>(0.0)) {
-                    var towards = 0.25;
-                    if r2 > 0.0 {
-                        towards = sg_normalized_irradiance(e.diffuse_lobe.w, -dot(e.diffuse_lobe.xyz, position.axis));
-                    }
-                    if towards > 0.0 {
-                        radiance += peak * towards * surface_radiance(surface, position);
-                    }
-                }
-                sum += radiance;
+                sum += r.xyz;
             }
         } else {
             atomicMin(&status.bad_pixel, pixel);
         }
     }
-    image[3u * pixel] = sum.x;
-    image[3u * pixel + 1u] = sum.y;
-    image[3u * pixel + 2u] = sum.z;
+    write_pixel(pixel, sum);
+}
+
+// With visibility from imperfect shadow maps (ism.wgsl; ism_map.wgsl comes before this file):
+// the geometric normal per pixel (xyz), the maps' parameters and their distances (one map of
+// resolution^2 f32 bits per VSGL, in VSGL order).
+@group(0) @binding(6) var<storage, read> geometric_normals: array<vec4<f32>>;
+@group(0) @binding(7) var<uniform> ism: IsmParams;
+@group(0) @binding(8) var<storage, read> ism_depth: array<u32>;
+
+// V(x_p, mu_v) of eq. (3) from the map of VSGL v: the receiver x lifted by the tracer's
+// epsilon along its geometric normal (Tracer::lift) is visible when its distance to mu_v is at
+// most the map's distance in its direction plus the bias
+//   lift + dist * texel_angle * (bias_constant + bias_slope * tan(incidence)),
+// the incidence between the geometric normal and the direction to mu_v, its tangent capped at
+// 20 (receivers more grazing than 87 degrees reflect next to nothing). Segments no longer than
+// twice the lift are unoccluded, as Tracer::unoccluded has them.
+fn ism_visible(v: u32, x: vec3<f32>, n_g: vec3<f32>, mu: vec3<f32>) -> bool {
+    let d = x + n_g * ism.lift - mu;
+    let dist = length(d);
+    if dist <= 2.0 * ism.lift {
+        return true;
+    }
+    let dir = d / dist;
+    let res = ism.resolution;
+    let t = oct_texel(dir, res);
+    let z = bitcast<f32>(ism_depth[v * res * res + t.y * res + t.x]);
+    let c = max(abs(dot(n_g, dir)), 0.05);
+    let slope = sqrt(max(1.0 - c * c, 0.0)) / c;
+    let bias = ism.lift + dist * ism.texel_angle * (ism.bias_constant + ism.bias_slope * slope);
+    return dist <= z + bias;
+}
+
+// shade_vsgls(..., visibility = true, ...) with the maps for shadow rays: each VSGL that
+// contributes is weighted by ism_visible.
+@compute @workgroup_size(64)
+fn main_visible(
+    @builtin(workgroup_id) wid: vec3<u32>,
+    @builtin(num_workgroups) groups: vec3<u32>,
+    @builtin(local_invocation_index) lid: u32,
+) {
+    let pixel = (wid.y * groups.x + wid.x) * WORKGROUP + lid;
+    if pixel >= params.pixel_count {
+        return;
+    }
+    let s = samples[pixel];
+    var sum = vec3<f32>(0.0);
+    if s.present != 0u {
+        if valid_surface(s) {
+            let surface = make_surface(s);
+            let x = positions[pixel].xyz;
+            let n_g = geometric_normals[pixel].xyz;
+            for (var v = 0u; v < params.vsgl_count; v++) {
+                let r = vsgl_contribution(surface, x, v);
+                if r.w != 0.0 {
+                    break;
+                }
+                if any(r.xyz != vec3<f32>(0.0)) && ism_visible(v, x, n_g, vsgls[v].mu_sigma2.xyz) {
+                    sum += r.xyz;
+                }
+            }
+        } else {
+            atomicMin(&status.bad_pixel, pixel);
+        }
+    }
+    write_pixel(pixel, sum);
 }

@@ -196,6 +196,16 @@ impl GpuContext {
     /// A compute pipeline from WGSL `source` with entry point `main` and the layout naga
     /// derives from the shader (everything in bind group 0).
     pub fn compute_pipeline(&self, label: &'static str, source: &str) -> wgpu::ComputePipeline {
+        self.compute_pipeline_entry(label, source, "main")
+    }
+
+    /// [`GpuContext::compute_pipeline`] with entry point `entry`.
+    pub fn compute_pipeline_entry(
+        &self,
+        label: &'static str,
+        source: &str,
+        entry: &str,
+    ) -> wgpu::ComputePipeline {
         let module = self
             .device
             .create_shader_module(wgpu::ShaderModuleDescriptor {
@@ -207,7 +217,7 @@ impl GpuContext {
                 label: Some(label),
                 layout: None,
                 module: &module,
-                entry_point: Some("main"),
+                entry_point: Some(entry),
                 compilation_options: Default::default(),
                 cache: None,
             })

@@ -66,6 +66,7 @@ pub mod denoise_types;
 pub mod direct_pass;
 pub mod gbuffer_pass;
 pub mod gpu_types;
+pub mod ism_pass;
 pub mod none_cull_pass;
 pub mod partition_pass;
 pub mod profiler;

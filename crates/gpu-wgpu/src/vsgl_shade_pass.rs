@@ -6,8 +6,12 @@
 //! VSGL's radiant intensity, `c_v` times the closed-form shading (`slc_bounds::SgSurface`:
 //! irradiance for the diffuse term, warped GGX SG inner product for the specular one) of the
 //! incoming radiance of eq. (5), `1/(2πσ_v²) G(ω; −ξ_v, λ_v) G(ω; ξ_μ, |μ_v − x_p|²/σ_v²)`.
-//! There is no visibility term (`V(x_p, μ_v)` of eq. 3): the paper uses shadow maps to `μ_v`,
-//! which this pass does not have.
+//! Without visibility (entry point `main`: [`VsglShadePass::shade`],
+//! [`VsglShadePass::shade_gpu_gbuffer`]) there is no `V(x_p, μ_v)` of eq. 3. With imperfect
+//! shadow maps ([`crate::ism_pass`], entry point `main_visible`:
+//! [`VsglShadePass::shade_visible`], [`VsglShadePass::shade_gpu_gbuffer_visible`]) each VSGL
+//! that contributes is weighted by the map's binary visibility of `μ_v`, where the CPU traces
+//! a shadow ray (`shade_vsgls(…, visibility = true, …)`).
 //!
 //! The SG algebra is in f32 where the CPU uses f64; `shaders/sg.wgsl` uses forms free of the
 //! cancellations f32 would add (series for expm1, the Langevin function and the away-facing
@@ -23,6 +27,7 @@ use crate::buffers::{output, read_back, uniform, upload, Grid};
 use crate::context::{GpuContext, GpuError};
 use crate::gbuffer_pass::GpuGBuffer;
 use crate::gpu_types::{gpu_position, GpuSample};
+use crate::ism_pass::ImperfectShadowMaps;
 use crate::shade_pass::read_image;
 use crate::vsgl_types::{GpuVsgl, GpuVsglParams, GpuVsglStatus, VsglInput};
 use slc_bounds::SgSurface;
@@ -33,6 +38,7 @@ pub(crate) const SOURCE: &str = concat!(
     include_str!("../shaders/fresnel_ggx.wgsl"),
     include_str!("../shaders/sg.wgsl"),
     include_str!("../shaders/gsample.wgsl"),
+    include_str!("../shaders/ism_map.wgsl"),
     include_str!("../shaders/vsgl_shade.wgsl")
 );
 const WORKGROUP: u32 = 64;
@@ -63,13 +69,18 @@ impl GpuVsgls {
 /// The compiled VSGL shading pipeline.
 pub struct VsglShadePass {
     pipeline: wgpu::ComputePipeline,
+    visible: wgpu::ComputePipeline,
 }
+
+/// What the visibility entry point binds besides the shading inputs.
+type Visibility<'a> = (&'a wgpu::Buffer, &'a ImperfectShadowMaps);
 
 impl VsglShadePass {
     pub fn new(ctx: &GpuContext) -> Result<Self, GpuError> {
         ctx.scoped("vsgl shade pipeline", || {
             Ok(Self {
                 pipeline: ctx.compute_pipeline("vsgl_shade", SOURCE),
+                visible: ctx.compute_pipeline_entry("vsgl_shade_visible", SOURCE, "main_visible"),
             })
         })
     }
@@ -82,6 +93,29 @@ impl VsglShadePass {
         ctx: &GpuContext,
         gbuffer: &GBuffer,
         vsgls: &GpuVsgls,
+    ) -> Result<Image, GpuError> {
+        self.shade_cpu_gbuffer(ctx, gbuffer, vsgls, None)
+    }
+
+    /// [`Self::shade`] with visibility from `maps` (one per VSGL, [`crate::ism_pass`]): the
+    /// GPU twin of `shade_vsgls(tracer, gbuffer, vsgls, true, …)` with imperfect shadow maps
+    /// for its shadow rays.
+    pub fn shade_visible(
+        &self,
+        ctx: &GpuContext,
+        gbuffer: &GBuffer,
+        vsgls: &GpuVsgls,
+        maps: &ImperfectShadowMaps,
+    ) -> Result<Image, GpuError> {
+        self.shade_cpu_gbuffer(ctx, gbuffer, vsgls, Some(maps))
+    }
+
+    fn shade_cpu_gbuffer(
+        &self,
+        ctx: &GpuContext,
+        gbuffer: &GBuffer,
+        vsgls: &GpuVsgls,
+        maps: Option<&ImperfectShadowMaps>,
     ) -> Result<Image, GpuError> {
         let pixels = u64::from(gbuffer.width) * u64::from(gbuffer.height);
         if pixels != gbuffer.samples.len() as u64 || u32::try_from(pixels).is_err() {
@@ -116,7 +150,29 @@ impl VsglShadePass {
             .collect();
         let samples = upload(ctx, "gbuffer samples", &samples)?;
         let positions = upload(ctx, "gbuffer positions", &positions)?;
-        let rgb = self.shade_buffers(ctx, (&samples, &positions), pixels as u32, vsgls)?;
+        let normals = match maps {
+            Some(maps) => {
+                let normals: Vec<[f32; 4]> = gbuffer
+                    .samples
+                    .iter()
+                    .map(|s| {
+                        s.as_ref().map_or([0.0; 4], |s| {
+                            let n = s.geometric_normal;
+                            [n.x, n.y, n.z, 0.0]
+                        })
+                    })
+                    .collect();
+                Some((upload(ctx, "gbuffer geometric normals", &normals)?, maps))
+            }
+            None => None,
+        };
+        let rgb = self.shade_buffers(
+            ctx,
+            (&samples, &positions),
+            pixels as u32,
+            vsgls,
+            normals.as_ref().map(|(n, m)| (n, *m)),
+        )?;
         read_image(ctx, &rgb, gbuffer.width, gbuffer.height)
     }
 
@@ -133,7 +189,46 @@ impl VsglShadePass {
         let pixels = u64::from(gbuffer.width) * u64::from(gbuffer.height);
         let pixels = u32::try_from(pixels)
             .map_err(|_| GpuError::Input(format!("{pixels} pixels exceed u32")))?;
-        self.shade_buffers(ctx, (&gbuffer.samples, &gbuffer.positions), pixels, vsgls)
+        self.shade_buffers(
+            ctx,
+            (&gbuffer.samples, &gbuffer.positions),
+            pixels,
+            vsgls,
+            None,
+        )
+    }
+
+    /// [`Self::shade_gpu_gbuffer_on_gpu`] with visibility from `maps` (see
+    /// [`Self::shade_visible`]), read from the G-buffer's geometric normals.
+    pub fn shade_gpu_gbuffer_visible_on_gpu(
+        &self,
+        ctx: &GpuContext,
+        gbuffer: &GpuGBuffer,
+        vsgls: &GpuVsgls,
+        maps: &ImperfectShadowMaps,
+    ) -> Result<wgpu::Buffer, GpuError> {
+        let pixels = u64::from(gbuffer.width) * u64::from(gbuffer.height);
+        let pixels = u32::try_from(pixels)
+            .map_err(|_| GpuError::Input(format!("{pixels} pixels exceed u32")))?;
+        self.shade_buffers(
+            ctx,
+            (&gbuffer.samples, &gbuffer.positions),
+            pixels,
+            vsgls,
+            Some((&gbuffer.geometric_normals, maps)),
+        )
+    }
+
+    /// [`Self::shade_gpu_gbuffer_visible_on_gpu`] read back as an [`Image`].
+    pub fn shade_gpu_gbuffer_visible(
+        &self,
+        ctx: &GpuContext,
+        gbuffer: &GpuGBuffer,
+        vsgls: &GpuVsgls,
+        maps: &ImperfectShadowMaps,
+    ) -> Result<Image, GpuError> {
+        let rgb = self.shade_gpu_gbuffer_visible_on_gpu(ctx, gbuffer, vsgls, maps)?;
+        read_image(ctx, &rgb, gbuffer.width, gbuffer.height)
     }
 
     /// [`Self::shade_gpu_gbuffer_on_gpu`] read back as an [`Image`].
@@ -155,7 +250,16 @@ impl VsglShadePass {
         (samples, positions): (&wgpu::Buffer, &wgpu::Buffer),
         pixels: u32,
         vsgls: &GpuVsgls,
+        visibility: Option<Visibility>,
     ) -> Result<wgpu::Buffer, GpuError> {
+        if let Some((_, maps)) = visibility {
+            if maps.params.map_count != vsgls.count {
+                return Err(GpuError::Input(format!(
+                    "{} shadow maps for {} VSGLs",
+                    maps.params.map_count, vsgls.count
+                )));
+            }
+        }
         let out = output::<f32>(ctx, "vsgl indirect image", 3 * pixels as usize)?;
         if pixels == 0 {
             return Ok(out);
@@ -169,12 +273,15 @@ impl VsglShadePass {
         let grid = Grid::for_items(ctx, u64::from(pixels), WORKGROUP)?;
         ctx.scoped("vsgl_shade", || {
             let params = uniform(ctx, "vsgl params", &params);
-            ctx.dispatch(
-                "vsgl_shade",
-                &self.pipeline,
-                &[&params, samples, positions, &vsgls.buffer, &out, &status],
-                grid,
-            );
+            let mut buffers = vec![&params, samples, positions, &vsgls.buffer, &out, &status];
+            match visibility {
+                None => ctx.dispatch("vsgl_shade", &self.pipeline, &buffers, grid),
+                Some((normals, maps)) => {
+                    let ism = maps.params_buffer(ctx);
+                    buffers.extend([normals, &ism, &maps.depth]);
+                    ctx.dispatch("vsgl_shade_visible", &self.visible, &buffers, grid);
+                }
+            }
             Ok(())
         })?;
         let [state] = <[GpuVsglStatus; 1]>::try_from(read_back(ctx, "vsgl status", &status, 1)?)

@@ -18,3 +18,4 @@ mod rng;
 mod shade;
 mod tiled;
 mod vsgl;
+mod vsgl_visibility;

@@ -1,0 +1,306 @@
+//! Imperfect shadow maps (Ritschel et al. 2008, "Imperfect Shadow Maps for Efficient
+//! Computation of Indirect Illumination") for the visibility `V(x_p, μ_v)` of VSGL eq. (3),
+//! as Tokuyoshi 2015 section 5 uses them (there 64² per VSGL from 8192 points each): compute
+//! only, no rasterization (`shaders/ism.wgsl`, `shaders/ism_map.wgsl`).
+//!
+//! * Caster points ([`caster_points`], on the CPU, deterministic): `points` samples uniformly
+//!   by area over the scene's triangles (`slc_core::rng`, stream `ISM_CASTERS`), each a disc
+//!   with the triangle's normal and the radius `footprint · sqrt(A / (π N))`, `A` the scene's
+//!   area: `footprint` = 1 would tile the area exactly with N discs; the overlap closes the
+//!   gaps a random point set leaves. All maps share the points (the paper gives each VSGL its
+//!   own random subset; sharing them only correlates the maps' errors).
+//! * Maps ([`IsmPass::render`]): per VSGL a full-sphere octahedral map of `resolution²`
+//!   distances about `μ_v`; every point is projected into every map with `atomicMin` on the
+//!   distance's f32 bits. A point writes its own texel with its distance and, within its disc's
+//!   angular radius (at most `max_splat` texels away), each texel whose centre ray hits the
+//!   disc with that ray's distance to it. Splats are clamped at the map border, not wrapped
+//!   across the octahedral seams; there is no pull-push hole fill.
+//! * Lookup (`ism_visible` in `shaders/vsgl_shade.wgsl`, used by
+//!   [`crate::vsgl_shade_pass::VsglShadePass`]'s visibility entry points): the receiver lifted by
+//!   the tracer's epsilon along its geometric normal is visible when its distance to `μ_v` is
+//!   at most the map's distance in its direction plus `lift + dist · (π/res) · (bias_constant +
+//!   bias_slope · tan θ)` (θ the receiver's incidence, tan capped at 20).
+//!
+//! Imperfect by construction, so it differs from the CPU's shadow rays in known ways: light
+//! leaks where the discs miss (thin or small occluders with few points, silhouettes, texels
+//! no disc reaches); extra shadow where a disc overhangs its triangle's edge or one texel's
+//! depth covers a whole texel's cone (contact regions, the bias); and the bias itself lets
+//! occluders within it of the receiver cast no shadow. `tests/gpu/vsgl_visibility.rs`
+//! measures the difference on the built-in scene.
+use crate::buffers::{output, uniform, upload, Grid};
+use crate::context::{GpuContext, GpuError};
+use bytemuck::{Pod, Zeroable};
+use core::f32::consts::PI;
+use glam::Vec3;
+use slc_core::rng::{stream, uniform as rng_uniform};
+use slc_core::Scene;
+
+/// The splatting kernel and the clear.
+pub(crate) const SOURCE: &str = concat!(
+    include_str!("../shaders/ism_map.wgsl"),
+    include_str!("../shaders/ism.wgsl")
+);
+const WORKGROUP: u32 = 64;
+
+/// How the maps are built and read.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct IsmSettings {
+    /// Caster points (the paper: 8192).
+    pub points: u32,
+    /// Texels per side of each octahedral map (the paper: 64).
+    pub resolution: u32,
+    /// Disc radius over `sqrt(A / (π N))`.
+    pub footprint: f32,
+    /// The widest splat, in texels from a point's own texel.
+    pub max_splat: u32,
+    /// The seed of the caster points.
+    pub seed: u32,
+    /// The tracer's surface offset (`slc_cpu_ref::Tracer::scene_epsilon`).
+    pub lift: f32,
+    /// Depth bias in texel angles `π/res` times the receiver's distance, constant and times
+    /// `tan θ` (see the module docs).
+    pub bias_constant: f32,
+    pub bias_slope: f32,
+}
+
+impl IsmSettings {
+    /// The paper's sizes (8192 points, 64²) with the footprint and bias measured on the
+    /// built-in scene (`tests/gpu/vsgl_visibility.rs`), for a scene whose tracer offset is
+    /// `lift`.
+    pub fn paper(lift: f32) -> Self {
+        Self {
+            points: 8192,
+            resolution: 64,
+            footprint: 1.5,
+            max_splat: 4,
+            seed: 0,
+            lift,
+            bias_constant: 1.0,
+            bias_slope: 1.0,
+        }
+    }
+
+    fn params(&self, point_count: u32, map_count: u32) -> GpuIsmParams {
+        GpuIsmParams {
+            point_count,
+            map_count,
+            resolution: self.resolution,
+            max_splat: self.max_splat,
+            texel_angle: PI / self.resolution as f32,
+            lift: self.lift,
+            bias_constant: self.bias_constant,
+            bias_slope: self.bias_slope,
+        }
+    }
+}
+
+/// Twin of `IsmParams` in `shaders/ism_map.wgsl`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
+pub struct GpuIsmParams {
+    pub point_count: u32,
+    pub map_count: u32,
+    pub resolution: u32,
+    pub max_splat: u32,
+    pub texel_angle: f32,
+    pub lift: f32,
+    pub bias_constant: f32,
+    pub bias_slope: f32,
+}
+const _: () = assert!(std::mem::size_of::<GpuIsmParams>() == 32);
+
+/// Twin of `Caster` in `shaders/ism.wgsl`: a disc.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
+pub struct GpuCaster {
+    /// Position (xyz), disc radius (w).
+    pub position_radius: [f32; 4],
+    /// Unit normal (xyz).
+    pub normal: [f32; 4],
+}
+const _: () = assert!(std::mem::size_of::<GpuCaster>() == 32);
+
+/// `settings.points` caster discs sampled uniformly by area over `scene`'s triangles (see the
+/// module docs); none for a scene without area. Deterministic in `settings.seed`.
+pub fn caster_points(scene: &Scene, settings: &IsmSettings) -> Vec<GpuCaster> {
+    let mut tris = Vec::new();
+    let mut cdf = Vec::new();
+    let mut total = 0.0f64;
+    for mesh in &scene.meshes {
+        for t in &mesh.triangles {
+            let [a, b, c] = t.map(|i| mesh.positions.get(i as usize).copied());
+            let (Some(a), Some(b), Some(c)) = (a, b, c) else {
+                continue;
+            };
+            let cross = (b - a).cross(c - a);
+            let area = 0.5 * f64::from(cross.length());
+            if !(area > 0.0 && area.is_finite()) {
+                continue;
+            }
+            total += area;
+            tris.push((a, b, c, cross.normalize()));
+            cdf.push(total);
+        }
+    }
+    if tris.is_empty() || settings.points == 0 {
+        return Vec::new();
+    }
+    let radius = settings.footprint
+        * (total / (f64::from(settings.points) * std::f64::consts::PI)).sqrt() as f32;
+    (0..settings.points)
+        .map(|i| {
+            let u = |k| rng_uniform(settings.seed, i, stream::ISM_CASTERS, k);
+            let target = f64::from(u(0)) * total;
+            let t = cdf.partition_point(|&c| c < target).min(tris.len() - 1);
+            let (a, b, c, n) = tris[t];
+            let s = u(1).sqrt();
+            let r = u(2);
+            let p: Vec3 = a * (1.0 - s) + b * (s * (1.0 - r)) + c * (s * r);
+            GpuCaster {
+                position_radius: [p.x, p.y, p.z, radius],
+                normal: [n.x, n.y, n.z, 0.0],
+            }
+        })
+        .collect()
+}
+
+/// Imperfect shadow maps on the GPU: one per VSGL, in VSGL order.
+pub struct ImperfectShadowMaps {
+    /// `map_count · resolution²` f32 distances (bits; +inf: empty), map-major, rows of the
+    /// octahedral map's v.
+    pub depth: wgpu::Buffer,
+    pub params: GpuIsmParams,
+}
+
+impl ImperfectShadowMaps {
+    /// The maps' parameters as a uniform buffer (what the shading pass binds).
+    pub(crate) fn params_buffer(&self, ctx: &GpuContext) -> wgpu::Buffer {
+        uniform(ctx, "ism params", &self.params)
+    }
+
+    /// Reads the distances back (tests, debugging).
+    pub fn read_back(&self, ctx: &GpuContext) -> Result<Vec<f32>, GpuError> {
+        let n = self.params.map_count as usize * (self.params.resolution as usize).pow(2);
+        crate::buffers::read_back(ctx, "ism depth", &self.depth, n)
+    }
+}
+
+/// The compiled clear and splat pipelines.
+pub struct IsmPass {
+    clear: wgpu::ComputePipeline,
+    splat: wgpu::ComputePipeline,
+}
+
+impl IsmPass {
+    pub fn new(ctx: &GpuContext) -> Result<Self, GpuError> {
+        ctx.scoped("ism pipelines", || {
+            Ok(Self {
+                clear: ctx.compute_pipeline_entry("ism_clear", SOURCE, "clear"),
+                splat: ctx.compute_pipeline("ism_splat", SOURCE),
+            })
+        })
+    }
+
+    /// One map per centre `μ_v` of `centres` from `casters` (see [`caster_points`]).
+    pub fn render(
+        &self,
+        ctx: &GpuContext,
+        casters: &[GpuCaster],
+        centres: &[Vec3],
+        settings: &IsmSettings,
+    ) -> Result<ImperfectShadowMaps, GpuError> {
+        if !(1..=4096).contains(&settings.resolution) {
+            return Err(GpuError::Input(format!(
+                "ISM resolution {} outside 1..=4096",
+                settings.resolution
+            )));
+        }
+        if !(settings.lift >= 0.0
+            && settings.lift.is_finite()
+            && settings.footprint >= 0.0
+            && settings.footprint.is_finite()
+            && settings.bias_constant.is_finite()
+            && settings.bias_slope.is_finite())
+        {
+            return Err(GpuError::Input(format!(
+                "ISM settings {settings:?} not finite"
+            )));
+        }
+        let too_many = || GpuError::Input(format!("{} ISMs exceed u32", centres.len()));
+        let maps = u32::try_from(centres.len()).map_err(|_| too_many())?;
+        let points = u32::try_from(casters.len()).map_err(|_| too_many())?;
+        let texels = u64::from(maps) * u64::from(settings.resolution).pow(2);
+        let items = u64::from(maps) * u64::from(points);
+        if texels > u64::from(u32::MAX) || items > u64::from(u32::MAX) {
+            return Err(GpuError::Input(format!(
+                "{maps} ISMs of {}² texels and {points} points exceed u32 indices",
+                settings.resolution
+            )));
+        }
+        let depth = output::<u32>(ctx, "ism depth", texels as usize)?;
+        let params = settings.params(points, maps);
+        let out = ImperfectShadowMaps { depth, params };
+        if texels == 0 {
+            return Ok(out);
+        }
+        let centres: Vec<[f32; 4]> = centres.iter().map(|c| [c.x, c.y, c.z, 0.0]).collect();
+        let centre_buf = upload(ctx, "ism centres", &centres)?;
+        let caster_buf = upload(ctx, "ism casters", casters)?;
+        let params_buf = out.params_buffer(ctx);
+        let clear_grid = Grid::for_items(ctx, texels, WORKGROUP)?;
+        ctx.scoped("ism", || {
+            let mut encoder = ctx
+                .device
+                .create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("ism") });
+            ctx.encode_dispatch(
+                &mut encoder,
+                "ism_clear",
+                &self.clear,
+                &[&params_buf, &out.depth],
+                clear_grid,
+            );
+            if items > 0 {
+                ctx.encode_dispatch(
+                    &mut encoder,
+                    "ism_splat",
+                    &self.splat,
+                    &[&params_buf, &out.depth, &caster_buf, &centre_buf],
+                    Grid::for_items(ctx, items, WORKGROUP)?,
+                );
+            }
+            ctx.queue.submit([encoder.finish()]);
+            Ok(())
+        })?;
+        Ok(out)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::gpu_types::wgsl_size;
+
+    #[test]
+    fn sizes_match_the_wgsl_twins() {
+        use std::mem::size_of;
+        assert_eq!(wgsl_size(SOURCE, "IsmParams"), size_of::<GpuIsmParams>());
+        assert_eq!(wgsl_size(SOURCE, "Caster"), size_of::<GpuCaster>());
+    }
+
+    /// Points lie on the triangles, spread by area, deterministically.
+    #[test]
+    fn caster_points_cover_the_scene_by_area() {
+        let scene = slc_core::builtin("default").unwrap();
+        let settings = IsmSettings::paper(1e-4);
+        let a = caster_points(&scene, &settings);
+        assert_eq!(a.len(), 8192);
+        assert_eq!(a, caster_points(&scene, &settings));
+        let (lo, hi) = scene.bounds().unwrap();
+        for c in &a {
+            let p = Vec3::from_slice(&c.position_radius[..3]);
+            assert!(p.cmpge(lo - 1e-4).all() && p.cmple(hi + 1e-4).all(), "{p}");
+            assert!((Vec3::from_slice(&c.normal[..3]).length() - 1.0).abs() < 1e-4);
+            assert!(c.position_radius[3] > 0.0);
+        }
+    }
+}
