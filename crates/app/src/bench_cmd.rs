@@ -75,7 +75,7 @@ pub fn run(args: &BenchArgs) -> Result<(), String> {
     let gpu = match args.frame.backend {
         Backend::Cpu => None,
         Backend::Gpu => {
-            check_visibility(args.frame.visibility)?;
+            check_visibility(args.frame.visibility, false)?;
             for name in &names {
                 gpu_strategy(name)?;
             }

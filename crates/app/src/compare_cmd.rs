@@ -72,7 +72,7 @@ pub fn run(args: &CompareArgs) -> Result<(), String> {
     let gpu = match f.backend {
         Backend::Cpu => None,
         Backend::Gpu => {
-            check_visibility(f.visibility)?;
+            check_visibility(f.visibility, false)?;
             for name in &names {
                 gpu_strategy(name)?;
             }
@@ -252,7 +252,7 @@ fn sampled_lights(
     let f = &args.frame;
     let sampling = args.importance.sampling(args.vsgls);
     let cpu = Device::cpu();
-    let gpu_device = gpu.map(|(g, _)| g.vsgl_device());
+    let gpu_device = gpu.map(|(g, _)| g.vsgl_device(false));
     let mut md = format!(
         "\n## Sampled lights\n\n{} lights sampled from the RSMs by {} importance (the same \
          points for both): VSGLs at the filtered mip level (diffuse intensity {}), and VPLs of \
@@ -270,7 +270,7 @@ fn sampled_lights(
         eprintln!("{}: {} lights", e.name(), args.vsgls);
         let (out, device) = match (e, gpu) {
             (Estimator::Vsgl, Some((g, gp))) => (
-                g.shade_vsgl(gp, &sampling, f.seed, Tracer::scene_epsilon(scene))?,
+                g.shade_vsgl(gp, &sampling, f.seed, Tracer::scene_epsilon(scene), None)?,
                 gpu_device.as_ref().unwrap_or(&cpu),
             ),
             _ => (e.shade(p, &sampling, f.seed, f.visibility)?, &cpu),

@@ -5,8 +5,9 @@
 //! per frame (the culler's bounds pass reads them from the CPU), the images, and the
 //! G-buffer and lists where the brute-force metrics or `slc compare`'s CPU reference need
 //! them. With `--shader vsgl` the RSMs are read back instead of culling: the VSGLs are built
-//! and sampled on the CPU (`slc_cpu_ref::vsgl`) and shaded on the GPU without visibility
-//! (`slc_gpu_wgpu::vsgl_shade_pass`).
+//! and sampled on the CPU (`slc_cpu_ref::vsgl`) and shaded on the GPU
+//! (`slc_gpu_wgpu::vsgl_shade_pass`), with `--visibility` weighted by imperfect shadow maps
+//! to each VSGL's `μ_v` (`slc_gpu_wgpu::ism_pass`).
 //!
 //! Pass times (`timings_ms`) are wall clock around each pass, its uploads, readbacks and the
 //! wait for completion included, under the CPU's pass names; where the adapter has timestamp
@@ -32,6 +33,7 @@ use slc_gpu_wgpu::culler::{GpuCuller, Strategy};
 use slc_gpu_wgpu::denoise_pass::{BilateralSettings, DenoisePass, Guide};
 use slc_gpu_wgpu::direct_pass::DirectPass;
 use slc_gpu_wgpu::gbuffer_pass::{GbufferPass, GpuGBuffer};
+use slc_gpu_wgpu::ism_pass::{caster_points, GpuCaster, IsmPass, IsmSettings};
 use slc_gpu_wgpu::rsm_pass::{GpuRsm, RsmPass};
 use slc_gpu_wgpu::scene_upload::GpuScene;
 use slc_gpu_wgpu::shade_pass::read_image;
@@ -52,25 +54,45 @@ pub fn gpu_strategy(culling: &str) -> Result<Strategy, String> {
     })
 }
 
-/// Refuses options the GPU backend does not have yet: shadow rays between VPLs and pixels,
-/// or shadow maps to VSGLs' mean positions `μ_v` (VSGL eq. 3's `V(x_p, μ_v)`).
-pub fn check_visibility(visibility: bool) -> Result<(), String> {
-    if visibility {
+/// Refuses options the GPU backend does not have: shadow rays between VPLs and pixels.
+/// `--visibility` is accepted where the GPU shades VSGLs (`vsgl`): VSGL eq. 3's `V(x_p, μ_v)`
+/// from imperfect shadow maps.
+pub fn check_visibility(visibility: bool, vsgl: bool) -> Result<(), String> {
+    if visibility && !vsgl {
         return Err(
-            "--visibility (shadow rays to VPLs, shadow maps to VSGLs) is not on the \
-                    GPU yet; render with --backend cpu"
+            "--visibility with --backend gpu is only for --shader vsgl (imperfect shadow \
+             maps to the VSGLs); shadow rays to VPLs are not on the GPU, render with \
+             --backend cpu"
                 .into(),
         );
     }
     Ok(())
 }
 
-/// The report note of a GPU VSGL frame: what ran where, and the missing visibility.
+/// The report note of a GPU VSGL frame without visibility: what ran where.
 pub const VSGL_GPU_NOTE: &str =
     "--shader vsgl: the RSMs were read back, the VSGLs built and sampled on the CPU (vsgl_mip, \
      importance_map, light_sampling) and shaded on the GPU (light_shading) instead of culling \
-     and VPL shading; GPU VSGL shading has no visibility term (the paper's shadow maps to each \
-     VSGL's mean position are not implemented)";
+     and VPL shading; without --visibility GPU VSGL shading has no visibility term";
+
+/// The report note of a GPU VSGL frame: [`VSGL_GPU_NOTE`], and with `visibility` what the
+/// GPU used for it.
+pub fn vsgl_gpu_note(visibility: bool) -> String {
+    if !visibility {
+        return VSGL_GPU_NOTE.into();
+    }
+    let s = IsmSettings::paper(0.0);
+    format!(
+        "--shader vsgl: the RSMs were read back, the VSGLs built and sampled on the CPU \
+         (vsgl_mip, importance_map, light_sampling) and shaded on the GPU (light_shading) \
+         instead of culling and VPL shading; --visibility on the GPU: V(x_p, mu_v) from \
+         imperfect shadow maps (shadow_maps; {} caster points sampled by area, one {}x{} \
+         octahedral distance map per VSGL, depth bias {} + {} tan(incidence) texels), not \
+         the CPU's shadow rays: light leaks through gaps and small occluders and contact \
+         shadows within the bias are lost",
+        s.points, s.resolution, s.resolution, s.bias_constant, s.bias_slope
+    )
+}
 
 fn gpu_err(e: GpuError) -> String {
     e.to_string()
@@ -112,6 +134,7 @@ pub struct GpuFrame {
     culler: GpuCuller,
     shader: ShadePass,
     vsgl_shader: VsglShadePass,
+    ism: IsmPass,
     denoiser: DenoisePass,
 }
 
@@ -128,16 +151,23 @@ impl GpuFrame {
             culler: GpuCuller::new(&ctx).map_err(gpu_err)?,
             shader: ShadePass::new(&ctx).map_err(gpu_err)?,
             vsgl_shader: VsglShadePass::new(&ctx).map_err(gpu_err)?,
+            ism: IsmPass::new(&ctx).map_err(gpu_err)?,
             denoiser: DenoisePass::new(&ctx).map_err(gpu_err)?,
             ctx,
         })
     }
 
-    /// What the report of a GPU VSGL frame says: [`Self::device`] and [`VSGL_GPU_NOTE`].
-    pub fn vsgl_device(&self) -> Device {
+    /// What the report of a GPU VSGL frame says: [`Self::device`] and [`vsgl_gpu_note`].
+    pub fn vsgl_device(&self, visibility: bool) -> Device {
         let mut device = self.device(false);
-        device.notes.push(VSGL_GPU_NOTE.into());
+        device.notes.push(vsgl_gpu_note(visibility));
         device
+    }
+
+    /// The caster points of the imperfect shadow maps of `scene` (`IsmSettings::paper`).
+    pub fn ism_casters(scene: &Scene) -> (Vec<GpuCaster>, IsmSettings) {
+        let settings = IsmSettings::paper(Tracer::scene_epsilon(scene));
+        (caster_points(scene, &settings), settings)
     }
 
     /// What the report says about this backend: the adapter and where each pass ran.
@@ -362,13 +392,16 @@ impl GpuFrame {
     /// importance sampling of clusters (`light_sampling`) on the CPU, then the analytic
     /// shading of eq. (2)-(5) on the GPU (`light_shading`, VSGL upload included). `epsilon` is
     /// the scene's ray offset ([`Tracer::scene_epsilon`]): `σ_v²` is floored at its square,
-    /// as the CPU's `sigma2_floor` does.
+    /// as the CPU's `sigma2_floor` does. With `ism` (caster points and settings,
+    /// [`Self::ism_casters`]) an imperfect shadow map per VSGL is rendered (`shadow_maps`) and
+    /// the shading weighted by its visibility, where the CPU's `shade_vsgl` traces shadow rays.
     pub fn shade_vsgl(
         &self,
         p: &GpuPrepared,
         s: &LightSampling,
         seed: u32,
         epsilon: f32,
+        ism: Option<&(Vec<GpuCaster>, IsmSettings)>,
     ) -> Result<SampledFrame, String> {
         let ctx = &self.ctx;
         let mut timings = Timings::default();
@@ -422,10 +455,25 @@ impl GpuFrame {
             })
             .map_err(|e| e.to_string())?;
         let g = &p.gbuffer;
+        let maps = ism
+            .map(|(casters, settings)| {
+                self.pass(&mut timings, "shadow_maps", || {
+                    let centres: Vec<_> = vsgls.iter().map(|v| v.mu).collect();
+                    let maps = self.ism.render(ctx, casters, &centres, settings)?;
+                    ctx.wait()?;
+                    Ok(maps)
+                })
+            })
+            .transpose()?;
         let rgb = self.pass(&mut timings, "light_shading", || {
             let inputs: Vec<_> = vsgls.iter().map(|v| vsgl_input(v, s.diffuse)).collect();
             let uploaded = GpuVsgls::upload(ctx, &inputs)?;
-            self.vsgl_shader.shade_gpu_gbuffer_on_gpu(ctx, g, &uploaded)
+            match &maps {
+                Some(maps) => self
+                    .vsgl_shader
+                    .shade_gpu_gbuffer_visible_on_gpu(ctx, g, &uploaded, maps),
+                None => self.vsgl_shader.shade_gpu_gbuffer_on_gpu(ctx, g, &uploaded),
+            }
         })?;
         let indirect = read_image(ctx, &rgb, g.width, g.height).map_err(gpu_err)?;
         Ok(SampledFrame {
@@ -446,7 +494,10 @@ impl GpuFrame {
     ) -> Result<(Frame, Option<Timings>), String> {
         settings.validate().map_err(|e| e.to_string())?;
         scene.validate_for_render().map_err(|e| e.to_string())?;
-        check_visibility(settings.visibility)?;
+        check_visibility(
+            settings.visibility,
+            matches!(settings.method, Method::Vsgl(_)),
+        )?;
         if !matches!(settings.method, Method::Stochastic(_) | Method::Vsgl(_)) {
             return Err(
                 "references and sampled VPLs are rendered on the CPU only; use --backend cpu"
@@ -457,6 +508,8 @@ impl GpuFrame {
         let (w, h) = (settings.width, settings.height);
         let mut timings = Timings::default();
         let gpu_scene = timings.time("upload", || self.upload(scene))?;
+        let ism = (settings.visibility && matches!(settings.method, Method::Vsgl(_)))
+            .then(|| timings.time("ism_points", || Self::ism_casters(scene)));
         let mut direct = Image::new(w, h);
         let mut indirect = Image::new(w, h);
         let (mut vpl_count, mut metrics, mut sampled_lights) = (0, None, None);
@@ -475,7 +528,7 @@ impl GpuFrame {
             let seed = jitter.map_or(settings.seed, |j| settings.seed ^ pcg_hash(j));
             let ind = match settings.method {
                 Method::Vsgl(l) => {
-                    let f = self.shade_vsgl(&p, &l, seed, epsilon)?;
+                    let f = self.shade_vsgl(&p, &l, seed, epsilon, ism.as_ref())?;
                     timings.merge(&f.timings);
                     sampled_lights = Some(f.lights);
                     f.indirect

@@ -1,6 +1,6 @@
 //! `slc render`.
 use crate::args::{culling_name, Backend, FrameArgs, ImportanceArgs, PipelineArgs, Shader};
-use crate::gpu_frame::{check_visibility, gpu_strategy, GpuFrame, VSGL_GPU_NOTE};
+use crate::gpu_frame::{check_visibility, gpu_strategy, vsgl_gpu_note, GpuFrame};
 use crate::output::write_frame;
 use crate::progress::bar;
 use crate::report::{Device, FrameFacts, Report};
@@ -74,7 +74,7 @@ pub fn run(args: &RenderArgs) -> Result<(), String> {
             if args.reference.is_some() {
                 return Err("references are rendered on the CPU only; use --backend cpu".into());
             }
-            check_visibility(f.visibility)?;
+            check_visibility(f.visibility, f.shader == Shader::Vsgl)?;
             if f.shader == Shader::Vpl {
                 gpu_strategy(&args.culling)?;
             }
@@ -83,7 +83,7 @@ pub fn run(args: &RenderArgs) -> Result<(), String> {
             let (frame, gpu_timings) = gpu.render(&scene, &settings)?;
             let mut device = gpu.device(args.metrics);
             if f.shader == Shader::Vsgl {
-                device.notes.push(VSGL_GPU_NOTE.into());
+                device.notes.push(vsgl_gpu_note(f.visibility));
             }
             (frame, gpu_timings, device)
         }
