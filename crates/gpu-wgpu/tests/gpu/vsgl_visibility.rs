@@ -202,6 +202,17 @@ fn ism_settings_sweep() {
             println!("footprint {footprint} bias {bias_constant}/{bias_slope}: mean {mean:.4} p99 {p99:.4}");
         }
     }
+    for (points, resolution) in [(32768, 64), (8192, 128), (32768, 128), (131072, 256)] {
+        let s = IsmSettings {
+            points,
+            resolution,
+            max_splat: 4 * resolution / 64,
+            ..base
+        };
+        let (gpu, _) = gpu_images(&ctx, &f, &s);
+        let (mean, p99) = error_stats(&gpu, &cpu);
+        println!("{points} points, {resolution}²: mean {mean:.4} p99 {p99:.4}");
+    }
 }
 
 /// A VSGL at (0, 0, 2) shining down on receivers in the plane z = 0 facing up; a square wall
