@@ -18,7 +18,7 @@ pub enum Shader {
     /// VPLs with the stochastic estimate and culling (or a reference).
     Vpl,
     /// Virtual spherical Gaussian lights sampled from mipmapped RSMs (Tokuyoshi 2015); `slc render`
-    /// and `slc compare` on either backend (the GPU without visibility), `sweep` on the CPU.
+    /// and `slc compare` on either backend (`render --backend gpu --visibility`: imperfect shadow maps), `sweep` on the CPU.
     Vsgl,
 }
 
