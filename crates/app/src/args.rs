@@ -105,7 +105,8 @@ pub struct FrameArgs {
     /// Which VPL lobes to generate.
     #[arg(long, value_enum, default_value_t = Lobes::Both)]
     pub lobes: Lobes,
-    /// Shadow rays between every listed VPL and pixel.
+    /// Shadow rays between every listed VPL and pixel (`--shader vsgl`: to each VSGL's mean;
+    /// `--backend gpu --shader vsgl`: imperfect shadow maps instead of rays).
     #[arg(long)]
     pub visibility: bool,
 }
