@@ -17,8 +17,9 @@ pub enum Backend {
 pub enum Shader {
     /// VPLs with the stochastic estimate and culling (or a reference).
     Vpl,
-    /// Virtual spherical Gaussian lights sampled from mipmapped RSMs (Tokuyoshi 2015); `slc render`
-    /// and `slc compare` on either backend (`render --backend gpu --visibility`: imperfect shadow maps), `sweep` on the CPU.
+    /// Virtual spherical Gaussian lights sampled from mipmapped RSMs (Tokuyoshi 2015); `slc render`,
+    /// `slc compare` and `slc sweep` on either backend (`--backend gpu --visibility`:
+    /// imperfect shadow maps; not in `compare`).
     Vsgl,
 }
 

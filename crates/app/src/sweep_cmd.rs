@@ -71,11 +71,15 @@ impl Point {
 }
 
 pub fn run(args: &SweepArgs) -> Result<(), String> {
-    if args.frame.backend != crate::args::Backend::Cpu {
-        return Err("slc sweep runs on the CPU only in this version; use --backend cpu".into());
-    }
     if args.frame.shader == Shader::Vsgl {
         return crate::vsgl_sweep::run(args);
+    }
+    if args.frame.backend != crate::args::Backend::Cpu {
+        return Err(
+            "slc sweep of the VPL pipeline runs on the CPU only in this version (--shader vsgl \
+             sweeps on the GPU too); use --backend cpu"
+                .into(),
+        );
     }
     let scene = args.frame.load_renderable()?;
     let names = culling_names(&args.culling)?;

@@ -6,6 +6,11 @@
 //! RMSE of the indirect image against every VPL with p = 1 (root of the mean squared error over
 //! `--seeds` point sets) and the fastest of `--repeat` × `--seeds` runs' pass times. Writes
 //! `vsgl_sweep.csv`, `vsgl_sweep.md` (both tables) and `vsgl_sweep.svg` (RMSE against N).
+//! With `--backend gpu` the frame is prepared on the GPU and the VSGLs are shaded there (with
+//! imperfect shadow maps for `--visibility`); the reference and the sampled VPLs are shaded on
+//! the CPU from the read-back frame.
+use crate::args::Backend;
+use crate::gpu_frame::{check_visibility, GpuFrame};
 use crate::plot::{line_plot_svg, Series};
 use crate::progress::bar;
 use crate::sampled::{pass_ms, Estimator, ESTIMATORS, PASSES};
@@ -38,12 +43,25 @@ pub fn run(args: &SweepArgs) -> Result<(), String> {
             .validate()
             .map_err(|e| e.to_string())?;
     }
-    let p = prepare(
-        &scene,
-        &f.settings(Method::VplReference, 1),
-        Tracer::new(&scene),
-        None,
-    );
+    let gpu = match f.backend {
+        Backend::Cpu => None,
+        Backend::Gpu => {
+            check_visibility(f.visibility, true)?;
+            Some(GpuFrame::new()?)
+        }
+    };
+    let settings = f.settings(Method::VplReference, 1);
+    let on_gpu = gpu
+        .as_ref()
+        .map(|g| g.prepare(&scene, &g.upload(&scene)?, &settings, None))
+        .transpose()?;
+    let p = match (&gpu, &on_gpu) {
+        (Some(g), Some(gp)) => g.to_cpu(gp, Tracer::new(&scene))?,
+        _ => prepare(&scene, &settings, Tracer::new(&scene), None),
+    };
+    let ism = (gpu.is_some() && f.visibility).then(|| GpuFrame::ism_casters(&scene));
+    let epsilon = Tracer::scene_epsilon(&scene);
+    let vsgl_backend = gpu.as_ref().map_or("cpu", |_| "gpu");
     let texels: usize = p
         .maps
         .iter()
@@ -75,7 +93,12 @@ pub fn run(args: &SweepArgs) -> Result<(), String> {
             let (mut squared, mut best, mut lights) = (0.0f64, None::<Timings>, 0);
             for seed in f.seed..f.seed + args.seeds {
                 for repetition in 0..args.repeat {
-                    let out = estimator.shade(&p, &sampling, seed, f.visibility)?;
+                    let out = match (estimator, gpu.as_ref().zip(on_gpu.as_ref())) {
+                        (Estimator::Vsgl, Some((g, gp))) => {
+                            g.shade_vsgl(gp, &sampling, seed, epsilon, ism.as_ref())?
+                        }
+                        _ => estimator.shade(&p, &sampling, seed, f.visibility)?,
+                    };
                     if repetition == 0 {
                         squared += f64::from(out.indirect.rmse(&reference)).powi(2);
                         lights = out.lights;
@@ -107,6 +130,7 @@ pub fn run(args: &SweepArgs) -> Result<(), String> {
         texels,
         p.vpls.len(),
         reference_ms,
+        vsgl_backend,
         &points,
     )?;
     let series: Vec<Series> = ESTIMATORS
@@ -163,6 +187,7 @@ fn write_tables(
     texels: usize,
     vpls: usize,
     reference_ms: f64,
+    vsgl_backend: &str,
     points: &[Point],
 ) -> Result<(), String> {
     let f = &args.frame;
@@ -173,7 +198,7 @@ fn write_tables(
         "{}x{}, RSM {}² per face ({texels} lit texels, {vpls} VPLs), {} importance{}, VSGL diffuse intensity {}, visibility {}, seeds {}..{}, {} rayon threads. \
          The reference is every VPL with p = 1 ({reference_ms:.0} ms). \"VPLs\" are the VPLs of N texels sampled by the same importance \
          and the same points as the N VSGLs (unbiased, weight 1/(N p)); a sampled texel gives up to two VPLs (diffuse and glossy), \
-         a VSGL two lobes. No interleaving, no denoising.\n",
+         a VSGL two lobes. No interleaving, no denoising. VSGLs shaded on the {vsgl_backend}, the reference and sampled VPLs on the CPU.\n",
         f.width,
         f.height,
         f.rsm,

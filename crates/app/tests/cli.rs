@@ -657,3 +657,42 @@ fn gpu_compare_shades_vsgls_on_the_gpu() {
     assert!(mean.iter().all(|v| v.as_f64().unwrap() > 0.0), "{report}");
     std::fs::remove_dir_all(&out).ok();
 }
+
+#[test]
+fn gpu_sweep_shades_vsgls_on_the_gpu_with_shadow_maps() {
+    if !gpu_available() {
+        return;
+    }
+    let out = out_dir("sweep-vsgl-gpu");
+    run_ok(
+        "sweep --backend gpu --shader vsgl --visibility --vsgls 8,32 --seeds 1 --width 16 --height 12 --rsm 4",
+        &out,
+    );
+    let md = std::fs::read_to_string(out.join("vsgl_sweep.md")).unwrap();
+    assert!(md.contains("VSGLs shaded on the gpu"), "{md}");
+    assert!(md.contains("visibility true"), "{md}");
+    let csv = std::fs::read_to_string(out.join("vsgl_sweep.csv")).unwrap();
+    assert_eq!(csv.lines().count(), 1 + 2 * 2, "{csv}");
+    for line in csv.lines().skip(1) {
+        let rmse: f64 = line.rsplit(',').next().unwrap().parse().unwrap();
+        assert!(rmse.is_finite() && rmse > 0.0, "{line}");
+    }
+    // The VPL pipeline's sweep stays on the CPU.
+    let o = slc()
+        .args([
+            "sweep",
+            "--backend",
+            "gpu",
+            "--width",
+            "8",
+            "--height",
+            "8",
+            "--out",
+        ])
+        .arg(out_dir("sweep-gpu-refused"))
+        .output()
+        .unwrap();
+    assert!(!o.status.success());
+    assert!(String::from_utf8_lossy(&o.stderr).contains("--backend cpu"));
+    std::fs::remove_dir_all(&out).ok();
+}
