@@ -9,13 +9,13 @@ use crate::gpu_frame::{check_visibility, gpu_strategy, GpuFrame, GpuPrepared};
 use crate::heatmap::heat_map;
 use crate::output::write_frame;
 use crate::progress::bar;
+use crate::reference::{all_vpl_reference, prepare_on};
 use crate::report::{Device, FrameFacts, Report};
 use crate::sampled::{pass_ms, Estimator, ESTIMATORS, PASSES};
 use clap::Args;
 use image::RgbImage;
 use slc_core::Image;
-use slc_cpu_ref::vpl_shading::{shade_vpls, VplEstimator};
-use slc_cpu_ref::{prepare, shade_stochastic, Method, Stochastic, Timings, Tracer};
+use slc_cpu_ref::{shade_stochastic, Method, Stochastic, Timings, Tracer};
 use std::fmt::Write;
 use std::path::PathBuf;
 
@@ -91,32 +91,12 @@ pub fn run(args: &CompareArgs) -> Result<(), String> {
     );
     // The GPU prepares its own frame (rasterized G-buffer, its RSMs and VPLs); the CPU's
     // reference and unculled estimate read that frame back.
-    let on_gpu = gpu
-        .as_ref()
-        .map(|g| g.prepare(&scene, &g.upload(&scene)?, &settings, None))
-        .transpose()?;
-    let p = match (&gpu, &on_gpu) {
-        (Some(g), Some(gp)) => g.to_cpu(gp, Tracer::new(&scene))?,
-        _ => prepare(&scene, &settings, Tracer::new(&scene), None),
-    };
+    let (p, on_gpu) = prepare_on(gpu.as_ref(), &scene, &settings)?;
     eprintln!("{} VPLs", p.vpls.len());
 
     let reference = (!args.no_reference)
-        .then(|| {
-            let bar = bar(pixels, "all-VPL reference".into());
-            let r = shade_vpls(
-                &p.tracer,
-                &p.gbuffer,
-                &p.vpls,
-                VplEstimator::Exact,
-                f.visibility,
-                &|n| bar.inc(n),
-            );
-            bar.finish_and_clear();
-            r
-        })
-        .transpose()
-        .map_err(|e| e.to_string())?;
+        .then(|| all_vpl_reference(&p, f.visibility))
+        .transpose()?;
     if let Some(r) = &reference {
         let total = p.direct.add(r);
         let dir = args.out.join("reference_vpl");

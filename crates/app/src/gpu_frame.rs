@@ -18,11 +18,8 @@ use crate::report::Device;
 use slc_bounds::sg::MeanMap;
 use slc_core::rng::{pcg_hash, stream, uniform};
 use slc_core::{Camera, CullInput, GBuffer, Image, Interleaving, Scene, Vpl};
-use slc_cpu_ref::sampled_lights::{Importance, SampledFrame};
-use slc_cpu_ref::vsgl::{
-    bidirectional_importance, sample_points, FilteredSampler, Footprint, ImportanceMap, MipRsm,
-    SampleSet, Vsgl,
-};
+use slc_cpu_ref::sampled_lights::{sample_vsgls, Importance, SampledFrame};
+use slc_cpu_ref::vsgl::{bidirectional_importance, ImportanceMap, MipRsm};
 use slc_cpu_ref::{
     Frame, LightSampling, LobeSelection, Method, Prepared, RenderSettings, Stochastic,
     StochasticFrame, Timings, Tracer,
@@ -442,16 +439,7 @@ impl GpuFrame {
         };
         let vsgls = timings
             .time("light_sampling", || {
-                let points = sample_points(s.count, seed, SampleSet::Lights);
-                FilteredSampler::new(&importance)
-                    .sample(&points, Footprint::Filtered)
-                    .iter()
-                    .map(|w| {
-                        let c = w.cluster;
-                        let v = mips[c.map as usize].vsgl(c.face, c.level, c.x, c.y, floor)?;
-                        Ok(v.scaled(w.weight as f32))
-                    })
-                    .collect::<Result<Vec<Vsgl>, slc_bounds::BoundsError>>()
+                sample_vsgls(&mips, &importance, s.count, seed, floor)
             })
             .map_err(|e| e.to_string())?;
         let g = &p.gbuffer;

@@ -8,6 +8,7 @@ mod heatmap;
 mod output;
 mod plot;
 mod progress;
+mod reference;
 mod render_cmd;
 mod report;
 mod sampled;

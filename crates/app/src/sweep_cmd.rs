@@ -10,11 +10,11 @@ use crate::args::{culling_names, FrameArgs, ImportanceArgs, PipelineArgs, Shader
 use crate::output::to_srgb8;
 use crate::plot::{line_plot_svg, Series};
 use crate::progress::bar;
+use crate::reference::all_vpl_reference;
 use crate::sampled::pass_ms;
 use clap::Args;
 use image::RgbImage;
 use slc_core::Image;
-use slc_cpu_ref::vpl_shading::{shade_vpls, VplEstimator};
 use slc_cpu_ref::{prepare, shade_stochastic, Method, Stochastic, Tracer};
 use std::fmt::Write;
 use std::path::PathBuf;
@@ -99,21 +99,7 @@ pub fn run(args: &SweepArgs) -> Result<(), String> {
         Tracer::new(&scene),
         None,
     );
-    let pixels = f.width as u64 * f.height as u64;
-    let reference = {
-        let bar = bar(pixels, "all-VPL reference".into());
-        let r = shade_vpls(
-            &p.tracer,
-            &p.gbuffer,
-            &p.vpls,
-            VplEstimator::Exact,
-            f.visibility,
-            &|n| bar.inc(n),
-        )
-        .map_err(|e| e.to_string())?;
-        bar.finish_and_clear();
-        r
-    };
+    let reference = all_vpl_reference(&p, f.visibility)?;
     let mut points = Vec::new();
     let progress = bar(
         (names.len() * args.delta.len() * args.repeat as usize) as u64,

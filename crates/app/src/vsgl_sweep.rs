@@ -13,10 +13,10 @@ use crate::args::Backend;
 use crate::gpu_frame::{check_visibility, GpuFrame};
 use crate::plot::{line_plot_svg, Series};
 use crate::progress::bar;
+use crate::reference::{all_vpl_reference, prepare_on};
 use crate::sampled::{pass_ms, Estimator, ESTIMATORS, PASSES};
 use crate::sweep_cmd::SweepArgs;
-use slc_cpu_ref::vpl_shading::{shade_vpls, VplEstimator};
-use slc_cpu_ref::{prepare, Method, Timings, Tracer};
+use slc_cpu_ref::{Method, Timings, Tracer};
 use std::fmt::Write;
 use std::time::Instant;
 
@@ -50,15 +50,7 @@ pub fn run(args: &SweepArgs) -> Result<(), String> {
             Some(GpuFrame::new()?)
         }
     };
-    let settings = f.settings(Method::VplReference, 1);
-    let on_gpu = gpu
-        .as_ref()
-        .map(|g| g.prepare(&scene, &g.upload(&scene)?, &settings, None))
-        .transpose()?;
-    let p = match (&gpu, &on_gpu) {
-        (Some(g), Some(gp)) => g.to_cpu(gp, Tracer::new(&scene))?,
-        _ => prepare(&scene, &settings, Tracer::new(&scene), None),
-    };
+    let (p, on_gpu) = prepare_on(gpu.as_ref(), &scene, &f.settings(Method::VplReference, 1))?;
     let ism = (gpu.is_some() && f.visibility).then(|| GpuFrame::ism_casters(&scene));
     let epsilon = Tracer::scene_epsilon(&scene);
     let vsgl_backend = gpu.as_ref().map_or("cpu", |_| "gpu");
@@ -67,22 +59,8 @@ pub fn run(args: &SweepArgs) -> Result<(), String> {
         .iter()
         .map(|m| m.texels.iter().flatten().count())
         .sum();
-    let pixels = f.width as u64 * f.height as u64;
     let start = Instant::now();
-    let reference = {
-        let bar = bar(pixels, "all-VPL reference".into());
-        let r = shade_vpls(
-            &p.tracer,
-            &p.gbuffer,
-            &p.vpls,
-            VplEstimator::Exact,
-            f.visibility,
-            &|n| bar.inc(n),
-        )
-        .map_err(|e| e.to_string())?;
-        bar.finish_and_clear();
-        r
-    };
+    let reference = all_vpl_reference(&p, f.visibility)?;
     let reference_ms = start.elapsed().as_secs_f64() * 1e3;
     let runs = args.vsgls.len() * ESTIMATORS.len() * (args.seeds * args.repeat) as usize;
     let progress = bar(runs as u64, "sweep".into());

@@ -139,8 +139,7 @@ fn render_with_vsgls_reports_the_sampled_lights() {
         "render --shader vsgl --vsgls 32 --width 16 --height 12 --rsm 4 --seed 2",
         &out,
     );
-    let report: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(out.join("report.json")).unwrap()).unwrap();
+    let report: serde_json::Value = read_report(&out);
     assert_eq!(report["shader"], "vsgl", "{report}");
     assert_eq!(report["light_samples"], 32, "{report}");
     assert_eq!(report["importance"], "flux", "{report}");
@@ -298,6 +297,11 @@ fn read_exr(path: &std::path::Path) -> Vec<[f32; 3]> {
     img.layer_data.channel_data.pixels.1
 }
 
+/// The `report.json` of an output folder.
+fn read_report(dir: &Path) -> serde_json::Value {
+    serde_json::from_str(&std::fs::read_to_string(dir.join("report.json")).unwrap()).unwrap()
+}
+
 /// The mean of each channel of an EXR image.
 fn exr_mean(p: &std::path::Path) -> [f64; 3] {
     let px = read_exr(p);
@@ -344,9 +348,7 @@ fn gpu_vsgl_render_agrees_with_the_cpu_vsgl_render() {
                 .unwrap();
             assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
         }
-        let report: serde_json::Value =
-            serde_json::from_str(&std::fs::read_to_string(gpu.join("report.json")).unwrap())
-                .unwrap();
+        let report: serde_json::Value = read_report(&gpu);
         assert_eq!(report["backend"], "gpu", "{report}");
         assert_eq!(report["shader"], "vsgl", "{report}");
         assert!(report["sampled_lights"].as_u64().unwrap() > 0, "{report}");
@@ -414,9 +416,7 @@ fn gpu_vsgl_render_with_visibility_uses_imperfect_shadow_maps() {
             .unwrap();
         assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     }
-    let report: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(runs[1].2.join("report.json")).unwrap())
-            .unwrap();
+    let report: serde_json::Value = read_report(&runs[1].2);
     assert_eq!(report["backend"], "gpu", "{report}");
     assert!(
         report["notes"]
@@ -487,8 +487,7 @@ fn gpu_render_agrees_with_the_cpu_render_and_names_its_adapter() {
     ] {
         assert!(gpu.join(f).is_file(), "{f} missing");
     }
-    let report: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(gpu.join("report.json")).unwrap()).unwrap();
+    let report: serde_json::Value = read_report(&gpu);
     assert_eq!(report["backend"], "gpu", "{report}");
     assert!(
         report["adapter"].as_str().is_some_and(|a| !a.is_empty()),
@@ -511,8 +510,7 @@ fn gpu_render_agrees_with_the_cpu_render_and_names_its_adapter() {
             assert!(ms > 0.0, "{pass}: {report}");
         }
     }
-    let cpu_report: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(cpu.join("report.json")).unwrap()).unwrap();
+    let cpu_report: serde_json::Value = read_report(&cpu);
     assert_eq!(cpu_report["notes"], serde_json::json!([]));
     assert!(cpu_report["gpu_timings_ms"].is_null());
     // The GPU rasterizes its own G-buffer and RSM (the per-pixel conformance of those passes
@@ -521,14 +519,7 @@ fn gpu_render_agrees_with_the_cpu_render_and_names_its_adapter() {
     assert_eq!(report["metrics"]["missed_pairs"], 0, "{report}");
     assert!(report["metrics"]["true_positive_pairs"].as_u64().unwrap() > 0);
     for image in ["direct.exr", "indirect.exr"] {
-        let mean = |p: &std::path::Path| {
-            let px = read_exr(p);
-            let n = px.len() as f64;
-            px.iter().fold([0f64; 3], |m, v| {
-                [0, 1, 2].map(|c| m[c] + f64::from(v[c]) / n)
-            })
-        };
-        let (c, g) = (mean(&cpu.join(image)), mean(&gpu.join(image)));
+        let (c, g) = (exr_mean(&cpu.join(image)), exr_mean(&gpu.join(image)));
         for ch in 0..3 {
             let rel = (c[ch] - g[ch]).abs() / c[ch];
             eprintln!(
@@ -645,9 +636,7 @@ fn gpu_compare_shades_vsgls_on_the_gpu() {
     let md = std::fs::read_to_string(out.join("report.md")).unwrap();
     assert!(md.contains("| vsgl (gpu) |"), "{md}");
     assert!(md.contains("| vpl_sampled (cpu) |"), "{md}");
-    let report: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(out.join("vsgl/report.json")).unwrap())
-            .unwrap();
+    let report: serde_json::Value = read_report(&out.join("vsgl"));
     assert_eq!(report["backend"], "gpu", "{report}");
     assert!(
         report["notes"].to_string().contains("no visibility term"),

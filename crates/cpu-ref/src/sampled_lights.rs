@@ -97,14 +97,7 @@ pub fn shade_vsgl(
         ),
     })?;
     let vsgls = timings.time("light_sampling", || {
-        sample(&importance, s.count, seed, Footprint::Filtered)
-            .iter()
-            .map(|w| {
-                let c = w.cluster;
-                let v = mips[c.map as usize].vsgl(c.face, c.level, c.x, c.y, floor)?;
-                Ok(v.scaled(w.weight as f32))
-            })
-            .collect::<Result<Vec<Vsgl>, VsglError>>()
+        sample_vsgls(&mips, &importance, s.count, seed, floor)
     })?;
     let indirect = timings.time("light_shading", || {
         shade_vsgls(
@@ -116,6 +109,26 @@ pub fn shade_vsgl(
         lights: vsgls.len(),
         timings,
     })
+}
+
+/// `count` VSGLs by filtered importance sampling (section 4.2) of `importance` over the
+/// mipmapped RSMs `mips` with the points of `seed`: each sampled cluster's VSGL (section 3.1,
+/// `σ_v²` floored at `sigma2_floor`) scaled by its weight `1/(N P)`.
+pub fn sample_vsgls(
+    mips: &[MipRsm],
+    importance: &[ImportanceMap],
+    count: u32,
+    seed: u32,
+    sigma2_floor: f32,
+) -> Result<Vec<Vsgl>, VsglError> {
+    sample(importance, count, seed, Footprint::Filtered)
+        .iter()
+        .map(|w| {
+            let c = w.cluster;
+            let v = mips[c.map as usize].vsgl(c.face, c.level, c.x, c.y, sigma2_floor)?;
+            Ok(v.scaled(w.weight as f32))
+        })
+        .collect()
 }
 
 /// Indirect light from `s.count` texels' VPLs sampled with the same importance and points as

@@ -22,10 +22,9 @@ use slc_bounds::{Brdf, Fresnel};
 use slc_core::{builtin, GBuffer, GSample, Image};
 use slc_cpu_ref::gbuffer::{trace_gbuffer, PixelSample};
 use slc_cpu_ref::rsm::{trace_rsm, TexelSample};
-use slc_cpu_ref::sampled_lights::sigma2_floor;
+use slc_cpu_ref::sampled_lights::{sample_vsgls, sigma2_floor};
 use slc_cpu_ref::vsgl::{
-    bidirectional_importance, sample_points, shade_vsgls, DiffuseEmission, FilteredSampler,
-    Footprint, ImportanceMap, MipRsm, SampleSet, Vsgl,
+    bidirectional_importance, shade_vsgls, DiffuseEmission, ImportanceMap, MipRsm, Vsgl,
 };
 use slc_cpu_ref::Tracer;
 use slc_gpu_wgpu::buffers::upload;
@@ -42,7 +41,7 @@ const FLOOR_OF_MEAN: f32 = 1e-3;
 const EMISSIONS: [DiffuseEmission; 2] = [DiffuseEmission::ClampedCosine, DiffuseEmission::Sg];
 
 /// A CPU VSGL as the pass takes it, with `diffuse` emission.
-fn input(v: &Vsgl, diffuse: DiffuseEmission) -> VsglInput {
+pub fn input(v: &Vsgl, diffuse: DiffuseEmission) -> VsglInput {
     VsglInput {
         clamped_diffuse: (diffuse == DiffuseEmission::ClampedCosine)
             .then_some(v.normal_concentration),
@@ -149,18 +148,7 @@ fn vsgl_shading_matches_the_cpu_on_the_default_scene() {
             bidirectional_importance(&gbuffer, &camera, &maps, 64, 7, floor, diffuse).unwrap();
         for (name, importance) in [("flux", &flux), ("bidirectional", &bidirectional)] {
             for count in [16, 256, 4096] {
-                let points = sample_points(count, 7, SampleSet::Lights);
-                let vsgls: Vec<Vsgl> = FilteredSampler::new(importance)
-                    .sample(&points, Footprint::Filtered)
-                    .iter()
-                    .map(|w| {
-                        let c = w.cluster;
-                        let v = mips[c.map as usize]
-                            .vsgl(c.face, c.level, c.x, c.y, floor)
-                            .unwrap();
-                        v.scaled(w.weight as f32)
-                    })
-                    .collect();
+                let vsgls = sample_vsgls(&mips, importance, count, 7, floor).unwrap();
                 worst = worst.max(agree(&ctx, &tracer, &gbuffer, &vsgls, diffuse, name));
             }
         }

@@ -6,17 +6,15 @@
 //! the tests bound its mean and 99th percentile, tightly enough that shading without
 //! visibility (V = 1) fails. A synthetic frame checks the two certain cases exactly.
 use crate::common::gpu;
+use crate::vsgl::input;
 use glam::Vec3;
 use slc_bounds::sg::MeanMap;
 use slc_bounds::{Brdf, Fresnel};
 use slc_core::{builtin, GBuffer, GSample, Image, Mesh, Scene};
 use slc_cpu_ref::gbuffer::{trace_gbuffer, PixelSample};
 use slc_cpu_ref::rsm::{trace_rsm, TexelSample};
-use slc_cpu_ref::sampled_lights::sigma2_floor;
-use slc_cpu_ref::vsgl::{
-    sample_points, shade_vsgls, DiffuseEmission, FilteredSampler, Footprint, ImportanceMap, MipRsm,
-    SampleSet, Vsgl,
-};
+use slc_cpu_ref::sampled_lights::{sample_vsgls, sigma2_floor};
+use slc_cpu_ref::vsgl::{shade_vsgls, DiffuseEmission, ImportanceMap, MipRsm, Vsgl};
 use slc_cpu_ref::Tracer;
 use slc_gpu_wgpu::ism_pass::{caster_points, IsmPass, IsmSettings};
 use slc_gpu_wgpu::vsgl_shade_pass::{GpuVsgls, VsglShadePass};
@@ -27,27 +25,6 @@ use slc_gpu_wgpu::GpuContext;
 /// [`visibility_from_ism_matches_shadow_rays_on_the_default_scene`] for the measurements).
 const MEAN_BOUND: f32 = 0.1;
 const P99_BOUND: f32 = 0.7;
-
-fn input(v: &Vsgl, diffuse: DiffuseEmission) -> VsglInput {
-    VsglInput {
-        clamped_diffuse: (diffuse == DiffuseEmission::ClampedCosine)
-            .then_some(v.normal_concentration),
-        mu: v.mu,
-        sigma2: v.sigma2,
-        lobes: [
-            VsglLobe {
-                c: v.c_diffuse,
-                xi: v.xi_diffuse,
-                lambda: v.lambda_diffuse,
-            },
-            VsglLobe {
-                c: v.c_specular,
-                xi: v.xi_specular,
-                lambda: v.lambda_specular,
-            },
-        ],
-    }
-}
 
 /// Mean and 99th percentile of the per-pixel error `e` (module docs) over pixels where
 /// either image is non-zero.
@@ -102,18 +79,7 @@ fn default_frame(count: u32) -> Frame {
         })
         .collect();
     let flux: Vec<_> = mips.iter().map(ImportanceMap::from_mip).collect();
-    let points = sample_points(count, 7, SampleSet::Lights);
-    let vsgls = FilteredSampler::new(&flux)
-        .sample(&points, Footprint::Filtered)
-        .iter()
-        .map(|w| {
-            let c = w.cluster;
-            let v = mips[c.map as usize]
-                .vsgl(c.face, c.level, c.x, c.y, floor)
-                .unwrap();
-            v.scaled(w.weight as f32)
-        })
-        .collect();
+    let vsgls = sample_vsgls(&mips, &flux, count, 7, floor).unwrap();
     Frame {
         scene,
         tracer,
