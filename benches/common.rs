@@ -1,7 +1,8 @@
 //! The built-in default scene and its VPLs, shared by the benchmarks.
 use slc_core::{builtin, Scene, Vpl};
 use slc_cpu_ref::rsm::{trace_rsm, TexelSample};
-use slc_cpu_ref::vpls::{generate_vpls, LobeSelection};
+use slc_core::frame::LobeSelection;
+use slc_cpu_ref::vpls::generate_vpls;
 use slc_cpu_ref::Tracer;
 
 /// The default scene, its tracer and its VPLs from an RSM of `rsm`² texels per face.

@@ -156,14 +156,14 @@ pub fn culling_names(names: &[String]) -> Result<Vec<&'static str>, String> {
 
 /// Maps a culling name given on the command line to the library's static name.
 pub fn culling_name(name: &str) -> Result<&'static str, String> {
-    slc_cull::CULLER_NAMES
+    slc_cull::Strategy::ALL
         .iter()
         .find(|n| **n == name)
         .copied()
         .ok_or_else(|| {
             format!(
                 "unknown culling strategy '{name}' (one of {})",
-                slc_cull::CULLER_NAMES.join(", ")
+                slc_cull::Strategy::ALL.join(", ")
             )
         })
 }

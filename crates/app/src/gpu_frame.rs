@@ -41,12 +41,12 @@ use slc_gpu_wgpu::{GpuContext, GpuError};
 use std::cell::OnceCell;
 
 /// The GPU twin of the CPU culling strategy `culling` (every name of
-/// `slc_cull::CULLER_NAMES` has one).
+/// `slc_cull::Strategy::ALL` has one).
 pub fn gpu_strategy(culling: &str) -> Result<Strategy, String> {
     Strategy::by_name(culling).ok_or_else(|| {
         format!(
             "unknown culling strategy '{culling}' (choose one of {})",
-            slc_cull::CULLER_NAMES.join(", ")
+            slc_cull::Strategy::ALL.join(", ")
         )
     })
 }

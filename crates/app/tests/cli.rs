@@ -580,7 +580,7 @@ fn gpu_compare_names_backend_and_adapter_and_misses_nothing() {
             "--interleave",
             "2",
             "--culling",
-            &slc_cull::CULLER_NAMES.join(","),
+            &slc_cull::Strategy::ALL.join(","),
             "--no-reference",
             "--out",
         ])
@@ -594,7 +594,7 @@ fn gpu_compare_names_backend_and_adapter_and_misses_nothing() {
         .lines()
         .filter(|l| l.starts_with("| ") && !l.starts_with("| strategy"))
         .collect();
-    assert_eq!(rows.len(), slc_cull::CULLER_NAMES.len(), "{md}");
+    assert_eq!(rows.len(), slc_cull::Strategy::ALL.len(), "{md}");
     for row in rows {
         let cells: Vec<&str> = row.split('|').map(str::trim).collect();
         assert_eq!(cells[9], "0", "{row}");

@@ -3,6 +3,7 @@
 use crate::camera::Camera;
 use crate::framebuffer::GBuffer;
 use crate::rng::{hash4, stream};
+use crate::strategy::Strategy;
 use crate::vpl::Vpl;
 
 /// Pixels per tile side in tiled and clustered culling (paper section 5, 7).
@@ -103,11 +104,51 @@ pub enum CullError {
     Bounds(#[from] slc_bounds::BoundsError),
 }
 
-/// A culling strategy: builds, for every pixel, the list of VPLs that may contribute there.
-/// A strategy must never leave out a VPL whose probability p(ωo, l) of eq. (2) at a pixel
-/// exceeds its ξ (that would bias the estimate); listing extra VPLs only costs time.
-pub trait Culler: Sync {
-    /// The strategy's name as the command line spells it.
-    fn name(&self) -> &'static str;
-    fn cull(&self, input: &CullInput) -> Result<LightLists, CullError>;
+/// A culling strategy as a backend runs it: reads `Input` (a G-buffer, camera and VPLs where
+/// the backend keeps them) and builds, for every pixel, the list of VPLs that may contribute
+/// there. A culler must never leave out a VPL whose probability p(ωo, l) of eq. (2) at a
+/// pixel exceeds its ξ (that would bias the estimate); listing extra VPLs only costs time.
+///
+/// The CPU cullers (`slc_cull::culler`) read a [`CullInput`] and return [`LightLists`]
+/// ([`CpuCuller`]); the GPU's (`slc_gpu_wgpu::culler`) read a frame on the device and leave
+/// their lists there.
+pub trait Culler<Input: ?Sized> {
+    /// The lists, where this backend keeps them.
+    type Lists;
+    type Error;
+    /// The strategy this culler implements.
+    fn strategy(&self) -> Strategy;
+    fn cull(&self, input: &Input) -> Result<Self::Lists, Self::Error>;
+}
+
+/// A culler on the CPU: [`CullInput`] in, [`LightLists`] out.
+pub trait CpuCuller:
+    for<'a> Culler<CullInput<'a>, Lists = LightLists, Error = CullError> + Sync
+{
+}
+
+impl<T> CpuCuller for T where
+    T: for<'a> Culler<CullInput<'a>, Lists = LightLists, Error = CullError> + Sync
+{
+}
+
+/// True and false positives and misses of light lists against the brute-force truth
+/// (`slc_cull::metrics`).
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct CullMetrics {
+    /// Listed pairs that contribute.
+    pub true_positive_pairs: u64,
+    /// Listed pairs that do not contribute (including VPLs of another subregion and repeated
+    /// entries).
+    pub false_positive_pairs: u64,
+    /// Contributing pairs that are not listed: culling errors that bias the estimate; must be 0.
+    pub missed_pairs: u64,
+    /// Mean list length over all pixels (pixels without a G-buffer sample count as 0).
+    pub lights_per_pixel_mean: f64,
+    /// FP / (TP + FP) over all pairs; 0 when nothing is listed.
+    pub false_discovery_rate: f64,
+    /// List length of every pixel (row-major), for heat maps.
+    pub lights_per_pixel: Vec<u32>,
+    /// FP / (TP + FP) of every pixel (row-major), 0 where nothing is listed.
+    pub fdr_per_pixel: Vec<f32>,
 }

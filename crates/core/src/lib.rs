@@ -1,52 +1,82 @@
 //! `slc-core` is what every part of slc shares: the scene model (meshes, materials, textures,
 //! lights, camera), the loaders that make scenes from glTF 2.0 and OBJ + MTL files, the
-//! built-in scenes, the VPL and frame-buffer types, and the counter-based RNG. It knows no
-//! rendering backend.
+//! built-in scenes, the VPL and frame-buffer types, the counter-based RNG, and the renderer
+//! API every backend implements: the frame vocabulary ([`frame`]), the typed culling
+//! strategies ([`Strategy`]), the backend trait ([`Renderer`]), the shaders ([`Shader`]) and
+//! the frame loop ([`render()`]). It knows no rendering backend.
+//!
+//! The loaders (glTF, OBJ, settings files; they pull gltf, tobj, image and toml) are behind
+//! the default feature `loaders`: an engine that makes its own scenes, G-buffers and VPLs
+//! builds `slc-core` (and `slc-cull`) with `default-features = false`.
 //!
 //! ```
+//! # #[cfg(feature = "loaders")] {
 //! let scene = slc_core::load_scene("default")?;
 //! println!("{}: {} triangles", scene.name, scene.triangle_count());
 //! for light in &scene.lights {
 //!     println!("  {light:?}");
 //! }
 //! assert!(scene.validate_for_render().is_ok());
+//! # }
 //! # Ok::<(), slc_core::SceneError>(())
 //! ```
 pub mod builtin;
 pub mod camera;
 pub mod culling;
+pub mod frame;
 pub mod error;
 pub mod framebuffer;
+#[cfg(feature = "loaders")]
 pub mod gltf_loader;
+#[cfg(feature = "loaders")]
 mod gltf_material;
+#[cfg(feature = "loaders")]
 mod gltf_mesh;
+#[cfg(feature = "loaders")]
 mod import_util;
 pub mod light;
+#[cfg(feature = "loaders")]
 pub mod load;
 pub mod material;
 pub mod mesh;
+pub mod render;
+pub mod renderer;
+#[cfg(feature = "loaders")]
 pub mod obj_loader;
 pub mod rng;
 pub mod scene;
+pub mod shader;
+#[cfg(feature = "loaders")]
 pub mod settings;
 pub mod shapes;
+pub mod strategy;
 pub mod texture;
+#[cfg(feature = "loaders")]
 mod texture_decode;
 pub mod vpl;
 
-#[cfg(test)]
+#[cfg(all(test, feature = "loaders"))]
 mod loader_tests;
 
 pub use builtin::{builtin, BUILTIN_NAMES};
 pub use camera::Camera;
-pub use culling::{CullError, CullInput, Culler, Interleaving, LightLists, NO_LIST, TILE_SIZE};
+pub use culling::{
+    CpuCuller, CullError, CullInput, CullMetrics, Culler, Interleaving, LightLists, NO_LIST, TILE_SIZE,
+};
+pub use frame::{RenderError, RenderSettings, RenderedFrame, Shaded, Timings};
 pub use error::SceneError;
 pub use framebuffer::{GBuffer, GSample, Image};
 pub use light::{Incident, Light};
+#[cfg(feature = "loaders")]
 pub use load::{load_scene, load_scene_file};
 pub use material::{Material, MaterialModel, ALPHA_MIN};
 pub use mesh::Mesh;
+pub use render::render;
+pub use renderer::{BackendInfo, Capabilities, PreparedFrame, Progress, Renderer};
 pub use scene::{LoadReport, Scene};
+pub use shader::{ShadeInput, Shader};
+pub use strategy::{GlossyBound, Layout, Strategy, UnknownStrategy};
+#[cfg(feature = "loaders")]
 pub use settings::{load_settings, MaterialOverride, Settings};
 pub use texture::{Texture, TextureId};
 pub use vpl::{Vpl, VplLobe};

@@ -17,31 +17,37 @@
 //!   filtered importance and shaded analytically, and VPLs sampled by the same importance at
 //!   equal count ([`vsgl`], [`sampled_lights`]).
 //!
-//! [`render()`] runs a whole frame ([`prepare`] and [`shade_stochastic`] its stages). Its images agree with an independent path tracer (Mitsuba 3)
-//! within noise: see `tests/reference_cornell_a.rs` at the workspace root.
+//! [`CpuRenderer`] is the CPU backend of the renderer API (`slc_core::Renderer`): every step
+//! of the frame, the references and shadow rays included; [`render()`] runs a whole frame on
+//! it, and [`prepare()`] makes a frame's G-buffer, RSMs, VPLs and direct light. Its images
+//! agree with an independent path tracer (Mitsuba 3) within noise: see
+//! `tests/reference_cornell_a.rs` at the workspace root.
 //!
 //! ```
 //! use slc_core::builtin;
-//! use slc_cpu_ref::{render, LobeSelection, Method, RenderSettings, Stochastic};
+//! use slc_core::frame::{LobeSelection, Method, RenderSettings, Stochastic};
+//! use slc_core::Strategy;
+//! use slc_cpu_ref::render;
 //!
 //! let scene = builtin("default").unwrap();
 //! let settings = RenderSettings {
 //!     width: 32, height: 32, rsm_resolution: 4, seed: 7,
 //!     method: Method::Stochastic(Stochastic {
-//!         delta: 1e-3, culling: "ellipsoid", interleave: 4, denoise: true, metrics: false,
+//!         delta: 1e-3, strategy: Strategy::Ellipsoid, interleave: 4, denoise: true, metrics: false,
 //!     }),
 //!     visibility: false, spp: 1, lobes: LobeSelection::Both,
 //! };
 //! let frame = render(&scene, &settings, &|_pixels_done| {})?;
 //! assert!(frame.vpl_count > 0);
 //! assert!(frame.indirect.mean().max_element() > 0.0);
-//! # Ok::<(), slc_cpu_ref::RenderError>(())
+//! # Ok::<(), slc_core::RenderError>(())
 //! ```
 pub mod denoise;
 pub mod direct;
 pub mod gbuffer;
 pub mod path;
-pub mod render;
+pub mod prepare;
+pub mod renderer;
 pub mod rsm;
 pub mod sampled_lights;
 pub mod sampling;
@@ -51,11 +57,7 @@ pub mod vpls;
 pub mod vsgl;
 pub mod watertight;
 
-pub use render::{
-    prepare, render, shade_stochastic, Frame, Method, Prepared, RenderError, RenderSettings,
-    Stochastic, StochasticFrame, Timings,
-};
-pub use sampled_lights::{Importance, LightSampling, SampledFrame};
+pub use prepare::{prepare, CpuPrepared};
+pub use renderer::{render, CpuFrames, CpuRenderer};
 pub use tracer::Tracer;
 pub use vpl_shading::VplEstimator;
-pub use vpls::LobeSelection;

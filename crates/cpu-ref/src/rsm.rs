@@ -47,6 +47,7 @@ pub enum TexelSample {
 /// A reflective shadow map of one light: `faces` square maps of `resolution`² texels,
 /// face-major then row-major (row 0 at the top); `None` where the light's ray hit nothing,
 /// hit the back of a one-sided surface, or carries no flux.
+#[derive(Clone, Debug)]
 pub struct Rsm {
     pub resolution: u32,
     pub faces: u32,

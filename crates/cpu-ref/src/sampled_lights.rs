@@ -9,55 +9,16 @@
 //! `1/(N P)`, so the VPL estimate is unbiased against every VPL with p = 1 and the VSGL
 //! estimate carries the total flux unbiased; "N lights" means N samples, each one VSGL with
 //! its two lobes or one texel with its (up to) two VPLs.
-use crate::render::{Prepared, Timings};
+use crate::prepare::CpuPrepared;
 use crate::tracer::Tracer;
 use crate::vpl_shading::{shade_vpls, VplEstimator};
 use crate::vsgl::{
-    bidirectional_importance, sample_points, shade_vsgls, DiffuseEmission, FilteredSampler,
-    Footprint, ImportanceMap, MipRsm, SampleSet, Vsgl, VsglError, WeightedCluster,
+    bidirectional_importance, sample_points, shade_vsgls, FilteredSampler, Footprint,
+    ImportanceMap, MipRsm, SampleSet, Vsgl, VsglError, WeightedCluster,
 };
 use slc_bounds::sg::MeanMap;
-use slc_core::{Image, Vpl};
-
-/// The importance `p(s)` the lights are sampled with.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Importance {
-    /// `p(s) ∝ Φ_i (R_{d,i} + R_{s,i})`, the paper's default (section 4.2).
-    Flux,
-    /// Estimated with `camera_vsgls` VSGLs generated on the G-buffer (section 4.3), mixed with
-    /// the flux importance ([`crate::vsgl::FLUX_SHARE`]).
-    Bidirectional { camera_vsgls: u32 },
-}
-
-impl Importance {
-    /// `flux` or `bidirectional`, as reports name it.
-    pub fn name(&self) -> &'static str {
-        match self {
-            Self::Flux => "flux",
-            Self::Bidirectional { .. } => "bidirectional",
-        }
-    }
-}
-
-/// `count` lights sampled with `importance`; VSGLs, and the camera-side VSGLs of the
-/// bidirectional importance, shade their diffuse lobes as `diffuse` says.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct LightSampling {
-    pub count: u32,
-    pub importance: Importance,
-    pub diffuse: DiffuseEmission,
-}
-
-/// A frame's indirect light from sampled lights, with what it cost.
-pub struct SampledFrame {
-    pub indirect: Image,
-    /// Distinct lights shaded: VSGLs, or VPLs (two per texel where both lobes reflect).
-    /// Samples that reach the same cluster are merged into one light with their weights added.
-    pub lights: usize,
-    /// `vsgl_mip` (VSGL only), `importance_map`, `light_sampling` and `light_shading`, the
-    /// VSGL overheads of the paper's Table 1.
-    pub timings: Timings,
-}
+use slc_core::frame::{Importance, LightSampling, Shaded, Timings};
+use slc_core::Vpl;
 
 /// The floor of a VSGL's positional variance `σ_v²` (a single VPL has none, where eq. 1 and
 /// 4 diverge): the square of the tracer's ray offset, the length below which the renderer
@@ -70,12 +31,12 @@ pub fn sigma2_floor(tracer: &Tracer) -> f32 {
 /// importance, filtered importance sampling of clusters (4.2, points from `seed`) and the
 /// analytic shading of eq. (2)-(5), with a shadow ray to each `μ_v` if `visibility`.
 pub fn shade_vsgl(
-    p: &Prepared,
+    p: &CpuPrepared,
     s: &LightSampling,
     seed: u32,
     visibility: bool,
     progress: &(dyn Fn(u64) + Sync),
-) -> Result<SampledFrame, VsglError> {
+) -> Result<Shaded, VsglError> {
     let mut timings = Timings::default();
     let floor = sigma2_floor(&p.tracer);
     let mips = timings.time("vsgl_mip", || {
@@ -104,10 +65,9 @@ pub fn shade_vsgl(
             &p.tracer, &p.gbuffer, &vsgls, s.diffuse, visibility, progress,
         )
     })?;
-    Ok(SampledFrame {
-        indirect,
-        lights: vsgls.len(),
-        timings,
+    Ok(Shaded {
+        sampled_lights: Some(vsgls.len()),
+        ..Shaded::new(indirect, timings)
     })
 }
 
@@ -136,12 +96,12 @@ pub fn sample_vsgls(
 /// weight `1/(N P)`, shaded exactly (with shadow rays if `visibility`): unbiased against
 /// every VPL with p = 1.
 pub fn shade_sampled_vpls(
-    p: &Prepared,
+    p: &CpuPrepared,
     s: &LightSampling,
     seed: u32,
     visibility: bool,
     progress: &(dyn Fn(u64) + Sync),
-) -> Result<SampledFrame, VsglError> {
+) -> Result<Shaded, VsglError> {
     let mut timings = Timings::default();
     let importance = timings.time("importance_map", || match s.importance {
         Importance::Flux => p.maps.iter().map(ImportanceMap::flux).collect(),
@@ -168,10 +128,9 @@ pub fn shade_sampled_vpls(
             progress,
         )
     })?;
-    Ok(SampledFrame {
-        indirect,
-        lights: vpls.len(),
-        timings,
+    Ok(Shaded {
+        sampled_lights: Some(vpls.len()),
+        ..Shaded::new(indirect, timings)
     })
 }
 
@@ -189,7 +148,7 @@ fn sample(
 /// The VPLs of sampled level-0 texels, fluxes times the samples' weights. Texel `(x, y)` of
 /// face `f` of map `m` is texel `k = Σ_{m' < m} |texels of m'| + (f N + y) N + x` of the
 /// concatenated maps, whose VPLs have ids `2k` and `2k + 1` (`crate::vpls::generate_vpls`).
-fn texel_vpls(p: &Prepared, samples: &[WeightedCluster]) -> Vec<Vpl> {
+fn texel_vpls(p: &CpuPrepared, samples: &[WeightedCluster]) -> Vec<Vpl> {
     let mut bases = Vec::with_capacity(p.maps.len());
     let mut base = 0u32;
     for rsm in &p.maps {

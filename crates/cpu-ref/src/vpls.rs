@@ -1,26 +1,8 @@
 //! VPLs from reflective-shadow-map texels.
 use crate::rsm::Rsm;
 use slc_core::rng::vpl_xi;
+use slc_core::frame::LobeSelection;
 use slc_core::{Vpl, VplLobe};
-
-/// Which lobes become VPLs (the paper's Table 2 measures diffuse-only and glossy-only runs).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum LobeSelection {
-    Both,
-    Diffuse,
-    Glossy,
-}
-
-impl LobeSelection {
-    fn wants(self, lobe: VplLobe) -> bool {
-        matches!(
-            (self, lobe),
-            (LobeSelection::Both, _)
-                | (LobeSelection::Diffuse, VplLobe::Diffuse)
-                | (LobeSelection::Glossy, VplLobe::Glossy)
-        )
-    }
-}
 
 /// One diffuse VPL (where kd > 0) and one glossy VPL (where the specular layer reflects) per
 /// lit texel. Texel k of the concatenated maps (light-major, then face, row, column) gives the

@@ -4,11 +4,12 @@ use glam::Vec3;
 use slc_core::{builtin, Image};
 use slc_cpu_ref::sampled_lights::{shade_sampled_vpls, shade_vsgl, sigma2_floor};
 use slc_cpu_ref::vpl_shading::{shade_vpls, vpl_contribution};
-use slc_cpu_ref::vsgl::{bidirectional_importance, DiffuseEmission, ImportanceMap};
-use slc_cpu_ref::{
-    prepare, render, Importance, LightSampling, LobeSelection, Method, Prepared, RenderError,
-    RenderSettings, Tracer, VplEstimator,
+use slc_core::frame::{
+    DiffuseEmission, Importance, LightSampling, LobeSelection, Method, RenderError,
+    RenderSettings,
 };
+use slc_cpu_ref::vsgl::{bidirectional_importance, ImportanceMap};
+use slc_cpu_ref::{prepare, render, CpuPrepared as Prepared, Tracer, VplEstimator};
 
 fn settings(width: u32, height: u32, rsm: u32, method: Method) -> RenderSettings {
     RenderSettings {
@@ -67,7 +68,7 @@ fn sampled_vpls_are_unbiased() {
         let (mut mean_sum, mut mean_sum2) = (Vec3::ZERO, Vec3::ZERO);
         for seed in 0..seeds {
             let f = shade_sampled_vpls(&p, &s, seed, false, &|_| {}).unwrap();
-            assert!(f.lights <= 16);
+            assert!(f.sampled_lights.unwrap() <= 16);
             for (k, px) in f.indirect.pixels.iter().enumerate() {
                 sum[k] += *px;
                 sum2[k] += *px * *px;
@@ -128,7 +129,7 @@ fn vsgls_carry_the_energy_of_the_vpls() {
         let rmse = f.indirect.rmse(&truth) / want.max_element();
         println!(
             "N {count}: {} VSGLs, mean ratio {ratio}, relative RMSE {rmse}",
-            f.lights
+            f.sampled_lights.unwrap()
         );
         assert!(
             ratio.min_element() > lo && ratio.max_element() < hi,
@@ -162,11 +163,11 @@ fn vsgls_are_deterministic_and_finite_at_n_0_and_1() {
     assert_eq!(a.indirect, b.indirect);
     assert_ne!(a.indirect, c.indirect);
     let none = shade(0, 5);
-    assert_eq!(none.lights, 0);
+    assert_eq!(none.sampled_lights.unwrap(), 0);
     assert!(none.indirect.pixels.iter().all(|px| *px == Vec3::ZERO));
     // N = 1: one VSGL, a whole face of the RSM.
     let one = shade(1, 5);
-    assert_eq!(one.lights, 1);
+    assert_eq!(one.sampled_lights.unwrap(), 1);
     assert!(one.indirect.is_finite_non_negative() && one.indirect.mean().max_element() > 0.0);
 }
 

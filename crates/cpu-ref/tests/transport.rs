@@ -5,14 +5,16 @@ use slc_core::{builtin, Light, Material, Scene};
 use slc_cpu_ref::gbuffer::{trace_gbuffer, PixelSample};
 use slc_cpu_ref::rsm::{trace_rsm, Rsm, TexelSample};
 use slc_cpu_ref::vpl_shading::shade_vpls;
-use slc_cpu_ref::vpls::{generate_vpls, LobeSelection};
-use slc_cpu_ref::{render, Method, RenderError, RenderSettings, Stochastic, Tracer, VplEstimator};
+use slc_core::frame::{LobeSelection, Method, RenderError, RenderSettings, Stochastic};
+use slc_core::Strategy;
+use slc_cpu_ref::vpls::generate_vpls;
+use slc_cpu_ref::{render, Tracer, VplEstimator};
 
 /// The stochastic estimate without culling, interleaving or denoising.
 fn unculled(delta: f32) -> Stochastic {
     Stochastic {
         delta,
-        culling: "none",
+        strategy: Strategy::None,
         interleave: 1,
         denoise: false,
         metrics: false,
@@ -298,7 +300,7 @@ fn zero_flux_renders_black() {
     for method in [
         Method::Stochastic(unculled(1e-3)),
         Method::Stochastic(Stochastic {
-            culling: "ellipsoid",
+            strategy: Strategy::Ellipsoid,
             interleave: 4,
             denoise: true,
             ..unculled(1e-3)
@@ -366,13 +368,6 @@ fn bad_settings_and_scenes_are_errors() {
         RenderSettings {
             method: Method::Stochastic(Stochastic {
                 interleave: 0,
-                ..unculled(1e-3)
-            }),
-            ..ok.clone()
-        },
-        RenderSettings {
-            method: Method::Stochastic(Stochastic {
-                culling: "octree",
                 ..unculled(1e-3)
             }),
             ..ok.clone()

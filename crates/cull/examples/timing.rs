@@ -6,9 +6,11 @@
 use slc_core::{builtin, CullInput, Interleaving};
 use slc_cpu_ref::gbuffer::{trace_gbuffer, PixelSample};
 use slc_cpu_ref::rsm::{trace_rsm, TexelSample};
-use slc_cpu_ref::vpls::{generate_vpls, LobeSelection};
+use slc_core::frame::LobeSelection;
+use slc_cpu_ref::vpls::generate_vpls;
 use slc_cpu_ref::Tracer;
-use slc_cull::{culler_by_name, CULLER_NAMES};
+use slc_core::Strategy;
+use slc_cull::culler;
 use std::time::{Duration, Instant};
 
 fn main() {
@@ -48,8 +50,8 @@ fn main() {
             "K = {k} ({} VPLs per subregion)",
             vpls.len() / (k * k) as usize
         );
-        for &name in CULLER_NAMES {
-            let culler = culler_by_name(name).expect("known name");
+        for name in Strategy::ALL {
+            let culler = culler(name);
             let mut best = Duration::MAX;
             let mut lists = None;
             for _ in 0..5 {

@@ -8,15 +8,18 @@
 //! into per-pixel light lists ([`slc_core::LightLists`]) that never leave out a VPL whose
 //! probability p(ωo, l) > ξ at the pixel, so shading stays unbiased.
 //!
-//! Strategies ([`CULLER_NAMES`], [`culler_by_name`]):
+//! Strategies ([`slc_core::Strategy`], [`culler`]):
 //! - `none` ([`NoCulling`]): every VPL of the pixel's interleaved subregion (section 6).
-//! - `sphere`, `enclosing-sphere`, `ellipsoid` ([`SphereCuller`], [`EnclosingSphereCuller`],
-//!   [`EllipsoidCuller`]): tiled culling with Modified HalfZ (section 5.1), 16x16 tiles of
-//!   each subregion image, two depth clusters per tile; glossy VPLs bounded by the r/α sphere,
-//!   the sphere around the spheroid, or the spheroid itself tested in its stretched and
-//!   rotated space (eq. 16-17, section 5.2).
-//! - `clustered`, `clustered-sphere`, `clustered-enclosing-sphere` ([`ClusteredCuller`]): the
+//! - `sphere`, `enclosing-sphere`, `ellipsoid` ([`BoundedCuller`]): tiled culling with
+//!   Modified HalfZ (section 5.1), 16x16 tiles of each subregion image, two depth clusters
+//!   per tile; glossy VPLs bounded by the r/α sphere, the sphere around the spheroid, or the
+//!   spheroid itself tested in its stretched and rotated space (eq. 16-17, section 5.2).
+//! - `clustered`, `clustered-sphere`, `clustered-enclosing-sphere` ([`BoundedCuller`]): the
 //!   same tiles cut into 32 exponential depth slices.
+//!
+//! The crate needs no scene loader, BVH or GPU: it builds on `slc-core` without its
+//! `loaders` feature, so an engine can embed it with its own G-buffer and VPLs
+//! (`examples/embed.rs`).
 //!
 //! [`metrics`] measures light lists against the brute-force truth (true and false positives,
 //! misses, lights per pixel, false discovery rate). Everything runs in parallel with rayon
@@ -27,7 +30,7 @@
 //! ```
 //! use glam::Vec3;
 //! use slc_bounds::{Brdf, Fresnel};
-//! use slc_core::{Camera, CullInput, GBuffer, GSample, Interleaving, Vpl, VplLobe};
+//! use slc_core::{Camera, CullInput, Culler, GBuffer, GSample, Interleaving, Strategy, Vpl, VplLobe};
 //!
 //! // A camera 4 units above a floor (y = 0) looking straight down; a 32x32 G-buffer of the
 //! // floor from each pixel's centre ray.
@@ -56,7 +59,7 @@
 //!     gbuffer: &gbuffer, camera: &camera, vpls: &vpls, delta: 1e-3,
 //!     interleaving: Interleaving { k: 1, seed: 0 },
 //! };
-//! let lists = slc_cull::culler_by_name("ellipsoid").unwrap().cull(&input)?;
+//! let lists = slc_cull::culler(Strategy::Ellipsoid).cull(&input)?;
 //! let centre = (h / 2 * w + w / 2) as usize;
 //! assert_eq!(lists.for_pixel(centre), &[0]);
 //! assert!(lists.indices.iter().all(|&i| i == 0), "the VPL above the camera is culled");
@@ -78,40 +81,22 @@ pub mod view;
 mod vpl_bounds;
 
 pub use frusta::FRUSTUM_SLACK;
-pub use strategies::clustered::ClusteredCuller;
-pub use strategies::ellipsoid::EllipsoidCuller;
-pub use strategies::enclosing_sphere::EnclosingSphereCuller;
+pub use strategies::bounded::BoundedCuller;
 pub use strategies::none::NoCulling;
-pub use strategies::sphere::SphereCuller;
 pub use view::CullView;
 pub use vpl_bounds::{GlossyBound, BOUND_SLACK};
 
-use slc_core::Culler;
+use slc_core::{CpuCuller, Layout, Strategy};
 
-/// The names [`culler_by_name`] knows, as the command line spells them.
-pub const CULLER_NAMES: &[&str] = &[
-    "none",
-    "sphere",
-    "enclosing-sphere",
-    "ellipsoid",
-    "clustered",
-    "clustered-sphere",
-    "clustered-enclosing-sphere",
-];
-
-/// The strategy called `name` (one of [`CULLER_NAMES`]), or `None`.
-pub fn culler_by_name(name: &str) -> Option<Box<dyn Culler>> {
-    let clustered = |glossy_bound| Box::new(ClusteredCuller { glossy_bound }) as Box<dyn Culler>;
-    Some(match name {
-        "none" => Box::new(NoCulling),
-        "sphere" => Box::new(SphereCuller),
-        "enclosing-sphere" => Box::new(EnclosingSphereCuller),
-        "ellipsoid" => Box::new(EllipsoidCuller),
-        "clustered" => clustered(GlossyBound::Ellipsoid),
-        "clustered-sphere" => clustered(GlossyBound::Sphere),
-        "clustered-enclosing-sphere" => clustered(GlossyBound::EnclosingSphere),
-        _ => return None,
-    })
+/// The CPU culler of `strategy`.
+pub fn culler(strategy: Strategy) -> Box<dyn CpuCuller> {
+    match BoundedCuller::new(strategy) {
+        Some(c) => Box::new(c),
+        None => {
+            debug_assert_eq!(strategy.parts().0, Layout::Unculled);
+            Box::new(NoCulling)
+        }
+    }
 }
 
 #[cfg(test)]
@@ -119,10 +104,9 @@ mod tests {
     use super::*;
 
     #[test]
-    fn every_name_gives_the_strategy_of_that_name() {
-        for &name in CULLER_NAMES {
-            assert_eq!(culler_by_name(name).unwrap().name(), name);
+    fn every_strategy_gives_a_culler_of_that_strategy() {
+        for s in Strategy::ALL {
+            assert_eq!(culler(s).strategy(), s);
         }
-        assert!(culler_by_name("bogus").is_none());
     }
 }

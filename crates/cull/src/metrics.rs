@@ -12,28 +12,10 @@ use crate::partition::Partition;
 use glam::Vec3;
 use rayon::prelude::*;
 use slc_bounds::{scalar_intensity, StochasticParams};
+pub use slc_core::CullMetrics;
 use slc_core::{CullError, CullInput, GSample, LightLists, Vpl, VplLobe, NO_LIST};
 use std::f64::consts::PI;
 
-/// How well a set of light lists culls, against the brute-force truth.
-#[derive(Clone, Debug, Default, PartialEq)]
-pub struct CullMetrics {
-    /// Listed pairs that contribute.
-    pub true_positive_pairs: u64,
-    /// Listed pairs that do not contribute (including VPLs of another subregion and repeated
-    /// entries).
-    pub false_positive_pairs: u64,
-    /// Contributing pairs that are not listed: culling errors that bias the estimate; must be 0.
-    pub missed_pairs: u64,
-    /// Mean list length over all pixels (pixels without a G-buffer sample count as 0).
-    pub lights_per_pixel_mean: f64,
-    /// FP / (TP + FP) over all pairs; 0 when nothing is listed.
-    pub false_discovery_rate: f64,
-    /// List length of every pixel (row-major), for heat maps.
-    pub lights_per_pixel: Vec<u32>,
-    /// FP / (TP + FP) of every pixel (row-major), 0 where nothing is listed.
-    pub fdr_per_pixel: Vec<f32>,
-}
 
 /// The metrics of `lists` for `input`; see [`measure_all`].
 pub fn measure(input: &CullInput, lists: &LightLists) -> Result<CullMetrics, CullError> {

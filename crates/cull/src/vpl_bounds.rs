@@ -2,6 +2,7 @@
 //! the section-6 sphere for diffuse VPLs, and for glossy VPLs the sphere r/α around q, the
 //! sphere r_u around c (section 7) or the GGX spheroid (eq. 12-15) as its stretched and
 //! rotated test space BS, BS·c (eq. 16-17, section 5.2).
+pub use slc_core::GlossyBound;
 use crate::partition::Partition;
 use crate::view::CullView;
 use glam::{DVec3, Vec3};
@@ -18,19 +19,6 @@ use slc_core::{CullError, Vpl, VplLobe};
 /// factor of 10 of margin for about 0.3% more volume.
 pub const BOUND_SLACK: f64 = 1e-3;
 
-/// Which bound a glossy VPL is culled with; diffuse VPLs always use the sphere of section 6.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub enum GlossyBound {
-    /// The sphere of radius r/α around the VPL position q (section 7, after Tokuyoshi and
-    /// Harada 2016: the maximum of s(ωo) in eq. (12)).
-    Sphere,
-    /// The sphere of radius r_u around the spheroid's centre c, enclosing the spheroid
-    /// (section 7).
-    EnclosingSphere,
-    /// The GGX bounding spheroid of eq. (12)-(15), tested as a unit sphere in its stretched
-    /// and rotated space (eq. 16-17).
-    Ellipsoid,
-}
 
 /// A sphere in view space: centre, squared radius, and the VPL's index in the input.
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -8,7 +8,7 @@ use crate::buffers::{output, read_back, upload};
 use crate::context::{GpuContext, GpuError};
 use crate::gbuffer_pass::GpuGBuffer;
 use crate::gpu_types::{GpuCullParams, GpuCullStatus, FRUSTUM_SLACK, MAX_K};
-use crate::shade_pass::GpuLightLists;
+use crate::gpu_lists::GpuLightLists;
 use slc_core::{Camera, CullInput, Interleaving, LightLists, Vpl, NO_LIST, TILE_SIZE};
 use slc_cull::CullView;
 
@@ -111,17 +111,6 @@ pub(crate) fn check_input(frame: &CullFrame) -> Result<CullSizes, GpuError> {
     })
 }
 
-/// Lists of an image without pixels: no list, no entry.
-pub(crate) fn no_lists(ctx: &GpuContext) -> Result<GpuLightLists, GpuError> {
-    Ok(GpuLightLists {
-        offsets: output::<u32>(ctx, "list offsets", 1)?,
-        indices: output::<u32>(ctx, "light lists", 0)?,
-        pixel_list: output::<u32>(ctx, "pixel lists", 0)?,
-        list_count: 0,
-        entries: 0,
-        pixels: 0,
-    })
-}
 
 /// The uniform per-subregion tile grid (`GpuCullParams`): `tiles_x` x `tiles_y` tiles of
 /// [`TILE_SIZE`]² pixels per subregion image, sized for subregion 0 (the largest), and their
@@ -211,45 +200,4 @@ pub(crate) fn read_status(
         ));
     }
     Ok(state.total)
-}
-
-/// Reads `gpu` back as [`LightLists`] in the CPU's convention: empty lists dropped (their
-/// pixels get [`NO_LIST`]) and the rest renumbered in order.
-pub fn read_lists(ctx: &GpuContext, gpu: &GpuLightLists) -> Result<LightLists, GpuError> {
-    if gpu.pixels == 0 {
-        return Ok(LightLists {
-            offsets: vec![0],
-            ..LightLists::default()
-        });
-    }
-    let offsets: Vec<u32> = read_back(
-        ctx,
-        "list offsets",
-        &gpu.offsets,
-        gpu.list_count as usize + 1,
-    )?;
-    let indices: Vec<u32> = read_back(ctx, "light lists", &gpu.indices, gpu.entries as usize)?;
-    let pixel_list: Vec<u32> = read_back(ctx, "pixel lists", &gpu.pixel_list, gpu.pixels as usize)?;
-    Ok(compact(&offsets, indices, &pixel_list))
-}
-
-/// [`LightLists`] from lists that may be empty: empty lists are dropped (their pixels get
-/// `NO_LIST`, as on the CPU) and the rest renumbered in order.
-fn compact(offsets: &[u32], indices: Vec<u32>, pixel_list: &[u32]) -> LightLists {
-    let mut renumber = vec![NO_LIST; offsets.len().saturating_sub(1)];
-    let mut kept = vec![0u32];
-    for (l, pair) in offsets.windows(2).enumerate() {
-        if pair[1] > pair[0] {
-            renumber[l] = (kept.len() - 1) as u32;
-            kept.push(pair[1]);
-        }
-    }
-    LightLists {
-        offsets: kept,
-        indices,
-        pixel_list: pixel_list
-            .iter()
-            .map(|&l| renumber.get(l as usize).copied().unwrap_or(NO_LIST))
-            .collect(),
-    }
 }

@@ -39,7 +39,7 @@
 //! - [`clustered_cull_pass`]: clustered culling (32 exponential depth slices per tile,
 //!   section 7), the twin of `slc_cull`'s `clustered`, `clustered-sphere` and
 //!   `clustered-enclosing-sphere`, with its structs in [`cull_types`];
-//! - [`culler`]: every strategy of `slc_cull::CULLER_NAMES` by name ([`culler::GpuCuller`]);
+//! - [`culler`]: every strategy of `slc_cull::Strategy::ALL` by name ([`culler::GpuCuller`]);
 //!   [`cull_frame`] holds what the culling passes share;
 //! - [`denoise_pass`]: the cross bilateral filter guided by depth and normal (section 6),
 //!   the twin of `slc_cpu_ref::denoise::cross_bilateral`, on GPU buffers or uploaded images
@@ -65,6 +65,7 @@ pub mod denoise_pass;
 pub mod denoise_types;
 pub mod direct_pass;
 pub mod gbuffer_pass;
+pub mod gpu_lists;
 pub mod gpu_types;
 pub mod ism_pass;
 pub mod none_cull_pass;

@@ -8,12 +8,13 @@
 //! As on the CPU, the VPLs themselves are not validated (only shading reads them).
 use crate::buffers::{output, uniform, upload, Grid};
 use crate::context::{GpuContext, GpuError};
-use crate::cull_frame::{check_input, no_lists, read_lists, CullFrame, CullSizes};
+use crate::cull_frame::{check_input, CullFrame, CullSizes};
+use crate::gpu_lists::{no_lists, read_lists};
 use crate::cull_types::GpuNoneParams;
 use crate::gpu_types::{GpuBound, GpuCullStatus};
 use crate::partition_pass::PartitionPass;
 use crate::scan_pass::ScanPass;
-use crate::shade_pass::GpuLightLists;
+use crate::gpu_lists::GpuLightLists;
 use slc_core::{CullInput, LightLists};
 
 /// `shaders/rng.wgsl` (the subregions) and `shaders/bound.wgsl` followed by the kernel.

@@ -19,7 +19,7 @@ pub struct Vsgl {
     /// The concentration κ of the cluster's normals (weighted by `Φ R_d`) about `ξ_d`: the
     /// von Mises-Fisher sharpness whose mean length `coth κ − 1/κ` is that of the mean normal,
     /// `|ξ̄_v|` over the mean length of one texel's diffuse lobe. Infinite (at most 1.7e7) for
-    /// coplanar texels. [`super::DiffuseEmission::ClampedCosine`] uses it.
+    /// coplanar texels. `DiffuseEmission::ClampedCosine` uses it.
     pub normal_concentration: f32,
     /// `c_v` of the specular lobe, per channel.
     pub c_specular: Vec3,

@@ -40,7 +40,7 @@ pub use quadtree::Quadtree;
 pub use sampling::{
     sample_points, Cluster, FilteredSampler, Footprint, SampleSet, WeightedCluster,
 };
-pub use shading::{shade_vsgls, vsgl_radiance, DiffuseEmission};
+pub use shading::{shade_vsgls, vsgl_radiance};
 pub use sums::{footprint_variance, ClusterSums};
 pub use texel::TexelLobes;
 

@@ -8,38 +8,8 @@ use glam::Vec3;
 use rayon::prelude::*;
 use slc_bounds::sg::{normalized_sg_irradiance, sg_integral};
 use slc_bounds::{SgSurface, SphericalGaussian};
+use slc_core::frame::DiffuseEmission;
 use slc_core::{GBuffer, Image};
-
-/// How a VSGL's diffuse radiant intensity enters its incoming radiance.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub enum DiffuseEmission {
-    /// The paper's (section 3.1.1 and eq. 5): the Toksvig-filtered SG `c_d G(ω; ξ_d, λ_d)`,
-    /// multiplied with the position SG. The SG does not vanish beyond the cluster's horizon
-    /// (`e^{−2.133}` = 12 % of its peak in the tangent plane of a flat cluster), which lights
-    /// receivers beside and below the cluster that its VPLs cannot reach.
-    Sg,
-    /// The diffuse intensity of texels whose normals are distributed as a von Mises-Fisher
-    /// lobe about `ξ_d` with the cluster's concentration κ
-    /// ([`Vsgl::normal_concentration`]): `I_d(ω) = Σ Φ R_d / π · E(κ, ξ_d·ω)`, the clamped
-    /// cosine convolved with that lobe ([`normalized_sg_irradiance`]), evaluated towards the
-    /// receiver along the position SG's axis, which then carries it: `L_in(ω) ≈ I_d(−ξ_μ)
-    /// G(ω; ξ_μ, λ_σ)/(2πσ_v²)`. Exact for a single texel (its VPL's `kd/π max(cos, 0)`) and
-    /// zero beyond the horizon of a flat cluster; it keeps the total `Σ Φ R_d`. It ignores the
-    /// variation of `I_d` across the position SG, which matters only for large clusters seen
-    /// from nearby.
-    #[default]
-    ClampedCosine,
-}
-
-impl DiffuseEmission {
-    /// `sg` or `clamped`, as the command line and reports name it.
-    pub fn name(self) -> &'static str {
-        match self {
-            Self::Sg => "sg",
-            Self::ClampedCosine => "clamped",
-        }
-    }
-}
 
 /// The radiance reflected towards the receiver's view by one VSGL (eq. 2), without visibility:
 /// for each lobe `c_v G(ω; ξ_v, λ_v)` of the VSGL's radiant intensity, the incoming radiance of

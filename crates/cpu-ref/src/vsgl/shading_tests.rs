@@ -7,6 +7,7 @@ use core::f32::consts::{PI, TAU};
 use glam::Vec3;
 use slc_bounds::sg::{sg_integral, MeanMap, COSINE_LOBE_SHARPNESS};
 use slc_bounds::{Brdf, Fresnel, SgSurface, SphericalGaussian};
+use slc_core::frame::DiffuseEmission;
 use slc_core::{GSample, Vpl, VplLobe};
 
 fn texel(omega_i: Vec3, kd: Vec3, f0: f32, alpha: f32) -> RsmTexel {

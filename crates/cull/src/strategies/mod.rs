@@ -1,7 +1,5 @@
-//! The culling strategies, one per file; all bound-based ones share `tiled` and differ only
-//! in the bound of glossy VPLs and the depth clustering.
-pub mod clustered;
-pub mod ellipsoid;
-pub mod enclosing_sphere;
+//! The culling strategies: [`none::NoCulling`], and [`bounded::BoundedCuller`] for every
+//! strategy that tests bounds (they share `tiled` and differ only in the bound of glossy VPLs
+//! and the depth clustering).
+pub mod bounded;
 pub mod none;
-pub mod sphere;

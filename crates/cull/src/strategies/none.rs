@@ -2,16 +2,19 @@
 //! the brute-force baseline.
 use crate::lists::{assemble, pixel_count, ListChunk};
 use crate::partition::Partition;
-use slc_core::{CullError, CullInput, Culler, LightLists, NO_LIST};
+use slc_core::{CullError, CullInput, Culler, LightLists, Strategy, NO_LIST};
 
 /// No culling: one list per subregion holding all its VPLs (ascending); every pixel with a
 /// G-buffer sample shades with its subregion's list, pixels without one get none.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct NoCulling;
 
-impl Culler for NoCulling {
-    fn name(&self) -> &'static str {
-        "none"
+impl Culler<CullInput<'_>> for NoCulling {
+    type Lists = LightLists;
+    type Error = CullError;
+
+    fn strategy(&self) -> Strategy {
+        Strategy::None
     }
 
     fn cull(&self, input: &CullInput) -> Result<LightLists, CullError> {

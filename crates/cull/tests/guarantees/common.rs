@@ -2,15 +2,17 @@
 use glam::Vec3;
 use slc_bounds::{Brdf, Fresnel};
 use slc_core::{
-    builtin, load_scene, Camera, CullInput, Culler, GBuffer, GSample, Interleaving, Light,
+    builtin, load_scene, Camera, CullInput, GBuffer, GSample, Interleaving, Light,
     LightLists, Material, MaterialModel, Scene, Vpl, VplLobe, NO_LIST,
 };
 use slc_cpu_ref::gbuffer::{trace_gbuffer, PixelSample};
 use slc_cpu_ref::rsm::{trace_rsm, TexelSample};
-use slc_cpu_ref::vpls::{generate_vpls, LobeSelection};
+use slc_core::frame::LobeSelection;
+use slc_cpu_ref::vpls::generate_vpls;
 use slc_cpu_ref::Tracer;
 use slc_cull::metrics::{measure_all, CullMetrics};
-use slc_cull::{culler_by_name, CULLER_NAMES};
+use slc_core::Strategy;
+use slc_cull::culler;
 
 /// A small deterministic generator (xorshift64*), uniform floats in [0, 1).
 pub struct Rng(u64);
@@ -199,12 +201,12 @@ pub fn room_vpls(rng: &mut Rng, n: u32) -> Vec<Vpl> {
 /// Every strategy's lists for `input` and their metrics, after checking what every strategy
 /// must guarantee: no contributing pair missed, well-formed ascending lists without repeats,
 /// only the pixel's own subregion's VPLs, no list for a pixel without a sample, finite
-/// metrics. Returns (name, metrics) in the order of `CULLER_NAMES`.
+/// metrics. Returns (name, metrics) in the order of `Strategy::ALL`.
 pub fn check_all(input: &CullInput, label: &str) -> Vec<(&'static str, CullMetrics)> {
-    let lists: Vec<LightLists> = CULLER_NAMES
+    let lists: Vec<LightLists> = Strategy::ALL
         .iter()
         .map(|&name| {
-            let culler: Box<dyn Culler> = culler_by_name(name).unwrap();
+            let culler = culler(name);
             culler
                 .cull(input)
                 .unwrap_or_else(|e| panic!("{label}: {name} failed: {e}"))
@@ -214,7 +216,7 @@ pub fn check_all(input: &CullInput, label: &str) -> Vec<(&'static str, CullMetri
     let metrics = measure_all(input, &refs).unwrap();
     let contributing = metrics[0].true_positive_pairs + metrics[0].missed_pairs;
     let w = input.gbuffer.width.max(1);
-    for ((name, l), m) in CULLER_NAMES.iter().zip(&lists).zip(&metrics) {
+    for ((name, l), m) in Strategy::ALL.iter().zip(&lists).zip(&metrics) {
         assert_eq!(
             m.missed_pairs, 0,
             "{label}: {name} culled {} contributing pairs",
@@ -245,7 +247,7 @@ pub fn check_all(input: &CullInput, label: &str) -> Vec<(&'static str, CullMetri
             }
         }
     }
-    CULLER_NAMES.iter().copied().zip(metrics).collect()
+    Strategy::ALL.iter().map(|s| s.name()).zip(metrics).collect()
 }
 
 /// The metrics of the named strategy in the output of [`check_all`].

@@ -4,7 +4,8 @@
 use crate::common::*;
 use glam::Vec3;
 use slc_core::{Camera, CullInput, GBuffer, Interleaving, VplLobe, NO_LIST};
-use slc_cull::{culler_by_name, CULLER_NAMES};
+use slc_core::Strategy;
+use slc_cull::culler;
 
 /// A camera 1.5 units above the floor looking at the horizon: the upper half is sky, so
 /// whole tiles are empty and others are cut by the horizon.
@@ -34,9 +35,8 @@ fn sky_and_empty_tiles() {
         samples: vec![None; gbuffer.samples.len()],
         ..gbuffer
     };
-    for &name in CULLER_NAMES {
-        let lists = culler_by_name(name)
-            .unwrap()
+    for name in Strategy::ALL {
+        let lists = culler(name)
             .cull(&input(&all_sky, &camera, &vpls, 1e-3, 2))
             .unwrap();
         assert!(lists.pixel_list.iter().all(|&l| l == NO_LIST), "{name}");
@@ -86,8 +86,8 @@ fn vpls_behind_the_camera_are_never_listed_unless_they_reach() {
     }
     let far = input(&gbuffer, &camera, &vpls, 1e-2, 1);
     check_all(&far, "far behind");
-    for &name in &CULLER_NAMES[1..] {
-        let lists = culler_by_name(name).unwrap().cull(&far).unwrap();
+    for &name in &Strategy::ALL[1..] {
+        let lists = culler(name).cull(&far).unwrap();
         assert!(
             lists.indices.is_empty(),
             "{name} listed a VPL behind the camera"
@@ -118,8 +118,8 @@ fn zero_flux_and_unlit_vpls_are_never_listed() {
     }
     let dark = input(&gbuffer, &camera, &vpls, 1e-6, 1);
     check_all(&dark, "dark");
-    for &name in &CULLER_NAMES[1..] {
-        let lists = culler_by_name(name).unwrap().cull(&dark).unwrap();
+    for &name in &Strategy::ALL[1..] {
+        let lists = culler(name).cull(&dark).unwrap();
         assert!(lists.indices.is_empty(), "{name} listed a dark VPL");
     }
 }
@@ -181,9 +181,8 @@ fn tiny_and_odd_images_and_no_vpls() {
         height: 0,
         samples: Vec::new(),
     };
-    for &name in CULLER_NAMES {
-        let lists = culler_by_name(name)
-            .unwrap()
+    for name in Strategy::ALL {
+        let lists = culler(name)
             .cull(&input(&empty, &camera, &vpls, 1e-3, 4))
             .unwrap();
         assert!(lists.pixel_list.is_empty() && lists.is_empty(), "{name}");
@@ -197,9 +196,9 @@ fn invalid_inputs_are_errors_not_panics() {
     let gbuffer = floor_gbuffer(&camera, 20, 20, &mut rng);
     let vpls = room_vpls(&mut rng, 50);
     let cull = |input: &CullInput| -> Vec<bool> {
-        CULLER_NAMES
+        Strategy::ALL
             .iter()
-            .map(|&n| culler_by_name(n).unwrap().cull(input).is_err())
+            .map(|&n| culler(n).cull(input).is_err())
             .collect()
     };
     let bounded = |errs: Vec<bool>| errs[1..].iter().all(|&e| e);
@@ -239,7 +238,7 @@ fn invalid_inputs_are_errors_not_panics() {
     assert!(bounded(cull(&input(&gbuffer, &broken, &vpls, 1e-3, 2))));
     // The metrics refuse lists that do not fit the input.
     let ok = input(&gbuffer, &camera, &vpls, 1e-3, 2);
-    let mut lists = culler_by_name("ellipsoid").unwrap().cull(&ok).unwrap();
+    let mut lists = culler(Strategy::Ellipsoid).cull(&ok).unwrap();
     assert!(slc_cull::metrics::measure(&ok, &lists).is_ok());
     lists.pixel_list.pop();
     assert!(slc_cull::metrics::measure(&ok, &lists).is_err());

@@ -3,7 +3,7 @@
 //! eq. (12)-(15) is for.
 use crate::common::*;
 use slc_core::{Camera, Scene, VplLobe};
-use slc_cpu_ref::vpls::LobeSelection;
+use slc_core::frame::LobeSelection;
 use slc_cull::metrics::CullMetrics;
 
 /// Which VPLs of a frame to cull.

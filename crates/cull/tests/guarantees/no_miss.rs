@@ -1,6 +1,6 @@
 //! No strategy ever culls a contributing VPL (missed pairs = 0 against the brute-force truth).
 use crate::common::*;
-use slc_cpu_ref::vpls::LobeSelection;
+use slc_core::frame::LobeSelection;
 
 /// 300 random rooms: a floor G-buffer by ray casting (jittered, often exactly on pixel corners
 /// and edges; sky above the horizon), VPLs on the walls and ceiling, hanging just above the

@@ -16,7 +16,8 @@ use slc_bounds::{
 };
 use slc_core::{builtin, Camera, Interleaving, Vpl, VplLobe};
 use slc_cpu_ref::rsm::{trace_rsm, TexelSample};
-use slc_cpu_ref::vpls::{generate_vpls, LobeSelection};
+use slc_core::frame::LobeSelection;
+use slc_cpu_ref::vpls::generate_vpls;
 use slc_cpu_ref::Tracer;
 use slc_cull::{CullView, GlossyBound};
 use slc_gpu_wgpu::bounds_pass::{BoundsPass, BoundsSettings};

@@ -1,9 +1,10 @@
-//! `GpuCuller`: every strategy of `slc_cull::CULLER_NAMES` by name, and its lists left on
+//! `GpuCuller`: every strategy of `slc_cull::Strategy::ALL` by name, and its lists left on
 //! the GPU read by the shading pass.
 use crate::common::gpu;
 use crate::tiled::frame;
 use slc_core::{builtin, CullInput, Interleaving};
-use slc_cull::{culler_by_name, CULLER_NAMES};
+use slc_core::Strategy;
+use slc_cull::culler;
 use slc_gpu_wgpu::culler::{GpuCuller, Strategy};
 use slc_gpu_wgpu::shade_pass::ShadePass;
 
@@ -24,11 +25,11 @@ fn every_strategy_by_name_matches_the_cpu_strategy_of_that_name() {
         delta: 1e-3,
         interleaving: Interleaving { k: 2, seed: 4 },
     };
-    let cpu: Vec<_> = CULLER_NAMES
+    let cpu: Vec<_> = Strategy::ALL
         .iter()
-        .map(|name| culler_by_name(name).unwrap().cull(&input).unwrap())
+        .map(|name| culler(name).cull(&input).unwrap())
         .collect();
-    for (i, &name) in CULLER_NAMES.iter().enumerate() {
+    for (i, &name) in Strategy::ALL.iter().enumerate() {
         let strategy = Strategy::by_name(name).unwrap();
         let gpu = culler.cull(&ctx, &input, strategy).unwrap();
         let differing = |other: &slc_core::LightLists| -> usize {
@@ -46,7 +47,7 @@ fn every_strategy_by_name_matches_the_cpu_strategy_of_that_name() {
             .sum();
         eprintln!("{name}: {entries} pixel-VPL pairs on the CPU, {own} differing");
         assert!(own <= 10 && own * 10_000 <= entries, "{name}: {own}");
-        for (j, other) in CULLER_NAMES.iter().enumerate().filter(|&(j, _)| j != i) {
+        for (j, other) in Strategy::ALL.iter().enumerate().filter(|&(j, _)| j != i) {
             let d = differing(&cpu[j]);
             assert!(d > 100, "{name} looks like {other}: {d} differing entries");
         }
@@ -71,7 +72,7 @@ fn shading_reads_every_strategys_lists_on_the_gpu() {
             delta: 1e-3,
             interleaving: Interleaving { k, seed: 2 },
         };
-        for &name in CULLER_NAMES {
+        for name in Strategy::ALL {
             let strategy = Strategy::by_name(name).unwrap();
             let on_gpu = culler.cull_on_gpu(&ctx, &input, strategy).unwrap();
             let direct = shade.shade_gpu_lists(&ctx, &input, &on_gpu).unwrap();

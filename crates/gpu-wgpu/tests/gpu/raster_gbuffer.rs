@@ -334,7 +334,7 @@ fn culling_and_shading_read_the_gpu_gbuffer_in_place() {
         interleaving,
     };
     // Every strategy: the tiled, clustered and unculled passes all read positions.
-    for &name in slc_cull::CULLER_NAMES {
+    for &name in slc_cull::Strategy::ALL {
         let strategy = Strategy::by_name(name).unwrap();
         let uploaded = culler.cull_on_gpu(&ctx, &input, strategy).unwrap();
         let want = shader.shade_gpu_lists(&ctx, &input, &uploaded).unwrap();

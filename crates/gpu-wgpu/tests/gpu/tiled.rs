@@ -9,9 +9,10 @@ use slc_core::{
 };
 use slc_cpu_ref::gbuffer::{trace_gbuffer, PixelSample};
 use slc_cpu_ref::rsm::{trace_rsm, TexelSample};
-use slc_cpu_ref::vpls::{generate_vpls, LobeSelection};
+use slc_core::frame::LobeSelection;
+use slc_cpu_ref::vpls::generate_vpls;
 use slc_cpu_ref::Tracer;
-use slc_cull::{culler_by_name, CullView, GlossyBound, FRUSTUM_SLACK};
+use slc_cull::{CullView, GlossyBound, FRUSTUM_SLACK};
 use slc_gpu_wgpu::tiled_cull_pass::TiledCuller;
 use slc_gpu_wgpu::GpuError;
 
@@ -237,7 +238,7 @@ fn tiled_lists_match_the_cpu() {
                 ("enclosing-sphere", GlossyBound::EnclosingSphere),
                 ("ellipsoid", GlossyBound::Ellipsoid),
             ] {
-                let cpu = culler_by_name(name).unwrap().cull(&input).unwrap();
+                let cpu = culler(name).cull(&input).unwrap();
                 let gpu = culler.cull(&ctx, &input, glossy).unwrap();
                 let (border, diff) = differences(&input, glossy, &cpu, &gpu, |view, x, y| {
                     Some(half_z_frustum(&input, view, x, y))
@@ -330,7 +331,7 @@ fn tiled_culling_rejects_bad_input() {
         delta: 1e-37,
         ..input
     };
-    assert!(culler_by_name("sphere").unwrap().cull(&bad).is_err());
+    assert!(culler(Strategy::Sphere).cull(&bad).is_err());
     let e = culler.cull(&ctx, &bad, GlossyBound::Sphere).unwrap_err();
     assert!(e.to_string().contains(&format!("VPL {glossy}")), "{e}");
 }

@@ -1,0 +1,35 @@
+//! Why a frame could not be rendered.
+use crate::culling::CullError;
+use crate::error::SceneError;
+use crate::strategy::UnknownStrategy;
+
+/// Errors of rendering, on any backend.
+#[derive(Debug, thiserror::Error)]
+pub enum RenderError {
+    #[error(transparent)]
+    Scene(#[from] SceneError),
+    #[error(transparent)]
+    Bounds(#[from] slc_bounds::BoundsError),
+    #[error(transparent)]
+    Cull(#[from] CullError),
+    #[error(transparent)]
+    Strategy(#[from] UnknownStrategy),
+    #[error("invalid render settings: {0}")]
+    Settings(String),
+    /// The backend does not have what the settings ask for.
+    #[error("the {backend} backend does not support {what}; render on the cpu backend")]
+    Unsupported {
+        backend: &'static str,
+        what: String,
+    },
+    /// A failure inside a backend (a GPU fault, an invalid VSGL input, ...).
+    #[error(transparent)]
+    Backend(Box<dyn std::error::Error + Send + Sync + 'static>),
+}
+
+impl RenderError {
+    /// Wraps a backend's own error.
+    pub fn backend(e: impl std::error::Error + Send + Sync + 'static) -> Self {
+        Self::Backend(Box::new(e))
+    }
+}

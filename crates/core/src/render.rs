@@ -1,0 +1,95 @@
+//! One whole frame on any backend: prepare, shade with the settings' method, average over
+//! `spp` passes.
+use crate::frame::{merge_optional, Method, RenderError, RenderSettings, RenderedFrame, Timings};
+use crate::framebuffer::Image;
+use crate::renderer::{PreparedFrame, Progress, Renderer};
+use crate::rng::pcg_hash;
+use crate::scene::Scene;
+use crate::shader::{AllVplShader, SampledVplShader, ShadeInput, Shader, VsglShader};
+
+/// The seed of ξ, interleaving and sampled points of pass `pass` (`None`: the one pass of a
+/// frame without jitter).
+pub fn pass_seed(seed: u32, pass: Option<u32>) -> u32 {
+    pass.map_or(seed, |p| seed ^ pcg_hash(p))
+}
+
+/// Indirect light of a prepared frame by `method` (any but the path method, which
+/// [`render`] traces without a prepared frame).
+pub fn shade_method<R: Renderer>(
+    r: &R,
+    method: &Method,
+    input: ShadeInput<'_, R>,
+    progress: Progress,
+) -> Result<crate::frame::Shaded, RenderError> {
+    match method {
+        Method::Stochastic(s) => s.shade(r, input, progress),
+        Method::Vsgl(l) => VsglShader(*l).shade(r, input, progress),
+        Method::SampledVpls(l) => SampledVplShader(*l).shade(r, input, progress),
+        Method::VplReference => AllVplShader.shade(r, input, progress),
+        Method::Path => Err(RenderError::Settings(
+            "the path method traces paths, it does not shade a prepared frame".into(),
+        )),
+    }
+}
+
+/// Renders `scene` with `settings` on `r`. `progress` is called with the number of
+/// pixel-passes finished where the backend counts them; the total is `width * height * spp`.
+pub fn render<R: Renderer>(
+    r: &R,
+    scene: &Scene,
+    settings: &RenderSettings,
+    progress: Progress,
+) -> Result<RenderedFrame, RenderError> {
+    settings.validate()?;
+    r.check(settings)?;
+    scene.validate_for_render()?;
+    let (w, h) = (settings.width, settings.height);
+    let mut timings = Timings::default();
+    let mut gpu_timings = None;
+    let loaded = timings.time("load", || r.load(scene))?;
+    let mut frame = RenderedFrame {
+        direct: Image::new(w, h),
+        indirect: Image::new(w, h),
+        vpl_count: 0,
+        timings: Timings::default(),
+        gpu_timings: None,
+        metrics: None,
+        sampled_lights: None,
+    };
+    for pass in 0..settings.spp {
+        if settings.method == Method::Path {
+            let (d, i) = timings.time("path", || {
+                r.path_trace(scene, &loaded, settings, pass, progress)
+            })?;
+            frame.direct = frame.direct.add(&d);
+            frame.indirect = frame.indirect.add(&i);
+            continue;
+        }
+        let jitter = (settings.spp > 1).then_some(pass);
+        let p = r.prepare(scene, &loaded, settings, jitter)?;
+        timings.merge(p.timings());
+        merge_optional(&mut gpu_timings, p.gpu_timings());
+        let input = ShadeInput {
+            scene,
+            loaded: &loaded,
+            prepared: &p,
+            seed: pass_seed(settings.seed, jitter),
+            visibility: settings.visibility,
+        };
+        let shaded = shade_method(r, &settings.method, input, progress)?;
+        timings.merge(&shaded.timings);
+        merge_optional(&mut gpu_timings, shaded.gpu_timings.as_ref());
+        frame.vpl_count = p.vpls().len();
+        frame.metrics = shaded.metrics;
+        frame.sampled_lights = shaded.sampled_lights;
+        frame.direct = frame.direct.add(p.direct());
+        frame.indirect = frame.indirect.add(&shaded.indirect);
+    }
+    let inv = 1.0 / settings.spp as f32;
+    for px in frame.direct.pixels.iter_mut().chain(frame.indirect.pixels.iter_mut()) {
+        *px *= inv;
+    }
+    frame.timings = timings;
+    frame.gpu_timings = gpu_timings;
+    Ok(frame)
+}

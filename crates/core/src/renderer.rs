@@ -1,0 +1,229 @@
+//! The backend trait: the steps of the paper's pipeline (Fig. 2) that a backend runs, so
+//! that shaders ([`crate::shader`]), the frame loop ([`crate::render::render`]) and the `slc`
+//! commands are written once for every backend. `slc_cpu_ref::CpuRenderer` and
+//! `slc_gpu_wgpu::GpuRenderer` implement it.
+//!
+//! A frame goes prepare (G-buffer, RSMs, VPLs, direct light) → cull → shade → denoise →
+//! read back; VSGLs replace culling and VPL shading by their own step. Each step leaves its
+//! result where the backend keeps it ([`Renderer::Lists`], [`Renderer::Image`]), so a GPU
+//! frame stays on the device until [`Renderer::read_image`].
+use crate::camera::Camera;
+use crate::culling::{CullMetrics, Interleaving};
+use crate::frame::{LightSampling, Method, RenderError, RenderSettings, Shaded, Timings};
+use crate::framebuffer::Image;
+use crate::scene::Scene;
+use crate::strategy::Strategy;
+use crate::vpl::Vpl;
+
+/// Called with the number of pixel-passes finished.
+pub type Progress<'a> = &'a (dyn Fn(u64) + Sync);
+
+/// What a report says about the backend that rendered.
+#[derive(Clone, Debug, PartialEq)]
+pub struct BackendInfo {
+    /// `cpu` or `gpu`.
+    pub backend: &'static str,
+    /// The device: the CPU backend names its thread count, the GPU backend its adapter.
+    pub adapter: String,
+    /// Where each pass ran and how it was timed, when that is not obvious.
+    pub notes: Vec<String>,
+}
+
+/// What a backend has beyond the stochastic VPL estimate and VSGLs without visibility, which
+/// every backend renders.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Capabilities {
+    /// Shadow rays between VPLs and pixels.
+    pub vpl_visibility: bool,
+    /// VSGL eq. 3's visibility to each VSGL's mean.
+    pub vsgl_visibility: bool,
+    /// The all-VPL and path-traced references.
+    pub references: bool,
+    /// VPLs sampled at equal count with the VSGLs' importance.
+    pub sampled_vpls: bool,
+}
+
+impl Capabilities {
+    /// [`RenderError::Unsupported`] naming the first thing `settings` asks for that
+    /// `backend` (with these capabilities) does not have.
+    pub fn check(&self, backend: &'static str, settings: &RenderSettings) -> Result<(), RenderError> {
+        let missing = match settings.method {
+            Method::VplReference | Method::Path if !self.references => Some("the references"),
+            Method::SampledVpls(_) if !self.sampled_vpls => Some("sampled VPLs"),
+            Method::Vsgl(_) if settings.visibility && !self.vsgl_visibility => {
+                Some("visibility for VSGLs")
+            }
+            Method::Stochastic(_) | Method::VplReference | Method::SampledVpls(_)
+                if settings.visibility && !self.vpl_visibility =>
+            {
+                Some("shadow rays between VPLs and pixels (visibility)")
+            }
+            _ => None,
+        };
+        match missing {
+            Some(what) => Err(RenderError::Unsupported {
+                backend,
+                what: what.into(),
+            }),
+            None => Ok(()),
+        }
+    }
+}
+
+/// A frame up to its VPLs and direct light, as any backend leaves it.
+pub trait PreparedFrame {
+    fn camera(&self) -> &Camera;
+    /// The VPLs, sorted by id.
+    fn vpls(&self) -> &[Vpl];
+    fn direct(&self) -> &Image;
+    /// Wall-clock milliseconds of the preparing passes.
+    fn timings(&self) -> &Timings;
+    /// The GPU's timestamp times of the same passes, where the adapter has trustworthy ones.
+    fn gpu_timings(&self) -> Option<&Timings> {
+        None
+    }
+}
+
+/// A rendering backend: the steps of one frame. Steps a backend does not have return
+/// [`RenderError::Unsupported`]; [`Renderer::capabilities`] says which those are.
+pub trait Renderer {
+    /// The scene as this backend keeps it between frames (its BVH, its uploaded buffers).
+    type Scene;
+    /// A frame up to its VPLs and direct light.
+    type Prepared: PreparedFrame;
+    /// Light lists where culling leaves them.
+    type Lists;
+    /// An image where shading leaves it.
+    type Image;
+
+    /// `cpu` or `gpu`.
+    fn name(&self) -> &'static str;
+
+    fn capabilities(&self) -> Capabilities;
+
+    /// What a report of a frame rendered with `settings` says about this backend.
+    fn info(&self, settings: &RenderSettings) -> BackendInfo;
+
+    /// [`RenderError::Unsupported`] if `settings` asks for something this backend lacks.
+    fn check(&self, settings: &RenderSettings) -> Result<(), RenderError> {
+        self.capabilities().check(self.name(), settings)
+    }
+
+    /// Makes what every frame of `scene` shares.
+    fn load(&self, scene: &Scene) -> Result<Self::Scene, RenderError>;
+
+    /// The G-buffer, the RSMs, the VPLs (ξ from the seed of `settings` and `pass`) and the
+    /// direct light. `pass` = `None` samples pixel and texel centres; `Some(p)` jitters
+    /// them for pass p of several.
+    fn prepare(
+        &self,
+        scene: &Scene,
+        loaded: &Self::Scene,
+        settings: &RenderSettings,
+        pass: Option<u32>,
+    ) -> Result<Self::Prepared, RenderError>;
+
+    /// The light lists of `strategy` (section 5-7): never without a VPL whose p(ωo, l) > ξ.
+    fn cull(
+        &self,
+        p: &Self::Prepared,
+        strategy: Strategy,
+        delta: f32,
+        interleaving: Interleaving,
+    ) -> Result<Self::Lists, RenderError>;
+
+    /// The stochastic estimate of eq. (3) from `lists`, times K² (section 6).
+    #[allow(clippy::too_many_arguments)]
+    fn shade_lists(
+        &self,
+        loaded: &Self::Scene,
+        p: &Self::Prepared,
+        lists: &Self::Lists,
+        delta: f32,
+        interleaving: Interleaving,
+        visibility: bool,
+        progress: Progress,
+    ) -> Result<Self::Image, RenderError>;
+
+    /// The cross bilateral filter guided by depth and normal (section 6).
+    fn denoise(&self, p: &Self::Prepared, image: Self::Image) -> Result<Self::Image, RenderError>;
+
+    /// `image` where the CPU can read it.
+    fn read_image(&self, p: &Self::Prepared, image: Self::Image) -> Result<Image, RenderError>;
+
+    /// True and false positives and misses of `lists`, by brute force.
+    fn measure(
+        &self,
+        p: &Self::Prepared,
+        lists: &Self::Lists,
+        delta: f32,
+        interleaving: Interleaving,
+    ) -> Result<CullMetrics, RenderError>;
+
+    /// Indirect light from `sampling.count` VSGLs (VSGL sections 3-4).
+    #[allow(clippy::too_many_arguments)]
+    fn shade_vsgls(
+        &self,
+        scene: &Scene,
+        loaded: &Self::Scene,
+        p: &Self::Prepared,
+        sampling: &LightSampling,
+        seed: u32,
+        visibility: bool,
+        progress: Progress,
+    ) -> Result<Shaded, RenderError>;
+
+    /// Indirect light from the VPLs of `sampling.count` texels sampled as the VSGLs are.
+    #[allow(clippy::too_many_arguments)]
+    fn shade_sampled_vpls(
+        &self,
+        _loaded: &Self::Scene,
+        _p: &Self::Prepared,
+        _sampling: &LightSampling,
+        _seed: u32,
+        _visibility: bool,
+        _progress: Progress,
+    ) -> Result<Shaded, RenderError> {
+        Err(self.unsupported("sampled VPLs"))
+    }
+
+    /// Every VPL at every pixel with p = 1: the all-VPL reference.
+    fn shade_all_vpls(
+        &self,
+        _loaded: &Self::Scene,
+        _p: &Self::Prepared,
+        _visibility: bool,
+        _progress: Progress,
+    ) -> Result<Image, RenderError> {
+        Err(self.unsupported("the all-VPL reference"))
+    }
+
+    /// One pass of the path-traced one-bounce reference: direct and indirect light.
+    fn path_trace(
+        &self,
+        _scene: &Scene,
+        _loaded: &Self::Scene,
+        _settings: &RenderSettings,
+        _pass: u32,
+        _progress: Progress,
+    ) -> Result<(Image, Image), RenderError> {
+        Err(self.unsupported("the path-traced reference"))
+    }
+
+    /// Runs `f`, returning with its result the GPU's timestamp times of the passes it ran,
+    /// where the backend has trustworthy ones.
+    fn profiled<T>(
+        &self,
+        f: impl FnOnce() -> Result<T, RenderError>,
+    ) -> Result<(T, Option<Timings>), RenderError> {
+        Ok((f()?, None))
+    }
+
+    /// The error of a step this backend does not have.
+    fn unsupported(&self, what: &str) -> RenderError {
+        RenderError::Unsupported {
+            backend: self.name(),
+            what: what.into(),
+        }
+    }
+}

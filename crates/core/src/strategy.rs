@@ -1,0 +1,141 @@
+//! The culling strategies, typed: one name table for the command line, the CPU cullers
+//! (`slc_cull::culler`) and the GPU cullers (`slc_gpu_wgpu::culler`).
+use std::fmt;
+use std::str::FromStr;
+
+/// Which bound a glossy VPL is culled with; diffuse VPLs always use the sphere of section 6.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum GlossyBound {
+    /// The sphere of radius r/α around the VPL position q (section 7, after Tokuyoshi and
+    /// Harada 2016: the maximum of s(ωo) in eq. (12)).
+    Sphere,
+    /// The sphere of radius r_u around the spheroid's centre c, enclosing the spheroid
+    /// (section 7).
+    EnclosingSphere,
+    /// The GGX bounding spheroid of eq. (12)-(15), tested as a unit sphere in its stretched
+    /// and rotated space (eq. 16-17).
+    Ellipsoid,
+}
+
+/// How a strategy groups pixels before testing bounds.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Layout {
+    /// No culling: every VPL of the pixel's interleaved subregion (section 6).
+    Unculled,
+    /// 16×16 tiles of each subregion image, two depth clusters per tile (Modified HalfZ,
+    /// section 5.1).
+    Tiled,
+    /// The same tiles cut into 32 exponential depth slices (section 7).
+    Clustered,
+}
+
+/// A culling strategy: a [`Layout`] and, unless unculled, the [`GlossyBound`] of glossy VPLs.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Strategy {
+    None,
+    Sphere,
+    EnclosingSphere,
+    Ellipsoid,
+    Clustered,
+    ClusteredSphere,
+    ClusteredEnclosingSphere,
+}
+
+/// A strategy name that names no strategy.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+#[error("unknown culling strategy '{name}' (one of {})", Strategy::names().join(", "))]
+pub struct UnknownStrategy {
+    pub name: String,
+}
+
+impl Strategy {
+    /// Every strategy, in the order tables list them.
+    pub const ALL: [Strategy; 7] = [
+        Strategy::None,
+        Strategy::Sphere,
+        Strategy::EnclosingSphere,
+        Strategy::Ellipsoid,
+        Strategy::Clustered,
+        Strategy::ClusteredSphere,
+        Strategy::ClusteredEnclosingSphere,
+    ];
+
+    /// The name as the command line, reports and tables spell it.
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::None => "none",
+            Self::Sphere => "sphere",
+            Self::EnclosingSphere => "enclosing-sphere",
+            Self::Ellipsoid => "ellipsoid",
+            Self::Clustered => "clustered",
+            Self::ClusteredSphere => "clustered-sphere",
+            Self::ClusteredEnclosingSphere => "clustered-enclosing-sphere",
+        }
+    }
+
+    /// Every strategy's name, in the order of [`Self::ALL`].
+    pub fn names() -> Vec<&'static str> {
+        Self::ALL.iter().map(|s| s.name()).collect()
+    }
+
+    /// The layout and the glossy bound (`Ellipsoid` for the unculled layout, where no bound
+    /// is tested).
+    pub fn parts(self) -> (Layout, GlossyBound) {
+        use GlossyBound::{Ellipsoid, EnclosingSphere, Sphere};
+        match self {
+            Self::None => (Layout::Unculled, Ellipsoid),
+            Self::Sphere => (Layout::Tiled, Sphere),
+            Self::EnclosingSphere => (Layout::Tiled, EnclosingSphere),
+            Self::Ellipsoid => (Layout::Tiled, Ellipsoid),
+            Self::Clustered => (Layout::Clustered, Ellipsoid),
+            Self::ClusteredSphere => (Layout::Clustered, Sphere),
+            Self::ClusteredEnclosingSphere => (Layout::Clustered, EnclosingSphere),
+        }
+    }
+}
+
+impl FromStr for Strategy {
+    type Err = UnknownStrategy;
+
+    fn from_str(name: &str) -> Result<Self, Self::Err> {
+        Self::ALL
+            .into_iter()
+            .find(|s| s.name() == name)
+            .ok_or_else(|| UnknownStrategy { name: name.into() })
+    }
+}
+
+impl fmt::Display for Strategy {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn names_parse_back_and_are_distinct() {
+        for s in Strategy::ALL {
+            assert_eq!(s.name().parse::<Strategy>(), Ok(s));
+            assert_eq!(s.to_string(), s.name());
+        }
+        let mut names = Strategy::names();
+        names.dedup();
+        assert_eq!(names.len(), Strategy::ALL.len());
+        let parts: std::collections::HashSet<_> = Strategy::ALL
+            .iter()
+            .filter(|s| s.parts().0 != Layout::Unculled)
+            .map(|s| s.parts())
+            .collect();
+        assert_eq!(parts.len(), Strategy::ALL.len() - 1, "one strategy per layout and bound");
+    }
+
+    #[test]
+    fn an_unknown_name_lists_the_known_ones() {
+        let e = "bogus".parse::<Strategy>().unwrap_err();
+        assert_eq!(e.name, "bogus");
+        assert!(e.to_string().contains("ellipsoid, clustered"), "{e}");
+    }
+}

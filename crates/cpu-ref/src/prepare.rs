@@ -1,0 +1,95 @@
+//! A CPU frame up to its VPLs and direct light: the ray-traced G-buffer, the reflective
+//! shadow maps, the VPLs with their ξ and the direct light, which every indirect method
+//! starts from. A comparison prepares a frame once and shades it with every culling strategy
+//! from the same G-buffer, VPLs and ξ.
+use crate::direct::shade_direct;
+use crate::gbuffer::{trace_gbuffer, PixelSample};
+use crate::rsm::{trace_rsm, Rsm, TexelSample};
+use crate::tracer::Tracer;
+use crate::vpls::generate_vpls;
+use slc_core::frame::{RenderSettings, Timings};
+use slc_core::render::pass_seed;
+use slc_core::{Camera, GBuffer, Image, PreparedFrame, Scene, Vpl};
+use std::sync::Arc;
+
+/// A CPU frame up to its VPLs and direct light.
+#[derive(Clone)]
+pub struct CpuPrepared {
+    pub camera: Camera,
+    /// The scene's BVH, shared by every frame of the scene.
+    pub tracer: Arc<Tracer>,
+    pub gbuffer: GBuffer,
+    /// The reflective shadow maps, one per light in the scene's order.
+    pub maps: Vec<Rsm>,
+    pub vpls: Vec<Vpl>,
+    pub direct: Image,
+    pub timings: Timings,
+}
+
+impl PreparedFrame for CpuPrepared {
+    fn camera(&self) -> &Camera {
+        &self.camera
+    }
+
+    fn vpls(&self) -> &[Vpl] {
+        &self.vpls
+    }
+
+    fn direct(&self) -> &Image {
+        &self.direct
+    }
+
+    fn timings(&self) -> &Timings {
+        &self.timings
+    }
+}
+
+/// Traces the G-buffer and the RSMs, makes the VPLs (ξ from the seed) and the direct light.
+/// `pass` = `None` samples pixel and texel centres; `Some(p)` jitters both for pass p.
+pub fn prepare(
+    scene: &Scene,
+    settings: &RenderSettings,
+    tracer: impl Into<Arc<Tracer>>,
+    pass: Option<u32>,
+) -> CpuPrepared {
+    let tracer = tracer.into();
+    let (w, h) = (settings.width, settings.height);
+    let camera = scene.camera_or_default();
+    let mut timings = Timings::default();
+    let (sample, texel_sample) = match pass {
+        None => (PixelSample::Centre, TexelSample::Centre),
+        Some(p) => (
+            PixelSample::Jittered {
+                seed: settings.seed,
+                index: p,
+            },
+            TexelSample::Jittered {
+                seed: settings.seed,
+                pass: p,
+            },
+        ),
+    };
+    let gbuffer = timings.time("gbuffer", || {
+        trace_gbuffer(scene, &tracer, &camera, w, h, sample)
+    });
+    let maps: Vec<_> = timings.time("rsm", || {
+        scene
+            .lights
+            .iter()
+            .map(|l| trace_rsm(scene, &tracer, l, settings.rsm_resolution, texel_sample))
+            .collect()
+    });
+    let vpls = timings.time("vpl_generation", || {
+        generate_vpls(&maps, pass_seed(settings.seed, pass), settings.lobes)
+    });
+    let direct = timings.time("direct", || shade_direct(&tracer, &scene.lights, &gbuffer));
+    CpuPrepared {
+        camera,
+        tracer,
+        gbuffer,
+        maps,
+        vpls,
+        direct,
+        timings,
+    }
+}

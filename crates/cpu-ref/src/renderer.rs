@@ -1,0 +1,233 @@
+//! The CPU backend of the renderer API: [`CpuRenderer`] runs every step of
+//! `slc_core::Renderer` with this crate's ray-traced passes and `slc_cull`'s cullers, and
+//! has every method, the references and shadow rays included. [`CpuFrames`] is how other
+//! backends hand a frame to what only the CPU computes.
+use crate::denoise::{cross_bilateral, BilateralParams};
+use crate::path::trace_pixel_sample;
+use crate::prepare::{prepare, CpuPrepared};
+use crate::sampled_lights::{shade_sampled_vpls, shade_vsgl};
+use crate::tracer::Tracer;
+use crate::vpl_shading::{shade_lists, shade_vpls, VplEstimator};
+use rayon::prelude::*;
+use slc_core::frame::{LightSampling, RenderError, RenderSettings, RenderedFrame, Shaded};
+use slc_core::{
+    BackendInfo, Capabilities, CullInput, CullMetrics, Image, Interleaving, LightLists,
+    Progress, Renderer, Scene, Strategy,
+};
+use std::borrow::Cow;
+use std::sync::Arc;
+
+/// The CPU reference renderer on rayon's threads.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct CpuRenderer;
+
+fn cull_input<'a>(p: &'a CpuPrepared, delta: f32, interleaving: Interleaving) -> CullInput<'a> {
+    CullInput {
+        gbuffer: &p.gbuffer,
+        camera: &p.camera,
+        vpls: &p.vpls,
+        delta,
+        interleaving,
+    }
+}
+
+impl Renderer for CpuRenderer {
+    type Scene = Arc<Tracer>;
+    type Prepared = CpuPrepared;
+    type Lists = LightLists;
+    type Image = Image;
+
+    fn name(&self) -> &'static str {
+        "cpu"
+    }
+
+    fn capabilities(&self) -> Capabilities {
+        Capabilities {
+            vpl_visibility: true,
+            vsgl_visibility: true,
+            references: true,
+            sampled_vpls: true,
+        }
+    }
+
+    fn info(&self, _settings: &RenderSettings) -> BackendInfo {
+        BackendInfo {
+            backend: "cpu",
+            adapter: format!("CPU ({} rayon threads)", rayon::current_num_threads()),
+            notes: Vec::new(),
+        }
+    }
+
+    fn load(&self, scene: &Scene) -> Result<Arc<Tracer>, RenderError> {
+        Ok(Arc::new(Tracer::new(scene)))
+    }
+
+    fn prepare(
+        &self,
+        scene: &Scene,
+        loaded: &Arc<Tracer>,
+        settings: &RenderSettings,
+        pass: Option<u32>,
+    ) -> Result<CpuPrepared, RenderError> {
+        Ok(prepare(scene, settings, Arc::clone(loaded), pass))
+    }
+
+    fn cull(
+        &self,
+        p: &CpuPrepared,
+        strategy: Strategy,
+        delta: f32,
+        interleaving: Interleaving,
+    ) -> Result<LightLists, RenderError> {
+        Ok(slc_cull::culler(strategy).cull(&cull_input(p, delta, interleaving))?)
+    }
+
+    fn shade_lists(
+        &self,
+        _loaded: &Arc<Tracer>,
+        p: &CpuPrepared,
+        lists: &LightLists,
+        delta: f32,
+        interleaving: Interleaving,
+        visibility: bool,
+        progress: Progress,
+    ) -> Result<Image, RenderError> {
+        let input = cull_input(p, delta, interleaving);
+        Ok(shade_lists(&p.tracer, &input, lists, visibility, progress)?)
+    }
+
+    fn denoise(&self, p: &CpuPrepared, image: Image) -> Result<Image, RenderError> {
+        Ok(cross_bilateral(&image, &p.gbuffer, BilateralParams::default()))
+    }
+
+    fn read_image(&self, _p: &CpuPrepared, image: Image) -> Result<Image, RenderError> {
+        Ok(image)
+    }
+
+    fn measure(
+        &self,
+        p: &CpuPrepared,
+        lists: &LightLists,
+        delta: f32,
+        interleaving: Interleaving,
+    ) -> Result<CullMetrics, RenderError> {
+        Ok(slc_cull::metrics::measure(
+            &cull_input(p, delta, interleaving),
+            lists,
+        )?)
+    }
+
+    fn shade_vsgls(
+        &self,
+        _scene: &Scene,
+        _loaded: &Arc<Tracer>,
+        p: &CpuPrepared,
+        sampling: &LightSampling,
+        seed: u32,
+        visibility: bool,
+        progress: Progress,
+    ) -> Result<Shaded, RenderError> {
+        shade_vsgl(p, sampling, seed, visibility, progress).map_err(RenderError::backend)
+    }
+
+    fn shade_sampled_vpls(
+        &self,
+        _loaded: &Arc<Tracer>,
+        p: &CpuPrepared,
+        sampling: &LightSampling,
+        seed: u32,
+        visibility: bool,
+        progress: Progress,
+    ) -> Result<Shaded, RenderError> {
+        shade_sampled_vpls(p, sampling, seed, visibility, progress).map_err(RenderError::backend)
+    }
+
+    fn shade_all_vpls(
+        &self,
+        _loaded: &Arc<Tracer>,
+        p: &CpuPrepared,
+        visibility: bool,
+        progress: Progress,
+    ) -> Result<Image, RenderError> {
+        Ok(shade_vpls(
+            &p.tracer,
+            &p.gbuffer,
+            &p.vpls,
+            VplEstimator::Exact,
+            visibility,
+            progress,
+        )?)
+    }
+
+    fn path_trace(
+        &self,
+        scene: &Scene,
+        loaded: &Arc<Tracer>,
+        settings: &RenderSettings,
+        pass: u32,
+        progress: Progress,
+    ) -> Result<(Image, Image), RenderError> {
+        let (w, h) = (settings.width, settings.height);
+        let camera = scene.camera_or_default();
+        let pixels: Vec<_> = (0..h)
+            .into_par_iter()
+            .flat_map_iter(|j| {
+                let row: Vec<_> = (0..w)
+                    .map(|i| {
+                        trace_pixel_sample(
+                            scene,
+                            loaded,
+                            &camera,
+                            j * w + i,
+                            (w, h),
+                            settings.seed,
+                            pass,
+                        )
+                    })
+                    .collect();
+                progress(w as u64);
+                row
+            })
+            .collect();
+        let (mut direct, mut indirect) = (Image::new(w, h), Image::new(w, h));
+        for (k, (d, i)) in pixels.into_iter().enumerate() {
+            direct.pixels[k] = d;
+            indirect.pixels[k] = i;
+        }
+        Ok((direct, indirect))
+    }
+}
+
+/// Renders `scene` on the CPU ([`slc_core::render()`] with [`CpuRenderer`]).
+pub fn render(
+    scene: &Scene,
+    settings: &RenderSettings,
+    progress: Progress,
+) -> Result<RenderedFrame, RenderError> {
+    slc_core::render(&CpuRenderer, scene, settings, progress)
+}
+
+/// A backend whose prepared frames the CPU can read: what only the CPU computes (the
+/// all-VPL reference, the unculled estimate of a comparison, sampled VPLs) runs on the
+/// frame another backend prepared.
+pub trait CpuFrames: Renderer {
+    /// `p` as the CPU's frame: borrowed on the CPU, read back (with a BVH of `scene`, built
+    /// once per `loaded`) elsewhere.
+    fn cpu_frame<'a>(
+        &self,
+        scene: &Scene,
+        loaded: &'a Self::Scene,
+        p: &'a Self::Prepared,
+    ) -> Result<Cow<'a, CpuPrepared>, RenderError>;
+}
+
+impl CpuFrames for CpuRenderer {
+    fn cpu_frame<'a>(
+        &self,
+        _scene: &Scene,
+        _loaded: &'a Arc<Tracer>,
+        p: &'a CpuPrepared,
+    ) -> Result<Cow<'a, CpuPrepared>, RenderError> {
+        Ok(Cow::Borrowed(p))
+    }
+}
