@@ -10,7 +10,8 @@
 //! standard errors of our mean.
 use glam::Vec3;
 use slc_core::{load_scene, Image};
-use slc_cpu_ref::{render, LobeSelection, Method, RenderSettings};
+use slc_core::frame::{LobeSelection, Method, RenderSettings};
+use slc_cpu_ref::render;
 use std::path::{Path, PathBuf};
 
 fn reference_dir() -> PathBuf {

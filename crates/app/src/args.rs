@@ -1,8 +1,9 @@
 //! Command-line options shared by `render`, `compare` and `sweep`.
 use clap::{Args, ValueEnum};
-use slc_core::{load_scene, Scene};
-use slc_cpu_ref::vsgl::DiffuseEmission;
-use slc_cpu_ref::{Importance, LightSampling, LobeSelection, RenderSettings, Stochastic};
+use slc_core::frame::{
+    DiffuseEmission, Importance, LightSampling, LobeSelection, Method, RenderSettings, Stochastic,
+};
+use slc_core::{load_scene, Scene, Strategy};
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
 pub enum Backend {
@@ -19,7 +20,7 @@ pub enum Shader {
     Vpl,
     /// Virtual spherical Gaussian lights sampled from mipmapped RSMs (Tokuyoshi 2015); `slc render`,
     /// `slc compare` and `slc sweep` on either backend (`--backend gpu --visibility`:
-    /// imperfect shadow maps; not in `compare`).
+    /// imperfect shadow maps; not in `compare`, whose VPLs have no visibility on the GPU).
     Vsgl,
 }
 
@@ -131,7 +132,7 @@ impl FrameArgs {
     }
 
     /// Render settings for `method`, one pass.
-    pub fn settings(&self, method: slc_cpu_ref::Method, spp: u32) -> RenderSettings {
+    pub fn settings(&self, method: Method, spp: u32) -> RenderSettings {
         RenderSettings {
             width: self.width,
             height: self.height,
@@ -149,23 +150,9 @@ impl FrameArgs {
     }
 }
 
-/// Maps culling names given on the command line to the library's static names.
-pub fn culling_names(names: &[String]) -> Result<Vec<&'static str>, String> {
-    names.iter().map(|n| culling_name(n)).collect()
-}
-
-/// Maps a culling name given on the command line to the library's static name.
-pub fn culling_name(name: &str) -> Result<&'static str, String> {
-    slc_cull::Strategy::ALL
-        .iter()
-        .find(|n| **n == name)
-        .copied()
-        .ok_or_else(|| {
-            format!(
-                "unknown culling strategy '{name}' (one of {})",
-                slc_cull::Strategy::ALL.join(", ")
-            )
-        })
+/// A culling strategy named on the command line.
+pub fn strategy(name: &str) -> Result<Strategy, String> {
+    name.parse().map_err(|e: slc_core::UnknownStrategy| e.to_string())
 }
 
 /// Interleaving and denoising of the stochastic estimate, shared by every command.
@@ -181,10 +168,10 @@ pub struct PipelineArgs {
 
 impl PipelineArgs {
     /// The stochastic estimate with these options.
-    pub fn stochastic(&self, delta: f32, culling: &'static str, metrics: bool) -> Stochastic {
+    pub fn stochastic(&self, delta: f32, strategy: Strategy, metrics: bool) -> Stochastic {
         Stochastic {
             delta,
-            culling,
+            strategy,
             interleave: self.interleave,
             denoise: !self.no_denoise,
             metrics,

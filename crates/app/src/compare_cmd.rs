@@ -4,18 +4,20 @@
 //! with p = 1, the same VPLs), `report.md` with the table, and `side_by_side.png`. With
 //! `--shader vsgl` also `vsgl/` and `vpl_sampled/`: `--vsgls N` VSGLs and N VPLs sampled by the
 //! same importance, with their own table in `report.md`.
-use crate::args::{culling_names, Backend, FrameArgs, ImportanceArgs, PipelineArgs, Shader};
-use crate::gpu_frame::{check_visibility, gpu_strategy, GpuFrame, GpuPrepared};
+use crate::args::{strategy, FrameArgs, ImportanceArgs, PipelineArgs, Shader};
+use crate::backend::{message, run_on, OnBackend};
 use crate::heatmap::heat_map;
 use crate::output::write_frame;
 use crate::progress::bar;
-use crate::reference::{all_vpl_reference, prepare_on};
-use crate::report::{Device, FrameFacts, Report};
-use crate::sampled::{pass_ms, Estimator, ESTIMATORS, PASSES};
+use crate::reference::{all_vpl_reference, cpu_input};
+use crate::report::{FrameFacts, Report};
+use crate::sampled::{ESTIMATORS, PASSES};
 use clap::Args;
 use image::RgbImage;
-use slc_core::Image;
-use slc_cpu_ref::{shade_stochastic, Method, Stochastic, Timings, Tracer};
+use slc_core::frame::{Method, RenderSettings, Stochastic, Timings};
+use slc_core::shader::{frame_timings, ShadeInput, Shader as _};
+use slc_core::{BackendInfo, Image, PreparedFrame, Renderer, Scene, Strategy};
+use slc_cpu_ref::{CpuFrames, CpuPrepared, CpuRenderer};
 use std::fmt::Write;
 use std::path::PathBuf;
 
@@ -52,7 +54,7 @@ pub struct CompareArgs {
 
 /// One strategy's row of the table.
 struct Row {
-    name: &'static str,
+    strategy: Strategy,
     timings: Timings,
     lights_per_pixel: f64,
     tp: u64,
@@ -67,172 +69,177 @@ struct Row {
 
 pub fn run(args: &CompareArgs) -> Result<(), String> {
     let scene = args.frame.load_renderable()?;
-    let names = culling_names(&args.culling)?;
-    let f = &args.frame;
-    let gpu = match f.backend {
-        Backend::Cpu => None,
-        Backend::Gpu => {
-            check_visibility(f.visibility, false)?;
-            for name in &names {
-                gpu_strategy(name)?;
-            }
-            Some(GpuFrame::new()?)
-        }
-    };
-    let device = gpu.as_ref().map_or_else(Device::cpu, |g| g.device(true));
-    let cpu = Device::cpu();
-    let base = args.pipeline.stochastic(args.delta, "none", true);
-    let settings = f.settings(Method::Stochastic(base), 1);
-    settings.validate().map_err(|e| e.to_string())?;
-    let pixels = f.width as u64 * f.height as u64;
-    eprintln!(
-        "preparing {} ({}x{}, RSM {}²)",
-        scene.name, f.width, f.height, f.rsm
-    );
-    // The GPU prepares its own frame (rasterized G-buffer, its RSMs and VPLs); the CPU's
-    // reference and unculled estimate read that frame back.
-    let (p, on_gpu) = prepare_on(gpu.as_ref(), &scene, &settings)?;
-    eprintln!("{} VPLs", p.vpls.len());
-
-    let reference = (!args.no_reference)
-        .then(|| all_vpl_reference(&p, f.visibility))
-        .transpose()?;
-    if let Some(r) = &reference {
-        let total = p.direct.add(r);
-        let dir = args.out.join("reference_vpl");
-        let images = write_frame(&dir, &p.direct, r, &total)?;
-        let facts = FrameFacts {
-            device: &cpu,
-            scene: &scene,
-            args: f,
-            method: Method::VplReference,
-            spp: 1,
-            vpl_count: p.vpls.len(),
-            timings: &p.timings,
-            gpu_timings: None,
-            metrics: None,
-            sampled_lights: None,
-            images: &images,
-        };
-        Report::new(&facts).write(&dir.join("report.json"))?;
-    }
-
-    // The unculled estimate with the same K, δ, ξ and filter: a strategy that misses nothing
-    // equals it.
-    let unculled = shade_stochastic(
-        &p,
-        &Stochastic {
-            metrics: false,
-            ..base
+    let strategies = args
+        .culling
+        .iter()
+        .map(|n| strategy(n))
+        .collect::<Result<Vec<_>, _>>()?;
+    let base = args.pipeline.stochastic(args.delta, Strategy::None, true);
+    let settings = args.frame.settings(Method::Stochastic(base), 1);
+    settings.validate().map_err(message)?;
+    run_on(
+        args.frame.backend,
+        Compare {
+            args,
+            scene,
+            strategies,
+            base,
+            settings,
         },
-        f.seed,
-        f.visibility,
-        &|_| {},
     )
-    .map_err(|e| e.to_string())?
-    .indirect;
-    let mut rows = Vec::new();
-    for name in names {
-        let s = Stochastic {
-            culling: name,
-            ..base
-        };
-        let out = match &gpu {
-            None => {
-                let bar = bar(pixels, name.to_string());
-                let out = shade_stochastic(&p, &s, f.seed, f.visibility, &|n| bar.inc(n))
-                    .map_err(|e| e.to_string())?;
-                bar.finish_and_clear();
-                (out, None)
-            }
-            Some(g) => {
-                let gp = on_gpu.as_ref().expect("prepared on the GPU");
-                g.shade(gp, &s, f.seed)?
-            }
-        };
-        let (out, shade_gpu_timings) = out;
-        // The GPU's times of this strategy's frame: the shared preparation and its own passes.
-        let gpu_timings = shade_gpu_timings.map(|t| {
-            let mut all = on_gpu
-                .as_ref()
-                .and_then(|gp| gp.gpu_timings.clone())
-                .unwrap_or_default();
-            all.merge(&t);
-            all
-        });
-        let m = out.metrics.as_ref().expect("metrics were asked for");
-        let total = p.direct.add(&out.indirect);
-        let dir = args.out.join(name);
-        let images = write_frame(&dir, &p.direct, &out.indirect, &total)?;
-        let heat = heat_map(
-            f.width,
-            f.height,
-            &m.lights_per_pixel,
-            &m.fdr_per_pixel,
-            args.heat_max,
-        );
-        heat.save(dir.join("heatmap.png"))
-            .map_err(|e| format!("{}: {e}", dir.display()))?;
-        let mut timings = p.timings.clone();
-        timings.merge(&out.timings);
-        let facts = FrameFacts {
-            device: &device,
-            scene: &scene,
-            args: f,
-            method: Method::Stochastic(s),
-            spp: 1,
-            vpl_count: p.vpls.len(),
-            timings: &timings,
-            gpu_timings: gpu_timings.as_ref(),
-            metrics: Some(m),
-            sampled_lights: None,
-            images: &images,
-        };
-        Report::new(&facts).write(&dir.join("report.json"))?;
-        rows.push(Row {
-            name,
-            timings: out.timings,
-            lights_per_pixel: m.lights_per_pixel_mean,
-            tp: m.true_positive_pairs,
-            fp: m.false_positive_pairs,
-            missed: m.missed_pairs,
-            fdr: m.false_discovery_rate,
-            rmse_unculled: Some(out.indirect.rmse(&unculled)),
-            rmse_reference: reference.as_ref().map(|r| out.indirect.rmse(r)),
-            total,
-            heat,
-        });
-        eprintln!("{name}: done");
-    }
-    let sampled = if f.shader == Shader::Vsgl {
-        let on_gpu = gpu.as_ref().zip(on_gpu.as_ref());
-        sampled_lights(args, &scene, &p, on_gpu, reference.as_ref())?
-    } else {
-        String::new()
-    };
-    write_table(args, &device, &scene.name, p.vpls.len(), &rows, &sampled)?;
-    side_by_side(&rows)
-        .save(args.out.join("side_by_side.png"))
-        .map_err(|e| e.to_string())?;
-    println!("wrote {}", args.out.display());
-    Ok(())
 }
 
-/// Shades the prepared frame with `--vsgls` VSGLs and as many sampled VPLs, writes their
-/// folders, and returns their section of `report.md`. With `gpu` (the GPU and the frame it
-/// prepared, of which `p` is the read-back) the VSGLs are shaded on the GPU; the sampled VPLs
-/// always on the CPU.
-fn sampled_lights(
+struct Compare<'a> {
+    args: &'a CompareArgs,
+    scene: Scene,
+    strategies: Vec<Strategy>,
+    base: Stochastic,
+    settings: RenderSettings,
+}
+
+impl OnBackend for Compare<'_> {
+    fn run<R: CpuFrames>(self, r: &R) -> Result<(), String> {
+        let Compare {
+            args,
+            scene,
+            strategies,
+            base,
+            settings,
+        } = self;
+        let f = &args.frame;
+        r.check(&settings).map_err(message)?;
+        let device = r.info(&settings);
+        let pixels = f.width as u64 * f.height as u64;
+        eprintln!(
+            "preparing {} on the {} ({}x{}, RSM {}²)",
+            scene.name,
+            r.name(),
+            f.width,
+            f.height,
+            f.rsm
+        );
+        let loaded = r.load(&scene).map_err(message)?;
+        let p = r.prepare(&scene, &loaded, &settings, None).map_err(message)?;
+        // The CPU's reference and unculled estimate read the backend's frame (back).
+        let cpu_p = r.cpu_frame(&scene, &loaded, &p).map_err(message)?;
+        let cpu = cpu_input(&scene, &cpu_p, f.seed, f.visibility);
+        eprintln!("{} VPLs", p.vpls().len());
+        let cpu_device = CpuRenderer.info(&settings);
+
+        let reference = (!args.no_reference)
+            .then(|| all_vpl_reference(cpu))
+            .transpose()?;
+        if let Some(r) = &reference {
+            let total = p.direct().add(r);
+            let dir = args.out.join("reference_vpl");
+            let images = write_frame(&dir, p.direct(), r, &total)?;
+            let facts = FrameFacts {
+                device: &cpu_device,
+                scene: &scene,
+                args: f,
+                method: Method::VplReference,
+                spp: 1,
+                vpl_count: p.vpls().len(),
+                timings: p.timings(),
+                gpu_timings: None,
+                metrics: None,
+                sampled_lights: None,
+                images: &images,
+            };
+            Report::new(&facts).write(&dir.join("report.json"))?;
+        }
+
+        // The unculled estimate with the same K, δ, ξ and filter: a strategy that misses
+        // nothing equals it.
+        let unculled = Stochastic {
+            metrics: false,
+            ..base
+        }
+        .shade(&CpuRenderer, cpu, &|_| {})
+        .map_err(message)?
+        .indirect;
+        let input = ShadeInput {
+            scene: &scene,
+            loaded: &loaded,
+            prepared: &p,
+            seed: f.seed,
+            visibility: f.visibility,
+        };
+        let mut rows = Vec::new();
+        for strategy in strategies {
+            let s = Stochastic { strategy, ..base };
+            let bar = bar(pixels, strategy.name().to_string());
+            let out = s.shade(r, input, &|n| bar.inc(n)).map_err(message)?;
+            bar.finish_and_clear();
+            let m = out.metrics.as_ref().expect("metrics were asked for");
+            let total = p.direct().add(&out.indirect);
+            let dir = args.out.join(strategy.name());
+            let images = write_frame(&dir, p.direct(), &out.indirect, &total)?;
+            let heat = heat_map(
+                f.width,
+                f.height,
+                &m.lights_per_pixel,
+                &m.fdr_per_pixel,
+                args.heat_max,
+            );
+            heat.save(dir.join("heatmap.png"))
+                .map_err(|e| format!("{}: {e}", dir.display()))?;
+            let (timings, gpu_timings) = frame_timings(&p, &out);
+            let facts = FrameFacts {
+                device: &device,
+                scene: &scene,
+                args: f,
+                method: Method::Stochastic(s),
+                spp: 1,
+                vpl_count: p.vpls().len(),
+                timings: &timings,
+                gpu_timings: gpu_timings.as_ref(),
+                metrics: Some(m),
+                sampled_lights: None,
+                images: &images,
+            };
+            Report::new(&facts).write(&dir.join("report.json"))?;
+            rows.push(Row {
+                strategy,
+                lights_per_pixel: m.lights_per_pixel_mean,
+                tp: m.true_positive_pairs,
+                fp: m.false_positive_pairs,
+                missed: m.missed_pairs,
+                fdr: m.false_discovery_rate,
+                rmse_unculled: Some(out.indirect.rmse(&unculled)),
+                rmse_reference: reference.as_ref().map(|r| out.indirect.rmse(r)),
+                timings: out.timings,
+                total,
+                heat,
+            });
+            eprintln!("{strategy}: done");
+        }
+        let sampled = if f.shader == Shader::Vsgl {
+            sampled_lights(args, r, input, cpu, reference.as_ref())?
+        } else {
+            String::new()
+        };
+        write_table(args, &device, &scene.name, p.vpls().len(), &rows, &sampled)?;
+        side_by_side(&rows)
+            .save(args.out.join("side_by_side.png"))
+            .map_err(|e| e.to_string())?;
+        println!("wrote {}", args.out.display());
+        Ok(())
+    }
+}
+
+/// Shades the prepared frame with `--vsgls` VSGLs (on the backend `r`) and as many sampled
+/// VPLs (on the CPU, from `cpu`, the same frame), writes their folders, and returns their
+/// section of `report.md`.
+fn sampled_lights<R: Renderer>(
     args: &CompareArgs,
-    scene: &slc_core::Scene,
-    p: &slc_cpu_ref::Prepared,
-    gpu: Option<(&GpuFrame, &GpuPrepared)>,
+    r: &R,
+    input: ShadeInput<'_, R>,
+    cpu: ShadeInput<'_, CpuRenderer>,
     reference: Option<&Image>,
 ) -> Result<String, String> {
     let f = &args.frame;
     let sampling = args.importance.sampling(args.vsgls);
-    let cpu = Device::cpu();
-    let gpu_device = gpu.map(|(g, _)| g.vsgl_device(false));
     let mut md = format!(
         "\n## Sampled lights\n\n{} lights sampled from the RSMs by {} importance (the same \
          points for both): VSGLs at the filtered mip level (diffuse intensity {}), and VPLs of \
@@ -246,37 +253,39 @@ fn sampled_lights(
         let _ = write!(md, " {row} ms |");
     }
     md.push_str(" total ms | RMSE vs reference |\n|---|---|---|---|---|---|---|---|\n");
+    let prepared: &CpuPrepared = cpu.prepared;
     for e in ESTIMATORS {
         eprintln!("{}: {} lights", e.name(), args.vsgls);
-        let (out, device) = match (e, gpu) {
-            (Estimator::Vsgl, Some((g, gp))) => (
-                g.shade_vsgl(gp, &sampling, f.seed, Tracer::scene_epsilon(scene), None)?,
-                gpu_device.as_ref().unwrap_or(&cpu),
-            ),
-            _ => (e.shade(p, &sampling, f.seed, f.visibility)?, &cpu),
+        let (out, backend) = e.shade(r, input, cpu, sampling)?;
+        let method = e.method(sampling);
+        let settings = f.settings(method, 1);
+        let device = if backend == "cpu" {
+            CpuRenderer.info(&settings)
+        } else {
+            r.info(&settings)
         };
-        let total = p.direct.add(&out.indirect);
+        let total = prepared.direct.add(&out.indirect);
         let dir = args.out.join(e.name());
-        let images = write_frame(&dir, &p.direct, &out.indirect, &total)?;
-        let mut timings = p.timings.clone();
-        timings.merge(&out.timings);
+        let images = write_frame(&dir, &prepared.direct, &out.indirect, &total)?;
+        let (timings, _) = frame_timings(prepared, &out);
         let facts = FrameFacts {
-            device,
-            scene,
+            device: &device,
+            scene: cpu.scene,
             args: f,
-            method: e.method(sampling),
+            method,
             spp: 1,
-            vpl_count: p.vpls.len(),
+            vpl_count: prepared.vpls.len(),
             timings: &timings,
             gpu_timings: None,
             metrics: None,
-            sampled_lights: Some(out.lights),
+            sampled_lights: out.sampled_lights,
             images: &images,
         };
         Report::new(&facts).write(&dir.join("report.json"))?;
-        let _ = write!(md, "| {} ({}) | {} |", e.name(), device.backend, out.lights);
+        let lights = out.sampled_lights.unwrap_or(0);
+        let _ = write!(md, "| {} ({backend}) | {lights} |", e.name());
         for (pass, _) in PASSES {
-            let _ = write!(md, " {:.1} |", pass_ms(&out.timings, pass));
+            let _ = write!(md, " {:.1} |", out.timings.get(pass));
         }
         let rmse = reference.map_or("n/a".to_string(), |r| {
             format!("{:.3e}", out.indirect.rmse(r))
@@ -288,7 +297,7 @@ fn sampled_lights(
 
 fn write_table(
     args: &CompareArgs,
-    device: &Device,
+    device: &BackendInfo,
     scene: &str,
     vpls: usize,
     rows: &[Row],
@@ -327,14 +336,14 @@ fn write_table(
     let fmt_opt = |v: Option<f32>| v.map_or("n/a".to_string(), |v| format!("{v:.3e}"));
     for r in rows {
         let (c, s, d) = (
-            pass_ms(&r.timings, "culling"),
-            pass_ms(&r.timings, "shading"),
-            pass_ms(&r.timings, "denoise"),
+            r.timings.get("culling"),
+            r.timings.get("shading"),
+            r.timings.get("denoise"),
         );
         let _ = writeln!(
             md,
             "| {} | {c:.1} | {s:.1} | {d:.1} | {:.1} | {:.1} | {} | {} | {} | {:.3} | {} | {} |",
-            r.name,
+            r.strategy,
             c + s,
             r.lights_per_pixel,
             r.tp,
@@ -345,7 +354,7 @@ fn write_table(
             fmt_opt(r.rmse_reference)
         );
     }
-    let order: Vec<&str> = rows.iter().map(|r| r.name).collect();
+    let order: Vec<&str> = rows.iter().map(|r| r.strategy.name()).collect();
     let _ = writeln!(
         md,
         "\n`side_by_side.png`, left to right: {}; totals on top, heat maps below.",

@@ -1,9 +1,8 @@
 //! `slc`: single-bounce global illumination with many virtual point lights.
 mod args;
+mod backend;
 mod bench_cmd;
 mod compare_cmd;
-mod gpu_frame;
-mod gpu_vsgl;
 mod heatmap;
 mod output;
 mod plot;

@@ -1,43 +1,35 @@
-//! The all-VPL reference of `compare` and `sweep` (every VPL at every pixel with p = 1), with
-//! a progress bar, and the frame it is shaded on, prepared by the command's backend.
-use crate::gpu_frame::{GpuFrame, GpuPrepared};
+//! What `compare` and `sweep` compute on the CPU whatever the backend: the all-VPL reference
+//! (every VPL at every pixel with p = 1), with a progress bar, on the frame the backend
+//! prepared, read back where it lives elsewhere.
+use crate::backend::message;
 use crate::progress::bar;
+use slc_core::shader::{AllVplShader, ShadeInput, Shader};
 use slc_core::{Image, Scene};
-use slc_cpu_ref::vpl_shading::{shade_vpls, VplEstimator};
-use slc_cpu_ref::{prepare, Prepared, RenderSettings, Tracer};
+use slc_cpu_ref::{CpuPrepared, CpuRenderer};
 
-/// Every VPL of `p` at every pixel with p = 1 (`VplEstimator::Exact`), with shadow rays when
-/// `visibility`.
-pub fn all_vpl_reference(p: &Prepared, visibility: bool) -> Result<Image, String> {
-    let pixels = p.gbuffer.width as u64 * p.gbuffer.height as u64;
-    let bar = bar(pixels, "all-VPL reference".into());
-    let r = shade_vpls(
-        &p.tracer,
-        &p.gbuffer,
-        &p.vpls,
-        VplEstimator::Exact,
+/// The CPU's view of a prepared frame.
+pub fn cpu_input<'a>(
+    scene: &'a Scene,
+    p: &'a CpuPrepared,
+    seed: u32,
+    visibility: bool,
+) -> ShadeInput<'a, CpuRenderer> {
+    ShadeInput {
+        scene,
+        loaded: &p.tracer,
+        prepared: p,
+        seed,
         visibility,
-        &|n| bar.inc(n),
-    )
-    .map_err(|e| e.to_string())?;
-    bar.finish_and_clear();
-    Ok(r)
+    }
 }
 
-/// The frame of `settings` as the CPU passes see it: traced on the CPU, or with `gpu`
-/// prepared on the GPU (rasterized G-buffer, its RSMs and VPLs) and read back, in which case
-/// the GPU's frame is returned too.
-pub fn prepare_on(
-    gpu: Option<&GpuFrame>,
-    scene: &Scene,
-    settings: &RenderSettings,
-) -> Result<(Prepared, Option<GpuPrepared>), String> {
-    let tracer = Tracer::new(scene);
-    match gpu {
-        None => Ok((prepare(scene, settings, tracer, None), None)),
-        Some(g) => {
-            let on_gpu = g.prepare(scene, &g.upload(scene)?, settings, None)?;
-            Ok((g.to_cpu(&on_gpu, tracer)?, Some(on_gpu)))
-        }
-    }
+/// Every VPL of the frame at every pixel with p = 1, with shadow rays when `visibility`.
+pub fn all_vpl_reference(input: ShadeInput<'_, CpuRenderer>) -> Result<Image, String> {
+    let g = &input.prepared.gbuffer;
+    let bar = bar(g.width as u64 * g.height as u64, "all-VPL reference".into());
+    let r = AllVplShader
+        .shade(&CpuRenderer, input, &|n| bar.inc(n))
+        .map_err(message)?;
+    bar.finish_and_clear();
+    Ok(r.indirect)
 }

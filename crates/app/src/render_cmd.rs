@@ -1,12 +1,13 @@
 //! `slc render`.
-use crate::args::{culling_name, Backend, FrameArgs, ImportanceArgs, PipelineArgs, Shader};
-use crate::gpu_frame::{check_visibility, gpu_strategy, vsgl_gpu_note, GpuFrame};
+use crate::args::{strategy, FrameArgs, ImportanceArgs, PipelineArgs, Shader};
+use crate::backend::{message, run_on, OnBackend};
 use crate::output::write_frame;
 use crate::progress::bar;
-use crate::report::{Device, FrameFacts, Report};
+use crate::report::{FrameFacts, Report};
 use clap::{Args, ValueEnum};
+use slc_core::frame::{Method, RenderSettings};
 use slc_core::Scene;
-use slc_cpu_ref::{render, Frame, Method, RenderSettings};
+use slc_cpu_ref::CpuFrames;
 use std::path::PathBuf;
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
@@ -62,77 +63,76 @@ pub fn run(args: &RenderArgs) -> Result<(), String> {
         (None, Shader::Vsgl) => Method::Vsgl(args.importance.sampling(args.vsgls)),
         (None, Shader::Vpl) => Method::Stochastic(args.pipeline.stochastic(
             args.delta,
-            culling_name(&args.culling)?,
+            strategy(&args.culling)?,
             args.metrics,
         )),
     };
     let settings = args.frame.settings(method, args.spp);
-    let f = &args.frame;
-    let (frame, gpu_timings, device) = match f.backend {
-        Backend::Cpu => (render_cpu(&scene, &settings)?, None, Device::cpu()),
-        Backend::Gpu => {
-            if args.reference.is_some() {
-                return Err("references are rendered on the CPU only; use --backend cpu".into());
-            }
-            check_visibility(f.visibility, f.shader == Shader::Vsgl)?;
-            if f.shader == Shader::Vpl {
-                gpu_strategy(&args.culling)?;
-            }
-            let gpu = GpuFrame::new()?;
-            eprintln!("rendering {} on the GPU", scene.name);
-            let (frame, gpu_timings) = gpu.render(&scene, &settings)?;
-            let mut device = gpu.device(args.metrics);
-            if f.shader == Shader::Vsgl {
-                device.notes.push(vsgl_gpu_note(f.visibility));
-            }
-            (frame, gpu_timings, device)
-        }
-    };
-
-    let total = frame.direct.add(&frame.indirect);
-    let images = write_frame(&args.out, &frame.direct, &frame.indirect, &total)?;
-    let timings = &frame.timings;
-    let facts = FrameFacts {
-        device: &device,
-        scene: &scene,
-        args: f,
-        method,
-        spp: args.spp,
-        vpl_count: frame.vpl_count,
-        timings,
-        gpu_timings: gpu_timings.as_ref(),
-        metrics: frame.metrics.as_ref(),
-        sampled_lights: frame.sampled_lights,
-        images: &images,
-    };
-    Report::new(&facts).write(&args.out.join("report.json"))?;
-    let m = total.mean();
-    let lights = match frame.sampled_lights {
-        Some(n) if f.shader == Shader::Vsgl => format!("{n} VSGLs of {} samples", args.vsgls),
-        _ => format!("{} VPLs", frame.vpl_count),
-    };
-    println!(
-        "{} ({}): {}x{}, {lights}, {:.0} ms; mean total radiance ({:.4}, {:.4}, {:.4}); wrote {}",
-        scene.name,
-        device.adapter,
-        f.width,
-        f.height,
-        timings.total(),
-        m.x,
-        m.y,
-        m.z,
-        args.out.display()
-    );
-    Ok(())
+    run_on(
+        args.frame.backend,
+        Render {
+            args,
+            scene,
+            settings,
+        },
+    )
 }
 
-/// Renders on the CPU with a progress bar.
-fn render_cpu(scene: &Scene, settings: &RenderSettings) -> Result<Frame, String> {
-    let progress = bar(
-        settings.width as u64 * settings.height as u64 * settings.spp as u64,
-        format!("rendering {}", scene.name),
-    );
-    let frame = render(scene, settings, &|n| progress.inc(n)).map_err(|e| e.to_string())?;
-    progress.finish_and_clear();
-    Ok(frame)
+struct Render<'a> {
+    args: &'a RenderArgs,
+    scene: Scene,
+    settings: RenderSettings,
+}
+
+impl OnBackend for Render<'_> {
+    fn run<R: CpuFrames>(self, r: &R) -> Result<(), String> {
+        let Render {
+            args,
+            scene,
+            settings,
+        } = self;
+        let f = &args.frame;
+        let progress = bar(
+            settings.width as u64 * settings.height as u64 * settings.spp as u64,
+            format!("rendering {} on the {}", scene.name, r.name()),
+        );
+        let frame = slc_core::render(r, &scene, &settings, &|n| progress.inc(n)).map_err(message)?;
+        progress.finish_and_clear();
+        let device = r.info(&settings);
+        let total = frame.total();
+        let images = write_frame(&args.out, &frame.direct, &frame.indirect, &total)?;
+        let timings = &frame.timings;
+        let facts = FrameFacts {
+            device: &device,
+            scene: &scene,
+            args: f,
+            method: settings.method,
+            spp: args.spp,
+            vpl_count: frame.vpl_count,
+            timings,
+            gpu_timings: frame.gpu_timings.as_ref(),
+            metrics: frame.metrics.as_ref(),
+            sampled_lights: frame.sampled_lights,
+            images: &images,
+        };
+        Report::new(&facts).write(&args.out.join("report.json"))?;
+        let m = total.mean();
+        let lights = match frame.sampled_lights {
+            Some(n) if f.shader == Shader::Vsgl => format!("{n} VSGLs of {} samples", args.vsgls),
+            _ => format!("{} VPLs", frame.vpl_count),
+        };
+        println!(
+            "{} ({}): {}x{}, {lights}, {:.0} ms; mean total radiance ({:.4}, {:.4}, {:.4}); wrote {}",
+            scene.name,
+            device.adapter,
+            f.width,
+            f.height,
+            timings.total(),
+            m.x,
+            m.y,
+            m.z,
+            args.out.display()
+        );
+        Ok(())
+    }
 }

@@ -2,9 +2,8 @@
 //! Unknown values are `null`, never made up.
 use crate::args::FrameArgs;
 use serde::Serialize;
-use slc_core::{Image, Scene};
-use slc_cpu_ref::{Importance, Method, Timings};
-use slc_cull::metrics::CullMetrics;
+use slc_core::frame::{Importance, Method, Timings};
+use slc_core::{BackendInfo, CullMetrics, Image, Scene};
 use std::collections::BTreeMap;
 use std::path::Path;
 
@@ -84,30 +83,9 @@ impl From<Option<&CullMetrics>> for Metrics {
     }
 }
 
-/// The backend that rendered a frame, as its report names it.
-#[derive(Clone, Debug)]
-pub struct Device {
-    /// `cpu` or `gpu`.
-    pub backend: &'static str,
-    pub adapter: String,
-    /// See [`Report::notes`].
-    pub notes: Vec<String>,
-}
-
-impl Device {
-    /// The CPU reference on rayon's threads.
-    pub fn cpu() -> Self {
-        Device {
-            backend: "cpu",
-            adapter: format!("CPU ({} rayon threads)", rayon::current_num_threads()),
-            notes: Vec::new(),
-        }
-    }
-}
-
 /// What a frame was, for its report.
 pub struct FrameFacts<'a> {
-    pub device: &'a Device,
+    pub device: &'a BackendInfo,
     pub scene: &'a Scene,
     pub args: &'a FrameArgs,
     pub method: Method,
@@ -150,7 +128,7 @@ impl Report {
             vpl_count: f.vpl_count,
             delta: stochastic.map(|s| s.delta),
             seed: f.args.seed,
-            culling: stochastic.map(|s| s.culling),
+            culling: stochastic.map(|s| s.strategy.name()),
             shader: match f.method {
                 Method::Vsgl(_) => "vsgl",
                 _ => "vpl",

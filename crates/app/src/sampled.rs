@@ -1,8 +1,11 @@
 //! VSGLs and VPLs sampled at equal count from a prepared frame's RSMs, for `compare` and
 //! `sweep`: both warp the same points through the same importance (see
-//! `slc_cpu_ref::sampled_lights`).
-use slc_cpu_ref::sampled_lights::{shade_sampled_vpls, shade_vsgl};
-use slc_cpu_ref::{LightSampling, Method, Prepared, SampledFrame, Timings};
+//! `slc_cpu_ref::sampled_lights`). VSGLs run on the command's backend, sampled VPLs on the CPU.
+use crate::backend::message;
+use slc_core::frame::{LightSampling, Method, Shaded};
+use slc_core::shader::{SampledVplShader, ShadeInput, Shader, VsglShader};
+use slc_core::Renderer;
+use slc_cpu_ref::CpuRenderer;
 
 /// One of the two estimators from `N` sampled lights.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -16,8 +19,8 @@ pub enum Estimator {
 /// Both estimators, VPLs first.
 pub const ESTIMATORS: [Estimator; 2] = [Estimator::Vpl, Estimator::Vsgl];
 
-/// The passes of the paper's Table 1 as `slc_cpu_ref::SampledFrame::timings` names them, with
-/// the paper's row names.
+/// The passes of the paper's Table 1 as the sampled-light shaders name them, with the paper's
+/// row names.
 pub const PASSES: [(&str, &str); 4] = [
     ("vsgl_mip", "additional RSM (mipmap)"),
     ("importance_map", "importance map"),
@@ -42,25 +45,24 @@ impl Estimator {
         }
     }
 
-    /// Shades `p` with `sampling.count` lights from the points of `seed`.
-    pub fn shade(
+    /// Shades with `sampling.count` lights from the points of the inputs' seed: VSGLs on `r`
+    /// from `on_r`, sampled VPLs on the CPU from `cpu` (the same frame). Returns the name of
+    /// the backend that shaded.
+    pub fn shade<R: Renderer>(
         self,
-        p: &Prepared,
-        sampling: &LightSampling,
-        seed: u32,
-        visibility: bool,
-    ) -> Result<SampledFrame, String> {
-        let shade = match self {
-            Self::Vsgl => shade_vsgl,
-            Self::Vpl => shade_sampled_vpls,
+        r: &R,
+        on_r: ShadeInput<'_, R>,
+        cpu: ShadeInput<'_, CpuRenderer>,
+        sampling: LightSampling,
+    ) -> Result<(Shaded, &'static str), String> {
+        let shaded = match self {
+            Self::Vsgl => VsglShader(sampling)
+                .shade(r, on_r, &|_| {})
+                .map(|s| (s, r.name())),
+            Self::Vpl => SampledVplShader(sampling)
+                .shade(&CpuRenderer, cpu, &|_| {})
+                .map(|s| (s, "cpu")),
         };
-        shade(p, sampling, seed, visibility, &|_| {}).map_err(|e| e.to_string())
+        shaded.map_err(message)
     }
-}
-
-/// Milliseconds of the pass `name` (0 if it did not run).
-pub fn pass_ms(t: &Timings, name: &str) -> f64 {
-    t.0.iter()
-        .find(|(n, _)| *n == name)
-        .map_or(0.0, |(_, v)| *v)
 }

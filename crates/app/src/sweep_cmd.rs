@@ -5,17 +5,20 @@
 //! p = 1. Writes `sweep.csv`, `sweep.svg` (RMSE against time, one curve per strategy) and an
 //! equal-time comparison (`equal_time.md`, `equal_time.png`) in the spirit of the supplemental's
 //! Fig. 2: each strategy at the δ whose time is closest to the reference strategy's median run.
-//! With `--shader vsgl` it sweeps light counts instead ([`crate::vsgl_sweep`]).
-use crate::args::{culling_names, FrameArgs, ImportanceArgs, PipelineArgs, Shader};
+//! Culling and shading run on the command's backend, the reference on the CPU (from the frame
+//! read back). With `--shader vsgl` it sweeps light counts instead ([`crate::vsgl_sweep`]).
+use crate::args::{strategy, FrameArgs, ImportanceArgs, PipelineArgs, Shader};
+use crate::backend::{message, run_on, OnBackend};
 use crate::output::to_srgb8;
 use crate::plot::{line_plot_svg, Series};
 use crate::progress::bar;
-use crate::reference::all_vpl_reference;
-use crate::sampled::pass_ms;
+use crate::reference::{all_vpl_reference, cpu_input};
 use clap::Args;
 use image::RgbImage;
-use slc_core::Image;
-use slc_cpu_ref::{prepare, shade_stochastic, Method, Stochastic, Tracer};
+use slc_core::frame::{Method, Stochastic};
+use slc_core::shader::{ShadeInput, Shader as _};
+use slc_core::{Image, PreparedFrame, Renderer, Scene, Strategy};
+use slc_cpu_ref::CpuFrames;
 use std::fmt::Write;
 use std::path::PathBuf;
 
@@ -56,7 +59,7 @@ pub struct SweepArgs {
 }
 
 struct Point {
-    strategy: &'static str,
+    strategy: Strategy,
     delta: f32,
     culling_ms: f64,
     shading_ms: f64,
@@ -74,55 +77,93 @@ pub fn run(args: &SweepArgs) -> Result<(), String> {
     if args.frame.shader == Shader::Vsgl {
         return crate::vsgl_sweep::run(args);
     }
-    if args.frame.backend != crate::args::Backend::Cpu {
-        return Err(
-            "slc sweep of the VPL pipeline runs on the CPU only in this version (--shader vsgl \
-             sweeps on the GPU too); use --backend cpu"
-                .into(),
-        );
-    }
     let scene = args.frame.load_renderable()?;
-    let names = culling_names(&args.culling)?;
-    if names.is_empty() || args.delta.is_empty() || args.repeat == 0 {
+    let strategies = args
+        .culling
+        .iter()
+        .map(|n| strategy(n))
+        .collect::<Result<Vec<_>, _>>()?;
+    if strategies.is_empty() || args.delta.is_empty() || args.repeat == 0 {
         return Err("sweep needs at least one strategy, one δ and one repetition".into());
     }
-    let f = &args.frame;
-    let base = args.pipeline.stochastic(args.delta[0], names[0], false);
-    for &delta in &args.delta {
-        f.settings(Method::Stochastic(Stochastic { delta, ..base }), 1)
-            .validate()
-            .map_err(|e| e.to_string())?;
+    run_on(
+        args.frame.backend,
+        Sweep {
+            args,
+            scene,
+            strategies,
+        },
+    )
+}
+
+struct Sweep<'a> {
+    args: &'a SweepArgs,
+    scene: Scene,
+    strategies: Vec<Strategy>,
+}
+
+impl OnBackend for Sweep<'_> {
+    fn run<R: CpuFrames>(self, r: &R) -> Result<(), String> {
+        let Sweep {
+            args,
+            scene,
+            strategies,
+        } = self;
+        let f = &args.frame;
+        let base = args.pipeline.stochastic(args.delta[0], strategies[0], false);
+        for &delta in &args.delta {
+            let settings = f.settings(Method::Stochastic(Stochastic { delta, ..base }), 1);
+            settings.validate().map_err(message)?;
+            r.check(&settings).map_err(message)?;
+        }
+        let settings = f.settings(Method::Stochastic(base), 1);
+        let loaded = r.load(&scene).map_err(message)?;
+        let p = r.prepare(&scene, &loaded, &settings, None).map_err(message)?;
+        let cpu_p = r.cpu_frame(&scene, &loaded, &p).map_err(message)?;
+        let reference = all_vpl_reference(cpu_input(&scene, &cpu_p, f.seed, f.visibility))?;
+        let input = ShadeInput {
+            scene: &scene,
+            loaded: &loaded,
+            prepared: &p,
+            seed: f.seed,
+            visibility: f.visibility,
+        };
+        let points = sweep(args, r, input, &strategies, base, &reference)?;
+        write_outputs(args, &scene, &strategies, &points)
     }
-    let p = prepare(
-        &scene,
-        &f.settings(Method::Stochastic(base), 1),
-        Tracer::new(&scene),
-        None,
-    );
-    let reference = all_vpl_reference(&p, f.visibility)?;
+}
+
+/// Each strategy at each δ, the fastest of `--repeat` runs.
+fn sweep<R: Renderer>(
+    args: &SweepArgs,
+    r: &R,
+    input: ShadeInput<'_, R>,
+    strategies: &[Strategy],
+    base: Stochastic,
+    reference: &Image,
+) -> Result<Vec<Point>, String> {
     let mut points = Vec::new();
     let progress = bar(
-        (names.len() * args.delta.len() * args.repeat as usize) as u64,
+        (strategies.len() * args.delta.len() * args.repeat as usize) as u64,
         "sweep".into(),
     );
-    for &strategy in &names {
+    for &strategy in strategies {
         for &delta in &args.delta {
             let s = Stochastic {
                 delta,
-                culling: strategy,
+                strategy,
                 ..base
             };
             let mut best: Option<Point> = None;
             for _ in 0..args.repeat {
-                let out = shade_stochastic(&p, &s, f.seed, f.visibility, &|_| {})
-                    .map_err(|e| e.to_string())?;
+                let out = s.shade(r, input, &|_| {}).map_err(message)?;
                 let point = Point {
                     strategy,
                     delta,
-                    culling_ms: pass_ms(&out.timings, "culling"),
-                    shading_ms: pass_ms(&out.timings, "shading"),
-                    rmse: out.indirect.rmse(&reference),
-                    total: p.direct.add(&out.indirect),
+                    culling_ms: out.timings.get("culling"),
+                    shading_ms: out.timings.get("shading"),
+                    rmse: out.indirect.rmse(reference),
+                    total: input.prepared.direct().add(&out.indirect),
                 };
                 if best.as_ref().is_none_or(|b| point.time_ms() < b.time_ms()) {
                     best = Some(point);
@@ -133,11 +174,21 @@ pub fn run(args: &SweepArgs) -> Result<(), String> {
         }
     }
     progress.finish_and_clear();
+    Ok(points)
+}
+
+/// `sweep.csv`, `sweep.svg` and the equal-time comparison.
+fn write_outputs(
+    args: &SweepArgs,
+    scene: &Scene,
+    names: &[Strategy],
+    points: &[Point],
+) -> Result<(), String> {
     std::fs::create_dir_all(&args.out).map_err(|e| format!("{}: {e}", args.out.display()))?;
     let mut csv = String::from(
         "strategy,delta,culling_ms,shading_ms,culling_plus_shading_ms,rmse_vs_all_vpl\n",
     );
-    for pt in &points {
+    for pt in points {
         let _ = writeln!(
             csv,
             "{},{},{:.3},{:.3},{:.3},{:.6e}",
@@ -177,13 +228,13 @@ pub fn run(args: &SweepArgs) -> Result<(), String> {
         ),
     )
     .map_err(|e| e.to_string())?;
-    equal_time(args, &names, &points)?;
+    equal_time(args, names, points)?;
     println!("wrote {}", args.out.display());
     Ok(())
 }
 
 /// Each strategy's run closest in time to the median run of the first strategy.
-fn equal_time(args: &SweepArgs, names: &[&'static str], points: &[Point]) -> Result<(), String> {
+fn equal_time(args: &SweepArgs, names: &[Strategy], points: &[Point]) -> Result<(), String> {
     let mut first: Vec<&Point> = points.iter().filter(|p| p.strategy == names[0]).collect();
     first.sort_by(|a, b| a.time_ms().total_cmp(&b.time_ms()));
     let target = first[first.len() / 2].time_ms();

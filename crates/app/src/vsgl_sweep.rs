@@ -9,14 +9,16 @@
 //! With `--backend gpu` the frame is prepared on the GPU and the VSGLs are shaded there (with
 //! imperfect shadow maps for `--visibility`); the reference and the sampled VPLs are shaded on
 //! the CPU from the read-back frame.
-use crate::args::Backend;
-use crate::gpu_frame::{check_visibility, GpuFrame};
+use crate::backend::{message, run_on, OnBackend};
 use crate::plot::{line_plot_svg, Series};
 use crate::progress::bar;
-use crate::reference::{all_vpl_reference, prepare_on};
-use crate::sampled::{pass_ms, Estimator, ESTIMATORS, PASSES};
+use crate::reference::{all_vpl_reference, cpu_input};
+use crate::sampled::{Estimator, ESTIMATORS, PASSES};
 use crate::sweep_cmd::SweepArgs;
-use slc_cpu_ref::{Method, Timings, Tracer};
+use slc_core::frame::{Importance, Method, Timings};
+use slc_core::shader::ShadeInput;
+use slc_core::{PreparedFrame, Scene};
+use slc_cpu_ref::CpuFrames;
 use std::fmt::Write;
 use std::time::Instant;
 
@@ -43,73 +45,100 @@ pub fn run(args: &SweepArgs) -> Result<(), String> {
             .validate()
             .map_err(|e| e.to_string())?;
     }
-    let gpu = match f.backend {
-        Backend::Cpu => None,
-        Backend::Gpu => {
-            check_visibility(f.visibility, true)?;
-            Some(GpuFrame::new()?)
+    run_on(f.backend, VsglSweep { args, scene })
+}
+
+struct VsglSweep<'a> {
+    args: &'a SweepArgs,
+    scene: Scene,
+}
+
+impl OnBackend for VsglSweep<'_> {
+    fn run<R: CpuFrames>(self, r: &R) -> Result<(), String> {
+        let VsglSweep { args, scene } = self;
+        let f = &args.frame;
+        for &n in &args.vsgls {
+            r.check(&f.settings(Method::Vsgl(args.importance.sampling(n)), 1))
+                .map_err(message)?;
         }
-    };
-    let (p, on_gpu) = prepare_on(gpu.as_ref(), &scene, &f.settings(Method::VplReference, 1))?;
-    let ism = (gpu.is_some() && f.visibility).then(|| GpuFrame::ism_casters(&scene));
-    let epsilon = Tracer::scene_epsilon(&scene);
-    let vsgl_backend = gpu.as_ref().map_or("cpu", |_| "gpu");
-    let texels: usize = p
-        .maps
-        .iter()
-        .map(|m| m.texels.iter().flatten().count())
-        .sum();
-    let start = Instant::now();
-    let reference = all_vpl_reference(&p, f.visibility)?;
-    let reference_ms = start.elapsed().as_secs_f64() * 1e3;
-    let runs = args.vsgls.len() * ESTIMATORS.len() * (args.seeds * args.repeat) as usize;
-    let progress = bar(runs as u64, "sweep".into());
-    let mut points = Vec::new();
-    for &count in &args.vsgls {
-        let sampling = args.importance.sampling(count);
-        for estimator in ESTIMATORS {
-            let (mut squared, mut best, mut lights) = (0.0f64, None::<Timings>, 0);
-            for seed in f.seed..f.seed + args.seeds {
-                for repetition in 0..args.repeat {
-                    let out = match (estimator, gpu.as_ref().zip(on_gpu.as_ref())) {
-                        (Estimator::Vsgl, Some((g, gp))) => {
-                            g.shade_vsgl(gp, &sampling, seed, epsilon, ism.as_ref())?
-                        }
-                        _ => estimator.shade(&p, &sampling, seed, f.visibility)?,
+        let loaded = r.load(&scene).map_err(message)?;
+        let p = r
+            .prepare(&scene, &loaded, &f.settings(Method::VplReference, 1), None)
+            .map_err(message)?;
+        let cpu_p = r.cpu_frame(&scene, &loaded, &p).map_err(message)?;
+        let texels: usize = cpu_p
+            .maps
+            .iter()
+            .map(|m| m.texels.iter().flatten().count())
+            .sum();
+        let start = Instant::now();
+        let reference = all_vpl_reference(cpu_input(&scene, &cpu_p, f.seed, f.visibility))?;
+        let reference_ms = start.elapsed().as_secs_f64() * 1e3;
+        let runs = args.vsgls.len() * ESTIMATORS.len() * (args.seeds * args.repeat) as usize;
+        let progress = bar(runs as u64, "sweep".into());
+        let mut points = Vec::new();
+        for &count in &args.vsgls {
+            let sampling = args.importance.sampling(count);
+            for estimator in ESTIMATORS {
+                let (mut squared, mut best, mut lights) = (0.0f64, None::<Timings>, 0);
+                for seed in f.seed..f.seed + args.seeds {
+                    let on_r = ShadeInput {
+                        scene: &scene,
+                        loaded: &loaded,
+                        prepared: &p,
+                        seed,
+                        visibility: f.visibility,
                     };
-                    if repetition == 0 {
-                        squared += f64::from(out.indirect.rmse(&reference)).powi(2);
-                        lights = out.lights;
+                    let cpu = cpu_input(&scene, &cpu_p, seed, f.visibility);
+                    for repetition in 0..args.repeat {
+                        let (out, _) = estimator.shade(r, on_r, cpu, sampling)?;
+                        if repetition == 0 {
+                            squared += f64::from(out.indirect.rmse(&reference)).powi(2);
+                            lights = out.sampled_lights.unwrap_or(0);
+                        }
+                        if best
+                            .as_ref()
+                            .is_none_or(|b| out.timings.total() < b.total())
+                        {
+                            best = Some(out.timings);
+                        }
+                        progress.inc(1);
                     }
-                    if best
-                        .as_ref()
-                        .is_none_or(|b| out.timings.total() < b.total())
-                    {
-                        best = Some(out.timings);
-                    }
-                    progress.inc(1);
                 }
+                points.push(Point {
+                    count,
+                    estimator,
+                    lights,
+                    timings: best.unwrap_or_default(),
+                    rmse: (squared / f64::from(args.seeds)).sqrt() as f32,
+                });
             }
-            points.push(Point {
-                count,
-                estimator,
-                lights,
-                timings: best.unwrap_or_default(),
-                rmse: (squared / f64::from(args.seeds)).sqrt() as f32,
-            });
         }
+        progress.finish_and_clear();
+        write_outputs(args, &scene, texels, p.vpls().len(), reference_ms, r.name(), &points)
     }
-    progress.finish_and_clear();
+}
+
+/// `vsgl_sweep.csv`, `.md` and `.svg`.
+fn write_outputs(
+    args: &SweepArgs,
+    scene: &Scene,
+    texels: usize,
+    vpls: usize,
+    reference_ms: f64,
+    vsgl_backend: &str,
+    points: &[Point],
+) -> Result<(), String> {
     std::fs::create_dir_all(&args.out).map_err(|e| format!("{}: {e}", args.out.display()))?;
-    write_csv(args, &points)?;
+    write_csv(args, points)?;
     write_tables(
         args,
         &scene.name,
         texels,
-        p.vpls.len(),
+        vpls,
         reference_ms,
         vsgl_backend,
-        &points,
+        points,
     )?;
     let series: Vec<Series> = ESTIMATORS
         .iter()
@@ -152,7 +181,7 @@ fn write_csv(args: &SweepArgs, points: &[Point]) -> Result<(), String> {
     for p in points {
         let _ = write!(csv, "{},{},{}", p.count, p.estimator.name(), p.lights);
         for (pass, _) in PASSES {
-            let _ = write!(csv, ",{:.3}", pass_ms(&p.timings, pass));
+            let _ = write!(csv, ",{:.3}", p.timings.get(pass));
         }
         let _ = writeln!(csv, ",{:.3},{:.6e}", p.timings.total(), p.rmse);
     }
@@ -182,9 +211,9 @@ fn write_tables(
         f.rsm,
         args.importance.sampling(0).importance.name(),
         match args.importance.sampling(0).importance {
-            slc_cpu_ref::Importance::Bidirectional { camera_vsgls } =>
+            Importance::Bidirectional { camera_vsgls } =>
                 format!(" ({camera_vsgls} camera VSGLs)"),
-            slc_cpu_ref::Importance::Flux => String::new(),
+            Importance::Flux => String::new(),
         },
         args.importance.sampling(0).diffuse.name(),
         f.visibility,
@@ -220,7 +249,7 @@ fn write_tables(
             let Some(p) = find(n, e) else { continue };
             let _ = write!(md, "| {n} | {} | {} |", e.name(), p.lights);
             for (pass, _) in PASSES {
-                let _ = write!(md, " {:.2} |", pass_ms(&p.timings, pass));
+                let _ = write!(md, " {:.2} |", p.timings.get(pass));
             }
             let overhead = match (e, vpl_total) {
                 (Estimator::Vsgl, Some(v)) => format!("{:+.2}", p.timings.total() - v),

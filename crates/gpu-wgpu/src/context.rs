@@ -134,6 +134,26 @@ impl GpuContext {
         })
     }
 
+    /// Runs on a device and queue the host already owns (an engine's, a viewer's), from the
+    /// adapter `info` it was made on. The device must have the limits the passes need (the
+    /// adapter's own limits, `adapter.limits()`, always do; too small a limit is reported as
+    /// [`GpuError::Wgpu`] when the passes are built) and, for per-pass GPU times,
+    /// `Features::TIMESTAMP_QUERY`. The host keeps its device-lost callback: a lost device
+    /// shows here as errors of the passes and waits, not through [`GpuError::DeviceLost`].
+    pub fn from_device(device: wgpu::Device, queue: wgpu::Queue, info: &wgpu::AdapterInfo) -> Self {
+        let timestamps = device.features().contains(wgpu::Features::TIMESTAMP_QUERY);
+        Self {
+            limits: device.limits(),
+            device,
+            queue,
+            adapter_name: format!("{} ({:?})", info.name, info.backend),
+            timestamps,
+            timestamps_trusted: timestamps && info.device_type != wgpu::DeviceType::Cpu,
+            lost: Arc::new(Mutex::new(None)),
+            profiler: Mutex::new(None),
+        }
+    }
+
     /// [`GpuError::DeviceLost`] if the device-lost callback has fired.
     pub fn check_lost(&self) -> Result<(), GpuError> {
         match self.lost.lock().ok().and_then(|slot| slot.clone()) {

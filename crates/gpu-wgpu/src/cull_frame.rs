@@ -2,14 +2,12 @@
 //! `none_cull_pass`): their input ([`CullFrame`]: G-buffer positions on the GPU, camera, VPLs,
 //! δ, interleaving), the input checks of the CPU cullers (`slc_cull`'s `pixel_count` and
 //! `partition::check`), the uniform per-subregion tile grid and its [`GpuCullParams`], the
-//! G-buffer positions the tile passes read, the fault record they write, and the readback of
-//! [`GpuLightLists`] as a [`LightLists`] in the CPU's convention.
-use crate::buffers::{output, read_back, upload};
+//! G-buffer positions the tile passes read, and the fault record they write.
+use crate::buffers::{read_back, upload};
 use crate::context::{GpuContext, GpuError};
 use crate::gbuffer_pass::GpuGBuffer;
 use crate::gpu_types::{GpuCullParams, GpuCullStatus, FRUSTUM_SLACK, MAX_K};
-use crate::gpu_lists::GpuLightLists;
-use slc_core::{Camera, CullInput, Interleaving, LightLists, Vpl, NO_LIST, TILE_SIZE};
+use slc_core::{Camera, CullInput, Interleaving, Vpl, TILE_SIZE};
 use slc_cull::CullView;
 
 /// What every GPU culler reads: the G-buffer's world positions on the GPU and what culling

@@ -18,9 +18,10 @@
 use crate::buffers::{output, read_back, uniform, upload, Grid};
 use crate::context::{GpuContext, GpuError};
 use crate::gbuffer_pass::GpuGBuffer;
+use crate::gpu_lists::GpuLightLists;
 use crate::gpu_types::{gpu_position, GpuSample, GpuShadeParams, GpuVpl, MAX_K};
 use glam::Vec3;
-use slc_core::{CullInput, Image, Interleaving, LightLists, Vpl, NO_LIST};
+use slc_core::{CullInput, Image, Interleaving, LightLists, Vpl};
 
 /// `shaders/brdf.wgsl` followed by the shading kernel.
 pub(crate) const SOURCE: &str = concat!(

@@ -15,7 +15,7 @@ use slc_core::{builtin, CullInput, GBuffer, Interleaving, LightLists, Vpl, NO_LI
 use slc_cull::{CullView, GlossyBound};
 use slc_gpu_wgpu::buffers::read_back;
 use slc_gpu_wgpu::clustered_cull_pass::ClusteredCuller;
-use slc_gpu_wgpu::cull_frame::read_lists;
+use slc_gpu_wgpu::gpu_lists::read_lists;
 use slc_gpu_wgpu::cull_types::CLUSTER_SLICES;
 use slc_gpu_wgpu::{GpuContext, GpuError};
 use std::collections::HashSet;
@@ -102,7 +102,7 @@ fn compare(ctx: &GpuContext, culler: &ClusteredCuller, input: &CullInput, name: 
         "clustered-sphere" => GlossyBound::Sphere,
         _ => GlossyBound::EnclosingSphere,
     };
-    let cpu = culler(name).cull(input).unwrap();
+    let cpu = slc_cull::culler(name.parse().unwrap()).cull(input).unwrap();
     let on_gpu = culler.cull_on_gpu(ctx, input, glossy).unwrap();
     let raw: Vec<u32> =
         read_back(ctx, "pixel lists", &on_gpu.pixel_list, cpu.pixel_list.len()).unwrap();
@@ -290,7 +290,7 @@ fn unculled_lists_match_the_cpu() {
             delta: 1e-3,
             interleaving: Interleaving { k, seed: 9 },
         };
-        let cpu = culler(Strategy::None).cull(&input).unwrap();
+        let cpu = slc_cull::culler(slc_core::Strategy::None).cull(&input).unwrap();
         let gpu = culler.cull(&ctx, &input).unwrap();
         let diff = exact_differences(&input, &cpu, &gpu);
         eprintln!(
@@ -352,7 +352,7 @@ fn clustered_and_unculled_reject_bad_input() {
         gbuffer: &behind,
         ..input
     };
-    assert!(culler(Strategy::Clustered).cull(&bad).is_err());
+    assert!(slc_cull::culler(slc_core::Strategy::Clustered).cull(&bad).is_err());
     let e = clustered
         .cull(&ctx, &bad, GlossyBound::Ellipsoid)
         .unwrap_err();
@@ -364,7 +364,7 @@ fn clustered_and_unculled_reject_bad_input() {
         vpls: &odd,
         ..input
     };
-    assert!(culler(Strategy::ClusteredSphere)
+    assert!(slc_cull::culler(slc_core::Strategy::ClusteredSphere)
         .cull(&bad)
         .is_err());
     let e = clustered.cull(&ctx, &bad, GlossyBound::Sphere).unwrap_err();

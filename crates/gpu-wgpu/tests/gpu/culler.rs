@@ -1,11 +1,11 @@
-//! `GpuCuller`: every strategy of `slc_cull::Strategy::ALL` by name, and its lists left on
-//! the GPU read by the shading pass.
+//! `GpuCuller`: every strategy of `slc_core::Strategy::ALL`, also bound as a
+//! `slc_core::Culler`, and its lists left on the GPU read by the shading pass.
 use crate::common::gpu;
 use crate::tiled::frame;
-use slc_core::{builtin, CullInput, Interleaving};
-use slc_core::Strategy;
-use slc_cull::culler;
-use slc_gpu_wgpu::culler::{GpuCuller, Strategy};
+use slc_core::{builtin, CullInput, Culler, Interleaving, Strategy};
+use slc_gpu_wgpu::cull_frame::CullFrame;
+use slc_gpu_wgpu::culler::GpuCuller;
+use slc_gpu_wgpu::gpu_lists::read_lists;
 use slc_gpu_wgpu::shade_pass::ShadePass;
 
 /// Each name runs its own strategy: the GPU's lists by name equal the CPU strategy's of the
@@ -27,11 +27,15 @@ fn every_strategy_by_name_matches_the_cpu_strategy_of_that_name() {
     };
     let cpu: Vec<_> = Strategy::ALL
         .iter()
-        .map(|name| culler(name).cull(&input).unwrap())
+        .map(|&s| slc_cull::culler(s).cull(&input).unwrap())
         .collect();
     for (i, &name) in Strategy::ALL.iter().enumerate() {
-        let strategy = Strategy::by_name(name).unwrap();
-        let gpu = culler.cull(&ctx, &input, strategy).unwrap();
+        let gpu = culler.cull(&ctx, &input, name).unwrap();
+        // The same strategy bound as a `Culler` of frames on the GPU.
+        let bound = culler.culler(&ctx, name);
+        assert_eq!(bound.strategy(), name);
+        let frame = CullFrame::upload(&ctx, &input).unwrap();
+        assert_eq!(read_lists(&ctx, &bound.cull(&frame).unwrap()).unwrap(), gpu);
         let differing = |other: &slc_core::LightLists| -> usize {
             (0..gpu.pixel_list.len())
                 .map(|p| {
@@ -72,9 +76,10 @@ fn shading_reads_every_strategys_lists_on_the_gpu() {
             delta: 1e-3,
             interleaving: Interleaving { k, seed: 2 },
         };
-        for name in Strategy::ALL {
-            let strategy = Strategy::by_name(name).unwrap();
-            let on_gpu = culler.cull_on_gpu(&ctx, &input, strategy).unwrap();
+        for strategy in Strategy::ALL {
+            let name = strategy.name();
+            let frame = CullFrame::upload(&ctx, &input).unwrap();
+            let on_gpu = culler.cull_frame(&ctx, &frame, strategy).unwrap();
             let direct = shade.shade_gpu_lists(&ctx, &input, &on_gpu).unwrap();
             let lists = culler.cull(&ctx, &input, strategy).unwrap();
             let uploaded = shade.shade(&ctx, &input, &lists).unwrap();

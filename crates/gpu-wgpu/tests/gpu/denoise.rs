@@ -12,8 +12,6 @@ use slc_core::{builtin, Camera, CullInput, GBuffer, GSample, Image, Interleaving
 use slc_cpu_ref::denoise::{cross_bilateral, BilateralParams};
 use slc_cpu_ref::vpl_shading::shade_lists;
 use slc_cpu_ref::Tracer;
-use slc_core::Strategy;
-use slc_cull::culler;
 use slc_gpu_wgpu::buffers::{output, upload};
 use slc_gpu_wgpu::denoise_pass::{BilateralSettings, DenoisePass, Guide};
 use slc_gpu_wgpu::{GpuContext, GpuError};
@@ -116,7 +114,7 @@ fn filter_matches_the_cpu_on_the_default_scene() {
             delta: 1e-3,
             interleaving: Interleaving { k, seed: 1 },
         };
-        let lists = culler(Strategy::None).cull(&input).unwrap();
+        let lists = slc_cull::culler(slc_core::Strategy::None).cull(&input).unwrap();
         let noisy = shade_lists(&tracer, &input, &lists, false, &|_| ()).unwrap();
         let worst = filter_both(&ctx, &pass, "default scene", &noisy, &gbuffer, &camera);
         // The filter did its job: most pixels changed noticeably.

@@ -1,6 +1,6 @@
 //! Direct light with shadow maps (`DirectPass`) against `shade_direct` (shadow rays), and the
 //! whole frame rasterized on the GPU (G-buffer, RSMs, VPLs, tiled culling, shading, direct
-//! light) against the CPU frame of `prepare` + `shade_stochastic`.
+//! light) against the CPU frame of `prepare` + the stochastic shader on `CpuRenderer`.
 //!
 //! Per pixel the error is `max_c |gpu − cpu| / max(max_c cpu, FLOOR · max_c mean(cpu))`
 //! (relative, with a floor of 1% of the image mean so that black pixels count absolutely);
@@ -26,8 +26,11 @@ use crate::common::gpu;
 use crate::raster_common::{default_scene, edge_pixels, extent, lit_scene};
 use slc_core::{Image, Interleaving};
 use slc_cpu_ref::direct::shade_direct;
-use slc_cpu_ref::render::{prepare, shade_stochastic, Method, RenderSettings, Stochastic};
-use slc_cpu_ref::{LobeSelection, Tracer};
+use slc_core::frame::{Method, RenderSettings, Stochastic};
+use slc_core::shader::{ShadeInput, Shader};
+use slc_cpu_ref::{prepare, CpuRenderer};
+use slc_core::frame::LobeSelection;
+use slc_cpu_ref::Tracer;
 use slc_cull::GlossyBound;
 use slc_gpu_wgpu::cull_frame::CullFrame;
 use slc_gpu_wgpu::direct_pass::DirectPass;
@@ -115,7 +118,7 @@ fn rasterized_gpu_frame_matches_the_cpu_frame() {
     };
     let stochastic = Stochastic {
         delta: 1e-3,
-        culling: "ellipsoid",
+        strategy: slc_core::Strategy::Ellipsoid,
         interleave: 2,
         denoise: false,
         metrics: false,
@@ -123,10 +126,18 @@ fn rasterized_gpu_frame_matches_the_cpu_frame() {
     let interleaving = Interleaving { k: 2, seed: 13 };
     // The CPU frame: ray-traced G-buffer and RSMs, shadow rays, CPU culling and shading.
     let prepared = prepare(&scene, &settings, Tracer::new(&scene), None);
-    let cpu = shade_stochastic(&prepared, &stochastic, interleaving.seed, false, &|_| {})
+    let cpu_input = ShadeInput {
+        scene: &scene,
+        loaded: &prepared.tracer,
+        prepared: &prepared,
+        seed: interleaving.seed,
+        visibility: false,
+    };
+    let cpu_indirect = stochastic
+        .shade(&CpuRenderer, cpu_input, &|_| {})
         .unwrap()
-        .indirect
-        .add(&prepared.direct);
+        .indirect;
+    let cpu = cpu_indirect.add(&prepared.direct);
     // The GPU frame, every stage on the GPU; only the VPLs are read back (the culler's
     // bounds pass takes them from the CPU).
     let (w, h) = (settings.width, settings.height);
@@ -179,9 +190,7 @@ fn rasterized_gpu_frame_matches_the_cpu_frame() {
     let inside: Vec<bool> = edges.iter().map(|e| !e).collect();
     let (mean, p99, above) = errors(&cpu, &frame, &inside);
     let (ind_mean, ind_p99, _) = errors(
-        &shade_stochastic(&prepared, &stochastic, interleaving.seed, false, &|_| {})
-            .unwrap()
-            .indirect,
+        &cpu_indirect,
         &indirect,
         &inside,
     );

@@ -19,10 +19,14 @@ use glam::Vec3;
 use slc_bounds::Fresnel;
 use slc_core::{Camera, CullInput, GBuffer, GSample, Interleaving, Mesh, Scene};
 use slc_cpu_ref::gbuffer::{trace_gbuffer, PixelSample};
-use slc_cpu_ref::render::{prepare, Method, RenderSettings};
-use slc_cpu_ref::{LobeSelection, Tracer};
-use slc_gpu_wgpu::cull_frame::{read_lists, CullFrame};
-use slc_gpu_wgpu::culler::{GpuCuller, Strategy};
+use slc_core::frame::{Method, RenderSettings};
+use slc_cpu_ref::prepare;
+use slc_core::frame::LobeSelection;
+use slc_cpu_ref::Tracer;
+use slc_gpu_wgpu::cull_frame::CullFrame;
+use slc_gpu_wgpu::gpu_lists::read_lists;
+use slc_core::Strategy;
+use slc_gpu_wgpu::culler::GpuCuller;
 use slc_gpu_wgpu::gbuffer_pass::GbufferPass;
 use slc_gpu_wgpu::scene_upload::GpuScene;
 use slc_gpu_wgpu::shade_pass::ShadePass;
@@ -334,9 +338,10 @@ fn culling_and_shading_read_the_gpu_gbuffer_in_place() {
         interleaving,
     };
     // Every strategy: the tiled, clustered and unculled passes all read positions.
-    for &name in slc_cull::Strategy::ALL {
-        let strategy = Strategy::by_name(name).unwrap();
-        let uploaded = culler.cull_on_gpu(&ctx, &input, strategy).unwrap();
+    for strategy in Strategy::ALL {
+        let name = strategy.name();
+        let frame = CullFrame::upload(&ctx, &input).unwrap();
+        let uploaded = culler.cull_frame(&ctx, &frame, strategy).unwrap();
         let want = shader.shade_gpu_lists(&ctx, &input, &uploaded).unwrap();
         let lists = culler
             .cull_frame(

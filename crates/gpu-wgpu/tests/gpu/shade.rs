@@ -204,7 +204,7 @@ fn shading_matches_the_cpu() {
                 interleaving: Interleaving { k, seed: 3 },
             };
             for name in ["ellipsoid", "none"] {
-                let lists = culler(name).cull(&input).unwrap();
+                let lists = slc_cull::culler(name.parse().unwrap()).cull(&input).unwrap();
                 let what = format!("{name} K {k} delta {delta}, {} VPLs", vpls.len());
                 worst = worst.max(check(&ctx, &shader, &tracer, &input, &lists, &what));
             }

@@ -238,7 +238,7 @@ fn tiled_lists_match_the_cpu() {
                 ("enclosing-sphere", GlossyBound::EnclosingSphere),
                 ("ellipsoid", GlossyBound::Ellipsoid),
             ] {
-                let cpu = culler(name).cull(&input).unwrap();
+                let cpu = slc_cull::culler(name.parse().unwrap()).cull(&input).unwrap();
                 let gpu = culler.cull(&ctx, &input, glossy).unwrap();
                 let (border, diff) = differences(&input, glossy, &cpu, &gpu, |view, x, y| {
                     Some(half_z_frustum(&input, view, x, y))
@@ -331,7 +331,7 @@ fn tiled_culling_rejects_bad_input() {
         delta: 1e-37,
         ..input
     };
-    assert!(culler(Strategy::Sphere).cull(&bad).is_err());
+    assert!(slc_cull::culler(slc_core::Strategy::Sphere).cull(&bad).is_err());
     let e = culler.cull(&ctx, &bad, GlossyBound::Sphere).unwrap_err();
     assert!(e.to_string().contains(&format!("VPL {glossy}")), "{e}");
 }

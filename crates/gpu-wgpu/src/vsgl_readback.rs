@@ -1,14 +1,16 @@
-//! What the GPU VSGL frame brings to the CPU and back: a rasterized RSM ([`GpuRsm`]) read back
-//! as the CPU's [`Rsm`], which the VSGL mipmap and sampling code takes
-//! (`slc_cpu_ref::vsgl::MipRsm`), and CPU VSGLs in the GPU shading pass's input form.
+//! What the GPU frame brings to the CPU and back: a rasterized RSM ([`GpuRsm`]) read back as
+//! the CPU's [`Rsm`], which the VSGL mipmap and sampling code (`slc_cpu_ref::vsgl::MipRsm`)
+//! and the CPU's reference passes take, and CPU VSGLs in the GPU shading pass's input form.
 use glam::Vec3;
 use slc_bounds::{Brdf, Fresnel};
 use slc_cpu_ref::rsm::{rectangle_solid_angle, Rsm, RsmTexel};
-use slc_cpu_ref::vsgl::{DiffuseEmission, Vsgl};
-use slc_gpu_wgpu::gpu_types::FRESNEL_SCHLICK;
-use slc_gpu_wgpu::rsm_pass::GpuRsm;
-use slc_gpu_wgpu::vsgl_types::{VsglInput, VsglLobe};
-use slc_gpu_wgpu::{GpuContext, GpuError};
+use slc_core::frame::DiffuseEmission;
+use slc_cpu_ref::vsgl::Vsgl;
+
+use crate::context::{GpuContext, GpuError};
+use crate::gpu_types::FRESNEL_SCHLICK;
+use crate::rsm_pass::GpuRsm;
+use crate::vsgl_types::{VsglInput, VsglLobe};
 
 fn xyz(v: [f32; 4]) -> Vec3 {
     Vec3::new(v[0], v[1], v[2])
@@ -80,7 +82,7 @@ pub fn cpu_rsm(ctx: &GpuContext, rsm: &GpuRsm) -> Result<Rsm, GpuError> {
     })
 }
 
-/// A CPU VSGL as `slc_gpu_wgpu::vsgl_shade_pass` takes it.
+/// A CPU VSGL as [`crate::vsgl_shade_pass`] takes it.
 pub fn vsgl_input(v: &Vsgl, diffuse: DiffuseEmission) -> VsglInput {
     VsglInput {
         clamped_diffuse: match diffuse {

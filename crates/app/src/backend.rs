@@ -1,0 +1,41 @@
+//! The one place the command opens a backend: each command is written once over the
+//! renderer API (`slc_core::Renderer`, with `slc_cpu_ref::CpuFrames` for what only the CPU
+//! computes) and run here on the backend `--backend` names. Without the `gpu` feature the
+//! GPU backend is an error naming the feature.
+use crate::args::Backend;
+use slc_core::RenderError;
+use slc_cpu_ref::{CpuFrames, CpuRenderer};
+
+/// A command written once for every backend.
+pub trait OnBackend {
+    fn run<R: CpuFrames>(self, r: &R) -> Result<(), String>;
+}
+
+/// Runs `command` on `backend`.
+pub fn run_on(backend: Backend, command: impl OnBackend) -> Result<(), String> {
+    match backend {
+        Backend::Cpu => command.run(&CpuRenderer),
+        Backend::Gpu => run_on_gpu(command),
+    }
+}
+
+#[cfg(feature = "gpu")]
+fn run_on_gpu(command: impl OnBackend) -> Result<(), String> {
+    let gpu = slc_gpu_wgpu::GpuRenderer::new().map_err(|e| e.to_string())?;
+    command.run(&gpu)
+}
+
+#[cfg(not(feature = "gpu"))]
+fn run_on_gpu(_command: impl OnBackend) -> Result<(), String> {
+    Err("this slc was built without the `gpu` feature; rebuild with it (the default) or use \
+         --backend cpu"
+        .into())
+}
+
+/// A library error as the command reports it: what a backend lacks points to the CPU one.
+pub fn message(e: RenderError) -> String {
+    match e {
+        RenderError::Unsupported { .. } => format!("{e} (--backend cpu)"),
+        _ => e.to_string(),
+    }
+}

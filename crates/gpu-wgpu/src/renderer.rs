@@ -1,0 +1,472 @@
+//! The GPU backend of the renderer API: [`GpuRenderer`] runs every step of
+//! `slc_core::Renderer` on wgpu — the rasterized G-buffer, the RSMs (also the shadow maps),
+//! VPL generation, direct light, culling by any strategy with light lists that stay on the
+//! GPU, shading and the cross bilateral filter — on a device it opens
+//! ([`GpuRenderer::new`]) or one the host owns ([`GpuRenderer::from_context`] with
+//! [`GpuContext::from_device`]). What comes back to the CPU: the VPLs once per frame (the
+//! culler's bounds pass reads them from the CPU), the images, and the G-buffer and lists
+//! where the brute-force metrics or a CPU reference need them ([`CpuFrames`]). VSGLs: the
+//! RSMs are read back, the VSGLs built and sampled on the CPU (`slc_cpu_ref::vsgl`) and shaded
+//! on the GPU ([`crate::vsgl_shade_pass`]), with visibility from imperfect shadow maps to each
+//! VSGL's `μ_v` ([`crate::ism_pass`]).
+//!
+//! Pass times are wall clock around each step, its uploads, readbacks and the wait for
+//! completion included; where the adapter has trustworthy timestamp queries the GPU's
+//! execution times of the same passes come beside them.
+use crate::context::{GpuContext, GpuError};
+use crate::cull_frame::CullFrame;
+use crate::culler::GpuCuller;
+use crate::denoise_pass::{BilateralSettings, DenoisePass, Guide};
+use crate::direct_pass::DirectPass;
+use crate::gbuffer_pass::{GbufferPass, GpuGBuffer};
+use crate::gpu_lists::{read_lists, GpuLightLists};
+use crate::ism_pass::{caster_points, GpuCaster, IsmPass, IsmSettings};
+use crate::renderer_notes::{frame_notes, vsgl_note, METRICS_NOTE};
+use crate::rsm_pass::{GpuRsm, RsmPass};
+use crate::scene_upload::GpuScene;
+use crate::shade_pass::{read_image, ShadePass};
+use crate::vpl_gen_pass::{VplGenPass, VplLobes};
+use crate::vsgl_readback::{cpu_rsm, vsgl_input};
+use crate::vsgl_shade_pass::{GpuVsgls, VsglShadePass};
+use slc_bounds::sg::MeanMap;
+use slc_core::frame::{
+    Importance, LightSampling, LobeSelection, Method, RenderError, RenderSettings, Shaded,
+    Timings,
+};
+use slc_core::rng::{stream, uniform};
+use slc_core::render::pass_seed;
+use slc_core::{
+    BackendInfo, Camera, Capabilities, Culler, CullInput, CullMetrics, GBuffer, Image,
+    Interleaving, PreparedFrame, Progress, Renderer, Scene, Strategy, Vpl,
+};
+use slc_cpu_ref::sampled_lights::sample_vsgls;
+use slc_cpu_ref::vsgl::{bidirectional_importance, ImportanceMap, MipRsm};
+use slc_cpu_ref::{CpuFrames, CpuPrepared, Tracer};
+use std::borrow::Cow;
+use std::cell::OnceCell;
+use std::sync::Arc;
+
+fn gpu(e: GpuError) -> RenderError {
+    RenderError::backend(e)
+}
+
+/// A scene as the GPU keeps it between frames.
+pub struct GpuLoadedScene {
+    /// Triangles, materials and textures in GPU buffers.
+    pub gpu: GpuScene,
+    /// The scene's ray offset (`Tracer::scene_epsilon`).
+    pub epsilon: f32,
+    /// Caster points of the imperfect shadow maps, made when VSGL visibility first needs them.
+    casters: OnceCell<(Vec<GpuCaster>, IsmSettings)>,
+    /// The CPU's BVH, built when a frame is first read back for a CPU pass.
+    tracer: OnceCell<Arc<Tracer>>,
+}
+
+/// A frame prepared on the GPU up to its VPLs and direct light, its G-buffer and RSMs left
+/// on the GPU.
+pub struct GpuPrepared {
+    pub camera: Camera,
+    pub gbuffer: GpuGBuffer,
+    /// The RSMs, one per light in the scene's order (VSGLs are built from them).
+    pub maps: Vec<GpuRsm>,
+    pub vpls: Vec<Vpl>,
+    pub direct: Image,
+    pub timings: Timings,
+    /// Timestamp times of the passes, where the adapter has trustworthy ones.
+    pub gpu_timings: Option<Timings>,
+    /// The G-buffer read back, once something on the CPU needs it.
+    cpu_gbuffer: OnceCell<GBuffer>,
+}
+
+impl PreparedFrame for GpuPrepared {
+    fn camera(&self) -> &Camera {
+        &self.camera
+    }
+
+    fn vpls(&self) -> &[Vpl] {
+        &self.vpls
+    }
+
+    fn direct(&self) -> &Image {
+        &self.direct
+    }
+
+    fn timings(&self) -> &Timings {
+        &self.timings
+    }
+
+    fn gpu_timings(&self) -> Option<&Timings> {
+        self.gpu_timings.as_ref()
+    }
+}
+
+/// The device and the compiled GPU passes, created once and used for every frame.
+pub struct GpuRenderer {
+    ctx: GpuContext,
+    gbuffer: GbufferPass,
+    rsm: RsmPass,
+    vpl_gen: VplGenPass,
+    direct: DirectPass,
+    culler: GpuCuller,
+    shader: ShadePass,
+    vsgl_shader: VsglShadePass,
+    ism: IsmPass,
+    denoiser: DenoisePass,
+}
+
+impl GpuRenderer {
+    /// Opens the first adapter wgpu finds and compiles the passes; no adapter is
+    /// [`GpuError::NoAdapter`].
+    pub fn new() -> Result<Self, GpuError> {
+        Self::from_context(GpuContext::new()?)
+    }
+
+    /// Compiles the passes on `ctx`, e.g. a host's device ([`GpuContext::from_device`]).
+    pub fn from_context(ctx: GpuContext) -> Result<Self, GpuError> {
+        Ok(Self {
+            gbuffer: GbufferPass::new(&ctx)?,
+            rsm: RsmPass::new(&ctx)?,
+            vpl_gen: VplGenPass::new(&ctx)?,
+            direct: DirectPass::new(&ctx)?,
+            culler: GpuCuller::new(&ctx)?,
+            shader: ShadePass::new(&ctx)?,
+            vsgl_shader: VsglShadePass::new(&ctx)?,
+            ism: IsmPass::new(&ctx)?,
+            denoiser: DenoisePass::new(&ctx)?,
+            ctx,
+        })
+    }
+
+    /// The device the passes run on.
+    pub fn context(&self) -> &GpuContext {
+        &self.ctx
+    }
+
+    /// Runs `f` as the pass `stage` (timestamp profiles attribute its work to it) and waits
+    /// for the GPU, so wall-clock times around it are the pass's.
+    fn step<T>(&self, stage: &'static str, f: impl FnOnce() -> Result<T, GpuError>) -> Result<T, RenderError> {
+        self.ctx.set_stage(stage);
+        let out = f().map_err(gpu)?;
+        self.ctx.wait().map_err(gpu)?;
+        Ok(out)
+    }
+
+    fn cpu_gbuffer<'a>(&self, p: &'a GpuPrepared) -> Result<&'a GBuffer, RenderError> {
+        if let Some(g) = p.cpu_gbuffer.get() {
+            return Ok(g);
+        }
+        let g = p.gbuffer.read_back(&self.ctx).map_err(gpu)?;
+        Ok(p.cpu_gbuffer.get_or_init(|| g))
+    }
+
+    fn cull_frame<'a>(p: &'a GpuPrepared, delta: f32, interleaving: Interleaving) -> CullFrame<'a> {
+        CullFrame::on_gpu(&p.gbuffer, &p.vpls, delta, interleaving)
+    }
+}
+
+impl Renderer for GpuRenderer {
+    type Scene = GpuLoadedScene;
+    type Prepared = GpuPrepared;
+    type Lists = GpuLightLists;
+    type Image = wgpu::Buffer;
+
+    fn name(&self) -> &'static str {
+        "gpu"
+    }
+
+    fn capabilities(&self) -> Capabilities {
+        Capabilities {
+            vpl_visibility: false,
+            vsgl_visibility: true,
+            references: false,
+            sampled_vpls: false,
+        }
+    }
+
+    fn info(&self, settings: &RenderSettings) -> BackendInfo {
+        let mut notes = frame_notes(&self.ctx);
+        match settings.method {
+            Method::Stochastic(s) if s.metrics => notes.push(METRICS_NOTE.into()),
+            Method::Vsgl(_) => notes.push(vsgl_note(settings.visibility)),
+            _ => {}
+        }
+        BackendInfo {
+            backend: "gpu",
+            adapter: self.ctx.adapter_name.clone(),
+            notes,
+        }
+    }
+
+    fn load(&self, scene: &Scene) -> Result<GpuLoadedScene, RenderError> {
+        Ok(GpuLoadedScene {
+            gpu: GpuScene::upload(&self.ctx, scene).map_err(gpu)?,
+            epsilon: Tracer::scene_epsilon(scene),
+            casters: OnceCell::new(),
+            tracer: OnceCell::new(),
+        })
+    }
+
+    /// The twin of `slc_cpu_ref::prepare`. `pass` = `Some(p)` shifts every pixel's sample by
+    /// one offset for pass p (a rasterizer has one sub-pixel offset per frame, where the CPU
+    /// jitters each pixel) and keeps texel centres, with the CPU's per-pass VPL seed.
+    fn prepare(
+        &self,
+        scene: &Scene,
+        loaded: &GpuLoadedScene,
+        settings: &RenderSettings,
+        pass: Option<u32>,
+    ) -> Result<GpuPrepared, RenderError> {
+        let (w, h) = (settings.width, settings.height);
+        let camera = scene.camera_or_default();
+        let offset = match pass {
+            None => (0.5, 0.5),
+            Some(p) => (
+                uniform(settings.seed, u32::MAX, stream::PIXEL, 2 * p),
+                uniform(settings.seed, u32::MAX, stream::PIXEL, 2 * p + 1),
+            ),
+        };
+        let seed = pass_seed(settings.seed, pass);
+        let lobes = match settings.lobes {
+            LobeSelection::Both => VplLobes::Both,
+            LobeSelection::Diffuse => VplLobes::Diffuse,
+            LobeSelection::Glossy => VplLobes::Glossy,
+        };
+        let (ctx, scene_gpu) = (&self.ctx, &loaded.gpu);
+        let ((gbuffer, maps, vpls, direct, timings), gpu_timings) = self.profiled(|| {
+            let mut t = Timings::default();
+            let gbuffer = t.time("gbuffer", || {
+                self.step("gbuffer", || {
+                    self.gbuffer.render(ctx, scene_gpu, &camera, w, h, offset)
+                })
+            })?;
+            let maps = t.time("rsm", || {
+                self.step("rsm", || {
+                    scene
+                        .lights
+                        .iter()
+                        .map(|l| self.rsm.render(ctx, scene_gpu, l, settings.rsm_resolution))
+                        .collect::<Result<Vec<_>, _>>()
+                })
+            })?;
+            let vpls = t.time("vpl_generation", || {
+                self.step("vpl_generation", || {
+                    self.vpl_gen.generate(ctx, &maps, seed, lobes)?.read_back(ctx)
+                })
+            })?;
+            let direct = t.time("direct", || {
+                self.step("direct", || self.direct.render(ctx, scene_gpu, &gbuffer, &maps))
+            })?;
+            Ok((gbuffer, maps, vpls, direct, t))
+        })?;
+        Ok(GpuPrepared {
+            camera,
+            gbuffer,
+            maps,
+            vpls,
+            direct,
+            timings,
+            gpu_timings,
+            cpu_gbuffer: OnceCell::new(),
+        })
+    }
+
+    fn cull(
+        &self,
+        p: &GpuPrepared,
+        strategy: Strategy,
+        delta: f32,
+        interleaving: Interleaving,
+    ) -> Result<GpuLightLists, RenderError> {
+        self.step("culling", || {
+            self.culler
+                .culler(&self.ctx, strategy)
+                .cull(&Self::cull_frame(p, delta, interleaving))
+        })
+    }
+
+    fn shade_lists(
+        &self,
+        _loaded: &GpuLoadedScene,
+        p: &GpuPrepared,
+        lists: &GpuLightLists,
+        delta: f32,
+        interleaving: Interleaving,
+        visibility: bool,
+        _progress: Progress,
+    ) -> Result<wgpu::Buffer, RenderError> {
+        if visibility {
+            return Err(self.unsupported("shadow rays between VPLs and pixels (visibility)"));
+        }
+        self.step("shading", || {
+            self.shader.shade_gpu_gbuffer_on_gpu(
+                &self.ctx,
+                &p.gbuffer,
+                &p.vpls,
+                delta,
+                interleaving,
+                lists,
+            )
+        })
+    }
+
+    fn denoise(&self, p: &GpuPrepared, image: wgpu::Buffer) -> Result<wgpu::Buffer, RenderError> {
+        let g = &p.gbuffer;
+        self.step("denoise", || {
+            let guide = Guide {
+                samples: &g.samples,
+                positions: &g.positions,
+                width: g.width,
+                height: g.height,
+                camera: &g.camera,
+            };
+            self.denoiser
+                .filter_on_gpu(&self.ctx, &image, &guide, &BilateralSettings::default())
+        })
+    }
+
+    fn read_image(&self, p: &GpuPrepared, image: wgpu::Buffer) -> Result<Image, RenderError> {
+        read_image(&self.ctx, &image, p.gbuffer.width, p.gbuffer.height).map_err(gpu)
+    }
+
+    fn measure(
+        &self,
+        p: &GpuPrepared,
+        lists: &GpuLightLists,
+        delta: f32,
+        interleaving: Interleaving,
+    ) -> Result<CullMetrics, RenderError> {
+        let input = CullInput {
+            gbuffer: self.cpu_gbuffer(p)?,
+            camera: &p.camera,
+            vpls: &p.vpls,
+            delta,
+            interleaving,
+        };
+        let read = read_lists(&self.ctx, lists).map_err(gpu)?;
+        Ok(slc_cull::metrics::measure(&input, &read)?)
+    }
+
+    /// As `slc_cpu_ref::sampled_lights::shade_vsgl` computes it: the RSMs read back
+    /// (`rsm_readback`), the Toksvig mipmaps (`vsgl_mip`), the flux or bidirectional
+    /// importance (`importance_map`; the latter reads the G-buffer back) and the filtered
+    /// importance sampling of clusters (`light_sampling`) on the CPU, `σ_v²` floored at the
+    /// square of the scene's ray offset as the CPU's `sigma2_floor` does; then the analytic
+    /// shading of eq. (2)-(5) on the GPU (`light_shading`, VSGL upload included). With
+    /// `visibility` an imperfect shadow map per VSGL is rendered (`shadow_maps`) and the
+    /// shading weighted by its visibility, where the CPU traces shadow rays.
+    fn shade_vsgls(
+        &self,
+        scene: &Scene,
+        loaded: &GpuLoadedScene,
+        p: &GpuPrepared,
+        s: &LightSampling,
+        seed: u32,
+        visibility: bool,
+        _progress: Progress,
+    ) -> Result<Shaded, RenderError> {
+        let ctx = &self.ctx;
+        let mut timings = Timings::default();
+        let floor = loaded.epsilon * loaded.epsilon;
+        let maps = timings.time("rsm_readback", || {
+            self.step("rsm_readback", || {
+                p.maps.iter().map(|m| cpu_rsm(ctx, m)).collect::<Result<Vec<_>, _>>()
+            })
+        })?;
+        let mips = timings
+            .time("vsgl_mip", || {
+                maps.iter()
+                    .map(|rsm| MipRsm::build(rsm, MeanMap::Toksvig))
+                    .collect::<Result<Vec<_>, _>>()
+            })
+            .map_err(RenderError::backend)?;
+        let importance = match s.importance {
+            Importance::Flux => timings.time("importance_map", || {
+                mips.iter().map(ImportanceMap::from_mip).collect::<Vec<_>>()
+            }),
+            Importance::Bidirectional { camera_vsgls } => {
+                let gbuffer = self.cpu_gbuffer(p)?;
+                timings
+                    .time("importance_map", || {
+                        bidirectional_importance(
+                            gbuffer, &p.camera, &maps, camera_vsgls, seed, floor, s.diffuse,
+                        )
+                    })
+                    .map_err(RenderError::backend)?
+            }
+        };
+        let vsgls = timings
+            .time("light_sampling", || {
+                sample_vsgls(&mips, &importance, s.count, seed, floor)
+            })
+            .map_err(RenderError::backend)?;
+        let g = &p.gbuffer;
+        let shadow_maps = if visibility {
+            let (casters, settings) = loaded.casters.get_or_init(|| {
+                let settings = IsmSettings::paper(loaded.epsilon);
+                (caster_points(scene, &settings), settings)
+            });
+            let centres: Vec<_> = vsgls.iter().map(|v| v.mu).collect();
+            Some(timings.time("shadow_maps", || {
+                self.step("shadow_maps", || self.ism.render(ctx, casters, &centres, settings))
+            })?)
+        } else {
+            None
+        };
+        let rgb = timings.time("light_shading", || {
+            self.step("light_shading", || {
+                let inputs: Vec<_> = vsgls.iter().map(|v| vsgl_input(v, s.diffuse)).collect();
+                let uploaded = GpuVsgls::upload(ctx, &inputs)?;
+                match &shadow_maps {
+                    Some(maps) => self
+                        .vsgl_shader
+                        .shade_gpu_gbuffer_visible_on_gpu(ctx, g, &uploaded, maps),
+                    None => self.vsgl_shader.shade_gpu_gbuffer_on_gpu(ctx, g, &uploaded),
+                }
+            })
+        })?;
+        let indirect = read_image(ctx, &rgb, g.width, g.height).map_err(gpu)?;
+        Ok(Shaded {
+            sampled_lights: Some(vsgls.len()),
+            ..Shaded::new(indirect, timings)
+        })
+    }
+
+    fn profiled<T>(
+        &self,
+        f: impl FnOnce() -> Result<T, RenderError>,
+    ) -> Result<(T, Option<Timings>), RenderError> {
+        let ctx = &self.ctx;
+        let profiling = ctx.timestamps_trusted && ctx.start_profiling();
+        let out = f();
+        let profile = ctx.finish_profiling().map_err(gpu)?;
+        Ok((out?, profiling.then_some(Timings(profile.stages))))
+    }
+}
+
+impl CpuFrames for GpuRenderer {
+    /// The G-buffer and RSMs read back, with a BVH of `scene` built on first use.
+    fn cpu_frame<'a>(
+        &self,
+        scene: &Scene,
+        loaded: &'a GpuLoadedScene,
+        p: &'a GpuPrepared,
+    ) -> Result<Cow<'a, CpuPrepared>, RenderError> {
+        let tracer = loaded
+            .tracer
+            .get_or_init(|| Arc::new(Tracer::new(scene)));
+        Ok(Cow::Owned(CpuPrepared {
+            camera: p.camera.clone(),
+            tracer: Arc::clone(tracer),
+            gbuffer: self.cpu_gbuffer(p)?.clone(),
+            maps: p
+                .maps
+                .iter()
+                .map(|m| cpu_rsm(&self.ctx, m))
+                .collect::<Result<_, _>>()
+                .map_err(gpu)?,
+            vpls: p.vpls.clone(),
+            direct: p.direct.clone(),
+            timings: p.timings.clone(),
+        }))
+    }
+}

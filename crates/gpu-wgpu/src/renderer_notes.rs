@@ -1,0 +1,59 @@
+//! What a report says about a GPU frame: where each pass ran and how it was timed.
+use crate::context::GpuContext;
+use crate::ism_pass::IsmSettings;
+
+/// Notes of every GPU frame: what ran on the GPU, what came back, how the passes were timed.
+pub fn frame_notes(ctx: &GpuContext) -> Vec<String> {
+    vec![
+        format!(
+            "every pass ran on the GPU ({}): G-buffer and RSMs by rasterization (visibility \
+             buffer resolved by the pixel's own ray), VPL generation, direct light with the \
+             RSM depth as shadow maps, culling (light lists kept on the GPU), shading and \
+             the cross bilateral filter",
+            ctx.adapter_name
+        ),
+        "the VPLs are read back once per frame for the culler's bounds pass; the images are \
+         read back at the end of the frame"
+            .to_string(),
+        if ctx.timestamps_trusted {
+            "timings_ms of GPU passes are wall clock around the GPU work (uploads, readbacks \
+             and the wait for completion included); gpu_timings_ms are the GPU's execution \
+             times of the same passes from timestamp queries"
+                .to_string()
+        } else if ctx.timestamps {
+            "this adapter's timestamp queries are not used: on a CPU adapter (lavapipe) they \
+             stop bracketing compute work once a render pass has run; GPU pass times are \
+             wall clock around the GPU work (uploads, readbacks and the wait for completion \
+             included) and gpu_timings_ms is null"
+                .to_string()
+        } else {
+            "this adapter has no timestamp queries: GPU pass times are wall clock around the \
+             GPU work (uploads, readbacks and the wait for completion included) and \
+             gpu_timings_ms is null"
+                .to_string()
+        },
+    ]
+}
+
+/// The note of frames whose culling metrics were measured.
+pub const METRICS_NOTE: &str = "metrics were measured by brute force on the CPU against the \
+     GPU's light lists and G-buffer, read back after the timed passes";
+
+/// The note of a GPU VSGL frame: what ran where, and with `visibility` what the GPU used
+/// for it.
+pub fn vsgl_note(visibility: bool) -> String {
+    let head = "--shader vsgl: the RSMs were read back, the VSGLs built and sampled on the CPU \
+                (vsgl_mip, importance_map, light_sampling) and shaded on the GPU \
+                (light_shading) instead of culling and VPL shading";
+    if !visibility {
+        return format!("{head}; without --visibility GPU VSGL shading has no visibility term");
+    }
+    let s = IsmSettings::paper(0.0);
+    format!(
+        "{head}; --visibility on the GPU: V(x_p, mu_v) from imperfect shadow maps \
+         (shadow_maps; {} caster points sampled by area, one {}x{} octahedral distance map \
+         per VSGL, depth bias {} + {} tan(incidence) texels), not the CPU's shadow rays: light \
+         leaks through gaps and small occluders and contact shadows within the bias are lost",
+        s.points, s.resolution, s.resolution, s.bias_constant, s.bias_slope
+    )
+}
