@@ -1,7 +1,7 @@
 //! The built-in default scene and its VPLs, shared by the benchmarks.
+use slc_core::frame::LobeSelection;
 use slc_core::{builtin, Scene, Vpl};
 use slc_cpu_ref::rsm::{trace_rsm, TexelSample};
-use slc_core::frame::LobeSelection;
 use slc_cpu_ref::vpls::generate_vpls;
 use slc_cpu_ref::Tracer;
 

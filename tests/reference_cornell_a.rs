@@ -9,8 +9,8 @@
 //! adds b² to the left side only. The test also bounds the error of the image means by five
 //! standard errors of our mean.
 use glam::Vec3;
-use slc_core::{load_scene, Image};
 use slc_core::frame::{LobeSelection, Method, RenderSettings};
+use slc_core::{load_scene, Image};
 use slc_cpu_ref::render;
 use std::path::{Path, PathBuf};
 

@@ -152,7 +152,8 @@ impl FrameArgs {
 
 /// A culling strategy named on the command line.
 pub fn strategy(name: &str) -> Result<Strategy, String> {
-    name.parse().map_err(|e: slc_core::UnknownStrategy| e.to_string())
+    name.parse()
+        .map_err(|e: slc_core::UnknownStrategy| e.to_string())
 }
 
 /// Interleaving and denoising of the stochastic estimate, shared by every command.

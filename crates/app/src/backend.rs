@@ -27,9 +27,11 @@ fn run_on_gpu(command: impl OnBackend) -> Result<(), String> {
 
 #[cfg(not(feature = "gpu"))]
 fn run_on_gpu(_command: impl OnBackend) -> Result<(), String> {
-    Err("this slc was built without the `gpu` feature; rebuild with it (the default) or use \
+    Err(
+        "this slc was built without the `gpu` feature; rebuild with it (the default) or use \
          --backend cpu"
-        .into())
+            .into(),
+    )
 }
 
 /// A library error as the command reports it: what a backend lacks points to the CPU one.

@@ -144,7 +144,9 @@ impl OnBackend for Bench<'_> {
                 let settings = frame.settings(Method::Stochastic(base), 1);
                 settings.validate().map_err(message)?;
                 eprintln!("{w}x{h}, RSM {rsm}²");
-                let p = r.prepare(&scene, &loaded, &settings, None).map_err(message)?;
+                let p = r
+                    .prepare(&scene, &loaded, &settings, None)
+                    .map_err(message)?;
                 let input = ShadeInput {
                     scene: &scene,
                     loaded: &loaded,

@@ -119,7 +119,9 @@ impl OnBackend for Compare<'_> {
             f.rsm
         );
         let loaded = r.load(&scene).map_err(message)?;
-        let p = r.prepare(&scene, &loaded, &settings, None).map_err(message)?;
+        let p = r
+            .prepare(&scene, &loaded, &settings, None)
+            .map_err(message)?;
         // The CPU's reference and unculled estimate read the backend's frame (back).
         let cpu_p = r.cpu_frame(&scene, &loaded, &p).map_err(message)?;
         let cpu = cpu_input(&scene, &cpu_p, f.seed, f.visibility);

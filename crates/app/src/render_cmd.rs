@@ -96,7 +96,8 @@ impl OnBackend for Render<'_> {
             settings.width as u64 * settings.height as u64 * settings.spp as u64,
             format!("rendering {} on the {}", scene.name, r.name()),
         );
-        let frame = slc_core::render(r, &scene, &settings, &|n| progress.inc(n)).map_err(message)?;
+        let frame =
+            slc_core::render(r, &scene, &settings, &|n| progress.inc(n)).map_err(message)?;
         progress.finish_and_clear();
         let device = r.info(&settings);
         let total = frame.total();

@@ -110,7 +110,9 @@ impl OnBackend for Sweep<'_> {
             strategies,
         } = self;
         let f = &args.frame;
-        let base = args.pipeline.stochastic(args.delta[0], strategies[0], false);
+        let base = args
+            .pipeline
+            .stochastic(args.delta[0], strategies[0], false);
         for &delta in &args.delta {
             let settings = f.settings(Method::Stochastic(Stochastic { delta, ..base }), 1);
             settings.validate().map_err(message)?;
@@ -118,7 +120,9 @@ impl OnBackend for Sweep<'_> {
         }
         let settings = f.settings(Method::Stochastic(base), 1);
         let loaded = r.load(&scene).map_err(message)?;
-        let p = r.prepare(&scene, &loaded, &settings, None).map_err(message)?;
+        let p = r
+            .prepare(&scene, &loaded, &settings, None)
+            .map_err(message)?;
         let cpu_p = r.cpu_frame(&scene, &loaded, &p).map_err(message)?;
         let reference = all_vpl_reference(cpu_input(&scene, &cpu_p, f.seed, f.visibility))?;
         let input = ShadeInput {

@@ -115,7 +115,15 @@ impl OnBackend for VsglSweep<'_> {
             }
         }
         progress.finish_and_clear();
-        write_outputs(args, &scene, texels, p.vpls().len(), reference_ms, r.name(), &points)
+        write_outputs(
+            args,
+            &scene,
+            texels,
+            p.vpls().len(),
+            reference_ms,
+            r.name(),
+            &points,
+        )
     }
 }
 

@@ -23,8 +23,8 @@
 pub mod builtin;
 pub mod camera;
 pub mod culling;
-pub mod frame;
 pub mod error;
+pub mod frame;
 pub mod framebuffer;
 #[cfg(feature = "loaders")]
 pub mod gltf_loader;
@@ -39,15 +39,15 @@ pub mod light;
 pub mod load;
 pub mod material;
 pub mod mesh;
-pub mod render;
-pub mod renderer;
 #[cfg(feature = "loaders")]
 pub mod obj_loader;
+pub mod render;
+pub mod renderer;
 pub mod rng;
 pub mod scene;
-pub mod shader;
 #[cfg(feature = "loaders")]
 pub mod settings;
+pub mod shader;
 pub mod shapes;
 pub mod strategy;
 pub mod texture;
@@ -61,10 +61,11 @@ mod loader_tests;
 pub use builtin::{builtin, BUILTIN_NAMES};
 pub use camera::Camera;
 pub use culling::{
-    CpuCuller, CullError, CullInput, CullMetrics, Culler, Interleaving, LightLists, NO_LIST, TILE_SIZE,
+    CpuCuller, CullError, CullInput, CullMetrics, Culler, Interleaving, LightLists, NO_LIST,
+    TILE_SIZE,
 };
-pub use frame::{RenderError, RenderSettings, RenderedFrame, Shaded, Timings};
 pub use error::SceneError;
+pub use frame::{RenderError, RenderSettings, RenderedFrame, Shaded, Timings};
 pub use framebuffer::{GBuffer, GSample, Image};
 pub use light::{Incident, Light};
 #[cfg(feature = "loaders")]
@@ -74,9 +75,9 @@ pub use mesh::Mesh;
 pub use render::render;
 pub use renderer::{BackendInfo, Capabilities, PreparedFrame, Progress, Renderer};
 pub use scene::{LoadReport, Scene};
-pub use shader::{ShadeInput, Shader};
-pub use strategy::{GlossyBound, Layout, Strategy, UnknownStrategy};
 #[cfg(feature = "loaders")]
 pub use settings::{load_settings, MaterialOverride, Settings};
+pub use shader::{ShadeInput, Shader};
+pub use strategy::{GlossyBound, Layout, Strategy, UnknownStrategy};
 pub use texture::{Texture, TextureId};
 pub use vpl::{Vpl, VplLobe};

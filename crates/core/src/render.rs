@@ -86,7 +86,12 @@ pub fn render<R: Renderer>(
         frame.indirect = frame.indirect.add(&shaded.indirect);
     }
     let inv = 1.0 / settings.spp as f32;
-    for px in frame.direct.pixels.iter_mut().chain(frame.indirect.pixels.iter_mut()) {
+    for px in frame
+        .direct
+        .pixels
+        .iter_mut()
+        .chain(frame.indirect.pixels.iter_mut())
+    {
         *px *= inv;
     }
     frame.timings = timings;

@@ -46,7 +46,11 @@ pub struct Capabilities {
 impl Capabilities {
     /// [`RenderError::Unsupported`] naming the first thing `settings` asks for that
     /// `backend` (with these capabilities) does not have.
-    pub fn check(&self, backend: &'static str, settings: &RenderSettings) -> Result<(), RenderError> {
+    pub fn check(
+        &self,
+        backend: &'static str,
+        settings: &RenderSettings,
+    ) -> Result<(), RenderError> {
         let missing = match settings.method {
             Method::VplReference | Method::Path if !self.references => Some("the references"),
             Method::SampledVpls(_) if !self.sampled_vpls => Some("sampled VPLs"),

@@ -129,7 +129,11 @@ mod tests {
             .filter(|s| s.parts().0 != Layout::Unculled)
             .map(|s| s.parts())
             .collect();
-        assert_eq!(parts.len(), Strategy::ALL.len() - 1, "one strategy per layout and bound");
+        assert_eq!(
+            parts.len(),
+            Strategy::ALL.len() - 1,
+            "one strategy per layout and bound"
+        );
     }
 
     #[test]

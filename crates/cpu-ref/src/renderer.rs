@@ -11,8 +11,8 @@ use crate::vpl_shading::{shade_lists, shade_vpls, VplEstimator};
 use rayon::prelude::*;
 use slc_core::frame::{LightSampling, RenderError, RenderSettings, RenderedFrame, Shaded};
 use slc_core::{
-    BackendInfo, Capabilities, CullInput, CullMetrics, Image, Interleaving, LightLists,
-    Progress, Renderer, Scene, Strategy,
+    BackendInfo, Capabilities, CullInput, CullMetrics, Image, Interleaving, LightLists, Progress,
+    Renderer, Scene, Strategy,
 };
 use std::borrow::Cow;
 use std::sync::Arc;
@@ -97,7 +97,11 @@ impl Renderer for CpuRenderer {
     }
 
     fn denoise(&self, p: &CpuPrepared, image: Image) -> Result<Image, RenderError> {
-        Ok(cross_bilateral(&image, &p.gbuffer, BilateralParams::default()))
+        Ok(cross_bilateral(
+            &image,
+            &p.gbuffer,
+            BilateralParams::default(),
+        ))
     }
 
     fn read_image(&self, _p: &CpuPrepared, image: Image) -> Result<Image, RenderError> {

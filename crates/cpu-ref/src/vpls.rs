@@ -1,7 +1,7 @@
 //! VPLs from reflective-shadow-map texels.
 use crate::rsm::Rsm;
-use slc_core::rng::vpl_xi;
 use slc_core::frame::LobeSelection;
+use slc_core::rng::vpl_xi;
 use slc_core::{Vpl, VplLobe};
 
 /// One diffuse VPL (where kd > 0) and one glossy VPL (where the specular layer reflects) per

@@ -1,13 +1,12 @@
 //! VSGLs and equal-count sampled VPLs on whole frames, against every VPL with p = 1: the VPL
 //! estimator's unbiasedness, the VSGLs' energy, the bidirectional importance, determinism.
 use glam::Vec3;
+use slc_core::frame::{
+    DiffuseEmission, Importance, LightSampling, LobeSelection, Method, RenderError, RenderSettings,
+};
 use slc_core::{builtin, Image};
 use slc_cpu_ref::sampled_lights::{shade_sampled_vpls, shade_vsgl, sigma2_floor};
 use slc_cpu_ref::vpl_shading::{shade_vpls, vpl_contribution};
-use slc_core::frame::{
-    DiffuseEmission, Importance, LightSampling, LobeSelection, Method, RenderError,
-    RenderSettings,
-};
 use slc_cpu_ref::vsgl::{bidirectional_importance, ImportanceMap};
 use slc_cpu_ref::{prepare, render, CpuPrepared as Prepared, Tracer, VplEstimator};
 

@@ -1,12 +1,12 @@
 //! Light transport checks that would catch a wrong flux, solid angle, falloff or estimator.
 use glam::Vec3;
+use slc_core::frame::{LobeSelection, Method, RenderError, RenderSettings, Stochastic};
 use slc_core::shapes::{cuboid, quad};
+use slc_core::Strategy;
 use slc_core::{builtin, Light, Material, Scene};
 use slc_cpu_ref::gbuffer::{trace_gbuffer, PixelSample};
 use slc_cpu_ref::rsm::{trace_rsm, Rsm, TexelSample};
 use slc_cpu_ref::vpl_shading::shade_vpls;
-use slc_core::frame::{LobeSelection, Method, RenderError, RenderSettings, Stochastic};
-use slc_core::Strategy;
 use slc_cpu_ref::vpls::generate_vpls;
 use slc_cpu_ref::{render, Tracer, VplEstimator};
 

@@ -3,13 +3,13 @@
 //! `cargo run --release -p slc-cull --example timing [WIDTH HEIGHT [RSM]]` (default 512 512
 //! 80: 6 x 80² RSM texels, about 65,000 VPLs like the paper's 256² map). Prints the best of
 //! five runs per strategy and interleaving factor, with the mean list length per pixel.
+use slc_core::frame::LobeSelection;
+use slc_core::Strategy;
 use slc_core::{builtin, CullInput, Interleaving};
 use slc_cpu_ref::gbuffer::{trace_gbuffer, PixelSample};
 use slc_cpu_ref::rsm::{trace_rsm, TexelSample};
-use slc_core::frame::LobeSelection;
 use slc_cpu_ref::vpls::generate_vpls;
 use slc_cpu_ref::Tracer;
-use slc_core::Strategy;
 use slc_cull::culler;
 use std::time::{Duration, Instant};
 

@@ -16,7 +16,6 @@ pub use slc_core::CullMetrics;
 use slc_core::{CullError, CullInput, GSample, LightLists, Vpl, VplLobe, NO_LIST};
 use std::f64::consts::PI;
 
-
 /// The metrics of `lists` for `input`; see [`measure_all`].
 pub fn measure(input: &CullInput, lists: &LightLists) -> Result<CullMetrics, CullError> {
     Ok(measure_all(input, &[lists])?.remove(0))

@@ -2,12 +2,12 @@
 //! the section-6 sphere for diffuse VPLs, and for glossy VPLs the sphere r/α around q, the
 //! sphere r_u around c (section 7) or the GGX spheroid (eq. 12-15) as its stretched and
 //! rotated test space BS, BS·c (eq. 16-17, section 5.2).
-pub use slc_core::GlossyBound;
 use crate::partition::Partition;
 use crate::view::CullView;
 use glam::{DVec3, Vec3};
 use rayon::prelude::*;
 use slc_bounds::{DiffuseLobe, GlossyLobe, Sphere, Spheroid, StochasticParams, TestSpace};
+pub use slc_core::GlossyBound;
 use slc_core::{CullError, Vpl, VplLobe};
 
 /// Relative growth of every bound: radii and semi-axes times 1 + 1e-3. slc-bounds computes
@@ -18,7 +18,6 @@ use slc_core::{CullError, Vpl, VplLobe};
 /// contributing pairs outside the bounds (still some at 2e-5, none at 1e-4); 1e-3 keeps a
 /// factor of 10 of margin for about 0.3% more volume.
 pub const BOUND_SLACK: f64 = 1e-3;
-
 
 /// A sphere in view space: centre, squared radius, and the VPL's index in the input.
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -109,7 +109,6 @@ pub(crate) fn check_input(frame: &CullFrame) -> Result<CullSizes, GpuError> {
     })
 }
 
-
 /// The uniform per-subregion tile grid (`GpuCullParams`): `tiles_x` x `tiles_y` tiles of
 /// [`TILE_SIZE`]² pixels per subregion image, sized for subregion 0 (the largest), and their
 /// count over the K² subregions, with `lists_per_tile` lists each; an error when the list

@@ -88,5 +88,5 @@ pub mod vsgl_shade_pass;
 pub mod vsgl_types;
 
 pub use context::{GpuContext, GpuError};
-pub use renderer::{GpuLoadedScene, GpuPrepared, GpuRenderer};
 pub use profiler::GpuProfile;
+pub use renderer::{GpuLoadedScene, GpuPrepared, GpuRenderer};

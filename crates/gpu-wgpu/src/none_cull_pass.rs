@@ -9,12 +9,12 @@
 use crate::buffers::{output, uniform, upload, Grid};
 use crate::context::{GpuContext, GpuError};
 use crate::cull_frame::{check_input, CullFrame, CullSizes};
-use crate::gpu_lists::{no_lists, read_lists};
 use crate::cull_types::GpuNoneParams;
+use crate::gpu_lists::GpuLightLists;
+use crate::gpu_lists::{no_lists, read_lists};
 use crate::gpu_types::{GpuBound, GpuCullStatus};
 use crate::partition_pass::PartitionPass;
 use crate::scan_pass::ScanPass;
-use crate::gpu_lists::GpuLightLists;
 use slc_core::{CullInput, LightLists};
 
 /// `shaders/rng.wgsl` (the subregions) and `shaders/bound.wgsl` followed by the kernel.

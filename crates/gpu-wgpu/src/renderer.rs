@@ -30,13 +30,12 @@ use crate::vsgl_readback::{cpu_rsm, vsgl_input};
 use crate::vsgl_shade_pass::{GpuVsgls, VsglShadePass};
 use slc_bounds::sg::MeanMap;
 use slc_core::frame::{
-    Importance, LightSampling, LobeSelection, Method, RenderError, RenderSettings, Shaded,
-    Timings,
+    Importance, LightSampling, LobeSelection, Method, RenderError, RenderSettings, Shaded, Timings,
 };
-use slc_core::rng::{stream, uniform};
 use slc_core::render::pass_seed;
+use slc_core::rng::{stream, uniform};
 use slc_core::{
-    BackendInfo, Camera, Capabilities, Culler, CullInput, CullMetrics, GBuffer, Image,
+    BackendInfo, Camera, Capabilities, CullInput, CullMetrics, Culler, GBuffer, Image,
     Interleaving, PreparedFrame, Progress, Renderer, Scene, Strategy, Vpl,
 };
 use slc_cpu_ref::sampled_lights::sample_vsgls;
@@ -144,7 +143,11 @@ impl GpuRenderer {
 
     /// Runs `f` as the pass `stage` (timestamp profiles attribute its work to it) and waits
     /// for the GPU, so wall-clock times around it are the pass's.
-    fn step<T>(&self, stage: &'static str, f: impl FnOnce() -> Result<T, GpuError>) -> Result<T, RenderError> {
+    fn step<T>(
+        &self,
+        stage: &'static str,
+        f: impl FnOnce() -> Result<T, GpuError>,
+    ) -> Result<T, RenderError> {
         self.ctx.set_stage(stage);
         let out = f().map_err(gpu)?;
         self.ctx.wait().map_err(gpu)?;
@@ -250,11 +253,15 @@ impl Renderer for GpuRenderer {
             })?;
             let vpls = t.time("vpl_generation", || {
                 self.step("vpl_generation", || {
-                    self.vpl_gen.generate(ctx, &maps, seed, lobes)?.read_back(ctx)
+                    self.vpl_gen
+                        .generate(ctx, &maps, seed, lobes)?
+                        .read_back(ctx)
                 })
             })?;
             let direct = t.time("direct", || {
-                self.step("direct", || self.direct.render(ctx, scene_gpu, &gbuffer, &maps))
+                self.step("direct", || {
+                    self.direct.render(ctx, scene_gpu, &gbuffer, &maps)
+                })
             })?;
             Ok((gbuffer, maps, vpls, direct, t))
         })?;
@@ -369,7 +376,10 @@ impl Renderer for GpuRenderer {
         let floor = loaded.epsilon * loaded.epsilon;
         let maps = timings.time("rsm_readback", || {
             self.step("rsm_readback", || {
-                p.maps.iter().map(|m| cpu_rsm(ctx, m)).collect::<Result<Vec<_>, _>>()
+                p.maps
+                    .iter()
+                    .map(|m| cpu_rsm(ctx, m))
+                    .collect::<Result<Vec<_>, _>>()
             })
         })?;
         let mips = timings
@@ -388,7 +398,13 @@ impl Renderer for GpuRenderer {
                 timings
                     .time("importance_map", || {
                         bidirectional_importance(
-                            gbuffer, &p.camera, &maps, camera_vsgls, seed, floor, s.diffuse,
+                            gbuffer,
+                            &p.camera,
+                            &maps,
+                            camera_vsgls,
+                            seed,
+                            floor,
+                            s.diffuse,
                         )
                     })
                     .map_err(RenderError::backend)?
@@ -407,7 +423,9 @@ impl Renderer for GpuRenderer {
             });
             let centres: Vec<_> = vsgls.iter().map(|v| v.mu).collect();
             Some(timings.time("shadow_maps", || {
-                self.step("shadow_maps", || self.ism.render(ctx, casters, &centres, settings))
+                self.step("shadow_maps", || {
+                    self.ism.render(ctx, casters, &centres, settings)
+                })
             })?)
         } else {
             None
@@ -451,9 +469,7 @@ impl CpuFrames for GpuRenderer {
         loaded: &'a GpuLoadedScene,
         p: &'a GpuPrepared,
     ) -> Result<Cow<'a, CpuPrepared>, RenderError> {
-        let tracer = loaded
-            .tracer
-            .get_or_init(|| Arc::new(Tracer::new(scene)));
+        let tracer = loaded.tracer.get_or_init(|| Arc::new(Tracer::new(scene)));
         Ok(Cow::Owned(CpuPrepared {
             camera: p.camera.clone(),
             tracer: Arc::clone(tracer),

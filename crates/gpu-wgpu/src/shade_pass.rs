@@ -33,7 +33,6 @@ pub(crate) const SOURCE: &str = concat!(
 );
 const WORKGROUP: u32 = 64;
 
-
 /// What shading needs besides the G-buffer samples.
 struct Frame<'a> {
     width: u32,

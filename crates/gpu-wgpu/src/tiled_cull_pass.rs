@@ -13,14 +13,12 @@
 use crate::bounds_pass::{BoundsPass, BoundsSettings};
 use crate::buffers::{output, uniform, upload, Grid};
 use crate::context::{GpuContext, GpuError};
-use crate::cull_frame::{
-    check_input, cull_params, read_status, tile_grid, CullFrame, CullSizes,
-};
+use crate::cull_frame::{check_input, cull_params, read_status, tile_grid, CullFrame, CullSizes};
+use crate::gpu_lists::GpuLightLists;
 use crate::gpu_lists::{no_lists, read_lists};
 use crate::gpu_types::{GpuCullStatus, GpuTileFrusta, CULL_COUNT, CULL_WRITE};
 use crate::partition_pass::PartitionPass;
 use crate::scan_pass::ScanPass;
-use crate::gpu_lists::GpuLightLists;
 use crate::tile_depth_pass::{TileDepthBuffers, TileDepthPass};
 use slc_core::{CullInput, LightLists};
 use slc_cull::{CullView, GlossyBound};

@@ -3,8 +3,8 @@
 //! and the CPU's reference passes take, and CPU VSGLs in the GPU shading pass's input form.
 use glam::Vec3;
 use slc_bounds::{Brdf, Fresnel};
-use slc_cpu_ref::rsm::{rectangle_solid_angle, Rsm, RsmTexel};
 use slc_core::frame::DiffuseEmission;
+use slc_cpu_ref::rsm::{rectangle_solid_angle, Rsm, RsmTexel};
 use slc_cpu_ref::vsgl::Vsgl;
 
 use crate::context::{GpuContext, GpuError};

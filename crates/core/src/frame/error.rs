@@ -18,10 +18,7 @@ pub enum RenderError {
     Settings(String),
     /// The backend does not have what the settings ask for.
     #[error("the {backend} backend does not support {what}; render on the cpu backend")]
-    Unsupported {
-        backend: &'static str,
-        what: String,
-    },
+    Unsupported { backend: &'static str, what: String },
     /// A failure inside a backend (a GPU fault, an invalid VSGL input, ...).
     #[error(transparent)]
     Backend(Box<dyn std::error::Error + Send + Sync + 'static>),

@@ -9,7 +9,7 @@ mod timings;
 pub use error::RenderError;
 pub use output::{RenderedFrame, Shaded};
 pub use settings::{
-    DiffuseEmission, Importance, LightSampling, LobeSelection, Method, RenderSettings,
-    Stochastic, MAX_IMAGE_SIDE, MAX_RSM_SIDE, MAX_SAMPLED_LIGHTS,
+    DiffuseEmission, Importance, LightSampling, LobeSelection, Method, RenderSettings, Stochastic,
+    MAX_IMAGE_SIDE, MAX_RSM_SIDE, MAX_SAMPLED_LIGHTS,
 };
 pub use timings::{merge_optional, Timings};

@@ -5,13 +5,13 @@ use super::importance::ImportanceMap;
 use super::mip::MipRsm;
 use super::sampling::{sample_points, FilteredSampler, Footprint, SampleSet};
 use super::shading::Emitter;
-use slc_core::frame::DiffuseEmission;
 use super::sums::ClusterSums;
 use crate::rsm::{Rsm, RsmTexel};
 use glam::Vec3;
 use rayon::prelude::*;
 use slc_bounds::sg::MeanMap;
 use slc_bounds::SgSurface;
+use slc_core::frame::DiffuseEmission;
 use slc_core::{Camera, GBuffer};
 
 /// The share of the flux importance `Φ(R_d + R_s)` (section 4.2) mixed into the estimated

@@ -1,18 +1,18 @@
 //! Scenes, VPLs and the checks shared by the guarantee tests.
 use glam::Vec3;
 use slc_bounds::{Brdf, Fresnel};
+use slc_core::frame::LobeSelection;
+use slc_core::Strategy;
 use slc_core::{
-    builtin, load_scene, Camera, CullInput, GBuffer, GSample, Interleaving, Light,
-    LightLists, Material, MaterialModel, Scene, Vpl, VplLobe, NO_LIST,
+    builtin, load_scene, Camera, CullInput, GBuffer, GSample, Interleaving, Light, LightLists,
+    Material, MaterialModel, Scene, Vpl, VplLobe, NO_LIST,
 };
 use slc_cpu_ref::gbuffer::{trace_gbuffer, PixelSample};
 use slc_cpu_ref::rsm::{trace_rsm, TexelSample};
-use slc_core::frame::LobeSelection;
 use slc_cpu_ref::vpls::generate_vpls;
 use slc_cpu_ref::Tracer;
-use slc_cull::metrics::{measure_all, CullMetrics};
-use slc_core::Strategy;
 use slc_cull::culler;
+use slc_cull::metrics::{measure_all, CullMetrics};
 
 /// A small deterministic generator (xorshift64*), uniform floats in [0, 1).
 pub struct Rng(u64);
@@ -247,7 +247,11 @@ pub fn check_all(input: &CullInput, label: &str) -> Vec<(&'static str, CullMetri
             }
         }
     }
-    Strategy::ALL.iter().map(|s| s.name()).zip(metrics).collect()
+    Strategy::ALL
+        .iter()
+        .map(|s| s.name())
+        .zip(metrics)
+        .collect()
 }
 
 /// The metrics of the named strategy in the output of [`check_all`].

@@ -3,8 +3,8 @@
 //! inputs (errors, never panics).
 use crate::common::*;
 use glam::Vec3;
-use slc_core::{Camera, CullInput, GBuffer, Interleaving, VplLobe, NO_LIST};
 use slc_core::Strategy;
+use slc_core::{Camera, CullInput, GBuffer, Interleaving, VplLobe, NO_LIST};
 use slc_cull::culler;
 
 /// A camera 1.5 units above the floor looking at the horizon: the upper half is sky, so

@@ -2,8 +2,8 @@
 //! Fig. 9-10), most of all for the glossy VPLs of smooth materials, the ones the spheroid of
 //! eq. (12)-(15) is for.
 use crate::common::*;
-use slc_core::{Camera, Scene, VplLobe};
 use slc_core::frame::LobeSelection;
+use slc_core::{Camera, Scene, VplLobe};
 use slc_cull::metrics::CullMetrics;
 
 /// Which VPLs of a frame to cull.

@@ -14,9 +14,9 @@ use glam::{DMat3, DVec3, Vec3};
 use slc_bounds::{
     Brdf, DiffuseLobe, Fresnel, GlossyLobe, Sphere, Spheroid, StochasticParams, TestSpace,
 };
+use slc_core::frame::LobeSelection;
 use slc_core::{builtin, Camera, Interleaving, Vpl, VplLobe};
 use slc_cpu_ref::rsm::{trace_rsm, TexelSample};
-use slc_core::frame::LobeSelection;
 use slc_cpu_ref::vpls::generate_vpls;
 use slc_cpu_ref::Tracer;
 use slc_cull::{CullView, GlossyBound};

@@ -15,8 +15,8 @@ use slc_core::{builtin, CullInput, GBuffer, Interleaving, LightLists, Vpl, NO_LI
 use slc_cull::{CullView, GlossyBound};
 use slc_gpu_wgpu::buffers::read_back;
 use slc_gpu_wgpu::clustered_cull_pass::ClusteredCuller;
-use slc_gpu_wgpu::gpu_lists::read_lists;
 use slc_gpu_wgpu::cull_types::CLUSTER_SLICES;
+use slc_gpu_wgpu::gpu_lists::read_lists;
 use slc_gpu_wgpu::{GpuContext, GpuError};
 use std::collections::HashSet;
 
@@ -290,7 +290,9 @@ fn unculled_lists_match_the_cpu() {
             delta: 1e-3,
             interleaving: Interleaving { k, seed: 9 },
         };
-        let cpu = slc_cull::culler(slc_core::Strategy::None).cull(&input).unwrap();
+        let cpu = slc_cull::culler(slc_core::Strategy::None)
+            .cull(&input)
+            .unwrap();
         let gpu = culler.cull(&ctx, &input).unwrap();
         let diff = exact_differences(&input, &cpu, &gpu);
         eprintln!(
@@ -352,7 +354,9 @@ fn clustered_and_unculled_reject_bad_input() {
         gbuffer: &behind,
         ..input
     };
-    assert!(slc_cull::culler(slc_core::Strategy::Clustered).cull(&bad).is_err());
+    assert!(slc_cull::culler(slc_core::Strategy::Clustered)
+        .cull(&bad)
+        .is_err());
     let e = clustered
         .cull(&ctx, &bad, GlossyBound::Ellipsoid)
         .unwrap_err();

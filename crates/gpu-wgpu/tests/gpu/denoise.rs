@@ -114,7 +114,9 @@ fn filter_matches_the_cpu_on_the_default_scene() {
             delta: 1e-3,
             interleaving: Interleaving { k, seed: 1 },
         };
-        let lists = slc_cull::culler(slc_core::Strategy::None).cull(&input).unwrap();
+        let lists = slc_cull::culler(slc_core::Strategy::None)
+            .cull(&input)
+            .unwrap();
         let noisy = shade_lists(&tracer, &input, &lists, false, &|_| ()).unwrap();
         let worst = filter_both(&ctx, &pass, "default scene", &noisy, &gbuffer, &camera);
         // The filter did its job: most pixels changed noticeably.

@@ -24,13 +24,13 @@
 //!   bounds those, the mean bounds everything.
 use crate::common::gpu;
 use crate::raster_common::{default_scene, edge_pixels, extent, lit_scene};
-use slc_core::{Image, Interleaving};
-use slc_cpu_ref::direct::shade_direct;
+use slc_core::frame::LobeSelection;
 use slc_core::frame::{Method, RenderSettings, Stochastic};
 use slc_core::shader::{ShadeInput, Shader};
-use slc_cpu_ref::{prepare, CpuRenderer};
-use slc_core::frame::LobeSelection;
+use slc_core::{Image, Interleaving};
+use slc_cpu_ref::direct::shade_direct;
 use slc_cpu_ref::Tracer;
+use slc_cpu_ref::{prepare, CpuRenderer};
 use slc_cull::GlossyBound;
 use slc_gpu_wgpu::cull_frame::CullFrame;
 use slc_gpu_wgpu::direct_pass::DirectPass;
@@ -189,11 +189,7 @@ fn rasterized_gpu_frame_matches_the_cpu_frame() {
     let edges = edge_pixels(&prepared.gbuffer, extent(&scene));
     let inside: Vec<bool> = edges.iter().map(|e| !e).collect();
     let (mean, p99, above) = errors(&cpu, &frame, &inside);
-    let (ind_mean, ind_p99, _) = errors(
-        &cpu_indirect,
-        &indirect,
-        &inside,
-    );
+    let (ind_mean, ind_p99, _) = errors(&cpu_indirect, &indirect, &inside);
     eprintln!(
         "frame: {} VPLs on the CPU, {} on the GPU; {:.2}% edge pixels; outside them mean \
          error {mean:.2e}, 99th percentile {p99:.2e}, {:.2}% above 1e-3 (indirect alone \

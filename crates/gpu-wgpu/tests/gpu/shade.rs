@@ -24,7 +24,7 @@ use slc_core::{
 };
 use slc_cpu_ref::vpl_shading::shade_lists;
 use slc_cpu_ref::Tracer;
-use slc_cull::{GlossyBound};
+use slc_cull::GlossyBound;
 use slc_gpu_wgpu::shade_pass::ShadePass;
 use slc_gpu_wgpu::tiled_cull_pass::TiledCuller;
 use slc_gpu_wgpu::GpuError;
@@ -204,7 +204,9 @@ fn shading_matches_the_cpu() {
                 interleaving: Interleaving { k, seed: 3 },
             };
             for name in ["ellipsoid", "none"] {
-                let lists = slc_cull::culler(name.parse().unwrap()).cull(&input).unwrap();
+                let lists = slc_cull::culler(name.parse().unwrap())
+                    .cull(&input)
+                    .unwrap();
                 let what = format!("{name} K {k} delta {delta}, {} VPLs", vpls.len());
                 worst = worst.max(check(&ctx, &shader, &tracer, &input, &lists, &what));
             }

@@ -4,12 +4,12 @@
 use crate::bounds::{reference, Reference};
 use crate::common::gpu;
 use glam::{DVec2, DVec3, Vec3};
+use slc_core::frame::LobeSelection;
 use slc_core::{
     builtin, Camera, CullInput, GBuffer, Interleaving, LightLists, Scene, Vpl, VplLobe, TILE_SIZE,
 };
 use slc_cpu_ref::gbuffer::{trace_gbuffer, PixelSample};
 use slc_cpu_ref::rsm::{trace_rsm, TexelSample};
-use slc_core::frame::LobeSelection;
 use slc_cpu_ref::vpls::generate_vpls;
 use slc_cpu_ref::Tracer;
 use slc_cull::{CullView, GlossyBound, FRUSTUM_SLACK};
@@ -238,7 +238,9 @@ fn tiled_lists_match_the_cpu() {
                 ("enclosing-sphere", GlossyBound::EnclosingSphere),
                 ("ellipsoid", GlossyBound::Ellipsoid),
             ] {
-                let cpu = slc_cull::culler(name.parse().unwrap()).cull(&input).unwrap();
+                let cpu = slc_cull::culler(name.parse().unwrap())
+                    .cull(&input)
+                    .unwrap();
                 let gpu = culler.cull(&ctx, &input, glossy).unwrap();
                 let (border, diff) = differences(&input, glossy, &cpu, &gpu, |view, x, y| {
                     Some(half_z_frustum(&input, view, x, y))
@@ -331,7 +333,9 @@ fn tiled_culling_rejects_bad_input() {
         delta: 1e-37,
         ..input
     };
-    assert!(slc_cull::culler(slc_core::Strategy::Sphere).cull(&bad).is_err());
+    assert!(slc_cull::culler(slc_core::Strategy::Sphere)
+        .cull(&bad)
+        .is_err());
     let e = culler.cull(&ctx, &bad, GlossyBound::Sphere).unwrap_err();
     assert!(e.to_string().contains(&format!("VPL {glossy}")), "{e}");
 }

@@ -24,9 +24,7 @@ use slc_core::{builtin, GBuffer, GSample, Image};
 use slc_cpu_ref::gbuffer::{trace_gbuffer, PixelSample};
 use slc_cpu_ref::rsm::{trace_rsm, TexelSample};
 use slc_cpu_ref::sampled_lights::{sample_vsgls, sigma2_floor};
-use slc_cpu_ref::vsgl::{
-    bidirectional_importance, shade_vsgls, ImportanceMap, MipRsm, Vsgl,
-};
+use slc_cpu_ref::vsgl::{bidirectional_importance, shade_vsgls, ImportanceMap, MipRsm, Vsgl};
 use slc_cpu_ref::Tracer;
 use slc_gpu_wgpu::buffers::upload;
 use slc_gpu_wgpu::gbuffer_pass::GpuGBuffer;
