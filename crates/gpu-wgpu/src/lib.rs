@@ -39,14 +39,20 @@
 //! - [`clustered_cull_pass`]: clustered culling (32 exponential depth slices per tile,
 //!   section 7), the twin of `slc_cull`'s `clustered`, `clustered-sphere` and
 //!   `clustered-enclosing-sphere`, with its structs in [`cull_types`];
-//! - [`culler`]: every strategy of `slc_cull::Strategy::ALL` by name ([`culler::GpuCuller`]);
-//!   [`cull_frame`] holds what the culling passes share;
+//! - [`culler`]: every `slc_core::Strategy` ([`culler::GpuCuller`], bound to one strategy as
+//!   a `slc_core::Culler`); [`cull_frame`] holds what the culling passes share, [`gpu_lists`]
+//!   the lists they leave on the GPU;
 //! - [`denoise_pass`]: the cross bilateral filter guided by depth and normal (section 6),
 //!   the twin of `slc_cpu_ref::denoise::cross_bilateral`, on GPU buffers or uploaded images
 //!   (struct in [`denoise_types`]);
 //! - [`vsgl_shade_pass`]: shading by virtual spherical Gaussian lights (Tokuyoshi 2015,
 //!   section 3.2, eq. 2-5; `shaders/sg.wgsl`, `shaders/vsgl_shade.wgsl`), the twin of
 //!   `slc_cpu_ref::vsgl::shade_vsgls` without visibility (structs in [`vsgl_types`]).
+//!
+//! [`renderer::GpuRenderer`] composes them into the backend of the renderer API
+//! (`slc_core::Renderer`), on a device it opens or one the host owns
+//! ([`GpuContext::from_device`]); [`vsgl_readback`] brings RSMs to the CPU's VSGL code and
+//! VSGLs back.
 //!
 //! Per-pass GPU times come from timestamp queries where the adapter has them
 //! ([`profiler`]: `start_profiling`, `set_stage`, `finish_profiling`).
