@@ -3,7 +3,8 @@ use clap::{Args, ValueEnum};
 use slc_core::frame::{
     DiffuseEmission, Importance, LightSampling, LobeSelection, Method, RenderSettings, Stochastic,
 };
-use slc_core::{load_scene, Scene, Strategy};
+use slc_core::shader::ShadeInput;
+use slc_core::{load_scene, Renderer, Scene, Strategy};
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
 pub enum Backend {
@@ -131,6 +132,22 @@ impl FrameArgs {
         Ok(scene)
     }
 
+    /// What a shader reads of `prepared` on `r`, with this frame's seed and visibility.
+    pub fn input<'a, R: Renderer>(
+        &self,
+        scene: &'a Scene,
+        loaded: &'a R::Scene,
+        prepared: &'a R::Prepared,
+    ) -> ShadeInput<'a, R> {
+        ShadeInput {
+            scene,
+            loaded,
+            prepared,
+            seed: self.seed,
+            visibility: self.visibility,
+        }
+    }
+
     /// Render settings for `method`, one pass.
     pub fn settings(&self, method: Method, spp: u32) -> RenderSettings {
         RenderSettings {
@@ -154,6 +171,11 @@ impl FrameArgs {
 pub fn strategy(name: &str) -> Result<Strategy, String> {
     name.parse()
         .map_err(|e: slc_core::UnknownStrategy| e.to_string())
+}
+
+/// The culling strategies named on the command line, in their order.
+pub fn strategies(names: &[String]) -> Result<Vec<Strategy>, String> {
+    names.iter().map(|n| strategy(n)).collect()
 }
 
 /// Interleaving and denoising of the stochastic estimate, shared by every command.

@@ -1,11 +1,11 @@
 //! `slc bench`: per-pass times of the stochastic pipeline over resolutions and VPL counts, for
 //! each culling strategy, in one run (so ratios are measured on the same machine state).
 //! Writes `bench.csv` and `bench.md`.
-use crate::args::{strategy, FrameArgs, PipelineArgs, Shader};
+use crate::args::{strategies, FrameArgs, PipelineArgs, Shader};
 use crate::backend::{message, run_on, OnBackend};
 use clap::Args;
 use slc_core::frame::{Method, Stochastic};
-use slc_core::shader::{frame_timings, ShadeInput, Shader as _};
+use slc_core::shader::{frame_timings, Shader as _};
 use slc_core::{PreparedFrame, Scene, Strategy};
 use slc_cpu_ref::CpuFrames;
 use std::fmt::Write;
@@ -65,11 +65,7 @@ pub fn run(args: &BenchArgs) -> Result<(), String> {
         );
     }
     let scene = args.frame.load_renderable()?;
-    let strategies = args
-        .culling
-        .iter()
-        .map(|n| strategy(n))
-        .collect::<Result<Vec<_>, _>>()?;
+    let strategies = strategies(&args.culling)?;
     let resolutions = args
         .resolutions
         .iter()
@@ -147,13 +143,7 @@ impl OnBackend for Bench<'_> {
                 let p = r
                     .prepare(&scene, &loaded, &settings, None)
                     .map_err(message)?;
-                let input = ShadeInput {
-                    scene: &scene,
-                    loaded: &loaded,
-                    prepared: &p,
-                    seed: frame.seed,
-                    visibility: frame.visibility,
-                };
+                let input = frame.input(&scene, &loaded, &p);
                 let vpl_count = p.vpls().len();
                 for &strategy in &strategies {
                     let s = Stochastic { strategy, ..base };

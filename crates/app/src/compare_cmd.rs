@@ -4,18 +4,18 @@
 //! with p = 1, the same VPLs), `report.md` with the table, and `side_by_side.png`. With
 //! `--shader vsgl` also `vsgl/` and `vpl_sampled/`: `--vsgls N` VSGLs and N VPLs sampled by the
 //! same importance, with their own table in `report.md`.
-use crate::args::{strategy, FrameArgs, ImportanceArgs, PipelineArgs, Shader};
+use crate::args::{strategies, FrameArgs, ImportanceArgs, PipelineArgs, Shader};
 use crate::backend::{message, run_on, OnBackend};
 use crate::heatmap::heat_map;
 use crate::output::write_frame;
 use crate::progress::bar;
 use crate::reference::{all_vpl_reference, cpu_input};
 use crate::report::{FrameFacts, Report};
-use crate::sampled::{ESTIMATORS, PASSES};
+use crate::sampled::{shade_sampled, PASSES};
 use clap::Args;
 use image::RgbImage;
 use slc_core::frame::{Method, RenderSettings, Stochastic, Timings};
-use slc_core::shader::{frame_timings, ShadeInput, Shader as _};
+use slc_core::shader::{frame_timings, SampledLights, ShadeInput, Shader as _};
 use slc_core::{BackendInfo, Image, PreparedFrame, Renderer, Scene, Strategy};
 use slc_cpu_ref::{CpuFrames, CpuPrepared, CpuRenderer};
 use std::fmt::Write;
@@ -69,11 +69,7 @@ struct Row {
 
 pub fn run(args: &CompareArgs) -> Result<(), String> {
     let scene = args.frame.load_renderable()?;
-    let strategies = args
-        .culling
-        .iter()
-        .map(|n| strategy(n))
-        .collect::<Result<Vec<_>, _>>()?;
+    let strategies = strategies(&args.culling)?;
     let base = args.pipeline.stochastic(args.delta, Strategy::None, true);
     let settings = args.frame.settings(Method::Stochastic(base), 1);
     settings.validate().map_err(message)?;
@@ -160,13 +156,7 @@ impl OnBackend for Compare<'_> {
         .shade(&CpuRenderer, cpu, &|_| {})
         .map_err(message)?
         .indirect;
-        let input = ShadeInput {
-            scene: &scene,
-            loaded: &loaded,
-            prepared: &p,
-            seed: f.seed,
-            visibility: f.visibility,
-        };
+        let input = f.input(&scene, &loaded, &p);
         let mut rows = Vec::new();
         for strategy in strategies {
             let s = Stochastic { strategy, ..base };
@@ -256,15 +246,15 @@ fn sampled_lights<R: Renderer>(
     }
     md.push_str(" total ms | RMSE vs reference |\n|---|---|---|---|---|---|---|---|\n");
     let prepared: &CpuPrepared = cpu.prepared;
-    for e in ESTIMATORS {
+    for e in SampledLights::ALL {
         eprintln!("{}: {} lights", e.name(), args.vsgls);
-        let (out, backend) = e.shade(r, input, cpu, sampling)?;
+        let (out, backend) = shade_sampled(e, r, input, cpu, sampling)?;
         let method = e.method(sampling);
         let settings = f.settings(method, 1);
-        let device = if backend == "cpu" {
-            CpuRenderer.info(&settings)
-        } else {
+        let device = if backend == r.name() {
             r.info(&settings)
+        } else {
+            CpuRenderer.info(&settings)
         };
         let total = prepared.direct.add(&out.indirect);
         let dir = args.out.join(e.name());

@@ -7,7 +7,7 @@
 //! Fig. 2: each strategy at the δ whose time is closest to the reference strategy's median run.
 //! Culling and shading run on the command's backend, the reference on the CPU (from the frame
 //! read back). With `--shader vsgl` it sweeps light counts instead ([`crate::vsgl_sweep`]).
-use crate::args::{strategy, FrameArgs, ImportanceArgs, PipelineArgs, Shader};
+use crate::args::{strategies, FrameArgs, ImportanceArgs, PipelineArgs, Shader};
 use crate::backend::{message, run_on, OnBackend};
 use crate::output::to_srgb8;
 use crate::plot::{line_plot_svg, Series};
@@ -78,11 +78,7 @@ pub fn run(args: &SweepArgs) -> Result<(), String> {
         return crate::vsgl_sweep::run(args);
     }
     let scene = args.frame.load_renderable()?;
-    let strategies = args
-        .culling
-        .iter()
-        .map(|n| strategy(n))
-        .collect::<Result<Vec<_>, _>>()?;
+    let strategies = strategies(&args.culling)?;
     if strategies.is_empty() || args.delta.is_empty() || args.repeat == 0 {
         return Err("sweep needs at least one strategy, one δ and one repetition".into());
     }
@@ -125,13 +121,7 @@ impl OnBackend for Sweep<'_> {
             .map_err(message)?;
         let cpu_p = r.cpu_frame(&scene, &loaded, &p).map_err(message)?;
         let reference = all_vpl_reference(cpu_input(&scene, &cpu_p, f.seed, f.visibility))?;
-        let input = ShadeInput {
-            scene: &scene,
-            loaded: &loaded,
-            prepared: &p,
-            seed: f.seed,
-            visibility: f.visibility,
-        };
+        let input = f.input(&scene, &loaded, &p);
         let points = sweep(args, r, input, &strategies, base, &reference)?;
         write_outputs(args, &scene, &strategies, &points)
     }

@@ -13,10 +13,10 @@ use crate::backend::{message, run_on, OnBackend};
 use crate::plot::{line_plot_svg, Series};
 use crate::progress::bar;
 use crate::reference::{all_vpl_reference, cpu_input};
-use crate::sampled::{Estimator, ESTIMATORS, PASSES};
+use crate::sampled::{shade_sampled, PASSES};
 use crate::sweep_cmd::SweepArgs;
 use slc_core::frame::{Importance, Method, Timings};
-use slc_core::shader::ShadeInput;
+use slc_core::shader::{SampledLights, ShadeInput};
 use slc_core::{PreparedFrame, Scene};
 use slc_cpu_ref::CpuFrames;
 use std::fmt::Write;
@@ -24,7 +24,7 @@ use std::time::Instant;
 
 struct Point {
     count: u32,
-    estimator: Estimator,
+    estimator: SampledLights,
     lights: usize,
     /// The fastest run's pass times.
     timings: Timings,
@@ -74,12 +74,13 @@ impl OnBackend for VsglSweep<'_> {
         let start = Instant::now();
         let reference = all_vpl_reference(cpu_input(&scene, &cpu_p, f.seed, f.visibility))?;
         let reference_ms = start.elapsed().as_secs_f64() * 1e3;
-        let runs = args.vsgls.len() * ESTIMATORS.len() * (args.seeds * args.repeat) as usize;
+        let runs =
+            args.vsgls.len() * SampledLights::ALL.len() * (args.seeds * args.repeat) as usize;
         let progress = bar(runs as u64, "sweep".into());
         let mut points = Vec::new();
         for &count in &args.vsgls {
             let sampling = args.importance.sampling(count);
-            for estimator in ESTIMATORS {
+            for estimator in SampledLights::ALL {
                 let (mut squared, mut best, mut lights) = (0.0f64, None::<Timings>, 0);
                 for seed in f.seed..f.seed + args.seeds {
                     let on_r = ShadeInput {
@@ -91,7 +92,7 @@ impl OnBackend for VsglSweep<'_> {
                     };
                     let cpu = cpu_input(&scene, &cpu_p, seed, f.visibility);
                     for repetition in 0..args.repeat {
-                        let (out, _) = estimator.shade(r, on_r, cpu, sampling)?;
+                        let (out, _) = shade_sampled(estimator, r, on_r, cpu, sampling)?;
                         if repetition == 0 {
                             squared += f64::from(out.indirect.rmse(&reference)).powi(2);
                             lights = out.sampled_lights.unwrap_or(0);
@@ -115,40 +116,35 @@ impl OnBackend for VsglSweep<'_> {
             }
         }
         progress.finish_and_clear();
-        write_outputs(
-            args,
-            &scene,
+        let facts = SweepFacts {
+            scene: &scene.name,
             texels,
-            p.vpls().len(),
+            vpls: p.vpls().len(),
             reference_ms,
-            r.name(),
-            &points,
-        )
+            vsgl_backend: r.name(),
+        };
+        write_outputs(args, &facts, &points)
     }
 }
 
-/// `vsgl_sweep.csv`, `.md` and `.svg`.
-fn write_outputs(
-    args: &SweepArgs,
-    scene: &Scene,
+/// What the tables say about the swept frame.
+struct SweepFacts<'a> {
+    scene: &'a str,
+    /// Lit RSM texels.
     texels: usize,
     vpls: usize,
+    /// Time of the all-VPL reference.
     reference_ms: f64,
-    vsgl_backend: &str,
-    points: &[Point],
-) -> Result<(), String> {
+    /// Where the VSGLs were shaded.
+    vsgl_backend: &'static str,
+}
+
+/// `vsgl_sweep.csv`, `.md` and `.svg`.
+fn write_outputs(args: &SweepArgs, facts: &SweepFacts, points: &[Point]) -> Result<(), String> {
     std::fs::create_dir_all(&args.out).map_err(|e| format!("{}: {e}", args.out.display()))?;
     write_csv(args, points)?;
-    write_tables(
-        args,
-        &scene.name,
-        texels,
-        vpls,
-        reference_ms,
-        vsgl_backend,
-        points,
-    )?;
-    let series: Vec<Series> = ESTIMATORS
+    write_tables(args, facts, points)?;
+    let series: Vec<Series> = SampledLights::ALL
         .iter()
         .map(|&e| Series {
             name: e.name().to_string(),
@@ -161,7 +157,7 @@ fn write_outputs(
         .collect();
     let title = format!(
         "{}: RMSE vs light count ({} importance)",
-        scene.name,
+        facts.scene,
         args.importance.sampling(0).importance.name()
     );
     std::fs::write(
@@ -196,17 +192,16 @@ fn write_csv(args: &SweepArgs, points: &[Point]) -> Result<(), String> {
     std::fs::write(args.out.join("vsgl_sweep.csv"), csv).map_err(|e| e.to_string())
 }
 
-fn write_tables(
-    args: &SweepArgs,
-    scene: &str,
-    texels: usize,
-    vpls: usize,
-    reference_ms: f64,
-    vsgl_backend: &str,
-    points: &[Point],
-) -> Result<(), String> {
+fn write_tables(args: &SweepArgs, facts: &SweepFacts, points: &[Point]) -> Result<(), String> {
     let f = &args.frame;
-    let find = |n: u32, e: Estimator| points.iter().find(|p| p.count == n && p.estimator == e);
+    let SweepFacts {
+        scene,
+        texels,
+        vpls,
+        reference_ms,
+        vsgl_backend,
+    } = facts;
+    let find = |n: u32, e: SampledLights| points.iter().find(|p| p.count == n && p.estimator == e);
     let mut md = format!("# VSGLs against VPLs at equal count: {scene}\n\n");
     let _ = writeln!(
         md,
@@ -231,7 +226,7 @@ fn write_tables(
     );
     md.push_str("## RMSE of the indirect image against every VPL\n\n| N | VPLs | VSGLs | VSGL / VPL |\n|---|---|---|---|\n");
     for &n in &args.vsgls {
-        if let (Some(v), Some(s)) = (find(n, Estimator::Vpl), find(n, Estimator::Vsgl)) {
+        if let (Some(v), Some(s)) = (find(n, SampledLights::Vpl), find(n, SampledLights::Vsgl)) {
             let _ = writeln!(
                 md,
                 "| {n} | {:.4e} | {:.4e} | {:.3} |",
@@ -252,15 +247,15 @@ fn write_tables(
     }
     md.push_str(" total | VSGL overhead |\n|---|---|---|---|---|---|---|---|---|\n");
     for &n in &args.vsgls {
-        let vpl_total = find(n, Estimator::Vpl).map(|p| p.timings.total());
-        for e in ESTIMATORS {
+        let vpl_total = find(n, SampledLights::Vpl).map(|p| p.timings.total());
+        for e in SampledLights::ALL {
             let Some(p) = find(n, e) else { continue };
             let _ = write!(md, "| {n} | {} | {} |", e.name(), p.lights);
             for (pass, _) in PASSES {
                 let _ = write!(md, " {:.2} |", p.timings.get(pass));
             }
             let overhead = match (e, vpl_total) {
-                (Estimator::Vsgl, Some(v)) => format!("{:+.2}", p.timings.total() - v),
+                (SampledLights::Vsgl, Some(v)) => format!("{:+.2}", p.timings.total() - v),
                 _ => String::new(),
             };
             let _ = writeln!(md, " {:.2} | {overhead} |", p.timings.total());

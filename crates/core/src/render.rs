@@ -5,7 +5,7 @@ use crate::framebuffer::Image;
 use crate::renderer::{PreparedFrame, Progress, Renderer};
 use crate::rng::pcg_hash;
 use crate::scene::Scene;
-use crate::shader::{AllVplShader, SampledVplShader, ShadeInput, Shader, VsglShader};
+use crate::shader::{AllVplShader, SampledLights, SampledShader, ShadeInput, Shader};
 
 /// The seed of ξ, interleaving and sampled points of pass `pass` (`None`: the one pass of a
 /// frame without jitter).
@@ -23,8 +23,16 @@ pub fn shade_method<R: Renderer>(
 ) -> Result<crate::frame::Shaded, RenderError> {
     match method {
         Method::Stochastic(s) => s.shade(r, input, progress),
-        Method::Vsgl(l) => VsglShader(*l).shade(r, input, progress),
-        Method::SampledVpls(l) => SampledVplShader(*l).shade(r, input, progress),
+        Method::Vsgl(sampling) => SampledShader {
+            lights: SampledLights::Vsgl,
+            sampling: *sampling,
+        }
+        .shade(r, input, progress),
+        Method::SampledVpls(sampling) => SampledShader {
+            lights: SampledLights::Vpl,
+            sampling: *sampling,
+        }
+        .shade(r, input, progress),
         Method::VplReference => AllVplShader.shade(r, input, progress),
         Method::Path => Err(RenderError::Settings(
             "the path method traces paths, it does not shade a prepared frame".into(),

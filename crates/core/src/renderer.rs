@@ -12,6 +12,7 @@ use crate::culling::{CullMetrics, Interleaving};
 use crate::frame::{LightSampling, Method, RenderError, RenderSettings, Shaded, Timings};
 use crate::framebuffer::Image;
 use crate::scene::Scene;
+use crate::shader::SampledLights;
 use crate::strategy::Strategy;
 use crate::vpl::Vpl;
 
@@ -164,32 +165,20 @@ pub trait Renderer {
         interleaving: Interleaving,
     ) -> Result<CullMetrics, RenderError>;
 
-    /// Indirect light from `sampling.count` VSGLs (VSGL sections 3-4).
+    /// Indirect light from `sampling.count` sampled lights (VSGL sections 3-4): VSGLs, which
+    /// every backend shades, or the sampled texels' VPLs ([`Capabilities::sampled_vpls`]).
     #[allow(clippy::too_many_arguments)]
-    fn shade_vsgls(
+    fn shade_sampled(
         &self,
         scene: &Scene,
         loaded: &Self::Scene,
         p: &Self::Prepared,
+        lights: SampledLights,
         sampling: &LightSampling,
         seed: u32,
         visibility: bool,
         progress: Progress,
     ) -> Result<Shaded, RenderError>;
-
-    /// Indirect light from the VPLs of `sampling.count` texels sampled as the VSGLs are.
-    #[allow(clippy::too_many_arguments)]
-    fn shade_sampled_vpls(
-        &self,
-        _loaded: &Self::Scene,
-        _p: &Self::Prepared,
-        _sampling: &LightSampling,
-        _seed: u32,
-        _visibility: bool,
-        _progress: Progress,
-    ) -> Result<Shaded, RenderError> {
-        Err(self.unsupported("sampled VPLs"))
-    }
 
     /// Every VPL at every pixel with p = 1: the all-VPL reference.
     fn shade_all_vpls(

@@ -1,7 +1,9 @@
 //! Shaders: the estimators of indirect light, each written once over the steps of a
 //! [`Renderer`], so both backends run the same composition.
 use crate::culling::Interleaving;
-use crate::frame::{merge_optional, LightSampling, RenderError, Shaded, Stochastic, Timings};
+use crate::frame::{
+    merge_optional, LightSampling, Method, RenderError, Shaded, Stochastic, Timings,
+};
 use crate::renderer::{PreparedFrame, Progress, Renderer};
 use crate::scene::Scene;
 
@@ -91,42 +93,48 @@ impl Shader for Stochastic {
     }
 }
 
-/// `count` virtual spherical Gaussian lights sampled from the mipmapped RSMs (Tokuyoshi
-/// 2015): `vsgl_mip`, `importance_map`, `light_sampling`, `light_shading`.
+/// What lights are sampled from the RSMs by importance (VSGL section 4.2).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct VsglShader(pub LightSampling);
+pub enum SampledLights {
+    /// Virtual spherical Gaussian lights at the filtered mip level (Tokuyoshi 2015), shaded
+    /// analytically: `vsgl_mip`, `importance_map`, `light_sampling`, `light_shading`.
+    Vsgl,
+    /// The VPLs of the sampled texels with the same importance and points, shaded exactly:
+    /// the unbiased equal-count VPL estimator.
+    Vpl,
+}
 
-impl Shader for VsglShader {
-    fn name(&self) -> String {
-        "vsgl".into()
+impl SampledLights {
+    /// Both, VPLs first.
+    pub const ALL: [SampledLights; 2] = [SampledLights::Vpl, SampledLights::Vsgl];
+
+    /// `vsgl` or `vpl_sampled`, as folders, tables and CSVs name them.
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Vsgl => "vsgl",
+            Self::Vpl => "vpl_sampled",
+        }
     }
 
-    fn shade<R: Renderer>(
-        &self,
-        r: &R,
-        input: ShadeInput<'_, R>,
-        progress: Progress,
-    ) -> Result<Shaded, RenderError> {
-        r.shade_vsgls(
-            input.scene,
-            input.loaded,
-            input.prepared,
-            &self.0,
-            input.seed,
-            input.visibility,
-            progress,
-        )
+    /// The render method of these lights with `sampling`.
+    pub fn method(self, sampling: LightSampling) -> Method {
+        match self {
+            Self::Vsgl => Method::Vsgl(sampling),
+            Self::Vpl => Method::SampledVpls(sampling),
+        }
     }
 }
 
-/// The VPLs of `count` texels sampled with the VSGLs' importance and points: the unbiased
-/// equal-count VPL estimator.
+/// `sampling.count` lights of one kind sampled from the RSMs.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct SampledVplShader(pub LightSampling);
+pub struct SampledShader {
+    pub lights: SampledLights,
+    pub sampling: LightSampling,
+}
 
-impl Shader for SampledVplShader {
+impl Shader for SampledShader {
     fn name(&self) -> String {
-        "vpl_sampled".into()
+        self.lights.name().into()
     }
 
     fn shade<R: Renderer>(
@@ -135,10 +143,12 @@ impl Shader for SampledVplShader {
         input: ShadeInput<'_, R>,
         progress: Progress,
     ) -> Result<Shaded, RenderError> {
-        r.shade_sampled_vpls(
+        r.shade_sampled(
+            input.scene,
             input.loaded,
             input.prepared,
-            &self.0,
+            self.lights,
+            &self.sampling,
             input.seed,
             input.visibility,
             progress,

@@ -10,6 +10,7 @@ use crate::tracer::Tracer;
 use crate::vpl_shading::{shade_lists, shade_vpls, VplEstimator};
 use rayon::prelude::*;
 use slc_core::frame::{LightSampling, RenderError, RenderSettings, RenderedFrame, Shaded};
+use slc_core::shader::SampledLights;
 use slc_core::{
     BackendInfo, Capabilities, CullInput, CullMetrics, Image, Interleaving, LightLists, Progress,
     Renderer, Scene, Strategy,
@@ -121,29 +122,22 @@ impl Renderer for CpuRenderer {
         )?)
     }
 
-    fn shade_vsgls(
+    fn shade_sampled(
         &self,
         _scene: &Scene,
         _loaded: &Arc<Tracer>,
         p: &CpuPrepared,
+        lights: SampledLights,
         sampling: &LightSampling,
         seed: u32,
         visibility: bool,
         progress: Progress,
     ) -> Result<Shaded, RenderError> {
-        shade_vsgl(p, sampling, seed, visibility, progress).map_err(RenderError::backend)
-    }
-
-    fn shade_sampled_vpls(
-        &self,
-        _loaded: &Arc<Tracer>,
-        p: &CpuPrepared,
-        sampling: &LightSampling,
-        seed: u32,
-        visibility: bool,
-        progress: Progress,
-    ) -> Result<Shaded, RenderError> {
-        shade_sampled_vpls(p, sampling, seed, visibility, progress).map_err(RenderError::backend)
+        let shade = match lights {
+            SampledLights::Vsgl => shade_vsgl,
+            SampledLights::Vpl => shade_sampled_vpls,
+        };
+        shade(p, sampling, seed, visibility, progress).map_err(RenderError::backend)
     }
 
     fn shade_all_vpls(

@@ -36,8 +36,8 @@ fn run() -> Result<(), Box<dyn std::error::Error>> {
         height: h,
         samples,
     };
-    // A grid of VPLs half a unit above the floor: diffuse ones facing down, glossy ones
-    // reflecting a light from above towards the floor, with ξ spread over (0, 1).
+    // A grid of VPLs half a unit above the floor, facing it (a lit ceiling patch, ωi towards
+    // a light below it): every other one glossy; ξ spread over (0, 1).
     let vpls: Vec<Vpl> = (0..256u32)
         .map(|id| {
             let (i, j) = ((id % 16) as f32, (id / 16) as f32);

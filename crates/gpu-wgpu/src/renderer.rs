@@ -34,6 +34,7 @@ use slc_core::frame::{
 };
 use slc_core::render::pass_seed;
 use slc_core::rng::{stream, uniform};
+use slc_core::shader::SampledLights;
 use slc_core::{
     BackendInfo, Camera, Capabilities, CullInput, CullMetrics, Culler, GBuffer, Image,
     Interleaving, PreparedFrame, Progress, Renderer, Scene, Strategy, Vpl,
@@ -353,7 +354,8 @@ impl Renderer for GpuRenderer {
         Ok(slc_cull::metrics::measure(&input, &read)?)
     }
 
-    /// As `slc_cpu_ref::sampled_lights::shade_vsgl` computes it: the RSMs read back
+    /// VSGLs as `slc_cpu_ref::sampled_lights::shade_vsgl` computes them (sampled VPLs are
+    /// CPU-only): the RSMs read back
     /// (`rsm_readback`), the Toksvig mipmaps (`vsgl_mip`), the flux or bidirectional
     /// importance (`importance_map`; the latter reads the G-buffer back) and the filtered
     /// importance sampling of clusters (`light_sampling`) on the CPU, `σ_v²` floored at the
@@ -361,16 +363,20 @@ impl Renderer for GpuRenderer {
     /// shading of eq. (2)-(5) on the GPU (`light_shading`, VSGL upload included). With
     /// `visibility` an imperfect shadow map per VSGL is rendered (`shadow_maps`) and the
     /// shading weighted by its visibility, where the CPU traces shadow rays.
-    fn shade_vsgls(
+    fn shade_sampled(
         &self,
         scene: &Scene,
         loaded: &GpuLoadedScene,
         p: &GpuPrepared,
+        lights: SampledLights,
         s: &LightSampling,
         seed: u32,
         visibility: bool,
         _progress: Progress,
     ) -> Result<Shaded, RenderError> {
+        if lights == SampledLights::Vpl {
+            return Err(self.unsupported("sampled VPLs"));
+        }
         let ctx = &self.ctx;
         let mut timings = Timings::default();
         let floor = loaded.epsilon * loaded.epsilon;
@@ -417,9 +423,12 @@ impl Renderer for GpuRenderer {
             .map_err(RenderError::backend)?;
         let g = &p.gbuffer;
         let shadow_maps = if visibility {
-            let (casters, settings) = loaded.casters.get_or_init(|| {
-                let settings = IsmSettings::paper(loaded.epsilon);
-                (caster_points(scene, &settings), settings)
+            // Sampled once per scene; the first frame's `ism_points` carries the cost.
+            let (casters, settings) = timings.time("ism_points", || {
+                loaded.casters.get_or_init(|| {
+                    let settings = IsmSettings::paper(loaded.epsilon);
+                    (caster_points(scene, &settings), settings)
+                })
             });
             let centres: Vec<_> = vsgls.iter().map(|v| v.mu).collect();
             Some(timings.time("shadow_maps", || {

@@ -1,7 +1,6 @@
 //! Why a frame could not be rendered.
 use crate::culling::CullError;
 use crate::error::SceneError;
-use crate::strategy::UnknownStrategy;
 
 /// Errors of rendering, on any backend.
 #[derive(Debug, thiserror::Error)]
@@ -12,8 +11,6 @@ pub enum RenderError {
     Bounds(#[from] slc_bounds::BoundsError),
     #[error(transparent)]
     Cull(#[from] CullError),
-    #[error(transparent)]
-    Strategy(#[from] UnknownStrategy),
     #[error("invalid render settings: {0}")]
     Settings(String),
     /// The backend does not have what the settings ask for.

@@ -30,7 +30,7 @@ use slc_gpu_wgpu::buffers::upload;
 use slc_gpu_wgpu::gbuffer_pass::GpuGBuffer;
 use slc_gpu_wgpu::gpu_types::{gpu_position, GpuSample};
 use slc_gpu_wgpu::vsgl_shade_pass::{GpuVsgls, VsglShadePass};
-use slc_gpu_wgpu::vsgl_types::{VsglInput, VsglLobe};
+use slc_gpu_wgpu::vsgl_types::VsglInput;
 use slc_gpu_wgpu::{GpuContext, GpuError};
 
 const TOLERANCE: f32 = 1e-4;
@@ -39,27 +39,7 @@ const FLOOR_OF_MEAN: f32 = 1e-3;
 /// Both forms of the diffuse emission, the default first.
 const EMISSIONS: [DiffuseEmission; 2] = [DiffuseEmission::ClampedCosine, DiffuseEmission::Sg];
 
-/// A CPU VSGL as the pass takes it, with `diffuse` emission.
-pub fn input(v: &Vsgl, diffuse: DiffuseEmission) -> VsglInput {
-    VsglInput {
-        clamped_diffuse: (diffuse == DiffuseEmission::ClampedCosine)
-            .then_some(v.normal_concentration),
-        mu: v.mu,
-        sigma2: v.sigma2,
-        lobes: [
-            VsglLobe {
-                c: v.c_diffuse,
-                xi: v.xi_diffuse,
-                lambda: v.lambda_diffuse,
-            },
-            VsglLobe {
-                c: v.c_specular,
-                xi: v.xi_specular,
-                lambda: v.lambda_specular,
-            },
-        ],
-    }
-}
+pub use slc_gpu_wgpu::vsgl_readback::vsgl_input as input;
 
 /// The worst pixel ratio `max_c |gpu − cpu| / max(max_c |cpu|, floor)` and its pixel; fails
 /// on a non-finite GPU value.
