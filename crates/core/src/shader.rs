@@ -29,7 +29,7 @@ impl<R: Renderer> Copy for ShadeInput<'_, R> {}
 /// An estimator of indirect light from a prepared frame.
 pub trait Shader {
     /// The estimator's name, as reports and tables name it.
-    fn name(&self) -> String;
+    fn name(&self) -> &'static str;
 
     fn shade<R: Renderer>(
         &self,
@@ -42,8 +42,8 @@ pub trait Shader {
 /// The stochastic estimate of eq. (3): cull (`culling`), shade the lists (`shading`), filter
 /// (`denoise`), each timed on the wall clock; metrics by brute force after the timed passes.
 impl Shader for Stochastic {
-    fn name(&self) -> String {
-        self.strategy.name().into()
+    fn name(&self) -> &'static str {
+        self.strategy.name()
     }
 
     fn shade<R: Renderer>(
@@ -133,8 +133,8 @@ pub struct SampledShader {
 }
 
 impl Shader for SampledShader {
-    fn name(&self) -> String {
-        self.lights.name().into()
+    fn name(&self) -> &'static str {
+        self.lights.name()
     }
 
     fn shade<R: Renderer>(
@@ -161,8 +161,8 @@ impl Shader for SampledShader {
 pub struct AllVplShader;
 
 impl Shader for AllVplShader {
-    fn name(&self) -> String {
-        "reference_vpl".into()
+    fn name(&self) -> &'static str {
+        "reference_vpl"
     }
 
     fn shade<R: Renderer>(
