@@ -3,6 +3,7 @@
 //! Writes `bench.csv` and `bench.md`.
 use crate::args::{strategies, FrameArgs, PipelineArgs, Shader};
 use crate::backend::{message, run_on, OnBackend};
+use crate::out_dir::OutDir;
 use clap::Args;
 use slc_core::frame::{Method, Stochastic};
 use slc_core::shader::{frame_timings, Shader as _};
@@ -64,6 +65,7 @@ pub fn run(args: &BenchArgs) -> Result<(), String> {
                 .into(),
         );
     }
+    let out = OutDir::open(&args.out)?;
     let scene = args.frame.load_renderable()?;
     let strategies = strategies(&args.culling)?;
     let resolutions = args
@@ -81,6 +83,7 @@ pub fn run(args: &BenchArgs) -> Result<(), String> {
             scene,
             strategies,
             resolutions,
+            out,
         },
     )
 }
@@ -90,6 +93,7 @@ struct Bench<'a> {
     scene: Scene,
     strategies: Vec<Strategy>,
     resolutions: Vec<(u32, u32)>,
+    out: OutDir,
 }
 
 impl OnBackend for Bench<'_> {
@@ -99,6 +103,7 @@ impl OnBackend for Bench<'_> {
             scene,
             strategies,
             resolutions,
+            mut out,
         } = self;
         let base = args.pipeline.stochastic(args.delta, strategies[0], false);
         let first = args.frame.settings(Method::Stochastic(base), 1);
@@ -180,9 +185,9 @@ impl OnBackend for Bench<'_> {
                 }
             }
         }
-        std::fs::create_dir_all(&args.out).map_err(|e| format!("{}: {e}", args.out.display()))?;
-        std::fs::write(args.out.join("bench.csv"), csv).map_err(|e| e.to_string())?;
-        std::fs::write(args.out.join("bench.md"), md).map_err(|e| e.to_string())?;
+        out.write("bench.csv", csv.as_bytes())?;
+        out.write("bench.md", md.as_bytes())?;
+        out.commit()?;
         println!("wrote {}", args.out.display());
         Ok(())
     }

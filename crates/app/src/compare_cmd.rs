@@ -7,7 +7,8 @@
 use crate::args::{strategies, FrameArgs, ImportanceArgs, PipelineArgs, Shader};
 use crate::backend::{message, run_on, OnBackend};
 use crate::heatmap::heat_map;
-use crate::output::write_frame;
+use crate::out_dir::OutDir;
+use crate::output::{write_frame, write_rgb8};
 use crate::progress::bar;
 use crate::reference::{all_vpl_reference, cpu_input};
 use crate::report::{FrameFacts, Report};
@@ -68,6 +69,7 @@ struct Row {
 }
 
 pub fn run(args: &CompareArgs) -> Result<(), String> {
+    let out = OutDir::open(&args.out)?;
     let scene = args.frame.load_renderable()?;
     let strategies = strategies(&args.culling)?;
     let base = args.pipeline.stochastic(args.delta, Strategy::None, true);
@@ -81,6 +83,7 @@ pub fn run(args: &CompareArgs) -> Result<(), String> {
             strategies,
             base,
             settings,
+            out,
         },
     )
 }
@@ -91,6 +94,7 @@ struct Compare<'a> {
     strategies: Vec<Strategy>,
     base: Stochastic,
     settings: RenderSettings,
+    out: OutDir,
 }
 
 impl OnBackend for Compare<'_> {
@@ -101,6 +105,7 @@ impl OnBackend for Compare<'_> {
             strategies,
             base,
             settings,
+            out: mut dir_out,
         } = self;
         let f = &args.frame;
         r.check(&settings).map_err(message)?;
@@ -129,8 +134,8 @@ impl OnBackend for Compare<'_> {
             .transpose()?;
         if let Some(r) = &reference {
             let total = p.direct().add(r);
-            let dir = args.out.join("reference_vpl");
-            let images = write_frame(&dir, p.direct(), r, &total)?;
+            let dir = "reference_vpl";
+            let images = write_frame(&mut dir_out, dir, p.direct(), r, &total)?;
             let facts = FrameFacts {
                 device: &cpu_device,
                 scene: &scene,
@@ -144,7 +149,7 @@ impl OnBackend for Compare<'_> {
                 sampled_lights: None,
                 images: &images,
             };
-            Report::new(&facts).write(&dir.join("report.json"))?;
+            Report::new(&facts).write(&mut dir_out, dir)?;
         }
 
         // The unculled estimate with the same K, δ, ξ and filter: a strategy that misses
@@ -165,8 +170,8 @@ impl OnBackend for Compare<'_> {
             bar.finish_and_clear();
             let m = out.metrics.as_ref().expect("metrics were asked for");
             let total = p.direct().add(&out.indirect);
-            let dir = args.out.join(strategy.name());
-            let images = write_frame(&dir, p.direct(), &out.indirect, &total)?;
+            let dir = strategy.name();
+            let images = write_frame(&mut dir_out, dir, p.direct(), &out.indirect, &total)?;
             let heat = heat_map(
                 f.width,
                 f.height,
@@ -174,8 +179,7 @@ impl OnBackend for Compare<'_> {
                 &m.fdr_per_pixel,
                 args.heat_max,
             );
-            heat.save(dir.join("heatmap.png"))
-                .map_err(|e| format!("{}: {e}", dir.display()))?;
+            write_rgb8(&mut dir_out, &format!("{dir}/heatmap.png"), &heat)?;
             let (timings, gpu_timings) = frame_timings(&p, &out);
             let facts = FrameFacts {
                 device: &device,
@@ -190,7 +194,7 @@ impl OnBackend for Compare<'_> {
                 sampled_lights: None,
                 images: &images,
             };
-            Report::new(&facts).write(&dir.join("report.json"))?;
+            Report::new(&facts).write(&mut dir_out, dir)?;
             rows.push(Row {
                 strategy,
                 lights_per_pixel: m.lights_per_pixel_mean,
@@ -207,14 +211,14 @@ impl OnBackend for Compare<'_> {
             eprintln!("{strategy}: done");
         }
         let sampled = if f.shader == Shader::Vsgl {
-            sampled_lights(args, r, input, cpu, reference.as_ref())?
+            sampled_lights(args, &mut dir_out, r, input, cpu, reference.as_ref())?
         } else {
             String::new()
         };
-        write_table(args, &device, &scene.name, p.vpls().len(), &rows, &sampled)?;
-        side_by_side(&rows)
-            .save(args.out.join("side_by_side.png"))
-            .map_err(|e| e.to_string())?;
+        let md = table(args, &device, &scene.name, p.vpls().len(), &rows, &sampled);
+        dir_out.write("report.md", md.as_bytes())?;
+        write_rgb8(&mut dir_out, "side_by_side.png", &side_by_side(&rows))?;
+        dir_out.commit()?;
         println!("wrote {}", args.out.display());
         Ok(())
     }
@@ -225,6 +229,7 @@ impl OnBackend for Compare<'_> {
 /// section of `report.md`.
 fn sampled_lights<R: Renderer>(
     args: &CompareArgs,
+    dir_out: &mut OutDir,
     r: &R,
     input: ShadeInput<'_, R>,
     cpu: ShadeInput<'_, CpuRenderer>,
@@ -257,8 +262,8 @@ fn sampled_lights<R: Renderer>(
             CpuRenderer.info(&settings)
         };
         let total = prepared.direct.add(&out.indirect);
-        let dir = args.out.join(e.name());
-        let images = write_frame(&dir, &prepared.direct, &out.indirect, &total)?;
+        let dir = e.name();
+        let images = write_frame(dir_out, dir, &prepared.direct, &out.indirect, &total)?;
         let (timings, _) = frame_timings(prepared, &out);
         let facts = FrameFacts {
             device: &device,
@@ -273,7 +278,7 @@ fn sampled_lights<R: Renderer>(
             sampled_lights: out.sampled_lights,
             images: &images,
         };
-        Report::new(&facts).write(&dir.join("report.json"))?;
+        Report::new(&facts).write(dir_out, dir)?;
         let lights = out.sampled_lights.unwrap_or(0);
         let _ = write!(md, "| {} ({backend}) | {lights} |", e.name());
         for (pass, _) in PASSES {
@@ -287,14 +292,15 @@ fn sampled_lights<R: Renderer>(
     Ok(md)
 }
 
-fn write_table(
+/// `report.md`: the settings, the table and what the pictures show.
+fn table(
     args: &CompareArgs,
     device: &BackendInfo,
     scene: &str,
     vpls: usize,
     rows: &[Row],
     sampled: &str,
-) -> Result<(), String> {
+) -> String {
     let f = &args.frame;
     let mut md = String::new();
     let _ = writeln!(md, "# slc compare: {scene}\n");
@@ -354,7 +360,7 @@ fn write_table(
     );
     let _ = writeln!(md, "\nHeat maps (`*/heatmap.png`): brightness = VPLs per pixel (full at {}), colour = false discovery rate from blue (0) to red (1).", args.heat_max);
     md.push_str(sampled);
-    std::fs::write(args.out.join("report.md"), md).map_err(|e| e.to_string())
+    md
 }
 
 /// Totals in the top row, heat maps below, one column per strategy.

@@ -4,6 +4,7 @@ mod backend;
 mod bench_cmd;
 mod compare_cmd;
 mod heatmap;
+mod out_dir;
 mod output;
 mod plot;
 mod progress;

@@ -1,4 +1,5 @@
 //! Writing images: linear float EXR and sRGB PNG.
+use crate::out_dir::OutDir;
 use slc_core::Image;
 use std::path::Path;
 
@@ -43,22 +44,32 @@ pub fn write_png(path: &Path, image: &Image) -> Result<(), String> {
         .map_err(|e| format!("{}: cannot write PNG: {e}", path.display()))
 }
 
-/// Writes a frame's folder: `direct`, `indirect` and `total`, each as EXR and PNG; returns the
-/// images by name (total included) for the report.
+/// Stages a frame's files in `out` under the relative folder `dir` (empty: the top):
+/// `direct`, `indirect` and `total`, each as EXR and PNG, after checking that every pixel is
+/// finite; returns the images by name (total included) for the report.
 pub fn write_frame<'a>(
-    dir: &Path,
+    out: &mut OutDir,
+    dir: &str,
     direct: &'a Image,
     indirect: &'a Image,
     total: &'a Image,
 ) -> Result<[(&'static str, &'a Image); 3], String> {
-    std::fs::create_dir_all(dir)
-        .map_err(|e| format!("{}: cannot create folder: {e}", dir.display()))?;
     let images = [("direct", direct), ("indirect", indirect), ("total", total)];
     for (name, img) in images {
-        write_exr(&dir.join(format!("{name}.exr")), img)?;
-        write_png(&dir.join(format!("{name}.png")), img)?;
+        img.check_finite(name).map_err(|e| e.to_string())?;
+    }
+    for (name, img) in images {
+        write_exr(&out.stage(Path::new(dir).join(format!("{name}.exr")))?, img)?;
+        write_png(&out.stage(Path::new(dir).join(format!("{name}.png")))?, img)?;
     }
     Ok(images)
+}
+
+/// Stages an 8-bit picture (heat map, strip) as a PNG.
+pub fn write_rgb8(out: &mut OutDir, relative: &str, picture: &image::RgbImage) -> Result<(), String> {
+    picture
+        .save(out.stage(relative)?)
+        .map_err(|e| format!("{}: cannot write PNG: {e}", out.root().join(relative).display()))
 }
 
 #[cfg(test)]

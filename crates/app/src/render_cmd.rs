@@ -1,6 +1,7 @@
 //! `slc render`.
 use crate::args::{strategy, FrameArgs, ImportanceArgs, PipelineArgs, Shader};
 use crate::backend::{message, run_on, OnBackend};
+use crate::out_dir::OutDir;
 use crate::output::write_frame;
 use crate::progress::bar;
 use crate::report::{FrameFacts, Report};
@@ -51,6 +52,7 @@ pub struct RenderArgs {
 }
 
 pub fn run(args: &RenderArgs) -> Result<(), String> {
+    let out = OutDir::open(&args.out)?;
     let scene = args.frame.load()?;
     let method = match (args.reference, args.frame.shader) {
         (Some(_), Shader::Vsgl) => {
@@ -74,6 +76,7 @@ pub fn run(args: &RenderArgs) -> Result<(), String> {
             args,
             scene,
             settings,
+            out,
         },
     )
 }
@@ -82,6 +85,7 @@ struct Render<'a> {
     args: &'a RenderArgs,
     scene: Scene,
     settings: RenderSettings,
+    out: OutDir,
 }
 
 impl OnBackend for Render<'_> {
@@ -90,6 +94,7 @@ impl OnBackend for Render<'_> {
             args,
             scene,
             settings,
+            mut out,
         } = self;
         let f = &args.frame;
         let progress = bar(
@@ -101,7 +106,7 @@ impl OnBackend for Render<'_> {
         progress.finish_and_clear();
         let device = r.info(&settings);
         let total = frame.total();
-        let images = write_frame(&args.out, &frame.direct, &frame.indirect, &total)?;
+        let images = write_frame(&mut out, "", &frame.direct, &frame.indirect, &total)?;
         let timings = &frame.timings;
         let facts = FrameFacts {
             device: &device,
@@ -116,7 +121,8 @@ impl OnBackend for Render<'_> {
             sampled_lights: frame.sampled_lights,
             images: &images,
         };
-        Report::new(&facts).write(&args.out.join("report.json"))?;
+        Report::new(&facts).write(&mut out, "")?;
+        out.commit()?;
         let m = total.mean();
         let lights = match frame.sampled_lights {
             Some(n) if f.shader == Shader::Vsgl => format!("{n} VSGLs of {} samples", args.vsgls),

@@ -5,6 +5,7 @@ use serde::Serialize;
 use slc_core::frame::{Importance, Method, Timings};
 use slc_core::{BackendInfo, CullMetrics, Image, Scene};
 use std::collections::BTreeMap;
+use crate::out_dir::OutDir;
 use std::path::Path;
 
 #[derive(Serialize, Debug)]
@@ -167,9 +168,9 @@ impl Report {
         }
     }
 
-    pub fn write(&self, path: &Path) -> Result<(), String> {
+    /// Stages the report as `dir/report.json` in `out` (empty `dir`: the top).
+    pub fn write(&self, out: &mut OutDir, dir: &str) -> Result<(), String> {
         let json = serde_json::to_string_pretty(self).map_err(|e| e.to_string())?;
-        std::fs::write(path, json + "\n")
-            .map_err(|e| format!("{}: cannot write report: {e}", path.display()))
+        out.write(Path::new(dir).join("report.json"), (json + "\n").as_bytes())
     }
 }

@@ -9,7 +9,8 @@
 //! read back). With `--shader vsgl` it sweeps light counts instead ([`crate::vsgl_sweep`]).
 use crate::args::{strategies, FrameArgs, ImportanceArgs, PipelineArgs, Shader};
 use crate::backend::{message, run_on, OnBackend};
-use crate::output::to_srgb8;
+use crate::out_dir::OutDir;
+use crate::output::{to_srgb8, write_rgb8};
 use crate::plot::{line_plot_svg, Series};
 use crate::progress::bar;
 use crate::reference::{all_vpl_reference, cpu_input};
@@ -74,8 +75,9 @@ impl Point {
 }
 
 pub fn run(args: &SweepArgs) -> Result<(), String> {
+    let out = OutDir::open(&args.out)?;
     if args.frame.shader == Shader::Vsgl {
-        return crate::vsgl_sweep::run(args);
+        return crate::vsgl_sweep::run(args, out);
     }
     let scene = args.frame.load_renderable()?;
     let strategies = strategies(&args.culling)?;
@@ -88,6 +90,7 @@ pub fn run(args: &SweepArgs) -> Result<(), String> {
             args,
             scene,
             strategies,
+            out,
         },
     )
 }
@@ -96,6 +99,7 @@ struct Sweep<'a> {
     args: &'a SweepArgs,
     scene: Scene,
     strategies: Vec<Strategy>,
+    out: OutDir,
 }
 
 impl OnBackend for Sweep<'_> {
@@ -104,6 +108,7 @@ impl OnBackend for Sweep<'_> {
             args,
             scene,
             strategies,
+            mut out,
         } = self;
         let f = &args.frame;
         let base = args
@@ -123,7 +128,10 @@ impl OnBackend for Sweep<'_> {
         let reference = all_vpl_reference(cpu_input(&scene, &cpu_p, f.seed, f.visibility))?;
         let input = f.input(&scene, &loaded, &p);
         let points = sweep(args, r, input, &strategies, base, &reference)?;
-        write_outputs(args, &scene, &strategies, &points)
+        write_outputs(args, &mut out, &scene, &strategies, &points)?;
+        out.commit()?;
+        println!("wrote {}", args.out.display());
+        Ok(())
     }
 }
 
@@ -174,11 +182,11 @@ fn sweep<R: Renderer>(
 /// `sweep.csv`, `sweep.svg` and the equal-time comparison.
 fn write_outputs(
     args: &SweepArgs,
+    out: &mut OutDir,
     scene: &Scene,
     names: &[Strategy],
     points: &[Point],
 ) -> Result<(), String> {
-    std::fs::create_dir_all(&args.out).map_err(|e| format!("{}: {e}", args.out.display()))?;
     let mut csv = String::from(
         "strategy,delta,culling_ms,shading_ms,culling_plus_shading_ms,rmse_vs_all_vpl\n",
     );
@@ -194,7 +202,7 @@ fn write_outputs(
             pt.rmse
         );
     }
-    std::fs::write(args.out.join("sweep.csv"), csv).map_err(|e| e.to_string())?;
+    out.write("sweep.csv", csv.as_bytes())?;
     let series: Vec<Series> = names
         .iter()
         .map(|&n| Series {
@@ -210,25 +218,23 @@ fn write_outputs(
         "{}: RMSE vs culling + shading time, δ in {:?}",
         scene.name, args.delta
     );
-    std::fs::write(
-        args.out.join("sweep.svg"),
-        line_plot_svg(
-            &title,
-            "culling + shading (ms)",
-            "RMSE of indirect vs all VPLs",
-            &series,
-            true,
-            true,
-        ),
-    )
-    .map_err(|e| e.to_string())?;
-    equal_time(args, names, points)?;
-    println!("wrote {}", args.out.display());
-    Ok(())
+    let svg = line_plot_svg(
+        &title,
+        "culling + shading (ms)",
+        "RMSE of indirect vs all VPLs",
+        &series,
+        true,
+        true,
+    );
+    out.write("sweep.svg", svg.as_bytes())?;
+    equal_time(args, out, names, points)
 }
 
 /// Each strategy's run closest in time to the median run of the first strategy.
-fn equal_time(args: &SweepArgs, names: &[Strategy], points: &[Point]) -> Result<(), String> {
+fn equal_time(
+    args: &SweepArgs,
+    out: &mut OutDir,
+    names: &[Strategy], points: &[Point]) -> Result<(), String> {
     let mut first: Vec<&Point> = points.iter().filter(|p| p.strategy == names[0]).collect();
     first.sort_by(|a, b| a.time_ms().total_cmp(&b.time_ms()));
     let target = first[first.len() / 2].time_ms();
@@ -254,13 +260,11 @@ fn equal_time(args: &SweepArgs, names: &[Strategy], points: &[Point]) -> Result<
         );
     }
     md.push_str("\n`equal_time.png`: the total images in this order, left to right.\n");
-    std::fs::write(args.out.join("equal_time.md"), md).map_err(|e| e.to_string())?;
+    out.write("equal_time.md", md.as_bytes())?;
     let (w, h) = (args.frame.width, args.frame.height);
     let mut strip = RgbImage::new(w * picks.len() as u32, h);
     for (i, p) in picks.iter().enumerate() {
         image::imageops::replace(&mut strip, &to_srgb8(&p.total), (i as u32 * w) as i64, 0);
     }
-    strip
-        .save(args.out.join("equal_time.png"))
-        .map_err(|e| e.to_string())
+    write_rgb8(out, "equal_time.png", &strip)
 }

@@ -10,6 +10,7 @@
 //! imperfect shadow maps for `--visibility`); the reference and the sampled VPLs are shaded on
 //! the CPU from the read-back frame.
 use crate::backend::{message, run_on, OnBackend};
+use crate::out_dir::OutDir;
 use crate::plot::{line_plot_svg, Series};
 use crate::progress::bar;
 use crate::reference::{all_vpl_reference, cpu_input};
@@ -31,7 +32,7 @@ struct Point {
     rmse: f32,
 }
 
-pub fn run(args: &SweepArgs) -> Result<(), String> {
+pub fn run(args: &SweepArgs, out: OutDir) -> Result<(), String> {
     let f = &args.frame;
     if args.vsgls.is_empty() || args.repeat == 0 || args.seeds == 0 {
         return Err(
@@ -45,17 +46,22 @@ pub fn run(args: &SweepArgs) -> Result<(), String> {
             .validate()
             .map_err(|e| e.to_string())?;
     }
-    run_on(f.backend, VsglSweep { args, scene })
+    run_on(f.backend, VsglSweep { args, scene, out })
 }
 
 struct VsglSweep<'a> {
     args: &'a SweepArgs,
     scene: Scene,
+    out: OutDir,
 }
 
 impl OnBackend for VsglSweep<'_> {
     fn run<R: CpuFrames>(self, r: &R) -> Result<(), String> {
-        let VsglSweep { args, scene } = self;
+        let VsglSweep {
+            args,
+            scene,
+            mut out,
+        } = self;
         let f = &args.frame;
         for &n in &args.vsgls {
             r.check(&f.settings(Method::Vsgl(args.importance.sampling(n)), 1))
@@ -123,7 +129,10 @@ impl OnBackend for VsglSweep<'_> {
             reference_ms,
             vsgl_backend: r.name(),
         };
-        write_outputs(args, &facts, &points)
+        write_outputs(args, &mut out, &facts, &points)?;
+        out.commit()?;
+        println!("wrote {}", args.out.display());
+        Ok(())
     }
 }
 
@@ -140,10 +149,14 @@ struct SweepFacts<'a> {
 }
 
 /// `vsgl_sweep.csv`, `.md` and `.svg`.
-fn write_outputs(args: &SweepArgs, facts: &SweepFacts, points: &[Point]) -> Result<(), String> {
-    std::fs::create_dir_all(&args.out).map_err(|e| format!("{}: {e}", args.out.display()))?;
-    write_csv(args, points)?;
-    write_tables(args, facts, points)?;
+fn write_outputs(
+    args: &SweepArgs,
+    out: &mut OutDir,
+    facts: &SweepFacts,
+    points: &[Point],
+) -> Result<(), String> {
+    out.write("vsgl_sweep.csv", csv(points).as_bytes())?;
+    out.write("vsgl_sweep.md", tables(args, facts, points).as_bytes())?;
     let series: Vec<Series> = SampledLights::ALL
         .iter()
         .map(|&e| Series {
@@ -160,23 +173,19 @@ fn write_outputs(args: &SweepArgs, facts: &SweepFacts, points: &[Point]) -> Resu
         facts.scene,
         args.importance.sampling(0).importance.name()
     );
-    std::fs::write(
-        args.out.join("vsgl_sweep.svg"),
-        line_plot_svg(
-            &title,
-            "lights N",
-            "RMSE of indirect vs all VPLs",
-            &series,
-            true,
-            true,
-        ),
-    )
-    .map_err(|e| e.to_string())?;
-    println!("wrote {}", args.out.display());
-    Ok(())
+    let svg = line_plot_svg(
+        &title,
+        "lights N",
+        "RMSE of indirect vs all VPLs",
+        &series,
+        true,
+        true,
+    );
+    out.write("vsgl_sweep.svg", svg.as_bytes())
 }
 
-fn write_csv(args: &SweepArgs, points: &[Point]) -> Result<(), String> {
+/// `vsgl_sweep.csv`.
+fn csv(points: &[Point]) -> String {
     let mut csv = String::from("n,estimator,distinct_lights");
     for (pass, _) in PASSES {
         let _ = write!(csv, ",{pass}_ms");
@@ -189,10 +198,11 @@ fn write_csv(args: &SweepArgs, points: &[Point]) -> Result<(), String> {
         }
         let _ = writeln!(csv, ",{:.3},{:.6e}", p.timings.total(), p.rmse);
     }
-    std::fs::write(args.out.join("vsgl_sweep.csv"), csv).map_err(|e| e.to_string())
+    csv
 }
 
-fn write_tables(args: &SweepArgs, facts: &SweepFacts, points: &[Point]) -> Result<(), String> {
+/// `vsgl_sweep.md`.
+fn tables(args: &SweepArgs, facts: &SweepFacts, points: &[Point]) -> String {
     let f = &args.frame;
     let SweepFacts {
         scene,
@@ -261,5 +271,5 @@ fn write_tables(args: &SweepArgs, facts: &SweepFacts, points: &[Point]) -> Resul
             let _ = writeln!(md, " {:.2} | {overhead} |", p.timings.total());
         }
     }
-    std::fs::write(args.out.join("vsgl_sweep.md"), md).map_err(|e| e.to_string())
+    md
 }

@@ -1,4 +1,5 @@
 //! Frame buffers: linear RGB images and the G-buffer.
+use crate::frame::RenderError;
 use glam::Vec3;
 use slc_bounds::Brdf;
 
@@ -60,6 +61,23 @@ impl Image {
             s += (*a - *b).length_squared() as f64;
         }
         (s / (3.0 * self.pixels.len().max(1) as f64)).sqrt() as f32
+    }
+
+    /// Pixels with a NaN or infinite channel.
+    pub fn non_finite_pixels(&self) -> usize {
+        self.pixels.iter().filter(|p| !p.is_finite()).count()
+    }
+
+    /// `Ok` when every pixel is finite, else [`RenderError::NonFinite`] naming `pass`.
+    pub fn check_finite(&self, pass: &'static str) -> Result<(), RenderError> {
+        match self.non_finite_pixels() {
+            0 => Ok(()),
+            count => Err(RenderError::NonFinite {
+                pass,
+                count,
+                pixels: self.pixels.len(),
+            }),
+        }
     }
 
     /// Whether every value is finite and non-negative.

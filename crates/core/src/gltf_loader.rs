@@ -351,13 +351,12 @@ fn read_light(
             irradiance: power,
         },
     };
-    if converted.is_valid() {
-        scene.lights.push(converted);
-    } else {
-        scene
-            .report
-            .warnings
-            .push(format!("{node}: invalid light {converted:?}; ignored"));
+    match converted.problem() {
+        None => scene.lights.push(converted),
+        Some(problem) => scene.report.warnings.push(format!(
+            "{node}: {} light ignored: {problem}",
+            converted.kind()
+        )),
     }
 }
 

@@ -67,7 +67,7 @@ pub use culling::{
 pub use error::SceneError;
 pub use frame::{RenderError, RenderSettings, RenderedFrame, Shaded, Timings};
 pub use framebuffer::{GBuffer, GSample, Image};
-pub use light::{Incident, Light};
+pub use light::{Incident, Light, MAX_RADIOMETRIC};
 #[cfg(feature = "loaders")]
 pub use load::{load_scene, load_scene_file};
 pub use material::{Material, MaterialModel, ALPHA_MIN};

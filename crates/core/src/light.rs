@@ -89,35 +89,66 @@ impl Light {
         }
     }
 
-    /// Whether every number of the light is finite and its intensity non-negative.
+    /// Whether [`Light::problem`] finds nothing wrong.
     pub fn is_valid(&self) -> bool {
-        let ok = |v: Vec3| v.is_finite() && v.min_element() >= 0.0;
+        self.problem().is_none()
+    }
+
+    /// What makes the light unusable, if anything: a non-finite position or direction, a
+    /// negative or non-finite value, a value above [`MAX_RADIOMETRIC`], or spot cone angles
+    /// outside `0 <= inner <= outer <= π/2`.
+    pub fn problem(&self) -> Option<String> {
+        let value = |what: &str, v: Vec3| {
+            (!(v.is_finite() && v.min_element() >= 0.0 && v.max_element() <= MAX_RADIOMETRIC))
+                .then(|| format!("{what} {v} is not in [0, {MAX_RADIOMETRIC:e}] per channel (larger values overflow f32 in the renderer's products)"))
+        };
+        let position = |p: Vec3| (!p.is_finite()).then(|| format!("position {p} is not finite"));
+        let direction = |d: Vec3| {
+            (!d.is_normalized()).then(|| format!("direction {d} is not a unit vector"))
+        };
         match *self {
             Light::Point {
-                position,
+                position: p,
                 intensity,
-            } => position.is_finite() && ok(intensity),
+            } => position(p).or_else(|| value("intensity", intensity)),
             Light::Spot {
-                position,
-                direction,
+                position: p,
+                direction: d,
                 intensity,
                 inner_cone_angle,
                 outer_cone_angle,
-            } => {
-                position.is_finite()
-                    && direction.is_normalized()
-                    && ok(intensity)
-                    && inner_cone_angle >= 0.0
-                    && inner_cone_angle <= outer_cone_angle
-                    && outer_cone_angle <= std::f32::consts::FRAC_PI_2
-            }
+            } => position(p)
+                .or_else(|| direction(d))
+                .or_else(|| value("intensity", intensity))
+                .or_else(|| {
+                    let ok = inner_cone_angle >= 0.0
+                        && inner_cone_angle <= outer_cone_angle
+                        && outer_cone_angle <= std::f32::consts::FRAC_PI_2;
+                    (!ok).then(|| format!("cone angles {inner_cone_angle} (inner) and {outer_cone_angle} (outer) are not 0 <= inner <= outer <= pi/2"))
+                }),
             Light::Directional {
-                direction,
+                direction: d,
                 irradiance,
-            } => direction.is_normalized() && ok(irradiance),
+            } => direction(d).or_else(|| value("irradiance", irradiance)),
+        }
+    }
+
+    /// `point`, `spot` or `directional`.
+    pub fn kind(&self) -> &'static str {
+        match self {
+            Light::Point { .. } => "point",
+            Light::Spot { .. } => "spot",
+            Light::Directional { .. } => "directional",
         }
     }
 }
+
+/// The largest radiant intensity (W/sr) or irradiance (W/m²) per channel a light may have:
+/// 1e20, which leaves f32 (max 3.4e38) eighteen orders of magnitude for the products the
+/// renderer forms with it (the GGX peak 1/(π α²) ≤ 3.2e7 at the smallest α, 1/d² of nearby
+/// receivers, the flux of an RSM texel). Beyond that a pixel can overflow to infinity, which
+/// the render then reports as [`crate::frame::RenderError::NonFinite`].
+pub const MAX_RADIOMETRIC: f32 = 1e20;
 
 fn point_incident(position: Vec3, intensity: Vec3, x: Vec3) -> Option<Incident> {
     let to_light = position - x;

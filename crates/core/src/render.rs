@@ -69,6 +69,8 @@ pub fn render<R: Renderer>(
             let (d, i) = timings.time("path", || {
                 r.path_trace(scene, &loaded, settings, pass, progress)
             })?;
+            d.check_finite("direct")?;
+            i.check_finite("path")?;
             frame.direct = frame.direct.add(&d);
             frame.indirect = frame.indirect.add(&i);
             continue;
@@ -87,6 +89,8 @@ pub fn render<R: Renderer>(
         let shaded = shade_method(r, &settings.method, input, progress)?;
         timings.merge(&shaded.timings);
         merge_optional(&mut gpu_timings, shaded.gpu_timings.as_ref());
+        p.direct().check_finite("direct")?;
+        shaded.indirect.check_finite("indirect")?;
         frame.vpl_count = p.vpls().len();
         frame.metrics = shaded.metrics;
         frame.sampled_lights = shaded.sampled_lights;

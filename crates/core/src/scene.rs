@@ -69,13 +69,15 @@ impl Scene {
                 scene: self.name.clone(),
             });
         }
-        if let Some(i) = self.lights.iter().position(|l| !l.is_valid()) {
+        if let Some((i, problem)) = self
+            .lights
+            .iter()
+            .enumerate()
+            .find_map(|(i, l)| l.problem().map(|p| (i, p)))
+        {
             return Err(SceneError::Invalid {
                 scene: self.name.clone(),
-                message: format!(
-                    "light {i} has a non-finite or negative value: {:?}",
-                    self.lights[i]
-                ),
+                message: format!("light {i} ({}): {problem}", self.lights[i].kind()),
             });
         }
         if let Some(m) = self

@@ -454,7 +454,17 @@ impl RawCamera {
 }
 
 impl RawLight {
+    /// The light, refused where [`Light::problem`] finds a problem (e.g. an intensity whose
+    /// products overflow f32).
     fn validate(self) -> Result<Light, String> {
+        let light = self.build()?;
+        match light.problem() {
+            Some(problem) => Err(problem),
+            None => Ok(light),
+        }
+    }
+
+    fn build(self) -> Result<Light, String> {
         match self {
             RawLight::Point {
                 position,

@@ -16,6 +16,13 @@ pub enum RenderError {
     /// The backend does not have what the settings ask for.
     #[error("the {backend} backend does not support {what}; render on the cpu backend")]
     Unsupported { backend: &'static str, what: String },
+    /// A pass produced NaN or infinite pixels (an input whose products overflow f32).
+    #[error("the {pass} pass produced {count} non-finite pixel(s) of {pixels} (NaN or infinity): some radiometric input overflows f32; lower the light's intensity or check the scene's values")]
+    NonFinite {
+        pass: &'static str,
+        count: usize,
+        pixels: usize,
+    },
     /// A failure inside a backend (a GPU fault, an invalid VSGL input, ...).
     #[error(transparent)]
     Backend(Box<dyn std::error::Error + Send + Sync + 'static>),

@@ -1,0 +1,213 @@
+//! Results cannot be torn: the output folder is locked and checked before any work, results
+//! are committed by renames, and non-finite results are errors.
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+use std::process::{Child, Command, Output, Stdio};
+use std::time::{Duration, Instant};
+
+fn slc() -> Command {
+    Command::new(env!("CARGO_BIN_EXE_slc"))
+}
+
+fn temp(name: &str) -> PathBuf {
+    let d = std::env::temp_dir().join(format!("slc-integrity-{name}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&d);
+    d
+}
+
+fn render(args: &str, out: &Path) -> Output {
+    slc()
+        .arg("render")
+        .args(args.split(' '))
+        .arg("--out")
+        .arg(out)
+        .output()
+        .unwrap()
+}
+
+fn spawn_render(args: &str, out: &Path) -> Child {
+    slc()
+        .arg("render")
+        .args(args.split(' '))
+        .arg("--out")
+        .arg(out)
+        .stdout(Stdio::null())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap()
+}
+
+/// Every file under `dir` (hidden bookkeeping files included) with its bytes.
+fn snapshot(dir: &Path) -> BTreeMap<PathBuf, Vec<u8>> {
+    let mut files = BTreeMap::new();
+    let mut stack = vec![dir.to_path_buf()];
+    while let Some(d) = stack.pop() {
+        for e in std::fs::read_dir(&d).unwrap() {
+            let p = e.unwrap().path();
+            if p.is_dir() {
+                stack.push(p);
+            } else {
+                let rel = p.strip_prefix(dir).unwrap().to_path_buf();
+                files.insert(rel, std::fs::read(&p).unwrap());
+            }
+        }
+    }
+    files
+}
+
+/// Polls `cond` every millisecond for up to 60 s.
+fn wait_for(what: &str, mut cond: impl FnMut() -> bool) {
+    let start = Instant::now();
+    while !cond() {
+        assert!(start.elapsed() < Duration::from_secs(60), "timed out: {what}");
+        std::thread::sleep(Duration::from_millis(1));
+    }
+}
+
+/// The staging folder of a live run, once it holds a file.
+fn staged_file(out: &Path) -> bool {
+    std::fs::read_dir(out).is_ok_and(|entries| {
+        entries.flatten().any(|e| {
+            e.file_name().to_string_lossy().starts_with(".slc-staging-")
+                && std::fs::read_dir(e.path()).is_ok_and(|mut d| d.next().is_some())
+        })
+    })
+}
+
+#[test]
+fn a_second_run_into_a_busy_folder_is_refused_naming_the_holder() {
+    let out = temp("busy");
+    let mut first = spawn_render("--width 320 --height 240 --rsm 16 --spp 8", &out);
+    let lock = out.join(".slc.lock");
+    wait_for("the first run's lock", || {
+        std::fs::read_to_string(&lock).is_ok_and(|s| s.contains("pid"))
+    });
+    let second = render("--width 8 --height 8 --rsm 2", &out);
+    let err = String::from_utf8_lossy(&second.stderr);
+    assert!(!second.status.success());
+    assert!(
+        err.contains("in use by another slc run") && err.contains(&format!("pid {}", first.id())),
+        "{err}"
+    );
+    assert!(first.wait().unwrap().success());
+    assert!(out.join("report.json").is_file());
+    std::fs::remove_dir_all(&out).ok();
+}
+
+#[test]
+fn a_run_killed_while_writing_leaves_the_previous_result_intact() {
+    let out = temp("killed");
+    let small = "--width 16 --height 12 --rsm 2 --seed 1";
+    assert!(render(small, &out).status.success());
+    let before = snapshot(&out);
+    // Large images with few VPLs: the writing takes long enough to be caught in the middle.
+    let mut run = spawn_render("--width 1600 --height 1200 --rsm 2 --seed 2", &out);
+    wait_for("the second run's first staged file", || staged_file(&out));
+    run.kill().unwrap();
+    run.wait().unwrap();
+    let after: BTreeMap<_, _> = snapshot(&out)
+        .into_iter()
+        .filter(|(p, _)| {
+            !p.components()
+                .next()
+                .is_some_and(|c| c.as_os_str().to_string_lossy().starts_with(".slc-staging-"))
+        })
+        .filter(|(p, _)| p != Path::new(".slc.lock"))
+        .collect();
+    let before: BTreeMap<_, _> = before
+        .into_iter()
+        .filter(|(p, _)| p != Path::new(".slc.lock"))
+        .collect();
+    assert_eq!(
+        after.keys().collect::<Vec<_>>(),
+        before.keys().collect::<Vec<_>>()
+    );
+    assert!(after == before, "a file at a final name changed");
+    // The next run removes the killed run's staging folder.
+    assert!(render(small, &out).status.success());
+    assert!(!staged_file(&out));
+    std::fs::remove_dir_all(&out).ok();
+}
+
+#[test]
+fn an_unwritable_output_fails_before_any_work() {
+    let start = Instant::now();
+    // A big render that would take long: it must fail at once.
+    let o = render(
+        "--width 1920 --height 1080 --rsm 64",
+        Path::new("/proc/slc-no-such-folder"),
+    );
+    assert!(!o.status.success());
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(err.contains("/proc/slc-no-such-folder"), "{err}");
+    assert!(start.elapsed() < Duration::from_secs(10), "{err}");
+    // A file where the folder should be.
+    let file = temp("file");
+    std::fs::write(&file, "").unwrap();
+    let o = render("--width 8 --height 8 --rsm 2", &file);
+    assert!(String::from_utf8_lossy(&o.stderr).contains("not a folder"));
+    std::fs::remove_file(&file).ok();
+}
+
+#[test]
+fn a_result_that_cannot_be_placed_replaces_nothing() {
+    let out = temp("inway");
+    assert!(render("--width 16 --height 12 --rsm 2", &out)
+        .status
+        .success());
+    let before = std::fs::read(out.join("report.json")).unwrap();
+    std::fs::remove_file(out.join("total.png")).unwrap();
+    std::fs::create_dir(out.join("total.png")).unwrap();
+    let o = render("--width 16 --height 12 --rsm 2 --seed 9", &out);
+    assert!(!o.status.success());
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(err.contains("total.png") && err.contains("nothing was replaced"), "{err}");
+    assert_eq!(std::fs::read(out.join("report.json")).unwrap(), before);
+    std::fs::remove_dir_all(&out).ok();
+}
+
+/// A floor quad under a light of the given intensity, as OBJ + scene settings.
+fn floor_with_light(dir: &Path, intensity: &str) -> PathBuf {
+    std::fs::create_dir_all(dir).unwrap();
+    std::fs::write(
+        dir.join("floor.obj"),
+        "v -1 0 -1\nv 1 0 -1\nv 1 0 1\nv -1 0 1\nv -1 0 -1.5\nv 1 0 -1.5\nv 1 1 -1.5\nv -1 1 -1.5\nf 1 3 2\nf 1 4 3\nf 5 6 7\nf 5 7 8\n",
+    )
+    .unwrap();
+    let toml = dir.join("scene.toml");
+    std::fs::write(
+        &toml,
+        format!(
+            "scene = \"floor.obj\"\n[camera]\nposition = [0.0, 1.0, 2.5]\ntarget = [0.0, 0.2, 0.0]\nyfov_deg = 60.0\n[[lights]]\ntype = \"point\"\nposition = [0.0, 0.5, 0.0]\nintensity = {intensity}\n"
+        ),
+    )
+    .unwrap();
+    toml
+}
+
+#[test]
+fn an_overflowing_light_is_refused_when_loaded() {
+    let dir = temp("overflow");
+    let toml = floor_with_light(&dir, "3e38");
+    let out = dir.join("out");
+    let o = render(
+        &format!("{} --width 16 --height 12 --rsm 4", toml.display()),
+        &out,
+    );
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(!o.status.success());
+    assert!(err.contains("intensity") && err.contains("1e20"), "{err}");
+    assert!(!out.join("report.json").exists());
+    // Within the limit, the same scene renders finite images.
+    let toml = floor_with_light(&dir, "1e19");
+    let o = render(
+        &format!("{} --width 16 --height 12 --rsm 4", toml.display()),
+        &out,
+    );
+    assert!(
+        o.status.success(),
+        "{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    std::fs::remove_dir_all(&dir).ok();
+}
