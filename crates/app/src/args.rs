@@ -120,7 +120,7 @@ impl FrameArgs {
         let scene =
             load_scene(self.scene.as_deref().unwrap_or("default")).map_err(|e| e.to_string())?;
         for w in &scene.report.warnings {
-            eprintln!("warning: {w}");
+            eprintln!("warning: {}: {w}", scene.label());
         }
         Ok(scene)
     }

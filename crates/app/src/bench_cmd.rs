@@ -3,6 +3,7 @@
 //! Writes `bench.csv` and `bench.md`.
 use crate::args::{strategies, FrameArgs, PipelineArgs, Shader};
 use crate::backend::{message, run_on, OnBackend};
+use crate::limits::check_memory;
 use crate::out_dir::OutDir;
 use clap::Args;
 use slc_core::frame::{Method, Stochastic};
@@ -132,18 +133,25 @@ impl OnBackend for Bench<'_> {
             PASSES.join(" | "),
             "---|".repeat(PASSES.len())
         );
+        let frame = |(w, h): (u32, u32), rsm: u32| FrameArgs {
+            width: w,
+            height: h,
+            rsm,
+            ..args.frame.clone()
+        };
+        for &res in &resolutions {
+            for &rsm in &args.rsms {
+                let settings = frame(res, rsm).settings(Method::Stochastic(base), 1);
+                settings.validate().map_err(message)?;
+                check_memory(&settings, &scene)?;
+            }
+        }
         // One BVH or scene upload for every frame.
         let loaded = r.load(&scene).map_err(message)?;
         for &(w, h) in &resolutions {
             for &rsm in &args.rsms {
-                let frame = FrameArgs {
-                    width: w,
-                    height: h,
-                    rsm,
-                    ..args.frame.clone()
-                };
+                let frame = frame((w, h), rsm);
                 let settings = frame.settings(Method::Stochastic(base), 1);
-                settings.validate().map_err(message)?;
                 eprintln!("{w}x{h}, RSM {rsm}²");
                 let p = r
                     .prepare(&scene, &loaded, &settings, None)

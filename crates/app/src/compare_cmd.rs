@@ -7,6 +7,7 @@
 use crate::args::{strategies, FrameArgs, ImportanceArgs, PipelineArgs, Shader};
 use crate::backend::{message, run_on, OnBackend};
 use crate::heatmap::heat_map;
+use crate::limits::check_memory;
 use crate::out_dir::OutDir;
 use crate::output::{write_frame, write_rgb8};
 use crate::progress::bar;
@@ -75,6 +76,7 @@ pub fn run(args: &CompareArgs) -> Result<(), String> {
     let base = args.pipeline.stochastic(args.delta, Strategy::None, true);
     let settings = args.frame.settings(Method::Stochastic(base), 1);
     settings.validate().map_err(message)?;
+    check_memory(&settings, &scene)?;
     run_on(
         args.frame.backend,
         Compare {

@@ -240,10 +240,19 @@ mod tests {
         out.write("report.json", b"{\"run\": 2}").unwrap();
         out.commit().unwrap();
         assert!(!root.join("a.txt").exists() && !root.join("sub/report.json").exists());
-        assert!(root.join("mine.txt").is_file(), "files slc did not write stay");
+        assert!(
+            root.join("mine.txt").is_file(),
+            "files slc did not write stay"
+        );
         assert_eq!(
             listing(&root),
-            [".slc-manifest", ".slc.lock", "mine.txt", "report.json", "sub"]
+            [
+                ".slc-manifest",
+                ".slc.lock",
+                "mine.txt",
+                "report.json",
+                "sub"
+            ]
         );
         fs::remove_dir_all(&root).unwrap();
     }
@@ -254,7 +263,10 @@ mod tests {
         let first = OutDir::open(&root).unwrap();
         let e = OutDir::open(&root).err().unwrap();
         let pid = format!("pid {}", std::process::id());
-        assert!(e.contains("in use by another slc run") && e.contains(&pid), "{e}");
+        assert!(
+            e.contains("in use by another slc run") && e.contains(&pid),
+            "{e}"
+        );
         drop(first);
         OutDir::open(&root).unwrap();
         fs::remove_dir_all(&root).unwrap();
@@ -285,7 +297,10 @@ mod tests {
         out.write("a.txt", b"new").unwrap();
         out.write("b.txt", b"new").unwrap();
         let e = out.commit().unwrap_err();
-        assert!(e.contains("b.txt") && e.contains("nothing was replaced"), "{e}");
+        assert!(
+            e.contains("b.txt") && e.contains("nothing was replaced"),
+            "{e}"
+        );
         assert_eq!(fs::read(root.join("a.txt")).unwrap(), b"old");
         fs::remove_dir_all(&root).unwrap();
     }

@@ -66,10 +66,17 @@ pub fn write_frame<'a>(
 }
 
 /// Stages an 8-bit picture (heat map, strip) as a PNG.
-pub fn write_rgb8(out: &mut OutDir, relative: &str, picture: &image::RgbImage) -> Result<(), String> {
-    picture
-        .save(out.stage(relative)?)
-        .map_err(|e| format!("{}: cannot write PNG: {e}", out.root().join(relative).display()))
+pub fn write_rgb8(
+    out: &mut OutDir,
+    relative: &str,
+    picture: &image::RgbImage,
+) -> Result<(), String> {
+    picture.save(out.stage(relative)?).map_err(|e| {
+        format!(
+            "{}: cannot write PNG: {e}",
+            out.root().join(relative).display()
+        )
+    })
 }
 
 #[cfg(test)]

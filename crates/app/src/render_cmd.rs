@@ -1,6 +1,7 @@
 //! `slc render`.
 use crate::args::{strategy, FrameArgs, ImportanceArgs, PipelineArgs, Shader};
 use crate::backend::{message, run_on, OnBackend};
+use crate::limits::check_memory;
 use crate::out_dir::OutDir;
 use crate::output::write_frame;
 use crate::progress::bar;
@@ -70,6 +71,8 @@ pub fn run(args: &RenderArgs) -> Result<(), String> {
         )),
     };
     let settings = args.frame.settings(method, args.spp);
+    settings.validate().map_err(message)?;
+    check_memory(&settings, &scene)?;
     run_on(
         args.frame.backend,
         Render {

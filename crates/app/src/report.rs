@@ -1,11 +1,11 @@
 //! `report.json`: what was rendered, how long each pass took and what was measured.
 //! Unknown values are `null`, never made up.
 use crate::args::FrameArgs;
+use crate::out_dir::OutDir;
 use serde::Serialize;
 use slc_core::frame::{Importance, Method, Timings};
 use slc_core::{BackendInfo, CullMetrics, Image, Scene};
 use std::collections::BTreeMap;
-use crate::out_dir::OutDir;
 use std::path::Path;
 
 #[derive(Serialize, Debug)]
@@ -59,6 +59,8 @@ pub struct Report {
     /// Mean RGB of each written image.
     pub image_means: BTreeMap<&'static str, [f32; 3]>,
     pub skipped_triangles: usize,
+    /// The removed triangles by defect.
+    pub skipped_by_defect: Skipped,
     pub warnings: Vec<String>,
 }
 
@@ -164,6 +166,7 @@ impl Report {
                 .map(|(n, i)| (*n, i.mean().to_array()))
                 .collect(),
             skipped_triangles: f.scene.report.skipped.total(),
+            skipped_by_defect: Skipped::from(f.scene.report.skipped),
             warnings: f.scene.report.warnings.clone(),
         }
     }
@@ -172,5 +175,23 @@ impl Report {
     pub fn write(&self, out: &mut OutDir, dir: &str) -> Result<(), String> {
         let json = serde_json::to_string_pretty(self).map_err(|e| e.to_string())?;
         out.write(Path::new(dir).join("report.json"), (json + "\n").as_bytes())
+    }
+}
+
+/// Triangles the loader removed, by defect.
+#[derive(Serialize, Debug)]
+pub struct Skipped {
+    pub non_finite_vertex: usize,
+    pub index_out_of_range: usize,
+    pub zero_area: usize,
+}
+
+impl From<slc_core::mesh::DefectCounts> for Skipped {
+    fn from(d: slc_core::mesh::DefectCounts) -> Self {
+        Self {
+            non_finite_vertex: d.non_finite,
+            index_out_of_range: d.index_out_of_range,
+            zero_area: d.degenerate,
+        }
     }
 }

@@ -9,6 +9,7 @@
 //! read back). With `--shader vsgl` it sweeps light counts instead ([`crate::vsgl_sweep`]).
 use crate::args::{strategies, FrameArgs, ImportanceArgs, PipelineArgs, Shader};
 use crate::backend::{message, run_on, OnBackend};
+use crate::limits::check_memory;
 use crate::out_dir::OutDir;
 use crate::output::{to_srgb8, write_rgb8};
 use crate::plot::{line_plot_svg, Series};
@@ -120,6 +121,7 @@ impl OnBackend for Sweep<'_> {
             r.check(&settings).map_err(message)?;
         }
         let settings = f.settings(Method::Stochastic(base), 1);
+        check_memory(&settings, &scene)?;
         let loaded = r.load(&scene).map_err(message)?;
         let p = r
             .prepare(&scene, &loaded, &settings, None)
@@ -234,7 +236,9 @@ fn write_outputs(
 fn equal_time(
     args: &SweepArgs,
     out: &mut OutDir,
-    names: &[Strategy], points: &[Point]) -> Result<(), String> {
+    names: &[Strategy],
+    points: &[Point],
+) -> Result<(), String> {
     let mut first: Vec<&Point> = points.iter().filter(|p| p.strategy == names[0]).collect();
     first.sort_by(|a, b| a.time_ms().total_cmp(&b.time_ms()));
     let target = first[first.len() / 2].time_ms();

@@ -10,6 +10,7 @@
 //! imperfect shadow maps for `--visibility`); the reference and the sampled VPLs are shaded on
 //! the CPU from the read-back frame.
 use crate::backend::{message, run_on, OnBackend};
+use crate::limits::check_memory;
 use crate::out_dir::OutDir;
 use crate::plot::{line_plot_svg, Series};
 use crate::progress::bar;
@@ -42,9 +43,9 @@ pub fn run(args: &SweepArgs, out: OutDir) -> Result<(), String> {
     }
     let scene = f.load_renderable()?;
     for &n in &args.vsgls {
-        f.settings(Method::Vsgl(args.importance.sampling(n)), 1)
-            .validate()
-            .map_err(|e| e.to_string())?;
+        let settings = f.settings(Method::Vsgl(args.importance.sampling(n)), 1);
+        settings.validate().map_err(|e| e.to_string())?;
+        check_memory(&settings, &scene)?;
     }
     run_on(f.backend, VsglSweep { args, scene, out })
 }

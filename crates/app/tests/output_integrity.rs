@@ -59,7 +59,10 @@ fn snapshot(dir: &Path) -> BTreeMap<PathBuf, Vec<u8>> {
 fn wait_for(what: &str, mut cond: impl FnMut() -> bool) {
     let start = Instant::now();
     while !cond() {
-        assert!(start.elapsed() < Duration::from_secs(60), "timed out: {what}");
+        assert!(
+            start.elapsed() < Duration::from_secs(60),
+            "timed out: {what}"
+        );
         std::thread::sleep(Duration::from_millis(1));
     }
 }
@@ -161,7 +164,10 @@ fn a_result_that_cannot_be_placed_replaces_nothing() {
     let o = render("--width 16 --height 12 --rsm 2 --seed 9", &out);
     assert!(!o.status.success());
     let err = String::from_utf8_lossy(&o.stderr);
-    assert!(err.contains("total.png") && err.contains("nothing was replaced"), "{err}");
+    assert!(
+        err.contains("total.png") && err.contains("nothing was replaced"),
+        "{err}"
+    );
     assert_eq!(std::fs::read(out.join("report.json")).unwrap(), before);
     std::fs::remove_dir_all(&out).ok();
 }
@@ -204,10 +210,6 @@ fn an_overflowing_light_is_refused_when_loaded() {
         &format!("{} --width 16 --height 12 --rsm 4", toml.display()),
         &out,
     );
-    assert!(
-        o.status.success(),
-        "{}",
-        String::from_utf8_lossy(&o.stderr)
-    );
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     std::fs::remove_dir_all(&dir).ok();
 }

@@ -92,7 +92,7 @@ fn cornell_glossy() -> Scene {
             },
         ],
         camera,
-        report: Default::default(),
+        ..Scene::default()
     }
 }
 

@@ -30,6 +30,7 @@
 //! outside their buffer) are errors naming the file; unsupported features are warnings.
 use crate::camera::Camera;
 use crate::error::SceneError;
+use crate::file_read::read_capped;
 use crate::gltf_material::{default_material, load_materials};
 use crate::gltf_mesh::primitive_mesh;
 use crate::import_util::add_mesh;
@@ -41,7 +42,7 @@ use std::path::Path;
 
 /// Loads a `.gltf` or `.glb` file. The scene is named by the file's stem.
 pub fn load_gltf(path: &Path) -> Result<Scene, SceneError> {
-    let bytes = std::fs::read(path).map_err(|source| SceneError::Io {
+    let bytes = read_capped(path).map_err(|source| SceneError::Io {
         path: path.to_path_buf(),
         source,
     })?;
@@ -243,7 +244,7 @@ pub(crate) fn read_uri(uri: &str, base: &Path) -> Result<Vec<u8>, String> {
     let relative =
         percent_decode(uri).ok_or_else(|| format!("'{uri}' is not a valid percent-encoded URI"))?;
     let file = base.join(relative);
-    std::fs::read(&file).map_err(|e| format!("cannot read '{}': {e}", file.display()))
+    read_capped(&file).map_err(|e| format!("cannot read '{}': {e}", file.display()))
 }
 
 /// A URI cut to a readable length (embedded data URIs are long).

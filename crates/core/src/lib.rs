@@ -24,6 +24,8 @@ pub mod builtin;
 pub mod camera;
 pub mod culling;
 pub mod error;
+#[cfg(feature = "loaders")]
+pub mod file_read;
 pub mod frame;
 pub mod framebuffer;
 #[cfg(feature = "loaders")]
@@ -65,11 +67,13 @@ pub use culling::{
     TILE_SIZE,
 };
 pub use error::SceneError;
+#[cfg(feature = "loaders")]
+pub use file_read::MAX_INPUT_FILE_BYTES;
 pub use frame::{RenderError, RenderSettings, RenderedFrame, Shaded, Timings};
 pub use framebuffer::{GBuffer, GSample, Image};
 pub use light::{Incident, Light, MAX_RADIOMETRIC};
 #[cfg(feature = "loaders")]
-pub use load::{load_scene, load_scene_file};
+pub use load::{load_scene, load_scene_file, MAX_DROPPED_SHARE};
 pub use material::{Material, MaterialModel, ALPHA_MIN};
 pub use mesh::Mesh;
 pub use render::render;

@@ -103,9 +103,8 @@ impl Light {
                 .then(|| format!("{what} {v} is not in [0, {MAX_RADIOMETRIC:e}] per channel (larger values overflow f32 in the renderer's products)"))
         };
         let position = |p: Vec3| (!p.is_finite()).then(|| format!("position {p} is not finite"));
-        let direction = |d: Vec3| {
-            (!d.is_normalized()).then(|| format!("direction {d} is not a unit vector"))
-        };
+        let direction =
+            |d: Vec3| (!d.is_normalized()).then(|| format!("direction {d} is not a unit vector"));
         match *self {
             Light::Point {
                 position: p,

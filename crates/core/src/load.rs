@@ -20,6 +20,15 @@ pub fn load_scene(spec: &str) -> Result<Scene, SceneError> {
         return Ok(scene);
     }
     let path = Path::new(spec);
+    if path.is_dir() {
+        return Err(SceneError::Io {
+            path: path.to_path_buf(),
+            source: std::io::Error::new(
+                std::io::ErrorKind::InvalidInput,
+                "a folder, not a scene file (give a .gltf, .glb, .obj or .toml file in it)",
+            ),
+        });
+    }
     match extension(path).as_deref() {
         Some("toml") => load_settings(path),
         None if !path.is_file() => Err(SceneError::UnknownBuiltin {
@@ -32,14 +41,53 @@ pub fn load_scene(spec: &str) -> Result<Scene, SceneError> {
 
 /// Loads a scene file chosen by its extension, case-insensitive: `.gltf` / `.glb` or `.obj`.
 /// Neither built-in names nor settings files: this is what a settings file may name.
+///
+/// Defective triangles (non-finite vertices, indices past the end, zero area) are removed
+/// with one warning giving their counts; a file that loses more than
+/// [`MAX_DROPPED_SHARE`] of its triangles to non-finite vertices or bad indices is refused
+/// ([`SceneError::Invalid`]): what is left would be a different scene.
 pub fn load_scene_file(path: &Path) -> Result<Scene, SceneError> {
-    match extension(path).as_deref() {
+    let mut scene = match extension(path).as_deref() {
         Some("gltf" | "glb") => load_gltf(path),
         Some("obj") => load_obj(path),
         _ => Err(SceneError::UnsupportedFormat {
             path: path.to_path_buf(),
         }),
+    }?;
+    scene.source = Some(path.to_path_buf());
+    check_dropped(&mut scene)?;
+    Ok(scene)
+}
+
+/// The largest share of a file's triangles that may be lost to non-finite vertices or
+/// out-of-range indices: 10%. Zero-area triangles do not count (they cover no pixel).
+pub const MAX_DROPPED_SHARE: f64 = 0.1;
+
+/// Warns about the triangles the loader removed; refuses a scene that lost too many.
+fn check_dropped(scene: &mut Scene) -> Result<(), SceneError> {
+    let d = scene.report.skipped;
+    if d.total() == 0 {
+        return Ok(());
     }
+    let all = scene.triangle_count() + d.total();
+    scene.report.warnings.push(format!(
+        "{} of {all} triangles removed: {} with a non-finite vertex, {} with an index past the end, {} of zero area",
+        d.total(),
+        d.non_finite,
+        d.index_out_of_range,
+        d.degenerate
+    ));
+    let broken = d.non_finite + d.index_out_of_range;
+    if broken as f64 > MAX_DROPPED_SHARE * all as f64 {
+        return Err(SceneError::Invalid {
+            scene: scene.label(),
+            message: format!(
+                "{broken} of {all} triangles have non-finite vertices or indices past the end (more than {}%): the file is damaged",
+                MAX_DROPPED_SHARE * 100.0
+            ),
+        });
+    }
+    Ok(())
 }
 
 /// The file extension in lower case.

@@ -470,7 +470,19 @@ fn obj_defects_are_skipped_and_counted() {
          f 1/1 2/2 3/3\nf 1/1 2/2 4/4\nf 1/1 2/2 5/5\nf 1/1 5/5 2/2\nf 1/1 2/2 6/6\n",
     )
     .unwrap();
-    let s = load_scene(obj.to_str().unwrap()).unwrap();
+    // Two of five triangles have non-finite vertices: the file is refused as damaged.
+    match load_scene(obj.to_str().unwrap()) {
+        Err(e @ SceneError::Invalid { .. }) => {
+            let e = e.to_string();
+            assert!(
+                e.contains("defects.obj") && e.contains("2 of 5 triangles"),
+                "{e}"
+            )
+        }
+        other => panic!("{other:?}"),
+    }
+    // The loader itself removes and counts them.
+    let s = crate::obj_loader::load_obj(&obj).unwrap();
     assert_eq!(s.triangle_count(), 1);
     assert_eq!(
         (s.report.skipped.non_finite, s.report.skipped.degenerate),

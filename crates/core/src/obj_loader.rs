@@ -22,6 +22,7 @@
 //! - Meshes without a material (no `usemtl`, an unknown name, or an unreadable MTL file, which
 //!   gives a warning) get a grey diffuse default material (kd 0.5).
 use crate::error::SceneError;
+use crate::file_read::read_capped;
 use crate::import_util::{add_mesh, small_alpha_warning};
 use crate::material::{Material, MaterialModel, ALPHA_MIN};
 use crate::mesh::Mesh;
@@ -31,8 +32,6 @@ use crate::texture_decode::{read_texture, Encoding};
 use glam::{Vec2, Vec3};
 use std::cell::RefCell;
 use std::collections::HashMap;
-use std::fs::File;
-use std::io::BufReader;
 use std::path::{Path, PathBuf};
 
 /// A material library named by the OBJ file: its folder and how many materials it gave.
@@ -43,7 +42,7 @@ struct MtlLib {
 
 /// Loads an `.obj` file and the `.mtl` files it names. The scene is named by the file's stem.
 pub fn load_obj(path: &Path) -> Result<Scene, SceneError> {
-    let file = File::open(path).map_err(|source| SceneError::Io {
+    let bytes = read_capped(path).map_err(|source| SceneError::Io {
         path: path.to_path_buf(),
         source,
     })?;
@@ -74,7 +73,7 @@ pub fn load_obj(path: &Path) -> Result<Scene, SceneError> {
     };
     // GPU_LOAD_OPTIONS: triangulate, single index, ignore points and lines.
     let options = &tobj::GPU_LOAD_OPTIONS;
-    let (models, materials) = tobj::load_obj_buf(&mut BufReader::new(file), options, load_mtl)
+    let (models, materials) = tobj::load_obj_buf(&mut bytes.as_slice(), options, load_mtl)
         .map_err(|e| SceneError::Obj {
             path: path.to_path_buf(),
             message: e.to_string(),
@@ -118,7 +117,7 @@ pub fn load_obj(path: &Path) -> Result<Scene, SceneError> {
 
 /// Parses an MTL file (read leniently: invalid UTF-8 is replaced) after [`pad_colours`].
 fn read_mtl(path: &Path) -> std::io::Result<tobj::MTLLoadResult> {
-    let text = pad_colours(&String::from_utf8_lossy(&std::fs::read(path)?));
+    let text = pad_colours(&String::from_utf8_lossy(&read_capped(path)?));
     Ok(tobj::load_mtl_buf(&mut text.as_bytes()))
 }
 

@@ -6,6 +6,7 @@ use crate::material::Material;
 use crate::mesh::{DefectCounts, Mesh};
 use crate::texture::Texture;
 use glam::Vec3;
+use std::path::PathBuf;
 
 /// What a loader skipped, fixed or could not find, for the user to read.
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -27,9 +28,18 @@ pub struct Scene {
     pub lights: Vec<Light>,
     pub camera: Option<Camera>,
     pub report: LoadReport,
+    /// The file the scene was loaded from (`None` for built-in and hand-made scenes).
+    pub source: Option<PathBuf>,
 }
 
 impl Scene {
+    /// The scene's file path where it came from one, else its name: what messages name.
+    pub fn label(&self) -> String {
+        self.source
+            .as_ref()
+            .map_or_else(|| self.name.clone(), |p| p.display().to_string())
+    }
+
     pub fn triangle_count(&self) -> usize {
         self.meshes.iter().map(|m| m.triangles.len()).sum()
     }
@@ -61,12 +71,12 @@ impl Scene {
     pub fn validate_for_render(&self) -> Result<(), SceneError> {
         if self.triangle_count() == 0 {
             return Err(SceneError::NoGeometry {
-                scene: self.name.clone(),
+                scene: self.label(),
             });
         }
         if self.lights.is_empty() {
             return Err(SceneError::NoLight {
-                scene: self.name.clone(),
+                scene: self.label(),
             });
         }
         if let Some((i, problem)) = self
@@ -76,7 +86,7 @@ impl Scene {
             .find_map(|(i, l)| l.problem().map(|p| (i, p)))
         {
             return Err(SceneError::Invalid {
-                scene: self.name.clone(),
+                scene: self.label(),
                 message: format!("light {i} ({}): {problem}", self.lights[i].kind()),
             });
         }
@@ -86,7 +96,7 @@ impl Scene {
             .find(|m| m.material >= self.materials.len())
         {
             return Err(SceneError::Invalid {
-                scene: self.name.clone(),
+                scene: self.label(),
                 message: format!(
                     "mesh '{}' refers to material {} of {}",
                     m.name,

@@ -80,6 +80,7 @@
 //! ```
 use crate::camera::Camera;
 use crate::error::SceneError;
+use crate::file_read::read_capped;
 use crate::import_util::small_alpha_warning;
 use crate::light::Light;
 use crate::load::{extension, load_scene_file};
@@ -136,9 +137,13 @@ pub fn load_settings(path: &Path) -> Result<Scene, SceneError> {
 impl Settings {
     /// Reads and validates a settings file (the scene file is not opened).
     pub fn read(path: &Path) -> Result<Self, SceneError> {
-        let text = std::fs::read_to_string(path).map_err(|source| SceneError::Io {
+        let bytes = read_capped(path).map_err(|source| SceneError::Io {
             path: path.to_path_buf(),
             source,
+        })?;
+        let text = String::from_utf8(bytes).map_err(|_| SceneError::Settings {
+            path: path.to_path_buf(),
+            message: "not UTF-8 text".into(),
         })?;
         Self::parse(&text, path)
     }

@@ -47,7 +47,8 @@ pub(crate) fn decode_texture(
 
 /// Reads and decodes an image file; the texture is named by the file's path.
 pub(crate) fn read_texture(path: &Path, encoding: Encoding) -> Result<Texture, String> {
-    let bytes = std::fs::read(path).map_err(|e| format!("cannot read file: {e}"))?;
+    let bytes =
+        crate::file_read::read_capped(path).map_err(|e| format!("cannot read file: {e}"))?;
     decode_texture(&bytes, &path.display().to_string(), encoding)
 }
 

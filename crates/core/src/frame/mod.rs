@@ -2,11 +2,13 @@
 //! cost ([`Timings`]), what comes back ([`Shaded`], [`RenderedFrame`]) and why it failed
 //! ([`RenderError`]).
 mod error;
+mod memory;
 mod output;
 mod settings;
 mod timings;
 
 pub use error::RenderError;
+pub use memory::MemoryEstimate;
 pub use output::{RenderedFrame, Shaded};
 pub use settings::{
     DiffuseEmission, Importance, LightSampling, LobeSelection, Method, RenderSettings, Stochastic,

@@ -1,0 +1,60 @@
+//! Reading input files with a size cap: scene files, material libraries, buffers, textures.
+use std::io::{Error, ErrorKind, Read};
+use std::path::Path;
+
+/// The largest file slc reads: 4 GiB. Larger scene files, buffers or textures (or a device
+/// such as `/dev/zero` given a scene file's name) are refused before they are read.
+pub const MAX_INPUT_FILE_BYTES: u64 = 4 << 30;
+
+/// The bytes of a regular file of at most [`MAX_INPUT_FILE_BYTES`].
+pub(crate) fn read_capped(path: &Path) -> std::io::Result<Vec<u8>> {
+    let meta = std::fs::metadata(path)?;
+    if !meta.is_file() {
+        let what = if meta.is_dir() {
+            "a folder"
+        } else {
+            "not a regular file"
+        };
+        return Err(Error::new(
+            ErrorKind::InvalidInput,
+            format!("{what}, not a file slc can read"),
+        ));
+    }
+    let too_big = |n: u64| {
+        Error::new(
+            ErrorKind::InvalidData,
+            format!(
+                "{n} bytes or more, above the {MAX_INPUT_FILE_BYTES} bytes slc reads from one file"
+            ),
+        )
+    };
+    if meta.len() > MAX_INPUT_FILE_BYTES {
+        return Err(too_big(meta.len()));
+    }
+    let mut bytes = Vec::with_capacity(meta.len() as usize);
+    // A file that grows while it is read stops at the cap too.
+    std::fs::File::open(path)?
+        .take(MAX_INPUT_FILE_BYTES + 1)
+        .read_to_end(&mut bytes)?;
+    if bytes.len() as u64 > MAX_INPUT_FILE_BYTES {
+        return Err(too_big(bytes.len() as u64));
+    }
+    Ok(bytes)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn folders_and_devices_are_refused() {
+        let e = read_capped(&std::env::temp_dir()).unwrap_err();
+        assert!(e.to_string().contains("a folder"), "{e}");
+        let e = read_capped(Path::new("/dev/zero")).unwrap_err();
+        assert!(e.to_string().contains("not a regular file"), "{e}");
+        assert_eq!(
+            read_capped(Path::new("/nonexistent/x")).unwrap_err().kind(),
+            ErrorKind::NotFound
+        );
+    }
+}
