@@ -26,11 +26,16 @@
 //!   Spots point along the node's world -z with the cone angles of the extension (defaults
 //!   0 and π/4); directional lights travel along world -z. `range` is ignored (warning).
 //!
-//! Malformed files (unreadable JSON, missing or short buffers, accessors of the wrong type or
-//! outside their buffer) are errors naming the file; unsupported features are warnings.
+//! The file is parsed leniently ([`crate::gltf_document`]): parts slc does not use may be
+//! anything the specification allows; a required extension slc does not read is an
+//! `unsupported: NAME` error. Accessors may be quantized, sparse or without a buffer view
+//! ([`crate::gltf_accessor`]). Malformed files (unreadable JSON, missing or short buffers,
+//! accessors of the wrong type or outside their buffer) are errors naming the file;
+//! unsupported features are warnings.
 use crate::camera::Camera;
 use crate::error::SceneError;
 use crate::file_read::read_capped;
+use crate::gltf_document::{parse, Parsed};
 use crate::gltf_material::{default_material, load_materials};
 use crate::gltf_mesh::primitive_mesh;
 use crate::import_util::add_mesh;
@@ -50,10 +55,8 @@ pub fn load_gltf(path: &Path) -> Result<Scene, SceneError> {
         path: path.to_path_buf(),
         message,
     };
-    check_glb_header(&bytes).map_err(error)?;
-    let gltf::Gltf { document, blob } =
-        gltf::Gltf::from_slice_without_validation(&bytes).map_err(|e| error(e.to_string()))?;
-    validate(&document).map_err(error)?;
+    let mut warnings = Vec::new();
+    let Parsed { document, blob } = parse(&bytes, &mut warnings).map_err(error)?;
     let base = path.parent().unwrap_or(Path::new("."));
     let buffers = load_buffers(&document, base, blob).map_err(error)?;
 
@@ -64,6 +67,7 @@ pub fn load_gltf(path: &Path) -> Result<Scene, SceneError> {
         ),
         ..Scene::default()
     };
+    scene.report.warnings = warnings;
     load_materials(&document, &buffers, base, &mut scene);
     let mut default_material_index = None;
     let mut visited = vec![false; document.nodes().len()];
@@ -158,49 +162,6 @@ fn root_nodes(document: &gltf::Document) -> Vec<gltf::Node<'_>> {
         .flat_map(|n| n.children())
         .for_each(|c| is_child[c.index()] = true);
     document.nodes().filter(|n| !is_child[n.index()]).collect()
-}
-
-/// Refuses a GLB header whose total length is shorter than the header itself (the `gltf`
-/// crate subtracts without checking).
-fn check_glb_header(bytes: &[u8]) -> Result<(), String> {
-    match bytes {
-        [b'g', b'l', b'T', b'F', _, _, _, _, l0, l1, l2, l3, ..]
-            if u32::from_le_bytes([*l0, *l1, *l2, *l3]) < 12 =>
-        {
-            Err("GLB header: total length below the header's 12 bytes".into())
-        }
-        _ => Ok(()),
-    }
-}
-
-/// The `gltf` crate's validation, preceded by the check it assumes (and panics without):
-/// every primitive's `POSITION` names an existing accessor.
-fn validate(document: &gltf::Document) -> Result<(), String> {
-    use gltf::json::validation::{Checked, Validate};
-    let root = document.as_json();
-    for (m, mesh) in root.meshes.iter().enumerate() {
-        for (p, primitive) in mesh.primitives.iter().enumerate() {
-            let position = primitive
-                .attributes
-                .get(&Checked::Valid(gltf::Semantic::Positions));
-            if position.is_some_and(|a| a.value() >= root.accessors.len()) {
-                return Err(format!(
-                    "meshes[{m}].primitives[{p}]: POSITION names no accessor"
-                ));
-            }
-        }
-    }
-    let mut errors = Vec::new();
-    root.validate(root, gltf::json::Path::new, &mut |path, e| {
-        errors.push(format!("{}: {e}", path()))
-    });
-    match errors.len() {
-        0 => Ok(()),
-        n => Err(format!(
-            "{n} validation error(s): {}",
-            errors[..n.min(5)].join("; ")
-        )),
-    }
 }
 
 /// Reads every buffer: the GLB binary chunk, embedded `data:` URIs, or files relative to `base`.

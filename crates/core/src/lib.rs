@@ -29,6 +29,10 @@ pub mod file_read;
 pub mod frame;
 pub mod framebuffer;
 #[cfg(feature = "loaders")]
+mod gltf_accessor;
+#[cfg(feature = "loaders")]
+pub mod gltf_document;
+#[cfg(feature = "loaders")]
 pub mod gltf_loader;
 #[cfg(feature = "loaders")]
 mod gltf_material;

@@ -73,10 +73,18 @@ pub fn load_obj(path: &Path) -> Result<Scene, SceneError> {
     };
     // GPU_LOAD_OPTIONS: triangulate, single index, ignore points and lines.
     let options = &tobj::GPU_LOAD_OPTIONS;
-    let (models, materials) = tobj::load_obj_buf(&mut bytes.as_slice(), options, load_mtl)
-        .map_err(|e| SceneError::Obj {
-            path: path.to_path_buf(),
-            message: e.to_string(),
+    let (text, dropped) = drop_bad_attribute_refs(&String::from_utf8_lossy(&bytes));
+    if dropped > 0 {
+        warnings.borrow_mut().push(format!(
+            "{dropped} face corner(s) name a texture coordinate or normal past the end; those references are dropped"
+        ));
+    }
+    let (models, materials) =
+        tobj::load_obj_buf(&mut text.as_bytes(), options, load_mtl).map_err(|e| {
+            SceneError::Obj {
+                path: path.to_path_buf(),
+                message: e.to_string(),
+            }
         })?;
 
     let mut scene = Scene {
@@ -146,6 +154,52 @@ fn pad_colours(text: &str) -> String {
         out.push('\n');
     }
     out
+}
+
+/// Removes the texture-coordinate and normal references of face corners (`v/vt/vn`) that
+/// name no `vt` or `vn` defined before the face (tobj refuses the whole file for one);
+/// returns the text and how many corners lost a reference. Vertex references are left to the
+/// loader (a bad one removes its triangle, counted).
+fn drop_bad_attribute_refs(text: &str) -> (String, usize) {
+    let valid = |r: &str, count: i64| {
+        r.parse::<i64>()
+            .is_ok_and(|i| (1..=count).contains(&i) || (-count..=-1).contains(&i))
+    };
+    let (mut vt, mut vn, mut dropped) = (0i64, 0i64, 0usize);
+    let mut out = String::with_capacity(text.len());
+    for line in text.lines() {
+        let mut words = line.split_whitespace();
+        match words.next() {
+            Some("vt") => vt += 1,
+            Some("vn") => vn += 1,
+            Some("f") => {
+                let mut face = String::from("f");
+                for corner in words {
+                    let parts: Vec<&str> = corner.split('/').collect();
+                    let keep = |k: usize, count: i64| {
+                        parts.get(k).filter(|r| r.is_empty() || valid(r, count))
+                    };
+                    let (t, n) = (keep(1, vt), keep(2, vn));
+                    let lost = (parts.len() > 1 && t.is_none()) || (parts.len() > 2 && n.is_none());
+                    dropped += usize::from(lost);
+                    face.push(' ');
+                    face.push_str(parts[0]);
+                    match (t.copied().unwrap_or(""), n.copied().unwrap_or("")) {
+                        ("", "") => {}
+                        (t, "") => face.push_str(&format!("/{t}")),
+                        (t, n) => face.push_str(&format!("/{t}/{n}")),
+                    }
+                }
+                out.push_str(&face);
+                out.push('\n');
+                continue;
+            }
+            _ => {}
+        }
+        out.push_str(line);
+        out.push('\n');
+    }
+    (out, dropped)
 }
 
 /// A tobj model as a mesh (positions, optional normals and flipped-v texture coordinates).
