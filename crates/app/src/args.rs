@@ -103,6 +103,7 @@ pub struct FrameArgs {
     /// a diffuse and a glossy VPL).
     #[arg(long, default_value_t = 64)]
     pub rsm: u32,
+    /// Seed of ξ, interleaving and sampling: an unsigned 32-bit integer (0..=4294967295).
     #[arg(long, default_value_t = 0)]
     pub seed: u32,
     /// Which VPL lobes to generate.

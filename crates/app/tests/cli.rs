@@ -239,6 +239,10 @@ fn vsgl_options_that_do_not_fit_are_clear_errors() {
             "camera VSGLs",
         ),
         ("bench --shader vsgl", "sweep --shader vsgl"),
+        (
+            "render --shader vsgl --vsgls 0",
+            "sampled lights must be in 1..",
+        ),
     ] {
         let o = slc()
             .args(args.split(' '))

@@ -69,6 +69,8 @@ pub struct GpuContext {
     /// ms of timestamp time for 1.1 s of compute, `tests/gpu/profile.rs`). Callers report
     /// wall clock instead.
     pub timestamps_trusted: bool,
+    /// Whether the adapter rasterizes on the CPU ([`is_software_adapter`]).
+    pub software: bool,
     /// The device's limits (storage binding size, workgroups per dimension, ...).
     pub limits: wgpu::Limits,
     lost: Arc<Mutex<Option<String>>>,
@@ -128,6 +130,7 @@ impl GpuContext {
             adapter_name,
             timestamps,
             timestamps_trusted,
+            software: is_software_adapter(&info),
             limits,
             lost,
             profiler: Mutex::new(None),
@@ -149,6 +152,7 @@ impl GpuContext {
             adapter_name: format!("{} ({:?})", info.name, info.backend),
             timestamps,
             timestamps_trusted: timestamps && info.device_type != wgpu::DeviceType::Cpu,
+            software: is_software_adapter(info),
             lost: Arc::new(Mutex::new(None)),
             profiler: Mutex::new(None),
         }
@@ -300,4 +304,14 @@ impl GpuContext {
             entries: &entries,
         })
     }
+}
+
+/// Whether an adapter rasterizes on the CPU: its type says so, or its name is one of the
+/// software rasterizers (Mesa's llvmpipe/lavapipe and softpipe, Microsoft's WARP, SwiftShader).
+pub fn is_software_adapter(info: &wgpu::AdapterInfo) -> bool {
+    let name = info.name.to_ascii_lowercase();
+    info.device_type == wgpu::DeviceType::Cpu
+        || ["llvmpipe", "lavapipe", "softpipe", "warp", "swiftshader"]
+            .iter()
+            .any(|s| name.contains(s))
 }

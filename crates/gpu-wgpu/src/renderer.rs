@@ -300,12 +300,12 @@ impl Renderer for GpuRenderer {
         delta: f32,
         interleaving: Interleaving,
         visibility: bool,
-        _progress: Progress,
+        progress: Progress,
     ) -> Result<wgpu::Buffer, RenderError> {
         if visibility {
             return Err(self.unsupported("shadow rays between VPLs and pixels (visibility)"));
         }
-        self.step("shading", || {
+        let image = self.step("shading", || {
             self.shader.shade_gpu_gbuffer_on_gpu(
                 &self.ctx,
                 &p.gbuffer,
@@ -314,7 +314,10 @@ impl Renderer for GpuRenderer {
                 interleaving,
                 lists,
             )
-        })
+        })?;
+        // One dispatch shades every pixel: they are done together.
+        progress(u64::from(p.gbuffer.width) * u64::from(p.gbuffer.height));
+        Ok(image)
     }
 
     fn denoise(&self, p: &GpuPrepared, image: wgpu::Buffer) -> Result<wgpu::Buffer, RenderError> {
@@ -372,7 +375,7 @@ impl Renderer for GpuRenderer {
         s: &LightSampling,
         seed: u32,
         visibility: bool,
-        _progress: Progress,
+        progress: Progress,
     ) -> Result<Shaded, RenderError> {
         if lights == SampledLights::Vpl {
             return Err(self.unsupported("sampled VPLs"));
@@ -452,6 +455,7 @@ impl Renderer for GpuRenderer {
             })
         })?;
         let indirect = read_image(ctx, &rgb, g.width, g.height).map_err(gpu)?;
+        progress(u64::from(g.width) * u64::from(g.height));
         Ok(Shaded {
             sampled_lights: Some(vsgls.len()),
             ..Shaded::new(indirect, timings)

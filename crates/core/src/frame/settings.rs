@@ -166,8 +166,10 @@ impl RenderSettings {
             }
         }
         if let Method::Vsgl(l) | Method::SampledVpls(l) = self.method {
-            if l.count > MAX_SAMPLED_LIGHTS {
-                return bad(format!("at most {MAX_SAMPLED_LIGHTS} sampled lights"));
+            if l.count == 0 || l.count > MAX_SAMPLED_LIGHTS {
+                return bad(format!(
+                    "the number of sampled lights must be in 1..={MAX_SAMPLED_LIGHTS}"
+                ));
             }
             if let Importance::Bidirectional { camera_vsgls } = l.importance {
                 if camera_vsgls == 0 || camera_vsgls > MAX_SAMPLED_LIGHTS {
