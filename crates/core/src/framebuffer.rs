@@ -111,3 +111,20 @@ pub struct GBuffer {
     pub height: u32,
     pub samples: Vec<Option<GSample>>,
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn non_finite_pixels_are_an_error_naming_the_pass_and_count() {
+        let mut img = Image::new(4, 2);
+        img.check_finite("indirect").unwrap();
+        img.pixels[1].x = f32::NAN;
+        img.pixels[5].z = f32::INFINITY;
+        img.pixels[6] = Vec3::splat(f32::NEG_INFINITY);
+        assert_eq!(img.non_finite_pixels(), 3);
+        let e = img.check_finite("indirect").unwrap_err().to_string();
+        assert!(e.contains("indirect pass produced 3 non-finite pixel(s) of 8"), "{e}");
+    }
+}

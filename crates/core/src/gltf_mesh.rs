@@ -69,7 +69,6 @@ pub(crate) fn primitive_mesh(
             .map_err(|_| format!("{name}: too many vertices"))?)
             .collect(),
     };
-    // (`usize::is_multiple_of` needs Rust 1.87; the workspace supports 1.85.)
     let leftover = indices.len() % 3;
     if leftover > 0 {
         warnings.push(format!(
