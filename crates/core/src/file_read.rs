@@ -11,14 +11,11 @@ pub(crate) fn read_capped(path: &Path) -> std::io::Result<Vec<u8>> {
     let meta = std::fs::metadata(path)?;
     if !meta.is_file() {
         let what = if meta.is_dir() {
-            "a folder"
+            "a folder, not a file"
         } else {
-            "not a regular file"
+            "not a regular file (a device, pipe or socket)"
         };
-        return Err(Error::new(
-            ErrorKind::InvalidInput,
-            format!("{what}, not a file slc can read"),
-        ));
+        return Err(Error::new(ErrorKind::InvalidInput, what));
     }
     let too_big = |n: u64| {
         Error::new(

@@ -125,6 +125,9 @@ mod tests {
         img.pixels[6] = Vec3::splat(f32::NEG_INFINITY);
         assert_eq!(img.non_finite_pixels(), 3);
         let e = img.check_finite("indirect").unwrap_err().to_string();
-        assert!(e.contains("indirect pass produced 3 non-finite pixel(s) of 8"), "{e}");
+        assert!(
+            e.contains("indirect pass produced 3 non-finite pixel(s) of 8"),
+            "{e}"
+        );
     }
 }

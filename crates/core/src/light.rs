@@ -100,7 +100,7 @@ impl Light {
     pub fn problem(&self) -> Option<String> {
         let value = |what: &str, v: Vec3| {
             (!(v.is_finite() && v.min_element() >= 0.0 && v.max_element() <= MAX_RADIOMETRIC))
-                .then(|| format!("{what} {v} is not in [0, {MAX_RADIOMETRIC:e}] per channel (larger values overflow f32 in the renderer's products)"))
+                .then(|| format!("{what} [{:e}, {:e}, {:e}] is not in [0, {MAX_RADIOMETRIC:e}] per channel (larger values overflow f32 in the renderer's products)", v.x, v.y, v.z))
         };
         let position = |p: Vec3| (!p.is_finite()).then(|| format!("position {p} is not finite"));
         let direction =
