@@ -693,3 +693,22 @@ fn gpu_sweep_of_the_vpl_pipeline_culls_and_shades_on_the_gpu() {
     }
     std::fs::remove_dir_all(&out).ok();
 }
+
+#[test]
+fn a_software_gpu_adapter_is_named_in_a_warning() {
+    if !gpu_available() {
+        return;
+    }
+    let software = slc_gpu_wgpu::GpuContext::new().unwrap().software;
+    let out = out_dir("gpu-software");
+    let o = slc()
+        .args(["render", "--width", "8", "--height", "8", "--rsm", "2"])
+        .args(["--backend", "gpu", "--out"])
+        .arg(&out)
+        .output()
+        .unwrap();
+    assert!(o.status.success());
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(err.contains("is a software rasterizer"), software, "{err}");
+    std::fs::remove_dir_all(&out).ok();
+}
