@@ -9,6 +9,7 @@ mod out_dir;
 mod output;
 mod plot;
 mod progress;
+mod provenance;
 mod reference;
 mod render_cmd;
 mod report;
@@ -43,6 +44,7 @@ enum Command {
 }
 
 fn main() {
+    provenance::start();
     let cli = Cli::parse();
     let result = match cli.command {
         Command::Render(args) => render_cmd::run(&args),

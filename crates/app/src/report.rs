@@ -2,6 +2,7 @@
 //! Unknown values are `null`, never made up.
 use crate::args::FrameArgs;
 use crate::out_dir::OutDir;
+use crate::provenance::Provenance;
 use serde::Serialize;
 use slc_core::frame::{Importance, Method, Timings};
 use slc_core::{BackendInfo, CullMetrics, Image, Scene};
@@ -10,6 +11,8 @@ use std::path::Path;
 
 #[derive(Serialize, Debug)]
 pub struct Report {
+    /// The build, command, machine and scene files this result comes from.
+    pub provenance: Provenance,
     pub scene: String,
     pub backend: &'static str,
     /// The device that rendered: the CPU backend names its thread count, the GPU backend its
@@ -122,6 +125,7 @@ impl Report {
             _ => None,
         };
         Report {
+            provenance: Provenance::new(f.args.scene.as_deref(), f.scene),
             scene: f.scene.name.clone(),
             backend: f.device.backend,
             adapter: f.device.adapter.clone(),

@@ -51,6 +51,12 @@ fn render_writes_images_and_report() {
         "\"shader\": \"vpl\"",
         "\"total\":",
         "\"false_discovery_rate\": null",
+        "\"schema_version\": 2",
+        "\"slc_version\":",
+        "\"git_commit\":",
+        "\"started_at\":",
+        "\"cpu_threads\":",
+        "\"scene_files\": []",
     ] {
         assert!(report.contains(key), "report.json lacks {key}:\n{report}");
     }
