@@ -1,7 +1,8 @@
 //! `slc compare`: every culling strategy on the same G-buffer, VPLs and ξ, side by side.
 //!
 //! Writes one folder per strategy (images, heat map, report.json), `reference_vpl/` (every VPL
-//! with p = 1, the same VPLs), `report.md` with the table, and `side_by_side.png`. With
+//! with p = 1, the same VPLs), `report.md` with the table, the same table for scripts as
+//! `compare.json` / `compare.csv` (every setting a column), and `side_by_side.png`. With
 //! `--shader vsgl` also `vsgl/` and `vpl_sampled/`: `--vsgls N` VSGLs and N VPLs sampled by the
 //! same importance, with their own table in `report.md`.
 use crate::args::{strategies, FrameArgs, ImportanceArgs, PipelineArgs, Shader};
@@ -11,11 +12,14 @@ use crate::limits::check_memory;
 use crate::out_dir::OutDir;
 use crate::output::{write_frame, write_rgb8};
 use crate::progress::bar;
+use crate::provenance::Provenance;
 use crate::reference::{all_vpl_reference, cpu_input};
 use crate::report::{FrameFacts, Report};
 use crate::sampled::{shade_sampled, PASSES};
+use crate::table::{write_table, SettingsColumns};
 use clap::Args;
 use image::RgbImage;
+use serde::Serialize;
 use slc_core::frame::{Method, RenderSettings, Stochastic, Timings};
 use slc_core::shader::{frame_timings, SampledLights, ShadeInput, Shader as _};
 use slc_core::{BackendInfo, Image, PreparedFrame, Renderer, Scene, Strategy};
@@ -217,6 +221,17 @@ impl OnBackend for Compare<'_> {
         } else {
             String::new()
         };
+        let provenance = Provenance::new(f.scene.as_deref(), &scene);
+        let columns = SettingsColumns::new(
+            &provenance,
+            &scene,
+            &device,
+            f,
+            &args.pipeline,
+            p.vpls().len(),
+        );
+        let table_rows: Vec<CompareRow> = rows.iter().map(|r| r.columns(args.delta)).collect();
+        write_table(&mut dir_out, "compare", &provenance, &columns, &table_rows)?;
         let md = table(args, &device, &scene.name, p.vpls().len(), &rows, &sampled);
         dir_out.write("report.md", md.as_bytes())?;
         write_rgb8(&mut dir_out, "side_by_side.png", &side_by_side(&rows))?;
@@ -363,6 +378,45 @@ fn table(
     let _ = writeln!(md, "\nHeat maps (`*/heatmap.png`): brightness = VPLs per pixel (full at {}), colour = false discovery rate from blue (0) to red (1).", args.heat_max);
     md.push_str(sampled);
     md
+}
+
+/// One strategy's row of `compare.json` / `compare.csv`.
+#[derive(Serialize)]
+struct CompareRow {
+    strategy: &'static str,
+    delta: f32,
+    culling_ms: f64,
+    shading_ms: f64,
+    denoise_ms: f64,
+    culling_plus_shading_ms: f64,
+    lights_per_pixel: f64,
+    true_positives: u64,
+    false_positives: u64,
+    missed: u64,
+    false_discovery_rate: f64,
+    rmse_vs_unculled: Option<f32>,
+    rmse_vs_reference: Option<f32>,
+}
+
+impl Row {
+    fn columns(&self, delta: f32) -> CompareRow {
+        let (culling_ms, shading_ms) = (self.timings.get("culling"), self.timings.get("shading"));
+        CompareRow {
+            strategy: self.strategy.name(),
+            delta,
+            culling_ms,
+            shading_ms,
+            denoise_ms: self.timings.get("denoise"),
+            culling_plus_shading_ms: culling_ms + shading_ms,
+            lights_per_pixel: self.lights_per_pixel,
+            true_positives: self.tp,
+            false_positives: self.fp,
+            missed: self.missed,
+            false_discovery_rate: self.fdr,
+            rmse_vs_unculled: self.rmse_unculled,
+            rmse_vs_reference: self.rmse_reference,
+        }
+    }
 }
 
 /// Totals in the top row, heat maps below, one column per strategy.

@@ -15,6 +15,7 @@ mod render_cmd;
 mod report;
 mod sampled;
 mod sweep_cmd;
+mod table;
 mod vsgl_sweep;
 
 use clap::{Parser, Subcommand};

@@ -14,9 +14,12 @@ use crate::out_dir::OutDir;
 use crate::output::{to_srgb8, write_rgb8};
 use crate::plot::{line_plot_svg, Series};
 use crate::progress::bar;
+use crate::provenance::Provenance;
 use crate::reference::{all_vpl_reference, cpu_input};
+use crate::table::{write_table, SettingsColumns};
 use clap::Args;
 use image::RgbImage;
+use serde::Serialize;
 use slc_core::frame::{Method, Stochastic};
 use slc_core::shader::{ShadeInput, Shader as _};
 use slc_core::{Image, PreparedFrame, Renderer, Scene, Strategy};
@@ -130,7 +133,18 @@ impl OnBackend for Sweep<'_> {
         let reference = all_vpl_reference(cpu_input(&scene, &cpu_p, f.seed, f.visibility))?;
         let input = f.input(&scene, &loaded, &p);
         let points = sweep(args, r, input, &strategies, base, &reference)?;
-        write_outputs(args, &mut out, &scene, &strategies, &points)?;
+        let provenance = Provenance::new(f.scene.as_deref(), &scene);
+        let device = r.info(&settings);
+        let columns = SettingsColumns::new(
+            &provenance,
+            &scene,
+            &device,
+            f,
+            &args.pipeline,
+            p.vpls().len(),
+        );
+        let table = (provenance, columns);
+        write_outputs(args, &mut out, &table, &scene, &strategies, &points)?;
         out.commit()?;
         println!("wrote {}", args.out.display());
         Ok(())
@@ -181,30 +195,38 @@ fn sweep<R: Renderer>(
     Ok(points)
 }
 
-/// `sweep.csv`, `sweep.svg` and the equal-time comparison.
+/// One run of `sweep.json` / `sweep.csv` (the fastest of `--repeat`).
+#[derive(Serialize)]
+struct SweepRow {
+    strategy: &'static str,
+    delta: f32,
+    culling_ms: f64,
+    shading_ms: f64,
+    culling_plus_shading_ms: f64,
+    rmse_vs_all_vpl: f32,
+}
+
+/// `sweep.json`, `sweep.csv`, `sweep.svg` and the equal-time comparison.
 fn write_outputs(
     args: &SweepArgs,
     out: &mut OutDir,
+    table: &(Provenance, SettingsColumns),
     scene: &Scene,
     names: &[Strategy],
     points: &[Point],
 ) -> Result<(), String> {
-    let mut csv = String::from(
-        "strategy,delta,culling_ms,shading_ms,culling_plus_shading_ms,rmse_vs_all_vpl\n",
-    );
-    for pt in points {
-        let _ = writeln!(
-            csv,
-            "{},{},{:.3},{:.3},{:.3},{:.6e}",
-            pt.strategy,
-            pt.delta,
-            pt.culling_ms,
-            pt.shading_ms,
-            pt.time_ms(),
-            pt.rmse
-        );
-    }
-    out.write("sweep.csv", csv.as_bytes())?;
+    let rows: Vec<SweepRow> = points
+        .iter()
+        .map(|pt| SweepRow {
+            strategy: pt.strategy.name(),
+            delta: pt.delta,
+            culling_ms: pt.culling_ms,
+            shading_ms: pt.shading_ms,
+            culling_plus_shading_ms: pt.time_ms(),
+            rmse_vs_all_vpl: pt.rmse,
+        })
+        .collect();
+    write_table(out, "sweep", &table.0, &table.1, &rows)?;
     let series: Vec<Series> = names
         .iter()
         .map(|&n| Series {

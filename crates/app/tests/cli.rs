@@ -108,6 +108,19 @@ fn compare_writes_a_folder_per_strategy_a_table_and_heat_maps() {
     assert!(
         out.join("reference_vpl/total.exr").is_file() && out.join("side_by_side.png").is_file()
     );
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("compare.json")).unwrap()).unwrap();
+    let table_rows = json["rows"].as_array().unwrap();
+    assert_eq!(table_rows.len(), 4);
+    assert!(table_rows.iter().all(|r| r["missed"] == 0));
+    assert_eq!(json["settings"]["width"], 32);
+    let csv = std::fs::read_to_string(out.join("compare.csv")).unwrap();
+    assert_eq!(csv.lines().count(), 5, "{csv}");
+    assert!(csv
+        .lines()
+        .next()
+        .unwrap()
+        .contains(",strategy,delta,culling_ms,"));
     let md = std::fs::read_to_string(out.join("report.md")).unwrap();
     let rows: Vec<&str> = md
         .lines()
@@ -128,10 +141,23 @@ fn sweep_writes_csv_plot_and_equal_time_comparison() {
     run_ok("sweep --width 32 --height 24 --rsm 4 --interleave 2 --delta 1e-3,1e-2 --culling ellipsoid,sphere", &out);
     let csv = std::fs::read_to_string(out.join("sweep.csv")).unwrap();
     assert_eq!(csv.lines().count(), 1 + 2 * 2, "{csv}");
+    let header = csv.lines().next().unwrap();
+    assert!(header.starts_with("scene,scene_sha256,backend,adapter,width,height,rsm,lobes,vpls,seed,interleave,denoise,visibility,threads,"), "{header}");
+    assert!(
+        header.ends_with(
+            ",strategy,delta,culling_ms,shading_ms,culling_plus_shading_ms,rmse_vs_all_vpl"
+        ),
+        "{header}"
+    );
+    let columns = header.split(',').count();
     assert!(csv
         .lines()
         .skip(1)
-        .all(|l| l.split(',').count() == 6 && !l.contains("NaN")));
+        .all(|l| l.split(',').count() == columns && l.contains(",32,24,4,") && !l.contains("NaN")));
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("sweep.json")).unwrap()).unwrap();
+    assert_eq!(json["rows"].as_array().unwrap().len(), 4);
+    assert_eq!(json["settings"]["interleave"], 2);
     let svg = std::fs::read_to_string(out.join("sweep.svg")).unwrap();
     assert!(svg.contains("ellipsoid") && svg.contains("sphere"));
     assert!(out.join("equal_time.md").is_file() && out.join("equal_time.png").is_file());
