@@ -106,6 +106,10 @@ pub struct FrameArgs {
     /// Seed of ξ, interleaving and sampling: an unsigned 32-bit integer (0..=4294967295).
     #[arg(long, default_value_t = 0)]
     pub seed: u32,
+    /// Exposure of the PNG previews in stops (each PNG shows the linear image times
+    /// 2^exposure); the EXR files are never scaled.
+    #[arg(long, default_value_t = 0.0, allow_negative_numbers = true, value_parser = stops)]
+    pub exposure: f32,
     /// Which VPL lobes to generate.
     #[arg(long, value_enum, default_value_t = Lobes::Both)]
     pub lobes: Lobes,
@@ -113,6 +117,15 @@ pub struct FrameArgs {
     /// `--backend gpu --shader vsgl`: imperfect shadow maps instead of rays).
     #[arg(long)]
     pub visibility: bool,
+}
+
+/// An exposure in stops: a number in [-64, 64].
+fn stops(s: &str) -> Result<f32, String> {
+    let v: f32 = s.trim().parse().map_err(|e| format!("{e}"))?;
+    (-64.0..=64.0)
+        .contains(&v)
+        .then_some(v)
+        .ok_or_else(|| format!("{v} is not in [-64, 64] stops"))
 }
 
 impl FrameArgs {

@@ -141,7 +141,7 @@ impl OnBackend for Compare<'_> {
         if let Some(r) = &reference {
             let total = p.direct().add(r);
             let dir = "reference_vpl";
-            let images = write_frame(&mut dir_out, dir, p.direct(), r, &total)?;
+            let images = write_frame(&mut dir_out, dir, f.exposure, p.direct(), r, &total)?;
             let facts = FrameFacts {
                 device: &cpu_device,
                 scene: &scene,
@@ -177,7 +177,14 @@ impl OnBackend for Compare<'_> {
             let m = out.metrics.as_ref().expect("metrics were asked for");
             let total = p.direct().add(&out.indirect);
             let dir = strategy.name();
-            let images = write_frame(&mut dir_out, dir, p.direct(), &out.indirect, &total)?;
+            let images = write_frame(
+                &mut dir_out,
+                dir,
+                f.exposure,
+                p.direct(),
+                &out.indirect,
+                &total,
+            )?;
             let heat = heat_map(
                 f.width,
                 f.height,
@@ -234,7 +241,11 @@ impl OnBackend for Compare<'_> {
         write_table(&mut dir_out, "compare", &provenance, &columns, &table_rows)?;
         let md = table(args, &device, &scene.name, p.vpls().len(), &rows, &sampled);
         dir_out.write("report.md", md.as_bytes())?;
-        write_rgb8(&mut dir_out, "side_by_side.png", &side_by_side(&rows))?;
+        write_rgb8(
+            &mut dir_out,
+            "side_by_side.png",
+            &side_by_side(&rows, f.exposure),
+        )?;
         dir_out.commit()?;
         println!("wrote {}", args.out.display());
         Ok(())
@@ -280,7 +291,14 @@ fn sampled_lights<R: Renderer>(
         };
         let total = prepared.direct.add(&out.indirect);
         let dir = e.name();
-        let images = write_frame(dir_out, dir, &prepared.direct, &out.indirect, &total)?;
+        let images = write_frame(
+            dir_out,
+            dir,
+            f.exposure,
+            &prepared.direct,
+            &out.indirect,
+            &total,
+        )?;
         let (timings, _) = frame_timings(prepared, &out);
         let facts = FrameFacts {
             device: &device,
@@ -420,13 +438,13 @@ impl Row {
 }
 
 /// Totals in the top row, heat maps below, one column per strategy.
-fn side_by_side(rows: &[Row]) -> RgbImage {
+fn side_by_side(rows: &[Row], exposure: f32) -> RgbImage {
     let (w, h) = rows
         .first()
         .map_or((1, 1), |r| (r.total.width, r.total.height));
     let mut out = RgbImage::new(w * rows.len().max(1) as u32, 2 * h);
     for (i, r) in rows.iter().enumerate() {
-        let png = crate::output::to_srgb8(&r.total);
+        let png = crate::output::to_srgb8(&r.total, exposure);
         image::imageops::replace(&mut out, &png, (i as u32 * w) as i64, 0);
         image::imageops::replace(&mut out, &r.heat, (i as u32 * w) as i64, h as i64);
     }

@@ -27,9 +27,11 @@ pub fn linear_to_srgb(c: f32) -> f32 {
     }
 }
 
-/// An 8-bit sRGB image of a linear image, values clamped to [0, 1] (like the reference previews).
-pub fn to_srgb8(image: &Image) -> image::RgbImage {
-    let to8 = |c: f32| (linear_to_srgb(c) * 255.0 + 0.5) as u8;
+/// An 8-bit sRGB image of a linear image scaled by 2^`exposure`, values clamped to [0, 1]
+/// (like the reference previews at exposure 0).
+pub fn to_srgb8(image: &Image, exposure: f32) -> image::RgbImage {
+    let scale = exposure.exp2();
+    let to8 = |c: f32| (linear_to_srgb(c * scale) * 255.0 + 0.5) as u8;
     let mut out = image::RgbImage::new(image.width, image.height);
     for (o, p) in out.pixels_mut().zip(&image.pixels) {
         *o = image::Rgb([to8(p.x), to8(p.y), to8(p.z)]);
@@ -38,18 +40,20 @@ pub fn to_srgb8(image: &Image) -> image::RgbImage {
 }
 
 /// Writes an 8-bit sRGB PNG of a linear image (see [`to_srgb8`]).
-pub fn write_png(path: &Path, image: &Image) -> Result<(), String> {
-    to_srgb8(image)
+pub fn write_png(path: &Path, image: &Image, exposure: f32) -> Result<(), String> {
+    to_srgb8(image, exposure)
         .save(path)
         .map_err(|e| format!("{}: cannot write PNG: {e}", path.display()))
 }
 
 /// Stages a frame's files in `out` under the relative folder `dir` (empty: the top):
-/// `direct`, `indirect` and `total`, each as EXR and PNG, after checking that every pixel is
-/// finite; returns the images by name (total included) for the report.
+/// `direct`, `indirect` and `total`, each as EXR and PNG (at `exposure`, in stops), after
+/// checking that every pixel is finite; returns the images by name (total included) for the
+/// report.
 pub fn write_frame<'a>(
     out: &mut OutDir,
     dir: &str,
+    exposure: f32,
     direct: &'a Image,
     indirect: &'a Image,
     total: &'a Image,
@@ -60,7 +64,11 @@ pub fn write_frame<'a>(
     }
     for (name, img) in images {
         write_exr(&out.stage(Path::new(dir).join(format!("{name}.exr")))?, img)?;
-        write_png(&out.stage(Path::new(dir).join(format!("{name}.png")))?, img)?;
+        write_png(
+            &out.stage(Path::new(dir).join(format!("{name}.png")))?,
+            img,
+            exposure,
+        )?;
     }
     Ok(images)
 }

@@ -109,7 +109,14 @@ impl OnBackend for Render<'_> {
         progress.finish_and_clear();
         let device = r.info(&settings);
         let total = frame.total();
-        let images = write_frame(&mut out, "", &frame.direct, &frame.indirect, &total)?;
+        let images = write_frame(
+            &mut out,
+            "",
+            f.exposure,
+            &frame.direct,
+            &frame.indirect,
+            &total,
+        )?;
         let timings = &frame.timings;
         let facts = FrameFacts {
             device: &device,

@@ -290,7 +290,12 @@ fn equal_time(
     let (w, h) = (args.frame.width, args.frame.height);
     let mut strip = RgbImage::new(w * picks.len() as u32, h);
     for (i, p) in picks.iter().enumerate() {
-        image::imageops::replace(&mut strip, &to_srgb8(&p.total), (i as u32 * w) as i64, 0);
+        image::imageops::replace(
+            &mut strip,
+            &to_srgb8(&p.total, args.frame.exposure),
+            (i as u32 * w) as i64,
+            0,
+        );
     }
     write_rgb8(out, "equal_time.png", &strip)
 }

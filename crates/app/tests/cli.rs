@@ -744,3 +744,30 @@ fn a_software_gpu_adapter_is_named_in_a_warning() {
     assert_eq!(err.contains("is a software rasterizer"), software, "{err}");
     std::fs::remove_dir_all(&out).ok();
 }
+
+#[test]
+fn exposure_brightens_the_png_previews_only() {
+    let plain = out_dir("exposure-0");
+    let bright = out_dir("exposure-2");
+    run_ok("render --width 16 --height 12 --rsm 2", &plain);
+    run_ok(
+        "render --width 16 --height 12 --rsm 2 --exposure 2",
+        &bright,
+    );
+    let mean = |d: &Path| {
+        let png = image::open(d.join("total.png")).unwrap().to_rgb8();
+        png.pixels().map(|p| u64::from(p.0[1])).sum::<u64>()
+    };
+    assert!(mean(&bright) > mean(&plain));
+    assert_eq!(
+        std::fs::read(plain.join("total.exr")).unwrap(),
+        std::fs::read(bright.join("total.exr")).unwrap()
+    );
+    let o = slc()
+        .args(["render", "--exposure", "nan"])
+        .output()
+        .unwrap();
+    assert!(String::from_utf8_lossy(&o.stderr).contains("not in [-64, 64] stops"));
+    std::fs::remove_dir_all(&plain).ok();
+    std::fs::remove_dir_all(&bright).ok();
+}
