@@ -14,6 +14,7 @@ use crate::output::{write_frame, write_rgb8};
 use crate::progress::bar;
 use crate::provenance::Provenance;
 use crate::reference::{all_vpl_reference, cpu_input};
+use crate::repeat::{repeated, Spread};
 use crate::report::{FrameFacts, Report};
 use crate::sampled::{shade_sampled, PASSES};
 use crate::table::{write_table, SettingsColumns};
@@ -56,12 +57,17 @@ pub struct CompareArgs {
     /// Skip the all-VPL reference (it costs every VPL at every pixel).
     #[arg(long)]
     pub no_reference: bool,
+    /// Time each strategy's culling and shading this many times (after the run that measures
+    /// the metrics, which is then the warm-up): the tables give median, min and max.
+    #[arg(long, default_value_t = 1)]
+    pub repeat: u32,
 }
 
 /// One strategy's row of the table.
 struct Row {
     strategy: Strategy,
-    timings: Timings,
+    /// The timings of each measured run.
+    runs: Vec<Timings>,
     lights_per_pixel: f64,
     tp: u64,
     fp: u64,
@@ -174,6 +180,19 @@ impl OnBackend for Compare<'_> {
             let bar = bar(pixels, strategy.name().to_string());
             let out = s.shade(r, input, &|n| bar.inc(n)).map_err(message)?;
             bar.finish_and_clear();
+            let runs = match args.repeat {
+                1 => vec![out.timings.clone()],
+                n => {
+                    let timed = Stochastic {
+                        metrics: false,
+                        ..s
+                    };
+                    repeated(n, || {
+                        let run = timed.shade(r, input, &|_| {}).map_err(message)?;
+                        Ok(run.timings)
+                    })?
+                }
+            };
             let m = out.metrics.as_ref().expect("metrics were asked for");
             let total = p.direct().add(&out.indirect);
             let dir = strategy.name();
@@ -217,7 +236,7 @@ impl OnBackend for Compare<'_> {
                 fdr: m.false_discovery_rate,
                 rmse_unculled: Some(out.indirect.rmse(&unculled)),
                 rmse_reference: reference.as_ref().map(|r| out.indirect.rmse(r)),
-                timings: out.timings,
+                runs,
                 total,
                 heat,
             });
@@ -364,20 +383,26 @@ fn table(
             "- the unculled estimate and `reference_vpl/` were shaded on the CPU\n"
         );
     }
+    if args.repeat > 1 {
+        let _ = writeln!(
+            md,
+            "Times are the median (min–max) of {} runs after a warm-up.\n",
+            args.repeat
+        );
+    }
     let _ = writeln!(md, "| strategy | culling ms | shading ms | denoise ms | culling + shading ms | lights/pixel | true positives | false positives | missed | FDR | RMSE vs unculled | RMSE vs reference |");
     let _ = writeln!(md, "|---|---|---|---|---|---|---|---|---|---|---|---|");
     let fmt_opt = |v: Option<f32>| v.map_or("n/a".to_string(), |v| format!("{v:.3e}"));
     for r in rows {
-        let (c, s, d) = (
-            r.timings.get("culling"),
-            r.timings.get("shading"),
-            r.timings.get("denoise"),
-        );
+        let time = |passes: &[&str]| Spread::of_passes(&r.runs, passes).text(r.runs.len());
         let _ = writeln!(
             md,
-            "| {} | {c:.1} | {s:.1} | {d:.1} | {:.1} | {:.1} | {} | {} | {} | {:.3} | {} | {} |",
+            "| {} | {} | {} | {} | {} | {:.1} | {} | {} | {} | {:.3} | {} | {} |",
             r.strategy,
-            c + s,
+            time(&["culling"]),
+            time(&["shading"]),
+            time(&["denoise"]),
+            time(&["culling", "shading"]),
             r.lights_per_pixel,
             r.tp,
             r.fp,
@@ -403,10 +428,15 @@ fn table(
 struct CompareRow {
     strategy: &'static str,
     delta: f32,
+    /// Measured runs of culling and shading (`--repeat`).
+    runs: usize,
+    /// Medians over the runs.
     culling_ms: f64,
     shading_ms: f64,
     denoise_ms: f64,
     culling_plus_shading_ms: f64,
+    culling_plus_shading_ms_min: f64,
+    culling_plus_shading_ms_max: f64,
     lights_per_pixel: f64,
     true_positives: u64,
     false_positives: u64,
@@ -418,14 +448,18 @@ struct CompareRow {
 
 impl Row {
     fn columns(&self, delta: f32) -> CompareRow {
-        let (culling_ms, shading_ms) = (self.timings.get("culling"), self.timings.get("shading"));
+        let median = |passes: &[&str]| Spread::of_passes(&self.runs, passes).median;
+        let both = Spread::of_passes(&self.runs, &["culling", "shading"]);
         CompareRow {
             strategy: self.strategy.name(),
             delta,
-            culling_ms,
-            shading_ms,
-            denoise_ms: self.timings.get("denoise"),
-            culling_plus_shading_ms: culling_ms + shading_ms,
+            runs: self.runs.len(),
+            culling_ms: median(&["culling"]),
+            shading_ms: median(&["shading"]),
+            denoise_ms: median(&["denoise"]),
+            culling_plus_shading_ms: both.median,
+            culling_plus_shading_ms_min: both.min,
+            culling_plus_shading_ms_max: both.max,
             lights_per_pixel: self.lights_per_pixel,
             true_positives: self.tp,
             false_positives: self.fp,

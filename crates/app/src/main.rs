@@ -12,6 +12,7 @@ mod progress;
 mod provenance;
 mod reference;
 mod render_cmd;
+mod repeat;
 mod report;
 mod sampled;
 mod sweep_cmd;

@@ -16,6 +16,7 @@ use crate::plot::{line_plot_svg, Series};
 use crate::progress::bar;
 use crate::provenance::Provenance;
 use crate::reference::{all_vpl_reference, cpu_input};
+use crate::repeat::{repeated, Spread};
 use crate::table::{write_table, SettingsColumns};
 use clap::Args;
 use image::RgbImage;
@@ -49,7 +50,8 @@ pub struct SweepArgs {
         default_value = "ellipsoid,sphere,enclosing-sphere,clustered"
     )]
     pub culling: Vec<String>,
-    /// Timing repetitions per point; the fastest is kept.
+    /// Timing repetitions per point, after one warm-up when more than one: the VPL sweep gives
+    /// the median, min and max of culling + shading (the VSGL sweep keeps the fastest).
     #[arg(long, default_value_t = 1)]
     pub repeat: u32,
     #[command(flatten)]
@@ -66,15 +68,20 @@ pub struct SweepArgs {
 struct Point {
     strategy: Strategy,
     delta: f32,
+    /// Medians over the runs.
     culling_ms: f64,
     shading_ms: f64,
+    /// Culling + shading over the runs.
+    time: Spread,
+    runs: usize,
     rmse: f32,
     total: Image,
 }
 
 impl Point {
+    /// The median culling + shading time.
     fn time_ms(&self) -> f64 {
-        self.culling_ms + self.shading_ms
+        self.time.median
     }
 }
 
@@ -151,7 +158,7 @@ impl OnBackend for Sweep<'_> {
     }
 }
 
-/// Each strategy at each δ, the fastest of `--repeat` runs.
+/// Each strategy at each δ over `--repeat` runs (the estimate is the same in every run).
 fn sweep<R: Renderer>(
     args: &SweepArgs,
     r: &R,
@@ -172,37 +179,41 @@ fn sweep<R: Renderer>(
                 strategy,
                 ..base
             };
-            let mut best: Option<Point> = None;
-            for _ in 0..args.repeat {
+            let outs = repeated(args.repeat, || {
                 let out = s.shade(r, input, &|_| {}).map_err(message)?;
-                let point = Point {
-                    strategy,
-                    delta,
-                    culling_ms: out.timings.get("culling"),
-                    shading_ms: out.timings.get("shading"),
-                    rmse: out.indirect.rmse(reference),
-                    total: input.prepared.direct().add(&out.indirect),
-                };
-                if best.as_ref().is_none_or(|b| point.time_ms() < b.time_ms()) {
-                    best = Some(point);
-                }
                 progress.inc(1);
-            }
-            points.extend(best);
+                Ok(out)
+            })?;
+            let runs: Vec<_> = outs.iter().map(|o| o.timings.clone()).collect();
+            let last = outs.last().expect("at least one run");
+            points.push(Point {
+                strategy,
+                delta,
+                culling_ms: Spread::of_passes(&runs, &["culling"]).median,
+                shading_ms: Spread::of_passes(&runs, &["shading"]).median,
+                time: Spread::of_passes(&runs, &["culling", "shading"]),
+                runs: runs.len(),
+                rmse: last.indirect.rmse(reference),
+                total: input.prepared.direct().add(&last.indirect),
+            });
         }
     }
     progress.finish_and_clear();
     Ok(points)
 }
 
-/// One run of `sweep.json` / `sweep.csv` (the fastest of `--repeat`).
+/// One point of `sweep.json` / `sweep.csv`: medians over `--repeat` runs, with the min and
+/// max of culling + shading.
 #[derive(Serialize)]
 struct SweepRow {
     strategy: &'static str,
     delta: f32,
+    runs: usize,
     culling_ms: f64,
     shading_ms: f64,
     culling_plus_shading_ms: f64,
+    culling_plus_shading_ms_min: f64,
+    culling_plus_shading_ms_max: f64,
     rmse_vs_all_vpl: f32,
 }
 
@@ -222,7 +233,10 @@ fn write_outputs(
             delta: pt.delta,
             culling_ms: pt.culling_ms,
             shading_ms: pt.shading_ms,
-            culling_plus_shading_ms: pt.time_ms(),
+            runs: pt.runs,
+            culling_plus_shading_ms: pt.time.median,
+            culling_plus_shading_ms_min: pt.time.min,
+            culling_plus_shading_ms_max: pt.time.max,
             rmse_vs_all_vpl: pt.rmse,
         })
         .collect();

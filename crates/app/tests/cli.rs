@@ -99,7 +99,7 @@ fn bad_input_is_a_clear_error() {
 #[test]
 fn compare_writes_a_folder_per_strategy_a_table_and_heat_maps() {
     let out = out_dir("compare");
-    run_ok("compare --width 32 --height 24 --rsm 4 --interleave 2 --culling none,sphere,ellipsoid,clustered", &out);
+    run_ok("compare --width 32 --height 24 --rsm 4 --interleave 2 --culling none,sphere,ellipsoid,clustered --repeat 2", &out);
     for s in ["none", "sphere", "ellipsoid", "clustered"] {
         for f in ["total.exr", "total.png", "heatmap.png", "report.json"] {
             assert!(out.join(s).join(f).is_file(), "{s}/{f} missing");
@@ -112,7 +112,9 @@ fn compare_writes_a_folder_per_strategy_a_table_and_heat_maps() {
         serde_json::from_str(&std::fs::read_to_string(out.join("compare.json")).unwrap()).unwrap();
     let table_rows = json["rows"].as_array().unwrap();
     assert_eq!(table_rows.len(), 4);
-    assert!(table_rows.iter().all(|r| r["missed"] == 0));
+    assert!(table_rows
+        .iter()
+        .all(|r| r["missed"] == 0 && r["runs"] == 2));
     assert_eq!(json["settings"]["width"], 32);
     let csv = std::fs::read_to_string(out.join("compare.csv")).unwrap();
     assert_eq!(csv.lines().count(), 5, "{csv}");
@@ -120,7 +122,7 @@ fn compare_writes_a_folder_per_strategy_a_table_and_heat_maps() {
         .lines()
         .next()
         .unwrap()
-        .contains(",strategy,delta,culling_ms,"));
+        .contains(",strategy,delta,runs,culling_ms,"));
     let md = std::fs::read_to_string(out.join("report.md")).unwrap();
     let rows: Vec<&str> = md
         .lines()
@@ -138,14 +140,14 @@ fn compare_writes_a_folder_per_strategy_a_table_and_heat_maps() {
 #[test]
 fn sweep_writes_csv_plot_and_equal_time_comparison() {
     let out = out_dir("sweep");
-    run_ok("sweep --width 32 --height 24 --rsm 4 --interleave 2 --delta 1e-3,1e-2 --culling ellipsoid,sphere", &out);
+    run_ok("sweep --width 32 --height 24 --rsm 4 --interleave 2 --delta 1e-3,1e-2 --culling ellipsoid,sphere --repeat 3", &out);
     let csv = std::fs::read_to_string(out.join("sweep.csv")).unwrap();
     assert_eq!(csv.lines().count(), 1 + 2 * 2, "{csv}");
     let header = csv.lines().next().unwrap();
     assert!(header.starts_with("scene,scene_sha256,backend,adapter,width,height,rsm,lobes,vpls,seed,interleave,denoise,visibility,threads,"), "{header}");
     assert!(
         header.ends_with(
-            ",strategy,delta,culling_ms,shading_ms,culling_plus_shading_ms,rmse_vs_all_vpl"
+            ",strategy,delta,runs,culling_ms,shading_ms,culling_plus_shading_ms,culling_plus_shading_ms_min,culling_plus_shading_ms_max,rmse_vs_all_vpl"
         ),
         "{header}"
     );
@@ -158,6 +160,15 @@ fn sweep_writes_csv_plot_and_equal_time_comparison() {
         serde_json::from_str(&std::fs::read_to_string(out.join("sweep.json")).unwrap()).unwrap();
     assert_eq!(json["rows"].as_array().unwrap().len(), 4);
     assert_eq!(json["settings"]["interleave"], 2);
+    for row in json["rows"].as_array().unwrap() {
+        assert_eq!(row["runs"], 3);
+        let (min, med, max) = (
+            row["culling_plus_shading_ms_min"].as_f64().unwrap(),
+            row["culling_plus_shading_ms"].as_f64().unwrap(),
+            row["culling_plus_shading_ms_max"].as_f64().unwrap(),
+        );
+        assert!(min <= med && med <= max, "{row}");
+    }
     let svg = std::fs::read_to_string(out.join("sweep.svg")).unwrap();
     assert!(svg.contains("ellipsoid") && svg.contains("sphere"));
     assert!(out.join("equal_time.md").is_file() && out.join("equal_time.png").is_file());
