@@ -155,7 +155,7 @@ impl OnBackend for Compare<'_> {
                 method: Method::VplReference,
                 spp: 1,
                 vpl_count: p.vpls().len(),
-                timings: p.timings(),
+                timings: std::slice::from_ref(p.timings()),
                 gpu_timings: None,
                 metrics: None,
                 sampled_lights: None,
@@ -213,6 +213,18 @@ impl OnBackend for Compare<'_> {
             );
             write_rgb8(&mut dir_out, &format!("{dir}/heatmap.png"), &heat)?;
             let (timings, gpu_timings) = frame_timings(&p, &out);
+            // The frame's passes with each measured run's culling and shading.
+            let frame_runs: Vec<Timings> = match args.repeat {
+                1 => vec![timings],
+                _ => runs
+                    .iter()
+                    .map(|t| {
+                        let mut frame = p.timings().clone();
+                        frame.merge(t);
+                        frame
+                    })
+                    .collect(),
+            };
             let facts = FrameFacts {
                 device: &device,
                 scene: &scene,
@@ -220,7 +232,7 @@ impl OnBackend for Compare<'_> {
                 method: Method::Stochastic(s),
                 spp: 1,
                 vpl_count: p.vpls().len(),
-                timings: &timings,
+                timings: &frame_runs,
                 gpu_timings: gpu_timings.as_ref(),
                 metrics: Some(m),
                 sampled_lights: None,
@@ -326,7 +338,7 @@ fn sampled_lights<R: Renderer>(
             method,
             spp: 1,
             vpl_count: prepared.vpls.len(),
-            timings: &timings,
+            timings: std::slice::from_ref(&timings),
             gpu_timings: None,
             metrics: None,
             sampled_lights: out.sampled_lights,

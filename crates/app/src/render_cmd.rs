@@ -5,6 +5,7 @@ use crate::limits::check_memory;
 use crate::out_dir::OutDir;
 use crate::output::write_frame;
 use crate::progress::bar;
+use crate::repeat::{repeated, Spread};
 use crate::report::{FrameFacts, Report};
 use clap::{Args, ValueEnum};
 use slc_core::frame::{Method, RenderSettings};
@@ -50,6 +51,10 @@ pub struct RenderArgs {
     /// Passes (path samples per pixel, or jittered VPL passes) averaged.
     #[arg(long, default_value_t = 1)]
     pub spp: u32,
+    /// Render this many times after a warm-up (when more than one): report.json gives each
+    /// pass's median, min and max (`timings_spread_ms`); the images are the last run's.
+    #[arg(long, default_value_t = 1)]
+    pub repeat: u32,
 }
 
 pub fn run(args: &RenderArgs) -> Result<(), String> {
@@ -100,13 +105,22 @@ impl OnBackend for Render<'_> {
             mut out,
         } = self;
         let f = &args.frame;
+        let runs = args.repeat.max(1) + u32::from(args.repeat > 1);
         let progress = bar(
-            settings.width as u64 * settings.height as u64 * settings.spp as u64,
+            settings.width as u64 * settings.height as u64 * settings.spp as u64 * runs as u64,
             format!("rendering {} on the {}", scene.name, r.name()),
         );
-        let frame =
-            slc_core::render(r, &scene, &settings, &|n| progress.inc(n)).map_err(message)?;
+        // Only the last frame is kept (earlier runs give their timings).
+        let mut last = None;
+        let runs = repeated(args.repeat, || {
+            let frame =
+                slc_core::render(r, &scene, &settings, &|n| progress.inc(n)).map_err(message)?;
+            let timings = frame.timings.clone();
+            last = Some(frame);
+            Ok(timings)
+        })?;
         progress.finish_and_clear();
+        let frame = last.expect("at least one run");
         let device = r.info(&settings);
         let total = frame.total();
         let images = write_frame(
@@ -117,7 +131,6 @@ impl OnBackend for Render<'_> {
             &frame.indirect,
             &total,
         )?;
-        let timings = &frame.timings;
         let facts = FrameFacts {
             device: &device,
             scene: &scene,
@@ -125,7 +138,7 @@ impl OnBackend for Render<'_> {
             method: settings.method,
             spp: args.spp,
             vpl_count: frame.vpl_count,
-            timings,
+            timings: &runs,
             gpu_timings: frame.gpu_timings.as_ref(),
             metrics: frame.metrics.as_ref(),
             sampled_lights: frame.sampled_lights,
@@ -144,7 +157,7 @@ impl OnBackend for Render<'_> {
             device.adapter,
             f.width,
             f.height,
-            timings.total(),
+            Spread::of_totals(&runs).median,
             m.x,
             m.y,
             m.z,

@@ -38,6 +38,11 @@ impl Spread {
         Self::of(&values)
     }
 
+    /// The sum of every pass over `runs`.
+    pub fn of_totals(runs: &[Timings]) -> Self {
+        Self::of(&runs.iter().map(Timings::total).collect::<Vec<_>>())
+    }
+
     /// `median` alone for one run, else `median (min–max)`.
     pub fn text(&self, runs: usize) -> String {
         match runs {

@@ -3,6 +3,7 @@
 use crate::args::FrameArgs;
 use crate::out_dir::OutDir;
 use crate::provenance::Provenance;
+use crate::repeat::Spread;
 use serde::Serialize;
 use slc_core::frame::{Importance, Method, Timings};
 use slc_core::{BackendInfo, CullMetrics, Image, Scene};
@@ -54,7 +55,12 @@ pub struct Report {
     pub visibility: bool,
     pub spp: u32,
     pub rsm: u32,
+    /// Milliseconds per pass: the median over `timing_runs` runs.
     pub timings_ms: BTreeMap<String, f64>,
+    /// Measured runs (`--repeat`; more than one after a warm-up).
+    pub timing_runs: usize,
+    /// Median, min and max per pass over the runs; `null` for one run.
+    pub timings_spread_ms: Option<BTreeMap<String, Spread>>,
     /// GPU execution time per pass from timestamp queries (the GPU backend on an adapter that
     /// has them, `total` included); `null` otherwise, with a note saying why.
     pub gpu_timings_ms: Option<BTreeMap<String, f64>>,
@@ -97,7 +103,8 @@ pub struct FrameFacts<'a> {
     pub method: Method,
     pub spp: u32,
     pub vpl_count: usize,
-    pub timings: &'a Timings,
+    /// Wall-clock times of each measured run (one, or `--repeat` runs).
+    pub timings: &'a [Timings],
     /// The GPU's timestamp times of its passes, where it has them.
     pub gpu_timings: Option<&'a Timings>,
     pub metrics: Option<&'a CullMetrics>,
@@ -106,12 +113,23 @@ pub struct FrameFacts<'a> {
     pub images: &'a [(&'static str, &'a Image)],
 }
 
-/// Milliseconds per pass and their `total`.
-fn per_pass(t: &Timings) -> BTreeMap<String, f64> {
-    t.0.iter()
-        .map(|(k, v)| (k.to_string(), *v))
-        .chain([("total".to_string(), t.total())])
+/// Milliseconds per pass and their `total`, the medians over the runs.
+fn medians(runs: &[Timings]) -> BTreeMap<String, f64> {
+    spread_per_pass(runs)
+        .into_iter()
+        .map(|(k, s)| (k, s.median))
         .collect()
+}
+
+/// Each pass (and the `total`) over the runs.
+fn spread_per_pass(runs: &[Timings]) -> BTreeMap<String, Spread> {
+    let mut out: BTreeMap<String, Spread> = runs[0]
+        .0
+        .iter()
+        .map(|(k, _)| (k.to_string(), Spread::of_passes(runs, &[k])))
+        .collect();
+    out.insert("total".into(), Spread::of_totals(runs));
+    out
 }
 
 impl Report {
@@ -161,8 +179,10 @@ impl Report {
             visibility: f.args.visibility || f.method == Method::Path,
             spp: f.spp,
             rsm: f.args.rsm,
-            timings_ms: per_pass(f.timings),
-            gpu_timings_ms: f.gpu_timings.map(per_pass),
+            timings_ms: medians(f.timings),
+            timing_runs: f.timings.len(),
+            timings_spread_ms: (f.timings.len() > 1).then(|| spread_per_pass(f.timings)),
+            gpu_timings_ms: f.gpu_timings.map(|t| medians(std::slice::from_ref(t))),
             metrics: f.metrics.into(),
             image_means: f
                 .images

@@ -782,3 +782,27 @@ fn exposure_brightens_the_png_previews_only() {
     std::fs::remove_dir_all(&plain).ok();
     std::fs::remove_dir_all(&bright).ok();
 }
+
+#[test]
+fn render_repeat_reports_the_spread_of_each_pass() {
+    let out = out_dir("render-repeat");
+    run_ok("render --width 16 --height 12 --rsm 2 --repeat 3", &out);
+    let r = read_report(&out);
+    assert_eq!(r["timing_runs"], 3);
+    let spread = &r["timings_spread_ms"];
+    for pass in ["culling", "shading", "total"] {
+        let s = &spread[pass];
+        let (min, med, max) = (
+            s["min"].as_f64().unwrap(),
+            s["median"].as_f64().unwrap(),
+            s["max"].as_f64().unwrap(),
+        );
+        assert!(min <= med && med <= max, "{pass}: {s}");
+        assert_eq!(r["timings_ms"][pass].as_f64().unwrap(), med);
+    }
+    run_ok("render --width 16 --height 12 --rsm 2", &out);
+    let r = read_report(&out);
+    assert_eq!(r["timing_runs"], 1);
+    assert!(r["timings_spread_ms"].is_null());
+    std::fs::remove_dir_all(&out).ok();
+}
