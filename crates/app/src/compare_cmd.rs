@@ -8,6 +8,7 @@
 use crate::args::{strategies, FrameArgs, ImportanceArgs, PipelineArgs, Shader};
 use crate::backend::{message, run_on, OnBackend};
 use crate::heatmap::heat_map;
+use crate::layers_exr::write_layers;
 use crate::limits::check_memory;
 use crate::out_dir::OutDir;
 use crate::output::{write_frame, write_rgb8};
@@ -174,6 +175,7 @@ impl OnBackend for Compare<'_> {
         .map_err(message)?
         .indirect;
         let input = f.input(&scene, &loaded, &p);
+        let provenance = Provenance::new(f.scene.as_deref(), &scene);
         let mut rows = Vec::new();
         for strategy in strategies {
             let s = Stochastic { strategy, ..base };
@@ -212,6 +214,7 @@ impl OnBackend for Compare<'_> {
                 args.heat_max,
             );
             write_rgb8(&mut dir_out, &format!("{dir}/heatmap.png"), &heat)?;
+            write_layers(&mut dir_out, dir, &images, Some(m), &provenance)?;
             let (timings, gpu_timings) = frame_timings(&p, &out);
             // The frame's passes with each measured run's culling and shading.
             let frame_runs: Vec<Timings> = match args.repeat {
@@ -259,7 +262,6 @@ impl OnBackend for Compare<'_> {
         } else {
             String::new()
         };
-        let provenance = Provenance::new(f.scene.as_deref(), &scene);
         let columns = SettingsColumns::new(
             &provenance,
             &scene,

@@ -4,6 +4,7 @@ mod backend;
 mod bench_cmd;
 mod compare_cmd;
 mod heatmap;
+mod layers_exr;
 mod limits;
 mod out_dir;
 mod output;

@@ -37,6 +37,7 @@ pub struct SceneFile {
 }
 
 static START: OnceLock<SystemTime> = OnceLock::new();
+/// A command renders one scene: its files are hashed once, by the first report.
 static SCENE_FILES: OnceLock<Vec<SceneFile>> = OnceLock::new();
 
 /// Marks the start of the command (call first thing in `main`).

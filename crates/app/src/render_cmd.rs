@@ -1,10 +1,12 @@
 //! `slc render`.
 use crate::args::{strategy, FrameArgs, ImportanceArgs, PipelineArgs, Shader};
 use crate::backend::{message, run_on, OnBackend};
+use crate::layers_exr::write_layers;
 use crate::limits::check_memory;
 use crate::out_dir::OutDir;
 use crate::output::write_frame;
 use crate::progress::bar;
+use crate::provenance::Provenance;
 use crate::repeat::{repeated, Spread};
 use crate::report::{FrameFacts, Report};
 use clap::{Args, ValueEnum};
@@ -131,6 +133,8 @@ impl OnBackend for Render<'_> {
             &frame.indirect,
             &total,
         )?;
+        let provenance = Provenance::new(f.scene.as_deref(), &scene);
+        write_layers(&mut out, "", &images, frame.metrics.as_ref(), &provenance)?;
         let facts = FrameFacts {
             device: &device,
             scene: &scene,
