@@ -7,6 +7,7 @@
 //! same importance, with their own table in `report.md`.
 use crate::args::{strategies, FrameArgs, ImportanceArgs, PipelineArgs, Shader};
 use crate::backend::{message, run_on, OnBackend};
+use crate::flip::flip;
 use crate::heatmap::heat_map;
 use crate::layers_exr::write_layers;
 use crate::limits::check_memory;
@@ -76,6 +77,8 @@ struct Row {
     fdr: f64,
     rmse_unculled: Option<f32>,
     rmse_reference: Option<f32>,
+    /// Mean ꟻLIP of the total image against the reference's.
+    flip_reference: Option<f32>,
     total: Image,
     heat: RgbImage,
 }
@@ -145,10 +148,10 @@ impl OnBackend for Compare<'_> {
         let reference = (!args.no_reference)
             .then(|| all_vpl_reference(cpu))
             .transpose()?;
-        if let Some(r) = &reference {
-            let total = p.direct().add(r);
+        let reference_total = reference.as_ref().map(|r| p.direct().add(r));
+        if let (Some(r), Some(total)) = (&reference, &reference_total) {
             let dir = "reference_vpl";
-            let images = write_frame(&mut dir_out, dir, f.exposure, p.direct(), r, &total)?;
+            let images = write_frame(&mut dir_out, dir, f.exposure, p.direct(), r, total)?;
             let facts = FrameFacts {
                 device: &cpu_device,
                 scene: &scene,
@@ -215,6 +218,14 @@ impl OnBackend for Compare<'_> {
             );
             write_rgb8(&mut dir_out, &format!("{dir}/heatmap.png"), &heat)?;
             write_layers(&mut dir_out, dir, &images, Some(m), &provenance)?;
+            let flip_reference = match &reference_total {
+                Some(reference) => {
+                    let (mean, map) = flip(reference, &total, f.exposure);
+                    write_rgb8(&mut dir_out, &format!("{dir}/flip.png"), &map)?;
+                    Some(mean)
+                }
+                None => None,
+            };
             let (timings, gpu_timings) = frame_timings(&p, &out);
             // The frame's passes with each measured run's culling and shading.
             let frame_runs: Vec<Timings> = match args.repeat {
@@ -251,6 +262,7 @@ impl OnBackend for Compare<'_> {
                 fdr: m.false_discovery_rate,
                 rmse_unculled: Some(out.indirect.rmse(&unculled)),
                 rmse_reference: reference.as_ref().map(|r| out.indirect.rmse(r)),
+                flip_reference,
                 runs,
                 total,
                 heat,
@@ -404,14 +416,14 @@ fn table(
             args.repeat
         );
     }
-    let _ = writeln!(md, "| strategy | culling ms | shading ms | denoise ms | culling + shading ms | lights/pixel | true positives | false positives | missed | FDR | RMSE vs unculled | RMSE vs reference |");
-    let _ = writeln!(md, "|---|---|---|---|---|---|---|---|---|---|---|---|");
+    let _ = writeln!(md, "| strategy | culling ms | shading ms | denoise ms | culling + shading ms | lights/pixel | true positives | false positives | missed | FDR | RMSE vs unculled | RMSE vs reference | FLIP vs reference |");
+    let _ = writeln!(md, "|---|---|---|---|---|---|---|---|---|---|---|---|---|");
     let fmt_opt = |v: Option<f32>| v.map_or("n/a".to_string(), |v| format!("{v:.3e}"));
     for r in rows {
         let time = |passes: &[&str]| Spread::of_passes(&r.runs, passes).text(r.runs.len());
         let _ = writeln!(
             md,
-            "| {} | {} | {} | {} | {} | {:.1} | {} | {} | {} | {:.3} | {} | {} |",
+            "| {} | {} | {} | {} | {} | {:.1} | {} | {} | {} | {:.3} | {} | {} | {} |",
             r.strategy,
             time(&["culling"]),
             time(&["shading"]),
@@ -423,7 +435,9 @@ fn table(
             r.missed,
             r.fdr,
             fmt_opt(r.rmse_unculled),
-            fmt_opt(r.rmse_reference)
+            fmt_opt(r.rmse_reference),
+            r.flip_reference
+                .map_or("n/a".to_string(), |v| format!("{v:.4}"))
         );
     }
     let order: Vec<&str> = rows.iter().map(|r| r.strategy.name()).collect();
@@ -458,6 +472,9 @@ struct CompareRow {
     false_discovery_rate: f64,
     rmse_vs_unculled: Option<f32>,
     rmse_vs_reference: Option<f32>,
+    /// Mean ꟻLIP (LDR, of the sRGB previews at `--exposure`) of the total image against the
+    /// reference's.
+    flip_vs_reference: Option<f32>,
 }
 
 impl Row {
@@ -481,6 +498,7 @@ impl Row {
             false_discovery_rate: self.fdr,
             rmse_vs_unculled: self.rmse_unculled,
             rmse_vs_reference: self.rmse_reference,
+            flip_vs_reference: self.flip_reference,
         }
     }
 }

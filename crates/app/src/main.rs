@@ -3,6 +3,7 @@ mod args;
 mod backend;
 mod bench_cmd;
 mod compare_cmd;
+mod flip;
 mod heatmap;
 mod layers_exr;
 mod limits;

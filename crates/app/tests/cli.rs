@@ -101,7 +101,13 @@ fn compare_writes_a_folder_per_strategy_a_table_and_heat_maps() {
     let out = out_dir("compare");
     run_ok("compare --width 32 --height 24 --rsm 4 --interleave 2 --culling none,sphere,ellipsoid,clustered --repeat 2", &out);
     for s in ["none", "sphere", "ellipsoid", "clustered"] {
-        for f in ["total.exr", "total.png", "heatmap.png", "layers.exr", "report.json"] {
+        for f in [
+            "total.exr",
+            "total.png",
+            "heatmap.png",
+            "layers.exr",
+            "report.json",
+        ] {
             assert!(out.join(s).join(f).is_file(), "{s}/{f} missing");
         }
     }
