@@ -105,6 +105,7 @@ fn compare_writes_a_folder_per_strategy_a_table_and_heat_maps() {
             "total.exr",
             "total.png",
             "heatmap.png",
+            "flip.png",
             "layers.exr",
             "report.json",
         ] {
@@ -121,6 +122,10 @@ fn compare_writes_a_folder_per_strategy_a_table_and_heat_maps() {
     assert!(table_rows
         .iter()
         .all(|r| r["missed"] == 0 && r["runs"] == 2));
+    // FLIP against the reference: a number in [0, 1] for every strategy.
+    assert!(table_rows
+        .iter()
+        .all(|r| (0.0..=1.0).contains(&r["flip_vs_reference"].as_f64().unwrap())));
     assert_eq!(json["settings"]["width"], 32);
     let csv = std::fs::read_to_string(out.join("compare.csv")).unwrap();
     assert_eq!(csv.lines().count(), 5, "{csv}");
