@@ -15,22 +15,19 @@ fn temp(name: &str) -> PathBuf {
     d
 }
 
+/// `slc render ARGS --out OUT` (ARGS split at spaces).
+fn render_command(args: &str, out: &Path) -> Command {
+    let mut c = slc();
+    c.arg("render").args(args.split(' ')).arg("--out").arg(out);
+    c
+}
+
 fn render(args: &str, out: &Path) -> Output {
-    slc()
-        .arg("render")
-        .args(args.split(' '))
-        .arg("--out")
-        .arg(out)
-        .output()
-        .unwrap()
+    render_command(args, out).output().unwrap()
 }
 
 fn spawn_render(args: &str, out: &Path) -> Child {
-    slc()
-        .arg("render")
-        .args(args.split(' '))
-        .arg("--out")
-        .arg(out)
+    render_command(args, out)
         .stdout(Stdio::null())
         .stderr(Stdio::piped())
         .spawn()
