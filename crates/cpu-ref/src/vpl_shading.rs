@@ -5,7 +5,8 @@ use glam::Vec3;
 use rayon::prelude::*;
 use slc_bounds::stochastic::{scalar_intensity, StochasticParams};
 use slc_bounds::BoundsError;
-use slc_core::{CullInput, GBuffer, GSample, Image, LightLists, Vpl};
+use slc_core::{CullError, CullInput, GBuffer, GSample, Image, LightLists, Vpl};
+use slc_cull::VplReach;
 
 /// How each VPL's contribution is weighted.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -89,18 +90,26 @@ pub fn shade_vpls(
 
 /// Indirect radiance from culled light lists (paper eq. 3 with interleaved sampling): each
 /// pixel sums the VPLs of its list with weight K²/p when p > ξ. Unbiased as long as the lists
-/// miss no VPL with p > ξ at the pixel.
+/// miss no VPL with p > ξ at the pixel. Fails only when δ, a ξ or a VPL is out of the domain
+/// of slc-bounds. Pairs that [`VplReach`] rejects (outside the VPL's own
+/// bound, facing away at either end) are skipped before the BRDFs: their contribution is
+/// exactly 0, so the image is the same bit for bit.
 pub fn shade_lists(
     tracer: &Tracer,
     input: &CullInput,
     lists: &LightLists,
     visibility: bool,
     progress: &(dyn Fn(u64) + Sync),
-) -> Result<Image, BoundsError> {
+) -> Result<Image, CullError> {
     let (gbuffer, vpls) = (input.gbuffer, input.vpls);
     let roulette = vpls
         .iter()
         .map(|v| StochasticParams::new(input.delta, v.xi))
+        .collect::<Result<Vec<_>, _>>()?;
+    let reach = vpls
+        .par_iter()
+        .zip(&roulette)
+        .map(|(v, r)| VplReach::new(v, r))
         .collect::<Result<Vec<_>, _>>()?;
     let scale = input.interleaving.scale();
     let mut image = Image::new(gbuffer.width, gbuffer.height);
@@ -118,6 +127,9 @@ pub fn shade_lists(
                 let from = tracer.lift(g.position, g.geometric_normal);
                 for &k in lists.for_pixel(p) {
                     let vpl = &vpls[k as usize];
+                    if !reach[k as usize].may_contribute(g.position - vpl.position, g.normal) {
+                        continue;
+                    }
                     let c = vpl_contribution(g, vpl, Some(&roulette[k as usize]));
                     if c != Vec3::ZERO
                         && (!visibility

@@ -74,6 +74,7 @@ mod frusta;
 mod lists;
 pub mod metrics;
 mod partition;
+pub mod reach;
 pub mod strategies;
 mod tiled;
 mod tiles;
@@ -81,6 +82,7 @@ pub mod view;
 mod vpl_bounds;
 
 pub use frusta::FRUSTUM_SLACK;
+pub use reach::VplReach;
 pub use strategies::bounded::BoundedCuller;
 pub use strategies::none::NoCulling;
 pub use view::CullView;

@@ -6,15 +6,18 @@
 //! accepts it there: p(ωo, l) > ξ with p of eq. (2), `I = scalar_intensity(vpl.intensity(ωo))`,
 //! ωo the unit direction from the VPL to the pixel's G-buffer position and l² its squared
 //! distance, computed exactly as the shader does. A pair at distance 0 has no direction and
-//! contributes nothing. The truth does not use any bound of this crate or of slc-bounds.
+//! contributes nothing. Pairs outside the VPL's own bound (the spheroid or section-6 sphere,
+//! [`crate::reach`]) are skipped without evaluating p: there p <= ξ, which the property test
+//! of slc-cpu-ref (`tests/early_exits.rs`) checks at the bounds' edges and the guarantee tests
+//! check against every pair's p on their scenes.
 use crate::lists::pixel_count;
 use crate::partition::Partition;
+use crate::reach::VplReach;
 use glam::Vec3;
 use rayon::prelude::*;
 use slc_bounds::{scalar_intensity, StochasticParams};
 pub use slc_core::CullMetrics;
-use slc_core::{CullError, CullInput, GSample, LightLists, Vpl, VplLobe, NO_LIST};
-use std::f64::consts::PI;
+use slc_core::{CullError, CullInput, GSample, LightLists, Vpl, NO_LIST};
 
 /// The metrics of `lists` for `input`; see [`measure_all`].
 pub fn measure(input: &CullInput, lists: &LightLists) -> Result<CullMetrics, CullError> {
@@ -126,35 +129,18 @@ fn matches(listed: &[u32], truth: &[u32], scratch: &mut Vec<u32>) -> u32 {
     tp
 }
 
-/// One VPL's roulette: its (δ, ξ), and a squared distance beyond which it cannot be accepted,
-/// to skip most pairs without evaluating the BRDF. The cut-off is independent of every bound
-/// under test: p > ξ needs l² < I/(δ ξ), and I(ωo) <= I_max with I_max = max(Φ kd)/π for a
-/// diffuse VPL and max(Φ)/(4π α² (ωi·n)) for a glossy one (eq. 4, 6: F <= 1, G2 <= 1,
-/// D <= 1/(π α²)); it is doubled for safety.
+/// One VPL's roulette: its (δ, ξ), and its early exits ([`VplReach::may_accept`]), which
+/// skip most pairs without evaluating the BRDF and never skip one with p > ξ.
 struct Roulette {
     params: StochasticParams,
-    reach_sq: f64,
+    reach: VplReach,
 }
 
 impl Roulette {
     fn new(vpl: &Vpl, delta: f32) -> Result<Self, CullError> {
         let params = StochasticParams::new(delta, vpl.xi)?;
-        let cos_i = f64::from(vpl.normal.dot(vpl.omega_i));
-        let flux = vpl.flux.as_dvec3();
-        let peak = match vpl.lobe {
-            VplLobe::Diffuse => (flux * vpl.brdf.kd.as_dvec3()).max_element() / PI,
-            VplLobe::Glossy => {
-                let alpha = f64::from(vpl.brdf.alpha);
-                flux.max_element() / (4.0 * PI * alpha * alpha * cos_i)
-            }
-        };
-        let reach_sq = if cos_i > 0.0 {
-            2.0 * peak / (f64::from(delta) * f64::from(vpl.xi))
-        } else {
-            // One-sided BRDF: nothing is reflected, so nothing is accepted.
-            -1.0
-        };
-        Ok(Self { params, reach_sq })
+        let reach = VplReach::new(vpl, &params)?;
+        Ok(Self { params, reach })
     }
 
     /// Whether the roulette of eq. (3) accepts `vpl` at the G-buffer sample `g`.
@@ -162,8 +148,7 @@ impl Roulette {
     fn accepts(&self, g: &GSample, vpl: &Vpl) -> bool {
         let d: Vec3 = g.position - vpl.position;
         let l2 = d.length_squared();
-        // NaN reach (absurd inputs) never skips: the comparison is false.
-        if l2 <= 0.0 || f64::from(l2) > self.reach_sq {
+        if l2 <= 0.0 || !self.reach.may_accept(d) {
             return false;
         }
         let omega = d / l2.sqrt();
