@@ -5,8 +5,8 @@ use glam::Vec3;
 use rayon::prelude::*;
 use slc_bounds::stochastic::{scalar_intensity, StochasticParams};
 use slc_bounds::BoundsError;
-use slc_core::{CullError, CullInput, GBuffer, GSample, Image, LightLists, Vpl};
-use slc_cull::VplReach;
+use slc_core::{CullError, CullInput, GBuffer, GSample, Image, LightLists, Vpl, NO_LIST};
+use slc_cull::{ReachChunks, VplReach};
 
 /// How each VPL's contribution is weighted.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -91,9 +91,10 @@ pub fn shade_vpls(
 /// Indirect radiance from culled light lists (paper eq. 3 with interleaved sampling): each
 /// pixel sums the VPLs of its list with weight K²/p when p > ξ. Unbiased as long as the lists
 /// miss no VPL with p > ξ at the pixel. Fails only when δ, a ξ or a VPL is out of the domain
-/// of slc-bounds. Pairs that [`VplReach`] rejects (outside the VPL's own
-/// bound, facing away at either end) are skipped before the BRDFs: their contribution is
-/// exactly 0, so the image is the same bit for bit.
+/// of slc-bounds. Pairs that [`VplReach`] rejects (outside the VPL's own bound, facing away
+/// at either end; tested eight per list at a time by [`ReachChunks`]) are skipped before the
+/// BRDFs: their contribution is exactly 0, so the image is the same bit for bit. The pixels
+/// are shaded list by list, each list's VPLs packed once into chunks of eight.
 pub fn shade_lists(
     tracer: &Tracer,
     input: &CullInput,
@@ -112,34 +113,76 @@ pub fn shade_lists(
         .map(|(v, r)| VplReach::new(v, r))
         .collect::<Result<Vec<_>, _>>()?;
     let scale = input.interleaving.scale();
+    let pixels = pixels_by_list(lists);
+    // List by list, so each list's chunks are built once, where its pixels are shaded.
+    let shaded: Vec<Vec<(usize, Vec3)>> = (0..lists.len())
+        .into_par_iter()
+        .map_init(ReachChunks::default, |chunks, l| {
+            let list = &lists.indices[lists.offsets[l] as usize..lists.offsets[l + 1] as usize];
+            chunks.refill(vpls, &reach, [list]);
+            let mine = &pixels.indices[pixels.offsets[l] as usize..pixels.offsets[l + 1] as usize];
+            let out = mine
+                .iter()
+                .filter_map(|&p| {
+                    let g = gbuffer.samples[p as usize].as_ref()?;
+                    let from = tracer.lift(g.position, g.geometric_normal);
+                    let mut o = Vec3::ZERO;
+                    chunks.for_each_passing(0, g.position, Some(g.normal), |k| {
+                        let vpl = &vpls[k as usize];
+                        let c = vpl_contribution(g, vpl, Some(&roulette[k as usize]));
+                        if c != Vec3::ZERO
+                            && (!visibility
+                                || tracer.unoccluded(from, tracer.lift(vpl.position, vpl.normal)))
+                        {
+                            o += c * scale;
+                        }
+                    });
+                    Some((p as usize, o))
+                })
+                .collect();
+            progress(mine.len() as u64);
+            out
+        })
+        .collect();
     let mut image = Image::new(gbuffer.width, gbuffer.height);
-    let w = gbuffer.width as usize;
-    image
-        .pixels
-        .par_chunks_mut(w)
-        .enumerate()
-        .for_each(|(y, out)| {
-            for (x, o) in out.iter_mut().enumerate() {
-                let p = y * w + x;
-                let Some(g) = &gbuffer.samples[p] else {
-                    continue;
-                };
-                let from = tracer.lift(g.position, g.geometric_normal);
-                for &k in lists.for_pixel(p) {
-                    let vpl = &vpls[k as usize];
-                    if !reach[k as usize].may_contribute(g.position - vpl.position, g.normal) {
-                        continue;
-                    }
-                    let c = vpl_contribution(g, vpl, Some(&roulette[k as usize]));
-                    if c != Vec3::ZERO
-                        && (!visibility
-                            || tracer.unoccluded(from, tracer.lift(vpl.position, vpl.normal)))
-                    {
-                        *o += c * scale;
-                    }
-                }
-            }
-            progress(w as u64);
-        });
+    for (p, o) in shaded.into_iter().flatten() {
+        image.pixels[p] = o;
+    }
+    progress(pixels.unlisted);
     Ok(image)
+}
+
+/// The pixels of each light list (a counting sort of `LightLists::pixel_list`), in the same
+/// compressed rows as the lists, and the number of pixels without a list.
+struct PixelsByList {
+    offsets: Vec<u32>,
+    indices: Vec<u32>,
+    unlisted: u64,
+}
+
+fn pixels_by_list(lists: &LightLists) -> PixelsByList {
+    let mut offsets = vec![0u32; lists.len() + 1];
+    let mut unlisted = 0;
+    for &l in &lists.pixel_list {
+        match l {
+            NO_LIST => unlisted += 1,
+            l => offsets[l as usize + 1] += 1,
+        }
+    }
+    for k in 1..offsets.len() {
+        offsets[k] += offsets[k - 1];
+    }
+    let mut next = offsets.clone();
+    let mut indices = vec![0u32; offsets[lists.len()] as usize];
+    for (p, &l) in lists.pixel_list.iter().enumerate() {
+        if l != NO_LIST {
+            indices[next[l as usize] as usize] = p as u32;
+            next[l as usize] += 1;
+        }
+    }
+    PixelsByList {
+        offsets,
+        indices,
+        unlisted,
+    }
 }

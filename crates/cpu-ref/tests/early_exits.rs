@@ -2,12 +2,13 @@
 //! with the receivers placed at the edge of the VPL's random range (eq. 5), where p(ωo, l) of
 //! eq. (2) crosses ξ, and at the extremes (α 1e-4 … 1, grazing and normal incidence at both
 //! ends, ξ near 0 and 1, δ 1e-9 … 1e3, flux from 1e-6 to 1e6), no exit ever rejects a pair
-//! that the roulette accepts (p > ξ) or whose weighted contribution (eq. 1, 3) is not 0.
+//! that the roulette accepts (p > ξ) or whose weighted contribution (eq. 1, 3) is not 0, and
+//! the eight-lane test passes exactly the pairs the scalar one passes.
 use glam::Vec3;
 use slc_bounds::{scalar_intensity, Brdf, Fresnel, StochasticParams};
 use slc_core::{GSample, Vpl, VplLobe};
 use slc_cpu_ref::vpl_shading::vpl_contribution;
-use slc_cull::VplReach;
+use slc_cull::{ReachChunks, VplReach};
 
 /// xorshift64*, uniform floats in [0, 1).
 struct Rng(u64);
@@ -165,11 +166,15 @@ fn receiver(rng: &mut Rng, x: Vec3, omega: Vec3) -> GSample {
 fn no_early_exit_drops_an_accepted_or_contributing_pair() {
     let mut rng = Rng(0x5EED_1234_ABCD_0001);
     let (mut accepted, mut contributing, mut edge, mut rejected) = (0u32, 0u32, 0u32, 0u32);
-    let cases = 400_000;
+    let cases = 400_000u32;
+    let mut recent = Vec::new();
     for case in 0..cases {
         let vpl = random_vpl(&mut rng);
         let params = StochasticParams::new(rng.log(-9.0, 3.0), vpl.xi).unwrap();
         let reach = VplReach::new(&vpl, &params).unwrap();
+        if recent.len() < 8 {
+            recent.resize(8, (vpl, reach));
+        }
         let omega = direction(&mut rng, &vpl);
         let intensity = scalar_intensity(vpl.intensity(omega));
         // At the range l_max(ωo) = sqrt(I/(δ ξ)) (eq. 5) within ±1e-2 … ±1e-6, or anywhere.
@@ -200,6 +205,23 @@ fn no_early_exit_drops_an_accepted_or_contributing_pair() {
             contribution == Vec3::ZERO || reach.may_contribute(d, g.normal),
             "case {case}: contribution {contribution} rejected: {vpl:?} at {g:?}"
         );
+        // The eight-lane test (`ReachChunks`) passes exactly the VPLs the scalar one passes,
+        // in whatever lane: the recent VPLs in one chunk, tested at this receiver.
+        recent[(case % 8) as usize] = (vpl, reach);
+        let (vpls, reaches): (Vec<Vpl>, Vec<VplReach>) = recent.iter().copied().unzip();
+        let chunks = ReachChunks::new(&vpls, &reaches, [&[0, 1, 2, 3, 4, 5, 6, 7][..]]);
+        for normal in [None, Some(g.normal)] {
+            let mut lanes = Vec::new();
+            chunks.for_each_passing(0, g.position, normal, |i| lanes.push(i));
+            let scalar: Vec<u32> = (0..8u32)
+                .filter(|&i| {
+                    let (v, r) = &recent[i as usize];
+                    let d = g.position - v.position;
+                    normal.map_or(r.may_accept(d), |n| r.may_contribute(d, n))
+                })
+                .collect();
+            assert_eq!(lanes, scalar, "case {case}");
+        }
         accepted += u32::from(accepts);
         contributing += u32::from(contribution != Vec3::ZERO);
         edge += u32::from(accepts && (p - params.xi()) < 1e-3 * params.xi());

@@ -7,12 +7,14 @@
 //! ωo the unit direction from the VPL to the pixel's G-buffer position and l² its squared
 //! distance, computed exactly as the shader does. A pair at distance 0 has no direction and
 //! contributes nothing. Pairs outside the VPL's own bound (the spheroid or section-6 sphere,
-//! [`crate::reach`]) are skipped without evaluating p: there p <= ξ, which the property test
+//! [`crate::reach`], tested eight VPLs at a time by [`ReachChunks`]) are skipped without
+//! evaluating p: there p <= ξ, which the property test
 //! of slc-cpu-ref (`tests/early_exits.rs`) checks at the bounds' edges and the guarantee tests
 //! check against every pair's p on their scenes.
 use crate::lists::pixel_count;
 use crate::partition::Partition;
 use crate::reach::VplReach;
+use crate::reach_chunks::ReachChunks;
 use glam::Vec3;
 use rayon::prelude::*;
 use slc_bounds::{scalar_intensity, StochasticParams};
@@ -39,8 +41,19 @@ pub fn measure_all(
     let roulette = input
         .vpls
         .iter()
-        .map(|v| Roulette::new(v, input.delta))
+        .map(|v| StochasticParams::new(input.delta, v.xi))
         .collect::<Result<Vec<_>, _>>()?;
+    let reach = input
+        .vpls
+        .par_iter()
+        .zip(&roulette)
+        .map(|(v, r)| VplReach::new(v, r))
+        .collect::<Result<Vec<_>, _>>()?;
+    let chunks = ReachChunks::new(
+        input.vpls,
+        &reach,
+        (0..partition.subregions() as u32).map(|s| partition.of(s)),
+    );
     let m = lists.len();
     let width = input.gbuffer.width as usize;
     // Per pixel and list set: [listed, true positives, missed].
@@ -54,11 +67,11 @@ pub fn measure_all(
                     truth.clear();
                     if let Some(g) = &input.gbuffer.samples[p] {
                         let s = input.interleaving.pixel_subregion(x as u32, y as u32);
-                        truth.extend(
-                            partition.of(s).iter().copied().filter(|&i| {
-                                roulette[i as usize].accepts(g, &input.vpls[i as usize])
-                            }),
-                        );
+                        chunks.for_each_passing(s as usize, g.position, None, |i| {
+                            if accepts(&roulette[i as usize], g, &input.vpls[i as usize]) {
+                                truth.push(i);
+                            }
+                        });
                     }
                     for (k, l) in lists.iter().enumerate() {
                         let listed = l.for_pixel(p);
@@ -129,34 +142,16 @@ fn matches(listed: &[u32], truth: &[u32], scratch: &mut Vec<u32>) -> u32 {
     tp
 }
 
-/// One VPL's roulette: its (δ, ξ), and its early exits ([`VplReach::may_accept`]), which
-/// skip most pairs without evaluating the BRDF and never skip one with p > ξ.
-struct Roulette {
-    params: StochasticParams,
-    reach: VplReach,
-}
-
-impl Roulette {
-    fn new(vpl: &Vpl, delta: f32) -> Result<Self, CullError> {
-        let params = StochasticParams::new(delta, vpl.xi)?;
-        let reach = VplReach::new(vpl, &params)?;
-        Ok(Self { params, reach })
+/// Whether the roulette of eq. (3) with `params` accepts `vpl` at the G-buffer sample `g`.
+#[inline]
+fn accepts(params: &StochasticParams, g: &GSample, vpl: &Vpl) -> bool {
+    let d: Vec3 = g.position - vpl.position;
+    let l2 = d.length_squared();
+    if l2 <= 0.0 {
+        return false;
     }
-
-    /// Whether the roulette of eq. (3) accepts `vpl` at the G-buffer sample `g`.
-    #[inline]
-    fn accepts(&self, g: &GSample, vpl: &Vpl) -> bool {
-        let d: Vec3 = g.position - vpl.position;
-        let l2 = d.length_squared();
-        if l2 <= 0.0 || !self.reach.may_accept(d) {
-            return false;
-        }
-        let omega = d / l2.sqrt();
-        let p = self
-            .params
-            .probability(scalar_intensity(vpl.intensity(omega)), l2);
-        p > self.params.xi()
-    }
+    let omega = d / l2.sqrt();
+    params.probability(scalar_intensity(vpl.intensity(omega)), l2) > params.xi()
 }
 
 /// Whether `lists` is well formed for `pixels` pixels and `vpl_count` VPLs.

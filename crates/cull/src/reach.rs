@@ -4,6 +4,7 @@
 //! the max(ωo·n, 0) of eq. 4). Each test keeps a margin well above float rounding, so it
 //! never rejects a pair that the full evaluation accepts: the estimate stays bit for bit the
 //! same, only cheaper.
+use crate::lanes::{dot, Real};
 use crate::vpl_bounds::{GlossyBound, LocalBound};
 use glam::{DMat3, DVec3, Vec3};
 use slc_bounds::StochasticParams;
@@ -15,19 +16,49 @@ use slc_core::{CullError, Vpl, VplLobe};
 /// unit normals), so the sign cannot flip within the margin.
 pub const SIGN_MARGIN: f32 = 1e-5;
 
-/// The bound part of [`VplReach`], relative to the VPL's position q.
+/// One VPL's early exits in lanes of `R` (see [`crate::lanes`]): its normal n, and its own
+/// bound as a stretch S and centre S·(c − q) with the bound the unit ball of S d − S·(c − q)
+/// (the spheroid of eq. 12-15: S = diag(1/r) Rᵀ; the section-6 sphere: S = I/r), and the limit
+/// that |S d − S·(c − q)|² may reach: 1 plus a margin above the f32 rounding of the test.
+/// A VPL that reflects nothing has limit −1 (no pair), one without a usable bound S = 0 and
+/// limit +∞ (only the sign tests).
 #[derive(Clone, Copy, Debug, PartialEq)]
-enum OwnBound {
-    /// The VPL reflects nothing: every pair is zero.
-    Never,
-    /// No bound (an r = 0 bound of a VPL that the shader does not reject exactly): only the
-    /// sign tests apply.
-    Unbounded,
-    /// The section-6 sphere (centre relative to q, squared radius).
-    Sphere { center: DVec3, radius_sq: f64 },
-    /// The spheroid of eq. (12)-(15) as its stretch S = diag(1/r) Rᵀ and S·(c − q): the
-    /// spheroid is the unit ball of S x − S c.
-    Spheroid { stretch: DMat3, center: DVec3 },
+pub(crate) struct Reach<R> {
+    pub normal: [R; 3],
+    pub stretch: [R; 9],
+    pub center: [R; 3],
+    pub limit: R,
+}
+
+impl<R: Real> Reach<R> {
+    /// Whether the roulette may accept the pair at offset `d = x − q`: not behind the VPL
+    /// (beyond the margin) and inside its bound (see [`VplReach::may_accept`]).
+    #[inline(always)]
+    pub(crate) fn may_accept(&self, d: [R; 3]) -> R::Mask {
+        let margin_sq = R::splat(SIGN_MARGIN * SIGN_MARGIN) * dot(d, d);
+        let s = &self.stretch;
+        let c = &self.center;
+        let u = [
+            s[0] * d[0] + s[1] * d[1] + s[2] * d[2] - c[0],
+            s[3] * d[0] + s[4] * d[1] + s[5] * d[2] - c[1],
+            s[6] * d[0] + s[7] * d[1] + s[8] * d[2] - c[2],
+        ];
+        !behind(-dot(self.normal, d), margin_sq) & dot(u, u).le(self.limit)
+    }
+
+    /// [`Self::may_accept`], and the receiver with normal `receiver` not facing away.
+    #[inline(always)]
+    pub(crate) fn may_contribute(&self, d: [R; 3], receiver: [R; 3]) -> R::Mask {
+        let margin_sq = R::splat(SIGN_MARGIN * SIGN_MARGIN) * dot(d, d);
+        !behind(dot(receiver, d), margin_sq) & self.may_accept(d)
+    }
+}
+
+/// Whether `t` (a cosine times |d|) is positive beyond the margin, `t² > SIGN_MARGIN² |d|²`:
+/// compared squared, with no square root.
+#[inline(always)]
+fn behind<R: Real>(t: R, margin_sq: R) -> R::Mask {
+    t.gt(R::splat(0.0)) & (t * t).gt(margin_sq)
 }
 
 /// What one VPL needs for the early exits: its own bound (the tightest one: the spheroid for
@@ -35,57 +66,56 @@ enum OwnBound {
 /// pair with p > ξ) and its normal.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct VplReach {
-    bound: OwnBound,
-    normal: Vec3,
+    pub(crate) reach: Reach<f32>,
 }
 
 impl VplReach {
     /// The early exits of `vpl` under the roulette `params` (its δ and ξ, eq. 2-3). Errors
     /// when the VPL is outside the domain of slc-bounds (see `slc_bounds::BoundsError`).
     pub fn new(vpl: &Vpl, params: &StochasticParams) -> Result<Self, CullError> {
-        let bound = if reflects_nothing(vpl) {
-            OwnBound::Never
+        let (stretch, center, limit) = if reflects_nothing(vpl) {
+            (DMat3::ZERO, DVec3::ZERO, -1.0)
         } else {
             match LocalBound::new(vpl, params, GlossyBound::Ellipsoid)? {
-                LocalBound::Empty => OwnBound::Unbounded,
-                LocalBound::Sphere { center, radius_sq } => OwnBound::Sphere { center, radius_sq },
+                LocalBound::Empty => (DMat3::ZERO, DVec3::ZERO, f64::INFINITY),
+                LocalBound::Sphere { center, radius_sq } => {
+                    let radius = radius_sq.sqrt();
+                    stretched(
+                        DMat3::from_diagonal(DVec3::splat(radius.recip())),
+                        center,
+                        radius,
+                    )
+                }
                 LocalBound::Spheroid {
                     center,
                     rotation,
                     semi_axes,
-                } => {
-                    let stretch = DMat3::from_diagonal(semi_axes.as_dvec3().recip())
-                        * rotation.as_dmat3().transpose();
-                    OwnBound::Spheroid {
-                        stretch,
-                        center: stretch * center,
-                    }
-                }
+                } => stretched(
+                    DMat3::from_diagonal(semi_axes.as_dvec3().recip())
+                        * rotation.as_dmat3().transpose(),
+                    center,
+                    f64::from(semi_axes.max_element()),
+                ),
             }
         };
+        let rows = stretch.transpose().to_cols_array().map(|v| v as f32);
         Ok(Self {
-            bound,
-            normal: vpl.normal,
+            reach: Reach {
+                normal: vpl.normal.to_array(),
+                stretch: rows,
+                center: center.as_vec3().to_array(),
+                limit: limit as f32,
+            },
         })
     }
 
     /// Whether the roulette of eq. (3) may accept this VPL at the offset `d = x − q` (formed
     /// in f32 as the shader forms it). False only where p(ωo, l) <= ξ for sure: outside the
-    /// VPL's own bound, or behind the VPL (ωo·n < 0 beyond the margin: I(ωo) = 0 by eq. 4).
+    /// VPL's own bound (beyond a margin for the f32 rounding of the test), or behind the VPL
+    /// (ωo·n below −[`SIGN_MARGIN`]: I(ωo) = 0 by eq. 4).
     #[inline]
     pub fn may_accept(&self, d: Vec3) -> bool {
-        if behind(-self.normal.dot(d), d) {
-            return false;
-        }
-        let d = d.as_dvec3();
-        match self.bound {
-            OwnBound::Never => false,
-            OwnBound::Unbounded => true,
-            OwnBound::Sphere { center, radius_sq } => (d - center).length_squared() <= radius_sq,
-            OwnBound::Spheroid { stretch, center } => {
-                (stretch * d - center).length_squared() <= 1.0
-            }
-        }
+        self.reach.may_accept(d.to_array())
     }
 
     /// Whether the pair of this VPL and a receiver with unit normal `receiver_normal` at the
@@ -94,15 +124,27 @@ impl VplReach {
     /// of eq. (1), weighted by eq. (3), is exactly 0.
     #[inline]
     pub fn may_contribute(&self, d: Vec3, receiver_normal: Vec3) -> bool {
-        !behind(receiver_normal.dot(d), d) && self.may_accept(d)
+        self.reach
+            .may_contribute(d.to_array(), receiver_normal.to_array())
     }
 }
 
-/// Whether `t = −n·d` (a cosine times |d|) is below −[`SIGN_MARGIN`] |d|: compared squared,
-/// with no square root.
-#[inline]
-fn behind(t: f32, d: Vec3) -> bool {
-    t > 0.0 && t * t > SIGN_MARGIN * SIGN_MARGIN * d.length_squared()
+/// The stretch S, centre S·(c − q) and limit of a bound with centre `center` (relative to q)
+/// and largest semi-axis `extent`. Near the bound's surface |d| <= |c − q| + extent, so each
+/// component of S d − S·(c − q) is formed from terms of size at most
+/// cond = ‖S‖ (|c − q| + extent) + |S·(c − q)| with about five f32 roundings (ε/2 each, the
+/// stored S and S·(c − q) included): its error is below 2.5 ε cond, that of the squared norm
+/// near 1 below 10 ε cond + 3 ε. The limit allows 32 ε cond + 8 ε, so a pair the f64 bound
+/// contains is never rejected; farther out the error shrinks relative to the norm.
+fn stretched(stretch: DMat3, center: DVec3, extent: f64) -> (DMat3, DVec3, f64) {
+    let eps = f64::from(f32::EPSILON);
+    let s_center = stretch * center;
+    let norm = (stretch.x_axis.length_squared()
+        + stretch.y_axis.length_squared()
+        + stretch.z_axis.length_squared())
+    .sqrt();
+    let cond = norm * (center.length() + extent) + s_center.length();
+    (stretch, s_center, 1.0 + 32.0 * eps * cond + 8.0 * eps)
 }
 
 /// Whether the shader's own tests give every pair of `vpl` exactly 0: ωi·n <= 0 (the one-sided
