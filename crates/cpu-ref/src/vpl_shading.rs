@@ -94,7 +94,8 @@ pub fn shade_vpls(
 /// of slc-bounds. Pairs that [`VplReach`] rejects (outside the VPL's own bound, facing away
 /// at either end; tested eight per list at a time by [`ReachChunks`]) are skipped before the
 /// BRDFs: their contribution is exactly 0, so the image is the same bit for bit. The pixels
-/// are shaded list by list, each list's VPLs packed once into chunks of eight.
+/// are shaded list by list, each list's VPLs packed once into chunks of eight, or in image
+/// order when the lists are too short-lived for packing to pay (see [`PACK_MIN_PIXELS`]).
 pub fn shade_lists(
     tracer: &Tracer,
     input: &CullInput,
@@ -112,45 +113,128 @@ pub fn shade_lists(
         .zip(&roulette)
         .map(|(v, r)| VplReach::new(v, r))
         .collect::<Result<Vec<_>, _>>()?;
-    let scale = input.interleaving.scale();
+    let shading = ListShading {
+        tracer,
+        vpls,
+        roulette: &roulette,
+        reach: &reach,
+        scale: input.interleaving.scale(),
+        visibility,
+    };
     let pixels = pixels_by_list(lists);
-    // List by list, so each list's chunks are built once, where its pixels are shaded.
-    let shaded: Vec<Vec<(usize, Vec3)>> = (0..lists.len())
-        .into_par_iter()
-        .map_init(ReachChunks::default, |chunks, l| {
-            let list = &lists.indices[lists.offsets[l] as usize..lists.offsets[l + 1] as usize];
-            chunks.refill(vpls, &reach, [list]);
-            let mine = &pixels.indices[pixels.offsets[l] as usize..pixels.offsets[l + 1] as usize];
-            let out = mine
-                .iter()
-                .filter_map(|&p| {
-                    let g = gbuffer.samples[p as usize].as_ref()?;
-                    let from = tracer.lift(g.position, g.geometric_normal);
-                    let mut o = Vec3::ZERO;
-                    chunks.for_each_passing(0, g.position, Some(g.normal), |k| {
-                        let vpl = &vpls[k as usize];
-                        let c = vpl_contribution(g, vpl, Some(&roulette[k as usize]));
-                        if c != Vec3::ZERO
-                            && (!visibility
-                                || tracer.unoccluded(from, tracer.lift(vpl.position, vpl.normal)))
-                        {
-                            o += c * scale;
-                        }
-                    });
-                    Some((p as usize, o))
-                })
-                .collect();
-            progress(mine.len() as u64);
-            out
-        })
-        .collect();
-    let mut image = Image::new(gbuffer.width, gbuffer.height);
-    for (p, o) in shaded.into_iter().flatten() {
-        image.pixels[p] = o;
-    }
-    progress(pixels.unlisted);
-    Ok(image)
+    Ok(if pixels.indices.len() >= PACK_MIN_PIXELS * lists.len() {
+        shading.by_list(gbuffer, lists, &pixels, progress)
+    } else {
+        shading.by_row(gbuffer, lists, progress)
+    })
 }
+
+/// What [`shade_lists`] shades every pixel with.
+struct ListShading<'a> {
+    tracer: &'a Tracer,
+    vpls: &'a [Vpl],
+    roulette: &'a [StochasticParams],
+    reach: &'a [VplReach],
+    scale: f32,
+    visibility: bool,
+}
+
+impl ListShading<'_> {
+    /// The estimate at `g` from the VPLs of `list` (packed in `chunks` when given) that pass
+    /// the early exits, in the list's order.
+    fn pixel(&self, g: &GSample, list: &[u32], chunks: Option<&ReachChunks>) -> Vec3 {
+        let from = self.tracer.lift(g.position, g.geometric_normal);
+        let mut o = Vec3::ZERO;
+        let mut shade = |k: u32| {
+            let vpl = &self.vpls[k as usize];
+            let c = vpl_contribution(g, vpl, Some(&self.roulette[k as usize]));
+            if c != Vec3::ZERO
+                && (!self.visibility
+                    || self
+                        .tracer
+                        .unoccluded(from, self.tracer.lift(vpl.position, vpl.normal)))
+            {
+                o += c * self.scale;
+            }
+        };
+        match chunks {
+            Some(chunks) => chunks.for_each_passing(0, g.position, Some(g.normal), &mut shade),
+            None => {
+                for &k in list {
+                    let d = g.position - self.vpls[k as usize].position;
+                    if self.reach[k as usize].may_contribute(d, g.normal) {
+                        shade(k);
+                    }
+                }
+            }
+        }
+        o
+    }
+
+    /// List by list, each list's VPLs packed into chunks of eight once for all its pixels.
+    fn by_list(
+        &self,
+        gbuffer: &GBuffer,
+        lists: &LightLists,
+        pixels: &PixelsByList,
+        progress: &(dyn Fn(u64) + Sync),
+    ) -> Image {
+        let shaded: Vec<Vec<(usize, Vec3)>> = (0..lists.len())
+            .into_par_iter()
+            .map_init(ReachChunks::default, |chunks, l| {
+                let list = &lists.indices[lists.offsets[l] as usize..lists.offsets[l + 1] as usize];
+                let mine =
+                    &pixels.indices[pixels.offsets[l] as usize..pixels.offsets[l + 1] as usize];
+                chunks.refill(self.vpls, self.reach, [list]);
+                let out = mine
+                    .iter()
+                    .filter_map(|&p| {
+                        let g = gbuffer.samples[p as usize].as_ref()?;
+                        Some((p as usize, self.pixel(g, list, Some(chunks))))
+                    })
+                    .collect();
+                progress(mine.len() as u64);
+                out
+            })
+            .collect();
+        let mut image = Image::new(gbuffer.width, gbuffer.height);
+        for (p, o) in shaded.into_iter().flatten() {
+            image.pixels[p] = o;
+        }
+        progress(pixels.unlisted);
+        image
+    }
+
+    /// Row by row in image order (sequential G-buffer reads), each pair tested on its own.
+    fn by_row(
+        &self,
+        gbuffer: &GBuffer,
+        lists: &LightLists,
+        progress: &(dyn Fn(u64) + Sync),
+    ) -> Image {
+        let mut image = Image::new(gbuffer.width, gbuffer.height);
+        let w = gbuffer.width as usize;
+        image
+            .pixels
+            .par_chunks_mut(w)
+            .zip(gbuffer.samples.par_chunks(w))
+            .enumerate()
+            .for_each(|(y, (out, row))| {
+                for (x, (o, g)) in out.iter_mut().zip(row).enumerate() {
+                    if let Some(g) = g {
+                        *o = self.pixel(g, lists.for_pixel(y * w + x), None);
+                    }
+                }
+                progress(w as u64);
+            });
+        image
+    }
+}
+
+/// When the lists shade fewer pixels than this on average, packing them into chunks of eight
+/// costs more than it saves (and list order scatters the G-buffer reads): the pixels are then
+/// shaded in image order with the scalar exits ([`VplReach`]), which pass the same pairs.
+const PACK_MIN_PIXELS: usize = 4;
 
 /// The pixels of each light list (a counting sort of `LightLists::pixel_list`), in the same
 /// compressed rows as the lists, and the number of pixels without a list.
