@@ -179,27 +179,33 @@ impl ListShading<'_> {
         pixels: &PixelsByList,
         progress: &(dyn Fn(u64) + Sync),
     ) -> Image {
-        let shaded: Vec<Vec<(usize, Vec3)>> = (0..lists.len())
-            .into_par_iter()
-            .map_init(ReachChunks::default, |chunks, l| {
+        // One slot per listed pixel, in list order, cut into each list's slots.
+        let mut shaded = vec![Vec3::ZERO; pixels.indices.len()];
+        let mut slots = Vec::with_capacity(lists.len());
+        let mut rest = shaded.as_mut_slice();
+        for w in pixels.offsets.windows(2) {
+            let (mine, tail) = rest.split_at_mut((w[1] - w[0]) as usize);
+            slots.push(mine);
+            rest = tail;
+        }
+        slots.into_par_iter().enumerate().for_each_init(
+            ReachChunks::default,
+            |chunks, (l, out)| {
                 let list = &lists.indices[lists.offsets[l] as usize..lists.offsets[l + 1] as usize];
                 let mine =
                     &pixels.indices[pixels.offsets[l] as usize..pixels.offsets[l + 1] as usize];
                 chunks.refill(self.vpls, self.reach, [list]);
-                let out = mine
-                    .iter()
-                    .filter_map(|&p| {
-                        let g = gbuffer.samples[p as usize].as_ref()?;
-                        Some((p as usize, self.pixel(g, list, Some(chunks))))
-                    })
-                    .collect();
+                for (o, &p) in out.iter_mut().zip(mine) {
+                    if let Some(g) = &gbuffer.samples[p as usize] {
+                        *o = self.pixel(g, list, Some(chunks));
+                    }
+                }
                 progress(mine.len() as u64);
-                out
-            })
-            .collect();
+            },
+        );
         let mut image = Image::new(gbuffer.width, gbuffer.height);
-        for (p, o) in shaded.into_iter().flatten() {
-            image.pixels[p] = o;
+        for (&p, o) in pixels.indices.iter().zip(shaded) {
+            image.pixels[p as usize] = o;
         }
         progress(pixels.unlisted);
         image
