@@ -1,7 +1,8 @@
 //! Early exits for (pixel, VPL) pairs whose contribution is exactly zero, tested before the
 //! GGX evaluation of p(ωo, l) (eq. 2) and of the BRDFs: the VPL's own bound (outside it
-//! p <= ξ, so eq. (3) weights the pair 0) and the sign of the cosine at either end (eq. 1 and
-//! the max(ωo·n, 0) of eq. 4). Each test keeps a margin well above float rounding, so it
+//! p <= ξ, so eq. (3) weights the pair 0), the sign of the cosine at either end (eq. 1 and
+//! the max(ωo·n, 0) of eq. 4), and, inside the bound, an upper bound of p itself. Each test
+//! keeps a margin well above float rounding, so it
 //! never rejects a pair that the full evaluation accepts: the estimate stays bit for bit the
 //! same, only cheaper.
 use crate::lanes::{cross, dot, Real};
@@ -177,8 +178,9 @@ impl VplReach {
 
     /// Whether the roulette of eq. (3) may accept this VPL at the offset `d = x − q` (formed
     /// in f32 as the shader forms it). False only where p(ωo, l) <= ξ for sure: outside the
-    /// VPL's own bound (beyond a margin for the f32 rounding of the test), or behind the VPL
-    /// (ωo·n below −[`SIGN_MARGIN`]: I(ωo) = 0 by eq. 4).
+    /// VPL's own bound (beyond a margin for the f32 rounding of the test), behind the VPL
+    /// (ωo·n below −[`SIGN_MARGIN`]: I(ωo) = 0 by eq. 4), or with an upper bound of p at or
+    /// below ξ (eq. 2, 4, 6-8 with the maximum Fresnel factor, grown by [`PEAK_SLACK`]).
     #[inline]
     pub fn may_accept(&self, d: Vec3) -> bool {
         self.reach.may_accept(d.to_array())
