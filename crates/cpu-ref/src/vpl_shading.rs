@@ -95,7 +95,7 @@ pub fn shade_vpls(
 /// at either end; tested eight per list at a time by [`ReachChunks`]) are skipped before the
 /// BRDFs: their contribution is exactly 0, so the image is the same bit for bit. The pixels
 /// are shaded list by list, each list's VPLs packed once into chunks of eight, or in image
-/// order when the lists are too short-lived for packing to pay (see [`PACK_MIN_PIXELS`]).
+/// order when the lists are too short-lived for packing to pay (fewer than 4 pixels a list).
 pub fn shade_lists(
     tracer: &Tracer,
     input: &CullInput,

@@ -30,7 +30,7 @@ pub(crate) struct Reach<R> {
     pub center: [R; 3],
     pub limit: R,
     /// ωi (the normal for a diffuse VPL), α² (1 for a diffuse VPL), 1 for a glossy VPL and 0
-    /// for a diffuse one, the intensity factor of [`intensity_bound`] and δ ξ.
+    /// for a diffuse one, the intensity factor of [`Self::may_exceed_xi`] and δ ξ.
     pub omega_i: [R; 3],
     pub alpha_sq: R,
     pub glossy: R,
@@ -98,7 +98,7 @@ impl<R: Real> Reach<R> {
     }
 }
 
-/// Relative growth of the intensity bound of [`Reach`]: the bound and the shader's intensity
+/// Relative growth of the intensity bound of [`VplReach::may_accept`]: the bound and the shader's intensity
 /// are both f32 evaluations of nearly the same expressions (a few ulps apart, 1e-6), and
 /// F_max is the exact maximum of F (supplemental eq. 2); 1e-3 leaves a factor of 1000.
 pub const PEAK_SLACK: f64 = 1e-3;
