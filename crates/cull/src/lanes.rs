@@ -2,26 +2,15 @@
 //! ([`F8`]): every lane performs the same IEEE operations in the same order as the scalar
 //! code, so the two agree bit for bit. [`F8`] is a plain array whose element-wise loops the
 //! compiler turns into 256-bit instructions where AVX is enabled (see `reach_chunks`).
-use core::ops::{Add, BitAnd, BitOr, Div, Mul, Neg, Not, Sub};
+use core::ops::{Add, BitAnd, Mul, Neg, Not, Sub};
 
 /// A number type of the early-exit arithmetic: `f32`, or eight of them.
 pub trait Real:
-    Copy
-    + Add<Output = Self>
-    + Sub<Output = Self>
-    + Mul<Output = Self>
-    + Div<Output = Self>
-    + Neg<Output = Self>
+    Copy + Add<Output = Self> + Sub<Output = Self> + Mul<Output = Self> + Neg<Output = Self>
 {
     /// The result of a comparison: `bool`, or one flag per lane.
-    type Mask: Copy
-        + BitAnd<Output = Self::Mask>
-        + BitOr<Output = Self::Mask>
-        + Not<Output = Self::Mask>;
+    type Mask: Copy + BitAnd<Output = Self::Mask> + Not<Output = Self::Mask>;
     fn splat(v: f32) -> Self;
-    fn sqrt(self) -> Self;
-    /// Whether any lane of `m` is set.
-    fn any(m: Self::Mask) -> bool;
     fn gt(self, other: Self) -> Self::Mask;
     fn le(self, other: Self) -> Self::Mask;
 }
@@ -31,14 +20,6 @@ impl Real for f32 {
     #[inline(always)]
     fn splat(v: f32) -> Self {
         v
-    }
-    #[inline(always)]
-    fn sqrt(self) -> Self {
-        f32::sqrt(self)
-    }
-    #[inline(always)]
-    fn any(m: bool) -> bool {
-        m
     }
     #[inline(always)]
     fn gt(self, other: Self) -> bool {
@@ -112,14 +93,6 @@ impl Mul for F8 {
     }
 }
 
-impl Div for F8 {
-    type Output = F8;
-    #[inline(always)]
-    fn div(self, o: F8) -> F8 {
-        zip(self, o, |a, b| a / b)
-    }
-}
-
 impl Neg for F8 {
     type Output = F8;
     #[inline(always)]
@@ -133,14 +106,6 @@ impl BitAnd for M8 {
     #[inline(always)]
     fn bitand(self, o: M8) -> M8 {
         M8(core::array::from_fn(|k| self.0[k] & o.0[k]))
-    }
-}
-
-impl BitOr for M8 {
-    type Output = M8;
-    #[inline(always)]
-    fn bitor(self, o: M8) -> M8 {
-        M8(core::array::from_fn(|k| self.0[k] | o.0[k]))
     }
 }
 
@@ -159,14 +124,6 @@ impl Real for F8 {
         F8([v; 8])
     }
     #[inline(always)]
-    fn sqrt(self) -> Self {
-        F8(self.0.map(f32::sqrt))
-    }
-    #[inline(always)]
-    fn any(m: M8) -> bool {
-        m.bits() != 0
-    }
-    #[inline(always)]
     fn gt(self, other: Self) -> M8 {
         flags(self, other, |a, b| a > b)
     }
@@ -174,16 +131,6 @@ impl Real for F8 {
     fn le(self, other: Self) -> M8 {
         flags(self, other, |a, b| a <= b)
     }
-}
-
-/// `a × b` as glam forms `Vec3::cross`.
-#[inline(always)]
-pub fn cross<R: Real>(a: [R; 3], b: [R; 3]) -> [R; 3] {
-    [
-        a[1] * b[2] - b[1] * a[2],
-        a[2] * b[0] - b[2] * a[0],
-        a[0] * b[1] - b[0] * a[1],
-    ]
 }
 
 /// `a·b` as glam forms `Vec3::dot`: `(a.x b.x + a.y b.y) + a.z b.z`.

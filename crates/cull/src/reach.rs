@@ -1,14 +1,13 @@
 //! Early exits for (pixel, VPL) pairs whose contribution is exactly zero, tested before the
 //! GGX evaluation of p(ωo, l) (eq. 2) and of the BRDFs: the VPL's own bound (outside it
-//! p <= ξ, so eq. (3) weights the pair 0), the sign of the cosine at either end (eq. 1 and
-//! the max(ωo·n, 0) of eq. 4), and, inside the bound, an upper bound of p itself. Each test
-//! keeps a margin well above float rounding, so it
+//! p <= ξ, so eq. (3) weights the pair 0) and the sign of the cosine at either end (eq. 1 and
+//! the max(ωo·n, 0) of eq. 4). Each test keeps a margin well above float rounding, so it
 //! never rejects a pair that the full evaluation accepts: the estimate stays bit for bit the
 //! same, only cheaper.
-use crate::lanes::{cross, dot, Real};
+use crate::lanes::{dot, Real};
 use crate::vpl_bounds::{GlossyBound, LocalBound};
 use glam::{DMat3, DVec3, Vec3};
-use slc_bounds::{ggx, StochasticParams};
+use slc_bounds::StochasticParams;
 use slc_core::{CullError, Vpl, VplLobe};
 
 /// Relative margin of the sign tests: a pair is rejected only when the cosine at one end,
@@ -29,23 +28,14 @@ pub(crate) struct Reach<R> {
     pub stretch: [R; 9],
     pub center: [R; 3],
     pub limit: R,
-    /// ωi (the normal for a diffuse VPL), α² (1 for a diffuse VPL), 1 for a glossy VPL and 0
-    /// for a diffuse one, the intensity factor of [`Self::may_exceed_xi`] and δ ξ.
-    pub omega_i: [R; 3],
-    pub alpha_sq: R,
-    pub glossy: R,
-    pub peak: R,
-    pub delta_xi: R,
 }
 
 impl<R: Real> Reach<R> {
     /// Whether the roulette may accept the pair at offset `d = x − q`: not behind the VPL
-    /// (beyond the margin), inside its bound, and with the upper bound of p (eq. 2) of
-    /// [`Self::may_exceed_xi`] above ξ (see [`VplReach::may_accept`]).
+    /// (beyond the margin) and inside its bound (see [`VplReach::may_accept`]).
     #[inline(always)]
     pub(crate) fn may_accept(&self, d: [R; 3]) -> R::Mask {
-        let l2 = dot(d, d);
-        let margin_sq = R::splat(SIGN_MARGIN * SIGN_MARGIN) * l2;
+        let margin_sq = R::splat(SIGN_MARGIN * SIGN_MARGIN) * dot(d, d);
         let s = &self.stretch;
         let c = &self.center;
         let u = [
@@ -53,41 +43,7 @@ impl<R: Real> Reach<R> {
             s[3] * d[0] + s[4] * d[1] + s[5] * d[2] - c[1],
             s[6] * d[0] + s[7] * d[1] + s[8] * d[2] - c[2],
         ];
-        let bounded = !behind(-dot(self.normal, d), margin_sq) & dot(u, u).le(self.limit);
-        if !R::any(bounded) {
-            return bounded;
-        }
-        bounded & self.may_exceed_xi(d, l2)
-    }
-
-    /// Whether an upper bound of p(ωo, l) of eq. (2) exceeds ξ at offset `d` (`l2 = |d|²`):
-    /// I(ωo) <= peak max(ωo·n, 0) D(ωh) G1(ωo)/(ωo·n) for a glossy VPL (eq. 4, 6 with
-    /// F <= F_max, supplemental eq. 2) and peak max(ωo·n, 0) for a diffuse one, where `peak`
-    /// holds the VPL's constants grown by [`PEAK_SLACK`]. ωo and ωo·n are formed exactly as
-    /// the shader forms them; D and G1 agree with the shader's to far below the slack, except
-    /// where the shader forms the half vector in f64 (|ωi + ωo|² α² <= 1e-6), which passes.
-    #[inline(always)]
-    fn may_exceed_xi(&self, d: [R; 3], l2: R) -> R::Mask {
-        let one = R::splat(1.0);
-        let len = l2.sqrt();
-        let w = [d[0] / len, d[1] / len, d[2] / len];
-        let cos_o = dot(self.normal, w);
-        let h = [
-            self.omega_i[0] + w[0],
-            self.omega_i[1] + w[1],
-            self.omega_i[2] + w[2],
-        ];
-        let h2 = dot(h, h);
-        let a2 = self.alpha_sq;
-        let nh = dot(self.normal, h);
-        let sin2 = dot(cross(self.normal, h), cross(self.normal, h));
-        let den = a2 * nh * nh + sin2;
-        // D of eq. (7) with cos θh = n·h/|h|, sin² θh = |n × h|²/|h|².
-        let ggx = a2 * h2 * h2 / (R::splat(core::f32::consts::PI) * den * den);
-        // G1(ωo)/(ωo·n) of eq. (8).
-        let g1 = R::splat(2.0) / (cos_o + ((one - a2) * cos_o * cos_o + a2).sqrt());
-        let lobe = self.glossy * (ggx * g1) + (one - self.glossy);
-        (self.peak * cos_o * lobe).gt(self.delta_xi * l2) | (h2 * a2).le(R::splat(1e-5))
+        !behind(-dot(self.normal, d), margin_sq) & dot(u, u).le(self.limit)
     }
 
     /// [`Self::may_accept`], and the receiver with normal `receiver` not facing away.
@@ -97,11 +53,6 @@ impl<R: Real> Reach<R> {
         !behind(dot(receiver, d), margin_sq) & self.may_accept(d)
     }
 }
-
-/// Relative growth of the intensity bound of [`VplReach::may_accept`]: the bound and the shader's intensity
-/// are both f32 evaluations of nearly the same expressions (a few ulps apart, 1e-6), and
-/// F_max is the exact maximum of F (supplemental eq. 2); 1e-3 leaves a factor of 1000.
-pub const PEAK_SLACK: f64 = 1e-3;
 
 /// Whether `t` (a cosine times |d|) is positive beyond the margin, `t² > SIGN_MARGIN² |d|²`:
 /// compared squared, with no square root.
@@ -148,39 +99,20 @@ impl VplReach {
             }
         };
         let rows = stretch.transpose().to_cols_array().map(|v| v as f32);
-        let glossy = vpl.lobe == VplLobe::Glossy;
-        let (peak, alpha_sq, omega_i) = if limit < 0.0 {
-            (0.0, 1.0, vpl.normal)
-        } else if glossy {
-            (
-                glossy_peak(vpl),
-                vpl.brdf.alpha * vpl.brdf.alpha,
-                vpl.omega_i,
-            )
-        } else {
-            let reflected = (vpl.flux.as_dvec3() * vpl.brdf.kd.as_dvec3()).max_element();
-            (reflected / core::f64::consts::PI, 1.0, vpl.normal)
-        };
         Ok(Self {
             reach: Reach {
                 normal: vpl.normal.to_array(),
                 stretch: rows,
                 center: center.as_vec3().to_array(),
                 limit: limit as f32,
-                omega_i: omega_i.to_array(),
-                alpha_sq,
-                glossy: if glossy { 1.0 } else { 0.0 },
-                peak: (peak * (1.0 + PEAK_SLACK)) as f32,
-                delta_xi: (f64::from(params.delta()) * f64::from(params.xi())) as f32,
             },
         })
     }
 
     /// Whether the roulette of eq. (3) may accept this VPL at the offset `d = x − q` (formed
     /// in f32 as the shader forms it). False only where p(ωo, l) <= ξ for sure: outside the
-    /// VPL's own bound (beyond a margin for the f32 rounding of the test), behind the VPL
-    /// (ωo·n below −[`SIGN_MARGIN`]: I(ωo) = 0 by eq. 4), or with an upper bound of p at or
-    /// below ξ (eq. 2, 4, 6-8 with the maximum Fresnel factor, grown by [`PEAK_SLACK`]).
+    /// VPL's own bound (beyond a margin for the f32 rounding of the test), or behind the VPL
+    /// (ωo·n below −[`SIGN_MARGIN`]: I(ωo) = 0 by eq. 4).
     #[inline]
     pub fn may_accept(&self, d: Vec3) -> bool {
         self.reach.may_accept(d.to_array())
@@ -195,15 +127,6 @@ impl VplReach {
         self.reach
             .may_contribute(d.to_array(), receiver_normal.to_array())
     }
-}
-
-/// The constant factor of a glossy VPL's intensity bound (eq. 4, 6): I(ωo) = Φ F D G1(ωi)
-/// G1(ωo) / (4 ωi·n) <= max(Φ F_max(ωi)) G1(ωi)/(ωi·n) / 4 · D G1(ωo)/(ωo·n) · ωo·n.
-fn glossy_peak(vpl: &Vpl) -> f64 {
-    let cos_i = vpl.normal.dot(vpl.omega_i);
-    let fresnel = vpl.brdf.fresnel.max_over_half_vectors(cos_i).as_dvec3();
-    0.25 * f64::from(ggx::g1_over_cos(vpl.brdf.alpha, cos_i))
-        * (vpl.flux.as_dvec3() * fresnel).max_element()
 }
 
 /// The stretch S, centre S·(c − q) and limit of a bound with centre `center` (relative to q)

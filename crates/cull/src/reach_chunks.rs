@@ -83,11 +83,6 @@ fn chunk(vpls: &[Vpl], reach: &[VplReach], indices: &[u32]) -> Chunk {
         stretch: [0.0; 9],
         center: [0.0; 3],
         limit: -1.0,
-        omega_i: [0.0; 3],
-        alpha_sq: 1.0,
-        glossy: 0.0,
-        peak: 0.0,
-        delta_xi: 1.0,
     };
     let mut c = Chunk {
         position: [F8::splat(0.0); 3],
@@ -96,11 +91,6 @@ fn chunk(vpls: &[Vpl], reach: &[VplReach], indices: &[u32]) -> Chunk {
             stretch: [F8::splat(0.0); 9],
             center: [F8::splat(0.0); 3],
             limit: F8::splat(-1.0),
-            omega_i: [F8::splat(0.0); 3],
-            alpha_sq: F8::splat(1.0),
-            glossy: F8::splat(0.0),
-            peak: F8::splat(0.0),
-            delta_xi: F8::splat(1.0),
         },
         index: [0; 8],
     };
@@ -116,14 +106,7 @@ fn chunk(vpls: &[Vpl], reach: &[VplReach], indices: &[u32]) -> Chunk {
         let fields = (c.position.iter_mut().zip(q))
             .chain(c.reach.normal.iter_mut().zip(r.normal))
             .chain(c.reach.center.iter_mut().zip(r.center))
-            .chain(c.reach.stretch.iter_mut().zip(r.stretch))
-            .chain(c.reach.omega_i.iter_mut().zip(r.omega_i))
-            .chain([
-                (&mut c.reach.alpha_sq, r.alpha_sq),
-                (&mut c.reach.glossy, r.glossy),
-                (&mut c.reach.peak, r.peak),
-                (&mut c.reach.delta_xi, r.delta_xi),
-            ]);
+            .chain(c.reach.stretch.iter_mut().zip(r.stretch));
         for (lanes, v) in fields {
             lanes.0[lane] = v;
         }
