@@ -5,7 +5,8 @@ use glam::Vec3;
 use rayon::prelude::*;
 use slc_bounds::stochastic::{scalar_intensity, StochasticParams};
 use slc_bounds::BoundsError;
-use slc_core::{CullInput, GBuffer, GSample, Image, LightLists, Vpl};
+use slc_core::{CullError, CullInput, GBuffer, GSample, Image, LightLists, Vpl, NO_LIST};
+use slc_cull::{ReachChunks, VplReach};
 
 /// How each VPL's contribution is weighted.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -89,45 +90,189 @@ pub fn shade_vpls(
 
 /// Indirect radiance from culled light lists (paper eq. 3 with interleaved sampling): each
 /// pixel sums the VPLs of its list with weight K²/p when p > ξ. Unbiased as long as the lists
-/// miss no VPL with p > ξ at the pixel.
+/// miss no VPL with p > ξ at the pixel. Fails only when δ, a ξ or a VPL is out of the domain
+/// of slc-bounds. Pairs that [`VplReach`] rejects (outside the VPL's own bound, facing away
+/// at either end; tested eight per list at a time by [`ReachChunks`]) are skipped before the
+/// BRDFs: their contribution is exactly 0, so the image is the same bit for bit. The pixels
+/// are shaded list by list, each list's VPLs packed once into chunks of eight, or in image
+/// order when the lists are too short-lived for packing to pay (fewer than 4 pixels a list).
 pub fn shade_lists(
     tracer: &Tracer,
     input: &CullInput,
     lists: &LightLists,
     visibility: bool,
     progress: &(dyn Fn(u64) + Sync),
-) -> Result<Image, BoundsError> {
+) -> Result<Image, CullError> {
     let (gbuffer, vpls) = (input.gbuffer, input.vpls);
     let roulette = vpls
         .iter()
         .map(|v| StochasticParams::new(input.delta, v.xi))
         .collect::<Result<Vec<_>, _>>()?;
-    let scale = input.interleaving.scale();
-    let mut image = Image::new(gbuffer.width, gbuffer.height);
-    let w = gbuffer.width as usize;
-    image
-        .pixels
-        .par_chunks_mut(w)
-        .enumerate()
-        .for_each(|(y, out)| {
-            for (x, o) in out.iter_mut().enumerate() {
-                let p = y * w + x;
-                let Some(g) = &gbuffer.samples[p] else {
-                    continue;
-                };
-                let from = tracer.lift(g.position, g.geometric_normal);
-                for &k in lists.for_pixel(p) {
-                    let vpl = &vpls[k as usize];
-                    let c = vpl_contribution(g, vpl, Some(&roulette[k as usize]));
-                    if c != Vec3::ZERO
-                        && (!visibility
-                            || tracer.unoccluded(from, tracer.lift(vpl.position, vpl.normal)))
-                    {
-                        *o += c * scale;
+    let reach = vpls
+        .par_iter()
+        .zip(&roulette)
+        .map(|(v, r)| VplReach::new(v, r))
+        .collect::<Result<Vec<_>, _>>()?;
+    let shading = ListShading {
+        tracer,
+        vpls,
+        roulette: &roulette,
+        reach: &reach,
+        scale: input.interleaving.scale(),
+        visibility,
+    };
+    let pixels = pixels_by_list(lists);
+    Ok(if pixels.indices.len() >= PACK_MIN_PIXELS * lists.len() {
+        shading.by_list(gbuffer, lists, &pixels, progress)
+    } else {
+        shading.by_row(gbuffer, lists, progress)
+    })
+}
+
+/// What [`shade_lists`] shades every pixel with.
+struct ListShading<'a> {
+    tracer: &'a Tracer,
+    vpls: &'a [Vpl],
+    roulette: &'a [StochasticParams],
+    reach: &'a [VplReach],
+    scale: f32,
+    visibility: bool,
+}
+
+impl ListShading<'_> {
+    /// The estimate at `g` from the VPLs of `list` (packed in `chunks` when given) that pass
+    /// the early exits, in the list's order.
+    fn pixel(&self, g: &GSample, list: &[u32], chunks: Option<&ReachChunks>) -> Vec3 {
+        let from = self.tracer.lift(g.position, g.geometric_normal);
+        let mut o = Vec3::ZERO;
+        let mut shade = |k: u32| {
+            let vpl = &self.vpls[k as usize];
+            let c = vpl_contribution(g, vpl, Some(&self.roulette[k as usize]));
+            if c != Vec3::ZERO
+                && (!self.visibility
+                    || self
+                        .tracer
+                        .unoccluded(from, self.tracer.lift(vpl.position, vpl.normal)))
+            {
+                o += c * self.scale;
+            }
+        };
+        match chunks {
+            Some(chunks) => chunks.for_each_passing(0, g.position, Some(g.normal), &mut shade),
+            None => {
+                for &k in list {
+                    let d = g.position - self.vpls[k as usize].position;
+                    if self.reach[k as usize].may_contribute(d, g.normal) {
+                        shade(k);
                     }
                 }
             }
-            progress(w as u64);
-        });
-    Ok(image)
+        }
+        o
+    }
+
+    /// List by list, each list's VPLs packed into chunks of eight once for all its pixels.
+    fn by_list(
+        &self,
+        gbuffer: &GBuffer,
+        lists: &LightLists,
+        pixels: &PixelsByList,
+        progress: &(dyn Fn(u64) + Sync),
+    ) -> Image {
+        // One slot per listed pixel, in list order, cut into each list's slots.
+        let mut shaded = vec![Vec3::ZERO; pixels.indices.len()];
+        let mut slots = Vec::with_capacity(lists.len());
+        let mut rest = shaded.as_mut_slice();
+        for w in pixels.offsets.windows(2) {
+            let (mine, tail) = rest.split_at_mut((w[1] - w[0]) as usize);
+            slots.push(mine);
+            rest = tail;
+        }
+        slots.into_par_iter().enumerate().for_each_init(
+            ReachChunks::default,
+            |chunks, (l, out)| {
+                let list = &lists.indices[lists.offsets[l] as usize..lists.offsets[l + 1] as usize];
+                let mine =
+                    &pixels.indices[pixels.offsets[l] as usize..pixels.offsets[l + 1] as usize];
+                chunks.refill(self.vpls, self.reach, [list]);
+                for (o, &p) in out.iter_mut().zip(mine) {
+                    if let Some(g) = &gbuffer.samples[p as usize] {
+                        *o = self.pixel(g, list, Some(chunks));
+                    }
+                }
+                progress(mine.len() as u64);
+            },
+        );
+        let mut image = Image::new(gbuffer.width, gbuffer.height);
+        for (&p, o) in pixels.indices.iter().zip(shaded) {
+            image.pixels[p as usize] = o;
+        }
+        progress(pixels.unlisted);
+        image
+    }
+
+    /// Row by row in image order (sequential G-buffer reads), each pair tested on its own.
+    fn by_row(
+        &self,
+        gbuffer: &GBuffer,
+        lists: &LightLists,
+        progress: &(dyn Fn(u64) + Sync),
+    ) -> Image {
+        let mut image = Image::new(gbuffer.width, gbuffer.height);
+        let w = gbuffer.width as usize;
+        image
+            .pixels
+            .par_chunks_mut(w)
+            .zip(gbuffer.samples.par_chunks(w))
+            .enumerate()
+            .for_each(|(y, (out, row))| {
+                for (x, (o, g)) in out.iter_mut().zip(row).enumerate() {
+                    if let Some(g) = g {
+                        *o = self.pixel(g, lists.for_pixel(y * w + x), None);
+                    }
+                }
+                progress(w as u64);
+            });
+        image
+    }
+}
+
+/// When the lists shade fewer pixels than this on average, packing them into chunks of eight
+/// costs more than it saves (and list order scatters the G-buffer reads): the pixels are then
+/// shaded in image order with the scalar exits ([`VplReach`]), which pass the same pairs.
+const PACK_MIN_PIXELS: usize = 4;
+
+/// The pixels of each light list (a counting sort of `LightLists::pixel_list`), in the same
+/// compressed rows as the lists, and the number of pixels without a list.
+struct PixelsByList {
+    offsets: Vec<u32>,
+    indices: Vec<u32>,
+    unlisted: u64,
+}
+
+fn pixels_by_list(lists: &LightLists) -> PixelsByList {
+    let mut offsets = vec![0u32; lists.len() + 1];
+    let mut unlisted = 0;
+    for &l in &lists.pixel_list {
+        match l {
+            NO_LIST => unlisted += 1,
+            l => offsets[l as usize + 1] += 1,
+        }
+    }
+    for k in 1..offsets.len() {
+        offsets[k] += offsets[k - 1];
+    }
+    let mut next = offsets.clone();
+    let mut indices = vec![0u32; offsets[lists.len()] as usize];
+    for (p, &l) in lists.pixel_list.iter().enumerate() {
+        if l != NO_LIST {
+            indices[next[l as usize] as usize] = p as u32;
+            next[l as usize] += 1;
+        }
+    }
+    PixelsByList {
+        offsets,
+        indices,
+        unlisted,
+    }
 }

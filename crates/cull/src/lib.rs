@@ -71,9 +71,12 @@
 //! ```
 mod depth;
 mod frusta;
+mod lanes;
 mod lists;
 pub mod metrics;
 mod partition;
+pub mod reach;
+pub mod reach_chunks;
 pub mod strategies;
 mod tiled;
 mod tiles;
@@ -81,6 +84,8 @@ pub mod view;
 mod vpl_bounds;
 
 pub use frusta::FRUSTUM_SLACK;
+pub use reach::VplReach;
+pub use reach_chunks::ReachChunks;
 pub use strategies::bounded::BoundedCuller;
 pub use strategies::none::NoCulling;
 pub use view::CullView;

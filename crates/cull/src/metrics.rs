@@ -6,15 +6,20 @@
 //! accepts it there: p(ωo, l) > ξ with p of eq. (2), `I = scalar_intensity(vpl.intensity(ωo))`,
 //! ωo the unit direction from the VPL to the pixel's G-buffer position and l² its squared
 //! distance, computed exactly as the shader does. A pair at distance 0 has no direction and
-//! contributes nothing. The truth does not use any bound of this crate or of slc-bounds.
+//! contributes nothing. Pairs outside the VPL's own bound (the spheroid or section-6 sphere,
+//! [`crate::reach`], tested eight VPLs at a time by [`ReachChunks`]) are skipped without
+//! evaluating p: there p <= ξ, which the property test
+//! of slc-cpu-ref (`tests/early_exits.rs`) checks at the bounds' edges and the guarantee tests
+//! check against every pair's p on their scenes.
 use crate::lists::pixel_count;
 use crate::partition::Partition;
+use crate::reach::VplReach;
+use crate::reach_chunks::ReachChunks;
 use glam::Vec3;
 use rayon::prelude::*;
 use slc_bounds::{scalar_intensity, StochasticParams};
 pub use slc_core::CullMetrics;
-use slc_core::{CullError, CullInput, GSample, LightLists, Vpl, VplLobe, NO_LIST};
-use std::f64::consts::PI;
+use slc_core::{CullError, CullInput, GSample, LightLists, Vpl, NO_LIST};
 
 /// The metrics of `lists` for `input`; see [`measure_all`].
 pub fn measure(input: &CullInput, lists: &LightLists) -> Result<CullMetrics, CullError> {
@@ -36,8 +41,19 @@ pub fn measure_all(
     let roulette = input
         .vpls
         .iter()
-        .map(|v| Roulette::new(v, input.delta))
+        .map(|v| StochasticParams::new(input.delta, v.xi))
         .collect::<Result<Vec<_>, _>>()?;
+    let reach = input
+        .vpls
+        .par_iter()
+        .zip(&roulette)
+        .map(|(v, r)| VplReach::new(v, r))
+        .collect::<Result<Vec<_>, _>>()?;
+    let chunks = ReachChunks::new(
+        input.vpls,
+        &reach,
+        (0..partition.subregions() as u32).map(|s| partition.of(s)),
+    );
     let m = lists.len();
     let width = input.gbuffer.width as usize;
     // Per pixel and list set: [listed, true positives, missed].
@@ -51,11 +67,11 @@ pub fn measure_all(
                     truth.clear();
                     if let Some(g) = &input.gbuffer.samples[p] {
                         let s = input.interleaving.pixel_subregion(x as u32, y as u32);
-                        truth.extend(
-                            partition.of(s).iter().copied().filter(|&i| {
-                                roulette[i as usize].accepts(g, &input.vpls[i as usize])
-                            }),
-                        );
+                        chunks.for_each_passing(s as usize, g.position, None, |i| {
+                            if accepts(&roulette[i as usize], g, &input.vpls[i as usize]) {
+                                truth.push(i);
+                            }
+                        });
                     }
                     for (k, l) in lists.iter().enumerate() {
                         let listed = l.for_pixel(p);
@@ -126,52 +142,16 @@ fn matches(listed: &[u32], truth: &[u32], scratch: &mut Vec<u32>) -> u32 {
     tp
 }
 
-/// One VPL's roulette: its (δ, ξ), and a squared distance beyond which it cannot be accepted,
-/// to skip most pairs without evaluating the BRDF. The cut-off is independent of every bound
-/// under test: p > ξ needs l² < I/(δ ξ), and I(ωo) <= I_max with I_max = max(Φ kd)/π for a
-/// diffuse VPL and max(Φ)/(4π α² (ωi·n)) for a glossy one (eq. 4, 6: F <= 1, G2 <= 1,
-/// D <= 1/(π α²)); it is doubled for safety.
-struct Roulette {
-    params: StochasticParams,
-    reach_sq: f64,
-}
-
-impl Roulette {
-    fn new(vpl: &Vpl, delta: f32) -> Result<Self, CullError> {
-        let params = StochasticParams::new(delta, vpl.xi)?;
-        let cos_i = f64::from(vpl.normal.dot(vpl.omega_i));
-        let flux = vpl.flux.as_dvec3();
-        let peak = match vpl.lobe {
-            VplLobe::Diffuse => (flux * vpl.brdf.kd.as_dvec3()).max_element() / PI,
-            VplLobe::Glossy => {
-                let alpha = f64::from(vpl.brdf.alpha);
-                flux.max_element() / (4.0 * PI * alpha * alpha * cos_i)
-            }
-        };
-        let reach_sq = if cos_i > 0.0 {
-            2.0 * peak / (f64::from(delta) * f64::from(vpl.xi))
-        } else {
-            // One-sided BRDF: nothing is reflected, so nothing is accepted.
-            -1.0
-        };
-        Ok(Self { params, reach_sq })
+/// Whether the roulette of eq. (3) with `params` accepts `vpl` at the G-buffer sample `g`.
+#[inline]
+fn accepts(params: &StochasticParams, g: &GSample, vpl: &Vpl) -> bool {
+    let d: Vec3 = g.position - vpl.position;
+    let l2 = d.length_squared();
+    if l2 <= 0.0 {
+        return false;
     }
-
-    /// Whether the roulette of eq. (3) accepts `vpl` at the G-buffer sample `g`.
-    #[inline]
-    fn accepts(&self, g: &GSample, vpl: &Vpl) -> bool {
-        let d: Vec3 = g.position - vpl.position;
-        let l2 = d.length_squared();
-        // NaN reach (absurd inputs) never skips: the comparison is false.
-        if l2 <= 0.0 || f64::from(l2) > self.reach_sq {
-            return false;
-        }
-        let omega = d / l2.sqrt();
-        let p = self
-            .params
-            .probability(scalar_intensity(vpl.intensity(omega)), l2);
-        p > self.params.xi()
-    }
+    let omega = d / l2.sqrt();
+    params.probability(scalar_intensity(vpl.intensity(omega)), l2) > params.xi()
 }
 
 /// Whether `lists` is well formed for `pixels` pixels and `vpl_count` VPLs.

@@ -4,7 +4,7 @@
 //! rotated test space BS, BS·c (eq. 16-17, section 5.2).
 use crate::partition::Partition;
 use crate::view::CullView;
-use glam::{DVec3, Vec3};
+use glam::{DVec3, Mat3, Vec3};
 use rayon::prelude::*;
 use slc_bounds::{DiffuseLobe, GlossyLobe, Sphere, Spheroid, StochasticParams, TestSpace};
 pub use slc_core::GlossyBound;
@@ -45,12 +45,89 @@ pub(crate) enum VplBound {
     Ellipsoid(ViewEllipsoid),
 }
 
+/// A VPL's own bound around its position q (q at the origin, world axes), grown by
+/// [`BOUND_SLACK`]: the section-6 sphere of a diffuse VPL, and for a glossy VPL the sphere
+/// r/α, the sphere r_u around c (section 7) or the GGX spheroid of eq. (12)-(15). `Empty`
+/// (zero flux, ωi·n <= 0, kd = 0 for a diffuse VPL) contains nothing.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) enum LocalBound {
+    Empty,
+    Sphere {
+        center: DVec3,
+        radius_sq: f64,
+    },
+    Spheroid {
+        center: DVec3,
+        rotation: Mat3,
+        semi_axes: Vec3,
+    },
+}
+
+impl LocalBound {
+    /// The bound of `vpl` for the roulette `params` (eq. 2-3). The slc-bounds constructors
+    /// build it around the origin, so its offset from q is as precise as the bound itself,
+    /// whatever the world coordinates.
+    pub(crate) fn new(
+        vpl: &Vpl,
+        params: &StochasticParams,
+        glossy: GlossyBound,
+    ) -> Result<Self, CullError> {
+        match vpl.lobe {
+            VplLobe::Diffuse => {
+                // The diffuse BRDF is one-sided: nothing is reflected for ωi below the surface.
+                if vpl.normal.dot(vpl.omega_i) <= 0.0 {
+                    return Ok(Self::Empty);
+                }
+                let lobe = DiffuseLobe::new(Vec3::ZERO, vpl.normal, vpl.flux, vpl.brdf.kd)?;
+                Ok(Self::sphere(Sphere::diffuse(&lobe, params)?))
+            }
+            VplLobe::Glossy => {
+                let lobe = GlossyLobe::new(
+                    Vec3::ZERO,
+                    vpl.normal,
+                    vpl.omega_i,
+                    vpl.brdf.alpha,
+                    vpl.flux,
+                    vpl.brdf.fresnel,
+                )?;
+                Ok(match glossy {
+                    GlossyBound::Sphere => Self::sphere(Sphere::around_vpl(&lobe, params)?),
+                    GlossyBound::EnclosingSphere => {
+                        Self::sphere(Sphere::enclosing(&Spheroid::new(&lobe, params)?))
+                    }
+                    GlossyBound::Ellipsoid => Self::spheroid(&Spheroid::new(&lobe, params)?),
+                })
+            }
+        }
+    }
+
+    fn sphere(sphere: Sphere) -> Self {
+        if sphere.is_empty() {
+            return Self::Empty;
+        }
+        let radius = f64::from(sphere.radius) * (1.0 + BOUND_SLACK);
+        Self::Sphere {
+            center: sphere.center.as_dvec3(),
+            radius_sq: radius * radius,
+        }
+    }
+
+    fn spheroid(spheroid: &Spheroid) -> Self {
+        if spheroid.is_empty() {
+            return Self::Empty;
+        }
+        Self::Spheroid {
+            center: spheroid.center().as_dvec3(),
+            rotation: spheroid.rotation(),
+            semi_axes: (spheroid.semi_axes().as_dvec3() * (1.0 + BOUND_SLACK)).as_vec3(),
+        }
+    }
+}
+
 impl VplBound {
-    /// The bound of VPL `index` for δ = `delta` (eq. 2) in the culling view.
-    ///
-    /// The slc-bounds constructors build the bound around the origin, and it is moved to the
-    /// VPL in f64 (`R (q − eye + local centre)`), so its position is as precise as the
-    /// G-buffer samples', whatever the world coordinates.
+    /// The bound of VPL `index` for δ = `delta` (eq. 2) in the culling view: the
+    /// [`LocalBound`] moved to the VPL in f64 (`R (q − eye + local centre)`), so its position
+    /// is as precise as the G-buffer samples'.
     pub(crate) fn new(
         vpl: &Vpl,
         index: u32,
@@ -65,83 +142,38 @@ impl VplBound {
         }
         let params = StochasticParams::new(delta, vpl.xi)?;
         let q = view.relative(vpl.position);
-        match vpl.lobe {
-            VplLobe::Diffuse => {
-                // The diffuse BRDF is one-sided: nothing is reflected for ωi below the surface.
-                if vpl.normal.dot(vpl.omega_i) <= 0.0 {
-                    return Ok(Self::Empty);
-                }
-                let lobe = DiffuseLobe::new(Vec3::ZERO, vpl.normal, vpl.flux, vpl.brdf.kd)?;
-                Ok(Self::sphere(
-                    view,
-                    q,
-                    Sphere::diffuse(&lobe, &params)?,
-                    index,
-                ))
-            }
-            VplLobe::Glossy => {
-                let lobe = GlossyLobe::new(
-                    Vec3::ZERO,
-                    vpl.normal,
-                    vpl.omega_i,
-                    vpl.brdf.alpha,
-                    vpl.flux,
-                    vpl.brdf.fresnel,
-                )?;
-                match glossy {
-                    GlossyBound::Sphere => Ok(Self::sphere(
-                        view,
-                        q,
-                        Sphere::around_vpl(&lobe, &params)?,
-                        index,
-                    )),
-                    GlossyBound::EnclosingSphere => {
-                        let spheroid = Spheroid::new(&lobe, &params)?;
-                        Ok(Self::sphere(view, q, Sphere::enclosing(&spheroid), index))
-                    }
-                    GlossyBound::Ellipsoid => {
-                        Self::ellipsoid(view, q, &Spheroid::new(&lobe, &params)?, index)
-                    }
-                }
-            }
+        match LocalBound::new(vpl, &params, glossy)? {
+            LocalBound::Empty => Ok(Self::Empty),
+            LocalBound::Sphere { center, radius_sq } => Ok(Self::Sphere(ViewSphere {
+                center: view.rotate(q + center),
+                radius_sq,
+                index,
+            })),
+            LocalBound::Spheroid {
+                center,
+                rotation,
+                semi_axes,
+            } => Self::ellipsoid(view, q + center, rotation, semi_axes, index),
         }
     }
 
-    /// A sphere built around the origin, moved to the camera-relative VPL position `q`.
-    fn sphere(view: &CullView, q: DVec3, sphere: Sphere, index: u32) -> Self {
-        if sphere.is_empty() {
-            return Self::Empty;
-        }
-        let radius = f64::from(sphere.radius) * (1.0 + BOUND_SLACK);
-        Self::Sphere(ViewSphere {
-            center: view.rotate(q + sphere.center.as_dvec3()),
-            radius_sq: radius * radius,
-            index,
-        })
-    }
-
-    /// The test space of eq. (16)-(17) of a spheroid built around the origin, moved to the
-    /// camera-relative VPL position `q`. BS comes from [`TestSpace::new`] (with the view
-    /// rotation applied to R, section 5.1); BS·c is formed here in f64.
+    /// The test space of eq. (16)-(17) of a spheroid with world rotation `rotation`,
+    /// camera-relative centre `center` and `semi_axes`. BS comes from [`TestSpace::new`]
+    /// (with the view rotation applied to R, section 5.1); BS·c is formed here in f64.
     fn ellipsoid(
         view: &CullView,
-        q: DVec3,
-        spheroid: &Spheroid,
+        center: DVec3,
+        rotation: Mat3,
+        semi_axes: Vec3,
         index: u32,
     ) -> Result<Self, CullError> {
-        if spheroid.is_empty() {
-            return Ok(Self::Empty);
-        }
-        let semi_axes = (spheroid.semi_axes().as_dvec3() * (1.0 + BOUND_SLACK)).as_vec3();
-        let rotation = view.rotation() * spheroid.rotation();
         // The centre passed here only feeds TestSpace's own f32 BS·c, which is not used.
-        let bs = TestSpace::new(rotation, semi_axes, Vec3::ZERO)?
+        let bs = TestSpace::new(view.rotation() * rotation, semi_axes, Vec3::ZERO)?
             .matrix()
             .as_dmat3();
-        let center = view.rotate(q + spheroid.center().as_dvec3());
         Ok(Self::Ellipsoid(ViewEllipsoid {
             columns: [bs.x_axis, bs.y_axis, bs.z_axis],
-            center: bs * center,
+            center: bs * view.rotate(center),
             index,
         }))
     }

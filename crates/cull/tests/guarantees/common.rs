@@ -1,6 +1,7 @@
 //! Scenes, VPLs and the checks shared by the guarantee tests.
 use glam::Vec3;
-use slc_bounds::{Brdf, Fresnel};
+use rayon::prelude::*;
+use slc_bounds::{scalar_intensity, Brdf, Fresnel, StochasticParams};
 use slc_core::frame::LobeSelection;
 use slc_core::Strategy;
 use slc_core::{
@@ -13,6 +14,7 @@ use slc_cpu_ref::vpls::generate_vpls;
 use slc_cpu_ref::Tracer;
 use slc_cull::culler;
 use slc_cull::metrics::{measure_all, CullMetrics};
+use std::f64::consts::PI;
 
 /// A small deterministic generator (xorshift64*), uniform floats in [0, 1).
 pub struct Rng(u64);
@@ -215,6 +217,11 @@ pub fn check_all(input: &CullInput, label: &str) -> Vec<(&'static str, CullMetri
     let refs: Vec<&LightLists> = lists.iter().collect();
     let metrics = measure_all(input, &refs).unwrap();
     let contributing = metrics[0].true_positive_pairs + metrics[0].missed_pairs;
+    assert_eq!(
+        contributing,
+        accepted_pairs(input),
+        "{label}: the metrics' early exits dropped accepted pairs"
+    );
     let w = input.gbuffer.width.max(1);
     for ((name, l), m) in Strategy::ALL.iter().zip(&lists).zip(&metrics) {
         assert_eq!(
@@ -252,6 +259,57 @@ pub fn check_all(input: &CullInput, label: &str) -> Vec<(&'static str, CullMetri
         .map(|s| s.name())
         .zip(metrics)
         .collect()
+}
+
+/// The pairs the roulette of eq. (3) accepts, p(ωo, l) > ξ with p of eq. (2) evaluated for
+/// every VPL of every pixel's subregion, with no bound of slc-bounds or early exit: what the
+/// metrics' truth (which skips the pairs outside each VPL's own bound) must count too. Only
+/// pairs beyond twice the range of the VPL's peak intensity are skipped: p > ξ needs
+/// l² < I/(δ ξ) (eq. 5), and I(ωo) <= max(Φ kd)/π for a diffuse VPL, max(Φ)/(4π α² ωi·n) for
+/// a glossy one (eq. 4, 6: F <= 1, G2 <= 1, D <= 1/(π α²)).
+fn accepted_pairs(input: &CullInput) -> u64 {
+    let w = input.gbuffer.width.max(1);
+    let params: Vec<_> = input
+        .vpls
+        .iter()
+        .map(|v| {
+            let r = StochasticParams::new(input.delta, v.xi).unwrap();
+            let cos_i = f64::from(v.normal.dot(v.omega_i));
+            let peak = match v.lobe {
+                VplLobe::Diffuse => (v.flux * v.brdf.kd).as_dvec3().max_element() / PI,
+                VplLobe::Glossy => {
+                    let alpha = f64::from(v.brdf.alpha);
+                    f64::from(v.flux.max_element()) / (4.0 * PI * alpha * alpha * cos_i)
+                }
+            };
+            (r, 2.0 * peak / (f64::from(input.delta) * f64::from(v.xi)))
+        })
+        .collect();
+    input
+        .gbuffer
+        .samples
+        .par_iter()
+        .enumerate()
+        .map(|(p, sample)| {
+            let Some(g) = sample else { return 0 };
+            let s = input
+                .interleaving
+                .pixel_subregion(p as u32 % w, p as u32 / w);
+            input
+                .vpls
+                .iter()
+                .zip(&params)
+                .filter(|(v, (r, reach_sq))| {
+                    let d = g.position - v.position;
+                    let l2 = d.length_squared();
+                    input.interleaving.vpl_subregion(v.id) == s
+                        && l2 > 0.0
+                        && f64::from(l2) <= *reach_sq
+                        && r.probability(scalar_intensity(v.intensity(d / l2.sqrt())), l2) > r.xi()
+                })
+                .count() as u64
+        })
+        .sum()
 }
 
 /// The metrics of the named strategy in the output of [`check_all`].

@@ -1,0 +1,236 @@
+//! Property test of the early exits (`slc_cull::VplReach`): over random VPLs and receivers,
+//! with the receivers placed at the edge of the VPL's random range (eq. 5), where p(ωo, l) of
+//! eq. (2) crosses ξ, and at the extremes (α 1e-4 … 1, grazing and normal incidence at both
+//! ends, ξ near 0 and 1, δ 1e-9 … 1e3, flux from 1e-6 to 1e6), no exit ever rejects a pair
+//! that the roulette accepts (p > ξ) or whose weighted contribution (eq. 1, 3) is not 0, and
+//! the eight-lane test passes exactly the pairs the scalar one passes.
+use glam::Vec3;
+use slc_bounds::{scalar_intensity, Brdf, Fresnel, StochasticParams};
+use slc_core::{GSample, Vpl, VplLobe};
+use slc_cpu_ref::vpl_shading::vpl_contribution;
+use slc_cull::{ReachChunks, VplReach};
+
+/// xorshift64*, uniform floats in [0, 1).
+struct Rng(u64);
+
+impl Rng {
+    fn f32(&mut self) -> f32 {
+        self.0 ^= self.0 >> 12;
+        self.0 ^= self.0 << 25;
+        self.0 ^= self.0 >> 27;
+        ((self.0.wrapping_mul(0x2545_F491_4F6C_DD1D) >> 40) as f32) / (1u64 << 24) as f32
+    }
+
+    fn range(&mut self, a: f32, b: f32) -> f32 {
+        a + (b - a) * self.f32()
+    }
+
+    /// 10^U(lo, hi).
+    fn log(&mut self, lo: f32, hi: f32) -> f32 {
+        10f32.powf(self.range(lo, hi))
+    }
+
+    fn unit(&mut self) -> Vec3 {
+        loop {
+            let v = Vec3::new(
+                self.range(-1.0, 1.0),
+                self.range(-1.0, 1.0),
+                self.range(-1.0, 1.0),
+            );
+            if v.length_squared() > 1e-4 && v.length_squared() <= 1.0 {
+                return v.normalize();
+            }
+        }
+    }
+
+    /// A unit vector whose cosine to `n` is `cos` (sign included).
+    fn at_cosine(&mut self, n: Vec3, cos: f32) -> Vec3 {
+        let t = n.any_orthonormal_vector();
+        let b = n.cross(t);
+        let phi = self.range(0.0, std::f32::consts::TAU);
+        let sin = (1.0 - cos * cos).max(0.0).sqrt();
+        (n * cos + (t * phi.cos() + b * phi.sin()) * sin).normalize()
+    }
+
+    /// A cosine from grazing (1e-6) to normal incidence, often at either end.
+    fn cosine(&mut self) -> f32 {
+        match (self.f32() * 4.0) as u32 {
+            0 => self.log(-6.0, -1.0),
+            1 => 1.0 - self.log(-7.0, -1.0),
+            _ => self.f32(),
+        }
+    }
+
+    /// A cosine within ±1e-3 of 0, down to ±1e-9 (grazing within float rounding).
+    fn grazing(&mut self) -> f32 {
+        let sign = if self.f32() < 0.5 { -1.0 } else { 1.0 };
+        sign * self.log(-9.0, -3.0)
+    }
+
+    /// ξ in (0, 1), often near either end.
+    fn xi(&mut self) -> f32 {
+        let xi = match (self.f32() * 3.0) as u32 {
+            0 => self.log(-7.0, -1.0),
+            1 => 1.0 - self.log(-7.0, -1.0),
+            _ => self.f32(),
+        };
+        xi.clamp(1e-7, 1.0 - f32::EPSILON / 2.0)
+    }
+
+    fn rgb(&mut self, lo: f32, hi: f32) -> Vec3 {
+        Vec3::new(self.log(lo, hi), self.log(lo, hi), self.log(lo, hi))
+    }
+}
+
+fn random_vpl(rng: &mut Rng) -> Vpl {
+    let normal = rng.unit();
+    // Mostly above the surface, at any incidence; sometimes on or below it.
+    let cos_i = if rng.f32() < 0.1 {
+        -rng.f32()
+    } else {
+        rng.cosine()
+    };
+    let omega_i = rng.at_cosine(normal, cos_i);
+    let fresnel = if rng.f32() < 0.2 {
+        Fresnel::Dielectric(rng.range(1.01, 3.0))
+    } else {
+        Fresnel::Schlick(Vec3::new(rng.f32(), rng.f32(), rng.f32()))
+    };
+    Vpl {
+        position: Vec3::new(
+            rng.range(-1.0, 1.0),
+            rng.range(-1.0, 1.0),
+            rng.range(-1.0, 1.0),
+        ) * rng.log(-2.0, 3.0),
+        normal,
+        omega_i,
+        flux: rng.rgb(-6.0, 6.0),
+        brdf: Brdf {
+            kd: Vec3::new(rng.f32(), rng.f32(), rng.f32()),
+            fresnel,
+            alpha: rng.log(-4.0, 0.0),
+        },
+        lobe: if rng.f32() < 0.5 {
+            VplLobe::Diffuse
+        } else {
+            VplLobe::Glossy
+        },
+        id: 0,
+        xi: rng.xi(),
+    }
+}
+
+/// A direction from the VPL: near its mirror direction (the glossy peak, within a few α),
+/// grazing its surface, or anywhere.
+fn direction(rng: &mut Rng, vpl: &Vpl) -> Vec3 {
+    match (rng.f32() * 3.0) as u32 {
+        0 => {
+            let mirror = 2.0 * vpl.normal.dot(vpl.omega_i) * vpl.normal - vpl.omega_i;
+            let spread = vpl.brdf.alpha * rng.range(0.0, 4.0);
+            (mirror + rng.unit() * spread).normalize()
+        }
+        1 => {
+            let cos = rng.grazing();
+            rng.at_cosine(vpl.normal, cos)
+        }
+        _ => rng.unit(),
+    }
+}
+
+/// A receiver at `x` with a random normal, often grazing the direction `omega` it is lit
+/// from, and a random view direction above it.
+fn receiver(rng: &mut Rng, x: Vec3, omega: Vec3) -> GSample {
+    let normal = if rng.f32() < 0.3 {
+        let cos = rng.grazing();
+        rng.at_cosine(-omega, cos)
+    } else {
+        rng.unit()
+    };
+    let cos_o = rng.cosine();
+    let omega_o = rng.at_cosine(normal, cos_o);
+    GSample {
+        position: x,
+        normal,
+        geometric_normal: normal,
+        omega_o,
+        depth: 1.0,
+        brdf: Brdf {
+            kd: Vec3::new(rng.f32(), rng.f32(), rng.f32()),
+            fresnel: Fresnel::Schlick(Vec3::splat(rng.f32())),
+            alpha: rng.log(-3.0, 0.0),
+        },
+    }
+}
+
+#[test]
+fn no_early_exit_drops_an_accepted_or_contributing_pair() {
+    let mut rng = Rng(0x5EED_1234_ABCD_0001);
+    let (mut accepted, mut contributing, mut edge, mut rejected) = (0u32, 0u32, 0u32, 0u32);
+    let cases = 400_000u32;
+    let mut recent = Vec::new();
+    for case in 0..cases {
+        let vpl = random_vpl(&mut rng);
+        let params = StochasticParams::new(rng.log(-9.0, 3.0), vpl.xi).unwrap();
+        let reach = VplReach::new(&vpl, &params).unwrap();
+        if recent.len() < 8 {
+            recent.resize(8, (vpl, reach));
+        }
+        let omega = direction(&mut rng, &vpl);
+        let intensity = scalar_intensity(vpl.intensity(omega));
+        // At the range l_max(ωo) = sqrt(I/(δ ξ)) (eq. 5) within ±1e-2 … ±1e-6, or anywhere.
+        let range = params.range(intensity);
+        let distance = if range > 0.0 && range < 1e15 && rng.f32() < 0.8 {
+            let sign = if rng.f32() < 0.5 { -1.0 } else { 1.0 };
+            range * (1.0 + sign * rng.log(-6.0, -2.0))
+        } else {
+            rng.log(-3.0, 4.0)
+        };
+        let g = receiver(&mut rng, vpl.position + omega * distance, omega);
+        let d = g.position - vpl.position;
+        let l2 = d.length_squared();
+        if l2 <= 0.0 {
+            continue;
+        }
+        // p > ξ exactly as the shader (and the metrics' truth) decide it.
+        let p = params.probability(scalar_intensity(vpl.intensity(d / l2.sqrt())), l2);
+        let accepts = p > params.xi();
+        let contribution = vpl_contribution(&g, &vpl, Some(&params));
+        assert!(
+            !accepts || reach.may_accept(d),
+            "case {case}: p {p} > ξ {} rejected: {vpl:?} at {:?}",
+            params.xi(),
+            g.position
+        );
+        assert!(
+            contribution == Vec3::ZERO || reach.may_contribute(d, g.normal),
+            "case {case}: contribution {contribution} rejected: {vpl:?} at {g:?}"
+        );
+        // The eight-lane test (`ReachChunks`) passes exactly the VPLs the scalar one passes,
+        // in whatever lane: the recent VPLs in one chunk, tested at this receiver.
+        recent[(case % 8) as usize] = (vpl, reach);
+        let (vpls, reaches): (Vec<Vpl>, Vec<VplReach>) = recent.iter().copied().unzip();
+        let chunks = ReachChunks::new(&vpls, &reaches, [&[0, 1, 2, 3, 4, 5, 6, 7][..]]);
+        for normal in [None, Some(g.normal)] {
+            let mut lanes = Vec::new();
+            chunks.for_each_passing(0, g.position, normal, |i| lanes.push(i));
+            let scalar: Vec<u32> = (0..8u32)
+                .filter(|&i| {
+                    let (v, r) = &recent[i as usize];
+                    let d = g.position - v.position;
+                    normal.map_or(r.may_accept(d), |n| r.may_contribute(d, n))
+                })
+                .collect();
+            assert_eq!(lanes, scalar, "case {case}");
+        }
+        accepted += u32::from(accepts);
+        contributing += u32::from(contribution != Vec3::ZERO);
+        edge += u32::from(accepts && (p - params.xi()) < 1e-3 * params.xi());
+        rejected += u32::from(!reach.may_contribute(d, g.normal));
+    }
+    // The cases are not vacuous: many pairs are accepted, many just barely, and the exits
+    // reject many others.
+    assert!(accepted > cases / 10, "{accepted} accepted");
+    assert!(contributing > cases / 20, "{contributing} contributing");
+    assert!(edge > cases / 100, "{edge} accepted within 1e-3 of ξ");
+    assert!(rejected > cases / 4, "{rejected} rejected");
+}

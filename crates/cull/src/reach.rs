@@ -1,0 +1,159 @@
+//! Early exits for (pixel, VPL) pairs whose contribution is exactly zero, tested before the
+//! GGX evaluation of p(ωo, l) (eq. 2) and of the BRDFs: the VPL's own bound (outside it
+//! p <= ξ, so eq. (3) weights the pair 0) and the sign of the cosine at either end (eq. 1 and
+//! the max(ωo·n, 0) of eq. 4). Each test keeps a margin well above float rounding, so it
+//! never rejects a pair that the full evaluation accepts: the estimate stays bit for bit the
+//! same, only cheaper.
+use crate::lanes::{dot, Real};
+use crate::vpl_bounds::{GlossyBound, LocalBound};
+use glam::{DMat3, DVec3, Vec3};
+use slc_bounds::StochasticParams;
+use slc_core::{CullError, Vpl, VplLobe};
+
+/// Relative margin of the sign tests: a pair is rejected only when the cosine at one end,
+/// formed from the unnormalised offset, is below −1e-5. The shader's cosine of the same
+/// direction (normalised first, then dotted) differs from it by a few ulps (about 1e-6 with
+/// unit normals), so the sign cannot flip within the margin.
+pub const SIGN_MARGIN: f32 = 1e-5;
+
+/// One VPL's early exits in lanes of `R` (see [`crate::lanes`]): its normal n, and its own
+/// bound as a stretch S and centre S·(c − q) with the bound the unit ball of S d − S·(c − q)
+/// (the spheroid of eq. 12-15: S = diag(1/r) Rᵀ; the section-6 sphere: S = I/r), and the limit
+/// that |S d − S·(c − q)|² may reach: 1 plus a margin above the f32 rounding of the test.
+/// A VPL that reflects nothing has limit −1 (no pair), one without a usable bound S = 0 and
+/// limit +∞ (only the sign tests).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Reach<R> {
+    pub normal: [R; 3],
+    pub stretch: [R; 9],
+    pub center: [R; 3],
+    pub limit: R,
+}
+
+impl<R: Real> Reach<R> {
+    /// Whether the roulette may accept the pair at offset `d = x − q`: not behind the VPL
+    /// (beyond the margin) and inside its bound (see [`VplReach::may_accept`]).
+    #[inline(always)]
+    pub(crate) fn may_accept(&self, d: [R; 3]) -> R::Mask {
+        let margin_sq = R::splat(SIGN_MARGIN * SIGN_MARGIN) * dot(d, d);
+        let s = &self.stretch;
+        let c = &self.center;
+        let u = [
+            s[0] * d[0] + s[1] * d[1] + s[2] * d[2] - c[0],
+            s[3] * d[0] + s[4] * d[1] + s[5] * d[2] - c[1],
+            s[6] * d[0] + s[7] * d[1] + s[8] * d[2] - c[2],
+        ];
+        !behind(-dot(self.normal, d), margin_sq) & dot(u, u).le(self.limit)
+    }
+
+    /// [`Self::may_accept`], and the receiver with normal `receiver` not facing away.
+    #[inline(always)]
+    pub(crate) fn may_contribute(&self, d: [R; 3], receiver: [R; 3]) -> R::Mask {
+        let margin_sq = R::splat(SIGN_MARGIN * SIGN_MARGIN) * dot(d, d);
+        !behind(dot(receiver, d), margin_sq) & self.may_accept(d)
+    }
+}
+
+/// Whether `t` (a cosine times |d|) is positive beyond the margin, `t² > SIGN_MARGIN² |d|²`:
+/// compared squared, with no square root.
+#[inline(always)]
+fn behind<R: Real>(t: R, margin_sq: R) -> R::Mask {
+    t.gt(R::splat(0.0)) & (t * t).gt(margin_sq)
+}
+
+/// What one VPL needs for the early exits: its own bound (the tightest one: the spheroid for
+/// a glossy VPL, whatever the culling strategy, since every strategy's bound contains every
+/// pair with p > ξ) and its normal.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct VplReach {
+    pub(crate) reach: Reach<f32>,
+}
+
+impl VplReach {
+    /// The early exits of `vpl` under the roulette `params` (its δ and ξ, eq. 2-3). Errors
+    /// when the VPL is outside the domain of slc-bounds (see `slc_bounds::BoundsError`).
+    pub fn new(vpl: &Vpl, params: &StochasticParams) -> Result<Self, CullError> {
+        let (stretch, center, limit) = if reflects_nothing(vpl) {
+            (DMat3::ZERO, DVec3::ZERO, -1.0)
+        } else {
+            match LocalBound::new(vpl, params, GlossyBound::Ellipsoid)? {
+                LocalBound::Empty => (DMat3::ZERO, DVec3::ZERO, f64::INFINITY),
+                LocalBound::Sphere { center, radius_sq } => {
+                    let radius = radius_sq.sqrt();
+                    stretched(
+                        DMat3::from_diagonal(DVec3::splat(radius.recip())),
+                        center,
+                        radius,
+                    )
+                }
+                LocalBound::Spheroid {
+                    center,
+                    rotation,
+                    semi_axes,
+                } => stretched(
+                    DMat3::from_diagonal(semi_axes.as_dvec3().recip())
+                        * rotation.as_dmat3().transpose(),
+                    center,
+                    f64::from(semi_axes.max_element()),
+                ),
+            }
+        };
+        let rows = stretch.transpose().to_cols_array().map(|v| v as f32);
+        Ok(Self {
+            reach: Reach {
+                normal: vpl.normal.to_array(),
+                stretch: rows,
+                center: center.as_vec3().to_array(),
+                limit: limit as f32,
+            },
+        })
+    }
+
+    /// Whether the roulette of eq. (3) may accept this VPL at the offset `d = x − q` (formed
+    /// in f32 as the shader forms it). False only where p(ωo, l) <= ξ for sure: outside the
+    /// VPL's own bound (beyond a margin for the f32 rounding of the test), or behind the VPL
+    /// (ωo·n below −[`SIGN_MARGIN`]: I(ωo) = 0 by eq. 4).
+    #[inline]
+    pub fn may_accept(&self, d: Vec3) -> bool {
+        self.reach.may_accept(d.to_array())
+    }
+
+    /// Whether the pair of this VPL and a receiver with unit normal `receiver_normal` at the
+    /// offset `d = x − q` may contribute: [`Self::may_accept`], and the receiver not facing
+    /// away (cos θx of eq. 1 not below −[`SIGN_MARGIN`]). False only where the contribution
+    /// of eq. (1), weighted by eq. (3), is exactly 0.
+    #[inline]
+    pub fn may_contribute(&self, d: Vec3, receiver_normal: Vec3) -> bool {
+        self.reach
+            .may_contribute(d.to_array(), receiver_normal.to_array())
+    }
+}
+
+/// The stretch S, centre S·(c − q) and limit of a bound with centre `center` (relative to q)
+/// and largest semi-axis `extent`. Near the bound's surface |d| <= |c − q| + extent, so each
+/// component of S d − S·(c − q) is formed from terms of size at most
+/// cond = ‖S‖ (|c − q| + extent) + |S·(c − q)| with about five f32 roundings (ε/2 each, the
+/// stored S and S·(c − q) included): its error is below 2.5 ε cond, that of the squared norm
+/// near 1 below 10 ε cond + 3 ε. The limit allows 32 ε cond + 8 ε, so a pair the f64 bound
+/// contains is never rejected; farther out the error shrinks relative to the norm.
+fn stretched(stretch: DMat3, center: DVec3, extent: f64) -> (DMat3, DVec3, f64) {
+    let eps = f64::from(f32::EPSILON);
+    let s_center = stretch * center;
+    let norm = (stretch.x_axis.length_squared()
+        + stretch.y_axis.length_squared()
+        + stretch.z_axis.length_squared())
+    .sqrt();
+    let cond = norm * (center.length() + extent) + s_center.length();
+    (stretch, s_center, 1.0 + 32.0 * eps * cond + 8.0 * eps)
+}
+
+/// Whether the shader's own tests give every pair of `vpl` exactly 0: ωi·n <= 0 (the one-sided
+/// BRDF of eq. 6 and the diffuse lobe, the same f32 dot product the BRDF forms), no flux, or
+/// for a diffuse VPL no channel with both flux and kd.
+fn reflects_nothing(vpl: &Vpl) -> bool {
+    let dark = match vpl.lobe {
+        VplLobe::Diffuse => (vpl.flux.cmpeq(Vec3::ZERO) | vpl.brdf.kd.cmpeq(Vec3::ZERO)).all(),
+        VplLobe::Glossy => vpl.flux.cmpeq(Vec3::ZERO).all(),
+    };
+    dark || vpl.normal.dot(vpl.omega_i) <= 0.0
+}
