@@ -1,14 +1,19 @@
 //! `slc bench`: per-pass times of the stochastic pipeline over resolutions and VPL counts, for
 //! each culling strategy, in one run (so ratios are measured on the same machine state).
-//! Writes `bench.csv` and `bench.md`.
+//! Writes `bench.json` / `bench.csv` (every setting a column; medians over `--repeat` runs with
+//! the min and max of culling + shading) and `bench.md`.
 use crate::args::{strategies, FrameArgs, PipelineArgs, Shader};
 use crate::backend::{message, run_on, OnBackend};
 use crate::limits::check_memory;
 use crate::out_dir::OutDir;
+use crate::provenance::Provenance;
+use crate::repeat::{repeated, Spread};
+use crate::table::{write_csv, SettingsColumns};
 use clap::Args;
+use serde::Serialize;
 use slc_core::frame::{Method, Stochastic};
 use slc_core::shader::{frame_timings, Shader as _};
-use slc_core::{PreparedFrame, Scene, Strategy};
+use slc_core::{PreparedFrame, Scene, Strategy, Timings};
 use slc_cpu_ref::CpuFrames;
 use std::fmt::Write;
 use std::path::PathBuf;
@@ -31,7 +36,8 @@ pub struct BenchArgs {
     pub culling: Vec<String>,
     #[arg(long, default_value_t = 1e-3)]
     pub delta: f32,
-    /// Timing repetitions of culling + shading; the fastest is kept.
+    /// Timing repetitions per strategy and frame, after one warm-up when more than one: the
+    /// tables give the median of each pass and the min and max of culling + shading.
     #[arg(long, default_value_t = 1)]
     pub repeat: u32,
 }
@@ -110,12 +116,10 @@ impl OnBackend for Bench<'_> {
         let first = args.frame.settings(Method::Stochastic(base), 1);
         r.check(&first).map_err(message)?;
         let device = r.info(&first);
-        let mut csv = format!(
-            "scene,width,height,rsm,vpls,culling,{},culling_plus_shading_ms\n",
-            PASSES.map(|p| format!("{p}_ms")).join(",")
-        );
+        let provenance = Provenance::new(args.frame.scene.as_deref(), &scene);
+        let mut rows = Vec::new();
         let mut md = format!(
-            "# slc bench: {}\n\nBackend {}, adapter {}, {} rayon threads, δ = {}, K = {}, lobes {:?}, best of {} for culling + shading. Milliseconds per pass.\n\n{}| resolution | VPLs | strategy | {} | culling + shading |\n|---|---|---|{}---|\n",
+            "# slc bench: {}\n\nBackend {}, adapter {}, {} rayon threads, δ = {}, K = {}, lobes {:?}, median (min–max) of {} runs. Milliseconds per pass.\n\n{}| resolution | VPLs | strategy | {} | culling + shading |\n|---|---|---|{}---|\n",
             scene.name,
             device.backend,
             device.adapter,
@@ -160,8 +164,7 @@ impl OnBackend for Bench<'_> {
                 let vpl_count = p.vpls().len();
                 for &strategy in &strategies {
                     let s = Stochastic { strategy, ..base };
-                    let mut best = None;
-                    for _ in 0..args.repeat {
+                    let runs = repeated(args.repeat, || {
                         let out = s.shade(r, input, &|_| {}).map_err(message)?;
                         let (mut t, gpu_timings) = frame_timings(&p, &out);
                         // The GPU's own times of its passes replace the wall clock where the
@@ -172,31 +175,86 @@ impl OnBackend for Bench<'_> {
                                 t.add(name, *ms);
                             }
                         }
-                        let cs = t.get("culling") + t.get("shading");
-                        if best.as_ref().is_none_or(|(b, _): &(f64, _)| cs < *b) {
-                            best = Some((cs, PASSES.map(|n| t.get(n))));
-                        }
-                    }
-                    let (cs, per_pass) = best.expect("at least one repetition");
-                    let _ = writeln!(
-                        csv,
-                        "{},{w},{h},{rsm},{vpl_count},{strategy},{},{cs:.3}",
-                        scene.name,
-                        per_pass.map(|v| format!("{v:.3}")).join(",")
-                    );
+                        Ok(t)
+                    })?;
+                    let row = BenchRow::of(s, &runs);
+                    let cs = row.culling_plus_shading_ms;
                     let _ = writeln!(
                         md,
-                        "| {w}x{h} | {vpl_count} | {strategy} | {} | {cs:.1} |",
-                        per_pass.map(|v| format!("{v:.1}")).join(" | ")
+                        "| {w}x{h} | {vpl_count} | {strategy} | {} | {} |",
+                        PASSES
+                            .map(|n| format!("{:.1}", Spread::of_passes(&runs, &[n]).median))
+                            .join(" | "),
+                        Spread::of_passes(&runs, &["culling", "shading"]).text(runs.len())
                     );
+                    let settings = SettingsColumns::new(
+                        &provenance,
+                        &scene,
+                        &device,
+                        &frame,
+                        &args.pipeline,
+                        vpl_count,
+                    );
+                    rows.push((settings, row));
                     eprintln!("  {strategy}: culling + shading {cs:.1} ms");
                 }
             }
         }
-        out.write("bench.csv", csv.as_bytes())?;
+        let json = serde_json::json!({
+            "provenance": provenance,
+            "rows": rows
+                .iter()
+                .map(|(settings, row)| serde_json::json!({ "settings": settings, "times": row }))
+                .collect::<Vec<_>>(),
+        });
+        let json = serde_json::to_string_pretty(&json).map_err(|e| e.to_string())?;
+        out.write("bench.json", (json + "\n").as_bytes())?;
+        write_csv(&mut out, "bench", rows.iter().map(|(s, r)| (s, r)))?;
         out.write("bench.md", md.as_bytes())?;
         out.commit()?;
         println!("wrote {}", args.out.display());
         Ok(())
+    }
+}
+
+/// One strategy on one frame in `bench.json` / `bench.csv`: the median of each pass over the
+/// runs (ms) and the min and max of culling + shading.
+#[derive(Serialize)]
+struct BenchRow {
+    strategy: &'static str,
+    delta: f32,
+    runs: usize,
+    gbuffer_ms: f64,
+    rsm_ms: f64,
+    vpl_generation_ms: f64,
+    direct_ms: f64,
+    culling_ms: f64,
+    shading_ms: f64,
+    denoise_ms: f64,
+    culling_plus_shading_ms: f64,
+    culling_plus_shading_ms_min: f64,
+    culling_plus_shading_ms_max: f64,
+}
+
+impl BenchRow {
+    fn of(s: Stochastic, runs: &[Timings]) -> Self {
+        let [gbuffer_ms, rsm_ms, vpl_generation_ms, direct_ms, culling_ms, shading_ms, denoise_ms] =
+            PASSES.map(|n| Spread::of_passes(runs, &[n]).median);
+        let cs = Spread::of_passes(runs, &["culling", "shading"]);
+        Self {
+            strategy: s.strategy.name(),
+            delta: s.delta,
+            runs: runs.len(),
+            gbuffer_ms,
+            rsm_ms,
+            vpl_generation_ms,
+            direct_ms,
+            culling_ms,
+            shading_ms,
+            denoise_ms,
+            culling_plus_shading_ms: cs.median,
+            culling_plus_shading_ms_min: cs.min,
+            culling_plus_shading_ms_max: cs.max,
+        }
     }
 }

@@ -2,11 +2,13 @@
 //!
 //! Writes one folder per strategy (images, heat map, report.json), `reference_vpl/` (every VPL
 //! with p = 1, the same VPLs), `report.md` with the table, the same table for scripts as
-//! `compare.json` / `compare.csv` (every setting a column), and `side_by_side.png`. With
+//! `compare.json` / `compare.csv` (every setting a column), `side_by_side.svg` and
+//! `index.html` ([`crate::compare_summary`]). With
 //! `--shader vsgl` also `vsgl/` and `vpl_sampled/`: `--vsgls N` VSGLs and N VPLs sampled by the
 //! same importance, with their own table in `report.md`.
 use crate::args::{strategies, FrameArgs, ImportanceArgs, PipelineArgs, Shader};
 use crate::backend::{message, run_on, OnBackend};
+use crate::compare_summary::{side_by_side, table, write_page, CompareRow, Row};
 use crate::flip::flip;
 use crate::heatmap::heat_map;
 use crate::layers_exr::write_layers;
@@ -16,16 +18,14 @@ use crate::output::{write_frame, write_rgb8};
 use crate::progress::bar;
 use crate::provenance::Provenance;
 use crate::reference::{all_vpl_reference, cpu_input};
-use crate::repeat::{repeated, Spread};
+use crate::repeat::repeated;
 use crate::report::{FrameFacts, Report};
 use crate::sampled::{shade_sampled, PASSES};
 use crate::table::{write_table, SettingsColumns};
 use clap::Args;
-use image::RgbImage;
-use serde::Serialize;
 use slc_core::frame::{Method, RenderSettings, Stochastic, Timings};
 use slc_core::shader::{frame_timings, SampledLights, ShadeInput, Shader as _};
-use slc_core::{BackendInfo, Image, PreparedFrame, Renderer, Scene, Strategy};
+use slc_core::{Image, PreparedFrame, Renderer, Scene, Strategy};
 use slc_cpu_ref::{CpuFrames, CpuPrepared, CpuRenderer};
 use std::fmt::Write;
 use std::path::PathBuf;
@@ -63,24 +63,6 @@ pub struct CompareArgs {
     /// the metrics, which is then the warm-up): the tables give median, min and max.
     #[arg(long, default_value_t = 1)]
     pub repeat: u32,
-}
-
-/// One strategy's row of the table.
-struct Row {
-    strategy: Strategy,
-    /// The timings of each measured run.
-    runs: Vec<Timings>,
-    lights_per_pixel: f64,
-    tp: u64,
-    fp: u64,
-    missed: u64,
-    fdr: f64,
-    rmse_unculled: Option<f32>,
-    rmse_reference: Option<f32>,
-    /// Mean ꟻLIP of the total image against the reference's.
-    flip_reference: Option<f32>,
-    total: Image,
-    heat: RgbImage,
 }
 
 pub fn run(args: &CompareArgs) -> Result<(), String> {
@@ -218,13 +200,13 @@ impl OnBackend for Compare<'_> {
             );
             write_rgb8(&mut dir_out, &format!("{dir}/heatmap.png"), &heat)?;
             write_layers(&mut dir_out, dir, &images, Some(m), &provenance)?;
-            let flip_reference = match &reference_total {
+            let (flip_reference, flip_map) = match &reference_total {
                 Some(reference) => {
                     let (mean, map) = flip(reference, &total, f.exposure);
                     write_rgb8(&mut dir_out, &format!("{dir}/flip.png"), &map)?;
-                    Some(mean)
+                    (Some(mean), Some(map))
                 }
-                None => None,
+                None => (None, None),
             };
             let (timings, gpu_timings) = frame_timings(&p, &out);
             // The frame's passes with each measured run's culling and shading.
@@ -266,6 +248,7 @@ impl OnBackend for Compare<'_> {
                 runs,
                 total,
                 heat,
+                flip_map,
             });
             eprintln!("{strategy}: done");
         }
@@ -283,14 +266,12 @@ impl OnBackend for Compare<'_> {
             p.vpls().len(),
         );
         let table_rows: Vec<CompareRow> = rows.iter().map(|r| r.columns(args.delta)).collect();
-        write_table(&mut dir_out, "compare", &provenance, &columns, &table_rows)?;
+        let tables = write_table(&mut dir_out, "compare", &provenance, &columns, &table_rows)?;
         let md = table(args, &device, &scene.name, p.vpls().len(), &rows, &sampled);
         dir_out.write("report.md", md.as_bytes())?;
-        write_rgb8(
-            &mut dir_out,
-            "side_by_side.png",
-            &side_by_side(&rows, f.exposure),
-        )?;
+        let figure = side_by_side(args, &scene.name, &rows)?;
+        dir_out.write("side_by_side.svg", figure.as_bytes())?;
+        write_page(args, &mut dir_out, &scene.name, &provenance, &rows, tables)?;
         dir_out.commit()?;
         println!("wrote {}", args.out.display());
         Ok(())
@@ -370,149 +351,4 @@ fn sampled_lights<R: Renderer>(
         let _ = writeln!(md, " {:.1} | {rmse} |", out.timings.total());
     }
     Ok(md)
-}
-
-/// `report.md`: the settings, the table and what the pictures show.
-fn table(
-    args: &CompareArgs,
-    device: &BackendInfo,
-    scene: &str,
-    vpls: usize,
-    rows: &[Row],
-    sampled: &str,
-) -> String {
-    let f = &args.frame;
-    let mut md = String::new();
-    let _ = writeln!(md, "# slc compare: {scene}\n");
-    let _ = writeln!(
-        md,
-        "Backend {}, adapter {}. {}x{}, {vpls} VPLs (RSM {}² per face, lobes {:?}), δ = {}, K = {}, denoise {}, seed {}, {} rayon threads.\n",
-        device.backend,
-        device.adapter,
-        f.width,
-        f.height,
-        f.rsm,
-        f.lobes,
-        args.delta,
-        args.pipeline.interleave,
-        !args.pipeline.no_denoise,
-        f.seed,
-        rayon::current_num_threads()
-    );
-    let _ = writeln!(md, "Every strategy shades the same G-buffer, VPLs and ξ. \"vs unculled\" is the RMSE of the indirect image against the estimate with no culling (same K, δ, ξ and filter): 0 up to float rounding when nothing contributing was culled. \"vs reference\" is against every VPL with p = 1 (`reference_vpl/`).\n");
-    for note in &device.notes {
-        let _ = writeln!(md, "- {note}");
-    }
-    if !device.notes.is_empty() {
-        let _ = writeln!(
-            md,
-            "- the unculled estimate and `reference_vpl/` were shaded on the CPU\n"
-        );
-    }
-    if args.repeat > 1 {
-        let _ = writeln!(
-            md,
-            "Times are the median (min–max) of {} runs after a warm-up.\n",
-            args.repeat
-        );
-    }
-    let _ = writeln!(md, "| strategy | culling ms | shading ms | denoise ms | culling + shading ms | lights/pixel | true positives | false positives | missed | FDR | RMSE vs unculled | RMSE vs reference | FLIP vs reference |");
-    let _ = writeln!(md, "|---|---|---|---|---|---|---|---|---|---|---|---|---|");
-    let fmt_opt = |v: Option<f32>| v.map_or("n/a".to_string(), |v| format!("{v:.3e}"));
-    for r in rows {
-        let time = |passes: &[&str]| Spread::of_passes(&r.runs, passes).text(r.runs.len());
-        let _ = writeln!(
-            md,
-            "| {} | {} | {} | {} | {} | {:.1} | {} | {} | {} | {:.3} | {} | {} | {} |",
-            r.strategy,
-            time(&["culling"]),
-            time(&["shading"]),
-            time(&["denoise"]),
-            time(&["culling", "shading"]),
-            r.lights_per_pixel,
-            r.tp,
-            r.fp,
-            r.missed,
-            r.fdr,
-            fmt_opt(r.rmse_unculled),
-            fmt_opt(r.rmse_reference),
-            r.flip_reference
-                .map_or("n/a".to_string(), |v| format!("{v:.4}"))
-        );
-    }
-    let order: Vec<&str> = rows.iter().map(|r| r.strategy.name()).collect();
-    let _ = writeln!(
-        md,
-        "\n`side_by_side.png`, left to right: {}; totals on top, heat maps below.",
-        order.join(", ")
-    );
-    let _ = writeln!(md, "\nHeat maps (`*/heatmap.png`): brightness = VPLs per pixel (full at {}), colour = false discovery rate from blue (0) to red (1).", args.heat_max);
-    md.push_str(sampled);
-    md
-}
-
-/// One strategy's row of `compare.json` / `compare.csv`.
-#[derive(Serialize)]
-struct CompareRow {
-    strategy: &'static str,
-    delta: f32,
-    /// Measured runs of culling and shading (`--repeat`).
-    runs: usize,
-    /// Medians over the runs.
-    culling_ms: f64,
-    shading_ms: f64,
-    denoise_ms: f64,
-    culling_plus_shading_ms: f64,
-    culling_plus_shading_ms_min: f64,
-    culling_plus_shading_ms_max: f64,
-    lights_per_pixel: f64,
-    true_positives: u64,
-    false_positives: u64,
-    missed: u64,
-    false_discovery_rate: f64,
-    rmse_vs_unculled: Option<f32>,
-    rmse_vs_reference: Option<f32>,
-    /// Mean ꟻLIP (LDR, of the sRGB previews at `--exposure`) of the total image against the
-    /// reference's.
-    flip_vs_reference: Option<f32>,
-}
-
-impl Row {
-    fn columns(&self, delta: f32) -> CompareRow {
-        let median = |passes: &[&str]| Spread::of_passes(&self.runs, passes).median;
-        let both = Spread::of_passes(&self.runs, &["culling", "shading"]);
-        CompareRow {
-            strategy: self.strategy.name(),
-            delta,
-            runs: self.runs.len(),
-            culling_ms: median(&["culling"]),
-            shading_ms: median(&["shading"]),
-            denoise_ms: median(&["denoise"]),
-            culling_plus_shading_ms: both.median,
-            culling_plus_shading_ms_min: both.min,
-            culling_plus_shading_ms_max: both.max,
-            lights_per_pixel: self.lights_per_pixel,
-            true_positives: self.tp,
-            false_positives: self.fp,
-            missed: self.missed,
-            false_discovery_rate: self.fdr,
-            rmse_vs_unculled: self.rmse_unculled,
-            rmse_vs_reference: self.rmse_reference,
-            flip_vs_reference: self.flip_reference,
-        }
-    }
-}
-
-/// Totals in the top row, heat maps below, one column per strategy.
-fn side_by_side(rows: &[Row], exposure: f32) -> RgbImage {
-    let (w, h) = rows
-        .first()
-        .map_or((1, 1), |r| (r.total.width, r.total.height));
-    let mut out = RgbImage::new(w * rows.len().max(1) as u32, 2 * h);
-    for (i, r) in rows.iter().enumerate() {
-        let png = crate::output::to_srgb8(&r.total, exposure);
-        image::imageops::replace(&mut out, &png, (i as u32 * w) as i64, 0);
-        image::imageops::replace(&mut out, &r.heat, (i as u32 * w) as i64, h as i64);
-    }
-    out
 }

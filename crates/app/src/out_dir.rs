@@ -95,6 +95,11 @@ impl OutDir {
         Ok(path)
     }
 
+    /// Whether `relative` has been staged.
+    pub fn has(&self, relative: impl AsRef<Path>) -> bool {
+        self.files.iter().any(|f| f == relative.as_ref())
+    }
+
     /// Stages a file with the given contents.
     pub fn write(&mut self, relative: impl AsRef<Path>, contents: &[u8]) -> Result<(), String> {
         let relative = relative.as_ref();

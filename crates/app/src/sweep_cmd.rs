@@ -2,24 +2,26 @@
 //!
 //! For each strategy and δ, shades the same prepared frame (same G-buffer, VPLs and ξ) and
 //! records culling + shading time and the RMSE of the indirect image against every VPL with
-//! p = 1. Writes `sweep.csv`, `sweep.svg` (RMSE against time, one curve per strategy) and an
-//! equal-time comparison (`equal_time.md`, `equal_time.png`) in the spirit of the supplemental's
-//! Fig. 2: each strategy at the δ whose time is closest to the reference strategy's median run.
+//! p = 1. Writes `sweep.json` / `sweep.csv`, `sweep.svg` (RMSE against time, one curve per
+//! strategy), an equal-time comparison (`equal_time.md`, `equal_time.svg`) in the spirit of the
+//! supplemental's Fig. 2: each strategy at the δ whose time is closest to the reference
+//! strategy's median run, and `index.html` showing it all.
 //! Culling and shading run on the command's backend, the reference on the CPU (from the frame
 //! read back). With `--shader vsgl` it sweeps light counts instead ([`crate::vsgl_sweep`]).
 use crate::args::{strategies, FrameArgs, ImportanceArgs, PipelineArgs, Shader};
 use crate::backend::{message, run_on, OnBackend};
+use crate::figure::{Figure, FigureRow};
 use crate::limits::check_memory;
 use crate::out_dir::OutDir;
-use crate::output::{to_srgb8, write_rgb8};
-use crate::plot::{line_plot_svg, Series};
+use crate::output::to_srgb8;
+use crate::page::{Block, Page};
+use crate::plot::{log_log_plot_svg, Series};
 use crate::progress::bar;
 use crate::provenance::Provenance;
 use crate::reference::{all_vpl_reference, cpu_input};
 use crate::repeat::{repeated, Spread};
-use crate::table::{write_table, SettingsColumns};
+use crate::table::{write_table, SettingsColumns, TextTable};
 use clap::Args;
-use image::RgbImage;
 use serde::Serialize;
 use slc_core::frame::{Method, Stochastic};
 use slc_core::shader::{ShadeInput, Shader as _};
@@ -50,8 +52,9 @@ pub struct SweepArgs {
         default_value = "ellipsoid,sphere,enclosing-sphere,clustered"
     )]
     pub culling: Vec<String>,
-    /// Timing repetitions per point, after one warm-up when more than one: the VPL sweep gives
-    /// the median, min and max of culling + shading (the VSGL sweep keeps the fastest).
+    /// Timing repetitions per point, after one warm-up when more than one: the tables give the
+    /// median, min and max of culling + shading (VSGL sweep: the median run's passes and the
+    /// min and max of its total, over the repetitions of every seed).
     #[arg(long, default_value_t = 1)]
     pub repeat: u32,
     #[command(flatten)]
@@ -240,7 +243,7 @@ fn write_outputs(
             rmse_vs_all_vpl: pt.rmse,
         })
         .collect();
-    write_table(out, "sweep", &table.0, &table.1, &rows)?;
+    let tables = write_table(out, "sweep", &table.0, &table.1, &rows)?;
     let series: Vec<Series> = names
         .iter()
         .map(|&n| Series {
@@ -256,22 +259,59 @@ fn write_outputs(
         "{}: RMSE vs culling + shading time, δ in {:?}",
         scene.name, args.delta
     );
-    let svg = line_plot_svg(
+    let svg = log_log_plot_svg(
         &title,
-        "culling + shading (ms)",
+        "culling + shading (ms, median)",
         "RMSE of indirect vs all VPLs",
         &series,
-        true,
-        true,
-    );
+    )?;
     out.write("sweep.svg", svg.as_bytes())?;
-    equal_time(args, out, names, points)
+    equal_time(args, out, &scene.name, names, points)?;
+    write_page(out, &scene.name, &table.0, tables)
+}
+
+/// Stages `index.html`: the plot, the equal-time figure and the tables.
+fn write_page(
+    out: &mut OutDir,
+    scene: &str,
+    provenance: &Provenance,
+    (table, settings): (TextTable, TextTable),
+) -> Result<(), String> {
+    Page {
+        title: format!("slc sweep: {scene}"),
+        provenance,
+        blocks: vec![
+            Block::Figure {
+                src: "sweep.svg".into(),
+                caption: "RMSE of the indirect image against every VPL with p = 1, against \
+                          the median culling + shading time, one point per δ."
+                    .into(),
+            },
+            Block::Figure {
+                src: "equal_time.svg".into(),
+                caption: "Each strategy at the δ whose time is closest to the first \
+                          strategy's median run."
+                    .into(),
+            },
+            Block::Heading("Table".into()),
+            Block::Table(table),
+            Block::Links(vec![
+                "sweep.csv".into(),
+                "sweep.json".into(),
+                "equal_time.md".into(),
+            ]),
+            Block::Heading("Settings".into()),
+            Block::Table(settings),
+        ],
+    }
+    .write(out)
 }
 
 /// Each strategy's run closest in time to the median run of the first strategy.
 fn equal_time(
     args: &SweepArgs,
     out: &mut OutDir,
+    scene: &str,
     names: &[Strategy],
     points: &[Point],
 ) -> Result<(), String> {
@@ -299,17 +339,31 @@ fn equal_time(
             p.rmse
         );
     }
-    md.push_str("\n`equal_time.png`: the total images in this order, left to right.\n");
+    md.push_str("\n`equal_time.svg`: the total images in this order, left to right.\n");
     out.write("equal_time.md", md.as_bytes())?;
-    let (w, h) = (args.frame.width, args.frame.height);
-    let mut strip = RgbImage::new(w * picks.len() as u32, h);
-    for (i, p) in picks.iter().enumerate() {
-        image::imageops::replace(
-            &mut strip,
-            &to_srgb8(&p.total, args.frame.exposure),
-            (i as u32 * w) as i64,
-            0,
-        );
-    }
-    write_rgb8(out, "equal_time.png", &strip)
+    let totals: Vec<_> = picks
+        .iter()
+        .map(|p| to_srgb8(&p.total, args.frame.exposure))
+        .collect();
+    let figure = Figure {
+        title: format!("{scene}: equal time, {target:.1} ms of culling + shading"),
+        columns: picks
+            .iter()
+            .map(|p| {
+                format!(
+                    "{} at δ = {}\n{:.1} ms, RMSE {:.2e}",
+                    p.strategy,
+                    p.delta,
+                    p.time_ms(),
+                    p.rmse
+                )
+            })
+            .collect(),
+        rows: vec![FigureRow {
+            label: "total".into(),
+            images: totals.iter().collect(),
+        }],
+        heat_legend: None,
+    };
+    out.write("equal_time.svg", figure.svg()?.as_bytes())
 }

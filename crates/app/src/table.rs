@@ -70,14 +70,89 @@ struct JsonTable<'a, R> {
     rows: &'a [R],
 }
 
-/// Stages `name.json` and `name.csv` in `out`.
+/// A table as text, for a page: column names and formatted cells.
+#[derive(Debug, Clone, PartialEq)]
+pub struct TextTable {
+    pub header: Vec<String>,
+    pub rows: Vec<Vec<String>>,
+}
+
+/// A cell for people: numbers with at most four significant digits (integers in full).
+fn display_cell(cell: &str) -> String {
+    match cell.parse::<f64>() {
+        Ok(v) if cell.contains(['.', 'e', 'E']) && v.is_finite() && v != 0.0 => {
+            let magnitude = v.abs().log10().floor() as i32;
+            if (-3..6).contains(&magnitude) {
+                let decimals = (3 - magnitude).max(0) as usize;
+                let fixed = format!("{v:.decimals$}");
+                if fixed.contains('.') {
+                    fixed
+                        .trim_end_matches('0')
+                        .trim_end_matches('.')
+                        .to_string()
+                } else {
+                    fixed
+                }
+            } else {
+                format!("{v:.3e}")
+            }
+        }
+        _ => cell.to_string(),
+    }
+}
+
+impl TextTable {
+    /// The rows as the `csv` crate writes them (so the columns are the serialized fields in
+    /// order), with numbers shortened for reading.
+    pub fn of<R: Serialize>(rows: &[R]) -> Result<Self, String> {
+        let mut writer = csv::Writer::from_writer(Vec::new());
+        for row in rows {
+            writer.serialize(row).map_err(|e| e.to_string())?;
+        }
+        let bytes = writer.into_inner().map_err(|e| e.to_string())?;
+        let mut reader = csv::Reader::from_reader(bytes.as_slice());
+        let header = reader
+            .headers()
+            .map_err(|e| e.to_string())?
+            .iter()
+            .map(str::to_string)
+            .collect();
+        let rows = reader
+            .records()
+            .map(|r| {
+                r.map(|r| r.iter().map(display_cell).collect())
+                    .map_err(|e| e.to_string())
+            })
+            .collect::<Result<_, _>>()?;
+        Ok(Self { header, rows })
+    }
+
+    /// A one-row table turned on its side: one (name, value) row per column.
+    pub fn transposed(&self) -> Self {
+        Self {
+            header: vec!["setting".into(), "value".into()],
+            rows: self
+                .header
+                .iter()
+                .enumerate()
+                .map(|(i, h)| {
+                    let v = self.rows.first().and_then(|r| r.get(i)).cloned();
+                    vec![h.clone(), v.unwrap_or_default()]
+                })
+                .collect(),
+        }
+    }
+}
+
+/// Stages `name.json` and `name.csv` in `out`; returns the rows and the settings as text for
+/// the folder's page.
 pub fn write_table<R: Serialize>(
     out: &mut OutDir,
     name: &str,
     provenance: &Provenance,
     settings: &SettingsColumns,
     rows: &[R],
-) -> Result<(), String> {
+) -> Result<(TextTable, TextTable), String> {
     let json = serde_json::to_string_pretty(&JsonTable {
         provenance,
         settings,
@@ -85,10 +160,25 @@ pub fn write_table<R: Serialize>(
     })
     .map_err(|e| e.to_string())?;
     out.write(format!("{name}.json"), (json + "\n").as_bytes())?;
+    write_csv(out, name, rows.iter().map(|row| (settings, row)))?;
+    let text = |e: String| format!("{name}: {e}");
+    Ok((
+        TextTable::of(rows).map_err(text)?,
+        TextTable::of(std::slice::from_ref(settings))
+            .map_err(text)?
+            .transposed(),
+    ))
+}
+
+/// Stages `name.csv`: one line per (settings, row) pair, the settings' columns first.
+pub fn write_csv<S: Serialize, R: Serialize>(
+    out: &mut OutDir,
+    name: &str,
+    rows: impl Iterator<Item = (S, R)>,
+) -> Result<(), String> {
     let mut csv = csv::Writer::from_writer(Vec::new());
     for row in rows {
-        csv.serialize((settings, row))
-            .map_err(|e| format!("{name}.csv: {e}"))?;
+        csv.serialize(row).map_err(|e| format!("{name}.csv: {e}"))?;
     }
     let bytes = csv.into_inner().map_err(|e| format!("{name}.csv: {e}"))?;
     out.write(format!("{name}.csv"), &bytes)
@@ -97,6 +187,17 @@ pub fn write_table<R: Serialize>(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn cells_are_shortened_for_reading_but_integers_kept() {
+        assert_eq!(display_cell("123456789"), "123456789");
+        assert_eq!(display_cell("0.000123456"), "1.235e-4");
+        assert_eq!(display_cell("12.3456789"), "12.35");
+        assert_eq!(display_cell("0.0010000000474974513"), "0.001");
+        assert_eq!(display_cell("ellipsoid"), "ellipsoid");
+        assert_eq!(display_cell(""), "");
+        assert_eq!(display_cell("0.0"), "0.0");
+    }
 
     #[derive(clap::Parser)]
     struct Args {
@@ -139,8 +240,13 @@ mod tests {
                 ms: None,
             },
         ];
-        write_table(&mut out, "t", &provenance, &settings, &rows).unwrap();
+        let (table, settings_table) =
+            write_table(&mut out, "t", &provenance, &settings, &rows).unwrap();
         out.commit().unwrap();
+        assert_eq!(table.header, ["strategy", "ms"]);
+        assert_eq!(table.rows, [["ellipsoid", "1.5"], ["none", ""]]);
+        assert_eq!(settings_table.rows[0], ["scene", "a, \"quoted\" scene"]);
+        assert_eq!(settings_table.rows.len(), 14);
         let csv = std::fs::read_to_string(root.join("t.csv")).unwrap();
         let lines: Vec<&str> = csv.lines().collect();
         assert!(lines[0].starts_with("scene,scene_sha256,backend,adapter,width,height"));

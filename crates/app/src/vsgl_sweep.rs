@@ -4,19 +4,25 @@
 //! For each N of `--vsgls`, shades one prepared frame (same G-buffer and RSMs) with N VSGLs
 //! and with the VPLs of N texels sampled by the same importance and points, and records the
 //! RMSE of the indirect image against every VPL with p = 1 (root of the mean squared error over
-//! `--seeds` point sets) and the fastest of `--repeat` × `--seeds` runs' pass times. Writes
-//! `vsgl_sweep.csv`, `vsgl_sweep.md` (both tables) and `vsgl_sweep.svg` (RMSE against N).
+//! `--seeds` point sets) and the pass times of the median run of `--repeat` × `--seeds` (with the
+//! min and max of its total). Writes `vsgl_sweep.json` / `vsgl_sweep.csv`, `vsgl_sweep.md`
+//! (both tables), `vsgl_sweep.svg` (RMSE against N) and `index.html`.
 //! With `--backend gpu` the frame is prepared on the GPU and the VSGLs are shaded there (with
 //! imperfect shadow maps for `--visibility`); the reference and the sampled VPLs are shaded on
 //! the CPU from the read-back frame.
 use crate::backend::{message, run_on, OnBackend};
 use crate::limits::check_memory;
 use crate::out_dir::OutDir;
-use crate::plot::{line_plot_svg, Series};
+use crate::page::{Block, Page};
+use crate::plot::{log_log_plot_svg, Series};
 use crate::progress::bar;
+use crate::provenance::Provenance;
 use crate::reference::{all_vpl_reference, cpu_input};
+use crate::repeat::{repeated, Spread};
 use crate::sampled::{shade_sampled, PASSES};
 use crate::sweep_cmd::SweepArgs;
+use crate::table::{write_table, SettingsColumns, TextTable};
+use serde::Serialize;
 use slc_core::frame::{Importance, Method, Timings};
 use slc_core::shader::{SampledLights, ShadeInput};
 use slc_core::{PreparedFrame, Scene};
@@ -28,8 +34,11 @@ struct Point {
     count: u32,
     estimator: SampledLights,
     lights: usize,
-    /// The fastest run's pass times.
+    /// The pass times of the run with the median total.
     timings: Timings,
+    /// The total over the runs.
+    total: Spread,
+    runs: usize,
     rmse: f32,
 }
 
@@ -88,7 +97,7 @@ impl OnBackend for VsglSweep<'_> {
         for &count in &args.vsgls {
             let sampling = args.importance.sampling(count);
             for estimator in SampledLights::ALL {
-                let (mut squared, mut best, mut lights) = (0.0f64, None::<Timings>, 0);
+                let (mut squared, mut runs, mut lights) = (0.0f64, Vec::new(), 0);
                 for seed in f.seed..f.seed + args.seeds {
                     let on_r = ShadeInput {
                         scene: &scene,
@@ -98,31 +107,40 @@ impl OnBackend for VsglSweep<'_> {
                         visibility: f.visibility,
                     };
                     let cpu = cpu_input(&scene, &cpu_p, seed, f.visibility);
-                    for repetition in 0..args.repeat {
+                    let outs = repeated(args.repeat, || {
                         let (out, _) = shade_sampled(estimator, r, on_r, cpu, sampling)?;
-                        if repetition == 0 {
-                            squared += f64::from(out.indirect.rmse(&reference)).powi(2);
-                            lights = out.sampled_lights.unwrap_or(0);
-                        }
-                        if best
-                            .as_ref()
-                            .is_none_or(|b| out.timings.total() < b.total())
-                        {
-                            best = Some(out.timings);
-                        }
                         progress.inc(1);
-                    }
+                        Ok(out)
+                    })?;
+                    let first = &outs[0];
+                    squared += f64::from(first.indirect.rmse(&reference)).powi(2);
+                    lights = first.sampled_lights.unwrap_or(0);
+                    runs.extend(outs.into_iter().map(|o| o.timings));
                 }
+                let total = Spread::of_totals(&runs);
+                runs.sort_by(|a, b| a.total().total_cmp(&b.total()));
                 points.push(Point {
                     count,
                     estimator,
                     lights,
-                    timings: best.unwrap_or_default(),
+                    total,
+                    runs: runs.len(),
+                    timings: runs.swap_remove(runs.len() / 2),
                     rmse: (squared / f64::from(args.seeds)).sqrt() as f32,
                 });
             }
         }
         progress.finish_and_clear();
+        let provenance = Provenance::new(f.scene.as_deref(), &scene);
+        let settings = f.settings(Method::VplReference, 1);
+        let columns = SettingsColumns::new(
+            &provenance,
+            &scene,
+            &r.info(&settings),
+            f,
+            &args.pipeline,
+            p.vpls().len(),
+        );
         let facts = SweepFacts {
             scene: &scene.name,
             texels,
@@ -130,7 +148,10 @@ impl OnBackend for VsglSweep<'_> {
             reference_ms,
             vsgl_backend: r.name(),
         };
+        let rows: Vec<VsglSweepRow> = points.iter().map(VsglSweepRow::of).collect();
+        let tables = write_table(&mut out, "vsgl_sweep", &provenance, &columns, &rows)?;
         write_outputs(args, &mut out, &facts, &points)?;
+        write_page(&mut out, &scene.name, &provenance, tables)?;
         out.commit()?;
         println!("wrote {}", args.out.display());
         Ok(())
@@ -149,14 +170,13 @@ struct SweepFacts<'a> {
     vsgl_backend: &'static str,
 }
 
-/// `vsgl_sweep.csv`, `.md` and `.svg`.
+/// `vsgl_sweep.md` and `.svg`.
 fn write_outputs(
     args: &SweepArgs,
     out: &mut OutDir,
     facts: &SweepFacts,
     points: &[Point],
 ) -> Result<(), String> {
-    out.write("vsgl_sweep.csv", csv(points).as_bytes())?;
     out.write("vsgl_sweep.md", tables(args, facts, points).as_bytes())?;
     let series: Vec<Series> = SampledLights::ALL
         .iter()
@@ -174,32 +194,78 @@ fn write_outputs(
         facts.scene,
         args.importance.sampling(0).importance.name()
     );
-    let svg = line_plot_svg(
-        &title,
-        "lights N",
-        "RMSE of indirect vs all VPLs",
-        &series,
-        true,
-        true,
-    );
+    let svg = log_log_plot_svg(&title, "lights N", "RMSE of indirect vs all VPLs", &series)?;
     out.write("vsgl_sweep.svg", svg.as_bytes())
 }
 
-/// `vsgl_sweep.csv`.
-fn csv(points: &[Point]) -> String {
-    let mut csv = String::from("n,estimator,distinct_lights");
-    for (pass, _) in PASSES {
-        let _ = write!(csv, ",{pass}_ms");
-    }
-    csv.push_str(",total_ms,rmse_vs_all_vpl\n");
-    for p in points {
-        let _ = write!(csv, "{},{},{}", p.count, p.estimator.name(), p.lights);
-        for (pass, _) in PASSES {
-            let _ = write!(csv, ",{:.3}", p.timings.get(pass));
+/// One point of `vsgl_sweep.json` / `vsgl_sweep.csv`: the pass times (ms) of the median run
+/// of `--repeat` × `--seeds`, with the min and max of the total.
+#[derive(Serialize)]
+struct VsglSweepRow {
+    n: u32,
+    estimator: &'static str,
+    distinct_lights: usize,
+    runs: usize,
+    vsgl_mip_ms: f64,
+    importance_map_ms: f64,
+    light_sampling_ms: f64,
+    light_shading_ms: f64,
+    total_ms: f64,
+    total_ms_min: f64,
+    total_ms_max: f64,
+    rmse_vs_all_vpl: f32,
+}
+
+impl VsglSweepRow {
+    fn of(p: &Point) -> Self {
+        let [vsgl_mip_ms, importance_map_ms, light_sampling_ms, light_shading_ms] =
+            PASSES.map(|(pass, _)| p.timings.get(pass));
+        Self {
+            n: p.count,
+            estimator: p.estimator.name(),
+            distinct_lights: p.lights,
+            runs: p.runs,
+            vsgl_mip_ms,
+            importance_map_ms,
+            light_sampling_ms,
+            light_shading_ms,
+            total_ms: p.timings.total(),
+            total_ms_min: p.total.min,
+            total_ms_max: p.total.max,
+            rmse_vs_all_vpl: p.rmse,
         }
-        let _ = writeln!(csv, ",{:.3},{:.6e}", p.timings.total(), p.rmse);
     }
-    csv
+}
+
+/// Stages `index.html`: the plot and the tables.
+fn write_page(
+    out: &mut OutDir,
+    scene: &str,
+    provenance: &Provenance,
+    (table, settings): (TextTable, TextTable),
+) -> Result<(), String> {
+    Page {
+        title: format!("slc sweep --shader vsgl: {scene}"),
+        provenance,
+        blocks: vec![
+            Block::Figure {
+                src: "vsgl_sweep.svg".into(),
+                caption: "RMSE of the indirect image against every VPL with p = 1, against \
+                          the light count N: N VSGLs and N VPLs sampled by the same importance."
+                    .into(),
+            },
+            Block::Heading("Table".into()),
+            Block::Table(table),
+            Block::Links(vec![
+                "vsgl_sweep.csv".into(),
+                "vsgl_sweep.json".into(),
+                "vsgl_sweep.md".into(),
+            ]),
+            Block::Heading("Settings".into()),
+            Block::Table(settings),
+        ],
+    }
+    .write(out)
 }
 
 /// `vsgl_sweep.md`.
@@ -249,7 +315,7 @@ fn tables(args: &SweepArgs, facts: &SweepFacts, points: &[Point]) -> String {
     }
     let _ = writeln!(
         md,
-        "\n## Milliseconds per frame (fastest of {} runs), as the paper's Table 1\n",
+        "\n## Milliseconds per frame (the median run of {}), as the paper's Table 1\n",
         args.repeat * args.seeds
     );
     md.push_str("| N | estimator | distinct lights |");

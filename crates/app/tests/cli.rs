@@ -112,8 +112,18 @@ fn compare_writes_a_folder_per_strategy_a_table_and_heat_maps() {
             assert!(out.join(s).join(f).is_file(), "{s}/{f} missing");
         }
     }
+    assert!(out.join("reference_vpl/total.exr").is_file());
+    // The labelled figure: every strategy's total, heat map and FLIP map, and the legend.
+    let svg = std::fs::read_to_string(out.join("side_by_side.svg")).unwrap();
+    assert_eq!(
+        svg.matches("<image ").count(),
+        3 * 4,
+        "three rows of four panels"
+    );
+    assert!(svg.contains(">ellipsoid<") && svg.contains("full brightness at 256"));
+    let html = std::fs::read_to_string(out.join("index.html")).unwrap();
     assert!(
-        out.join("reference_vpl/total.exr").is_file() && out.join("side_by_side.png").is_file()
+        html.contains("src=\"side_by_side.svg\"") && html.contains("src=\"clustered/heatmap.png\"")
     );
     let json: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(out.join("compare.json")).unwrap()).unwrap();
@@ -182,7 +192,13 @@ fn sweep_writes_csv_plot_and_equal_time_comparison() {
     }
     let svg = std::fs::read_to_string(out.join("sweep.svg")).unwrap();
     assert!(svg.contains("ellipsoid") && svg.contains("sphere"));
-    assert!(out.join("equal_time.md").is_file() && out.join("equal_time.png").is_file());
+    assert!(
+        svg.contains("\nculling + shading (ms, median)\n")
+            && svg.contains("\nRMSE of indirect vs all VPLs\n")
+    );
+    let figure = std::fs::read_to_string(out.join("equal_time.svg")).unwrap();
+    assert_eq!(figure.matches("<image ").count(), 2);
+    assert!(out.join("equal_time.md").is_file() && out.join("index.html").is_file());
     std::fs::remove_dir_all(&out).ok();
 }
 
@@ -261,18 +277,28 @@ fn compare_with_vsgls_adds_vsgl_and_equal_count_vpl_folders() {
 fn sweep_with_vsgls_writes_error_against_light_count() {
     let out = out_dir("sweep-vsgl");
     run_ok(
-        "sweep --shader vsgl --vsgls 8,32 --seeds 2 --width 16 --height 12 --rsm 4",
+        "sweep --shader vsgl --vsgls 8,32 --seeds 2 --repeat 2 --width 16 --height 12 --rsm 4",
         &out,
     );
     let csv = std::fs::read_to_string(out.join("vsgl_sweep.csv")).unwrap();
     assert_eq!(csv.lines().count(), 1 + 2 * 2, "{csv}");
-    for line in csv.lines().skip(1) {
-        let cells: Vec<&str> = line.split(',').collect();
-        assert_eq!(cells.len(), 9, "{line}");
-        assert!(["vsgl", "vpl_sampled"].contains(&cells[1]), "{line}");
-        let rmse: f64 = cells[8].parse().unwrap();
-        assert!(rmse.is_finite() && rmse > 0.0, "{line}");
+    assert!(csv.starts_with("scene,scene_sha256,backend,"), "{csv}");
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("vsgl_sweep.json")).unwrap())
+            .unwrap();
+    for row in json["rows"].as_array().unwrap() {
+        assert!(["vsgl", "vpl_sampled"].contains(&row["estimator"].as_str().unwrap()));
+        let rmse = row["rmse_vs_all_vpl"].as_f64().unwrap();
+        assert!(rmse.is_finite() && rmse > 0.0, "{row}");
+        assert_eq!(row["runs"], 2 * 2, "two repetitions of two seeds");
+        let (min, total, max) = (
+            row["total_ms_min"].as_f64().unwrap(),
+            row["total_ms"].as_f64().unwrap(),
+            row["total_ms_max"].as_f64().unwrap(),
+        );
+        assert!(min <= total && total <= max, "{row}");
     }
+    assert!(out.join("index.html").is_file());
     let md = std::fs::read_to_string(out.join("vsgl_sweep.md")).unwrap();
     assert!(
         md.contains("| 32 | ") && md.contains("VSGL overhead"),
@@ -314,11 +340,31 @@ fn vsgl_options_that_do_not_fit_are_clear_errors() {
 fn bench_writes_a_row_per_resolution_vpl_count_and_strategy() {
     let out = out_dir("bench");
     run_ok(
-        "bench --resolutions 16x16,24x16 --rsms 2,4 --culling ellipsoid,none --interleave 2",
+        "bench --resolutions 16x16,24x16 --rsms 2,4 --culling ellipsoid,none --interleave 2 --repeat 3",
         &out,
     );
     let csv = std::fs::read_to_string(out.join("bench.csv")).unwrap();
     assert_eq!(csv.lines().count(), 1 + 2 * 2 * 2, "{csv}");
+    assert!(
+        csv.lines().skip(1).any(|l| l.contains(",24,16,4,")),
+        "{csv}"
+    );
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("bench.json")).unwrap()).unwrap();
+    assert!(json["provenance"]["command_line"].is_array());
+    let rows = json["rows"].as_array().unwrap();
+    assert_eq!(rows.len(), 8);
+    for row in rows {
+        let t = &row["times"];
+        assert_eq!(t["runs"], 3, "{row}");
+        let (min, med, max) = (
+            t["culling_plus_shading_ms_min"].as_f64().unwrap(),
+            t["culling_plus_shading_ms"].as_f64().unwrap(),
+            t["culling_plus_shading_ms_max"].as_f64().unwrap(),
+        );
+        assert!(min <= med && med <= max, "{row}");
+    }
+    assert_eq!(rows[7]["settings"]["width"], 24);
     assert!(std::fs::read_to_string(out.join("bench.md"))
         .unwrap()
         .contains("| 24x16 |"));
