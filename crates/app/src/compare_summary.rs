@@ -168,8 +168,6 @@ impl Row {
     }
 }
 
-/// Totals in the top row, heat maps below, one column per strategy.
-
 /// Every strategy's total, heat map and (with a reference) ꟻLIP map as labelled panels, one
 /// column per strategy, with the heat-map legend.
 pub fn side_by_side(args: &CompareArgs, scene: &str, rows: &[Row]) -> Result<String, String> {

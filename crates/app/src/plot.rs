@@ -210,7 +210,10 @@ mod tests {
         assert_eq!(log_ticks(2.5, 7.5), vec![3.0, 4.0, 5.0, 6.0, 7.0]);
         // Narrower than one step of 10^k: round linear steps.
         let t = log_ticks(0.0121, 0.0135);
-        assert!(t.len() >= 2 && t.iter().all(|v| (0.0121..=0.0135).contains(v)), "{t:?}");
+        assert!(
+            t.len() >= 2 && t.iter().all(|v| (0.0121..=0.0135).contains(v)),
+            "{t:?}"
+        );
         assert!(t.iter().all(|v| tick_label(*v).len() <= 6), "{t:?}");
         let t = log_ticks(207.9, 1296.1);
         assert_eq!(

@@ -60,7 +60,7 @@ pub enum GpuError {
 pub struct GpuContext {
     pub device: wgpu::Device,
     pub queue: wgpu::Queue,
-    /// The adapter's name and backend, e.g. "llvmpipe (LLVM 15.0.6, 256 bits) (Vulkan)".
+    /// The adapter's name, backend and driver ([`adapter_label`]).
     pub adapter_name: String,
     /// Whether the device was created with timestamp queries (for per-pass timings).
     pub timestamps: bool,
@@ -96,7 +96,7 @@ impl GpuContext {
             .await
             .map_err(|e| GpuError::NoAdapter(e.to_string()))?;
         let info = adapter.get_info();
-        let adapter_name = format!("{} ({:?})", info.name, info.backend);
+        let adapter_name = adapter_label(&info);
         let timestamps = adapter.features().contains(wgpu::Features::TIMESTAMP_QUERY);
         let timestamps_trusted = timestamps && info.device_type != wgpu::DeviceType::Cpu;
         let required_features = if timestamps {
@@ -149,7 +149,7 @@ impl GpuContext {
             limits: device.limits(),
             device,
             queue,
-            adapter_name: format!("{} ({:?})", info.name, info.backend),
+            adapter_name: adapter_label(info),
             timestamps,
             timestamps_trusted: timestamps && info.device_type != wgpu::DeviceType::Cpu,
             software: is_software_adapter(info),
@@ -303,6 +303,22 @@ impl GpuContext {
             layout: &pipeline.get_bind_group_layout(0),
             entries: &entries,
         })
+    }
+}
+
+/// The adapter as reports name it: its name, graphics API and driver (with the driver's
+/// version where it gives one), e.g. `llvmpipe (LLVM 15.0.6, 256 bits) (Vulkan, driver llvmpipe
+/// Mesa 22.3.6)`.
+pub fn adapter_label(info: &wgpu::AdapterInfo) -> String {
+    let driver = [info.driver.as_str(), info.driver_info.as_str()]
+        .into_iter()
+        .filter(|s| !s.is_empty())
+        .collect::<Vec<_>>()
+        .join(" ");
+    if driver.is_empty() {
+        format!("{} ({:?})", info.name, info.backend)
+    } else {
+        format!("{} ({:?}, driver {driver})", info.name, info.backend)
     }
 }
 
