@@ -22,13 +22,8 @@ pub fn run_on(backend: Backend, command: impl OnBackend) -> Result<(), String> {
 #[cfg(feature = "gpu")]
 fn run_on_gpu(command: impl OnBackend) -> Result<(), String> {
     let gpu = slc_gpu_wgpu::GpuRenderer::new().map_err(|e| e.to_string())?;
-    let ctx = gpu.context();
-    if ctx.software {
-        eprintln!(
-            "warning: the GPU adapter {} is a software rasterizer running on the CPU: GPU runs \
-             are slow here and their times say nothing about a GPU (--backend cpu is faster)",
-            ctx.adapter_name
-        );
+    if let Some(warning) = gpu.context().software_warning() {
+        eprintln!("warning: {warning}");
     }
     command.run(&gpu)
 }

@@ -4,13 +4,13 @@
 //! the min and max of culling + shading) and `bench.md`.
 use crate::args::{strategies, FrameArgs, PipelineArgs, Shader};
 use crate::backend::{message, run_on, OnBackend};
-use crate::limits::check_memory;
-use crate::out_dir::OutDir;
-use crate::provenance::Provenance;
-use crate::repeat::{repeated, Spread};
 use crate::table::{write_csv, SettingsColumns};
 use clap::Args;
 use serde::Serialize;
+use slc_app::limits::check_memory;
+use slc_app::out_dir::OutDir;
+use slc_app::provenance::Provenance;
+use slc_app::repeat::{repeated, Spread};
 use slc_core::frame::{Method, Stochastic};
 use slc_core::shader::{frame_timings, Shader as _};
 use slc_core::{PreparedFrame, Scene, Strategy, Timings};

@@ -12,17 +12,17 @@ use crate::compare_summary::{side_by_side, table, write_page, CompareRow, Row};
 use crate::flip::flip;
 use crate::heatmap::heat_map;
 use crate::layers_exr::write_layers;
-use crate::limits::check_memory;
-use crate::out_dir::OutDir;
 use crate::output::{write_frame, write_rgb8};
-use crate::progress::bar;
-use crate::provenance::Provenance;
-use crate::reference::{all_vpl_reference, cpu_input};
-use crate::repeat::repeated;
-use crate::report::{FrameFacts, Report};
 use crate::sampled::{shade_sampled, PASSES};
 use crate::table::{write_table, SettingsColumns};
 use clap::Args;
+use slc_app::limits::check_memory;
+use slc_app::out_dir::OutDir;
+use slc_app::progress::bar;
+use slc_app::provenance::Provenance;
+use slc_app::reference::{all_vpl_reference, cpu_input};
+use slc_app::repeat::repeated;
+use slc_app::report::{FrameFacts, Report};
 use slc_core::frame::{Method, RenderSettings, Stochastic, Timings};
 use slc_core::shader::{frame_timings, SampledLights, ShadeInput, Shader as _};
 use slc_core::{Image, PreparedFrame, Renderer, Scene, Strategy};
@@ -128,7 +128,7 @@ impl OnBackend for Compare<'_> {
         let cpu_device = CpuRenderer.info(&settings);
 
         let reference = (!args.no_reference)
-            .then(|| all_vpl_reference(cpu))
+            .then(|| all_vpl_reference(cpu, true))
             .transpose()?;
         let reference_total = reference.as_ref().map(|r| p.direct().add(r));
         if let (Some(r), Some(total)) = (&reference, &reference_total) {
@@ -137,7 +137,8 @@ impl OnBackend for Compare<'_> {
             let facts = FrameFacts {
                 device: &cpu_device,
                 scene: &scene,
-                args: f,
+                spec: f.scene.as_deref(),
+                settings: &settings,
                 method: Method::VplReference,
                 spp: 1,
                 vpl_count: p.vpls().len(),
@@ -224,7 +225,8 @@ impl OnBackend for Compare<'_> {
             let facts = FrameFacts {
                 device: &device,
                 scene: &scene,
-                args: f,
+                spec: f.scene.as_deref(),
+                settings: &settings,
                 method: Method::Stochastic(s),
                 spp: 1,
                 vpl_count: p.vpls().len(),
@@ -329,7 +331,8 @@ fn sampled_lights<R: Renderer>(
         let facts = FrameFacts {
             device: &device,
             scene: cpu.scene,
-            args: f,
+            spec: f.scene.as_deref(),
+            settings: &settings,
             method,
             spp: 1,
             vpl_count: prepared.vpls.len(),

@@ -4,14 +4,14 @@
 use crate::args::Shader;
 use crate::compare_cmd::CompareArgs;
 use crate::figure::{Figure, FigureRow};
-use crate::out_dir::OutDir;
 use crate::output::to_srgb8;
 use crate::page::{Block, Page};
-use crate::provenance::Provenance;
-use crate::repeat::Spread;
 use crate::table::TextTable;
 use image::RgbImage;
 use serde::Serialize;
+use slc_app::out_dir::OutDir;
+use slc_app::provenance::Provenance;
+use slc_app::repeat::Spread;
 use slc_core::frame::Timings;
 use slc_core::shader::SampledLights;
 use slc_core::{BackendInfo, Image, Strategy};

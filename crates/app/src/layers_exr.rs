@@ -2,9 +2,9 @@
 //! (channels R, G, B) and, where culling metrics were measured, a layer `metrics` with the
 //! per-pixel channels `lights` (list length) and `fdr` (false discovery rate); the provenance
 //! JSON is in the header attribute `slc.provenance`.
-use crate::out_dir::OutDir;
-use crate::provenance::Provenance;
 use exr::prelude::*;
+use slc_app::out_dir::OutDir;
+use slc_app::provenance::Provenance;
 use slc_core::CullMetrics;
 
 /// Stages `dir/layers.exr` in `out`.

@@ -14,7 +14,7 @@ pub fn check_memory(settings: &RenderSettings, scene: &Scene) -> Result<(), Stri
     }
     let gib = |b: u64| b as f64 / f64::from(1u32 << 30);
     Err(format!(
-        "{}x{} with RSM {}² needs about {:.1} GiB (G-buffer {:.1}, images {:.1}, RSM {:.1}, VPLs {:.1}, metrics {:.1}), more than the {:.1} GiB of memory available: lower --width/--height or --rsm",
+        "{}x{} with RSM {}² needs about {:.1} GiB (G-buffer {:.1}, images {:.1}, RSM {:.1}, VPLs {:.1}, metrics {:.1}), more than the {:.1} GiB of memory available: lower the width, height or RSM resolution",
         settings.width,
         settings.height,
         settings.rsm_resolution,

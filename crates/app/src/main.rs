@@ -8,17 +8,10 @@ mod figure;
 mod flip;
 mod heatmap;
 mod layers_exr;
-mod limits;
-mod out_dir;
 mod output;
 mod page;
 mod plot;
-mod progress;
-mod provenance;
-mod reference;
 mod render_cmd;
-mod repeat;
-mod report;
 mod sampled;
 mod sweep_cmd;
 mod table;
@@ -51,7 +44,7 @@ enum Command {
 }
 
 fn main() {
-    provenance::start();
+    slc_app::provenance::start();
     let cli = Cli::parse();
     let result = match cli.command {
         Command::Render(args) => render_cmd::run(&args),

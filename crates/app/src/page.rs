@@ -5,9 +5,9 @@
 //! (and in the `data-broken-images` attribute of `<body>`, which the tests read through
 //! headless Chromium).
 use crate::figure::xml_escape;
-use crate::out_dir::OutDir;
-use crate::provenance::Provenance;
 use crate::table::TextTable;
+use slc_app::out_dir::OutDir;
+use slc_app::provenance::Provenance;
 use std::fmt::Write;
 
 /// One part of the page, in order.

@@ -1,8 +1,7 @@
 //! What `compare` and `sweep` compute on the CPU whatever the backend: the all-VPL reference
 //! (every VPL at every pixel with p = 1), with a progress bar, on the frame the backend
 //! prepared, read back where it lives elsewhere.
-use crate::backend::message;
-use crate::progress::bar;
+use crate::progress::bar_if;
 use slc_core::shader::{AllVplShader, ShadeInput, Shader};
 use slc_core::{Image, Scene};
 use slc_cpu_ref::{CpuPrepared, CpuRenderer};
@@ -23,13 +22,21 @@ pub fn cpu_input<'a>(
     }
 }
 
-/// Every VPL of the frame at every pixel with p = 1, with shadow rays when `visibility`.
-pub fn all_vpl_reference(input: ShadeInput<'_, CpuRenderer>) -> Result<Image, String> {
+/// Every VPL of the frame at every pixel with p = 1, with shadow rays when `visibility`, with
+/// a progress bar when `progress`.
+pub fn all_vpl_reference(
+    input: ShadeInput<'_, CpuRenderer>,
+    progress: bool,
+) -> Result<Image, String> {
     let g = &input.prepared.gbuffer;
-    let bar = bar(g.width as u64 * g.height as u64, "all-VPL reference".into());
+    let bar = bar_if(
+        progress,
+        g.width as u64 * g.height as u64,
+        "all-VPL reference".into(),
+    );
     let r = AllVplShader
         .shade(&CpuRenderer, input, &|n| bar.inc(n))
-        .map_err(message)?;
+        .map_err(|e| e.to_string())?;
     bar.finish_and_clear();
     Ok(r.indirect)
 }

@@ -2,14 +2,14 @@
 use crate::args::{strategy, FrameArgs, ImportanceArgs, PipelineArgs, Shader};
 use crate::backend::{message, run_on, OnBackend};
 use crate::layers_exr::write_layers;
-use crate::limits::check_memory;
-use crate::out_dir::OutDir;
 use crate::output::write_frame;
-use crate::progress::bar;
-use crate::provenance::Provenance;
-use crate::repeat::{repeated, Spread};
-use crate::report::{FrameFacts, Report};
 use clap::{Args, ValueEnum};
+use slc_app::limits::check_memory;
+use slc_app::out_dir::OutDir;
+use slc_app::progress::bar;
+use slc_app::provenance::Provenance;
+use slc_app::repeat::{repeated, Spread};
+use slc_app::report::{FrameFacts, Report};
 use slc_core::frame::{Method, RenderSettings};
 use slc_core::Scene;
 use slc_cpu_ref::CpuFrames;
@@ -138,7 +138,8 @@ impl OnBackend for Render<'_> {
         let facts = FrameFacts {
             device: &device,
             scene: &scene,
-            args: f,
+            spec: f.scene.as_deref(),
+            settings: &settings,
             method: settings.method,
             spp: args.spp,
             vpl_count: frame.vpl_count,

@@ -1,11 +1,10 @@
 //! `report.json`: what was rendered, how long each pass took and what was measured.
 //! Unknown values are `null`, never made up.
-use crate::args::FrameArgs;
 use crate::out_dir::OutDir;
 use crate::provenance::Provenance;
 use crate::repeat::Spread;
 use serde::Serialize;
-use slc_core::frame::{Importance, Method, Timings};
+use slc_core::frame::{Importance, Method, RenderSettings, Timings};
 use slc_core::{BackendInfo, CullMetrics, Image, Scene};
 use std::collections::BTreeMap;
 use std::path::Path;
@@ -99,7 +98,11 @@ impl From<Option<&CullMetrics>> for Metrics {
 pub struct FrameFacts<'a> {
     pub device: &'a BackendInfo,
     pub scene: &'a Scene,
-    pub args: &'a FrameArgs,
+    /// What the scene was named by (a file, a settings file or a built-in name), for the
+    /// provenance.
+    pub spec: Option<&'a str>,
+    /// The frame's size, RSM, seed and visibility (its method is `method`).
+    pub settings: &'a RenderSettings,
     pub method: Method,
     pub spp: u32,
     pub vpl_count: usize,
@@ -143,16 +146,16 @@ impl Report {
             _ => None,
         };
         Report {
-            provenance: Provenance::new(f.args.scene.as_deref(), f.scene),
+            provenance: Provenance::new(f.spec, f.scene),
             scene: f.scene.name.clone(),
             backend: f.device.backend,
             adapter: f.device.adapter.clone(),
             notes: f.device.notes.clone(),
-            width: f.args.width,
-            height: f.args.height,
+            width: f.settings.width,
+            height: f.settings.height,
             vpl_count: f.vpl_count,
             delta: stochastic.map(|s| s.delta),
-            seed: f.args.seed,
+            seed: f.settings.seed,
             culling: stochastic.map(|s| s.strategy.name()),
             shader: match f.method {
                 Method::Vsgl(_) => "vsgl",
@@ -176,9 +179,9 @@ impl Report {
                 Method::Path => Some("path"),
                 Method::Stochastic(_) | Method::Vsgl(_) | Method::SampledVpls(_) => None,
             },
-            visibility: f.args.visibility || f.method == Method::Path,
+            visibility: f.settings.visibility || f.method == Method::Path,
             spp: f.spp,
-            rsm: f.args.rsm,
+            rsm: f.settings.rsm_resolution,
             timings_ms: medians(f.timings),
             timing_runs: f.timings.len(),
             timings_spread_ms: (f.timings.len() > 1).then(|| spread_per_pass(f.timings)),

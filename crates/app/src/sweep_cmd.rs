@@ -11,18 +11,18 @@
 use crate::args::{strategies, FrameArgs, ImportanceArgs, PipelineArgs, Shader};
 use crate::backend::{message, run_on, OnBackend};
 use crate::figure::{Figure, FigureRow};
-use crate::limits::check_memory;
-use crate::out_dir::OutDir;
 use crate::output::to_srgb8;
 use crate::page::{Block, Page};
 use crate::plot::{log_log_plot_svg, Series};
-use crate::progress::bar;
-use crate::provenance::Provenance;
-use crate::reference::{all_vpl_reference, cpu_input};
-use crate::repeat::{repeated, Spread};
 use crate::table::{write_table, SettingsColumns, TextTable};
 use clap::Args;
 use serde::Serialize;
+use slc_app::limits::check_memory;
+use slc_app::out_dir::OutDir;
+use slc_app::progress::bar;
+use slc_app::provenance::Provenance;
+use slc_app::reference::{all_vpl_reference, cpu_input};
+use slc_app::repeat::{repeated, Spread};
 use slc_core::frame::{Method, Stochastic};
 use slc_core::shader::{ShadeInput, Shader as _};
 use slc_core::{Image, PreparedFrame, Renderer, Scene, Strategy};
@@ -140,7 +140,7 @@ impl OnBackend for Sweep<'_> {
             .prepare(&scene, &loaded, &settings, None)
             .map_err(message)?;
         let cpu_p = r.cpu_frame(&scene, &loaded, &p).map_err(message)?;
-        let reference = all_vpl_reference(cpu_input(&scene, &cpu_p, f.seed, f.visibility))?;
+        let reference = all_vpl_reference(cpu_input(&scene, &cpu_p, f.seed, f.visibility), true)?;
         let input = f.input(&scene, &loaded, &p);
         let points = sweep(args, r, input, &strategies, base, &reference)?;
         let provenance = Provenance::new(f.scene.as_deref(), &scene);

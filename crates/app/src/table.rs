@@ -2,9 +2,9 @@
 //! shared by every row, the rows) and `NAME.csv` (one line per row, every setting as a
 //! column), written through serde and the `csv` crate (which quotes what needs quoting).
 use crate::args::{FrameArgs, PipelineArgs};
-use crate::out_dir::OutDir;
-use crate::provenance::Provenance;
 use serde::Serialize;
+use slc_app::out_dir::OutDir;
+use slc_app::provenance::Provenance;
 use slc_core::{BackendInfo, Scene};
 
 /// The settings every row of a table shares, one column each.

@@ -11,18 +11,18 @@
 //! imperfect shadow maps for `--visibility`); the reference and the sampled VPLs are shaded on
 //! the CPU from the read-back frame.
 use crate::backend::{message, run_on, OnBackend};
-use crate::limits::check_memory;
-use crate::out_dir::OutDir;
 use crate::page::{Block, Page};
 use crate::plot::{log_log_plot_svg, Series};
-use crate::progress::bar;
-use crate::provenance::Provenance;
-use crate::reference::{all_vpl_reference, cpu_input};
-use crate::repeat::{repeated, Spread};
 use crate::sampled::{shade_sampled, PASSES};
 use crate::sweep_cmd::SweepArgs;
 use crate::table::{write_table, SettingsColumns, TextTable};
 use serde::Serialize;
+use slc_app::limits::check_memory;
+use slc_app::out_dir::OutDir;
+use slc_app::progress::bar;
+use slc_app::provenance::Provenance;
+use slc_app::reference::{all_vpl_reference, cpu_input};
+use slc_app::repeat::{repeated, Spread};
 use slc_core::frame::{Importance, Method, Timings};
 use slc_core::shader::{SampledLights, ShadeInput};
 use slc_core::{PreparedFrame, Scene};
@@ -88,7 +88,7 @@ impl OnBackend for VsglSweep<'_> {
             .map(|m| m.texels.iter().flatten().count())
             .sum();
         let start = Instant::now();
-        let reference = all_vpl_reference(cpu_input(&scene, &cpu_p, f.seed, f.visibility))?;
+        let reference = all_vpl_reference(cpu_input(&scene, &cpu_p, f.seed, f.visibility), true)?;
         let reference_ms = start.elapsed().as_secs_f64() * 1e3;
         let runs =
             args.vsgls.len() * SampledLights::ALL.len() * (args.seeds * args.repeat) as usize;

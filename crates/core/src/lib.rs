@@ -80,7 +80,7 @@ pub use light::{Incident, Light, MAX_RADIOMETRIC};
 pub use load::{load_scene, load_scene_file, MAX_DROPPED_SHARE};
 pub use material::{Material, MaterialModel, ALPHA_MIN};
 pub use mesh::Mesh;
-pub use render::render;
+pub use render::{render, render_loaded};
 pub use renderer::{BackendInfo, Capabilities, PreparedFrame, Progress, Renderer};
 pub use scene::{LoadReport, Scene};
 #[cfg(feature = "loaders")]

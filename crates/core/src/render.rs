@@ -51,10 +51,29 @@ pub fn render<R: Renderer>(
     settings.validate()?;
     r.check(settings)?;
     scene.validate_for_render()?;
+    let mut timings = Timings::default();
+    let loaded = timings.time("load", || r.load(scene))?;
+    let mut frame = render_loaded(r, scene, &loaded, settings, progress)?;
+    timings.merge(&frame.timings);
+    frame.timings = timings;
+    Ok(frame)
+}
+
+/// [`render`] of a scene `r` has loaded already (`loaded` from [`Renderer::load`] of the same
+/// `scene`), for a caller that renders it many times: the timings have no `load` pass.
+pub fn render_loaded<R: Renderer>(
+    r: &R,
+    scene: &Scene,
+    loaded: &R::Scene,
+    settings: &RenderSettings,
+    progress: Progress,
+) -> Result<RenderedFrame, RenderError> {
+    settings.validate()?;
+    r.check(settings)?;
+    scene.validate_for_render()?;
     let (w, h) = (settings.width, settings.height);
     let mut timings = Timings::default();
     let mut gpu_timings = None;
-    let loaded = timings.time("load", || r.load(scene))?;
     let mut frame = RenderedFrame {
         direct: Image::new(w, h),
         indirect: Image::new(w, h),
@@ -67,7 +86,7 @@ pub fn render<R: Renderer>(
     for pass in 0..settings.spp {
         if settings.method == Method::Path {
             let (d, i) = timings.time("path", || {
-                r.path_trace(scene, &loaded, settings, pass, progress)
+                r.path_trace(scene, loaded, settings, pass, progress)
             })?;
             d.check_finite("direct")?;
             i.check_finite("path")?;
@@ -76,12 +95,12 @@ pub fn render<R: Renderer>(
             continue;
         }
         let jitter = (settings.spp > 1).then_some(pass);
-        let p = r.prepare(scene, &loaded, settings, jitter)?;
+        let p = r.prepare(scene, loaded, settings, jitter)?;
         timings.merge(p.timings());
         merge_optional(&mut gpu_timings, p.gpu_timings());
         let input = ShadeInput {
             scene,
-            loaded: &loaded,
+            loaded,
             prepared: &p,
             seed: pass_seed(settings.seed, jitter),
             visibility: settings.visibility,

@@ -79,6 +79,18 @@ pub struct GpuContext {
 }
 
 impl GpuContext {
+    /// The warning every front end prints on a software adapter (None on a GPU): its times
+    /// say nothing about a GPU.
+    pub fn software_warning(&self) -> Option<String> {
+        self.software.then(|| {
+            format!(
+                "the GPU adapter {} is a software rasterizer running on the CPU: GPU runs are \
+                 slow here and their times say nothing about a GPU (the CPU backend is faster)",
+                self.adapter_name
+            )
+        })
+    }
+
     /// Opens the first adapter wgpu finds (any backend; `WGPU_BACKEND` and `WGPU_ADAPTER_NAME`
     /// choose one), with the adapter's own limits and, where available, timestamp queries.
     pub fn new() -> Result<Self, GpuError> {

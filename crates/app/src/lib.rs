@@ -1,0 +1,12 @@
+//! What slc's front ends share beyond the renderer API: the result folder (atomic, locked),
+//! the memory check before work, the provenance and `report.json` of a frame, the all-VPL
+//! reference, repeated timings,
+//! progress bars. The `slc`
+//! command and the Python package (`python/`) both write and return reports through it.
+pub mod limits;
+pub mod out_dir;
+pub mod progress;
+pub mod provenance;
+pub mod reference;
+pub mod repeat;
+pub mod report;

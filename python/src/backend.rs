@@ -1,0 +1,70 @@
+//! The backends a [`crate::scene::PyScene`] keeps between calls: the CPU's BVH, and the GPU
+//! device with the uploaded scene, each made on first use. Work is written once as a [`Job`]
+//! over the renderer API and run on the backend the options name.
+use crate::options::Backend;
+use slc_core::{Renderer, Scene};
+use slc_cpu_ref::{CpuFrames, CpuRenderer};
+
+/// Work on one backend, written once for every backend.
+pub trait Job {
+    type Output;
+    fn run<R: CpuFrames>(
+        self,
+        r: &R,
+        scene: &Scene,
+        loaded: &R::Scene,
+    ) -> Result<Self::Output, String>;
+}
+
+/// What each backend keeps of a scene.
+#[derive(Default)]
+pub struct Loaded {
+    cpu: Option<<CpuRenderer as Renderer>::Scene>,
+    #[cfg(feature = "gpu")]
+    gpu: Option<(
+        slc_gpu_wgpu::GpuRenderer,
+        <slc_gpu_wgpu::GpuRenderer as Renderer>::Scene,
+    )>,
+}
+
+impl Loaded {
+    /// Runs `job` on `backend`, loading `scene` there first if it is not yet.
+    pub fn run<J: Job>(
+        &mut self,
+        backend: Backend,
+        scene: &Scene,
+        job: J,
+    ) -> Result<J::Output, String> {
+        match backend {
+            Backend::Cpu => {
+                let loaded = match &mut self.cpu {
+                    Some(l) => l,
+                    slot => slot.insert(CpuRenderer.load(scene).map_err(|e| e.to_string())?),
+                };
+                job.run(&CpuRenderer, scene, loaded)
+            }
+            Backend::Gpu => self.run_gpu(scene, job),
+        }
+    }
+
+    #[cfg(feature = "gpu")]
+    fn run_gpu<J: Job>(&mut self, scene: &Scene, job: J) -> Result<J::Output, String> {
+        let (gpu, loaded) = match &mut self.gpu {
+            Some(g) => g,
+            slot => {
+                let gpu = slc_gpu_wgpu::GpuRenderer::new().map_err(|e| e.to_string())?;
+                if let Some(warning) = gpu.context().software_warning() {
+                    eprintln!("warning: {warning}");
+                }
+                let loaded = gpu.load(scene).map_err(|e| e.to_string())?;
+                slot.insert((gpu, loaded))
+            }
+        };
+        job.run(&*gpu, scene, loaded)
+    }
+
+    #[cfg(not(feature = "gpu"))]
+    fn run_gpu<J: Job>(&mut self, _scene: &Scene, _job: J) -> Result<J::Output, String> {
+        Err("this slc was built without the `gpu` feature: use backend='cpu'".into())
+    }
+}

@@ -1,0 +1,173 @@
+"""The slc Python package as a script would use it: arrays in the right shapes and types,
+reports, scenes kept between calls, compare's metrics, VPLs and light lists that agree with
+the renderer, errors as exceptions, the GIL released while working, the example script."""
+
+import os
+import subprocess
+import sys
+import threading
+import time
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import slc
+
+SMALL = dict(width=32, height=24, rsm=8)
+REPO = Path(__file__).resolve().parents[2]
+
+
+@pytest.fixture(scope="module")
+def scene():
+    return slc.Scene.builtin("default")
+
+
+def test_render_gives_hxwx3_float32_images_and_the_report():
+    f = slc.render(width=64, height=48)
+    for image in (f.direct, f.indirect, f.total):
+        assert image.shape == (48, 64, 3) and image.dtype == np.float32
+        assert np.isfinite(image).all()
+    assert f.indirect.max() > 0 and f.direct.max() > 0
+    np.testing.assert_allclose(f.total, f.direct + f.indirect, rtol=1e-6)
+    r = f.report
+    assert (r["width"], r["height"], r["scene"]) == (64, 48, "cornell-glossy")
+    assert r["culling"] == "ellipsoid" and r["delta"] == pytest.approx(1e-3)
+    assert r["interleave"] == 8 and r["backend"] == "cpu" and r["shader"] == "vpl"
+    assert r["provenance"]["schema_version"] == 2
+    assert r["timings_ms"]["shading"] > 0
+    assert f.lights is None and f.fdr is None, "no metrics unless asked"
+
+
+def test_a_scene_renders_many_times_deterministically(scene):
+    a = scene.render(**SMALL, seed=3)
+    b = scene.render(**SMALL, seed=3)
+    np.testing.assert_array_equal(a.indirect, b.indirect)
+    c = scene.render(**SMALL, seed=4)
+    assert not np.array_equal(a.indirect, c.indirect), "the seed changes ξ"
+    assert "load" not in b.report["timings_ms"], "the scene stays loaded"
+
+
+def test_compare_gives_every_strategy_with_metrics_and_misses_nothing(scene):
+    frames = scene.compare(culling=["none", "sphere", "ellipsoid"], **SMALL, interleave=2)
+    assert set(frames) == {"reference_vpl", "none", "sphere", "ellipsoid"}
+    for name in ("none", "sphere", "ellipsoid"):
+        f = frames[name]
+        assert f.lights.shape == (24, 32) and f.lights.dtype == np.uint32
+        assert f.fdr.shape == (24, 32) and ((f.fdr >= 0) & (f.fdr <= 1)).all()
+        m = f.report["metrics"]
+        assert m["missed_pairs"] == 0
+        assert m["lights_per_pixel_mean"] == pytest.approx(f.lights.mean())
+    assert frames["none"].lights.sum() >= frames["sphere"].lights.sum()
+    assert frames["sphere"].lights.sum() >= frames["ellipsoid"].lights.sum()
+    # Same VPLs and ξ: every strategy's estimate equals the unculled one.
+    for name in ("sphere", "ellipsoid"):
+        np.testing.assert_allclose(frames[name].indirect, frames["none"].indirect, atol=1e-5)
+    assert frames["reference_vpl"].report["reference"] == "vpl"
+
+
+def test_vpls_are_columns_of_one_row_per_vpl(scene):
+    v = scene.vpls(**SMALL)
+    n = len(v["alpha"])
+    assert n > 0 and n == scene.render(**SMALL).report["vpl_count"]
+    for key in ("position", "normal", "omega_i", "flux", "kd"):
+        assert v[key].shape == (n, 3) and v[key].dtype == np.float32
+    np.testing.assert_allclose(np.linalg.norm(v["normal"], axis=1), 1, atol=1e-4)
+    assert ((v["xi"] > 0) & (v["xi"] < 1)).all()
+    assert ((v["alpha"] > 0) & (v["alpha"] <= 1)).all()
+    assert v["glossy"].dtype == np.bool_ and v["glossy"].any() and (~v["glossy"]).any()
+    assert len(np.unique(v["id"])) == n
+
+
+def test_light_lists_are_the_lists_the_renderer_shades_with(scene):
+    options = dict(SMALL, culling="ellipsoid", delta=1e-3, interleave=2, seed=1)
+    lists = scene.light_lists(**options)
+    n = len(scene.vpls(**SMALL, seed=1)["alpha"])
+    offsets, indices, per_pixel = lists["offsets"], lists["indices"], lists["lists"]
+    assert per_pixel.shape == (24, 32)
+    assert (np.diff(offsets.astype(np.int64)) >= 0).all() and offsets[-1] == len(indices)
+    assert (indices < n).all()
+    lengths = np.where(
+        per_pixel == lists["NO_LIST"],
+        0,
+        np.diff(offsets.astype(np.int64))[np.minimum(per_pixel, len(offsets) - 2)],
+    )
+    measured = scene.render(**options, metrics=True).lights
+    np.testing.assert_array_equal(lengths, measured)
+
+
+def test_vsgls_and_references():
+    f = slc.render(**SMALL, shader="vsgl", vsgls=32)
+    assert f.report["shader"] == "vsgl" and f.report["light_samples"] == 32
+    r = slc.render(**SMALL, reference="vpl")
+    assert r.report["reference"] == "vpl" and r.report["culling"] is None
+
+
+def test_bad_input_raises_clear_exceptions(scene):
+    with pytest.raises(TypeError, match="unknown option 'widht'"):
+        scene.render(widht=3)
+    with pytest.raises(TypeError, match="width"):
+        scene.render(width="wide")
+    with pytest.raises(ValueError, match="not one of"):
+        scene.render(backend="tpu")
+    with pytest.raises(slc.SlcError, match="strategy"):
+        scene.render(culling="octree")
+    with pytest.raises(slc.SlcError, match="width and height"):
+        scene.render(width=0)
+    with pytest.raises(slc.SlcError, match="delta"):
+        scene.render(delta=float("nan"))
+    with pytest.raises(slc.SlcError, match="no-such-file.gltf"):
+        slc.Scene.load("no-such-file.gltf")
+    with pytest.raises(slc.SlcError, match="unknown built-in scene"):
+        slc.Scene.builtin("nope")
+    with pytest.raises(slc.SlcError, match="memory available"):
+        scene.render(width=16384, height=16384, rsm=4096)
+
+
+def test_work_releases_the_gil(scene):
+    done = threading.Event()
+    worker = threading.Thread(
+        target=lambda: (scene.render(width=160, height=120, rsm=32), done.set())
+    )
+    ticks = 0
+    start = time.perf_counter()
+    worker.start()
+    while not done.is_set():
+        ticks += 1
+        time.sleep(0.001)
+    worker.join()
+    elapsed = time.perf_counter() - start
+    # Holding the GIL, the render would let this loop run only before and after it.
+    assert ticks > 10 and elapsed > 0.02, (ticks, elapsed)
+
+
+def test_progress_only_when_asked(capfd):
+    slc.render(**SMALL)
+    assert capfd.readouterr().err == ""
+
+
+def test_the_gpu_backend_renders_the_same_frame_shape():
+    try:
+        f = slc.render(**SMALL, backend="gpu")
+    except slc.SlcError as e:
+        if "no GPU adapter" in str(e) and not os.environ.get("CI"):
+            pytest.skip(str(e))
+        raise
+    assert f.indirect.shape == (24, 32, 3) and np.isfinite(f.total).all()
+    assert f.report["backend"] == "gpu"
+
+
+def test_the_example_sweeps_delta_and_writes_a_plot(tmp_path):
+    out = tmp_path / "sweep.png"
+    subprocess.run(
+        [
+            sys.executable,
+            str(REPO / "python/examples/delta_sweep.py"),
+            "--width", "48", "--height", "32", "--rsm", "8",
+            "--delta", "1e-3", "1e-2", "--culling", "ellipsoid", "sphere",
+            "--repeat", "1", "--out", str(out),
+        ],
+        check=True,
+        env=dict(os.environ, MPLBACKEND="Agg"),
+    )
+    assert out.stat().st_size > 10_000
