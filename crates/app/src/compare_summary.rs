@@ -219,23 +219,15 @@ pub fn write_page(
     scene: &str,
     provenance: &Provenance,
     rows: &[Row],
-    (table, settings): (TextTable, TextTable),
+    tables: (TextTable, TextTable),
 ) -> Result<(), String> {
-    let mut blocks = vec![
-        Block::Figure {
-            src: "side_by_side.svg".into(),
-            caption: "Every strategy on the same G-buffer, VPLs and ξ: totals, heat maps \
-                      (brightness = VPLs per pixel, hue = false discovery rate) and ꟻLIP maps."
-                .into(),
-        },
-        Block::Heading("Table".into()),
-        Block::Table(table),
-        Block::Links(vec![
-            "compare.csv".into(),
-            "compare.json".into(),
-            "report.md".into(),
-        ]),
-    ];
+    let figure = Block::Figure {
+        src: "side_by_side.svg".into(),
+        caption: "Every strategy on the same G-buffer, VPLs and ξ: totals, heat maps \
+                  (brightness = VPLs per pixel, hue = false discovery rate) and ꟻLIP maps."
+            .into(),
+    };
+    let mut galleries = Vec::new();
     let dirs = rows
         .iter()
         .map(|r| r.strategy.name())
@@ -260,21 +252,22 @@ pub fn write_page(
         if shown.is_empty() {
             continue;
         }
-        blocks.push(Block::Heading(dir.to_string()));
-        blocks.push(Block::Gallery(shown));
+        galleries.push(Block::Heading(dir.to_string()));
+        galleries.push(Block::Gallery(shown));
         let data = ["layers.exr", "total.exr", "report.json"]
             .into_iter()
             .map(|f| format!("{dir}/{f}"))
             .filter(|f| out.has(f))
             .collect();
-        blocks.push(Block::Links(data));
+        galleries.push(Block::Links(data));
     }
-    blocks.push(Block::Heading("Settings".into()));
-    blocks.push(Block::Table(settings));
-    Page {
-        title: format!("slc compare: {scene}"),
+    Page::of_table(
+        format!("slc compare: {scene}"),
         provenance,
-        blocks,
-    }
+        vec![figure],
+        ("compare", "report.md"),
+        tables,
+        galleries,
+    )
     .write(out)
 }

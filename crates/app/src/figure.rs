@@ -5,7 +5,7 @@
 //! The images are embedded as base64 PNG, so the file can be moved, mailed or put in a paper
 //! on its own.
 use crate::heatmap::heat_colour;
-use crate::plot::tick_label;
+use crate::plot::{draw_error, tick_label};
 use base64::Engine as _;
 use image::codecs::png::PngEncoder;
 use image::{ImageEncoder, RgbImage};
@@ -138,10 +138,6 @@ impl Figure<'_> {
         s.push_str("</svg>\n");
         Ok(s)
     }
-}
-
-fn draw_error<E: std::error::Error + Send + Sync>(e: DrawingAreaErrorKind<E>) -> String {
-    format!("cannot draw the heat-map legend: {e}")
 }
 
 /// The heat-map legend: the colour of every (lights per pixel, FDR) pair, with both axes.

@@ -66,7 +66,36 @@ fn table_html(t: &TextTable, html: &mut String) {
     html.push_str("</table></div>\n");
 }
 
-impl Page<'_> {
+impl<'a> Page<'a> {
+    /// The page of a command with a table: `figures`, the table `name` with links to
+    /// `name.csv`, `name.json` and `notes`, `more`, then the settings every row shares.
+    pub fn of_table(
+        title: String,
+        provenance: &'a Provenance,
+        figures: Vec<Block>,
+        (name, notes): (&str, &str),
+        (table, settings): (TextTable, TextTable),
+        more: Vec<Block>,
+    ) -> Self {
+        let mut blocks = figures;
+        blocks.extend([
+            Block::Heading("Table".into()),
+            Block::Table(table),
+            Block::Links(vec![
+                format!("{name}.csv"),
+                format!("{name}.json"),
+                notes.to_string(),
+            ]),
+        ]);
+        blocks.extend(more);
+        blocks.extend([Block::Heading("Settings".into()), Block::Table(settings)]);
+        Self {
+            title,
+            provenance,
+            blocks,
+        }
+    }
+
     /// The page as HTML. Every `src` and link is relative to the folder.
     pub fn html(&self) -> String {
         let mut html = format!(

@@ -100,8 +100,9 @@ pub fn tick_label(v: f64) -> String {
     }
 }
 
-fn draw_error<E: std::error::Error + Send + Sync>(e: DrawingAreaErrorKind<E>) -> String {
-    format!("cannot draw the plot: {e}")
+/// A plotters error as slc reports it.
+pub fn draw_error<E: std::error::Error + Send + Sync>(e: DrawingAreaErrorKind<E>) -> String {
+    format!("cannot draw a figure: {e}")
 }
 
 /// Renders `series` on log-log axes as an SVG document of 760 × 500 user units. Non-finite and

@@ -275,12 +275,12 @@ fn write_page(
     out: &mut OutDir,
     scene: &str,
     provenance: &Provenance,
-    (table, settings): (TextTable, TextTable),
+    tables: (TextTable, TextTable),
 ) -> Result<(), String> {
-    Page {
-        title: format!("slc sweep: {scene}"),
+    Page::of_table(
+        format!("slc sweep: {scene}"),
         provenance,
-        blocks: vec![
+        vec![
             Block::Figure {
                 src: "sweep.svg".into(),
                 caption: "RMSE of the indirect image against every VPL with p = 1, against \
@@ -293,17 +293,11 @@ fn write_page(
                           strategy's median run."
                     .into(),
             },
-            Block::Heading("Table".into()),
-            Block::Table(table),
-            Block::Links(vec![
-                "sweep.csv".into(),
-                "sweep.json".into(),
-                "equal_time.md".into(),
-            ]),
-            Block::Heading("Settings".into()),
-            Block::Table(settings),
         ],
-    }
+        ("sweep", "equal_time.md"),
+        tables,
+        Vec::new(),
+    )
     .write(out)
 }
 

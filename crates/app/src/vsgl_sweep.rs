@@ -242,29 +242,21 @@ fn write_page(
     out: &mut OutDir,
     scene: &str,
     provenance: &Provenance,
-    (table, settings): (TextTable, TextTable),
+    tables: (TextTable, TextTable),
 ) -> Result<(), String> {
-    Page {
-        title: format!("slc sweep --shader vsgl: {scene}"),
+    Page::of_table(
+        format!("slc sweep --shader vsgl: {scene}"),
         provenance,
-        blocks: vec![
-            Block::Figure {
-                src: "vsgl_sweep.svg".into(),
-                caption: "RMSE of the indirect image against every VPL with p = 1, against \
-                          the light count N: N VSGLs and N VPLs sampled by the same importance."
-                    .into(),
-            },
-            Block::Heading("Table".into()),
-            Block::Table(table),
-            Block::Links(vec![
-                "vsgl_sweep.csv".into(),
-                "vsgl_sweep.json".into(),
-                "vsgl_sweep.md".into(),
-            ]),
-            Block::Heading("Settings".into()),
-            Block::Table(settings),
-        ],
-    }
+        vec![Block::Figure {
+            src: "vsgl_sweep.svg".into(),
+            caption: "RMSE of the indirect image against every VPL with p = 1, against the \
+                      light count N: N VSGLs and N VPLs sampled by the same importance."
+                .into(),
+        }],
+        ("vsgl_sweep", "vsgl_sweep.md"),
+        tables,
+        Vec::new(),
+    )
     .write(out)
 }
 
