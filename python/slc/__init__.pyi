@@ -3,6 +3,8 @@
 from os import PathLike
 from typing import Any, Literal, Optional, Sequence, TypedDict, Union
 
+from typing_extensions import Unpack
+
 import numpy as np
 import numpy.typing as npt
 
@@ -63,6 +65,41 @@ class LightListArrays(TypedDict):
     lists: npt.NDArray[np.uint32]
     NO_LIST: int
 
+class FrameOptions(TypedDict, total=False):
+    """What a frame is made of (defaults as ``slc render``)."""
+
+    width: int  # 512
+    height: int  # 512
+    backend: Backend  # "cpu"
+    seed: int  # 0: seed of ξ, interleaving and sampling (u32)
+    rsm: int  # 64: RSM texels per side and face
+    lobes: Lobes  # "both"
+
+class CullingOptions(FrameOptions, total=False):
+    """The stochastic estimate's culling."""
+
+    delta: float  # 1e-3: δ of eq. (2)
+    interleave: int  # 8: K of K×K interleaving
+
+class ListOptions(CullingOptions, total=False):
+    culling: Strategy  # "ellipsoid"
+
+class CompareOptions(CullingOptions, total=False):
+    denoise: bool  # True
+    visibility: bool  # False: shadow rays to every listed VPL
+    spp: int  # 1
+    progress: bool  # False: progress bars on stderr
+
+class RenderOptions(CompareOptions, total=False):
+    culling: Strategy  # "ellipsoid"
+    shader: ShaderName  # "vpl"
+    metrics: bool  # False: measure culling metrics (Frame.lights, Frame.fdr)
+    reference: Optional[ReferenceName]  # None: "vpl" (every VPL, p = 1) or "path"
+    vsgls: int  # 1024: with shader="vsgl"
+    importance: ImportanceName  # "flux"
+    camera_vsgls: int  # 1024: for importance="bidirectional"
+    vsgl_diffuse: VsglDiffuse  # "clamped"
+
 class Scene:
     """A scene loaded once; what the backends build of it is kept between calls."""
 
@@ -83,111 +120,22 @@ class Scene:
     def warnings(self) -> list[str]: ...
     @property
     def source(self) -> Optional[PathLike[str]]: ...
-    def render(
-        self,
-        *,
-        width: int = 512,
-        height: int = 512,
-        backend: Backend = "cpu",
-        culling: Strategy = "ellipsoid",
-        delta: float = 1e-3,
-        interleave: int = 8,
-        seed: int = 0,
-        shader: ShaderName = "vpl",
-        rsm: int = 64,
-        lobes: Lobes = "both",
-        denoise: bool = True,
-        visibility: bool = False,
-        spp: int = 1,
-        metrics: bool = False,
-        reference: Optional[ReferenceName] = None,
-        vsgls: int = 1024,
-        importance: ImportanceName = "flux",
-        camera_vsgls: int = 1024,
-        vsgl_diffuse: VsglDiffuse = "clamped",
-        progress: bool = False,
-    ) -> Frame: ...
+    def render(self, **options: Unpack[RenderOptions]) -> Frame: ...
     def compare(
         self,
         culling: Optional[Sequence[Strategy]] = None,
         reference: bool = True,
-        *,
-        width: int = 512,
-        height: int = 512,
-        backend: Backend = "cpu",
-        delta: float = 1e-3,
-        interleave: int = 8,
-        seed: int = 0,
-        rsm: int = 64,
-        lobes: Lobes = "both",
-        denoise: bool = True,
-        visibility: bool = False,
-        spp: int = 1,
-        progress: bool = False,
+        **options: Unpack[CompareOptions],
     ) -> dict[str, Frame]: ...
-    def vpls(
-        self,
-        *,
-        width: int = 512,
-        height: int = 512,
-        backend: Backend = "cpu",
-        seed: int = 0,
-        rsm: int = 64,
-        lobes: Lobes = "both",
-    ) -> VplArrays: ...
-    def light_lists(
-        self,
-        *,
-        width: int = 512,
-        height: int = 512,
-        backend: Backend = "cpu",
-        culling: Strategy = "ellipsoid",
-        delta: float = 1e-3,
-        interleave: int = 8,
-        seed: int = 0,
-        rsm: int = 64,
-        lobes: Lobes = "both",
-    ) -> LightListArrays: ...
+    def vpls(self, **options: Unpack[FrameOptions]) -> VplArrays: ...
+    def light_lists(self, **options: Unpack[ListOptions]) -> LightListArrays: ...
 
-def render(
-    scene: Union[Scene, str, PathLike[str], None] = None,
-    *,
-    width: int = 512,
-    height: int = 512,
-    backend: Backend = "cpu",
-    culling: Strategy = "ellipsoid",
-    delta: float = 1e-3,
-    interleave: int = 8,
-    seed: int = 0,
-    shader: ShaderName = "vpl",
-    rsm: int = 64,
-    lobes: Lobes = "both",
-    denoise: bool = True,
-    visibility: bool = False,
-    spp: int = 1,
-    metrics: bool = False,
-    reference: Optional[ReferenceName] = None,
-    vsgls: int = 1024,
-    importance: ImportanceName = "flux",
-    camera_vsgls: int = 1024,
-    vsgl_diffuse: VsglDiffuse = "clamped",
-    progress: bool = False,
-) -> Frame: ...
+SceneLike = Union[Scene, str, PathLike[str], None]
+
+def render(scene: SceneLike = None, **options: Unpack[RenderOptions]) -> Frame: ...
 def compare(
-    scene: Union[Scene, str, PathLike[str], None] = None,
+    scene: SceneLike = None,
     culling: Optional[Sequence[Strategy]] = None,
     reference: bool = True,
-    *,
-    width: int = 512,
-    height: int = 512,
-    backend: Backend = "cpu",
-    delta: float = 1e-3,
-    interleave: int = 8,
-    seed: int = 0,
-    rsm: int = 64,
-    lobes: Lobes = "both",
-    denoise: bool = True,
-    visibility: bool = False,
-    spp: int = 1,
-    progress: bool = False,
+    **options: Unpack[CompareOptions],
 ) -> dict[str, Frame]: ...
