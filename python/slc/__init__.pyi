@@ -87,11 +87,11 @@ class ListOptions(CullingOptions, total=False):
 class CompareOptions(CullingOptions, total=False):
     denoise: bool  # True
     visibility: bool  # False: shadow rays to every listed VPL
-    spp: int  # 1
     progress: bool  # False: progress bars on stderr
 
 class RenderOptions(CompareOptions, total=False):
     culling: Strategy  # "ellipsoid"
+    spp: int  # 1: passes averaged (jittered pixels and texels, new VPLs and ξ each)
     shader: ShaderName  # "vpl"
     metrics: bool  # False: measure culling metrics (Frame.lights, Frame.fdr)
     reference: Optional[ReferenceName]  # None: "vpl" (every VPL, p = 1) or "path"
@@ -116,6 +116,9 @@ class Scene:
     def triangles(self) -> int: ...
     @property
     def lights(self) -> int: ...
+    @property
+    def loads(self) -> int:
+        """Backends that built their state of the scene (BVH, GPU upload): once each."""
     @property
     def warnings(self) -> list[str]: ...
     @property

@@ -1,7 +1,7 @@
 //! The backends a [`crate::scene::PyScene`] keeps between calls: the CPU's BVH, and the GPU
 //! device with the uploaded scene, each made on first use. Work is written once as a [`Job`]
 //! over the renderer API and run on the backend the options name.
-use crate::options::Backend;
+use crate::options::{Backend, Options};
 use slc_core::{Renderer, Scene};
 use slc_cpu_ref::{CpuFrames, CpuRenderer};
 
@@ -28,27 +28,45 @@ pub struct Loaded {
 }
 
 impl Loaded {
-    /// Runs `job` on `backend`, loading `scene` there first if it is not yet.
+    /// Backends that built their state of the scene.
+    pub fn loads(&self) -> usize {
+        #[cfg(feature = "gpu")]
+        let gpu = usize::from(self.gpu.is_some());
+        #[cfg(not(feature = "gpu"))]
+        let gpu = 0;
+        usize::from(self.cpu.is_some()) + gpu
+    }
+
+    /// Runs `job` on the options' backend (after checking it can render the options'
+    /// settings), loading `scene` there first if it is not yet.
     pub fn run<J: Job>(
         &mut self,
-        backend: Backend,
+        options: &Options,
         scene: &Scene,
         job: J,
     ) -> Result<J::Output, String> {
-        match backend {
+        match options.backend {
             Backend::Cpu => {
+                CpuRenderer
+                    .check(&options.settings)
+                    .map_err(|e| e.to_string())?;
                 let loaded = match &mut self.cpu {
                     Some(l) => l,
                     slot => slot.insert(CpuRenderer.load(scene).map_err(|e| e.to_string())?),
                 };
                 job.run(&CpuRenderer, scene, loaded)
             }
-            Backend::Gpu => self.run_gpu(scene, job),
+            Backend::Gpu => self.run_gpu(options, scene, job),
         }
     }
 
     #[cfg(feature = "gpu")]
-    fn run_gpu<J: Job>(&mut self, scene: &Scene, job: J) -> Result<J::Output, String> {
+    fn run_gpu<J: Job>(
+        &mut self,
+        options: &Options,
+        scene: &Scene,
+        job: J,
+    ) -> Result<J::Output, String> {
         let (gpu, loaded) = match &mut self.gpu {
             Some(g) => g,
             slot => {
@@ -60,11 +78,17 @@ impl Loaded {
                 slot.insert((gpu, loaded))
             }
         };
+        gpu.check(&options.settings).map_err(|e| e.to_string())?;
         job.run(&*gpu, scene, loaded)
     }
 
     #[cfg(not(feature = "gpu"))]
-    fn run_gpu<J: Job>(&mut self, _scene: &Scene, _job: J) -> Result<J::Output, String> {
+    fn run_gpu<J: Job>(
+        &mut self,
+        _options: &Options,
+        _scene: &Scene,
+        _job: J,
+    ) -> Result<J::Output, String> {
         Err("this slc was built without the `gpu` feature: use backend='cpu'".into())
     }
 }

@@ -5,7 +5,7 @@
 use crate::error;
 use pyo3::exceptions::{PyTypeError, PyValueError};
 use pyo3::prelude::*;
-use pyo3::types::PyDict;
+use pyo3::types::{PyBool, PyDict, PyInt};
 use slc_core::frame::{
     DiffuseEmission, Importance, LightSampling, LobeSelection, Method, RenderSettings, Stochastic,
 };
@@ -18,28 +18,56 @@ pub enum Backend {
     Gpu,
 }
 
-/// Every option name, in the order the stubs document them.
-pub const NAMES: [&str; 20] = [
+/// What a frame is made of (the stubs' `FrameOptions`): the options of `Scene.vpls`.
+pub const FRAME: &[&str] = &["width", "height", "backend", "seed", "rsm", "lobes"];
+/// `Scene.light_lists` (`ListOptions`).
+pub const LISTS: &[&str] = &[
     "width",
     "height",
     "backend",
+    "seed",
+    "rsm",
+    "lobes",
     "culling",
     "delta",
     "interleave",
+];
+/// `Scene.compare` (`CompareOptions`): one pass, the strategies and the shader its own.
+pub const COMPARE: &[&str] = &[
+    "width",
+    "height",
+    "backend",
     "seed",
-    "shader",
     "rsm",
     "lobes",
+    "delta",
+    "interleave",
+    "denoise",
+    "visibility",
+    "progress",
+];
+/// `Scene.render` and `slc.render` (`RenderOptions`): every option.
+pub const RENDER: &[&str] = &[
+    "width",
+    "height",
+    "backend",
+    "seed",
+    "rsm",
+    "lobes",
+    "culling",
+    "delta",
+    "interleave",
     "denoise",
     "visibility",
     "spp",
+    "progress",
+    "shader",
     "metrics",
     "reference",
     "vsgls",
     "importance",
     "camera_vsgls",
     "vsgl_diffuse",
-    "progress",
 ];
 
 /// Parsed options.
@@ -63,12 +91,18 @@ fn given<'py>(
         .filter(|v| !v.is_none()))
 }
 
-/// A typed option, with `key` named in the error.
+/// A typed option, with `key` named in the error: a `ValueError` for an integer out of the
+/// type's range (a negative width, a seed above 2³² − 1), a `TypeError` for another type.
 macro_rules! option {
     ($options:expr, $key:literal, $ty:ty, $default:expr) => {
         match given($options, $key)? {
             Some(v) => v.extract::<$ty>().map_err(|e| {
-                PyTypeError::new_err(format!("{}: expected {}: {e}", $key, stringify!($ty)))
+                let message = format!("{}: expected {}: {e}", $key, stringify!($ty));
+                if v.is_instance_of::<PyInt>() && !v.is_instance_of::<PyBool>() {
+                    PyValueError::new_err(message)
+                } else {
+                    PyTypeError::new_err(message)
+                }
             })?,
             None => $default,
         }
@@ -90,26 +124,24 @@ fn choose<T: Copy>(key: &str, value: &str, choices: &[(&str, T)]) -> PyResult<T>
         })
 }
 
-/// A culling strategy by name (`slc_core::Strategy`'s names).
+/// A culling strategy by name (`slc_core::Strategy`'s names), or a `ValueError` naming them.
 pub fn strategy(name: &str) -> PyResult<Strategy> {
-    name.parse().map_err(error)
+    name.parse()
+        .map_err(|e: slc_core::UnknownStrategy| PyValueError::new_err(e.to_string()))
 }
 
 impl Options {
-    /// Parses `options`, refusing names outside [`NAMES`] and those in `not_here` (an option
-    /// the calling function takes as an argument of its own).
-    pub fn parse(options: Option<&Bound<'_, PyDict>>, not_here: &[&str]) -> PyResult<Self> {
+    /// Parses `options`, refusing names outside `allowed` ([`FRAME`], [`LISTS`], [`COMPARE`]
+    /// or [`RENDER`]: an option that would have no effect is an error, not ignored). Every
+    /// value is checked, whether or not the method uses it.
+    pub fn parse(options: Option<&Bound<'_, PyDict>>, allowed: &[&str]) -> PyResult<Self> {
         if let Some(d) = options {
             for key in d.keys() {
                 let key: String = key.extract()?;
-                if !NAMES.contains(&key.as_str()) || not_here.contains(&key.as_str()) {
-                    let known: Vec<&str> = NAMES
-                        .into_iter()
-                        .filter(|n| !not_here.contains(n))
-                        .collect();
+                if !allowed.contains(&key.as_str()) {
                     return Err(PyTypeError::new_err(format!(
-                        "unknown option '{key}'; the options are {}",
-                        known.join(", ")
+                        "unknown option '{key}' here; the options are {}",
+                        allowed.join(", ")
                     )));
                 }
             }
@@ -160,47 +192,62 @@ impl Options {
         })
     }
 
-    /// The method: a reference, VSGLs, or the stochastic estimate.
+    /// The method: a reference, VSGLs, or the stochastic estimate (every option of each
+    /// parsed, so a bad value is refused whichever is chosen).
     fn method(options: Option<&Bound<'_, PyDict>>) -> PyResult<Method> {
+        let stochastic = Self::stochastic(options)?;
+        let sampling = Self::sampling(options)?;
         let shader: String = option!(options, "shader", String, "vpl".into());
         let reference: Option<String> = option!(options, "reference", Option<String>, None);
-        match (shader.as_str(), reference.as_deref()) {
-            ("vpl", None) => Ok(Method::Stochastic(Self::stochastic(options)?)),
-            ("vpl", Some(r)) => choose(
-                "reference",
-                r,
-                &[("vpl", Method::VplReference), ("path", Method::Path)],
-            ),
-            ("vsgl", None) => {
-                let importance: String = option!(options, "importance", String, "flux".into());
-                let camera_vsgls = option!(options, "camera_vsgls", u32, 1024);
-                let diffuse: String = option!(options, "vsgl_diffuse", String, "clamped".into());
-                Ok(Method::Vsgl(LightSampling {
-                    count: option!(options, "vsgls", u32, 1024),
-                    importance: choose(
-                        "importance",
-                        &importance,
-                        &[
-                            ("flux", Importance::Flux),
-                            ("bidirectional", Importance::Bidirectional { camera_vsgls }),
-                        ],
-                    )?,
-                    diffuse: choose(
-                        "vsgl_diffuse",
-                        &diffuse,
-                        &[
-                            (DiffuseEmission::ClampedCosine.name(), DiffuseEmission::ClampedCosine),
-                            (DiffuseEmission::Sg.name(), DiffuseEmission::Sg),
-                        ],
-                    )?,
-                }))
-            }
+        let reference = reference
+            .map(|r| {
+                choose(
+                    "reference",
+                    &r,
+                    &[("vpl", Method::VplReference), ("path", Method::Path)],
+                )
+            })
+            .transpose()?;
+        match (shader.as_str(), reference) {
+            ("vpl", None) => Ok(Method::Stochastic(stochastic)),
+            ("vpl", Some(r)) => Ok(r),
+            ("vsgl", None) => Ok(Method::Vsgl(sampling)),
             ("vsgl", Some(_)) => Err(PyValueError::new_err(
-                "reference renders every VPL or paths, not VSGLs: leave out shader='vsgl' or reference",
+                "reference renders every VPL or paths, not VSGLs: leave out shader='vsgl' or \
+                 reference",
             )),
             (other, _) => Err(PyValueError::new_err(format!(
                 "shader: '{other}' is not one of vpl, vsgl"
             ))),
         }
+    }
+
+    /// The sampled lights' options (`shader="vsgl"`).
+    fn sampling(options: Option<&Bound<'_, PyDict>>) -> PyResult<LightSampling> {
+        let importance: String = option!(options, "importance", String, "flux".into());
+        let camera_vsgls = option!(options, "camera_vsgls", u32, 1024);
+        let diffuse: String = option!(options, "vsgl_diffuse", String, "clamped".into());
+        Ok(LightSampling {
+            count: option!(options, "vsgls", u32, 1024),
+            importance: choose(
+                "importance",
+                &importance,
+                &[
+                    ("flux", Importance::Flux),
+                    ("bidirectional", Importance::Bidirectional { camera_vsgls }),
+                ],
+            )?,
+            diffuse: choose(
+                "vsgl_diffuse",
+                &diffuse,
+                &[
+                    (
+                        DiffuseEmission::ClampedCosine.name(),
+                        DiffuseEmission::ClampedCosine,
+                    ),
+                    (DiffuseEmission::Sg.name(), DiffuseEmission::Sg),
+                ],
+            )?,
+        })
     }
 }

@@ -4,7 +4,7 @@
 use crate::backend::{Job, Loaded};
 use crate::error;
 use crate::frame::{FrameData, PyFrame};
-use crate::options::{strategy, Options};
+use crate::options::{strategy, Options, COMPARE, FRAME, LISTS, RENDER};
 use numpy::{PyArray1, PyArray2, PyArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
@@ -18,13 +18,13 @@ use slc_cpu_ref::{CpuFrames, CpuRenderer};
 use std::sync::{Mutex, PoisonError};
 
 /// A scene and what the backends keep of it.
-#[pyclass(name = "Scene", module = "slc")]
+#[pyclass(name = "Scene", module = "slc", frozen)]
 pub struct PyScene {
     scene: Scene,
     /// What the scene was loaded from, for the reports' provenance.
     spec: Option<String>,
-    /// Behind a mutex only to make the scene `Sync` (a GPU scene caches with `OnceCell`); the
-    /// methods that use it take `&mut self`, so it is never contended.
+    /// Locked for the whole of a call (without the GIL): calls on one scene from several
+    /// threads wait for each other.
     loaded: Mutex<Loaded>,
 }
 
@@ -89,8 +89,6 @@ impl Job for CompareJob<'_> {
             sampled_lights: None,
         };
         let message = |e: slc_core::RenderError| e.to_string();
-        scene.validate_for_render().map_err(|e| e.to_string())?;
-        r.check(settings).map_err(message)?;
         let p = r.prepare(scene, loaded, settings, None).map_err(message)?;
         let mut out = Vec::new();
         if self.reference {
@@ -224,22 +222,19 @@ impl PyScene {
         }
     }
 
-    /// Runs `job` on the options' backend without the GIL, after checking the frame fits in
-    /// memory.
-    fn run<J: Job + Send>(
-        &mut self,
-        py: Python<'_>,
-        options: &Options,
-        job: J,
-    ) -> PyResult<J::Output>
+    /// Runs `job` on the options' backend without the GIL, after checking the scene can be
+    /// rendered and the frame fits in memory.
+    fn run<J: Job + Send>(&self, py: Python<'_>, options: &Options, job: J) -> PyResult<J::Output>
     where
         J::Output: Send,
     {
-        let Self { scene, loaded, .. } = self;
-        slc_app::limits::check_memory(&options.settings, scene).map_err(error)?;
-        let loaded = loaded.get_mut().unwrap_or_else(PoisonError::into_inner);
-        py.detach(|| loaded.run(options.backend, scene, job))
-            .map_err(error)
+        self.scene.validate_for_render().map_err(error)?;
+        slc_app::limits::check_memory(&options.settings, &self.scene).map_err(error)?;
+        py.detach(|| {
+            let mut loaded = self.loaded.lock().unwrap_or_else(PoisonError::into_inner);
+            loaded.run(options, &self.scene, job)
+        })
+        .map_err(error)
     }
 }
 
@@ -292,6 +287,16 @@ impl PyScene {
         self.scene.lights.len()
     }
 
+    /// How many times a backend built its state of this scene (the CPU's BVH, the GPU's
+    /// upload): once per backend used, however many frames were rendered.
+    #[getter]
+    fn loads(&self) -> usize {
+        self.loaded
+            .lock()
+            .unwrap_or_else(PoisonError::into_inner)
+            .loads()
+    }
+
     /// What the loader dropped or ignored, as sentences.
     #[getter]
     fn warnings(&self) -> Vec<String> {
@@ -306,8 +311,8 @@ impl PyScene {
 
     /// Renders a frame with the keyword options of `slc.render`.
     #[pyo3(signature = (**options))]
-    fn render(&mut self, py: Python<'_>, options: Option<&Bound<'_, PyDict>>) -> PyResult<PyFrame> {
-        let options = Options::parse(options, &[])?;
+    fn render(&self, py: Python<'_>, options: Option<&Bound<'_, PyDict>>) -> PyResult<PyFrame> {
+        let options = Options::parse(options, RENDER)?;
         let spec = self.spec.clone();
         let job = RenderJob {
             spec: spec.as_deref(),
@@ -322,13 +327,13 @@ impl PyScene {
     /// dict from name to `Frame`.
     #[pyo3(signature = (culling=None, reference=true, **options))]
     fn compare<'py>(
-        &mut self,
+        &self,
         py: Python<'py>,
         culling: Option<Vec<String>>,
         reference: bool,
         options: Option<&Bound<'py, PyDict>>,
     ) -> PyResult<Bound<'py, PyDict>> {
-        let parsed = Options::parse(options, &["culling", "reference", "shader", "metrics"])?;
+        let parsed = Options::parse(options, COMPARE)?;
         let strategies = match culling {
             Some(names) => names
                 .iter()
@@ -359,11 +364,11 @@ impl PyScene {
     /// (N float32), `glossy` (N bool: the glossy lobe, else the diffuse one), `id` (N uint32).
     #[pyo3(signature = (**options))]
     fn vpls<'py>(
-        &mut self,
+        &self,
         py: Python<'py>,
         options: Option<&Bound<'py, PyDict>>,
     ) -> PyResult<Bound<'py, PyDict>> {
-        let options = Options::parse(options, &[])?;
+        let options = Options::parse(options, FRAME)?;
         let c = self.run(py, &options, VplsJob { options: &options })?;
         let out = PyDict::new(py);
         let n = c.alpha.len();
@@ -389,11 +394,11 @@ impl PyScene {
     /// `indices[offsets[l]:offsets[l + 1]]`.
     #[pyo3(signature = (**options))]
     fn light_lists<'py>(
-        &mut self,
+        &self,
         py: Python<'py>,
         options: Option<&Bound<'py, PyDict>>,
     ) -> PyResult<Bound<'py, PyDict>> {
-        let parsed = Options::parse(options, &["shader", "reference"])?;
+        let parsed = Options::parse(options, LISTS)?;
         let job = ListsJob {
             options: &parsed,
             stochastic: Options::stochastic(options)?,

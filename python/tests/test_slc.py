@@ -39,13 +39,15 @@ def test_render_gives_hxwx3_float32_images_and_the_report():
     assert f.lights is None and f.fdr is None, "no metrics unless asked"
 
 
-def test_a_scene_renders_many_times_deterministically(scene):
+def test_a_scene_renders_many_times_deterministically():
+    scene = slc.Scene.builtin()
+    assert scene.loads == 0
     a = scene.render(**SMALL, seed=3)
     b = scene.render(**SMALL, seed=3)
     np.testing.assert_array_equal(a.indirect, b.indirect)
     c = scene.render(**SMALL, seed=4)
     assert not np.array_equal(a.indirect, c.indirect), "the seed changes ξ"
-    assert "load" not in b.report["timings_ms"], "the scene stays loaded"
+    assert scene.loads == 1, "the BVH is built once, however many frames are rendered"
 
 
 def test_compare_gives_every_strategy_with_metrics_and_misses_nothing(scene):
@@ -79,21 +81,38 @@ def test_vpls_are_columns_of_one_row_per_vpl(scene):
     assert len(np.unique(v["id"])) == n
 
 
+def _pixel_lists(lists):
+    """Each pixel's VPL indices (row-major), from offsets, indices and the per-pixel lists."""
+    offsets, indices = lists["offsets"], lists["indices"]
+    return [
+        () if l == lists["NO_LIST"] else tuple(indices[offsets[l] : offsets[l + 1]])
+        for l in lists["lists"].ravel()
+    ]
+
+
 def test_light_lists_are_the_lists_the_renderer_shades_with(scene):
-    options = dict(SMALL, culling="ellipsoid", delta=1e-3, interleave=2, seed=1)
-    lists = scene.light_lists(**options)
+    options = dict(SMALL, delta=1e-3, interleave=2, seed=1)
+    lists = scene.light_lists(**options, culling="ellipsoid")
     n = len(scene.vpls(**SMALL, seed=1)["alpha"])
     offsets, indices, per_pixel = lists["offsets"], lists["indices"], lists["lists"]
     assert per_pixel.shape == (24, 32)
     assert (np.diff(offsets.astype(np.int64)) >= 0).all() and offsets[-1] == len(indices)
     assert (indices < n).all()
-    lengths = np.where(
-        per_pixel == lists["NO_LIST"],
-        0,
-        np.diff(offsets.astype(np.int64))[np.minimum(per_pixel, len(offsets) - 2)],
-    )
-    measured = scene.render(**options, metrics=True).lights
-    np.testing.assert_array_equal(lengths, measured)
+    culled = _pixel_lists(lists)
+    measured = scene.render(**options, culling="ellipsoid", metrics=True).lights
+    np.testing.assert_array_equal([len(l) for l in culled], measured.ravel())
+    # Without culling each pixel lists every VPL of its interleaving subregion: the K² = 4
+    # subregions partition the VPLs, and a culled list keeps a subset of its pixel's.
+    unculled = _pixel_lists(scene.light_lists(**options, culling="none"))
+    subregions = {}
+    for (y, x), full in zip(np.ndindex(24, 32), unculled):
+        if full:
+            subregions.setdefault((y % 2, x % 2), set(full))
+            assert set(full) == subregions[(y % 2, x % 2)]
+    members = [i for s in subregions.values() for i in s]
+    assert len(subregions) == 4 and sorted(members) == list(range(n))
+    assert all(set(c) <= set(f) for c, f in zip(culled, unculled))
+    assert sum(map(len, culled)) < sum(map(len, unculled))
 
 
 def test_vsgls_and_references():
@@ -110,8 +129,16 @@ def test_bad_input_raises_clear_exceptions(scene):
         scene.render(width="wide")
     with pytest.raises(ValueError, match="not one of"):
         scene.render(backend="tpu")
-    with pytest.raises(slc.SlcError, match="strategy"):
+    with pytest.raises(ValueError, match="octree"):
         scene.render(culling="octree")
+    with pytest.raises(ValueError, match="width"):
+        scene.render(width=-1)
+    with pytest.raises(ValueError, match="importance"):
+        scene.render(importance="bogus")
+    with pytest.raises(TypeError, match="unknown option 'spp'"):
+        scene.compare(spp=2)
+    with pytest.raises(TypeError, match="unknown option 'culling'"):
+        scene.vpls(culling="sphere")
     with pytest.raises(slc.SlcError, match="width and height"):
         scene.render(width=0)
     with pytest.raises(slc.SlcError, match="delta"):
@@ -122,6 +149,10 @@ def test_bad_input_raises_clear_exceptions(scene):
         slc.Scene.builtin("nope")
     with pytest.raises(slc.SlcError, match="memory available"):
         scene.render(width=16384, height=16384, rsm=4096)
+    unlit = slc.Scene.load(REPO / "crates/core/tests/corpus/valid-sparse-positions.gltf")
+    for call in (unlit.render, unlit.vpls, unlit.light_lists):
+        with pytest.raises(slc.SlcError, match="no light"):
+            call(**SMALL)
 
 
 def test_work_releases_the_gil(scene):
@@ -139,6 +170,24 @@ def test_work_releases_the_gil(scene):
     elapsed = time.perf_counter() - start
     # Holding the GIL, the render would let this loop run only before and after it.
     assert ticks > 10 and elapsed > 0.02, (ticks, elapsed)
+
+
+def test_one_scene_serves_several_threads(scene):
+    frames, errors = [], []
+
+    def work(seed):
+        try:
+            frames.append(scene.render(width=96, height=64, rsm=16, seed=seed))
+        except Exception as e:  # noqa: BLE001 - the test reports whatever went wrong
+            errors.append(e)
+
+    threads = [threading.Thread(target=work, args=(s,)) for s in range(3)]
+    for t in threads:
+        t.start()
+    names = [scene.name for _ in range(100)]  # reading the scene while it renders
+    for t in threads:
+        t.join()
+    assert not errors and len(frames) == 3 and set(names) == {"cornell-glossy"}
 
 
 def test_progress_only_when_asked(capfd):

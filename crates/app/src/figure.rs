@@ -90,7 +90,7 @@ impl Figure<'_> {
         let mut s = String::new();
         let _ = writeln!(
             s,
-            r#"<svg xmlns="http://www.w3.org/2000/svg" width="{width}" height="{height}" viewBox="0 0 {width} {height}" font-family="sans-serif">"#
+            r#"<svg xmlns="http://www.w3.org/2000/svg" xmlns:xlink="http://www.w3.org/1999/xlink" width="{width}" height="{height}" viewBox="0 0 {width} {height}" font-family="sans-serif">"#
         );
         let _ = writeln!(s, r#"<rect width="100%" height="100%" fill="white"/>"#);
         let _ = writeln!(
@@ -122,7 +122,7 @@ impl Figure<'_> {
             for (c, image) in row.images.iter().enumerate() {
                 let _ = writeln!(
                     s,
-                    r#"<image x="{}" y="{y}" width="{pw}" height="{ph}" preserveAspectRatio="none" style="image-rendering:pixelated" href="{}"/>"#,
+                    r#"<image x="{}" y="{y}" width="{pw}" height="{ph}" preserveAspectRatio="none" style="image-rendering:pixelated" xlink:href="{}"/>"#,
                     ROW_LABEL + c as f64 * (pw + GAP),
                     png_data_uri(image)?
                 );

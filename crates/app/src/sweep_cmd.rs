@@ -171,8 +171,10 @@ fn sweep<R: Renderer>(
     reference: &Image,
 ) -> Result<Vec<Point>, String> {
     let mut points = Vec::new();
+    // With a warm-up run before each point's measured ones when `--repeat` > 1.
+    let per_point = args.repeat + u32::from(args.repeat > 1);
     let progress = bar(
-        (strategies.len() * args.delta.len() * args.repeat as usize) as u64,
+        (strategies.len() * args.delta.len() * per_point as usize) as u64,
         "sweep".into(),
     );
     for &strategy in strategies {

@@ -10,6 +10,7 @@
 //! With `--backend gpu` the frame is prepared on the GPU and the VSGLs are shaded there (with
 //! imperfect shadow maps for `--visibility`); the reference and the sampled VPLs are shaded on
 //! the CPU from the read-back frame.
+use crate::args::PipelineArgs;
 use crate::backend::{message, run_on, OnBackend};
 use crate::page::{Block, Page};
 use crate::plot::{log_log_plot_svg, Series};
@@ -23,7 +24,7 @@ use slc_app::progress::bar;
 use slc_app::provenance::Provenance;
 use slc_app::reference::{all_vpl_reference, cpu_input};
 use slc_app::repeat::{repeated, Spread};
-use slc_core::frame::{Importance, Method, Timings};
+use slc_core::frame::{Importance, LightSampling, Method, Timings};
 use slc_core::shader::{SampledLights, ShadeInput};
 use slc_core::{PreparedFrame, Scene};
 use slc_cpu_ref::CpuFrames;
@@ -90,8 +91,9 @@ impl OnBackend for VsglSweep<'_> {
         let start = Instant::now();
         let reference = all_vpl_reference(cpu_input(&scene, &cpu_p, f.seed, f.visibility), true)?;
         let reference_ms = start.elapsed().as_secs_f64() * 1e3;
-        let runs =
-            args.vsgls.len() * SampledLights::ALL.len() * (args.seeds * args.repeat) as usize;
+        // With a warm-up run before each point's measured ones when `--repeat` > 1.
+        let per_point = args.seeds * (args.repeat + u32::from(args.repeat > 1));
+        let runs = args.vsgls.len() * SampledLights::ALL.len() * per_point as usize;
         let progress = bar(runs as u64, "sweep".into());
         let mut points = Vec::new();
         for &count in &args.vsgls {
@@ -118,14 +120,17 @@ impl OnBackend for VsglSweep<'_> {
                     runs.extend(outs.into_iter().map(|o| o.timings));
                 }
                 let total = Spread::of_totals(&runs);
+                // The run whose total is nearest the median (of an even count: the lower of
+                // the two middle runs when they are equally near).
                 runs.sort_by(|a, b| a.total().total_cmp(&b.total()));
+                let median_run = (runs.len() - 1) / 2;
                 points.push(Point {
                     count,
                     estimator,
                     lights,
                     total,
                     runs: runs.len(),
-                    timings: runs.swap_remove(runs.len() / 2),
+                    timings: runs.swap_remove(median_run),
                     rmse: (squared / f64::from(args.seeds)).sqrt() as f32,
                 });
             }
@@ -138,7 +143,11 @@ impl OnBackend for VsglSweep<'_> {
             &scene,
             &r.info(&settings),
             f,
-            &args.pipeline,
+            // Sampled lights are shaded without interleaving or the filter.
+            &PipelineArgs {
+                interleave: 1,
+                no_denoise: true,
+            },
             p.vpls().len(),
         );
         let facts = SweepFacts {
@@ -148,7 +157,11 @@ impl OnBackend for VsglSweep<'_> {
             reference_ms,
             vsgl_backend: r.name(),
         };
-        let rows: Vec<VsglSweepRow> = points.iter().map(VsglSweepRow::of).collect();
+        let sampling = args.importance.sampling(0);
+        let rows: Vec<VsglSweepRow> = points
+            .iter()
+            .map(|p| VsglSweepRow::of(p, sampling))
+            .collect();
         let tables = write_table(&mut out, "vsgl_sweep", &provenance, &columns, &rows)?;
         write_outputs(args, &mut out, &facts, &points)?;
         write_page(&mut out, &scene.name, &provenance, tables)?;
@@ -204,6 +217,10 @@ fn write_outputs(
 struct VsglSweepRow {
     n: u32,
     estimator: &'static str,
+    importance: &'static str,
+    /// VSGLs on the G-buffer for the bidirectional importance; empty for flux.
+    camera_vsgls: Option<u32>,
+    vsgl_diffuse: &'static str,
     distinct_lights: usize,
     runs: usize,
     vsgl_mip_ms: f64,
@@ -217,12 +234,18 @@ struct VsglSweepRow {
 }
 
 impl VsglSweepRow {
-    fn of(p: &Point) -> Self {
+    fn of(p: &Point, sampling: LightSampling) -> Self {
         let [vsgl_mip_ms, importance_map_ms, light_sampling_ms, light_shading_ms] =
             PASSES.map(|(pass, _)| p.timings.get(pass));
         Self {
             n: p.count,
             estimator: p.estimator.name(),
+            importance: sampling.importance.name(),
+            camera_vsgls: match sampling.importance {
+                Importance::Bidirectional { camera_vsgls } => Some(camera_vsgls),
+                Importance::Flux => None,
+            },
+            vsgl_diffuse: sampling.diffuse.name(),
             distinct_lights: p.lights,
             runs: p.runs,
             vsgl_mip_ms,
