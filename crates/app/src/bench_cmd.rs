@@ -119,7 +119,7 @@ impl OnBackend for Bench<'_> {
         let provenance = Provenance::new(args.frame.scene.as_deref(), &scene);
         let mut rows = Vec::new();
         let mut md = format!(
-            "# slc bench: {}\n\nBackend {}, adapter {}, {} rayon threads, δ = {}, K = {}, lobes {:?}, median (min–max) of {} runs. Milliseconds per pass.\n\n{}| resolution | VPLs | strategy | {} | culling + shading |\n|---|---|---|{}---|\n",
+            "# slc bench: {}\n\nBackend {}, adapter {}, {} rayon threads, δ = {}, K = {}, lobes {:?}, median (min–max) of {} runs. Milliseconds per pass; M pairs/s: the pixel-VPL pairs the lists hold over the shading time (the CPU counts them; n/a on the GPU, whose lists stay there).\n\n{}| resolution | VPLs | strategy | {} | culling + shading | M pairs/s |\n|---|---|---|{}---|---|\n",
             scene.name,
             device.backend,
             device.adapter,
@@ -164,8 +164,11 @@ impl OnBackend for Bench<'_> {
                 let vpl_count = p.vpls().len();
                 for &strategy in &strategies {
                     let s = Stochastic { strategy, ..base };
+                    // Every run lists the same pairs (same VPLs, ξ and lists).
+                    let mut listed_pairs = None;
                     let runs = repeated(args.repeat, || {
                         let out = s.shade(r, input, &|_| {}).map_err(message)?;
+                        listed_pairs = out.listed_pairs;
                         let (mut t, gpu_timings) = frame_timings(&p, &out);
                         // The GPU's own times of its passes replace the wall clock where the
                         // adapter has timestamp queries.
@@ -177,15 +180,17 @@ impl OnBackend for Bench<'_> {
                         }
                         Ok(t)
                     })?;
-                    let row = BenchRow::of(s, &runs);
+                    let row = BenchRow::of(s, &runs, listed_pairs);
                     let cs = row.culling_plus_shading_ms;
                     let _ = writeln!(
                         md,
-                        "| {w}x{h} | {vpl_count} | {strategy} | {} | {} |",
+                        "| {w}x{h} | {vpl_count} | {strategy} | {} | {} | {} |",
                         PASSES
                             .map(|n| format!("{:.1}", Spread::of_passes(&runs, &[n]).median))
                             .join(" | "),
-                        Spread::of_passes(&runs, &["culling", "shading"]).text(runs.len())
+                        Spread::of_passes(&runs, &["culling", "shading"]).text(runs.len()),
+                        row.shading_mpairs_per_s
+                            .map_or("n/a".into(), |v| format!("{v:.1}"))
                     );
                     let settings = SettingsColumns::new(
                         &provenance,
@@ -234,10 +239,14 @@ struct BenchRow {
     culling_plus_shading_ms: f64,
     culling_plus_shading_ms_min: f64,
     culling_plus_shading_ms_max: f64,
+    /// Pixel-VPL pairs in the lists (empty where the backend keeps its lists to itself).
+    listed_pairs: Option<u64>,
+    /// Listed pairs shaded per second (millions), over the median shading time.
+    shading_mpairs_per_s: Option<f64>,
 }
 
 impl BenchRow {
-    fn of(s: Stochastic, runs: &[Timings]) -> Self {
+    fn of(s: Stochastic, runs: &[Timings], listed_pairs: Option<u64>) -> Self {
         let [gbuffer_ms, rsm_ms, vpl_generation_ms, direct_ms, culling_ms, shading_ms, denoise_ms] =
             PASSES.map(|n| Spread::of_passes(runs, &[n]).median);
         let cs = Spread::of_passes(runs, &["culling", "shading"]);
@@ -255,6 +264,10 @@ impl BenchRow {
             culling_plus_shading_ms: cs.median,
             culling_plus_shading_ms_min: cs.min,
             culling_plus_shading_ms_max: cs.max,
+            listed_pairs,
+            shading_mpairs_per_s: listed_pairs
+                .filter(|_| shading_ms > 0.0)
+                .map(|pairs| pairs as f64 / (shading_ms * 1e3)),
         }
     }
 }

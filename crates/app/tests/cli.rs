@@ -365,6 +365,15 @@ fn bench_writes_a_row_per_resolution_vpl_count_and_strategy() {
         assert!(min <= med && med <= max, "{row}");
     }
     assert_eq!(rows[7]["settings"]["width"], 24);
+    // The CPU counts the pairs its lists hold: the unculled lists hold the most.
+    let pairs = |i: usize| rows[i]["times"]["listed_pairs"].as_u64().unwrap();
+    assert!(
+        pairs(7) >= pairs(6) && pairs(6) > 0,
+        "none lists at least the ellipsoid's"
+    );
+    assert!(rows
+        .iter()
+        .all(|r| r["times"]["shading_mpairs_per_s"].as_f64().unwrap() > 0.0));
     assert!(std::fs::read_to_string(out.join("bench.md"))
         .unwrap()
         .contains("| 24x16 |"));

@@ -85,6 +85,14 @@ impl LightLists {
         }
     }
 
+    /// Pixel-VPL pairs the lists hold: the sum over pixels of their list's length (what
+    /// shading evaluates, before its early exits).
+    pub fn listed_pairs(&self) -> u64 {
+        (0..self.pixel_list.len())
+            .map(|p| self.for_pixel(p).len() as u64)
+            .sum()
+    }
+
     /// Number of lists.
     pub fn len(&self) -> usize {
         self.offsets.len().saturating_sub(1)
@@ -151,4 +159,21 @@ pub struct CullMetrics {
     pub lights_per_pixel: Vec<u32>,
     /// FP / (TP + FP) of every pixel (row-major), 0 where nothing is listed.
     pub fdr_per_pixel: Vec<f32>,
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn listed_pairs_count_each_pixel_with_its_list() {
+        // Two lists (3 and 1 VPLs); pixels 0 and 2 share list 0, pixel 1 has none.
+        let lists = LightLists {
+            offsets: vec![0, 3, 4],
+            indices: vec![5, 6, 7, 1],
+            pixel_list: vec![0, NO_LIST, 0, 1],
+        };
+        assert_eq!(lists.listed_pairs(), 3 + 0 + 3 + 1);
+        assert_eq!(LightLists::default().listed_pairs(), 0);
+    }
 }

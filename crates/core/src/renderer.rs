@@ -150,6 +150,12 @@ pub trait Renderer {
         progress: Progress,
     ) -> Result<Self::Image, RenderError>;
 
+    /// Pixel-VPL pairs `lists` hold ([`crate::LightLists::listed_pairs`]), where this backend
+    /// can count them without reading the lists back; `None` elsewhere.
+    fn listed_pairs(&self, _lists: &Self::Lists) -> Option<u64> {
+        None
+    }
+
     /// The cross bilateral filter guided by depth and normal (section 6).
     fn denoise(&self, p: &Self::Prepared, image: Self::Image) -> Result<Self::Image, RenderError>;
 

@@ -89,6 +89,7 @@ impl Shader for Stochastic {
             gpu_timings,
             metrics,
             sampled_lights: None,
+            listed_pairs: r.listed_pairs(&lists),
         })
     }
 }

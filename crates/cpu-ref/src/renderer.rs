@@ -97,6 +97,10 @@ impl Renderer for CpuRenderer {
         Ok(shade_lists(&p.tracer, &input, lists, visibility, progress)?)
     }
 
+    fn listed_pairs(&self, lists: &LightLists) -> Option<u64> {
+        Some(lists.listed_pairs())
+    }
+
     fn denoise(&self, p: &CpuPrepared, image: Image) -> Result<Image, RenderError> {
         Ok(cross_bilateral(
             &image,

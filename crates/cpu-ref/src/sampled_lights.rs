@@ -67,6 +67,7 @@ pub fn shade_vsgl(
     })?;
     Ok(Shaded {
         sampled_lights: Some(vsgls.len()),
+        listed_pairs: None,
         ..Shaded::new(indirect, timings)
     })
 }
@@ -130,6 +131,7 @@ pub fn shade_sampled_vpls(
     })?;
     Ok(Shaded {
         sampled_lights: Some(vpls.len()),
+        listed_pairs: None,
         ..Shaded::new(indirect, timings)
     })
 }

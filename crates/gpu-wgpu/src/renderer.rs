@@ -458,6 +458,7 @@ impl Renderer for GpuRenderer {
         progress(u64::from(g.width) * u64::from(g.height));
         Ok(Shaded {
             sampled_lights: Some(vsgls.len()),
+            listed_pairs: None,
             ..Shaded::new(indirect, timings)
         })
     }

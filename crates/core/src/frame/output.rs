@@ -15,6 +15,9 @@ pub struct Shaded {
     pub metrics: Option<CullMetrics>,
     /// Distinct sampled lights shaded (VSGL and sampled-VPL shaders).
     pub sampled_lights: Option<usize>,
+    /// Pixel-VPL pairs the stochastic shader's lists held, where the backend counts them
+    /// without a readback ([`crate::Renderer::listed_pairs`]).
+    pub listed_pairs: Option<u64>,
 }
 
 impl Shaded {
@@ -26,6 +29,7 @@ impl Shaded {
             gpu_timings: None,
             metrics: None,
             sampled_lights: None,
+            listed_pairs: None,
         }
     }
 }
