@@ -173,7 +173,8 @@ mod tests {
             indices: vec![5, 6, 7, 1],
             pixel_list: vec![0, NO_LIST, 0, 1],
         };
-        assert_eq!(lists.listed_pairs(), 3 + 0 + 3 + 1);
+        // Pixels 0 and 2: three pairs each; pixel 1: none; pixel 3: one.
+        assert_eq!(lists.listed_pairs(), 7);
         assert_eq!(LightLists::default().listed_pairs(), 0);
     }
 }
