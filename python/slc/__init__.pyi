@@ -117,6 +117,20 @@ class Scene:
     @property
     def lights(self) -> int: ...
     @property
+    def materials(self) -> list[str]: ...
+    def with_materials(
+        self,
+        pattern: str,
+        *,
+        kd: Optional[tuple[float, float, float]] = None,
+        f0: Optional[tuple[float, float, float]] = None,
+        alpha: Optional[float] = None,
+        roughness: Optional[float] = None,
+        eta: Optional[float] = None,
+        double_sided: Optional[bool] = None,
+    ) -> Scene:
+        """A copy with the materials `pattern` (name or glob) matches overridden."""
+    @property
     def loads(self) -> int:
         """Backends that built their state of the scene (BVH, GPU upload): once each."""
     @property

@@ -6,6 +6,7 @@ use crate::error;
 use crate::frame::{FrameData, PyFrame};
 use crate::options::{strategy, Options, COMPARE, FRAME, LISTS, RENDER};
 use numpy::{PyArray1, PyArray2, PyArrayMethods};
+use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use slc_app::progress::bar_if;
@@ -13,7 +14,7 @@ use slc_app::reference::{all_vpl_reference, cpu_input};
 use slc_core::culling::{Interleaving, LightLists, NO_LIST};
 use slc_core::frame::{Method, RenderSettings, RenderedFrame, Stochastic};
 use slc_core::shader::{ShadeInput, Shader as _};
-use slc_core::{load_scene, PreparedFrame, Renderer, Scene, Strategy, VplLobe};
+use slc_core::{load_scene, MaterialOverride, PreparedFrame, Renderer, Scene, Strategy, VplLobe};
 use slc_cpu_ref::{CpuFrames, CpuRenderer};
 use std::sync::{Mutex, PoisonError};
 
@@ -285,6 +286,56 @@ impl PyScene {
     #[getter]
     fn lights(&self) -> usize {
         self.scene.lights.len()
+    }
+
+    /// A copy of the scene with the materials `pattern` matches overridden (as a settings
+    /// file's `[[materials]]`: `pattern` is a name or a glob with `*`; kd and f0 in [0, 1],
+    /// alpha or roughness = √alpha in (0, 1], eta above 0). The copy is loaded anew on its
+    /// first render; this scene is unchanged.
+    #[pyo3(signature = (pattern, *, kd=None, f0=None, alpha=None, roughness=None, eta=None, double_sided=None))]
+    #[allow(clippy::too_many_arguments)]
+    fn with_materials(
+        &self,
+        pattern: &str,
+        kd: Option<[f32; 3]>,
+        f0: Option<[f32; 3]>,
+        alpha: Option<f32>,
+        roughness: Option<f32>,
+        eta: Option<f32>,
+        double_sided: Option<bool>,
+    ) -> PyResult<Self> {
+        let o = MaterialOverride::new(pattern, kd, f0, alpha, roughness, eta, double_sided)
+            .map_err(PyValueError::new_err)?;
+        let mut scene = self.scene.clone();
+        scene
+            .override_materials(std::slice::from_ref(&o))
+            .map_err(PyValueError::new_err)?;
+        // Reports say the scene is not its file's alone.
+        let set: Vec<String> = [
+            kd.map(|v| format!("kd {v:?}")),
+            f0.map(|v| format!("f0 {v:?}")),
+            o.alpha.map(|v| format!("alpha {v}")),
+            eta.map(|v| format!("eta {v}")),
+            double_sided.map(|v| format!("double_sided {v}")),
+        ]
+        .into_iter()
+        .flatten()
+        .collect();
+        scene.report.warnings.push(format!(
+            "materials '{pattern}' overridden from Python: {}",
+            set.join(", ")
+        ));
+        Ok(Self::new(scene, self.spec.clone()))
+    }
+
+    /// Names of the scene's materials.
+    #[getter]
+    fn materials(&self) -> Vec<String> {
+        self.scene
+            .materials
+            .iter()
+            .map(|m| m.name.clone())
+            .collect()
     }
 
     /// How many times a backend built its state of this scene (the CPU's BVH, the GPU's

@@ -206,6 +206,26 @@ def test_the_gpu_backend_renders_the_same_frame_shape():
     assert f.report["backend"] == "gpu"
 
 
+def test_a_scene_with_overridden_materials_is_a_new_scene(scene):
+    assert "copper" in scene.materials
+    sharp = scene.with_materials("copper", alpha=0.01)
+    rough = scene.with_materials("cop*", roughness=1.0)
+    assert sharp.loads == 0 and any("overridden" in w for w in sharp.warnings)
+    assert not any("overridden" in w for w in scene.warnings), "the original is unchanged"
+    options = dict(SMALL, culling=["sphere", "ellipsoid"], reference=False)
+    a, b = sharp.compare(**options), rough.compare(**options)
+    # A narrower lobe shrinks the ellipsoid (and the sphere with it) and changes the image.
+    assert a["ellipsoid"].lights.sum() < b["ellipsoid"].lights.sum()
+    assert not np.array_equal(a["ellipsoid"].indirect, b["ellipsoid"].indirect)
+    assert a["ellipsoid"].report["warnings"][-1].startswith("materials 'copper' overridden")
+    with pytest.raises(ValueError, match="matches no material"):
+        scene.with_materials("marble", alpha=0.5)
+    with pytest.raises(ValueError, match="alpha"):
+        scene.with_materials("copper", alpha=0.0)
+    with pytest.raises(ValueError, match="sets nothing"):
+        scene.with_materials("copper")
+
+
 def test_the_example_sweeps_delta_and_writes_a_plot(tmp_path):
     out = tmp_path / "sweep.png"
     subprocess.run(
@@ -220,3 +240,22 @@ def test_the_example_sweeps_delta_and_writes_a_plot(tmp_path):
         env=dict(os.environ, MPLBACKEND="Agg"),
     )
     assert out.stat().st_size > 10_000
+
+
+def test_the_roughness_example_writes_a_plot_and_a_table(tmp_path):
+    out = tmp_path / "roughness.png"
+    subprocess.run(
+        [
+            sys.executable,
+            str(REPO / "python/examples/roughness_sweep.py"),
+            "--width", "48", "--height", "32", "--rsm", "8",
+            "--alpha", "0.05", "0.5", "--culling", "sphere", "ellipsoid",
+            "--out", str(out),
+        ],
+        check=True,
+        env=dict(os.environ, MPLBACKEND="Agg"),
+    )
+    assert out.stat().st_size > 10_000
+    rows = out.with_suffix(".csv").read_text().splitlines()
+    assert rows[0].startswith("alpha,strategy,") and len(rows) == 1 + 2 * 2
+    assert all(r.endswith(",0") for r in rows[1:]), "no strategy misses a pair"

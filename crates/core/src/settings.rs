@@ -190,24 +190,11 @@ impl Settings {
     /// Applies the settings to a loaded scene: name, camera, lights, then material overrides.
     /// Fails without changing the scene when an override matches none of its materials.
     pub fn apply(&self, scene: &mut Scene) -> Result<(), SceneError> {
-        if let Some((i, o)) = self.materials.iter().enumerate().find(|(_, o)| {
-            !scene
-                .materials
-                .iter()
-                .any(|m| glob_match(&o.pattern, &m.name))
-        }) {
-            let names: Vec<&str> = scene.materials.iter().map(|m| m.name.as_str()).collect();
-            return Err(SceneError::Settings {
-                path: self.path.clone(),
-                message: format!(
-                    "[[materials]] #{}: '{}' matches no material of {} (its materials: {})",
-                    i + 1,
-                    o.pattern,
-                    self.scene.display(),
-                    names.join(", ")
-                ),
-            });
-        }
+        let file = self.scene.display().to_string();
+        unmatched(&self.materials, scene, &file).map_err(|(i, message)| SceneError::Settings {
+            path: self.path.clone(),
+            message: format!("[[materials]] #{}: {message}", i + 1),
+        })?;
         scene.name = self.path.file_stem().map_or_else(
             || self.path.display().to_string(),
             |s| s.to_string_lossy().into_owned(),
@@ -219,20 +206,89 @@ impl Settings {
             scene.lights.clear();
         }
         scene.lights.extend(self.lights.iter().cloned());
-        for o in &self.materials {
-            for m in scene
-                .materials
-                .iter_mut()
-                .filter(|m| glob_match(&o.pattern, &m.name))
-            {
-                scene.report.warnings.extend(o.apply_to(m));
-            }
+        apply_overrides(&self.materials, scene);
+        Ok(())
+    }
+}
+
+/// The first override that matches no material of `scene` (named `label` in the message):
+/// its index and why.
+fn unmatched(
+    overrides: &[MaterialOverride],
+    scene: &Scene,
+    label: &str,
+) -> Result<(), (usize, String)> {
+    match overrides.iter().enumerate().find(|(_, o)| {
+        !scene
+            .materials
+            .iter()
+            .any(|m| glob_match(&o.pattern, &m.name))
+    }) {
+        Some((i, o)) => {
+            let names: Vec<&str> = scene.materials.iter().map(|m| m.name.as_str()).collect();
+            Err((
+                i,
+                format!(
+                    "'{}' matches no material of {label} (its materials: {})",
+                    o.pattern,
+                    names.join(", ")
+                ),
+            ))
         }
+        None => Ok(()),
+    }
+}
+
+/// Applies `overrides` in order to the materials they match, adding their warnings to the
+/// scene's report.
+fn apply_overrides(overrides: &[MaterialOverride], scene: &mut Scene) {
+    for o in overrides {
+        for m in scene
+            .materials
+            .iter_mut()
+            .filter(|m| glob_match(&o.pattern, &m.name))
+        {
+            scene.report.warnings.extend(o.apply_to(m));
+        }
+    }
+}
+
+impl Scene {
+    /// Applies material overrides (as a settings file's `[[materials]]` do) to a loaded scene;
+    /// fails without changing it when one matches none of its materials.
+    pub fn override_materials(&mut self, overrides: &[MaterialOverride]) -> Result<(), String> {
+        unmatched(overrides, self, &self.label()).map_err(|(_, message)| message)?;
+        apply_overrides(overrides, self);
         Ok(())
     }
 }
 
 impl MaterialOverride {
+    /// A validated override of the materials `pattern` matches, as a settings file's
+    /// `[[materials]]` entry: kd and f0 in [0, 1] per channel, alpha or roughness (not both)
+    /// in (0, 1], eta finite and above 0, and at least one value set.
+    #[allow(clippy::too_many_arguments)]
+    pub fn new(
+        pattern: &str,
+        kd: Option<[f32; 3]>,
+        f0: Option<[f32; 3]>,
+        alpha: Option<f32>,
+        roughness: Option<f32>,
+        eta: Option<f32>,
+        double_sided: Option<bool>,
+    ) -> Result<Self, String> {
+        RawMaterial {
+            name: pattern.to_string(),
+            kd: kd.map(Rgb::Rgb),
+            f0: f0.map(Rgb::Rgb),
+            alpha,
+            roughness,
+            eta,
+            double_sided,
+        }
+        .validate()
+    }
+
     /// Sets the override's values in `m` (see the module documentation for glTF materials);
     /// returns warnings for the user.
     pub fn apply_to(&self, m: &mut Material) -> Vec<String> {
