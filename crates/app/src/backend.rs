@@ -22,7 +22,13 @@ pub fn run_on(backend: Backend, command: impl OnBackend) -> Result<(), String> {
 #[cfg(feature = "gpu")]
 fn run_on_gpu(command: impl OnBackend) -> Result<(), String> {
     let gpu = slc_gpu_wgpu::GpuRenderer::new().map_err(|e| e.to_string())?;
-    let ctx = gpu.context();
+    warn_if_software(gpu.context());
+    command.run(&gpu)
+}
+
+/// Warns on stderr when `ctx` runs on a software rasterizer.
+#[cfg(feature = "gpu")]
+pub fn warn_if_software(ctx: &slc_gpu_wgpu::GpuContext) {
     if ctx.software {
         eprintln!(
             "warning: the GPU adapter {} is a software rasterizer running on the CPU: GPU runs \
@@ -30,7 +36,6 @@ fn run_on_gpu(command: impl OnBackend) -> Result<(), String> {
             ctx.adapter_name
         );
     }
-    command.run(&gpu)
 }
 
 #[cfg(not(feature = "gpu"))]

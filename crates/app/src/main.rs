@@ -20,6 +20,8 @@ mod sampled;
 mod sweep_cmd;
 mod table;
 mod vsgl_sweep;
+#[cfg(feature = "view")]
+mod view;
 
 use clap::{Parser, Subcommand};
 
@@ -45,6 +47,10 @@ enum Command {
     Sweep(sweep_cmd::SweepArgs),
     /// Per-pass times over resolutions and VPL counts for each strategy: bench.md, bench.csv.
     Bench(bench_cmd::BenchArgs),
+    /// An interactive window on the GPU renderer: fly camera, movable lights, render controls,
+    /// overlays (heat map, tile grid), per-pass times; screenshots and settings (.toml).
+    #[cfg(feature = "view")]
+    View(view::ViewArgs),
 }
 
 fn main() {
@@ -55,6 +61,8 @@ fn main() {
         Command::Compare(args) => compare_cmd::run(&args),
         Command::Sweep(args) => sweep_cmd::run(&args),
         Command::Bench(args) => bench_cmd::run(&args),
+        #[cfg(feature = "view")]
+        Command::View(args) => view::run(&args),
     };
     if let Err(e) = result {
         eprintln!("error: {e}");

@@ -1,0 +1,449 @@
+//! The window and its event loop (winit): input to the fly camera, the panel and the
+//! picture drawn with egui, `--frames` runs that save and exit.
+use super::camera::FlyInput;
+use super::display::{Display, Paint};
+use super::frame::FrameRenderer;
+use super::overlay;
+use super::panel::{self, Actions, PanelInfo};
+use super::screenshot::{capture, save_png, PixelRect};
+use super::session::Session;
+use super::{ViewArgs, ViewError};
+use crate::backend::warn_if_software;
+use std::collections::{HashSet, VecDeque};
+use std::sync::Arc;
+use std::time::Instant;
+use winit::application::ApplicationHandler;
+use winit::dpi::PhysicalSize;
+use winit::event::{ElementState, MouseButton, MouseScrollDelta, WindowEvent};
+use winit::event_loop::{ActiveEventLoop, ControlFlow, EventLoop};
+use winit::keyboard::{KeyCode, PhysicalKey};
+use winit::window::{Window, WindowId};
+
+/// Width of the side panel in pixels.
+const PANEL_WIDTH: u32 = 330;
+/// Seconds one scripted step lasts.
+const SCRIPT_DT: f32 = 0.1;
+/// The longest frame time the camera integrates (after a slow frame it does not jump).
+const MAX_DT: f32 = 0.1;
+
+/// Opens the window and runs the view until it is closed or `--frames` are done.
+pub fn run(args: &ViewArgs, session: Session, script: Vec<FlyInput>) -> Result<(), ViewError> {
+    let event_loop = EventLoop::new().map_err(|e| {
+        let unset = |v| std::env::var_os(v).is_none_or(|s| s.is_empty());
+        if unset("DISPLAY") && unset("WAYLAND_DISPLAY") {
+            ViewError::NoDisplay(format!("DISPLAY is not set: {e}"))
+        } else {
+            ViewError::Window(e.to_string())
+        }
+    })?;
+    let mut app = App {
+        args,
+        session,
+        script: script.into(),
+        frames: 0,
+        running: None,
+        result: Ok(()),
+    };
+    event_loop
+        .run_app(&mut app)
+        .map_err(|e| ViewError::Window(e.to_string()))?;
+    app.result
+}
+
+struct App<'a> {
+    args: &'a ViewArgs,
+    session: Session,
+    script: VecDeque<FlyInput>,
+    /// Frames drawn so far.
+    frames: u32,
+    running: Option<Running>,
+    result: Result<(), ViewError>,
+}
+
+/// The open window with what draws into it.
+struct Running {
+    window: Arc<Window>,
+    display: Display,
+    renderer: FrameRenderer,
+    egui: egui::Context,
+    egui_state: egui_winit::State,
+    texture: Option<egui::TextureHandle>,
+    /// What the texture shows: the frame's generation and the display controls.
+    picture_key: Option<(u64, String)>,
+    note: Option<&'static str>,
+    /// Where the picture is in the window (points).
+    picture_rect: egui::Rect,
+    input: Input,
+    last: Instant,
+    display_ms: f64,
+}
+
+/// The keyboard and mouse as the camera reads them.
+#[derive(Default)]
+struct Input {
+    held: HashSet<KeyCode>,
+    looking: bool,
+    cursor: Option<(f64, f64)>,
+    look: (f32, f32),
+    wheel: f32,
+    reset: bool,
+}
+
+impl Input {
+    /// The input gathered since the last frame (motion and wheel are consumed).
+    fn take(&mut self) -> FlyInput {
+        let axis = |plus, minus| {
+            f32::from(u8::from(self.held.contains(&plus))) - f32::from(u8::from(self.held.contains(&minus)))
+        };
+        let input = FlyInput {
+            forward: axis(KeyCode::KeyW, KeyCode::KeyS),
+            right: axis(KeyCode::KeyD, KeyCode::KeyA),
+            up: axis(KeyCode::KeyE, KeyCode::KeyQ),
+            look: self.look,
+            wheel: self.wheel,
+            reset: self.reset,
+        };
+        (self.look, self.wheel, self.reset) = ((0.0, 0.0), 0.0, false);
+        input
+    }
+}
+
+impl ApplicationHandler for App<'_> {
+    fn resumed(&mut self, event_loop: &ActiveEventLoop) {
+        if self.running.is_some() {
+            return;
+        }
+        match self.open(event_loop) {
+            Ok(r) => {
+                r.window.request_redraw();
+                self.running = Some(r);
+            }
+            Err(e) => self.fail(event_loop, e),
+        }
+    }
+
+    fn window_event(&mut self, event_loop: &ActiveEventLoop, _: WindowId, event: WindowEvent) {
+        let Some(r) = self.running.as_mut() else {
+            return;
+        };
+        let consumed = r.egui_state.on_window_event(&r.window, &event).consumed;
+        match event {
+            WindowEvent::CloseRequested => event_loop.exit(),
+            WindowEvent::Resized(size) => {
+                r.display
+                    .resize(&r.renderer.gpu().context().device, size.width, size.height)
+            }
+            WindowEvent::RedrawRequested => {
+                if let Err(e) = self.redraw(event_loop) {
+                    self.fail(event_loop, e);
+                }
+                return;
+            }
+            WindowEvent::KeyboardInput { event, .. } if !consumed => {
+                if let PhysicalKey::Code(code) = event.physical_key {
+                    let pressed = event.state == ElementState::Pressed;
+                    if pressed {
+                        r.input.held.insert(code);
+                    } else {
+                        r.input.held.remove(&code);
+                    }
+                    match code {
+                        _ if !pressed || event.repeat => {}
+                        KeyCode::KeyR => r.input.reset = true,
+                        KeyCode::KeyP => self.save_screenshot(),
+                        KeyCode::KeyK => self.save_settings(),
+                        _ => {}
+                    }
+                }
+            }
+            WindowEvent::MouseInput {
+                state,
+                button: MouseButton::Right,
+                ..
+            } => r.input.looking = state == ElementState::Pressed && !consumed,
+            WindowEvent::CursorMoved { position, .. } => {
+                if let (true, Some((x, y))) = (r.input.looking, r.input.cursor) {
+                    r.input.look.0 += (position.x - x) as f32;
+                    r.input.look.1 += (position.y - y) as f32;
+                }
+                r.input.cursor = Some((position.x, position.y));
+            }
+            WindowEvent::MouseWheel { delta, .. } if !consumed => {
+                r.input.wheel += match delta {
+                    MouseScrollDelta::LineDelta(_, y) => y,
+                    MouseScrollDelta::PixelDelta(p) => p.y as f32 / 40.0,
+                }
+            }
+            _ => {}
+        }
+        if let Some(r) = &self.running {
+            r.window.request_redraw();
+        }
+    }
+
+    fn about_to_wait(&mut self, event_loop: &ActiveEventLoop) {
+        let Some(r) = &self.running else {
+            return;
+        };
+        let busy = self.args.frames.is_some() || !r.input.held.is_empty();
+        event_loop.set_control_flow(if busy {
+            ControlFlow::Poll
+        } else {
+            ControlFlow::Wait
+        });
+        if busy {
+            r.window.request_redraw();
+        }
+    }
+}
+
+impl App<'_> {
+    fn open(&self, event_loop: &ActiveEventLoop) -> Result<Running, ViewError> {
+        let s = &self.session;
+        let attributes = Window::default_attributes()
+            .with_title(format!("slc view: {}", s.scene.name))
+            .with_inner_size(PhysicalSize::new(s.width + PANEL_WIDTH, s.height));
+        let window = Arc::new(
+            event_loop
+                .create_window(attributes)
+                .map_err(|e| ViewError::Window(e.to_string()))?,
+        );
+        let (display, gpu) = Display::open(Arc::clone(&window))?;
+        warn_if_software(gpu.context());
+        let renderer = FrameRenderer::new(gpu, &s.scene).map_err(ViewError::Render)?;
+        let egui = egui::Context::default();
+        let max_side = renderer.gpu().context().limits.max_texture_dimension_2d as usize;
+        let egui_state = egui_winit::State::new(
+            egui.clone(),
+            egui::ViewportId::ROOT,
+            &window,
+            Some(window.scale_factor() as f32),
+            None,
+            Some(max_side),
+        );
+        Ok(Running {
+            window,
+            display,
+            renderer,
+            egui,
+            egui_state,
+            texture: None,
+            picture_key: None,
+            note: None,
+            picture_rect: egui::Rect::NOTHING,
+            input: Input::default(),
+            last: Instant::now(),
+            display_ms: 0.0,
+        })
+    }
+
+    fn fail(&mut self, event_loop: &ActiveEventLoop, e: ViewError) {
+        self.result = Err(e);
+        event_loop.exit();
+    }
+
+    /// One frame: camera input, a new render if anything changed, the panel, the display.
+    fn redraw(&mut self, event_loop: &ActiveEventLoop) -> Result<(), ViewError> {
+        let scripted = self.frames < self.args.frames.unwrap_or(u32::MAX);
+        let r = self.running.as_mut().expect("running");
+        let s = &mut self.session;
+        let now = Instant::now();
+        let dt = (now - r.last).as_secs_f32().min(MAX_DT);
+        r.last = now;
+        match self.script.pop_front() {
+            Some(step) => s.fly.apply(&step, SCRIPT_DT),
+            None => s.fly.apply(&r.input.take(), dt),
+        }
+        match s.update(&r.renderer, self.args.frames.is_some()) {
+            Ok(_) => {}
+            Err(e) if self.args.frames.is_some() => return Err(e),
+            Err(e) => s.status = e.to_string(),
+        }
+        let rendered_generation = s.generation;
+        let start = Instant::now();
+        r.update_picture(s);
+        let (actions, paint) = r.run_ui(s);
+        r.display.draw(r.renderer.gpu().context(), paint)?;
+        r.display_ms = start.elapsed().as_secs_f64() * 1e3;
+        if let Some(f) = &s.frame {
+            if s.history.len() < rendered_generation as usize {
+                s.history.push((f.timings.clone(), r.display_ms));
+            }
+        }
+        r.input.reset |= actions.reset_camera;
+        self.act(actions);
+        if scripted {
+            self.frames += 1;
+            if Some(self.frames) == self.args.frames {
+                self.finish()?;
+                event_loop.exit();
+            }
+        }
+        Ok(())
+    }
+
+    fn act(&mut self, actions: Actions) {
+        if actions.screenshot {
+            self.save_screenshot();
+        }
+        if actions.save_settings {
+            self.save_settings();
+        }
+    }
+
+    /// A screenshot of the picture (P or the button) into the output folder.
+    fn save_screenshot(&mut self) {
+        let path = self.session.next_path("png");
+        let saved = self.capture(false).and_then(|img| save_png(&img, &path));
+        self.session.status = match saved {
+            Ok(()) => format!("saved {}", path.display()),
+            Err(e) => e.to_string(),
+        };
+    }
+
+    /// The settings (K or the button) into the output folder.
+    fn save_settings(&mut self) {
+        let path = self.session.next_path("toml");
+        self.session.status = match self.session.save_settings(&path) {
+            Ok(()) => format!("saved {}", path.display()),
+            Err(e) => e.to_string(),
+        };
+    }
+
+    /// What the window shows: the picture, or with `window` the whole window.
+    fn capture(&self, window: bool) -> Result<image::RgbImage, ViewError> {
+        let r = self.running.as_ref().expect("running");
+        let canvas = r.display.canvas();
+        let rect = if window {
+            PixelRect {
+                x: 0,
+                y: 0,
+                width: canvas.width(),
+                height: canvas.height(),
+            }
+        } else {
+            let ppp = r.egui.pixels_per_point();
+            let px = |v: f32| (v * ppp).round().max(0.0) as u32;
+            PixelRect {
+                x: px(r.picture_rect.left()),
+                y: px(r.picture_rect.top()),
+                width: px(r.picture_rect.width()),
+                height: px(r.picture_rect.height()),
+            }
+        };
+        capture(r.renderer.gpu().context(), canvas, rect)
+    }
+
+    /// The end of a `--frames` run: the screenshot, the settings, the per-pass times.
+    fn finish(&mut self) -> Result<(), ViewError> {
+        let a = self.args;
+        if let Some(path) = &a.screenshot {
+            save_png(&self.capture(a.screenshot_window)?, path)?;
+        }
+        if let Some(path) = &a.save_settings {
+            self.session.save_settings(path)?;
+        }
+        let r = self.running.as_ref().expect("running");
+        let s = &self.session;
+        let clock = s.frame.as_ref().map_or("", |f| f.clock.label());
+        println!(
+            "{}: {} frames of {}x{} on {}; ms per pass, median over the frames after the first \
+             ({clock}; display: wall clock):",
+            s.scene.name,
+            self.frames,
+            s.width,
+            s.height,
+            r.renderer.gpu().context().adapter_name
+        );
+        for (name, ms) in s.median_timings() {
+            println!("  {name:<16} {ms:>9.2}");
+        }
+        Ok(())
+    }
+}
+
+impl Running {
+    /// Makes the picture again if the frame or how it is shown changed.
+    fn update_picture(&mut self, s: &Session) {
+        let Some(frame) = &s.frame else {
+            return;
+        };
+        let c = &s.controls;
+        let key = (
+            s.generation,
+            format!("{:?} {} {:?} {}", c.layer, c.exposure, c.overlay, c.heat_max),
+        );
+        if self.picture_key.as_ref() == Some(&key) {
+            return;
+        }
+        let (rgb, note) = overlay::picture(frame, c);
+        let size = [rgb.width() as usize, rgb.height() as usize];
+        let image = egui::ColorImage::from_rgb(size, rgb.as_raw());
+        let options = egui::TextureOptions::NEAREST;
+        match &mut self.texture {
+            Some(t) => t.set(image, options),
+            None => self.texture = Some(self.egui.load_texture("frame", image, options)),
+        }
+        self.note = note;
+        self.picture_key = Some(key);
+    }
+
+    /// The panel and the picture for this frame: what the panel asked for and what to draw.
+    fn run_ui(&mut self, s: &mut Session) -> (Actions, Paint) {
+        let raw = self.egui_state.take_egui_input(&self.window);
+        let ctx = self.renderer.gpu().context();
+        let info = PanelInfo {
+            scene: &s.scene.name,
+            adapter: &ctx.adapter_name,
+            software: ctx.software,
+            frame: s.frame.as_ref(),
+            display_ms: self.display_ms,
+            note: self.note,
+            status: &s.status,
+            speed: s.fly.speed,
+        };
+        let mut actions = Actions::default();
+        let mut picture_rect = self.picture_rect;
+        let ppp = self.egui.pixels_per_point();
+        let (controls, lights, selected) = (
+            &mut s.controls,
+            &mut s.scene.lights,
+            &mut s.selected_light,
+        );
+        let output = self.egui.run_ui(raw, |ui| {
+            egui::Panel::right("panel")
+                .resizable(false)
+                .exact_size(PANEL_WIDTH as f32 / ppp)
+                .show(ui, |ui| {
+                    egui::ScrollArea::vertical().show(ui, |ui| {
+                        actions = panel::show(ui, controls, lights, selected, &info);
+                    });
+                });
+            egui::CentralPanel::no_frame().show(ui, |ui| {
+                let area = ui.max_rect();
+                let size = egui::vec2(s.width as f32, s.height as f32) / ppp;
+                let scale = (area.width() / size.x).min(area.height() / size.y).min(1.0);
+                let rect = egui::Rect::from_center_size(area.center(), size * scale);
+                let rect = egui::Rect::from_min_size(
+                    egui::pos2(area.left(), rect.top().max(area.top())),
+                    rect.size(),
+                );
+                if let Some(t) = &self.texture {
+                    let uv = egui::Rect::from_min_max(egui::pos2(0.0, 0.0), egui::pos2(1.0, 1.0));
+                    ui.painter().image(t.id(), rect, uv, egui::Color32::WHITE);
+                }
+                overlay::paint(ui.painter(), rect, s.width, controls);
+                picture_rect = rect;
+            });
+        });
+        self.picture_rect = picture_rect;
+        self.egui_state
+            .handle_platform_output(&self.window, output.platform_output);
+        let paint = Paint {
+            jobs: self.egui.tessellate(output.shapes, output.pixels_per_point),
+            textures: output.textures_delta,
+            pixels_per_point: output.pixels_per_point,
+        };
+        (actions, paint)
+    }
+}
