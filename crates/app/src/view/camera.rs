@@ -28,13 +28,6 @@ pub struct FlyInput {
     pub reset: bool,
 }
 
-impl FlyInput {
-    /// Whether this input changes the view.
-    pub fn moves(&self) -> bool {
-        *self != Self::default()
-    }
-}
-
 /// A camera flying through the scene, starting at (and reset to) the scene's camera.
 #[derive(Clone, Debug)]
 pub struct FlyCamera {

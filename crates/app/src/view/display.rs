@@ -94,8 +94,10 @@ impl Display {
     /// Draws `paint` into the canvas and presents the canvas in the window.
     pub fn draw(&mut self, ctx: &GpuContext, paint: Paint) -> Result<(), ViewError> {
         let (device, queue) = (&ctx.device, &ctx.queue);
-        for (id, delta) in &paint.textures.set {
-            self.egui.update_texture(device, queue, *id, delta);
+        for (id, deltas) in &paint.textures.set {
+            for delta in deltas {
+                self.egui.update_texture(device, queue, *id, delta);
+            }
         }
         let screen = egui_wgpu::ScreenDescriptor {
             size_in_pixels: [self.config.width, self.config.height],
@@ -143,7 +145,7 @@ impl Display {
         }
         queue.submit(extra.into_iter().chain([encoder.finish()]));
         if let Some(frame) = frame {
-            frame.present();
+            queue.present(frame);
         }
         for id in &paint.textures.free {
             self.egui.free_texture(id);

@@ -29,7 +29,7 @@ const MAX_DT: f32 = 0.1;
 /// Opens the window and runs the view until it is closed or `--frames` are done.
 pub fn run(args: &ViewArgs, session: Session, script: Vec<FlyInput>) -> Result<(), ViewError> {
     let event_loop = EventLoop::new().map_err(|e| {
-        let unset = |v| std::env::var_os(v).is_none_or(|s| s.is_empty());
+        let unset = |v: &str| std::env::var_os(v).is_none_or(|s| s.is_empty());
         if unset("DISPLAY") && unset("WAYLAND_DISPLAY") {
             ViewError::NoDisplay(format!("DISPLAY is not set: {e}"))
         } else {
@@ -216,7 +216,7 @@ impl App<'_> {
         let egui_state = egui_winit::State::new(
             egui.clone(),
             egui::ViewportId::ROOT,
-            &window,
+            window.as_ref(),
             Some(window.scale_factor() as f32),
             None,
             Some(max_side),
