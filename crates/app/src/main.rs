@@ -19,9 +19,9 @@ mod report;
 mod sampled;
 mod sweep_cmd;
 mod table;
-mod vsgl_sweep;
 #[cfg(feature = "view")]
 mod view;
+mod vsgl_sweep;
 
 use clap::{Parser, Subcommand};
 

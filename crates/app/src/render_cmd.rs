@@ -142,7 +142,9 @@ impl OnBackend for Render<'_> {
         out.commit()?;
         let m = total.mean();
         let lights = match frame.sampled_lights {
-            Some(n) if f.shader == Shader::Vsgl => format!("{n} VSGLs of {} samples", args.estimate.vsgls),
+            Some(n) if f.shader == Shader::Vsgl => {
+                format!("{n} VSGLs of {} samples", args.estimate.vsgls)
+            }
             _ => format!("{} VPLs", frame.vpl_count),
         };
         println!(

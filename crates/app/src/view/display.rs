@@ -43,17 +43,16 @@ impl Display {
         }))
         .map_err(|e| slc_gpu_wgpu::GpuError::NoAdapter(e.to_string()))?;
         let timestamps = adapter.features() & wgpu::Features::TIMESTAMP_QUERY;
-        let (device, queue) =
-            pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
-                label: Some("slc view"),
-                required_features: timestamps,
-                required_limits: adapter.limits(),
-                ..Default::default()
-            }))
-            .map_err(|e| slc_gpu_wgpu::GpuError::RequestDevice {
-                adapter: adapter.get_info().name,
-                reason: e.to_string(),
-            })?;
+        let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
+            label: Some("slc view"),
+            required_features: timestamps,
+            required_limits: adapter.limits(),
+            ..Default::default()
+        }))
+        .map_err(|e| slc_gpu_wgpu::GpuError::RequestDevice {
+            adapter: adapter.get_info().name,
+            reason: e.to_string(),
+        })?;
         let ctx = GpuContext::from_device(device.clone(), queue, &adapter.get_info());
         let gpu = GpuRenderer::from_context(ctx)?;
         let size = window.inner_size();
@@ -126,9 +125,8 @@ impl Display {
                 .render(&mut pass.forget_lifetime(), &paint.jobs, &screen);
         }
         let frame = match self.surface.get_current_texture() {
-            wgpu::CurrentSurfaceTexture::Success(t) | wgpu::CurrentSurfaceTexture::Suboptimal(t) => {
-                Some(t)
-            }
+            wgpu::CurrentSurfaceTexture::Success(t)
+            | wgpu::CurrentSurfaceTexture::Suboptimal(t) => Some(t),
             wgpu::CurrentSurfaceTexture::Outdated | wgpu::CurrentSurfaceTexture::Lost => {
                 self.surface.configure(device, &self.config);
                 None

@@ -126,7 +126,9 @@ pub fn run(args: &ViewArgs) -> Result<(), String> {
 
 fn view(args: &ViewArgs) -> Result<(), ViewError> {
     let script = match &args.camera_script {
-        Some(s) => script::parse(s).map_err(|m| ViewError::Input(format!("--camera-script: {m}")))?,
+        Some(s) => {
+            script::parse(s).map_err(|m| ViewError::Input(format!("--camera-script: {m}")))?
+        }
         None => Vec::new(),
     };
     if let Some(frames) = args.frames {

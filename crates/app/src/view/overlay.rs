@@ -15,7 +15,13 @@ pub fn picture(frame: &ViewFrame, controls: &Controls) -> (RgbImage, Option<&'st
         match &frame.metrics {
             Some(m) => {
                 let (w, h) = (frame.direct.width, frame.direct.height);
-                let heat = heat_map(w, h, &m.lights_per_pixel, &m.fdr_per_pixel, controls.heat_max);
+                let heat = heat_map(
+                    w,
+                    h,
+                    &m.lights_per_pixel,
+                    &m.fdr_per_pixel,
+                    controls.heat_max,
+                );
                 return (heat, None);
             }
             None => return (layer(frame, controls), Some("heat map: VPL shader only")),
@@ -79,8 +85,20 @@ fn colour_bar(painter: &Painter, rect: Rect, max_lights: u32) {
     let font = FontId::proportional(11.0);
     let text = Color32::WHITE;
     let above = bar.top() - 2.0;
-    painter.text(Pos2::new(bar.left(), above), Align2::LEFT_BOTTOM, "FDR 0", font.clone(), text);
-    painter.text(Pos2::new(bar.right(), above), Align2::RIGHT_BOTTOM, "1", font.clone(), text);
+    painter.text(
+        Pos2::new(bar.left(), above),
+        Align2::LEFT_BOTTOM,
+        "FDR 0",
+        font.clone(),
+        text,
+    );
+    painter.text(
+        Pos2::new(bar.right(), above),
+        Align2::RIGHT_BOTTOM,
+        "1",
+        font.clone(),
+        text,
+    );
     painter.text(
         Pos2::new(bar.center().x, above),
         Align2::CENTER_BOTTOM,

@@ -148,7 +148,11 @@ fn show_controls(ui: &mut Ui, c: &mut Controls) {
     });
     ui.horizontal(|ui| {
         ui.checkbox(&mut c.measure, "measure lights/pixel");
-        ui.add(DragValue::new(&mut c.heat_max).range(1..=1 << 20).prefix("heat max "));
+        ui.add(
+            DragValue::new(&mut c.heat_max)
+                .range(1..=1 << 20)
+                .prefix("heat max "),
+        );
     });
 }
 

@@ -87,7 +87,11 @@ pub fn settings_toml(
                 direction,
                 irradiance,
             } => {
-                let _ = writeln!(t, "type = \"directional\"\ndirection = {}", vec3(*direction));
+                let _ = writeln!(
+                    t,
+                    "type = \"directional\"\ndirection = {}",
+                    vec3(*direction)
+                );
                 let _ = writeln!(t, "irradiance = {}", vec3(*irradiance));
             }
         }
@@ -165,12 +169,10 @@ mod tests {
         assert_eq!(read.lights.len(), scene.lights.len());
         for (a, b) in read.lights.iter().zip(&scene.lights) {
             assert_eq!(a.kind(), b.kind());
-            let (Light::Spot { position: pa, .. } | Light::Point { position: pa, .. }) = a
-            else {
+            let (Light::Spot { position: pa, .. } | Light::Point { position: pa, .. }) = a else {
                 continue;
             };
-            let (Light::Spot { position: pb, .. } | Light::Point { position: pb, .. }) = b
-            else {
+            let (Light::Spot { position: pb, .. } | Light::Point { position: pb, .. }) = b else {
                 panic!("{b:?}");
             };
             assert!((*pa - *pb).length() < 1e-6);

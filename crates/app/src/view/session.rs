@@ -86,7 +86,10 @@ impl Session {
 
     /// Writes the current camera, lights and scene as a settings file at `path`.
     pub fn save_settings(&self, path: &Path) -> Result<(), ViewError> {
-        let origin = self.origin.as_ref().map_err(|m| ViewError::Input(m.clone()))?;
+        let origin = self
+            .origin
+            .as_ref()
+            .map_err(|m| ViewError::Input(m.clone()))?;
         let text = settings_toml(
             origin,
             self.fly.camera(),
@@ -113,9 +116,17 @@ impl Session {
         let mut rows: Vec<_> = first
             .0
             .iter()
-            .map(|&(name, _)| (name, median(frames.iter().map(|(t, _)| t.get(name)).collect())))
+            .map(|&(name, _)| {
+                (
+                    name,
+                    median(frames.iter().map(|(t, _)| t.get(name)).collect()),
+                )
+            })
             .collect();
-        rows.push(("frame", median(frames.iter().map(|(t, _)| t.total()).collect())));
+        rows.push((
+            "frame",
+            median(frames.iter().map(|(t, _)| t.total()).collect()),
+        ));
         rows.push(("display", median(frames.iter().map(|(_, d)| *d).collect())));
         rows
     }

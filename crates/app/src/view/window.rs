@@ -93,7 +93,8 @@ impl Input {
     /// The input gathered since the last frame (motion and wheel are consumed).
     fn take(&mut self) -> FlyInput {
         let axis = |plus, minus| {
-            f32::from(u8::from(self.held.contains(&plus))) - f32::from(u8::from(self.held.contains(&minus)))
+            f32::from(u8::from(self.held.contains(&plus)))
+                - f32::from(u8::from(self.held.contains(&minus)))
         };
         let input = FlyInput {
             forward: axis(KeyCode::KeyW, KeyCode::KeyS),
@@ -371,7 +372,10 @@ impl Running {
         let c = &s.controls;
         let key = (
             s.generation,
-            format!("{:?} {} {:?} {}", c.layer, c.exposure, c.overlay, c.heat_max),
+            format!(
+                "{:?} {} {:?} {}",
+                c.layer, c.exposure, c.overlay, c.heat_max
+            ),
         );
         if self.picture_key.as_ref() == Some(&key) {
             return;
@@ -405,11 +409,8 @@ impl Running {
         let mut actions = Actions::default();
         let mut picture_rect = self.picture_rect;
         let ppp = self.egui.pixels_per_point();
-        let (controls, lights, selected) = (
-            &mut s.controls,
-            &mut s.scene.lights,
-            &mut s.selected_light,
-        );
+        let (controls, lights, selected) =
+            (&mut s.controls, &mut s.scene.lights, &mut s.selected_light);
         let output = self.egui.run_ui(raw, |ui| {
             egui::Panel::right("panel")
                 .resizable(false)
