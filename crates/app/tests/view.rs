@@ -1,6 +1,7 @@
 //! `slc view` as a script runs it: `--frames N --screenshot` under Xvfb on the GPU adapter
 //! (lavapipe in CI). Skipped with a notice where xvfb-run or an adapter is missing, except
 //! with `CI` set, where CI's setup installs both and their absence fails.
+#![cfg(feature = "view")]
 use image::RgbImage;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
@@ -95,8 +96,11 @@ fn frames_save_a_screenshot_the_overlays_and_the_camera_change() {
     let plain = screenshot(&dir, "plain", &[]);
     let heat = screenshot(&dir, "heat", &["--overlay", "heatmap"]);
     assert!(changed(&plain, &heat) > 0.3, "{}", changed(&plain, &heat));
-    let grid = screenshot(&dir, "grid", &["--overlay", "grid"]);
-    assert!(changed(&plain, &grid) > 0.05, "{}", changed(&plain, &grid));
+    // K = 2: a grid line every 32 pixels (K changes the estimate, so both frames have K = 2).
+    let k2 = screenshot(&dir, "k2", &["--interleave", "2", "--rsm", "16"]);
+    let grid_args = ["--interleave", "2", "--rsm", "16", "--overlay", "grid"];
+    let grid = screenshot(&dir, "grid", &grid_args);
+    assert!(changed(&k2, &grid) > 0.03, "{}", changed(&k2, &grid));
     let moved = screenshot(&dir, "moved", &["--camera-script", "look:120:0,w*2"]);
     assert!(changed(&plain, &moved) > 0.3, "{}", changed(&plain, &moved));
     let back = screenshot(&dir, "back", &["--camera-script", "look:120:0,w,reset"]);

@@ -22,7 +22,8 @@ pub enum Overlay {
     /// Lights per pixel (brightness) and false discovery rate (colour), as the paper's Fig. 9,
     /// with a colour bar; measured by brute force on the CPU (VPL shader only).
     Heatmap,
-    /// The 16 x 16-pixel tiles culling works on (clustered strategies split each in depth).
+    /// The tiles culling works on: 16 x 16 pixels of each interleaved subregion image, so
+    /// cells of 16K x 16K screen pixels (clustered strategies also split them in depth).
     Grid,
 }
 

@@ -41,7 +41,7 @@ impl Display {
             compatible_surface: Some(&surface),
             ..Default::default()
         }))
-        .map_err(|e| slc_gpu_wgpu::GpuError::NoAdapter(e.to_string()))?;
+        .map_err(|e| ViewError::NoAdapter(e.to_string()))?;
         let timestamps = adapter.features() & wgpu::Features::TIMESTAMP_QUERY;
         let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
             label: Some("slc view"),

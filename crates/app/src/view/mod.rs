@@ -38,6 +38,12 @@ pub enum ViewError {
          xvfb-run (apt-get install xvfb) for --frames"
     )]
     NoDisplay(String),
+    #[error(
+        "no GPU adapter can draw into the window ({0}); install a Vulkan driver (on Debian: \
+         apt-get install mesa-vulkan-drivers libvulkan1); slc view needs the GPU, slc render \
+         --backend cpu does not"
+    )]
+    NoAdapter(String),
     #[error("cannot open a window: {0}")]
     Window(String),
     #[error(transparent)]

@@ -7,6 +7,7 @@ use crate::output::to_srgb8;
 use egui::{Align2, Color32, FontId, Painter, Pos2, Rect, Stroke};
 use image::RgbImage;
 use slc_core::culling::TILE_SIZE;
+use slc_core::Layout;
 
 /// The picture of `frame` as `controls` show it, with a note where the overlay asked for is
 /// not available.
@@ -44,14 +45,31 @@ fn layer(frame: &ViewFrame, controls: &Controls) -> RgbImage {
 pub fn paint(painter: &Painter, rect: Rect, width: u32, controls: &Controls) {
     match controls.overlay {
         Overlay::Heatmap if controls.measures() => colour_bar(painter, rect, controls.heat_max),
-        Overlay::Grid => grid(painter, rect, width),
+        Overlay::Grid => {
+            let k = controls.pipeline.interleave.max(1);
+            grid(painter, rect, width, TILE_SIZE * k);
+            let layout = controls.strategy().map(|s| s.parts().0);
+            let what = match layout {
+                Ok(Layout::Clustered) => ", each cut into 32 depth slices (not drawn)",
+                Ok(Layout::Unculled) => " (strategy none culls no tiles)",
+                _ => "",
+            };
+            let label = format!("cells of {k}×{k} interleaved 16×16 tiles{what}");
+            painter.text(
+                rect.left_top() + egui::vec2(4.0, 4.0),
+                Align2::LEFT_TOP,
+                label,
+                FontId::proportional(11.0),
+                Color32::YELLOW,
+            );
+        }
         _ => {}
     }
 }
 
-/// Lines between the culling tiles.
-fn grid(painter: &Painter, rect: Rect, width: u32) {
-    let step = rect.width() * TILE_SIZE as f32 / width.max(1) as f32;
+/// Lines every `cell` pixels of a `width`-pixel frame shown in `rect`.
+fn grid(painter: &Painter, rect: Rect, width: u32, cell: u32) {
+    let step = rect.width() * cell as f32 / width.max(1) as f32;
     let stroke = Stroke::new(1.0, Color32::from_rgba_unmultiplied(255, 255, 0, 110));
     let mut x = rect.left() + step;
     while x < rect.right() {

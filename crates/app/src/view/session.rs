@@ -131,3 +131,66 @@ impl Session {
         rows
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use clap::Parser;
+
+    #[derive(Parser)]
+    struct Cli {
+        #[command(flatten)]
+        view: ViewArgs,
+    }
+
+    /// The GPU renderer, or `None` (a notice; a failure with `CI` set) without an adapter.
+    fn gpu() -> Option<slc_gpu_wgpu::GpuRenderer> {
+        match slc_gpu_wgpu::GpuRenderer::new() {
+            Ok(g) => Some(g),
+            Err(e) if std::env::var_os("CI").is_none() => {
+                eprintln!("notice: GPU test skipped ({e})");
+                None
+            }
+            Err(e) => panic!("CI is set but the GPU renderer is missing: {e}"),
+        }
+    }
+
+    #[test]
+    fn a_moved_light_or_camera_renders_again_and_nothing_else_does() {
+        let Some(gpu) = gpu() else {
+            return;
+        };
+        let args = Cli::parse_from(["slc", "--width", "48", "--height", "32", "--rsm", "8"]).view;
+        let scene = slc_core::builtin("default").unwrap();
+        let mut s = Session::new(&args, "default", scene, Controls::from_args(&args));
+        let r = FrameRenderer::new(gpu, &s.scene).unwrap();
+        assert!(s.update(&r, false).unwrap());
+        assert!(!s.update(&r, false).unwrap(), "nothing changed");
+        let before = s
+            .frame
+            .as_ref()
+            .map(|f| (f.direct.clone(), f.indirect.clone()))
+            .unwrap();
+        for light in &mut s.scene.lights {
+            if let Light::Spot { position, .. } | Light::Point { position, .. } = light {
+                position.x -= 0.4;
+            }
+        }
+        assert!(s.update(&r, false).unwrap());
+        let f = s.frame.as_ref().unwrap();
+        assert!(f.direct.rmse(&before.0) > 1e-3, "direct light did not move");
+        assert!(
+            f.indirect.rmse(&before.1) > 1e-4,
+            "indirect light did not move"
+        );
+        s.fly.apply(
+            &super::super::camera::FlyInput {
+                forward: 1.0,
+                ..Default::default()
+            },
+            0.5,
+        );
+        assert!(s.update(&r, false).unwrap());
+        assert_eq!(s.generation, 3);
+    }
+}

@@ -21,6 +21,8 @@ use winit::window::{Window, WindowId};
 
 /// Width of the side panel in pixels.
 const PANEL_WIDTH: u32 = 330;
+/// The least window height: the panel's controls without scrolling (a lower view is centred).
+const MIN_HEIGHT: u32 = 600;
 /// Seconds one scripted step lasts.
 const SCRIPT_DT: f32 = 0.1;
 /// The longest frame time the camera integrates (after a slow frame it does not jump).
@@ -31,7 +33,7 @@ pub fn run(args: &ViewArgs, session: Session, script: Vec<FlyInput>) -> Result<(
     let event_loop = EventLoop::new().map_err(|e| {
         let unset = |v: &str| std::env::var_os(v).is_none_or(|s| s.is_empty());
         if unset("DISPLAY") && unset("WAYLAND_DISPLAY") {
-            ViewError::NoDisplay(format!("DISPLAY is not set: {e}"))
+            ViewError::NoDisplay("neither DISPLAY nor WAYLAND_DISPLAY is set".into())
         } else {
             ViewError::Window(e.to_string())
         }
@@ -140,9 +142,11 @@ impl ApplicationHandler for App<'_> {
                 }
                 return;
             }
-            WindowEvent::KeyboardInput { event, .. } if !consumed => {
-                if let PhysicalKey::Code(code) = event.physical_key {
-                    let pressed = event.state == ElementState::Pressed;
+            WindowEvent::KeyboardInput { event, .. } => {
+                let pressed = event.state == ElementState::Pressed;
+                // A key typed into the panel is the panel's; a release always lets go.
+                if let (PhysicalKey::Code(code), false) = (event.physical_key, pressed && consumed)
+                {
                     if pressed {
                         r.input.held.insert(code);
                     } else {
@@ -161,7 +165,7 @@ impl ApplicationHandler for App<'_> {
                 state,
                 button: MouseButton::Right,
                 ..
-            } => r.input.looking = state == ElementState::Pressed && !consumed,
+            } => r.input.looking = state == ElementState::Pressed && r.over_picture(),
             WindowEvent::CursorMoved { position, .. } => {
                 if let (true, Some((x, y))) = (r.input.looking, r.input.cursor) {
                     r.input.look.0 += (position.x - x) as f32;
@@ -169,7 +173,7 @@ impl ApplicationHandler for App<'_> {
                 }
                 r.input.cursor = Some((position.x, position.y));
             }
-            WindowEvent::MouseWheel { delta, .. } if !consumed => {
+            WindowEvent::MouseWheel { delta, .. } if r.over_picture() => {
                 r.input.wheel += match delta {
                     MouseScrollDelta::LineDelta(_, y) => y,
                     MouseScrollDelta::PixelDelta(p) => p.y as f32 / 40.0,
@@ -203,7 +207,10 @@ impl App<'_> {
         let s = &self.session;
         let attributes = Window::default_attributes()
             .with_title(format!("slc view: {}", s.scene.name))
-            .with_inner_size(PhysicalSize::new(s.width + PANEL_WIDTH, s.height));
+            .with_inner_size(PhysicalSize::new(
+                s.width + PANEL_WIDTH,
+                s.height.max(MIN_HEIGHT),
+            ));
         let window = Arc::new(
             event_loop
                 .create_window(attributes)
@@ -364,6 +371,16 @@ impl App<'_> {
 }
 
 impl Running {
+    /// Whether the mouse is over the picture (there it moves the camera, elsewhere the panel
+    /// takes it).
+    fn over_picture(&self) -> bool {
+        let ppp = self.egui.pixels_per_point();
+        self.input.cursor.is_some_and(|(x, y)| {
+            self.picture_rect
+                .contains(egui::pos2(x as f32 / ppp, y as f32 / ppp))
+        })
+    }
+
     /// Makes the picture again if the frame or how it is shown changed.
     fn update_picture(&mut self, s: &Session) {
         let Some(frame) = &s.frame else {
@@ -425,10 +442,6 @@ impl Running {
                 let size = egui::vec2(s.width as f32, s.height as f32) / ppp;
                 let scale = (area.width() / size.x).min(area.height() / size.y).min(1.0);
                 let rect = egui::Rect::from_center_size(area.center(), size * scale);
-                let rect = egui::Rect::from_min_size(
-                    egui::pos2(area.left(), rect.top().max(area.top())),
-                    rect.size(),
-                );
                 if let Some(t) = &self.texture {
                     let uv = egui::Rect::from_min_max(egui::pos2(0.0, 0.0), egui::pos2(1.0, 1.0));
                     ui.painter().image(t.id(), rect, uv, egui::Color32::WHITE);
