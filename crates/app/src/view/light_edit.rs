@@ -5,12 +5,12 @@ use egui::{DragValue, Ui};
 use glam::Vec3;
 use slc_core::Light;
 
-/// The panel's section for `lights`; `selected` is the light being edited. Returns whether a
-/// light changed.
-pub fn show(ui: &mut Ui, lights: &mut [Light], selected: &mut usize, step: f32) -> bool {
+/// The panel's section for `lights`; `selected` is the light being edited (the session sees
+/// the change and renders again).
+pub fn show(ui: &mut Ui, lights: &mut [Light], selected: &mut usize, step: f32) {
     if lights.is_empty() {
         ui.label("no lights");
-        return false;
+        return;
     }
     *selected = (*selected).min(lights.len() - 1);
     egui::ComboBox::from_label("light")
@@ -20,40 +20,35 @@ pub fn show(ui: &mut Ui, lights: &mut [Light], selected: &mut usize, step: f32) 
                 ui.selectable_value(selected, i, label(i, l));
             }
         });
-    let mut changed = false;
     match &mut lights[*selected] {
-        Light::Point { position, .. } => changed |= edit_position(ui, position, step),
+        Light::Point { position, .. } => edit_position(ui, position, step),
         Light::Spot {
             position,
             direction,
             ..
         } => {
-            changed |= edit_position(ui, position, step);
-            changed |= edit_aim(ui, direction);
+            edit_position(ui, position, step);
+            edit_aim(ui, direction);
         }
-        Light::Directional { direction, .. } => changed |= edit_aim(ui, direction),
+        Light::Directional { direction, .. } => edit_aim(ui, direction),
     }
-    changed
 }
 
 fn label(i: usize, light: &Light) -> String {
     format!("{} {}", i + 1, light.kind())
 }
 
-fn edit_position(ui: &mut Ui, position: &mut Vec3, step: f32) -> bool {
+fn edit_position(ui: &mut Ui, position: &mut Vec3, step: f32) {
     ui.horizontal(|ui| {
         ui.label("position");
-        let mut changed = false;
         for v in [&mut position.x, &mut position.y, &mut position.z] {
-            changed |= ui.add(DragValue::new(v).speed(step)).changed();
+            ui.add(DragValue::new(v).speed(step));
         }
-        changed
-    })
-    .inner
+    });
 }
 
 /// Edits a unit direction as azimuth (about +y, 0 along -z) and elevation, in degrees.
-fn edit_aim(ui: &mut Ui, direction: &mut Vec3) -> bool {
+fn edit_aim(ui: &mut Ui, direction: &mut Vec3) {
     let (mut azimuth, mut elevation) = angles(*direction);
     let changed = ui
         .horizontal(|ui| {
@@ -76,7 +71,6 @@ fn edit_aim(ui: &mut Ui, direction: &mut Vec3) -> bool {
     if changed {
         *direction = from_angles(azimuth, elevation);
     }
-    changed
 }
 
 /// Azimuth and elevation in degrees of a unit direction.

@@ -33,7 +33,6 @@ pub struct Actions {
     pub screenshot: bool,
     pub save_settings: bool,
     pub reset_camera: bool,
-    pub lights_changed: bool,
 }
 
 /// Shows the panel's contents in `ui`.
@@ -53,12 +52,22 @@ pub fn show(
             "software rasterizer: times say nothing about a GPU",
         );
     }
+    ui.horizontal(|ui| {
+        actions.screenshot = ui.button("screenshot (P)").clicked();
+        actions.save_settings = ui.button("save settings (K)").clicked();
+    });
+    if !info.status.is_empty() {
+        ui.label(info.status);
+    }
     ui.separator();
     render_controls(ui, controls);
     ui.separator();
     show_controls(ui, controls);
+    if let Some(note) = info.note {
+        ui.label(note);
+    }
     ui.separator();
-    actions.lights_changed = light_edit::show(ui, lights, selected_light, 0.02 * info.speed);
+    light_edit::show(ui, lights, selected_light, 0.02 * info.speed);
     ui.horizontal(|ui| {
         actions.reset_camera = ui.button("reset camera (R)").clicked();
         ui.label(format!("speed {:.2} m/s (wheel)", info.speed));
@@ -68,15 +77,6 @@ pub fn show(
         timings(ui, frame, info.display_ms);
         lights_per_pixel(ui, frame);
     }
-    ui.separator();
-    ui.horizontal(|ui| {
-        actions.screenshot = ui.button("screenshot (P)").clicked();
-        actions.save_settings = ui.button("save settings (K)").clicked();
-    });
-    if let Some(note) = info.note {
-        ui.label(note);
-    }
-    ui.label(info.status);
     actions
 }
 

@@ -22,7 +22,7 @@ use winit::window::{Window, WindowId};
 /// Width of the side panel in pixels.
 const PANEL_WIDTH: u32 = 330;
 /// The least window height: the panel's controls without scrolling (a lower view is centred).
-const MIN_HEIGHT: u32 = 600;
+const MIN_HEIGHT: u32 = 760;
 /// Seconds one scripted step lasts.
 const SCRIPT_DT: f32 = 0.1;
 /// The longest frame time the camera integrates (after a slow frame it does not jump).
