@@ -27,7 +27,9 @@ impl SceneOrigin {
                 scene.name
             ));
         };
-        let file = std::path::absolute(file).map_err(|e| format!("{}: {e}", file.display()))?;
+        let file = std::fs::canonicalize(file)
+            .or_else(|_| std::path::absolute(file))
+            .map_err(|e| format!("{}: {e}", file.display()))?;
         let materials = if Path::new(spec)
             .extension()
             .is_some_and(|e| e.eq_ignore_ascii_case("toml"))
@@ -42,7 +44,7 @@ impl SceneOrigin {
     }
 }
 
-/// The settings file text; `command` is the `slc render` options in the header comment.
+/// The settings file text; `command` is the `slc render` command line of its header comment.
 pub fn settings_toml(
     origin: &SceneOrigin,
     camera: &Camera,
@@ -51,7 +53,7 @@ pub fn settings_toml(
 ) -> String {
     let mut t = String::new();
     let _ = writeln!(t, "# Saved by slc view. Render it with:");
-    let _ = writeln!(t, "#   slc render THIS_FILE.toml {command}");
+    let _ = writeln!(t, "#   {command}");
     let _ = writeln!(t, "scene = {}", quoted(&origin.file.display().to_string()));
     let _ = writeln!(t, "replace_lights = true\n\n[camera]");
     let _ = writeln!(t, "position = {}", vec3(camera.position));
@@ -157,7 +159,7 @@ mod tests {
                 double_sided: Some(true),
             }],
         };
-        let text = settings_toml(&origin, &camera, &scene.lights, "--culling none");
+        let text = settings_toml(&origin, &camera, &scene.lights, "slc render saved.toml");
         let read = Settings::parse(&text, &dir.join("saved.toml")).expect(&text);
         assert_eq!(read.scene, origin.file);
         assert!(read.replace_lights);

@@ -94,7 +94,11 @@ impl Session {
             origin,
             self.fly.camera(),
             &self.scene.lights,
-            &self.controls.render_options(self.width, self.height),
+            &format!(
+                "slc render {} {}",
+                path.display(),
+                self.controls.render_options(self.width, self.height)
+            ),
         );
         std::fs::write(path, text).map_err(|e| ViewError::Write {
             path: path.to_path_buf(),
