@@ -230,3 +230,82 @@ fn bad_view_options_are_clear_errors() {
         assert!(!stderr.contains("panicked"), "{stderr}");
     }
 }
+
+/// Real key presses in the window (sent with xdotool): P saves a screenshot, held W flies
+/// forward, K saves the settings with the moved camera.
+#[test]
+fn keys_in_the_window_fly_and_save() {
+    if !can_view() {
+        return;
+    }
+    if Command::new("xdotool").arg("version").output().is_err() {
+        assert!(
+            std::env::var_os("CI").is_none(),
+            "CI without xdotool (.ci/run installs it)"
+        );
+        eprintln!("notice: key test skipped, xdotool is not installed");
+        return;
+    }
+    let scene = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../../scenes/cornell-gltf.toml"
+    );
+    if !Path::new(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../../../shared/scenes"
+    ))
+    .is_dir()
+    {
+        assert!(std::env::var_os("CI").is_none(), "CI without ../shared");
+        return;
+    }
+    let dir = temp("keys");
+    let script = r#"
+        "$SLC" view "$SCENE" --width 96 --height 64 --out "$DIR" &
+        pid=$!
+        trap 'kill $pid 2>/dev/null' EXIT
+        wid=$(timeout 120 xdotool search --sync --name "slc view" | head -1)
+        [ -n "$wid" ] || exit 10
+        wait_for() {
+            for _ in $(seq 600); do
+                [ -e "$1" ] && return 0
+                kill -0 $pid 2>/dev/null || return 1
+                sleep 0.1
+            done
+            return 1
+        }
+        xdotool windowfocus --sync "$wid"
+        xdotool key p
+        wait_for "$DIR/slc-view-001.png" || exit 11
+        xdotool keydown w
+        sleep 2
+        xdotool keyup w
+        sleep 1
+        xdotool key k
+        wait_for "$DIR/slc-view-002.toml" || exit 12
+    "#;
+    let _one = XVFB.lock().unwrap_or_else(|e| e.into_inner());
+    let out = Command::new("xvfb-run")
+        .args(["-a", "bash", "-c", script])
+        .env("SLC", env!("CARGO_BIN_EXE_slc"))
+        .env("SCENE", scene)
+        .env("DIR", &dir)
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{:?}\n{}",
+        out.status,
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let shot = image::open(dir.join("slc-view-001.png")).unwrap();
+    assert_eq!((shot.width(), shot.height()), (96, 64));
+    let saved = std::fs::read_to_string(dir.join("slc-view-002.toml")).unwrap();
+    // The scene's camera is at z = 3.8 looking down -z: W moved it forward.
+    let z: f32 = saved
+        .lines()
+        .find_map(|l| l.strip_prefix("position = ["))
+        .and_then(|l| l.trim_end_matches(']').split(", ").nth(2)?.parse().ok())
+        .expect(&saved);
+    assert!(z < 3.79, "{saved}");
+}
