@@ -209,6 +209,24 @@ fn without_a_display_the_error_says_so() {
 }
 
 #[test]
+fn without_a_gpu_backend_the_error_says_so() {
+    if !can_view() {
+        return;
+    }
+    let _one = XVFB.lock().unwrap_or_else(|e| e.into_inner());
+    // No DirectX 12 on Linux: no backend, no adapter.
+    let out = Command::new("xvfb-run")
+        .args(["-a", env!("CARGO_BIN_EXE_slc"), "view", "--frames", "1"])
+        .env("WGPU_BACKEND", "dx12")
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(!out.status.success());
+    assert!(stderr.contains("no GPU adapter"), "{stderr}");
+    assert!(!stderr.contains("panicked"), "{stderr}");
+}
+
+#[test]
 fn bad_view_options_are_clear_errors() {
     for (args, says) in [
         (vec!["--camera-script", "w*x"], "--camera-script"),

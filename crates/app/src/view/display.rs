@@ -35,7 +35,7 @@ impl Display {
             wgpu::Instance::new(wgpu::InstanceDescriptor::new_without_display_handle_from_env());
         let surface = instance
             .create_surface(Arc::clone(&window))
-            .map_err(|e| ViewError::Surface(e.to_string()))?;
+            .map_err(|e| ViewError::NoAdapter(format!("no surface for the window: {e}")))?;
         let adapter = pollster::block_on(instance.request_adapter(&wgpu::RequestAdapterOptions {
             power_preference: wgpu::PowerPreference::HighPerformance,
             compatible_surface: Some(&surface),

@@ -34,8 +34,8 @@ use std::path::PathBuf;
 #[derive(Debug, thiserror::Error)]
 pub enum ViewError {
     #[error(
-        "no display to open a window on ({0}): set DISPLAY to an X11 server, or run under \
-         xvfb-run (apt-get install xvfb) for --frames"
+        "no display to open a window on ({0}): slc view opens X11 windows (XWayland on \
+         Wayland); set DISPLAY, or run under xvfb-run (apt-get install xvfb) for --frames"
     )]
     NoDisplay(String),
     #[error(

@@ -31,9 +31,8 @@ const MAX_DT: f32 = 0.1;
 /// Opens the window and runs the view until it is closed or `--frames` are done.
 pub fn run(args: &ViewArgs, session: Session, script: Vec<FlyInput>) -> Result<(), ViewError> {
     let event_loop = EventLoop::new().map_err(|e| {
-        let unset = |v: &str| std::env::var_os(v).is_none_or(|s| s.is_empty());
-        if unset("DISPLAY") && unset("WAYLAND_DISPLAY") {
-            ViewError::NoDisplay("neither DISPLAY nor WAYLAND_DISPLAY is set".into())
+        if std::env::var_os("DISPLAY").is_none_or(|s| s.is_empty()) {
+            ViewError::NoDisplay("DISPLAY is not set".into())
         } else {
             ViewError::Window(e.to_string())
         }
