@@ -7,14 +7,15 @@
 //! input per frame), writes `--screenshot` and `--save-settings`, prints the per-pass times
 //! and exits.
 //!
-//! Files: [`window`] runs the event loop, [`session`] holds what the view shows and renders,
-//! [`camera`] and [`script`] move the view, [`controls`], [`panel`] and [`light_edit`] are the
+//! Files: [`window`] runs the event loop with [`input`] and [`ui`], [`session`] holds what the
+//! view shows and renders, [`camera`] and [`script`] move the view, [`controls`], [`panel`] and [`light_edit`] are the
 //! side panel, [`frame`] renders on the GPU, [`overlay`] makes the picture, [`display`] puts it
 //! in the window, [`screenshot`] and [`scene_toml`] save it.
 mod camera;
 mod controls;
 mod display;
 mod frame;
+mod input;
 mod light_edit;
 mod overlay;
 mod panel;
@@ -22,6 +23,7 @@ mod scene_toml;
 mod screenshot;
 mod script;
 mod session;
+mod ui;
 mod window;
 
 use crate::args::{stops, EstimateArgs, ImportanceArgs, Lobes, PipelineArgs, Shader};

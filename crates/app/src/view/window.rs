@@ -1,26 +1,26 @@
-//! The window and its event loop (winit): input to the fly camera, the panel and the
-//! picture drawn with egui, `--frames` runs that save and exit.
+//! The window and its event loop (winit): opening it on the GPU, input to the fly camera,
+//! a new frame when anything changed, `--frames` runs that save and exit. The egui contents
+//! of a frame are in `ui.rs`, the input in `input.rs`.
 use super::camera::FlyInput;
-use super::display::{Display, Paint};
+use super::display::Display;
 use super::frame::FrameRenderer;
-use super::overlay;
-use super::panel::{self, Actions, PanelInfo};
+use super::input::{Input, KeyCommand};
+use super::panel::Actions;
 use super::screenshot::{capture, save_png, PixelRect};
 use super::session::Session;
 use super::{ViewArgs, ViewError};
 use crate::backend::warn_if_software;
-use std::collections::{HashSet, VecDeque};
+use std::collections::VecDeque;
 use std::sync::Arc;
 use std::time::Instant;
 use winit::application::ApplicationHandler;
 use winit::dpi::PhysicalSize;
-use winit::event::{ElementState, MouseButton, MouseScrollDelta, WindowEvent};
+use winit::event::WindowEvent;
 use winit::event_loop::{ActiveEventLoop, ControlFlow, EventLoop};
-use winit::keyboard::{KeyCode, PhysicalKey};
 use winit::window::{Window, WindowId};
 
 /// Width of the side panel in pixels.
-const PANEL_WIDTH: u32 = 330;
+pub const PANEL_WIDTH: u32 = 330;
 /// The least window height: the panel's controls without scrolling (a lower view is centred).
 const MIN_HEIGHT: u32 = 760;
 /// Seconds one scripted step lasts.
@@ -62,52 +62,21 @@ struct App<'a> {
 }
 
 /// The open window with what draws into it.
-struct Running {
-    window: Arc<Window>,
-    display: Display,
-    renderer: FrameRenderer,
-    egui: egui::Context,
-    egui_state: egui_winit::State,
-    texture: Option<egui::TextureHandle>,
+pub struct Running {
+    pub(super) window: Arc<Window>,
+    pub(super) display: Display,
+    pub(super) renderer: FrameRenderer,
+    pub(super) egui: egui::Context,
+    pub(super) egui_state: egui_winit::State,
+    pub(super) texture: Option<egui::TextureHandle>,
     /// What the texture shows: the frame's generation and the display controls.
-    picture_key: Option<(u64, String)>,
-    note: Option<&'static str>,
+    pub(super) picture_key: Option<(u64, String)>,
+    pub(super) note: Option<&'static str>,
     /// Where the picture is in the window (points).
-    picture_rect: egui::Rect,
-    input: Input,
-    last: Instant,
-    display_ms: f64,
-}
-
-/// The keyboard and mouse as the camera reads them.
-#[derive(Default)]
-struct Input {
-    held: HashSet<KeyCode>,
-    looking: bool,
-    cursor: Option<(f64, f64)>,
-    look: (f32, f32),
-    wheel: f32,
-    reset: bool,
-}
-
-impl Input {
-    /// The input gathered since the last frame (motion and wheel are consumed).
-    fn take(&mut self) -> FlyInput {
-        let axis = |plus, minus| {
-            f32::from(u8::from(self.held.contains(&plus)))
-                - f32::from(u8::from(self.held.contains(&minus)))
-        };
-        let input = FlyInput {
-            forward: axis(KeyCode::KeyW, KeyCode::KeyS),
-            right: axis(KeyCode::KeyD, KeyCode::KeyA),
-            up: axis(KeyCode::KeyE, KeyCode::KeyQ),
-            look: self.look,
-            wheel: self.wheel,
-            reset: self.reset,
-        };
-        (self.look, self.wheel, self.reset) = ((0.0, 0.0), 0.0, false);
-        input
-    }
+    pub(super) picture_rect: egui::Rect,
+    pub(super) input: Input,
+    pub(super) last: Instant,
+    pub(super) display_ms: f64,
 }
 
 impl ApplicationHandler for App<'_> {
@@ -141,44 +110,14 @@ impl ApplicationHandler for App<'_> {
                 }
                 return;
             }
-            WindowEvent::KeyboardInput { event, .. } => {
-                let pressed = event.state == ElementState::Pressed;
-                // A key typed into the panel is the panel's; a release always lets go.
-                if let (PhysicalKey::Code(code), false) = (event.physical_key, pressed && consumed)
-                {
-                    if pressed {
-                        r.input.held.insert(code);
-                    } else {
-                        r.input.held.remove(&code);
-                    }
-                    match code {
-                        _ if !pressed || event.repeat => {}
-                        KeyCode::KeyR => r.input.reset = true,
-                        KeyCode::KeyP => self.save_screenshot(),
-                        KeyCode::KeyK => self.save_settings(),
-                        _ => {}
-                    }
+            other => {
+                let over = r.picture_rect_px();
+                match r.input.handle(&other, consumed, over) {
+                    Some(KeyCommand::Screenshot) => self.save_screenshot(),
+                    Some(KeyCommand::SaveSettings) => self.save_settings(),
+                    None => {}
                 }
             }
-            WindowEvent::MouseInput {
-                state,
-                button: MouseButton::Right,
-                ..
-            } => r.input.looking = state == ElementState::Pressed && r.over_picture(),
-            WindowEvent::CursorMoved { position, .. } => {
-                if let (true, Some((x, y))) = (r.input.looking, r.input.cursor) {
-                    r.input.look.0 += (position.x - x) as f32;
-                    r.input.look.1 += (position.y - y) as f32;
-                }
-                r.input.cursor = Some((position.x, position.y));
-            }
-            WindowEvent::MouseWheel { delta, .. } if r.over_picture() => {
-                r.input.wheel += match delta {
-                    MouseScrollDelta::LineDelta(_, y) => y,
-                    MouseScrollDelta::PixelDelta(p) => p.y as f32 / 40.0,
-                }
-            }
-            _ => {}
         }
         if let Some(r) = &self.running {
             r.window.request_redraw();
@@ -366,97 +305,5 @@ impl App<'_> {
             println!("  {name:<16} {ms:>9.2}");
         }
         Ok(())
-    }
-}
-
-impl Running {
-    /// Whether the mouse is over the picture (there it moves the camera, elsewhere the panel
-    /// takes it).
-    fn over_picture(&self) -> bool {
-        let ppp = self.egui.pixels_per_point();
-        self.input.cursor.is_some_and(|(x, y)| {
-            self.picture_rect
-                .contains(egui::pos2(x as f32 / ppp, y as f32 / ppp))
-        })
-    }
-
-    /// Makes the picture again if the frame or how it is shown changed.
-    fn update_picture(&mut self, s: &Session) {
-        let Some(frame) = &s.frame else {
-            return;
-        };
-        let c = &s.controls;
-        let key = (
-            s.generation,
-            format!(
-                "{:?} {} {:?} {}",
-                c.layer, c.exposure, c.overlay, c.heat_max
-            ),
-        );
-        if self.picture_key.as_ref() == Some(&key) {
-            return;
-        }
-        let (rgb, note) = overlay::picture(frame, c);
-        let size = [rgb.width() as usize, rgb.height() as usize];
-        let image = egui::ColorImage::from_rgb(size, rgb.as_raw());
-        let options = egui::TextureOptions::NEAREST;
-        match &mut self.texture {
-            Some(t) => t.set(image, options),
-            None => self.texture = Some(self.egui.load_texture("frame", image, options)),
-        }
-        self.note = note;
-        self.picture_key = Some(key);
-    }
-
-    /// The panel and the picture for this frame: what the panel asked for and what to draw.
-    fn run_ui(&mut self, s: &mut Session) -> (Actions, Paint) {
-        let raw = self.egui_state.take_egui_input(&self.window);
-        let ctx = self.renderer.gpu().context();
-        let info = PanelInfo {
-            scene: &s.scene.name,
-            adapter: &ctx.adapter_name,
-            software: ctx.software,
-            frame: s.frame.as_ref(),
-            display_ms: self.display_ms,
-            note: self.note,
-            status: &s.status,
-            speed: s.fly.speed,
-        };
-        let mut actions = Actions::default();
-        let mut picture_rect = self.picture_rect;
-        let ppp = self.egui.pixels_per_point();
-        let (controls, lights, selected) =
-            (&mut s.controls, &mut s.scene.lights, &mut s.selected_light);
-        let output = self.egui.run_ui(raw, |ui| {
-            egui::Panel::right("panel")
-                .resizable(false)
-                .exact_size(PANEL_WIDTH as f32 / ppp)
-                .show(ui, |ui| {
-                    egui::ScrollArea::vertical().show(ui, |ui| {
-                        actions = panel::show(ui, controls, lights, selected, &info);
-                    });
-                });
-            egui::CentralPanel::no_frame().show(ui, |ui| {
-                let area = ui.max_rect();
-                let size = egui::vec2(s.width as f32, s.height as f32) / ppp;
-                let scale = (area.width() / size.x).min(area.height() / size.y).min(1.0);
-                let rect = egui::Rect::from_center_size(area.center(), size * scale);
-                if let Some(t) = &self.texture {
-                    let uv = egui::Rect::from_min_max(egui::pos2(0.0, 0.0), egui::pos2(1.0, 1.0));
-                    ui.painter().image(t.id(), rect, uv, egui::Color32::WHITE);
-                }
-                overlay::paint(ui.painter(), rect, s.width, controls);
-                picture_rect = rect;
-            });
-        });
-        self.picture_rect = picture_rect;
-        self.egui_state
-            .handle_platform_output(&self.window, output.platform_output);
-        let paint = Paint {
-            jobs: self.egui.tessellate(output.shapes, output.pixels_per_point),
-            textures: output.textures_delta,
-            pixels_per_point: output.pixels_per_point,
-        };
-        (actions, paint)
     }
 }
