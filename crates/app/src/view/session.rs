@@ -26,7 +26,7 @@ pub struct Session {
     rendered: Option<(RenderSettings, Camera, Vec<Light>)>,
     /// Counts rendered frames (the picture is made again when it changes).
     pub generation: u64,
-    /// Per-pass times of every frame rendered, and the view's own milliseconds.
+    /// Per-pass times of every frame rendered with `--frames`, and the view's own milliseconds.
     pub history: Vec<(Timings, f64)>,
     /// The last message for the panel: a saved file or an error.
     pub status: String,

@@ -55,7 +55,7 @@ struct App<'a> {
     args: &'a ViewArgs,
     session: Session,
     script: VecDeque<FlyInput>,
-    /// Frames drawn so far.
+    /// Frames drawn so far (counted with `--frames`).
     frames: u32,
     running: Option<Running>,
     result: Result<(), ViewError>,
@@ -190,8 +190,9 @@ impl App<'_> {
 
     /// One frame: camera input, a new render if anything changed, the panel, the display.
     fn redraw(&mut self, event_loop: &ActiveEventLoop) -> Result<(), ViewError> {
-        let scripted = self.frames < self.args.frames.unwrap_or(u32::MAX);
-        let r = self.running.as_mut().expect("running");
+        let Some(r) = self.running.as_mut() else {
+            return Ok(());
+        };
         let s = &mut self.session;
         let now = Instant::now();
         let dt = (now - r.last).as_secs_f32().min(MAX_DT);
@@ -200,27 +201,27 @@ impl App<'_> {
             Some(step) => s.fly.apply(&step, SCRIPT_DT),
             None => s.fly.apply(&r.input.take(), dt),
         }
-        match s.update(&r.renderer, self.args.frames.is_some()) {
-            Ok(_) => {}
+        let rendered = match s.update(&r.renderer, self.args.frames.is_some()) {
+            Ok(rendered) => rendered,
             Err(e) if self.args.frames.is_some() => return Err(e),
-            Err(e) => s.status = e.to_string(),
-        }
-        let rendered_generation = s.generation;
+            Err(e) => {
+                s.status = e.to_string();
+                false
+            }
+        };
         let start = Instant::now();
         r.update_picture(s);
         let (actions, paint) = r.run_ui(s);
         r.display.draw(r.renderer.gpu().context(), paint)?;
         r.display_ms = start.elapsed().as_secs_f64() * 1e3;
-        if let Some(f) = &s.frame {
-            if s.history.len() < rendered_generation as usize {
-                s.history.push((f.timings.clone(), r.display_ms));
-            }
-        }
         r.input.reset |= actions.reset_camera;
+        if let (true, Some(_), Some(f)) = (rendered, self.args.frames, &s.frame) {
+            s.history.push((f.timings.clone(), r.display_ms));
+        }
         self.act(actions);
-        if scripted {
+        if let Some(frames) = self.args.frames {
             self.frames += 1;
-            if Some(self.frames) == self.args.frames {
+            if self.frames == frames {
                 self.finish()?;
                 event_loop.exit();
             }
@@ -258,7 +259,10 @@ impl App<'_> {
 
     /// What the window shows: the picture, or with `window` the whole window.
     fn capture(&self, window: bool) -> Result<image::RgbImage, ViewError> {
-        let r = self.running.as_ref().expect("running");
+        let r = self
+            .running
+            .as_ref()
+            .ok_or(ViewError::Window("no window".into()))?;
         let canvas = r.display.canvas();
         let rect = if window {
             PixelRect {
@@ -289,17 +293,16 @@ impl App<'_> {
         if let Some(path) = &a.save_settings {
             self.session.save_settings(path)?;
         }
-        let r = self.running.as_ref().expect("running");
         let s = &self.session;
+        let adapter = self
+            .running
+            .as_ref()
+            .map_or("", |r| r.renderer.gpu().context().adapter_name.as_str());
         let clock = s.frame.as_ref().map_or("", |f| f.clock.label());
         println!(
             "{}: {} frames of {}x{} on {}; ms per pass, median over the frames after the first \
              ({clock}; display: wall clock):",
-            s.scene.name,
-            self.frames,
-            s.width,
-            s.height,
-            r.renderer.gpu().context().adapter_name
+            s.scene.name, self.frames, s.width, s.height, adapter
         );
         for (name, ms) in s.median_timings() {
             println!("  {name:<16} {ms:>9.2}");
