@@ -6,6 +6,7 @@ use slc_core::frame::{merge_optional, RenderSettings};
 use slc_core::render::shade_method;
 use slc_core::{CullMetrics, Image, PreparedFrame, Renderer, Scene, ShadeInput, Timings};
 use slc_gpu_wgpu::{GpuLoadedScene, GpuRenderer};
+use std::time::Instant;
 
 /// How a frame's pass times were measured.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -39,6 +40,9 @@ pub struct ViewFrame {
     pub vpl_count: usize,
     /// Distinct VSGLs shaded (VSGL shader).
     pub sampled_lights: Option<usize>,
+    /// Wall-clock milliseconds of the whole frame: the passes, the readbacks between them and
+    /// the brute-force metrics (which the pass times leave out).
+    pub render_ms: f64,
 }
 
 /// The GPU renderer with the view's scene on it.
@@ -61,6 +65,7 @@ impl FrameRenderer {
 
     /// Renders `scene` (its camera and lights as the view has them) with `settings`.
     pub fn render(&self, scene: &Scene, settings: &RenderSettings) -> Result<ViewFrame, String> {
+        let start = Instant::now();
         settings.validate().map_err(message)?;
         self.gpu.check(settings).map_err(message)?;
         let p = self
@@ -91,6 +96,7 @@ impl FrameRenderer {
             clock,
             metrics: shaded.metrics,
             sampled_lights: shaded.sampled_lights,
+            render_ms: start.elapsed().as_secs_f64() * 1e3,
         })
     }
 }

@@ -168,6 +168,9 @@ fn timings(ui: &mut Ui, frame: &ViewFrame, display_ms: f64) {
         ui.strong("frame");
         ui.strong(format!("{:.2}", frame.timings.total()));
         ui.end_row();
+        ui.label("whole frame (wall clock)");
+        ui.label(format!("{:.2}", frame.render_ms));
+        ui.end_row();
         ui.label("display (wall clock)");
         ui.label(format!("{display_ms:.2}"));
         ui.end_row();

@@ -26,8 +26,9 @@ pub struct Session {
     rendered: Option<(RenderSettings, Camera, Vec<Light>)>,
     /// Counts rendered frames (the picture is made again when it changes).
     pub generation: u64,
-    /// Per-pass times of every frame rendered with `--frames`, and the view's own milliseconds.
-    pub history: Vec<(Timings, f64)>,
+    /// Per-pass times of every frame rendered with `--frames`, its whole wall-clock time and
+    /// the view's own milliseconds.
+    pub history: Vec<(Timings, f64, f64)>,
     /// The last message for the panel: a saved file or an error.
     pub status: String,
 }
@@ -107,31 +108,26 @@ impl Session {
     }
 
     /// The median milliseconds of each pass over the frames after the first (all frames if
-    /// there is only one), with the view's own time last.
+    /// there is only one), then their sum, the whole frame's wall-clock time and the view's own.
     pub fn median_timings(&self) -> Vec<(&'static str, f64)> {
         let frames = &self.history[usize::from(self.history.len() > 1)..];
-        let Some((first, _)) = frames.first() else {
+        let Some((first, ..)) = frames.first() else {
             return Vec::new();
         };
         let median = |mut v: Vec<f64>| {
             v.sort_by(f64::total_cmp);
             v[v.len() / 2]
         };
+        let column =
+            |f: &dyn Fn(&(Timings, f64, f64)) -> f64| median(frames.iter().map(f).collect());
         let mut rows: Vec<_> = first
             .0
             .iter()
-            .map(|&(name, _)| {
-                (
-                    name,
-                    median(frames.iter().map(|(t, _)| t.get(name)).collect()),
-                )
-            })
+            .map(|&(name, _)| (name, column(&|h| h.0.get(name))))
             .collect();
-        rows.push((
-            "frame",
-            median(frames.iter().map(|(t, _)| t.total()).collect()),
-        ));
-        rows.push(("display", median(frames.iter().map(|(_, d)| *d).collect())));
+        rows.push(("frame", column(&|h| h.0.total())));
+        rows.push(("whole_frame", column(&|h| h.1)));
+        rows.push(("display", column(&|h| h.2)));
         rows
     }
 }

@@ -216,7 +216,8 @@ impl App<'_> {
         r.display_ms = start.elapsed().as_secs_f64() * 1e3;
         r.input.reset |= actions.reset_camera;
         if let (true, Some(_), Some(f)) = (rendered, self.args.frames, &s.frame) {
-            s.history.push((f.timings.clone(), r.display_ms));
+            s.history
+                .push((f.timings.clone(), f.render_ms, r.display_ms));
         }
         self.act(actions);
         if let Some(frames) = self.args.frames {
@@ -301,7 +302,8 @@ impl App<'_> {
         let clock = s.frame.as_ref().map_or("", |f| f.clock.label());
         println!(
             "{}: {} frames of {}x{} on {}; ms per pass, median over the frames after the first \
-             ({clock}; display: wall clock):",
+             ({clock}; whole_frame: with the readbacks and metrics, and display: \
+             wall clock):",
             s.scene.name, self.frames, s.width, s.height, adapter
         );
         for (name, ms) in s.median_timings() {
