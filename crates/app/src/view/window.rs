@@ -273,13 +273,12 @@ impl App<'_> {
                 height: canvas.height(),
             }
         } else {
-            let ppp = r.egui.pixels_per_point();
-            let px = |v: f32| (v * ppp).round().max(0.0) as u32;
+            let [left, top, right, bottom] = r.picture_rect_px().map(|v| v.round().max(0.0) as u32);
             PixelRect {
-                x: px(r.picture_rect.left()),
-                y: px(r.picture_rect.top()),
-                width: px(r.picture_rect.width()),
-                height: px(r.picture_rect.height()),
+                x: left,
+                y: top,
+                width: right.saturating_sub(left),
+                height: bottom.saturating_sub(top),
             }
         };
         capture(r.renderer.gpu().context(), canvas, rect)
