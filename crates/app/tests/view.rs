@@ -249,8 +249,9 @@ fn bad_view_options_are_clear_errors() {
     }
 }
 
-/// Real key presses in the window (sent with xdotool): P saves a screenshot, held W flies
-/// forward, K saves the settings with the moved camera.
+/// Real key presses and mouse moves in the window (sent with xdotool): P saves a screenshot,
+/// held W flies forward, the mouse moved right with the right button held over the picture
+/// turns right, K saves the settings with the moved camera.
 #[test]
 fn keys_in_the_window_fly_and_save() {
     if !can_view() {
@@ -299,6 +300,15 @@ fn keys_in_the_window_fly_and_save() {
         sleep 2
         xdotool keyup w
         sleep 1
+        # The 96 x 64 picture is centred in the 760-pixel-high window, left of the panel.
+        xdotool mousemove --window "$wid" 48 380
+        sleep 0.5
+        xdotool mousedown 3
+        sleep 0.5
+        xdotool mousemove_relative -- 60 0
+        sleep 1
+        xdotool mouseup 3
+        sleep 1
         xdotool key k
         wait_for "$DIR/slc-view-002.toml" || exit 12
     "#;
@@ -319,11 +329,17 @@ fn keys_in_the_window_fly_and_save() {
     let shot = image::open(dir.join("slc-view-001.png")).unwrap();
     assert_eq!((shot.width(), shot.height()), (96, 64));
     let saved = std::fs::read_to_string(dir.join("slc-view-002.toml")).unwrap();
-    // The scene's camera is at z = 3.8 looking down -z: W moved it forward.
-    let z: f32 = saved
-        .lines()
-        .find_map(|l| l.strip_prefix("position = ["))
-        .and_then(|l| l.trim_end_matches(']').split(", ").nth(2)?.parse().ok())
-        .expect(&saved);
-    assert!(z < 3.79, "{saved}");
+    let vec3 = |key: &str| -> Vec<f32> {
+        let line = saved
+            .lines()
+            .find_map(|l| l.strip_prefix(key))
+            .expect(&saved);
+        let numbers = line.trim_matches(|c| c == '[' || c == ']');
+        numbers.split(", ").map(|v| v.parse().unwrap()).collect()
+    };
+    let (position, target) = (vec3("position = "), vec3("target = "));
+    // The scene's camera is at z = 3.8 looking down -z: W moved it forward, the mouse turned
+    // it right (+x).
+    assert!(position[2] < 3.79, "{saved}");
+    assert!(target[0] - position[0] > 0.05, "{saved}");
 }
