@@ -33,17 +33,18 @@ fn can_view() -> bool {
     gpu_available()
 }
 
+/// `program` run on a virtual X server with a 24-bit screen (xvfb-run's default has 8).
+fn under_xvfb(program: &str) -> Command {
+    let mut c = Command::new("xvfb-run");
+    c.args(["-a", "-s", "-screen 0 1280x1024x24", program]);
+    c
+}
+
 /// `slc view ARGS` under a virtual X server; panics (with its output) unless it succeeds.
 fn view(args: &[&str]) -> Output {
     let _one = XVFB.lock().unwrap_or_else(|e| e.into_inner());
-    let out = Command::new("xvfb-run")
-        .args([
-            "-a",
-            "-s",
-            "-screen 0 1280x1024x24",
-            env!("CARGO_BIN_EXE_slc"),
-            "view",
-        ])
+    let out = under_xvfb(env!("CARGO_BIN_EXE_slc"))
+        .arg("view")
         .args(args)
         .output()
         .unwrap();
@@ -175,17 +176,9 @@ fn settings_of_a_built_in_scene_are_a_clear_error() {
     let dir = temp("builtin");
     let _one = XVFB.lock().unwrap_or_else(|e| e.into_inner());
     let saved = dir.join("saved.toml");
-    let out = Command::new("xvfb-run")
-        .args([
-            "-a",
-            env!("CARGO_BIN_EXE_slc"),
-            "view",
-            "--width",
-            "64",
-            "--height",
-            "48",
-        ])
-        .args(["--frames", "1", "--save-settings", saved.to_str().unwrap()])
+    let out = under_xvfb(env!("CARGO_BIN_EXE_slc"))
+        .args(["view", "--width", "64", "--height", "48", "--frames", "1"])
+        .args(["--save-settings", saved.to_str().unwrap()])
         .output()
         .unwrap();
     let stderr = String::from_utf8_lossy(&out.stderr);
@@ -215,8 +208,8 @@ fn without_a_gpu_backend_the_error_says_so() {
     }
     let _one = XVFB.lock().unwrap_or_else(|e| e.into_inner());
     // No DirectX 12 on Linux: no backend, no adapter.
-    let out = Command::new("xvfb-run")
-        .args(["-a", env!("CARGO_BIN_EXE_slc"), "view", "--frames", "1"])
+    let out = under_xvfb(env!("CARGO_BIN_EXE_slc"))
+        .args(["view", "--frames", "1"])
         .env("WGPU_BACKEND", "dx12")
         .output()
         .unwrap();
@@ -313,8 +306,8 @@ fn keys_in_the_window_fly_and_save() {
         wait_for "$DIR/slc-view-002.toml" || exit 12
     "#;
     let _one = XVFB.lock().unwrap_or_else(|e| e.into_inner());
-    let out = Command::new("xvfb-run")
-        .args(["-a", "bash", "-c", script])
+    let out = under_xvfb("bash")
+        .args(["-c", script])
         .env("SLC", env!("CARGO_BIN_EXE_slc"))
         .env("SCENE", scene)
         .env("DIR", &dir)
