@@ -136,3 +136,48 @@ pub fn value_name(v: impl ValueEnum) -> String {
     v.to_possible_value()
         .map_or_else(String::new, |p| p.get_name().to_string())
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::render_cmd::RenderArgs;
+    use clap::Parser;
+
+    #[derive(Parser)]
+    struct Render {
+        #[command(flatten)]
+        render: RenderArgs,
+    }
+
+    #[derive(Parser)]
+    struct View {
+        #[command(flatten)]
+        view: ViewArgs,
+    }
+
+    #[test]
+    fn render_options_are_options_of_slc_render_with_the_same_values() {
+        for view_args in [
+            vec!["--culling", "clustered", "--delta", "0.01", "--no-denoise"],
+            vec!["--shader", "vsgl", "--vsgls", "77", "--vsgl-diffuse", "sg"],
+        ] {
+            let view = View::parse_from(std::iter::once("slc").chain(view_args)).view;
+            let controls = Controls::from_args(&view);
+            let options = controls.render_options(40, 30);
+            let words = ["slc", "scene.toml"].into_iter().chain(options.split(' '));
+            let r = Render::try_parse_from(words).expect(&options).render;
+            assert_eq!((r.frame.width, r.frame.height), (40, 30));
+            assert_eq!(r.frame.shader, controls.shader);
+            assert_eq!(r.estimate.culling, controls.estimate.culling);
+            assert_eq!(r.estimate.delta, controls.estimate.delta);
+            assert_eq!(r.estimate.vsgls, controls.estimate.vsgls);
+            assert_eq!(r.pipeline.no_denoise, controls.pipeline.no_denoise);
+            assert_eq!(r.importance.vsgl_diffuse, controls.importance.vsgl_diffuse);
+            let settings = r
+                .estimate
+                .method(r.frame.shader, &r.pipeline, &r.importance, false)
+                .unwrap();
+            assert_eq!(settings, controls.settings(40, 30).unwrap().method);
+        }
+    }
+}
