@@ -5,7 +5,6 @@ use super::camera::FlyInput;
 use super::display::Display;
 use super::frame::FrameRenderer;
 use super::input::{Input, KeyCommand};
-use super::panel::Actions;
 use super::screenshot::{capture, save_png, PixelRect};
 use super::session::Session;
 use super::{ViewArgs, ViewError};
@@ -43,6 +42,7 @@ pub fn run(args: &ViewArgs, session: Session, script: Vec<FlyInput>) -> Result<(
         script: script.into(),
         frames: 0,
         running: None,
+        screenshot_asked: false,
         result: Ok(()),
     };
     event_loop
@@ -58,6 +58,8 @@ struct App<'a> {
     /// Frames drawn so far (counted with `--frames`).
     frames: u32,
     running: Option<Running>,
+    /// A screenshot was asked for (P or the button): saved once a picture has been drawn.
+    screenshot_asked: bool,
     result: Result<(), ViewError>,
 }
 
@@ -113,7 +115,7 @@ impl ApplicationHandler for App<'_> {
             other => {
                 let over = r.picture_rect_px();
                 match r.input.handle(&other, consumed, over) {
-                    Some(KeyCommand::Screenshot) => self.save_screenshot(),
+                    Some(KeyCommand::Screenshot) => self.screenshot_asked = true,
                     Some(KeyCommand::SaveSettings) => self.save_settings(),
                     None => {}
                 }
@@ -219,7 +221,14 @@ impl App<'_> {
             s.history
                 .push((f.timings.clone(), f.render_ms, r.display_ms));
         }
-        self.act(actions);
+        self.screenshot_asked |= actions.screenshot;
+        if self.screenshot_asked && s.frame.is_some() {
+            self.screenshot_asked = false;
+            self.save_screenshot();
+        }
+        if actions.save_settings {
+            self.save_settings();
+        }
         if let Some(frames) = self.args.frames {
             self.frames += 1;
             if self.frames == frames {
@@ -230,16 +239,7 @@ impl App<'_> {
         Ok(())
     }
 
-    fn act(&mut self, actions: Actions) {
-        if actions.screenshot {
-            self.save_screenshot();
-        }
-        if actions.save_settings {
-            self.save_settings();
-        }
-    }
-
-    /// A screenshot of the picture (P or the button) into the output folder.
+    /// A screenshot of the picture into the output folder.
     fn save_screenshot(&mut self) {
         let path = self.session.next_path("png");
         let saved = self.capture(false).and_then(|img| save_png(&img, &path));
