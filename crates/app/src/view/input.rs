@@ -17,6 +17,9 @@ pub enum KeyCommand {
 #[derive(Default)]
 pub struct Input {
     pub held: HashSet<KeyCode>,
+    /// Keys pressed since the last frame: a key pressed and released between two (slow)
+    /// frames still moves the camera for one frame.
+    pressed: HashSet<KeyCode>,
     looking: bool,
     cursor: Option<(f64, f64)>,
     look: (f32, f32),
@@ -27,10 +30,12 @@ pub struct Input {
 impl Input {
     /// The input gathered since the last frame (motion and wheel are consumed).
     pub fn take(&mut self) -> FlyInput {
-        let axis = |plus, minus| {
-            f32::from(u8::from(self.held.contains(&plus)))
-                - f32::from(u8::from(self.held.contains(&minus)))
+        let down = |k| {
+            f32::from(u8::from(
+                self.held.contains(&k) || self.pressed.contains(&k),
+            ))
         };
+        let axis = |plus, minus| down(plus) - down(minus);
         let input = FlyInput {
             forward: axis(KeyCode::KeyW, KeyCode::KeyS),
             right: axis(KeyCode::KeyD, KeyCode::KeyA),
@@ -40,11 +45,9 @@ impl Input {
             reset: self.reset,
         };
         (self.look, self.wheel, self.reset) = ((0.0, 0.0), 0.0, false);
+        self.pressed.clear();
         input
     }
-}
-
-impl Input {
     /// Takes in a window event; `consumed` when egui took it, `picture` the picture's pixel
     /// rectangle (left, top, right, bottom) where the mouse moves the camera.
     pub fn handle(
@@ -73,6 +76,7 @@ impl Input {
                     return None;
                 }
                 self.held.insert(code);
+                self.pressed.insert(code);
                 match code {
                     _ if event.repeat => None,
                     KeyCode::KeyR => {
