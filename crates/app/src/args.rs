@@ -120,7 +120,7 @@ pub struct FrameArgs {
 }
 
 /// An exposure in stops: a number in [-64, 64].
-fn stops(s: &str) -> Result<f32, String> {
+pub fn stops(s: &str) -> Result<f32, String> {
     let v: f32 = s.trim().parse().map_err(|e| format!("{e}"))?;
     (-64.0..=64.0)
         .contains(&v)
@@ -172,11 +172,18 @@ impl FrameArgs {
             method,
             visibility: self.visibility,
             spp,
-            lobes: match self.lobes {
-                Lobes::Both => LobeSelection::Both,
-                Lobes::Diffuse => LobeSelection::Diffuse,
-                Lobes::Glossy => LobeSelection::Glossy,
-            },
+            lobes: self.lobes.selection(),
+        }
+    }
+}
+
+impl Lobes {
+    /// The lobes as the renderer selects them.
+    pub fn selection(self) -> LobeSelection {
+        match self {
+            Lobes::Both => LobeSelection::Both,
+            Lobes::Diffuse => LobeSelection::Diffuse,
+            Lobes::Glossy => LobeSelection::Glossy,
         }
     }
 }
@@ -213,5 +220,42 @@ impl PipelineArgs {
             denoise: !self.no_denoise,
             metrics,
         }
+    }
+}
+
+/// The estimate of indirect light: the culling strategy and δ of the VPL shader, the VSGL
+/// count of the VSGL shader (`render` and `view`).
+#[derive(Args, Debug, Clone)]
+pub struct EstimateArgs {
+    /// With --shader vsgl: the number of VSGLs sampled from the RSMs.
+    #[arg(long, default_value_t = 1024)]
+    pub vsgls: u32,
+    /// Culling strategy: none, sphere, enclosing-sphere, ellipsoid, clustered (ellipsoids in 3-D
+    /// clusters), clustered-sphere, clustered-enclosing-sphere.
+    #[arg(long, default_value = "ellipsoid")]
+    pub culling: String,
+    /// δ of eq. (2), in the units of I / l² (W sr⁻¹ m⁻²): larger culls more and adds variance.
+    #[arg(long, default_value_t = 1e-3)]
+    pub delta: f32,
+}
+
+impl EstimateArgs {
+    /// The method `shader` estimates indirect light with: VSGLs sampled with `importance`, or
+    /// the stochastic VPL estimate with `pipeline` (and culling metrics with `metrics`).
+    pub fn method(
+        &self,
+        shader: Shader,
+        pipeline: &PipelineArgs,
+        importance: &ImportanceArgs,
+        metrics: bool,
+    ) -> Result<Method, String> {
+        Ok(match shader {
+            Shader::Vsgl => Method::Vsgl(importance.sampling(self.vsgls)),
+            Shader::Vpl => Method::Stochastic(pipeline.stochastic(
+                self.delta,
+                strategy(&self.culling)?,
+                metrics,
+            )),
+        })
     }
 }

@@ -22,10 +22,16 @@ pub fn run_on(backend: Backend, command: impl OnBackend) -> Result<(), String> {
 #[cfg(feature = "gpu")]
 fn run_on_gpu(command: impl OnBackend) -> Result<(), String> {
     let gpu = slc_gpu_wgpu::GpuRenderer::new().map_err(|e| e.to_string())?;
-    if let Some(warning) = gpu.context().software_warning() {
+    warn_if_software(gpu.context());
+    command.run(&gpu)
+}
+
+/// Warns on stderr when `ctx` runs on a software rasterizer.
+#[cfg(feature = "gpu")]
+pub fn warn_if_software(ctx: &slc_gpu_wgpu::GpuContext) {
+    if let Some(warning) = ctx.software_warning() {
         eprintln!("warning: {warning}");
     }
-    command.run(&gpu)
 }
 
 #[cfg(not(feature = "gpu"))]

@@ -15,6 +15,8 @@ mod render_cmd;
 mod sampled;
 mod sweep_cmd;
 mod table;
+#[cfg(feature = "view")]
+mod view;
 mod vsgl_sweep;
 
 use clap::{Parser, Subcommand};
@@ -41,6 +43,10 @@ enum Command {
     Sweep(sweep_cmd::SweepArgs),
     /// Per-pass times over resolutions and VPL counts for each strategy: bench.md, bench.csv.
     Bench(bench_cmd::BenchArgs),
+    /// An interactive window on the GPU renderer: fly camera, movable lights, render controls,
+    /// overlays (heat map, tile grid), per-pass times; screenshots and settings (.toml).
+    #[cfg(feature = "view")]
+    View(view::ViewArgs),
 }
 
 fn main() {
@@ -51,6 +57,8 @@ fn main() {
         Command::Compare(args) => compare_cmd::run(&args),
         Command::Sweep(args) => sweep_cmd::run(&args),
         Command::Bench(args) => bench_cmd::run(&args),
+        #[cfg(feature = "view")]
+        Command::View(args) => view::run(&args),
     };
     if let Err(e) = result {
         eprintln!("error: {e}");

@@ -1,5 +1,5 @@
 //! `slc render`.
-use crate::args::{strategy, FrameArgs, ImportanceArgs, PipelineArgs, Shader};
+use crate::args::{EstimateArgs, FrameArgs, ImportanceArgs, PipelineArgs, Shader};
 use crate::backend::{message, run_on, OnBackend};
 use crate::layers_exr::write_layers;
 use crate::output::write_frame;
@@ -31,19 +31,11 @@ pub struct RenderArgs {
     pub pipeline: PipelineArgs,
     #[command(flatten)]
     pub importance: ImportanceArgs,
-    /// With --shader vsgl: the number of VSGLs sampled from the RSMs.
-    #[arg(long, default_value_t = 1024)]
-    pub vsgls: u32,
+    #[command(flatten)]
+    pub estimate: EstimateArgs,
     /// Output folder.
     #[arg(long, default_value = "out")]
     pub out: PathBuf,
-    /// Culling strategy: none, sphere, enclosing-sphere, ellipsoid, clustered (ellipsoids in 3-D
-    /// clusters), clustered-sphere, clustered-enclosing-sphere.
-    #[arg(long, default_value = "ellipsoid")]
-    pub culling: String,
-    /// δ of eq. (2), in the units of I / l² (W sr⁻¹ m⁻²): larger culls more and adds variance.
-    #[arg(long, default_value_t = 1e-3)]
-    pub delta: f32,
     /// Measure culling metrics (true/false positives, misses) by brute force.
     #[arg(long)]
     pub metrics: bool,
@@ -70,12 +62,10 @@ pub fn run(args: &RenderArgs) -> Result<(), String> {
         }
         (Some(Reference::Path), _) => Method::Path,
         (Some(Reference::Vpl), _) => Method::VplReference,
-        (None, Shader::Vsgl) => Method::Vsgl(args.importance.sampling(args.vsgls)),
-        (None, Shader::Vpl) => Method::Stochastic(args.pipeline.stochastic(
-            args.delta,
-            strategy(&args.culling)?,
-            args.metrics,
-        )),
+        (None, shader) => {
+            args.estimate
+                .method(shader, &args.pipeline, &args.importance, args.metrics)?
+        }
     };
     let settings = args.frame.settings(method, args.spp);
     settings.validate().map_err(message)?;
@@ -153,7 +143,9 @@ impl OnBackend for Render<'_> {
         out.commit()?;
         let m = total.mean();
         let lights = match frame.sampled_lights {
-            Some(n) if f.shader == Shader::Vsgl => format!("{n} VSGLs of {} samples", args.vsgls),
+            Some(n) if f.shader == Shader::Vsgl => {
+                format!("{n} VSGLs of {} samples", args.estimate.vsgls)
+            }
             _ => format!("{} VPLs", frame.vpl_count),
         };
         println!(

@@ -1,27 +1,8 @@
 //! The `slc` command as a user runs it: outputs, report fields and errors.
-use std::path::{Path, PathBuf};
-use std::process::Command;
+use std::path::Path;
 
-fn slc() -> Command {
-    Command::new(env!("CARGO_BIN_EXE_slc"))
-}
-
-/// Runs `slc ARGS --out OUT` (ARGS split at spaces) and asserts it succeeded.
-fn run_ok(args: &str, out: &Path) {
-    let status = slc()
-        .args(args.split(' '))
-        .arg("--out")
-        .arg(out)
-        .status()
-        .unwrap();
-    assert!(status.success(), "slc {args} failed");
-}
-
-fn out_dir(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("slc-cli-{name}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    d
-}
+mod common;
+use common::{gpu_available, out_dir, run_ok, slc};
 
 #[test]
 fn render_writes_images_and_report() {
@@ -378,24 +359,6 @@ fn bench_writes_a_row_per_resolution_vpl_count_and_strategy() {
         .unwrap()
         .contains("| 24x16 |"));
     std::fs::remove_dir_all(&out).ok();
-}
-
-/// Whether a GPU adapter is there for the `--backend gpu` tests. None: with `CI` set the test
-/// fails (CI installs lavapipe, so a missing adapter is a broken setup); otherwise a notice is
-/// printed and the test passes without checking (as `crates/gpu-wgpu/tests/gpu/common.rs`).
-fn gpu_available() -> bool {
-    use slc_gpu_wgpu::{GpuContext, GpuError};
-    match GpuContext::new() {
-        Ok(_) => true,
-        Err(e @ GpuError::NoAdapter(_)) => {
-            if std::env::var_os("CI").is_some() {
-                panic!("CI is set but no GPU adapter was found: {e}");
-            }
-            eprintln!("notice: GPU test skipped, no adapter ({e})");
-            false
-        }
-        Err(e) => panic!("GPU device could not be created: {e}"),
-    }
 }
 
 /// The RGB pixels of the first layer of an EXR file.

@@ -7,21 +7,8 @@
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-fn out_dir(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("slc-pages-{name}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    d
-}
-
-fn run_ok(args: &str, out: &Path) {
-    let status = Command::new(env!("CARGO_BIN_EXE_slc"))
-        .args(args.split(' '))
-        .arg("--out")
-        .arg(out)
-        .status()
-        .unwrap();
-    assert!(status.success(), "slc {args} failed");
-}
+mod common;
+use common::{out_dir, run_ok};
 
 /// The values of every `attribute="…"` in `html`.
 fn attribute_values<'a>(html: &'a str, attribute: &str) -> Vec<&'a str> {

@@ -1,0 +1,49 @@
+//! Helpers shared by the integration tests of the `slc` command. Each test file compiles
+//! this module on its own and uses part of it, hence `allow(dead_code)` below.
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+/// The `slc` binary under test.
+#[allow(dead_code)]
+pub fn slc() -> Command {
+    Command::new(env!("CARGO_BIN_EXE_slc"))
+}
+
+/// Runs `slc ARGS --out OUT` (ARGS split at spaces) and asserts it succeeded.
+#[allow(dead_code)]
+pub fn run_ok(args: &str, out: &Path) {
+    let status = slc()
+        .args(args.split(' '))
+        .arg("--out")
+        .arg(out)
+        .status()
+        .unwrap();
+    assert!(status.success(), "slc {args} failed");
+}
+
+/// A fresh output folder for this test process (removed if a previous run left it).
+#[allow(dead_code)]
+pub fn out_dir(name: &str) -> PathBuf {
+    let d = std::env::temp_dir().join(format!("slc-test-{name}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&d);
+    d
+}
+
+/// Whether a GPU adapter is there for the `--backend gpu` tests. None: with `CI` set the test
+/// fails (CI installs lavapipe, so a missing adapter is a broken setup); otherwise a notice is
+/// printed and the test passes without checking (as `crates/gpu-wgpu/tests/gpu/common.rs`).
+#[allow(dead_code)]
+pub fn gpu_available() -> bool {
+    use slc_gpu_wgpu::{GpuContext, GpuError};
+    match GpuContext::new() {
+        Ok(_) => true,
+        Err(e @ GpuError::NoAdapter(_)) => {
+            if std::env::var_os("CI").is_some() {
+                panic!("CI is set but no GPU adapter was found: {e}");
+            }
+            eprintln!("notice: GPU test skipped, no adapter ({e})");
+            false
+        }
+        Err(e) => panic!("GPU device could not be created: {e}"),
+    }
+}
