@@ -108,26 +108,28 @@ fn frames_save_a_screenshot_the_overlays_and_the_camera_change() {
     assert!(changed(&plain, &back) < 0.01, "{}", changed(&plain, &back));
 }
 
+/// `scenes/cornell-gltf.toml`, whose scene file is in `../shared`; `None` (with a notice)
+/// where `../shared` is not beside the repository, which fails under `CI`.
+fn cornell_gltf() -> Option<&'static str> {
+    let shared = concat!(env!("CARGO_MANIFEST_DIR"), "/../../../shared/scenes");
+    if !Path::new(shared).is_dir() {
+        assert!(std::env::var_os("CI").is_none(), "CI without ../shared");
+        eprintln!("notice: test skipped, ../shared is not beside the repository");
+        return None;
+    }
+    Some(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../../scenes/cornell-gltf.toml"
+    ))
+}
+
 #[test]
 fn saved_settings_render_with_slc_render() {
     if !can_view() {
         return;
     }
     let dir = temp("settings");
-    let scene = concat!(
-        env!("CARGO_MANIFEST_DIR"),
-        "/../../scenes/cornell-gltf.toml"
-    );
-    if !Path::new(concat!(
-        env!("CARGO_MANIFEST_DIR"),
-        "/../../../shared/scenes"
-    ))
-    .is_dir()
-    {
-        assert!(std::env::var_os("CI").is_none(), "CI without ../shared");
-        eprintln!("notice: settings test skipped, ../shared is not beside the repository");
-        return;
-    }
+    let Some(scene) = cornell_gltf() else { return };
     let saved = dir.join("saved.toml");
     let args = [
         scene,
@@ -258,19 +260,7 @@ fn keys_in_the_window_fly_and_save() {
         eprintln!("notice: key test skipped, xdotool is not installed");
         return;
     }
-    let scene = concat!(
-        env!("CARGO_MANIFEST_DIR"),
-        "/../../scenes/cornell-gltf.toml"
-    );
-    if !Path::new(concat!(
-        env!("CARGO_MANIFEST_DIR"),
-        "/../../../shared/scenes"
-    ))
-    .is_dir()
-    {
-        assert!(std::env::var_os("CI").is_none(), "CI without ../shared");
-        return;
-    }
+    let Some(scene) = cornell_gltf() else { return };
     let dir = temp("keys");
     let script = r#"
         "$SLC" view "$SCENE" --width 96 --height 64 --out "$DIR" &
