@@ -46,8 +46,27 @@ pub fn xml_escape(s: &str) -> String {
         .replace('"', "&quot;")
 }
 
-/// `image` as a `data:` URI of its PNG encoding.
+/// Widest an image is embedded, in pixels: twice the widest panel, enough to print a panel
+/// at its size; the full-resolution images are the files beside the figure.
+const EMBED_WIDTH: u32 = 2 * PANEL_WIDTH.1 as u32;
+
+/// `image` as a `data:` URI of its PNG encoding, scaled down (triangle filter) to
+/// [`EMBED_WIDTH`] where it is wider.
 fn png_data_uri(image: &RgbImage) -> Result<String, String> {
+    let scaled;
+    let image = if image.width() > EMBED_WIDTH {
+        let height = (u64::from(image.height()) * u64::from(EMBED_WIDTH) / u64::from(image.width()))
+            .max(1) as u32;
+        scaled = image::imageops::resize(
+            image,
+            EMBED_WIDTH,
+            height,
+            image::imageops::FilterType::Triangle,
+        );
+        &scaled
+    } else {
+        image
+    };
     let mut png = Vec::new();
     PngEncoder::new(&mut png)
         .write_image(
@@ -237,6 +256,18 @@ mod tests {
             svg.matches("<rect").count() > 64 * 20,
             "one cell per colour"
         );
+    }
+
+    #[test]
+    fn wide_images_are_embedded_scaled_down() {
+        let wide = RgbImage::from_pixel(EMBED_WIDTH * 2 + 1, 100, Rgb([10, 200, 30]));
+        let uri = png_data_uri(&wide).unwrap();
+        let png = base64::engine::general_purpose::STANDARD
+            .decode(uri.trim_start_matches("data:image/png;base64,"))
+            .unwrap();
+        let back = image::load_from_memory(&png).unwrap().to_rgb8();
+        assert_eq!((back.width(), back.height()), (EMBED_WIDTH, 49));
+        assert_eq!(back.get_pixel(7, 7), &Rgb([10, 200, 30]));
     }
 
     #[test]
