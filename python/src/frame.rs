@@ -11,6 +11,7 @@ use slc_core::{CullMetrics, Image, Renderer, Scene};
 pub struct FrameData {
     direct: Image,
     indirect: Image,
+    total: Image,
     metrics: Option<CullMetrics>,
     /// `report.json`'s content.
     report: String,
@@ -49,6 +50,7 @@ impl FrameData {
             report: serde_json::to_string(&report).map_err(|e| e.to_string())?,
             direct: frame.direct,
             indirect: frame.indirect,
+            total,
             metrics: frame.metrics,
         })
     }
@@ -104,7 +106,7 @@ impl PyFrame {
         Ok(Self {
             direct: rgb(py, &data.direct)?,
             indirect: rgb(py, &data.indirect)?,
-            total: rgb(py, &data.direct.add(&data.indirect))?,
+            total: rgb(py, &data.total)?,
             lights: m
                 .map(|m| plane(py, &m.lights_per_pixel, size))
                 .transpose()?,

@@ -13,7 +13,7 @@ use slc_app::progress::bar_if;
 use slc_app::reference::{all_vpl_reference, cpu_input};
 use slc_core::culling::{Interleaving, LightLists, NO_LIST};
 use slc_core::frame::{Method, RenderSettings, RenderedFrame, Stochastic};
-use slc_core::shader::{ShadeInput, Shader as _};
+use slc_core::shader::{frame_timings, ShadeInput, Shader as _};
 use slc_core::{load_scene, MaterialOverride, PreparedFrame, Renderer, Scene, Strategy, VplLobe};
 use slc_cpu_ref::{CpuFrames, CpuRenderer};
 use std::sync::{Mutex, PoisonError};
@@ -80,12 +80,12 @@ impl Job for CompareJob<'_> {
             method,
             ..settings.clone()
         };
-        let frame = |p: &R::Prepared, indirect, timings, metrics| RenderedFrame {
+        let frame = |p: &R::Prepared, indirect, (timings, gpu_timings), metrics| RenderedFrame {
             direct: p.direct().clone(),
             indirect,
             vpl_count: p.vpls().len(),
             timings,
-            gpu_timings: None,
+            gpu_timings,
             metrics,
             sampled_lights: None,
         };
@@ -98,7 +98,8 @@ impl Job for CompareJob<'_> {
                 cpu_input(scene, &cpu_p, seed, visibility),
                 self.options.progress,
             )?;
-            let f = frame(&p, reference, p.timings().clone(), None);
+            let preparation = (p.timings().clone(), p.gpu_timings().cloned());
+            let f = frame(&p, reference, preparation, None);
             let s = with(Method::VplReference);
             out.push((
                 "reference_vpl",
@@ -125,8 +126,7 @@ impl Job for CompareJob<'_> {
             );
             let shaded = st.shade(r, input, &|n| bar.inc(n)).map_err(message)?;
             bar.finish_and_clear();
-            let mut timings = p.timings().clone();
-            timings.merge(&shaded.timings);
+            let timings = frame_timings(&p, &shaded);
             let f = frame(&p, shaded.indirect, timings, shaded.metrics);
             let s = with(Method::Stochastic(st));
             out.push((strategy.name(), FrameData::new(r, scene, self.spec, &s, f)?));

@@ -190,11 +190,6 @@ def test_one_scene_serves_several_threads(scene):
     assert not errors and len(frames) == 3 and set(names) == {"cornell-glossy"}
 
 
-def test_progress_only_when_asked(capfd):
-    slc.render(**SMALL)
-    assert capfd.readouterr().err == ""
-
-
 def test_the_gpu_backend_renders_the_same_frame_shape():
     try:
         f = slc.render(**SMALL, backend="gpu")

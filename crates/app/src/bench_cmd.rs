@@ -185,10 +185,8 @@ impl OnBackend for Bench<'_> {
                     let _ = writeln!(
                         md,
                         "| {w}x{h} | {vpl_count} | {strategy} | {} | {} | {} |",
-                        PASSES
-                            .map(|n| format!("{:.1}", Spread::of_passes(&runs, &[n]).median))
-                            .join(" | "),
-                        Spread::of_passes(&runs, &["culling", "shading"]).text(runs.len()),
+                        row.pass_medians().map(|ms| format!("{ms:.1}")).join(" | "),
+                        row.culling_plus_shading().text(row.runs),
                         row.shading_mpairs_per_s
                             .map_or("n/a".into(), |v| format!("{v:.1}"))
                     );
@@ -268,6 +266,27 @@ impl BenchRow {
             shading_mpairs_per_s: listed_pairs
                 .filter(|_| shading_ms > 0.0)
                 .map(|pairs| pairs as f64 / (shading_ms * 1e3)),
+        }
+    }
+
+    /// The median of each pass, in the order of [`PASSES`].
+    fn pass_medians(&self) -> [f64; 7] {
+        [
+            self.gbuffer_ms,
+            self.rsm_ms,
+            self.vpl_generation_ms,
+            self.direct_ms,
+            self.culling_ms,
+            self.shading_ms,
+            self.denoise_ms,
+        ]
+    }
+
+    fn culling_plus_shading(&self) -> Spread {
+        Spread {
+            median: self.culling_plus_shading_ms,
+            min: self.culling_plus_shading_ms_min,
+            max: self.culling_plus_shading_ms_max,
         }
     }
 }
