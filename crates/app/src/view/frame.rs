@@ -2,9 +2,8 @@
 //! prepares (G-buffer, RSMs, VPLs, direct light) and shades with the panel's method, so a
 //! moved camera or light recomputes everything from the RSMs to the filter.
 use crate::backend::message;
-use slc_core::frame::{merge_optional, RenderSettings};
-use slc_core::render::shade_method;
-use slc_core::{CullMetrics, Image, PreparedFrame, Renderer, Scene, ShadeInput, Timings};
+use slc_core::frame::RenderSettings;
+use slc_core::{CullMetrics, Image, Renderer, Scene, Timings};
 use slc_gpu_wgpu::{GpuLoadedScene, GpuRenderer};
 use std::time::Instant;
 
@@ -63,39 +62,24 @@ impl FrameRenderer {
         &self.gpu
     }
 
-    /// Renders `scene` (its camera and lights as the view has them) with `settings`.
+    /// Renders `scene` (its camera and lights as the view has them) with `settings`: the
+    /// library's frame loop on the scene uploaded once ([`slc_core::render_loaded`]).
     pub fn render(&self, scene: &Scene, settings: &RenderSettings) -> Result<ViewFrame, String> {
         let start = Instant::now();
-        settings.validate().map_err(message)?;
-        self.gpu.check(settings).map_err(message)?;
-        let p = self
-            .gpu
-            .prepare(scene, &self.loaded, settings, None)
+        let frame = slc_core::render_loaded(&self.gpu, scene, &self.loaded, settings, &|_| {})
             .map_err(message)?;
-        let input = ShadeInput {
-            scene,
-            loaded: &self.loaded,
-            prepared: &p,
-            seed: settings.seed,
-            visibility: settings.visibility,
-        };
-        let shaded = shade_method(&self.gpu, &settings.method, input, &|_| {}).map_err(message)?;
-        let mut wall = p.timings().clone();
-        wall.merge(&shaded.timings);
-        let mut gpu = p.gpu_timings().cloned();
-        merge_optional(&mut gpu, shaded.gpu_timings.as_ref());
-        let (timings, clock) = match gpu {
+        let (timings, clock) = match frame.gpu_timings {
             Some(t) => (t, Clock::Timestamp),
-            None => (wall, Clock::WallClock),
+            None => (frame.timings, Clock::WallClock),
         };
         Ok(ViewFrame {
-            vpl_count: p.vpls().len(),
-            direct: p.direct().clone(),
-            indirect: shaded.indirect,
+            vpl_count: frame.vpl_count,
+            direct: frame.direct,
+            indirect: frame.indirect,
             timings,
             clock,
-            metrics: shaded.metrics,
-            sampled_lights: shaded.sampled_lights,
+            metrics: frame.metrics,
+            sampled_lights: frame.sampled_lights,
             render_ms: start.elapsed().as_secs_f64() * 1e3,
         })
     }
