@@ -273,7 +273,7 @@ impl OnBackend for Compare<'_> {
         dir_out.write("report.md", md.as_bytes())?;
         let figure = side_by_side(args, &scene.name, &rows)?;
         dir_out.write("side_by_side.svg", figure.as_bytes())?;
-        write_page(args, &mut dir_out, &scene.name, &provenance, &rows, tables)?;
+        write_page(&mut dir_out, &scene.name, &provenance, &rows, tables)?;
         dir_out.commit()?;
         println!("wrote {}", args.out.display());
         Ok(())

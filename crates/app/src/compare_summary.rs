@@ -1,7 +1,6 @@
 //! What a compare run writes to be read: `report.md` (the settings and the table),
 //! `side_by_side.svg` (labelled panels of every strategy) and `index.html` (the page of the
 //! whole folder).
-use crate::args::Shader;
 use crate::compare_cmd::CompareArgs;
 use crate::figure::{Figure, FigureRow};
 use crate::output::to_srgb8;
@@ -214,7 +213,6 @@ pub fn side_by_side(args: &CompareArgs, scene: &str, rows: &[Row]) -> Result<Str
 
 /// Stages `index.html`: the figure, the table, each strategy's images and the data files.
 pub fn write_page(
-    args: &CompareArgs,
     out: &mut OutDir,
     scene: &str,
     provenance: &Provenance,
@@ -228,16 +226,12 @@ pub fn write_page(
             .into(),
     };
     let mut galleries = Vec::new();
+    // Every folder compare may write; those this run did not write show nothing.
     let dirs = rows
         .iter()
         .map(|r| r.strategy.name())
         .chain(["reference_vpl"])
-        .chain(
-            (args.frame.shader == Shader::Vsgl)
-                .then_some(SampledLights::ALL.map(|e| e.name()))
-                .into_iter()
-                .flatten(),
-        );
+        .chain(SampledLights::ALL.map(|e| e.name()));
     for dir in dirs {
         let shown: Vec<(String, String)> = [
             ("total.png", "total"),
