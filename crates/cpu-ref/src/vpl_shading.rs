@@ -6,6 +6,7 @@ use rayon::prelude::*;
 use slc_bounds::stochastic::{scalar_intensity, StochasticParams};
 use slc_bounds::BoundsError;
 use slc_core::{CullError, CullInput, GBuffer, GSample, Image, LightLists, Vpl, NO_LIST};
+use slc_cull::tiles::{Tile, TileOrder};
 use slc_cull::{ReachChunks, VplReach};
 
 /// How each VPL's contribution is weighted.
@@ -90,12 +91,14 @@ pub fn shade_vpls(
 
 /// Indirect radiance from culled light lists (paper eq. 3 with interleaved sampling): each
 /// pixel sums the VPLs of its list with weight K²/p when p > ξ. Unbiased as long as the lists
-/// miss no VPL with p > ξ at the pixel. Fails only when δ, a ξ or a VPL is out of the domain
-/// of slc-bounds. Pairs that [`VplReach`] rejects (outside the VPL's own bound, facing away
-/// at either end; tested eight per list at a time by [`ReachChunks`]) are skipped before the
-/// BRDFs: their contribution is exactly 0, so the image is the same bit for bit. The pixels
-/// are shaded list by list, each list's VPLs packed once into chunks of eight, or in image
-/// order when the lists are too short-lived for packing to pay (fewer than 4 pixels a list).
+/// miss no VPL with p > ξ at the pixel. Fails only when δ, a ξ, K or a VPL is out of the
+/// domain of slc-bounds and slc-cull. Pairs that [`VplReach`] rejects (outside the VPL's own
+/// bound, facing away at either end, or not accepted by the roulette; tested eight VPLs of a
+/// list at a time by [`ReachChunks`]) are skipped before the receiver's BRDF: their
+/// contribution is exactly 0, so the image is the same bit for bit. The pixels are shaded tile
+/// by tile in the deinterleaved order of [`TileOrder`] (the culling's tiles), each tile's
+/// pixels grouped by list and each list's VPLs packed once per tile into chunks of eight
+/// (tested one by one where a list shades fewer than [`PACK_MIN_PIXELS`] pixels of the tile).
 pub fn shade_lists(
     tracer: &Tracer,
     input: &CullInput,
@@ -104,6 +107,19 @@ pub fn shade_lists(
     progress: &(dyn Fn(u64) + Sync),
 ) -> Result<Image, CullError> {
     let (gbuffer, vpls) = (input.gbuffer, input.vpls);
+    let (w, h, k) = (gbuffer.width, gbuffer.height, input.interleaving.k);
+    if k == 0 {
+        return Err(CullError::Input("interleaving factor K = 0".into()));
+    }
+    if lists.pixel_list.len() != gbuffer.samples.len()
+        || gbuffer.samples.len() as u64 != u64::from(w) * u64::from(h)
+    {
+        return Err(CullError::Input(format!(
+            "{} list entries for a {w}x{h} G-buffer of {} samples",
+            lists.pixel_list.len(),
+            gbuffer.samples.len()
+        )));
+    }
     let roulette = vpls
         .iter()
         .map(|v| StochasticParams::new(input.delta, v.xi))
@@ -115,23 +131,49 @@ pub fn shade_lists(
         .collect::<Result<Vec<_>, _>>()?;
     let shading = ListShading {
         tracer,
+        gbuffer,
+        lists,
         vpls,
         roulette: &roulette,
         reach: &reach,
         scale: input.interleaving.scale(),
         visibility,
     };
-    let pixels = pixels_by_list(lists);
-    Ok(if pixels.indices.len() >= PACK_MIN_PIXELS * lists.len() {
-        shading.by_list(gbuffer, lists, &pixels, progress)
-    } else {
-        shading.by_row(gbuffer, lists, progress)
-    })
+    let order = TileOrder::new(w, h, k);
+    // One slot per pixel in tile order, cut into each tile's run.
+    let mut shaded = vec![Vec3::ZERO; gbuffer.samples.len()];
+    let mut runs = Vec::with_capacity(order.tiles().len());
+    let mut rest = shaded.as_mut_slice();
+    for len in order.run_lengths() {
+        let (mine, tail) = rest.split_at_mut(len);
+        runs.push(mine);
+        rest = tail;
+    }
+    order.tiles().par_iter().zip(runs).for_each_init(
+        TileScratch::default,
+        |scratch, (tile, out)| {
+            shading.tile(tile, k, out, scratch);
+            progress(out.len() as u64);
+        },
+    );
+    let mut image = Image::new(w, h);
+    image
+        .pixels
+        .par_chunks_mut(w.max(1) as usize)
+        .enumerate()
+        .for_each(|(y, row)| {
+            for (x, o) in row.iter_mut().enumerate() {
+                *o = shaded[order.slot(x as u32, y as u32)];
+            }
+        });
+    Ok(image)
 }
 
 /// What [`shade_lists`] shades every pixel with.
 struct ListShading<'a> {
     tracer: &'a Tracer,
+    gbuffer: &'a GBuffer,
+    lists: &'a LightLists,
     vpls: &'a [Vpl],
     roulette: &'a [StochasticParams],
     reach: &'a [VplReach],
@@ -139,7 +181,43 @@ struct ListShading<'a> {
     visibility: bool,
 }
 
+/// Scratch reused from tile to tile: the tile's (list, slot, pixel) triples and the chunks of
+/// the list being shaded.
+#[derive(Default)]
+struct TileScratch {
+    pixels: Vec<(u32, u32, u32)>,
+    chunks: ReachChunks,
+}
+
 impl ListShading<'_> {
+    /// Shades the pixels of `tile` into `out` (its run in tile order), list by list.
+    fn tile(&self, tile: &Tile, k: u32, out: &mut [Vec3], scratch: &mut TileScratch) {
+        let width = self.gbuffer.width;
+        scratch.pixels.clear();
+        for (slot, [x, y]) in tile.pixels(k).enumerate() {
+            let p = y * width + x;
+            let l = self.lists.pixel_list[p as usize];
+            if l != NO_LIST && self.gbuffer.samples[p as usize].is_some() {
+                scratch.pixels.push((l, slot as u32, p));
+            }
+        }
+        scratch.pixels.sort_unstable();
+        for run in scratch.pixels.chunk_by(|a, b| a.0 == b.0) {
+            let l = run[0].0 as usize;
+            let list = &self.lists.indices
+                [self.lists.offsets[l] as usize..self.lists.offsets[l + 1] as usize];
+            let packed = run.len() >= PACK_MIN_PIXELS;
+            if packed {
+                scratch.chunks.refill(self.vpls, self.reach, [list]);
+            }
+            for &(_, slot, p) in run {
+                if let Some(g) = &self.gbuffer.samples[p as usize] {
+                    out[slot as usize] = self.pixel(g, list, packed.then_some(&scratch.chunks));
+                }
+            }
+        }
+    }
+
     /// The estimate at `g` from the VPLs of `list` (packed in `chunks` when given) that pass
     /// the early exits, in the list's order.
     fn pixel(&self, g: &GSample, list: &[u32], chunks: Option<&ReachChunks>) -> Vec3 {
@@ -170,109 +248,9 @@ impl ListShading<'_> {
         }
         o
     }
-
-    /// List by list, each list's VPLs packed into chunks of eight once for all its pixels.
-    fn by_list(
-        &self,
-        gbuffer: &GBuffer,
-        lists: &LightLists,
-        pixels: &PixelsByList,
-        progress: &(dyn Fn(u64) + Sync),
-    ) -> Image {
-        // One slot per listed pixel, in list order, cut into each list's slots.
-        let mut shaded = vec![Vec3::ZERO; pixels.indices.len()];
-        let mut slots = Vec::with_capacity(lists.len());
-        let mut rest = shaded.as_mut_slice();
-        for w in pixels.offsets.windows(2) {
-            let (mine, tail) = rest.split_at_mut((w[1] - w[0]) as usize);
-            slots.push(mine);
-            rest = tail;
-        }
-        slots.into_par_iter().enumerate().for_each_init(
-            ReachChunks::default,
-            |chunks, (l, out)| {
-                let list = &lists.indices[lists.offsets[l] as usize..lists.offsets[l + 1] as usize];
-                let mine =
-                    &pixels.indices[pixels.offsets[l] as usize..pixels.offsets[l + 1] as usize];
-                chunks.refill(self.vpls, self.reach, [list]);
-                for (o, &p) in out.iter_mut().zip(mine) {
-                    if let Some(g) = &gbuffer.samples[p as usize] {
-                        *o = self.pixel(g, list, Some(chunks));
-                    }
-                }
-                progress(mine.len() as u64);
-            },
-        );
-        let mut image = Image::new(gbuffer.width, gbuffer.height);
-        for (&p, o) in pixels.indices.iter().zip(shaded) {
-            image.pixels[p as usize] = o;
-        }
-        progress(pixels.unlisted);
-        image
-    }
-
-    /// Row by row in image order (sequential G-buffer reads), each pair tested on its own.
-    fn by_row(
-        &self,
-        gbuffer: &GBuffer,
-        lists: &LightLists,
-        progress: &(dyn Fn(u64) + Sync),
-    ) -> Image {
-        let mut image = Image::new(gbuffer.width, gbuffer.height);
-        let w = gbuffer.width as usize;
-        image
-            .pixels
-            .par_chunks_mut(w)
-            .zip(gbuffer.samples.par_chunks(w))
-            .enumerate()
-            .for_each(|(y, (out, row))| {
-                for (x, (o, g)) in out.iter_mut().zip(row).enumerate() {
-                    if let Some(g) = g {
-                        *o = self.pixel(g, lists.for_pixel(y * w + x), None);
-                    }
-                }
-                progress(w as u64);
-            });
-        image
-    }
 }
 
-/// When the lists shade fewer pixels than this on average, packing them into chunks of eight
-/// costs more than it saves (and list order scatters the G-buffer reads): the pixels are then
-/// shaded in image order with the scalar exits ([`VplReach`]), which pass the same pairs.
-const PACK_MIN_PIXELS: usize = 4;
-
-/// The pixels of each light list (a counting sort of `LightLists::pixel_list`), in the same
-/// compressed rows as the lists, and the number of pixels without a list.
-struct PixelsByList {
-    offsets: Vec<u32>,
-    indices: Vec<u32>,
-    unlisted: u64,
-}
-
-fn pixels_by_list(lists: &LightLists) -> PixelsByList {
-    let mut offsets = vec![0u32; lists.len() + 1];
-    let mut unlisted = 0;
-    for &l in &lists.pixel_list {
-        match l {
-            NO_LIST => unlisted += 1,
-            l => offsets[l as usize + 1] += 1,
-        }
-    }
-    for k in 1..offsets.len() {
-        offsets[k] += offsets[k - 1];
-    }
-    let mut next = offsets.clone();
-    let mut indices = vec![0u32; offsets[lists.len()] as usize];
-    for (p, &l) in lists.pixel_list.iter().enumerate() {
-        if l != NO_LIST {
-            indices[next[l as usize] as usize] = p as u32;
-            next[l as usize] += 1;
-        }
-    }
-    PixelsByList {
-        offsets,
-        indices,
-        unlisted,
-    }
-}
+/// When a list shades fewer pixels of a tile than this, packing its VPLs into chunks of eight
+/// costs more than it saves: its pixels are shaded with the scalar exits ([`VplReach`]),
+/// which pass the same pairs.
+pub const PACK_MIN_PIXELS: usize = 4;

@@ -3,7 +3,9 @@
 //! eq. (2) crosses ξ, and at the extremes (α 1e-4 … 1, grazing and normal incidence at both
 //! ends, ξ near 0 and 1, δ 1e-9 … 1e3, flux from 1e-6 to 1e6), no exit ever rejects a pair
 //! that the roulette accepts (p > ξ) or whose weighted contribution (eq. 1, 3) is not 0, and
-//! the eight-lane test passes exactly the pairs the scalar one passes.
+//! the eight-lane test passes exactly the pairs the scalar one passes. Where the shader forms
+//! p in f32 with Schlick's Fresnel or a diffuse lobe, the exits decide exactly as it does: no
+//! pair they pass is rejected by the roulette.
 use glam::Vec3;
 use slc_bounds::{scalar_intensity, Brdf, Fresnel, StochasticParams};
 use slc_core::{GSample, Vpl, VplLobe};
@@ -166,6 +168,7 @@ fn receiver(rng: &mut Rng, x: Vec3, omega: Vec3) -> GSample {
 fn no_early_exit_drops_an_accepted_or_contributing_pair() {
     let mut rng = Rng(0x5EED_1234_ABCD_0001);
     let (mut accepted, mut contributing, mut edge, mut rejected) = (0u32, 0u32, 0u32, 0u32);
+    let mut exact = 0u32;
     let cases = 400_000u32;
     let mut recent = Vec::new();
     for case in 0..cases {
@@ -195,6 +198,16 @@ fn no_early_exit_drops_an_accepted_or_contributing_pair() {
         let p = params.probability(scalar_intensity(vpl.intensity(d / l2.sqrt())), l2);
         let accepts = p > params.xi();
         let contribution = vpl_contribution(&g, &vpl, Some(&params));
+        if exact_in_f32(&vpl, d / l2.sqrt()) {
+            assert_eq!(
+                reach.may_accept(d),
+                accepts,
+                "case {case}: p {p}, ξ {}: {vpl:?} at {:?}",
+                params.xi(),
+                g.position
+            );
+            exact += 1;
+        }
         assert!(
             !accepts || reach.may_accept(d),
             "case {case}: p {p} > ξ {} rejected: {vpl:?} at {:?}",
@@ -233,4 +246,19 @@ fn no_early_exit_drops_an_accepted_or_contributing_pair() {
     assert!(contributing > cases / 20, "{contributing} contributing");
     assert!(edge > cases / 100, "{edge} accepted within 1e-3 of ξ");
     assert!(rejected > cases / 4, "{rejected} rejected");
+    assert!(exact > cases / 2, "{exact} decided exactly");
+}
+
+/// Whether the shader forms the VPL's intensity towards `omega` entirely in f32 with a
+/// Fresnel factor the lanes form the same way: a diffuse lobe, or a glossy one with Schlick's
+/// Fresnel whose half vector is well conditioned (`slc_bounds::brdf::microfacet`).
+fn exact_in_f32(vpl: &Vpl, omega: Vec3) -> bool {
+    match (vpl.lobe, vpl.brdf.fresnel) {
+        (VplLobe::Diffuse, _) => true,
+        (VplLobe::Glossy, Fresnel::Dielectric(_)) => false,
+        (VplLobe::Glossy, Fresnel::Schlick(_)) => {
+            let s2 = (vpl.omega_i + omega).length_squared();
+            s2 * vpl.brdf.alpha * vpl.brdf.alpha > 1e-6
+        }
+    }
 }

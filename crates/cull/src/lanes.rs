@@ -1,18 +1,49 @@
 //! The arithmetic of the early exits written once for one `f32` and for eight lanes
 //! ([`F8`]): every lane performs the same IEEE operations in the same order as the scalar
 //! code, so the two agree bit for bit. [`F8`] is a plain array whose element-wise loops the
-//! compiler turns into 256-bit instructions where AVX is enabled (see `reach_chunks`).
-use core::ops::{Add, BitAnd, Mul, Neg, Not, Sub};
+//! compiler turns into 256-bit instructions where AVX is enabled (see `reach_chunks`); no
+//! operation is fused (Rust never contracts `a * b + c` into an FMA), so the lanes round
+//! exactly as the scalar shader does.
+use core::fmt::Debug;
+use core::ops::{Add, BitAnd, BitOr, Div, Mul, Neg, Not, Sub};
 
 /// A number type of the early-exit arithmetic: `f32`, or eight of them.
 pub trait Real:
-    Copy + Add<Output = Self> + Sub<Output = Self> + Mul<Output = Self> + Neg<Output = Self>
+    Copy
+    + Add<Output = Self>
+    + Sub<Output = Self>
+    + Mul<Output = Self>
+    + Div<Output = Self>
+    + Neg<Output = Self>
 {
     /// The result of a comparison: `bool`, or one flag per lane.
-    type Mask: Copy + BitAnd<Output = Self::Mask> + Not<Output = Self::Mask>;
+    type Mask: Copy
+        + Debug
+        + PartialEq
+        + BitAnd<Output = Self::Mask>
+        + BitOr<Output = Self::Mask>
+        + Not<Output = Self::Mask>;
     fn splat(v: f32) -> Self;
     fn gt(self, other: Self) -> Self::Mask;
     fn le(self, other: Self) -> Self::Mask;
+    /// The IEEE square root (correctly rounded, as `f32::sqrt`).
+    fn sqrt(self) -> Self;
+    /// `a` where `mask` is set, else `b`.
+    fn select(mask: Self::Mask, a: Self, b: Self) -> Self;
+}
+
+/// The larger of `a` and `b` as glam's `Vec3::max_element` picks it: `a` if `a > b`, else `b`.
+#[inline(always)]
+pub fn max<R: Real>(a: R, b: R) -> R {
+    R::select(a.gt(b), a, b)
+}
+
+/// `v` clamped to [0, 1] as `f32::clamp(0.0, 1.0)` does it (NaN stays NaN).
+#[inline(always)]
+pub fn clamp01<R: Real>(v: R) -> R {
+    let (zero, one) = (R::splat(0.0), R::splat(1.0));
+    let v = R::select(zero.gt(v), zero, v);
+    R::select(v.gt(one), one, v)
 }
 
 impl Real for f32 {
@@ -28,6 +59,18 @@ impl Real for f32 {
     #[inline(always)]
     fn le(self, other: Self) -> bool {
         self <= other
+    }
+    #[inline(always)]
+    fn sqrt(self) -> Self {
+        f32::sqrt(self)
+    }
+    #[inline(always)]
+    fn select(mask: bool, a: Self, b: Self) -> Self {
+        if mask {
+            a
+        } else {
+            b
+        }
     }
 }
 
@@ -93,6 +136,14 @@ impl Mul for F8 {
     }
 }
 
+impl Div for F8 {
+    type Output = F8;
+    #[inline(always)]
+    fn div(self, o: F8) -> F8 {
+        zip(self, o, |a, b| a / b)
+    }
+}
+
 impl Neg for F8 {
     type Output = F8;
     #[inline(always)]
@@ -106,6 +157,14 @@ impl BitAnd for M8 {
     #[inline(always)]
     fn bitand(self, o: M8) -> M8 {
         M8(core::array::from_fn(|k| self.0[k] & o.0[k]))
+    }
+}
+
+impl BitOr for M8 {
+    type Output = M8;
+    #[inline(always)]
+    fn bitor(self, o: M8) -> M8 {
+        M8(core::array::from_fn(|k| self.0[k] | o.0[k]))
     }
 }
 
@@ -131,10 +190,34 @@ impl Real for F8 {
     fn le(self, other: Self) -> M8 {
         flags(self, other, |a, b| a <= b)
     }
+    #[inline(always)]
+    fn sqrt(self) -> Self {
+        F8(self.0.map(f32::sqrt))
+    }
+    #[inline(always)]
+    fn select(mask: M8, a: Self, b: Self) -> Self {
+        F8(core::array::from_fn(|k| {
+            if mask.0[k] != 0 {
+                a.0[k]
+            } else {
+                b.0[k]
+            }
+        }))
+    }
 }
 
 /// `a·b` as glam forms `Vec3::dot`: `(a.x b.x + a.y b.y) + a.z b.z`.
 #[inline(always)]
 pub fn dot<R: Real>(a: [R; 3], b: [R; 3]) -> R {
     a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+/// `a×b` as glam forms `Vec3::cross`.
+#[inline(always)]
+pub fn cross<R: Real>(a: [R; 3], b: [R; 3]) -> [R; 3] {
+    [
+        a[1] * b[2] - b[1] * a[2],
+        a[2] * b[0] - b[2] * a[0],
+        a[0] * b[1] - b[0] * a[1],
+    ]
 }

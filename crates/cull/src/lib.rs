@@ -69,6 +69,7 @@
 //! assert!(m.true_positive_pairs > 0);
 //! # Ok::<(), slc_core::CullError>(())
 //! ```
+mod acceptance;
 mod depth;
 mod frusta;
 mod lanes;
@@ -79,7 +80,7 @@ pub mod reach;
 pub mod reach_chunks;
 pub mod strategies;
 mod tiled;
-mod tiles;
+pub mod tiles;
 pub mod view;
 mod vpl_bounds;
 

@@ -1,9 +1,11 @@
 //! Early exits for (pixel, VPL) pairs whose contribution is exactly zero, tested before the
-//! GGX evaluation of p(ωo, l) (eq. 2) and of the BRDFs: the VPL's own bound (outside it
-//! p <= ξ, so eq. (3) weights the pair 0) and the sign of the cosine at either end (eq. 1 and
-//! the max(ωo·n, 0) of eq. 4). Each test keeps a margin well above float rounding, so it
-//! never rejects a pair that the full evaluation accepts: the estimate stays bit for bit the
-//! same, only cheaper.
+//! receiver's BRDF: the VPL's own bound (outside it p <= ξ, so eq. (3) weights the pair 0)
+//! and the sign of the cosine at either end (eq. 1 and the max(ωo·n, 0) of eq. 4), each with
+//! a margin well above float rounding; then, for the pairs those pass, the roulette itself
+//! (p(ωo, l) > ξ of eq. 2-3, [`crate::acceptance`]) formed as the shader forms it. No exit
+//! rejects a pair that the full evaluation accepts: the estimate stays bit for bit the same,
+//! only cheaper.
+use crate::acceptance::Acceptance;
 use crate::lanes::{dot, Real};
 use crate::vpl_bounds::{GlossyBound, LocalBound};
 use glam::{DMat3, DVec3, Vec3};
@@ -63,17 +65,19 @@ fn behind<R: Real>(t: R, margin_sq: R) -> R::Mask {
 
 /// What one VPL needs for the early exits: its own bound (the tightest one: the spheroid for
 /// a glossy VPL, whatever the culling strategy, since every strategy's bound contains every
-/// pair with p > ξ) and its normal.
+/// pair with p > ξ), its normal, and its roulette ([`Acceptance`]).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct VplReach {
     pub(crate) reach: Reach<f32>,
+    pub(crate) acceptance: Acceptance<f32>,
 }
 
 impl VplReach {
     /// The early exits of `vpl` under the roulette `params` (its δ and ξ, eq. 2-3). Errors
     /// when the VPL is outside the domain of slc-bounds (see `slc_bounds::BoundsError`).
     pub fn new(vpl: &Vpl, params: &StochasticParams) -> Result<Self, CullError> {
-        let (stretch, center, limit) = if reflects_nothing(vpl) {
+        let dark = reflects_nothing(vpl);
+        let (stretch, center, limit) = if dark {
             (DMat3::ZERO, DVec3::ZERO, -1.0)
         } else {
             match LocalBound::new(vpl, params, GlossyBound::Ellipsoid)? {
@@ -106,16 +110,19 @@ impl VplReach {
                 center: center.as_vec3().to_array(),
                 limit: limit as f32,
             },
+            acceptance: Acceptance::new(vpl, params, dark),
         })
     }
 
     /// Whether the roulette of eq. (3) may accept this VPL at the offset `d = x − q` (formed
     /// in f32 as the shader forms it). False only where p(ωo, l) <= ξ for sure: outside the
-    /// VPL's own bound (beyond a margin for the f32 rounding of the test), or behind the VPL
-    /// (ωo·n below −[`SIGN_MARGIN`]: I(ωo) = 0 by eq. 4).
+    /// VPL's own bound (beyond a margin for the f32 rounding of the test), behind the VPL
+    /// (ωo·n below −[`SIGN_MARGIN`]: I(ωo) = 0 by eq. 4), or where the shader's own p is
+    /// not above ξ ([`crate::acceptance`]).
     #[inline]
     pub fn may_accept(&self, d: Vec3) -> bool {
-        self.reach.may_accept(d.to_array())
+        let d = d.to_array();
+        self.reach.may_accept(d) && self.acceptance.may_accept(self.reach.normal, d)
     }
 
     /// Whether the pair of this VPL and a receiver with unit normal `receiver_normal` at the
@@ -124,8 +131,9 @@ impl VplReach {
     /// of eq. (1), weighted by eq. (3), is exactly 0.
     #[inline]
     pub fn may_contribute(&self, d: Vec3, receiver_normal: Vec3) -> bool {
-        self.reach
-            .may_contribute(d.to_array(), receiver_normal.to_array())
+        let d = d.to_array();
+        self.reach.may_contribute(d, receiver_normal.to_array())
+            && self.acceptance.may_accept(self.reach.normal, d)
     }
 }
 

@@ -1,7 +1,10 @@
 //! The early exits of whole groups of VPLs (a light list, a subregion's VPLs) as
 //! structure-of-arrays chunks of eight, tested against one pixel at a time: eight pairs per
 //! test in 256-bit lanes where the CPU has AVX2, the same arithmetic as [`VplReach`] lane for
-//! lane (so the same pairs pass), and only the VPLs that pass are handed on.
+//! lane (so the same pairs pass), and only the VPLs that pass are handed on. The roulette
+//! (p > ξ, [`crate::acceptance`]) is evaluated for a chunk only when one of its lanes
+//! passes the bound and sign tests.
+use crate::acceptance::Acceptance;
 use crate::lanes::{Real, F8};
 use crate::reach::{Reach, VplReach};
 use glam::Vec3;
@@ -13,6 +16,7 @@ use slc_core::Vpl;
 struct Chunk {
     position: [F8; 3],
     reach: Reach<F8>,
+    acceptance: Acceptance<F8>,
     index: [u32; 8],
 }
 
@@ -92,6 +96,11 @@ fn chunk(vpls: &[Vpl], reach: &[VplReach], indices: &[u32]) -> Chunk {
             center: [F8::splat(0.0); 3],
             limit: F8::splat(-1.0),
         },
+        acceptance: Acceptance::lanes(core::array::from_fn(|lane| {
+            indices.get(lane).map_or(&Acceptance::<f32>::NEVER, |&i| {
+                &reach[i as usize].acceptance
+            })
+        })),
         index: [0; 8],
     };
     for lane in 0..8 {
@@ -142,11 +151,15 @@ fn passing_lanes(c: &Chunk, x: Vec3, normal: Option<Vec3>) -> u8 {
         F8::splat(x.y) - c.position[1],
         F8::splat(x.z) - c.position[2],
     ];
-    match normal {
+    let bits = match normal {
         Some(n) => c
             .reach
             .may_contribute(d, [F8::splat(n.x), F8::splat(n.y), F8::splat(n.z)]),
         None => c.reach.may_accept(d),
     }
-    .bits()
+    .bits();
+    if bits == 0 {
+        return 0;
+    }
+    bits & c.acceptance.may_accept(c.reach.normal, d).bits()
 }

@@ -9,7 +9,7 @@ use slc_core::TILE_SIZE;
 /// One tile: `count` pixels of subregion `(sx, sy)`'s image starting at `first` (in
 /// subregion coordinates).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub(crate) struct Tile {
+pub struct Tile {
     sub: [u32; 2],
     first: [u32; 2],
     count: [u32; 2],
@@ -18,7 +18,7 @@ pub(crate) struct Tile {
 /// Every tile of a `width` x `height` image with interleaving factor `k`, subregion by
 /// subregion (row-major in the K x K grid), row-major within each subregion. Subregions of an
 /// image smaller than K, or not a multiple of it, are smaller or empty.
-pub(crate) fn tiles(width: u32, height: u32, k: u32) -> Vec<Tile> {
+pub fn tiles(width: u32, height: u32, k: u32) -> Vec<Tile> {
     let mut out = Vec::new();
     for sy in 0..k.min(height) {
         for sx in 0..k.min(width) {
@@ -56,8 +56,14 @@ impl Tile {
         [x0, y0, x1 + 1, y1 + 1]
     }
 
+    /// The number of pixels of the tile.
+    #[inline]
+    pub fn pixel_count(&self) -> usize {
+        (self.count[0] * self.count[1]) as usize
+    }
+
     /// The tile's screen pixels (x, y), row by row.
-    pub(crate) fn pixels(&self, k: u32) -> impl Iterator<Item = [u32; 2]> + '_ {
+    pub fn pixels(&self, k: u32) -> impl Iterator<Item = [u32; 2]> + '_ {
         (0..self.count[1]).flat_map(move |b| (0..self.count[0]).map(move |a| self.screen(k, a, b)))
     }
 
@@ -68,6 +74,77 @@ impl Tile {
             self.sub[0] + k * (self.first[0] + a),
             self.sub[1] + k * (self.first[1] + b),
         ]
+    }
+}
+
+/// The pixels of an image laid out tile by tile: every tile of [`tiles`] in its order, each
+/// tile's pixels row by row, so a tile's pixels are one contiguous run (the subregion images
+/// of section 6 deinterleaved). Shading in this order reads each tile's G-buffer samples with
+/// the subregion's stride K and writes one run per tile; [`TileOrder::slot`] maps a screen
+/// pixel back to its place in the run.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct TileOrder {
+    tiles: Vec<Tile>,
+    /// Where tile t's run starts; the last entry is the pixel count.
+    starts: Vec<usize>,
+    /// Per subregion (row-major in the grid of [`tiles`]): its first tile and tiles per row.
+    first_tile: Vec<u32>,
+    tiles_per_row: Vec<u32>,
+    k: u32,
+    grid_width: u32,
+}
+
+impl TileOrder {
+    /// The tile order of a `width` x `height` image with interleaving factor `k` >= 1.
+    pub fn new(width: u32, height: u32, k: u32) -> Self {
+        debug_assert!(k >= 1);
+        let tiles = tiles(width, height, k);
+        let mut starts = Vec::with_capacity(tiles.len() + 1);
+        starts.push(0);
+        let (mut first_tile, mut tiles_per_row) = (Vec::new(), Vec::new());
+        for (t, tile) in tiles.iter().enumerate() {
+            starts.push(starts[t] + tile.pixel_count());
+            if tile.first == [0, 0] {
+                first_tile.push(t as u32);
+                tiles_per_row.push((width - tile.sub[0]).div_ceil(k).div_ceil(TILE_SIZE));
+            }
+        }
+        Self {
+            tiles,
+            starts,
+            first_tile,
+            tiles_per_row,
+            k,
+            grid_width: k.min(width),
+        }
+    }
+
+    /// The tiles, in order.
+    pub fn tiles(&self) -> &[Tile] {
+        &self.tiles
+    }
+
+    /// The interleaving factor K.
+    pub fn k(&self) -> u32 {
+        self.k
+    }
+
+    /// The length of each tile's run, in order.
+    pub fn run_lengths(&self) -> impl Iterator<Item = usize> + '_ {
+        self.starts.windows(2).map(|w| w[1] - w[0])
+    }
+
+    /// The place of screen pixel (x, y) in the tile-by-tile layout.
+    #[inline]
+    pub fn slot(&self, x: u32, y: u32) -> usize {
+        let k = self.k;
+        let sub = (y % k) * self.grid_width + x % k;
+        let (a, b) = (x / k, y / k);
+        let t = self.first_tile[sub as usize]
+            + (b / TILE_SIZE) * self.tiles_per_row[sub as usize]
+            + a / TILE_SIZE;
+        let tile = &self.tiles[t as usize];
+        self.starts[t as usize] + ((b % TILE_SIZE) * tile.count[0] + a % TILE_SIZE) as usize
     }
 }
 
@@ -96,6 +173,24 @@ mod tests {
                     assert!(n > 0 && n <= TILE_SIZE * TILE_SIZE);
                 }
                 assert!(seen.iter().all(|&c| c == 1), "{w}x{h} K {k}");
+            }
+        }
+    }
+
+    #[test]
+    fn tile_order_slots_are_the_tiles_pixels_in_order() {
+        for (w, h) in [(1, 1), (5, 3), (17, 33), (100, 37), (130, 260)] {
+            for k in [1, 2, 3, 8, 200] {
+                let order = TileOrder::new(w, h, k);
+                let mut next = 0;
+                for tile in order.tiles() {
+                    for [x, y] in tile.pixels(k) {
+                        assert_eq!(order.slot(x, y), next, "{w}x{h} K {k}: ({x}, {y})");
+                        next += 1;
+                    }
+                }
+                assert_eq!(next, (w * h) as usize);
+                assert_eq!(order.run_lengths().sum::<usize>(), next);
             }
         }
     }

@@ -1,0 +1,166 @@
+//! The roulette of eq. (2)-(3) evaluated in lanes: whether p(ωo, l) = min(I(ωo)/(δ l²), 1)
+//! exceeds the VPL's ξ, with I(ωo) = Φ f(ωi, ωo) max(ωo·n, 0) of eq. (4), f the VPL's lobe
+//! (kd/π, or the GGX microfacet BRDF of eq. 6-8). Each lane performs the IEEE operations of
+//! the shader (`vpl_contribution` → `Vpl::intensity` → `Brdf::specular` →
+//! `StochasticParams::probability`) in the same order, so for diffuse VPLs and glossy ones
+//! with Schlick's Fresnel it decides exactly as the shader does. Where the shader forms
+//! things differently the test errs on the side of passing:
+//! - a glossy VPL whose half vector the shader forms in f64 (ωi and ωo nearly opposite with a
+//!   tiny α, `s² α² <= 1e-6` in `slc_bounds::brdf::microfacet`) always passes;
+//! - a dielectric Fresnel factor is replaced by its largest value over the half vectors that
+//!   reflect above the surface (supplemental eq. 6), grown by [`FRESNEL_GROWTH`].
+use crate::lanes::{clamp01, cross, dot, max, Real, F8, M8};
+use core::f32::consts::{FRAC_1_PI, PI};
+use slc_bounds::{ggx, Fresnel, StochasticParams};
+use slc_core::{Vpl, VplLobe};
+
+/// Relative growth of a dielectric VPL's largest Fresnel factor: covers the f32 rounding of
+/// the cosine ωi·ωh the shader evaluates it at (a few ulps; the factor's slope is below 4
+/// even at grazing angles) and of its own evaluation, with a wide margin.
+pub const FRESNEL_GROWTH: f32 = 1e-3;
+
+/// One VPL's constants of the roulette test, in lanes of `R`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Acceptance<R: Real> {
+    /// ωi (unit, towards where the photon came from).
+    omega_i: [R; 3],
+    alpha: R,
+    /// α² as `ggx` forms it.
+    alpha_sq: R,
+    /// G1(ωi)/cos θi of eq. (8), constant per VPL.
+    g1_over_cos_i: R,
+    /// Per channel, F(c) = a + b (1 − c)⁵ (Schlick: a = F0, b = 1 − F0; dielectric: the
+    /// grown largest factor and 0; diffuse: 1 and 0).
+    fresnel_a: [R; 3],
+    fresnel_b: [R; 3],
+    /// What multiplies f cos θo: the flux Φ of a glossy VPL, Φ (kd/π) of a diffuse one (the
+    /// shader's `flux * (kd * FRAC_1_PI)`), 0 for a VPL that reflects nothing.
+    emitted: [R; 3],
+    /// Set for a glossy VPL (the microfacet lobe), clear for a diffuse one.
+    glossy: R::Mask,
+    xi: R,
+    delta: R,
+}
+
+impl Acceptance<f32> {
+    /// The roulette test of `vpl` under `params` (its δ and ξ). `dark` marks a VPL the shader
+    /// gives 0 at every pair (see `reach`): it never passes.
+    pub(crate) fn new(vpl: &Vpl, params: &StochasticParams, dark: bool) -> Self {
+        let brdf = &vpl.brdf;
+        let glossy = vpl.lobe == VplLobe::Glossy;
+        let (fresnel_a, fresnel_b, emitted) = if glossy {
+            let (a, b) = match brdf.fresnel {
+                Fresnel::Schlick(f0) => (f0, glam::Vec3::ONE - f0),
+                Fresnel::Dielectric(_) => (
+                    brdf.fresnel
+                        .max_over_half_vectors(vpl.normal.dot(vpl.omega_i))
+                        * (1.0 + FRESNEL_GROWTH),
+                    glam::Vec3::ZERO,
+                ),
+            };
+            (a, b, vpl.flux)
+        } else {
+            (
+                glam::Vec3::ONE,
+                glam::Vec3::ZERO,
+                vpl.flux * (brdf.kd * FRAC_1_PI),
+            )
+        };
+        let emitted = if dark { glam::Vec3::ZERO } else { emitted };
+        Self {
+            omega_i: vpl.omega_i.to_array(),
+            alpha: brdf.alpha,
+            alpha_sq: brdf.alpha * brdf.alpha,
+            g1_over_cos_i: ggx::g1_over_cos(brdf.alpha, vpl.normal.dot(vpl.omega_i)),
+            fresnel_a: fresnel_a.to_array(),
+            fresnel_b: fresnel_b.to_array(),
+            emitted: emitted.to_array(),
+            glossy,
+            xi: params.xi(),
+            delta: params.delta(),
+        }
+    }
+
+    /// A lane that never passes (past the end of a chunk).
+    pub(crate) const NEVER: Self = Self {
+        omega_i: [0.0; 3],
+        alpha: 1.0,
+        alpha_sq: 1.0,
+        g1_over_cos_i: 1.0,
+        fresnel_a: [1.0; 3],
+        fresnel_b: [0.0; 3],
+        emitted: [0.0; 3],
+        glossy: false,
+        xi: 0.5,
+        delta: 1.0,
+    };
+}
+
+impl Acceptance<F8> {
+    /// The tests of eight VPLs, one per lane.
+    pub(crate) fn lanes(of: [&Acceptance<f32>; 8]) -> Self {
+        let one = |get: fn(&Acceptance<f32>) -> f32| F8(core::array::from_fn(|k| get(of[k])));
+        let three = |get: fn(&Acceptance<f32>) -> [f32; 3]| {
+            core::array::from_fn(|c| F8(core::array::from_fn(|k| get(of[k])[c])))
+        };
+        Self {
+            omega_i: three(|a| a.omega_i),
+            alpha: one(|a| a.alpha),
+            alpha_sq: one(|a| a.alpha_sq),
+            g1_over_cos_i: one(|a| a.g1_over_cos_i),
+            fresnel_a: three(|a| a.fresnel_a),
+            fresnel_b: three(|a| a.fresnel_b),
+            emitted: three(|a| a.emitted),
+            glossy: M8(core::array::from_fn(|k| {
+                u32::from(of[k].glossy).wrapping_neg()
+            })),
+            xi: one(|a| a.xi),
+            delta: one(|a| a.delta),
+        }
+    }
+}
+
+impl<R: Real> Acceptance<R> {
+    /// Whether the roulette of eq. (3) may accept the VPL with unit normal `normal` at the
+    /// offset `d = x − q` (formed as the shader forms it): false only where the shader finds
+    /// p(ωo, l) <= ξ, or I(ωo) = 0.
+    #[inline(always)]
+    pub(crate) fn may_accept(&self, normal: [R; 3], d: [R; 3]) -> R::Mask {
+        let zero = R::splat(0.0);
+        // vpl_contribution: ωo = d / |d|.
+        let l2 = dot(d, d);
+        let len = l2.sqrt();
+        let omega = [d[0] / len, d[1] / len, d[2] / len];
+        // Vpl::intensity: cos θo, then the lobe.
+        let cos_o = dot(normal, omega);
+        // microfacet (eq. 6-8), f32 half vector.
+        let a2 = self.alpha_sq;
+        let g_o = R::splat(2.0) / (cos_o + ((R::splat(1.0) - a2) * cos_o * cos_o + a2).sqrt());
+        let g = self.g1_over_cos_i * g_o;
+        let wi = self.omega_i;
+        let s = [wi[0] + omega[0], wi[1] + omega[1], wi[2] + omega[2]];
+        let s2 = dot(s, s);
+        let well_conditioned = (s2 * self.alpha * self.alpha).gt(R::splat(1e-6));
+        let s_len = s2.sqrt();
+        let h = [s[0] / s_len, s[1] / s_len, s[2] / s_len];
+        // ggx::d_with_sin2 (eq. 7).
+        let cos_m = dot(normal, h);
+        let sin2_m = dot(cross(normal, h), cross(normal, h));
+        let denom = a2 * cos_m * cos_m + max(sin2_m, zero);
+        let d_m = R::select(!cos_m.le(zero), a2 / (R::splat(PI) * denom * denom), zero);
+        // Fresnel at ωi·ωh: Schlick's (1 − c)⁵ as `powi(5)` forms it, t (t² t²).
+        let t = R::splat(1.0) - clamp01(dot(wi, h));
+        let t2 = t * t;
+        let m = t * (t2 * t2);
+        let k = R::select(self.glossy, R::splat(0.25) * d_m * g, R::splat(1.0));
+        let channel = |c: usize| {
+            let f = (self.fresnel_a[c] + self.fresnel_b[c] * m) * k;
+            self.emitted[c] * f * cos_o
+        };
+        // scalar_intensity (the largest channel), then eq. (2)-(3).
+        let intensity = max(channel(0), max(channel(1), channel(2)));
+        let p = intensity / (self.delta * l2);
+        let accepted = cos_o.gt(zero) & intensity.gt(zero) & !p.le(self.xi);
+        accepted | (self.glossy & !well_conditioned & cos_o.gt(zero))
+    }
+}
