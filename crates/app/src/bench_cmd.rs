@@ -4,6 +4,7 @@
 //! the min and max of culling + shading) and `bench.md`.
 use crate::args::{strategies, FrameArgs, PipelineArgs, Shader};
 use crate::backend::{message, run_on, OnBackend};
+use crate::ceiling;
 use crate::table::{write_csv, SettingsColumns};
 use clap::Args;
 use serde::Serialize;
@@ -117,9 +118,11 @@ impl OnBackend for Bench<'_> {
         r.check(&first).map_err(message)?;
         let device = r.info(&first);
         let provenance = Provenance::new(args.frame.scene.as_deref(), &scene);
+        // The listed pairs, and so the ceiling, are counted by the CPU only.
+        let ceiling = (device.backend == "cpu").then(ceiling::exit_test_mpairs_per_s);
         let mut rows = Vec::new();
         let mut md = format!(
-            "# slc bench: {}\n\nBackend {}, adapter {}, {} rayon threads, δ = {}, K = {}, lobes {:?}, median (min–max) of {} runs. Milliseconds per pass; M pairs/s: the pixel-VPL pairs the lists hold over the shading time (the CPU counts them; n/a on the GPU, whose lists stay there).\n\n{}| resolution | VPLs | strategy | {} | culling + shading | M pairs/s |\n|---|---|---|{}---|---|\n",
+            "# slc bench: {}\n\nBackend {}, adapter {}, {} rayon threads, δ = {}, K = {}, lobes {:?}, median (min–max) of {} runs. Milliseconds per pass; M pairs/s: the pixel-VPL pairs the lists hold over the shading time (the CPU counts them; n/a on the GPU, whose lists stay there); ceiling: {}.\n\n{}| resolution | VPLs | strategy | {} | culling + shading | M pairs/s | of ceiling |\n|---|---|---|{}---|---|---|\n",
             scene.name,
             device.backend,
             device.adapter,
@@ -128,6 +131,10 @@ impl OnBackend for Bench<'_> {
             args.pipeline.interleave,
             args.frame.lobes,
             args.repeat,
+            ceiling.map_or("n/a".into(), |c| format!(
+                "{c:.0} M pairs/s, the eight-lane exit test alone on VPLs in L1 with every thread \
+                 busy, measured now (docs/cpu-ceiling.md)"
+            )),
             device
                 .notes
                 .iter()
@@ -180,15 +187,17 @@ impl OnBackend for Bench<'_> {
                         }
                         Ok(t)
                     })?;
-                    let row = BenchRow::of(s, &runs, listed_pairs);
+                    let row = BenchRow::of(s, &runs, listed_pairs, ceiling);
                     let cs = row.culling_plus_shading_ms;
                     let _ = writeln!(
                         md,
-                        "| {w}x{h} | {vpl_count} | {strategy} | {} | {} | {} |",
+                        "| {w}x{h} | {vpl_count} | {strategy} | {} | {} | {} | {} |",
                         row.pass_medians().map(|ms| format!("{ms:.1}")).join(" | "),
                         row.culling_plus_shading().text(row.runs),
                         row.shading_mpairs_per_s
-                            .map_or("n/a".into(), |v| format!("{v:.1}"))
+                            .map_or("n/a".into(), |v| format!("{v:.1}")),
+                        row.ceiling_share
+                            .map_or("n/a".into(), |v| format!("{:.1}%", 100.0 * v))
                     );
                     let settings = SettingsColumns::new(
                         &provenance,
@@ -241,13 +250,25 @@ struct BenchRow {
     listed_pairs: Option<u64>,
     /// Listed pairs shaded per second (millions), over the median shading time.
     shading_mpairs_per_s: Option<f64>,
+    /// The ceiling measured for this run (`ceiling`), millions of pairs per second.
+    ceiling_mpairs_per_s: Option<f64>,
+    /// `shading_mpairs_per_s` over the ceiling.
+    ceiling_share: Option<f64>,
 }
 
 impl BenchRow {
-    fn of(s: Stochastic, runs: &[Timings], listed_pairs: Option<u64>) -> Self {
+    fn of(
+        s: Stochastic,
+        runs: &[Timings],
+        listed_pairs: Option<u64>,
+        ceiling: Option<f64>,
+    ) -> Self {
         let [gbuffer_ms, rsm_ms, vpl_generation_ms, direct_ms, culling_ms, shading_ms, denoise_ms] =
             PASSES.map(|n| Spread::of_passes(runs, &[n]).median);
         let cs = Spread::of_passes(runs, &["culling", "shading"]);
+        let shading_mpairs_per_s = listed_pairs
+            .filter(|_| shading_ms > 0.0)
+            .map(|pairs| pairs as f64 / (shading_ms * 1e3));
         Self {
             strategy: s.strategy.name(),
             delta: s.delta,
@@ -263,9 +284,9 @@ impl BenchRow {
             culling_plus_shading_ms_min: cs.min,
             culling_plus_shading_ms_max: cs.max,
             listed_pairs,
-            shading_mpairs_per_s: listed_pairs
-                .filter(|_| shading_ms > 0.0)
-                .map(|pairs| pairs as f64 / (shading_ms * 1e3)),
+            shading_mpairs_per_s,
+            ceiling_mpairs_per_s: ceiling,
+            ceiling_share: shading_mpairs_per_s.zip(ceiling).map(|(s, c)| s / c),
         }
     }
 

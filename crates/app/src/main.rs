@@ -2,6 +2,7 @@
 mod args;
 mod backend;
 mod bench_cmd;
+mod ceiling;
 mod compare_cmd;
 mod compare_summary;
 mod figure;

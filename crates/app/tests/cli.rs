@@ -355,9 +355,18 @@ fn bench_writes_a_row_per_resolution_vpl_count_and_strategy() {
     assert!(rows
         .iter()
         .all(|r| r["times"]["shading_mpairs_per_s"].as_f64().unwrap() > 0.0));
-    assert!(std::fs::read_to_string(out.join("bench.md"))
-        .unwrap()
-        .contains("| 24x16 |"));
+    // One ceiling per run, and each row's share of it.
+    let ceiling = rows[0]["times"]["ceiling_mpairs_per_s"].as_f64().unwrap();
+    assert!(ceiling > 0.0);
+    for r in rows {
+        let t = &r["times"];
+        assert_eq!(t["ceiling_mpairs_per_s"].as_f64(), Some(ceiling));
+        let share = t["ceiling_share"].as_f64().unwrap();
+        let expected = t["shading_mpairs_per_s"].as_f64().unwrap() / ceiling;
+        assert!((share - expected).abs() <= 1e-12 * expected, "{r}");
+    }
+    let md = std::fs::read_to_string(out.join("bench.md")).unwrap();
+    assert!(md.contains("| 24x16 |") && md.contains("M pairs/s, the eight-lane exit test"));
     std::fs::remove_dir_all(&out).ok();
 }
 
