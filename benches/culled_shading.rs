@@ -1,7 +1,9 @@
 //! Culling per strategy (pixels per second) and the stochastic shading of the ellipsoid's
 //! light lists (listed pairs per second) on the built-in default scene: every listed pair
-//! evaluated in full (no early exit), with the scalar early exits (`VplReach`), with the
-//! eight-lane early exits (`ReachChunks`), and the whole `shade_lists`.
+//! evaluated in full (no early exit); with the scalar early exits (`VplReach::may_reach`:
+//! bound and signs, one pair at a time, then the shader's own roulette); with the eight-lane
+//! early exits (`ReachChunks`: bound, signs and the roulette, eight pairs at a time); and the
+//! whole `shade_lists` (tile order, every thread).
 mod common;
 
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
@@ -86,7 +88,7 @@ fn culled_shading(c: &mut Criterion) {
             for (s, l) in pixels() {
                 for &k in listed(l) {
                     let v = &vpls[k as usize];
-                    if reach[k as usize].may_contribute(s.position - v.position, s.normal) {
+                    if reach[k as usize].may_reach(s.position - v.position, s.normal) {
                         sum += vpl_contribution(s, v, Some(&roulette[k as usize]));
                     }
                 }

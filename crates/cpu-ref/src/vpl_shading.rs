@@ -240,7 +240,7 @@ impl ListShading<'_> {
             None => {
                 for &k in list {
                     let d = g.position - self.vpls[k as usize].position;
-                    if self.reach[k as usize].may_contribute(d, g.normal) {
+                    if self.reach[k as usize].may_reach(d, g.normal) {
                         shade(k);
                     }
                 }
@@ -251,6 +251,6 @@ impl ListShading<'_> {
 }
 
 /// When a list shades fewer pixels of a tile than this, packing its VPLs into chunks of eight
-/// costs more than it saves: its pixels are shaded with the scalar exits ([`VplReach`]),
-/// which pass the same pairs.
+/// costs more than it saves: its pixels are shaded with the scalar bound and sign tests
+/// ([`VplReach::may_reach`]) and `vpl_contribution`'s own roulette, which pass the same pairs.
 pub const PACK_MIN_PIXELS: usize = 4;

@@ -131,9 +131,18 @@ impl VplReach {
     /// of eq. (1), weighted by eq. (3), is exactly 0.
     #[inline]
     pub fn may_contribute(&self, d: Vec3, receiver_normal: Vec3) -> bool {
-        let d = d.to_array();
-        self.reach.may_contribute(d, receiver_normal.to_array())
-            && self.acceptance.may_accept(self.reach.normal, d)
+        self.may_reach(d, receiver_normal)
+            && self.acceptance.may_accept(self.reach.normal, d.to_array())
+    }
+
+    /// [`Self::may_contribute`] without the roulette: the bound and sign tests alone. A
+    /// scalar caller that goes on to the shader's `vpl_contribution` uses this, since that
+    /// forms the roulette first and stops there when it rejects: testing it here as well
+    /// would only repeat it (the roulette pays off eight lanes at a time, in `ReachChunks`).
+    #[inline]
+    pub fn may_reach(&self, d: Vec3, receiver_normal: Vec3) -> bool {
+        self.reach
+            .may_contribute(d.to_array(), receiver_normal.to_array())
     }
 }
 
