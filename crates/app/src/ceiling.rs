@@ -1,7 +1,7 @@
 //! The ceiling `slc bench` measures the CPU shading against (docs/cpu-ceiling.md): listed
 //! pixel-VPL pairs per second when every pair costs only the eight-lane bound-and-sign test
-//! of `slc_cull::ReachChunks` — the least a shading kernel that honours the lists must spend
-//! on a pair — on VPLs that stay in L1, with every rayon thread busy. The shading's own
+//! of `slc_cull::ReachChunks` — the cheapest per-pair decision slc has, a yardstick rather
+//! than a proven bound — on VPLs that stay in L1, with every rayon thread busy. The shading's own
 //! pairs per second over this figure is its share of the ceiling; the gap is the roulette,
 //! the contributions, the G-buffer reads and the bookkeeping per pixel.
 use glam::Vec3;

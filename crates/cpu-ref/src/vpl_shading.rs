@@ -91,8 +91,9 @@ pub fn shade_vpls(
 
 /// Indirect radiance from culled light lists (paper eq. 3 with interleaved sampling): each
 /// pixel sums the VPLs of its list with weight K²/p when p > ξ. Unbiased as long as the lists
-/// miss no VPL with p > ξ at the pixel. Fails only when δ, a ξ, K or a VPL is out of the
-/// domain of slc-bounds and slc-cull. Pairs that [`VplReach`] rejects (outside the VPL's own
+/// miss no VPL with p > ξ at the pixel. Fails when δ, a ξ, K or a VPL is out of the domain
+/// of slc-bounds and slc-cull, or when the lists, the G-buffer and its size disagree (or the
+/// image has 2³² pixels or more). Pairs that [`VplReach`] rejects (outside the VPL's own
 /// bound, facing away at either end, or not accepted by the roulette; tested eight VPLs of a
 /// list at a time by [`ReachChunks`]) are skipped before the receiver's BRDF: their
 /// contribution is exactly 0, so the image is the same bit for bit. The pixels are shaded tile
@@ -108,9 +109,7 @@ pub fn shade_lists(
 ) -> Result<Image, CullError> {
     let (gbuffer, vpls) = (input.gbuffer, input.vpls);
     let (w, h, k) = (gbuffer.width, gbuffer.height, input.interleaving.k);
-    if k == 0 {
-        return Err(CullError::Input("interleaving factor K = 0".into()));
-    }
+    let order = TileOrder::new(w, h, k)?;
     if lists.pixel_list.len() != gbuffer.samples.len()
         || gbuffer.samples.len() as u64 != u64::from(w) * u64::from(h)
     {
@@ -139,7 +138,6 @@ pub fn shade_lists(
         scale: input.interleaving.scale(),
         visibility,
     };
-    let order = TileOrder::new(w, h, k);
     // One slot per pixel in tile order, cut into each tile's run.
     let mut shaded = vec![Vec3::ZERO; gbuffer.samples.len()];
     let mut runs = Vec::with_capacity(order.tiles().len());
@@ -211,6 +209,7 @@ impl ListShading<'_> {
                 scratch.chunks.refill(self.vpls, self.reach, [list]);
             }
             for &(_, slot, p) in run {
+                // Only pixels with a sample were gathered.
                 if let Some(g) = &self.gbuffer.samples[p as usize] {
                     out[slot as usize] = self.pixel(g, list, packed.then_some(&scratch.chunks));
                 }

@@ -94,7 +94,12 @@ fn random_vpl(rng: &mut Rng) -> Vpl {
     };
     let omega_i = rng.at_cosine(normal, cos_i);
     let fresnel = if rng.f32() < 0.2 {
-        Fresnel::Dielectric(rng.range(1.01, 3.0))
+        // Below 1 too (total internal reflection), and near 1.
+        Fresnel::Dielectric(match (rng.f32() * 3.0) as u32 {
+            0 => rng.range(0.3, 0.999),
+            1 => 1.0 + rng.range(-1e-3, 1e-3),
+            _ => rng.range(1.01, 3.0),
+        })
     } else {
         Fresnel::Schlick(Vec3::new(rng.f32(), rng.f32(), rng.f32()))
     };

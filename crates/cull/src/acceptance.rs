@@ -7,17 +7,16 @@
 //! things differently the test errs on the side of passing:
 //! - a glossy VPL whose half vector the shader forms in f64 (ωi and ωo nearly opposite with a
 //!   tiny α, `s² α² <= 1e-6` in `slc_bounds::brdf::microfacet`) always passes;
-//! - a dielectric Fresnel factor is replaced by its largest value over the half vectors that
-//!   reflect above the surface (supplemental eq. 6), grown by [`FRESNEL_GROWTH`].
+//! - a dielectric Fresnel factor is replaced by 1, its upper bound (`fresnel::dielectric` is
+//!   at most 1 in f32 too: each ratio it squares has a numerator no larger than its
+//!   denominator). Its largest value over the reachable half vectors (supplemental eq. 6)
+//!   would be tighter, but the f32 cosine the shader evaluates it at can fall a few ulps
+//!   below that range's end, where for η < 1 near total internal reflection the factor's
+//!   slope is unbounded.
 use crate::lanes::{clamp01, cross, dot, max, Real, F8, M8};
 use core::f32::consts::{FRAC_1_PI, PI};
 use slc_bounds::{ggx, Fresnel, StochasticParams};
 use slc_core::{Vpl, VplLobe};
-
-/// Relative growth of a dielectric VPL's largest Fresnel factor: covers the f32 rounding of
-/// the cosine ωi·ωh the shader evaluates it at (a few ulps; the factor's slope is below 4
-/// even at grazing angles) and of its own evaluation, with a wide margin.
-pub const FRESNEL_GROWTH: f32 = 1e-3;
 
 /// One VPL's constants of the roulette test, in lanes of `R`.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -29,8 +28,8 @@ pub(crate) struct Acceptance<R: Real> {
     alpha_sq: R,
     /// G1(ωi)/cos θi of eq. (8), constant per VPL.
     g1_over_cos_i: R,
-    /// Per channel, F(c) = a + b (1 − c)⁵ (Schlick: a = F0, b = 1 − F0; dielectric: the
-    /// grown largest factor and 0; diffuse: 1 and 0).
+    /// Per channel, F(c) = a + b (1 − c)⁵ (Schlick: a = F0, b = 1 − F0; dielectric: its
+    /// bound 1 and 0; diffuse: 1 and 0).
     fresnel_a: [R; 3],
     fresnel_b: [R; 3],
     /// What multiplies f cos θo: the flux Φ of a glossy VPL, Φ (kd/π) of a diffuse one (the
@@ -44,19 +43,16 @@ pub(crate) struct Acceptance<R: Real> {
 
 impl Acceptance<f32> {
     /// The roulette test of `vpl` under `params` (its δ and ξ). `dark` marks a VPL the shader
-    /// gives 0 at every pair (see `reach`): it never passes.
+    /// gives 0 at every pair (see `reach`): its intensity is 0, so it passes only where a
+    /// glossy half vector is formed in f64 (and there the bound test of `reach`, whose limit
+    /// is −1 for such a VPL, rejects it first).
     pub(crate) fn new(vpl: &Vpl, params: &StochasticParams, dark: bool) -> Self {
         let brdf = &vpl.brdf;
         let glossy = vpl.lobe == VplLobe::Glossy;
         let (fresnel_a, fresnel_b, emitted) = if glossy {
             let (a, b) = match brdf.fresnel {
                 Fresnel::Schlick(f0) => (f0, glam::Vec3::ONE - f0),
-                Fresnel::Dielectric(_) => (
-                    brdf.fresnel
-                        .max_over_half_vectors(vpl.normal.dot(vpl.omega_i))
-                        * (1.0 + FRESNEL_GROWTH),
-                    glam::Vec3::ZERO,
-                ),
+                Fresnel::Dielectric(_) => (glam::Vec3::ONE, glam::Vec3::ZERO),
             };
             (a, b, vpl.flux)
         } else {
@@ -145,7 +141,8 @@ impl<R: Real> Acceptance<R> {
         let h = [s[0] / s_len, s[1] / s_len, s[2] / s_len];
         // ggx::d_with_sin2 (eq. 7).
         let cos_m = dot(normal, h);
-        let sin2_m = dot(cross(normal, h), cross(normal, h));
+        let nh = cross(normal, h);
+        let sin2_m = dot(nh, nh);
         let denom = a2 * cos_m * cos_m + max(sin2_m, zero);
         let d_m = R::select(!cos_m.le(zero), a2 / (R::splat(PI) * denom * denom), zero);
         // Fresnel at ωi·ωh: Schlick's (1 − c)⁵ as `powi(5)` forms it, t (t² t²).

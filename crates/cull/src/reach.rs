@@ -33,8 +33,9 @@ pub(crate) struct Reach<R> {
 }
 
 impl<R: Real> Reach<R> {
-    /// Whether the roulette may accept the pair at offset `d = x − q`: not behind the VPL
-    /// (beyond the margin) and inside its bound (see [`VplReach::may_accept`]).
+    /// Whether the pair at offset `d = x − q` passes the bound and the sign at the VPL: not
+    /// behind the VPL (beyond the margin) and inside its bound ([`VplReach::may_accept`] adds
+    /// the roulette).
     #[inline(always)]
     pub(crate) fn may_accept(&self, d: [R; 3]) -> R::Mask {
         let margin_sq = R::splat(SIGN_MARGIN * SIGN_MARGIN) * dot(d, d);

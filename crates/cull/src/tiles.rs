@@ -4,7 +4,8 @@
 //! (x div K, y div K) of that subregion's image. Tiles are [`TILE_SIZE`]² pixels of a
 //! subregion image, so a tile covers screen pixels with stride K and spans up to 16K x 16K
 //! screen pixels; it is culled against its subregion's VPLs only. K = 1 gives ordinary tiles.
-use slc_core::TILE_SIZE;
+use crate::partition::check;
+use slc_core::{CullError, Interleaving, TILE_SIZE};
 
 /// One tile: `count` pixels of subregion `(sx, sy)`'s image starting at `first` (in
 /// subregion coordinates).
@@ -95,9 +96,15 @@ pub struct TileOrder {
 }
 
 impl TileOrder {
-    /// The tile order of a `width` x `height` image with interleaving factor `k` >= 1.
-    pub fn new(width: u32, height: u32, k: u32) -> Self {
-        debug_assert!(k >= 1);
+    /// The tile order of a `width` x `height` image with interleaving factor `k`; errors when
+    /// K is not in 1..=1024 or the image has 2³² pixels or more (pixel indices are u32).
+    pub fn new(width: u32, height: u32, k: u32) -> Result<Self, CullError> {
+        check(Interleaving { k, seed: 0 }, 0)?;
+        if u32::try_from(u64::from(width) * u64::from(height)).is_err() {
+            return Err(CullError::Input(format!(
+                "a {width}x{height} image has more pixels than 32-bit indices address"
+            )));
+        }
         let tiles = tiles(width, height, k);
         let mut starts = Vec::with_capacity(tiles.len() + 1);
         starts.push(0);
@@ -109,24 +116,19 @@ impl TileOrder {
                 tiles_per_row.push((width - tile.sub[0]).div_ceil(k).div_ceil(TILE_SIZE));
             }
         }
-        Self {
+        Ok(Self {
             tiles,
             starts,
             first_tile,
             tiles_per_row,
             k,
             grid_width: k.min(width),
-        }
+        })
     }
 
     /// The tiles, in order.
     pub fn tiles(&self) -> &[Tile] {
         &self.tiles
-    }
-
-    /// The interleaving factor K.
-    pub fn k(&self) -> u32 {
-        self.k
     }
 
     /// The length of each tile's run, in order.
@@ -179,9 +181,17 @@ mod tests {
 
     #[test]
     fn tile_order_slots_are_the_tiles_pixels_in_order() {
-        for (w, h) in [(1, 1), (5, 3), (17, 33), (100, 37), (130, 260)] {
+        for (w, h) in [
+            (0, 0),
+            (0, 5),
+            (1, 1),
+            (5, 3),
+            (17, 33),
+            (100, 37),
+            (130, 260),
+        ] {
             for k in [1, 2, 3, 8, 200] {
-                let order = TileOrder::new(w, h, k);
+                let order = TileOrder::new(w, h, k).unwrap();
                 let mut next = 0;
                 for tile in order.tiles() {
                     for [x, y] in tile.pixels(k) {
@@ -193,6 +203,13 @@ mod tests {
                 assert_eq!(order.run_lengths().sum::<usize>(), next);
             }
         }
+    }
+
+    #[test]
+    fn tile_order_refuses_what_it_cannot_address() {
+        assert!(TileOrder::new(4, 4, 0).is_err());
+        assert!(TileOrder::new(4, 4, 1025).is_err());
+        assert!(TileOrder::new(65536, 65536, 8).is_err());
     }
 
     #[test]

@@ -1,0 +1,120 @@
+//! `shade_lists` (tile order, eight-lane exits and roulette) against the plainest form of
+//! paper eq. (3) with interleaving: every pixel's list in its order, each VPL's weighted
+//! contribution from `vpl_contribution`, times K². The images must be equal bit for bit, for
+//! every culling layout and several K, on the built-in scene as it is and with dielectric
+//! Fresnel factors (η above and below 1) on some of its VPLs and receivers.
+use glam::Vec3;
+use slc_bounds::{Fresnel, StochasticParams};
+use slc_core::frame::{LobeSelection, Method, RenderSettings};
+use slc_core::{builtin, CullInput, Image, Interleaving, Strategy};
+use slc_cpu_ref::vpl_shading::{shade_lists, vpl_contribution};
+use slc_cpu_ref::{prepare, Tracer};
+
+fn plain(input: &CullInput, lists: &slc_core::LightLists) -> Image {
+    let mut image = Image::new(input.gbuffer.width, input.gbuffer.height);
+    let scale = input.interleaving.scale();
+    for (p, o) in image.pixels.iter_mut().enumerate() {
+        let Some(g) = &input.gbuffer.samples[p] else {
+            continue;
+        };
+        for &k in lists.for_pixel(p) {
+            let v = &input.vpls[k as usize];
+            let r = StochasticParams::new(input.delta, v.xi).unwrap();
+            let c = vpl_contribution(g, v, Some(&r));
+            if c != Vec3::ZERO {
+                *o += c * scale;
+            }
+        }
+    }
+    image
+}
+
+#[test]
+fn shade_lists_equals_the_plain_sum_bit_for_bit() {
+    for name in ["default", "dielectric"] {
+        let scene = builtin("default").unwrap();
+        let settings = RenderSettings {
+            width: 61,
+            height: 47,
+            rsm_resolution: 24,
+            seed: 3,
+            method: Method::VplReference,
+            visibility: false,
+            spp: 1,
+            lobes: LobeSelection::Both,
+        };
+        let mut p = prepare(&scene, &settings, Tracer::new(&scene), None);
+        if name == "dielectric" {
+            let eta = |i: usize| if i.is_multiple_of(2) { 1.5 } else { 0.8 };
+            for (i, v) in p
+                .vpls
+                .iter_mut()
+                .enumerate()
+                .filter(|(i, _)| i.is_multiple_of(3))
+            {
+                v.brdf.fresnel = Fresnel::Dielectric(eta(i / 3));
+            }
+            for (i, g) in p.gbuffer.samples.iter_mut().flatten().enumerate() {
+                if i % 3 == 1 {
+                    g.brdf.fresnel = Fresnel::Dielectric(eta(i / 3));
+                }
+            }
+        }
+        for k in [1, 3, 4] {
+            for strategy in [Strategy::None, Strategy::Ellipsoid, Strategy::Clustered] {
+                let input = CullInput {
+                    gbuffer: &p.gbuffer,
+                    camera: &p.camera,
+                    vpls: &p.vpls,
+                    delta: 1e-3,
+                    interleaving: Interleaving { k, seed: 3 },
+                };
+                let lists = slc_cull::culler(strategy).cull(&input).unwrap();
+                let got = shade_lists(&p.tracer, &input, &lists, false, &|_| {}).unwrap();
+                let want = plain(&input, &lists);
+                let differ = got
+                    .pixels
+                    .iter()
+                    .zip(&want.pixels)
+                    .filter(|(a, b)| {
+                        a.to_array().map(f32::to_bits) != b.to_array().map(f32::to_bits)
+                    })
+                    .count();
+                assert_eq!(differ, 0, "{name} K {k} {strategy:?}");
+                assert!(want.pixels.iter().any(|o| *o != Vec3::ZERO), "{name}: lit");
+            }
+        }
+    }
+}
+
+#[test]
+fn shade_lists_refuses_lists_of_another_size() {
+    let scene = builtin("default").unwrap();
+    let settings = RenderSettings {
+        width: 8,
+        height: 8,
+        rsm_resolution: 8,
+        seed: 0,
+        method: Method::VplReference,
+        visibility: false,
+        spp: 1,
+        lobes: LobeSelection::Both,
+    };
+    let p = prepare(&scene, &settings, Tracer::new(&scene), None);
+    let input = CullInput {
+        gbuffer: &p.gbuffer,
+        camera: &p.camera,
+        vpls: &p.vpls,
+        delta: 1e-3,
+        interleaving: Interleaving { k: 2, seed: 0 },
+    };
+    let mut lists = slc_cull::culler(Strategy::Ellipsoid).cull(&input).unwrap();
+    lists.pixel_list.pop();
+    assert!(shade_lists(&p.tracer, &input, &lists, false, &|_| {}).is_err());
+    let k0 = CullInput {
+        interleaving: Interleaving { k: 0, seed: 0 },
+        ..input
+    };
+    let lists = slc_cull::culler(Strategy::None).cull(&input).unwrap();
+    assert!(shade_lists(&p.tracer, &k0, &lists, false, &|_| {}).is_err());
+}
