@@ -179,8 +179,8 @@ struct ListShading<'a> {
     visibility: bool,
 }
 
-/// Scratch reused from tile to tile: the tile's (list, slot, pixel) triples and the chunks of
-/// the list being shaded.
+/// Scratch reused from tile to tile: the tile's (list, slot, pixel) triples of its pixels
+/// with a list, and the chunks of the list being shaded.
 #[derive(Default)]
 struct TileScratch {
     pixels: Vec<(u32, u32, u32)>,
@@ -195,7 +195,7 @@ impl ListShading<'_> {
         for (slot, [x, y]) in tile.pixels(k).enumerate() {
             let p = y * width + x;
             let l = self.lists.pixel_list[p as usize];
-            if l != NO_LIST && self.gbuffer.samples[p as usize].is_some() {
+            if l != NO_LIST {
                 scratch.pixels.push((l, slot as u32, p));
             }
         }
@@ -209,7 +209,6 @@ impl ListShading<'_> {
                 scratch.chunks.refill(self.vpls, self.reach, [list]);
             }
             for &(_, slot, p) in run {
-                // Only pixels with a sample were gathered.
                 if let Some(g) = &self.gbuffer.samples[p as usize] {
                     out[slot as usize] = self.pixel(g, list, packed.then_some(&scratch.chunks));
                 }

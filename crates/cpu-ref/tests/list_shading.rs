@@ -10,6 +10,22 @@ use slc_core::{builtin, CullInput, Image, Interleaving, Strategy};
 use slc_cpu_ref::vpl_shading::{shade_lists, vpl_contribution};
 use slc_cpu_ref::{prepare, Tracer};
 
+/// The built-in scene's G-buffer and VPLs at `width` x `height` with RSM `rsm`.
+fn prepared(width: u32, height: u32, rsm: u32) -> slc_cpu_ref::CpuPrepared {
+    let scene = builtin("default").unwrap();
+    let settings = RenderSettings {
+        width,
+        height,
+        rsm_resolution: rsm,
+        seed: 3,
+        method: Method::VplReference,
+        visibility: false,
+        spp: 1,
+        lobes: LobeSelection::Both,
+    };
+    prepare(&scene, &settings, Tracer::new(&scene), None)
+}
+
 fn plain(input: &CullInput, lists: &slc_core::LightLists) -> Image {
     let mut image = Image::new(input.gbuffer.width, input.gbuffer.height);
     let scale = input.interleaving.scale();
@@ -32,18 +48,7 @@ fn plain(input: &CullInput, lists: &slc_core::LightLists) -> Image {
 #[test]
 fn shade_lists_equals_the_plain_sum_bit_for_bit() {
     for name in ["default", "dielectric"] {
-        let scene = builtin("default").unwrap();
-        let settings = RenderSettings {
-            width: 61,
-            height: 47,
-            rsm_resolution: 24,
-            seed: 3,
-            method: Method::VplReference,
-            visibility: false,
-            spp: 1,
-            lobes: LobeSelection::Both,
-        };
-        let mut p = prepare(&scene, &settings, Tracer::new(&scene), None);
+        let mut p = prepared(61, 47, 24);
         if name == "dielectric" {
             let eta = |i: usize| if i.is_multiple_of(2) { 1.5 } else { 0.8 };
             for (i, v) in p
@@ -89,18 +94,7 @@ fn shade_lists_equals_the_plain_sum_bit_for_bit() {
 
 #[test]
 fn shade_lists_refuses_lists_of_another_size() {
-    let scene = builtin("default").unwrap();
-    let settings = RenderSettings {
-        width: 8,
-        height: 8,
-        rsm_resolution: 8,
-        seed: 0,
-        method: Method::VplReference,
-        visibility: false,
-        spp: 1,
-        lobes: LobeSelection::Both,
-    };
-    let p = prepare(&scene, &settings, Tracer::new(&scene), None);
+    let p = prepared(8, 8, 8);
     let input = CullInput {
         gbuffer: &p.gbuffer,
         camera: &p.camera,

@@ -19,12 +19,11 @@ pub struct Tile {
 /// Every tile of a `width` x `height` image with interleaving factor `k`, subregion by
 /// subregion (row-major in the K x K grid), row-major within each subregion. Subregions of an
 /// image smaller than K, or not a multiple of it, are smaller or empty.
-pub fn tiles(width: u32, height: u32, k: u32) -> Vec<Tile> {
+pub(crate) fn tiles(width: u32, height: u32, k: u32) -> Vec<Tile> {
     let mut out = Vec::new();
     for sy in 0..k.min(height) {
         for sx in 0..k.min(width) {
-            // Size of the subregion image: pixels sx, sx + K, ... below the width.
-            let size = [(width - sx).div_ceil(k), (height - sy).div_ceil(k)];
+            let size = subregion_size(width, height, k, [sx, sy]);
             for ty in 0..size[1].div_ceil(TILE_SIZE) {
                 for tx in 0..size[0].div_ceil(TILE_SIZE) {
                     let first = [tx * TILE_SIZE, ty * TILE_SIZE];
@@ -43,6 +42,13 @@ pub fn tiles(width: u32, height: u32, k: u32) -> Vec<Tile> {
     out
 }
 
+/// The size of subregion `(sx, sy)`'s image: the pixels sx, sx + K, ... below the width, and
+/// sy, sy + K, ... below the height.
+#[inline]
+fn subregion_size(width: u32, height: u32, k: u32, [sx, sy]: [u32; 2]) -> [u32; 2] {
+    [(width - sx).div_ceil(k), (height - sy).div_ceil(k)]
+}
+
 impl Tile {
     /// The tile's subregion, row-major in the K x K grid (as `Interleaving::pixel_subregion`).
     #[inline]
@@ -59,7 +65,7 @@ impl Tile {
 
     /// The number of pixels of the tile.
     #[inline]
-    pub fn pixel_count(&self) -> usize {
+    fn pixel_count(&self) -> usize {
         (self.count[0] * self.count[1]) as usize
     }
 
@@ -78,7 +84,8 @@ impl Tile {
     }
 }
 
-/// The pixels of an image laid out tile by tile: every tile of [`tiles`] in its order, each
+/// The pixels of an image laid out tile by tile: every tile of the culling, in its order
+/// (subregion by subregion, row-major within each), each
 /// tile's pixels row by row, so a tile's pixels are one contiguous run (the subregion images
 /// of section 6 deinterleaved). Shading in this order reads each tile's G-buffer samples with
 /// the subregion's stride K and writes one run per tile; [`TileOrder::slot`] maps a screen
@@ -88,7 +95,8 @@ pub struct TileOrder {
     tiles: Vec<Tile>,
     /// Where tile t's run starts; the last entry is the pixel count.
     starts: Vec<usize>,
-    /// Per subregion (row-major in the grid of [`tiles`]): its first tile and tiles per row.
+    /// Per subregion (row-major in the K x K grid, clipped to the image): its first tile and
+    /// tiles per row.
     first_tile: Vec<u32>,
     tiles_per_row: Vec<u32>,
     k: u32,
@@ -113,7 +121,8 @@ impl TileOrder {
             starts.push(starts[t] + tile.pixel_count());
             if tile.first == [0, 0] {
                 first_tile.push(t as u32);
-                tiles_per_row.push((width - tile.sub[0]).div_ceil(k).div_ceil(TILE_SIZE));
+                tiles_per_row
+                    .push(subregion_size(width, height, k, tile.sub)[0].div_ceil(TILE_SIZE));
             }
         }
         Ok(Self {
