@@ -54,6 +54,7 @@
 //! # Ok::<(), slc_bounds::BoundsError>(())
 //! ```
 pub mod aabb;
+pub mod box_bound;
 pub mod brdf;
 mod check;
 pub mod diffuse;
@@ -72,6 +73,7 @@ pub mod test_space;
 mod test_util;
 
 pub use aabb::Aabb;
+pub use box_bound::{BoxBound, ReceiverBox};
 pub use brdf::Brdf;
 pub use diffuse::DiffuseLobe;
 pub use error::BoundsError;

@@ -15,6 +15,11 @@ pub enum GlossyBound {
     /// The GGX bounding spheroid of eq. (12)-(15), tested as a unit sphere in its stretched
     /// and rotated space (eq. 16-17).
     Ellipsoid,
+    /// The spheroid, then per 4×4 block of a tile's pixels and depth cluster a bound of p over
+    /// the block's receivers (`slc_bounds::BoxBound`: every factor of the intensity bounded
+    /// over the cone of directions to them, the VPL's tangent plane included); diffuse VPLs'
+    /// spheres refined the same way (docs/tight-bounds.md).
+    Tight,
 }
 
 /// How a strategy groups pixels before testing bounds.
@@ -39,6 +44,8 @@ pub enum Strategy {
     Clustered,
     ClusteredSphere,
     ClusteredEnclosingSphere,
+    Tight,
+    ClusteredTight,
 }
 
 /// A strategy name that names no strategy.
@@ -50,7 +57,7 @@ pub struct UnknownStrategy {
 
 impl Strategy {
     /// Every strategy, in the order tables list them.
-    pub const ALL: [Strategy; 7] = [
+    pub const ALL: [Strategy; 9] = [
         Strategy::None,
         Strategy::Sphere,
         Strategy::EnclosingSphere,
@@ -58,6 +65,8 @@ impl Strategy {
         Strategy::Clustered,
         Strategy::ClusteredSphere,
         Strategy::ClusteredEnclosingSphere,
+        Strategy::Tight,
+        Strategy::ClusteredTight,
     ];
 
     /// The name as the command line, reports and tables spell it.
@@ -70,6 +79,8 @@ impl Strategy {
             Self::Clustered => "clustered",
             Self::ClusteredSphere => "clustered-sphere",
             Self::ClusteredEnclosingSphere => "clustered-enclosing-sphere",
+            Self::Tight => "tight",
+            Self::ClusteredTight => "clustered-tight",
         }
     }
 
@@ -81,7 +92,7 @@ impl Strategy {
     /// The layout and the glossy bound (`Ellipsoid` for the unculled layout, where no bound
     /// is tested).
     pub fn parts(self) -> (Layout, GlossyBound) {
-        use GlossyBound::{Ellipsoid, EnclosingSphere, Sphere};
+        use GlossyBound::{Ellipsoid, EnclosingSphere, Sphere, Tight};
         match self {
             Self::None => (Layout::Unculled, Ellipsoid),
             Self::Sphere => (Layout::Tiled, Sphere),
@@ -90,6 +101,8 @@ impl Strategy {
             Self::Clustered => (Layout::Clustered, Ellipsoid),
             Self::ClusteredSphere => (Layout::Clustered, Sphere),
             Self::ClusteredEnclosingSphere => (Layout::Clustered, EnclosingSphere),
+            Self::Tight => (Layout::Tiled, Tight),
+            Self::ClusteredTight => (Layout::Clustered, Tight),
         }
     }
 }

@@ -78,6 +78,7 @@ pub mod metrics;
 mod partition;
 pub mod reach;
 pub mod reach_chunks;
+mod refine;
 pub mod strategies;
 mod tiled;
 pub mod tiles;

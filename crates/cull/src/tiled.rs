@@ -5,6 +5,7 @@ use crate::depth::{depth_range, DepthSplit, Sample, MAX_CLUSTERS};
 use crate::frusta::TileFrusta;
 use crate::lists::{assemble, pixel_count, ListChunk};
 use crate::partition::Partition;
+use crate::refine::{block_of, Place, Refiner, Scratch};
 use crate::tiles::{tiles, Tile};
 use crate::view::CullView;
 use crate::vpl_bounds::{subregion_bounds, GlossyBound, SubregionBounds};
@@ -28,6 +29,8 @@ struct Frame<'a> {
     bounds: Vec<SubregionBounds>,
     split: DepthSplit,
     k: u32,
+    /// The `tight` strategies' per-block refinement.
+    refiner: Option<Refiner>,
 }
 
 /// Culls `input` with `glossy` bounds for glossy VPLs (the section-6 sphere for diffuse ones)
@@ -46,6 +49,15 @@ pub(crate) fn cull(
     }
     let view = CullView::new(input.camera, width, height)?;
     let bounds = subregion_bounds(input.vpls, &partition, input.delta, &view, glossy)?;
+    let refiner = match glossy {
+        GlossyBound::Tight => Some(Refiner::new(
+            input.vpls,
+            input.delta,
+            &view,
+            clustering == Clustering::HalfZ,
+        )?),
+        _ => None,
+    };
     let split = match clustering {
         Clustering::HalfZ => DepthSplit::HalfZ,
         Clustering::ExponentialSlices => {
@@ -65,6 +77,7 @@ pub(crate) fn cull(
         bounds,
         split,
         k: input.interleaving.k,
+        refiner,
     };
     let chunks = tiles(width, height, frame.k)
         .par_iter()
@@ -82,6 +95,11 @@ pub(crate) fn cull(
 struct Worker {
     chunk: ListChunk,
     samples: Vec<Sample>,
+    /// Per sample: where it sits, for the refinement (`tight` only).
+    places: Vec<Place>,
+    /// The samples of one cluster with their places, ordered by block (`tight` only).
+    cluster_samples: Vec<(Sample, Place)>,
+    scratch: Scratch,
     ranges: Vec<[f64; 2]>,
     frusta: TileFrusta,
     /// Per cluster, the spheres and the ellipsoids that touch it (ascending VPL indices).
@@ -114,6 +132,10 @@ impl Worker {
                 &mut self.ellipsoid_hits,
             );
         }
+        if let Some(refiner) = &frame.refiner {
+            self.refine(refiner, clusters);
+            return Ok(());
+        }
         let mut list_of = [NO_LIST; MAX_CLUSTERS];
         for (c, list) in list_of[..clusters].iter_mut().enumerate() {
             *list = self
@@ -128,6 +150,29 @@ impl Worker {
         Ok(())
     }
 
+    /// The `tight` strategies' lists: each cluster's hits cut per block ([`Refiner::cut`]).
+    fn refine(&mut self, refiner: &Refiner, clusters: usize) {
+        for c in 0..clusters {
+            self.cluster_samples.clear();
+            self.cluster_samples.extend(
+                self.samples
+                    .iter()
+                    .zip(&self.places)
+                    .filter(|(s, _)| usize::from(s.cluster) == c)
+                    .map(|(s, p)| (*s, *p)),
+            );
+            self.cluster_samples
+                .sort_unstable_by(|a, b| a.1.block.cmp(&b.1.block).then(a.0.z.total_cmp(&b.0.z)));
+            refiner.cut(
+                &self.cluster_samples,
+                &self.sphere_hits[c],
+                &self.ellipsoid_hits[c],
+                &mut self.scratch,
+                &mut self.chunk,
+            );
+        }
+    }
+
     /// Collects the tile's samples with their view depths and returns the tile's image-plane
     /// rectangle: the bounding rectangle of its pixels' footprints, grown to contain every
     /// sample's own projection (so a G-buffer made with another pixel convention is still
@@ -138,8 +183,10 @@ impl Worker {
         let [x0, y0, x1, y1] = tile.screen_rect(frame.k);
         let (mut lo, mut hi) = frame.view.image_rect(x0, y0, x1, y1);
         self.samples.clear();
+        self.places.clear();
         let width = frame.gbuffer.width;
-        for [x, y] in tile.pixels(frame.k) {
+        let columns = tile.columns();
+        for (i, [x, y]) in tile.pixels(frame.k).enumerate() {
             let pixel = y * width + x;
             let Some(g) = &frame.gbuffer.samples[pixel as usize] else {
                 continue;
@@ -159,6 +206,12 @@ impl Worker {
                 pixel,
                 z: p.z,
                 cluster: 0,
+            });
+            let i = i as u32;
+            self.places.push(Place {
+                view: p,
+                extent: g.position.abs().max_element(),
+                block: block_of(i % columns, i / columns),
             });
         }
         Ok((!self.samples.is_empty()).then_some((lo, hi)))

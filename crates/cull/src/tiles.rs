@@ -69,6 +69,12 @@ impl Tile {
         (self.count[0] * self.count[1]) as usize
     }
 
+    /// The number of pixels in a row of the tile.
+    #[inline]
+    pub(crate) fn columns(&self) -> u32 {
+        self.count[0]
+    }
+
     /// The tile's screen pixels (x, y), row by row.
     pub fn pixels(&self, k: u32) -> impl Iterator<Item = [u32; 2]> + '_ {
         (0..self.count[1]).flat_map(move |b| (0..self.count[0]).map(move |a| self.screen(k, a, b)))

@@ -6,7 +6,9 @@ use crate::partition::Partition;
 use crate::view::CullView;
 use glam::{DVec3, Mat3, Vec3};
 use rayon::prelude::*;
-use slc_bounds::{DiffuseLobe, GlossyLobe, Sphere, Spheroid, StochasticParams, TestSpace};
+use slc_bounds::{
+    BoxBound, DiffuseLobe, GlossyLobe, Sphere, Spheroid, StochasticParams, TestSpace,
+};
 pub use slc_core::GlossyBound;
 use slc_core::{CullError, Vpl, VplLobe};
 
@@ -78,24 +80,18 @@ impl LocalBound {
                 if vpl.normal.dot(vpl.omega_i) <= 0.0 {
                     return Ok(Self::Empty);
                 }
-                let lobe = DiffuseLobe::new(Vec3::ZERO, vpl.normal, vpl.flux, vpl.brdf.kd)?;
-                Ok(Self::sphere(Sphere::diffuse(&lobe, params)?))
+                Ok(Self::sphere(Sphere::diffuse(&diffuse_lobe(vpl)?, params)?))
             }
             VplLobe::Glossy => {
-                let lobe = GlossyLobe::new(
-                    Vec3::ZERO,
-                    vpl.normal,
-                    vpl.omega_i,
-                    vpl.brdf.alpha,
-                    vpl.flux,
-                    vpl.brdf.fresnel,
-                )?;
+                let lobe = glossy_lobe(vpl)?;
                 Ok(match glossy {
                     GlossyBound::Sphere => Self::sphere(Sphere::around_vpl(&lobe, params)?),
                     GlossyBound::EnclosingSphere => {
                         Self::sphere(Sphere::enclosing(&Spheroid::new(&lobe, params)?))
                     }
-                    GlossyBound::Ellipsoid => Self::spheroid(&Spheroid::new(&lobe, params)?),
+                    GlossyBound::Ellipsoid | GlossyBound::Tight => {
+                        Self::spheroid(&Spheroid::new(&lobe, params)?)
+                    }
                 })
             }
         }
@@ -122,6 +118,38 @@ impl LocalBound {
             semi_axes: (spheroid.semi_axes().as_dvec3() * (1.0 + BOUND_SLACK)).as_vec3(),
         }
     }
+}
+
+/// The diffuse lobe of `vpl` (eq. 4 with f = kd/π) around the origin.
+fn diffuse_lobe(vpl: &Vpl) -> Result<DiffuseLobe, CullError> {
+    Ok(DiffuseLobe::new(
+        Vec3::ZERO,
+        vpl.normal,
+        vpl.flux,
+        vpl.brdf.kd,
+    )?)
+}
+
+/// The glossy lobe of `vpl` (eq. 4, 6) around the origin.
+fn glossy_lobe(vpl: &Vpl) -> Result<GlossyLobe, CullError> {
+    Ok(GlossyLobe::new(
+        Vec3::ZERO,
+        vpl.normal,
+        vpl.omega_i,
+        vpl.brdf.alpha,
+        vpl.flux,
+        vpl.brdf.fresnel,
+    )?)
+}
+
+/// The bound of p over boxes of receivers (`slc_bounds::BoxBound`) of `vpl`'s lobe, in
+/// world axes with q at the origin. A diffuse VPL with ωi below its surface reflects nothing
+/// (its culling bound is empty, so it is never refined).
+pub(crate) fn lobe_box_bound(vpl: &Vpl, params: &StochasticParams) -> Result<BoxBound, CullError> {
+    Ok(match vpl.lobe {
+        VplLobe::Diffuse => BoxBound::diffuse(&diffuse_lobe(vpl)?, params),
+        VplLobe::Glossy => BoxBound::glossy(&glossy_lobe(vpl)?, params),
+    })
 }
 
 impl VplBound {

@@ -193,7 +193,7 @@ impl GpuView {
             glossy: match glossy {
                 GlossyBound::Sphere => GLOSSY_SPHERE,
                 GlossyBound::EnclosingSphere => GLOSSY_ENCLOSING_SPHERE,
-                GlossyBound::Ellipsoid => GLOSSY_ELLIPSOID,
+                GlossyBound::Ellipsoid | GlossyBound::Tight => GLOSSY_ELLIPSOID,
             },
             count,
             slack: BOUND_SLACK,

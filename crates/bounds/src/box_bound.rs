@@ -1,0 +1,270 @@
+//! A bound of a VPL's roulette probability p(ωo, l) of eq. (2) over a box of receivers:
+//! the refinement behind the `tight` culling strategies (docs/tight-bounds.md).
+//!
+//! The spheroid of eq. (12)-(15) drops three factors of the glossy intensity
+//! `I(ωo) = Φ F(ωi·ωh) G1(ωi) G1(ωo) D(ωh·n) / (4 ωi·n)` (eq. 4, 6, 8; the cosine ωo·n of eq. 4
+//! cancels the BRDF's): it bounds F by its largest value over every half vector (supplemental
+//! eq. 2, 6), G1(ωo) by 1, and only then couples D with the distance. Over a box of receivers
+//! seen from the VPL inside a cone of directions (axis a, half-angle β) every factor is
+//! bounded at once, each by its largest value over the cone:
+//!
+//! - D(ωh·n) <= D(cos(θ_min/2)) with θ the angle between ωo and the mirror direction ω_u
+//!   (eq. 10-11), θ_min = max(0, ∠(a, ω_u) − β);
+//! - F(ωi·ωh): the half vector makes half the angle φ between ωi and ωo with ωi, and
+//!   φ <= min(∠(a, ωi) + β, π); Schlick's F grows with that angle, a dielectric's is
+//!   quasiconvex in it (supplemental eq. 6), so its largest value is at an end of the range;
+//!   and the angle never exceeds θh_max(ωi) of supplemental eq. (2);
+//! - G1(ωo) grows with ωo·n (eq. 8), so it is at most G1 of the cone's largest cosine to n,
+//!   and 0 when the whole cone lies below the VPL's tangent plane (I = 0 there, eq. 4);
+//! - l² >= the squared distance from q to the box.
+//!
+//! A diffuse VPL (eq. 4 with f = kd/π) has I(ωo) = Φk/π ωo·n, bounded by the cone's largest
+//! cosine to n. The box is tested only where p could exceed ξ: where the bound is at most ξ
+//! every point of the box has p <= ξ and eq. (3) weights the pair 0.
+use crate::fresnel::{cos_theta_h_max, Fresnel};
+use crate::ggx;
+use crate::stochastic::{scalar_intensity, StochasticParams};
+use crate::{DiffuseLobe, GlossyLobe};
+use core::f64::consts::FRAC_1_PI;
+use glam::{DMat3, DVec3, Vec3};
+
+/// Added to sin β of the cone of directions: covers the f32 rounding of the shader's unit
+/// direction ωo (about 1e-7 rad) and half vector (at most about 1e-4 α rad where the shader
+/// forms it in f32, see `brdf::microfacet`), with a margin of 10 for α >= 0.01.
+pub const CONE_SLACK: f64 = 1e-5;
+
+/// Relative growth of the bound of p: covers the f32 rounding of the shader's I/(δ l²)
+/// (about 20 roundings of 6e-8) and of the f32 Fresnel factors, a hundredfold.
+pub const PROBABILITY_SLACK: f64 = 1e-3;
+
+/// Which lobe, with what its intensity bound needs beyond the normal.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Lobe {
+    /// Φk/π of eq. (4) with f = kd/π.
+    Diffuse { peak: f64 },
+    /// The glossy lobe of eq. (6): flux, Fresnel, α, ωi, ω_u, θh_max(ωi) as a cosine,
+    /// G1(ωi)/(4 ωi·n), and scalar(Φ F_max(ωi)) (supplemental eq. 2, 6).
+    Glossy {
+        flux: Vec3,
+        fresnel: Fresnel,
+        alpha: f64,
+        omega_i: DVec3,
+        omega_u: DVec3,
+        cos_h_max: f64,
+        g1_i: f64,
+        f_max: f64,
+    },
+}
+
+/// One VPL's bound of p over boxes of receivers, in the frame its vectors were given in
+/// (normalised in f64: a cosine near 1 must resolve 1 − cos of order α², far below the f32
+/// rounding of a unit vector's length)
+/// ([`Self::rotated`] moves it to another, e.g. a culling view).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct BoxBound {
+    lobe: Lobe,
+    normal: DVec3,
+    /// The largest intensity in any direction: Φk/π, or for a glossy VPL
+    /// scalar(Φ F_max(ωi)) G1(ωi)/(4 ωi·n) D(1) (eq. 9 at its peak, the r/α sphere).
+    peak: f64,
+    /// δ ξ of eq. (2)-(3): p > ξ needs I > δ ξ l².
+    delta_xi: f64,
+}
+
+impl BoxBound {
+    /// The bound of a glossy VPL for the roulette `params`.
+    pub fn glossy(lobe: &GlossyLobe, params: &StochasticParams) -> Self {
+        let cos_i = lobe.cos_i();
+        let omega_i = lobe.omega_i().as_dvec3().normalize();
+        let normal = lobe.normal().as_dvec3().normalize();
+        let alpha = f64::from(lobe.alpha());
+        let g1_i = 0.25 * f64::from(ggx::g1_over_cos(lobe.alpha(), cos_i));
+        let f_max = f64::from(scalar_intensity(
+            lobe.flux() * lobe.fresnel().max_over_half_vectors(cos_i),
+        ));
+        Self {
+            lobe: Lobe::Glossy {
+                flux: lobe.flux(),
+                fresnel: lobe.fresnel(),
+                alpha,
+                omega_i,
+                omega_u: lobe.reflection().as_dvec3().normalize(),
+                cos_h_max: f64::from(cos_theta_h_max(cos_i)),
+                g1_i,
+                f_max,
+            },
+            normal,
+            peak: f_max * g1_i / (core::f64::consts::PI * alpha * alpha),
+            delta_xi: delta_xi(params),
+        }
+    }
+
+    /// The bound of a diffuse VPL for the roulette `params`.
+    pub fn diffuse(lobe: &DiffuseLobe, params: &StochasticParams) -> Self {
+        let peak = f64::from(lobe.reflected_flux()) * FRAC_1_PI;
+        Self {
+            lobe: Lobe::Diffuse { peak },
+            normal: lobe.normal().as_dvec3().normalize(),
+            peak,
+            delta_xi: delta_xi(params),
+        }
+    }
+
+    /// The same bound with its directions rotated by `rotation` (a rotation matrix, up to
+    /// rounding: the rotated directions are normalised again), for boxes given in the rotated
+    /// frame.
+    pub fn rotated(&self, rotation: DMat3) -> Self {
+        let mut out = *self;
+        out.normal = (rotation * self.normal).normalize();
+        if let Lobe::Glossy {
+            omega_i, omega_u, ..
+        } = &mut out.lobe
+        {
+            *omega_i = (rotation * *omega_i).normalize();
+            *omega_u = (rotation * *omega_u).normalize();
+        }
+        out
+    }
+
+    /// Whether p(ωo, l) > ξ may hold at some receiver of `receivers` for this VPL at `q`
+    /// (in the box's frame). False only where the bound of the module docs, grown by
+    /// [`CONE_SLACK`] and [`PROBABILITY_SLACK`], is at most ξ over the whole box. The box
+    /// must contain the points the shader forms offsets from, its rounding included. The
+    /// cheap factors are tested first: the distance against the largest intensity in any
+    /// direction (the r/α sphere of section 7), the tangent plane, D with the other factors
+    /// at their maxima (the spheroid's bound, eq. 9-11, for this box), then G1(ωo) and F.
+    pub fn may_exceed_xi(&self, receivers: &ReceiverBox, q: DVec3) -> bool {
+        let (lo, hi) = (receivers.lo - q, receivers.hi - q);
+        let l2_min = lo.max(-hi).max(DVec3::ZERO).length_squared();
+        if l2_min <= 0.0 {
+            return true;
+        }
+        let threshold = self.delta_xi * l2_min / (1.0 + PROBABILITY_SLACK);
+        if self.peak <= threshold {
+            return false;
+        }
+        // h = the largest n·d over the box (at a corner): ωo·n <= h/|d|.
+        let h = (self.normal * lo).max(self.normal * hi).element_sum();
+        let l2_max = lo.abs().max(hi.abs()).length_squared();
+        if h < 0.0 && h * h >= CONE_SLACK * CONE_SLACK * l2_max {
+            return false;
+        }
+        let cone = Cone::around(receivers.center - q, receivers.radius);
+        // ωo·n <= h/l_min for h >= 0 (h/l_max <= 0 otherwise), plus the f32 slack.
+        let plane_cos = h.max(0.0) / l2_min.sqrt() + CONE_SLACK;
+        let cos_o = cone.max_cos(self.normal).min(plane_cos);
+        if cos_o <= 0.0 {
+            return false;
+        }
+        match self.lobe {
+            Lobe::Diffuse { peak } => peak * cos_o > threshold,
+            Lobe::Glossy {
+                flux,
+                fresnel,
+                alpha,
+                omega_i,
+                omega_u,
+                cos_h_max,
+                g1_i,
+                f_max,
+            } => {
+                // D(cos(θ_min/2)) of eq. (7) with sin²(θ/2) = (1 − cos θ)/2.
+                let sin2 = 0.5 * (1.0 - cone.max_cos(omega_u));
+                let a2 = alpha * alpha;
+                let denom = a2 + (1.0 - a2) * sin2;
+                let d = g1_i * a2 / (core::f64::consts::PI * denom * denom);
+                if f_max * d <= threshold {
+                    return false;
+                }
+                let d = d * f64::from(ggx::g1(alpha as f32, cos_o as f32));
+                if f_max * d <= threshold {
+                    return false;
+                }
+                // The smallest cos(φ/2) = ωi·ωh over the cone, no smaller than cos θh_max.
+                let cos_h = (0.5 * (1.0 + cone.min_cos(omega_i))).sqrt().max(cos_h_max);
+                let f = f64::from(scalar_intensity(flux * fresnel_max(fresnel, cos_h)));
+                f * d > threshold
+            }
+        }
+    }
+}
+
+/// A box of receivers `[lo, hi]` (closed) with its bounding sphere, formed once per box and
+/// tested against many VPLs.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ReceiverBox {
+    lo: DVec3,
+    hi: DVec3,
+    center: DVec3,
+    radius: f64,
+}
+
+impl ReceiverBox {
+    /// The box `[lo, hi]` (lo <= hi per axis).
+    pub fn new(lo: DVec3, hi: DVec3) -> Self {
+        Self {
+            lo,
+            hi,
+            center: 0.5 * (lo + hi),
+            radius: 0.5 * (hi - lo).length(),
+        }
+    }
+}
+
+/// δ ξ, in f64.
+fn delta_xi(params: &StochasticParams) -> f64 {
+    f64::from(params.delta()) * f64::from(params.xi())
+}
+
+/// The largest Fresnel factor per channel over half vectors with ωi·ωh in `[cos_h, 1]`:
+/// Schlick's at `cos_h` (it grows with the angle), a dielectric's at an end (quasiconvex,
+/// supplemental eq. 6).
+fn fresnel_max(fresnel: Fresnel, cos_h: f64) -> Vec3 {
+    let c = cos_h as f32;
+    match fresnel {
+        Fresnel::Schlick(_) => fresnel.eval(c),
+        Fresnel::Dielectric(_) => fresnel.eval(c).max(fresnel.eval(1.0)),
+    }
+}
+
+/// The cone of directions from the origin to a box: axis a, and cos β, sin β of its
+/// half-angle (grown by [`CONE_SLACK`]); `None` when the box's bounding sphere reaches the
+/// origin, where the directions are not bounded.
+struct Cone(Option<(DVec3, f64, f64)>);
+
+impl Cone {
+    /// The cone of the ball of `radius` around `center` (relative to the apex).
+    fn around(center: DVec3, radius: f64) -> Self {
+        let distance = center.length();
+        let sin = radius / distance + CONE_SLACK;
+        Self((sin < 1.0).then(|| (center / distance, (1.0 - sin * sin).sqrt(), sin)))
+    }
+
+    /// The largest cosine between the unit vector `u` and a direction of the cone:
+    /// cos(max(0, ∠(u, a) − β)).
+    fn max_cos(&self, u: DVec3) -> f64 {
+        let Some((axis, cos_b, sin_b)) = self.0 else {
+            return 1.0;
+        };
+        let cos_g = u.dot(axis).clamp(-1.0, 1.0);
+        if cos_g >= cos_b {
+            return 1.0;
+        }
+        cos_g * cos_b + (1.0 - cos_g * cos_g).sqrt() * sin_b
+    }
+
+    /// The smallest cosine between `u` and a direction of the cone: cos(min(π, ∠(u, a) + β)).
+    fn min_cos(&self, u: DVec3) -> f64 {
+        let Some((axis, cos_b, sin_b)) = self.0 else {
+            return -1.0;
+        };
+        let cos_g = u.dot(axis).clamp(-1.0, 1.0);
+        if cos_g <= -cos_b {
+            return -1.0;
+        }
+        cos_g * cos_b - (1.0 - cos_g * cos_g).sqrt() * sin_b
+    }
+}
+
+#[cfg(test)]
+mod tests;

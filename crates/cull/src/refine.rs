@@ -1,0 +1,144 @@
+//! The refinement of the `tight` strategies: after a tile's clusters are culled with the
+//! spheroid (glossy VPLs) or section-6 sphere (diffuse ones), each cluster's list is cut per
+//! block of [`BLOCK`]² pixels of the tile (in the tiled layout, each block's samples split
+//! once more at their own half depth, Modified HalfZ per block), keeping a VPL only where
+//! `slc_bounds::BoxBound` says p(ωo, l) of eq. (2) may exceed ξ somewhere in the box of the
+//! group's receivers (docs/tight-bounds.md). 8×8 blocks measured best on Sponza: 4×4 ones
+//! list fewer false positives but cost more culling than they save in shading.
+use crate::depth::Sample;
+use crate::lists::ListChunk;
+use crate::view::CullView;
+use crate::vpl_bounds::lobe_box_bound;
+use glam::DVec3;
+use rayon::prelude::*;
+use slc_bounds::{BoxBound, ReceiverBox, StochasticParams};
+use slc_core::{CullError, Vpl, TILE_SIZE};
+
+/// The side of a refinement block, in pixels of the subregion image.
+pub(crate) const BLOCK: u32 = 8;
+
+/// Blocks per tile row.
+const BLOCKS_PER_ROW: u32 = TILE_SIZE / BLOCK;
+
+/// Where a sample sits: its view-space position, the largest |coordinate| of its world
+/// position, and its refinement block.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Place {
+    pub view: DVec3,
+    pub extent: f32,
+    pub block: u8,
+}
+
+/// Every VPL's [`BoxBound`] in the culling view with its view-space position, and the
+/// largest |coordinate| of the VPLs' world positions.
+pub(crate) struct Refiner {
+    bounds: Vec<(BoxBound, DVec3)>,
+    vpl_extent: f32,
+    /// Whether each block's samples are split at their half depth.
+    split_blocks: bool,
+}
+
+impl Refiner {
+    /// The bounds of `vpls` for δ = `delta` in `view`; `split_blocks` splits each block's
+    /// samples at their half depth.
+    pub(crate) fn new(
+        vpls: &[Vpl],
+        delta: f32,
+        view: &CullView,
+        split_blocks: bool,
+    ) -> Result<Self, CullError> {
+        let rotation = view.rotation().as_dmat3();
+        let bounds = vpls
+            .par_iter()
+            .map(|v| {
+                let params = StochasticParams::new(delta, v.xi)?;
+                let bound = lobe_box_bound(v, &params)?.rotated(rotation);
+                Ok((bound, view.to_view(v.position)))
+            })
+            .collect::<Result<Vec<_>, CullError>>()?;
+        let vpl_extent = vpls
+            .iter()
+            .map(|v| v.position.abs().max_element())
+            .fold(0.0, f32::max);
+        Ok(Self {
+            bounds,
+            vpl_extent,
+            split_blocks,
+        })
+    }
+
+    /// Cuts the lists `spheres` and `ellipsoids` of one cluster's `samples` (ordered by block,
+    /// then depth) per block, or per half of a block: each gets the merge of the VPLs whose
+    /// [`BoxBound`] reaches the box of its receivers. Pushes the lists to `chunk` and the samples' (pixel, list).
+    pub(crate) fn cut(
+        &self,
+        samples: &[(Sample, Place)],
+        spheres: &[u32],
+        ellipsoids: &[u32],
+        scratch: &mut Scratch,
+        chunk: &mut ListChunk,
+    ) {
+        let mut rest = samples;
+        while let Some(first) = rest.first() {
+            let block = first.1.block;
+            let run = rest.iter().take_while(|s| s.1.block == block).count();
+            let (block_samples, tail) = rest.split_at(run);
+            rest = tail;
+            let near = if self.split_blocks {
+                let half_z = 0.5 * (block_samples[0].0.z + block_samples[run - 1].0.z);
+                block_samples.partition_point(|s| s.0.z < half_z)
+            } else {
+                0
+            };
+            for group in [&block_samples[..near], &block_samples[near..]] {
+                if group.is_empty() {
+                    continue;
+                }
+                let receivers = self.receivers(group);
+                self.filter(&receivers, spheres, &mut scratch.spheres);
+                self.filter(&receivers, ellipsoids, &mut scratch.ellipsoids);
+                let list = chunk.push_merged(&scratch.spheres, &scratch.ellipsoids);
+                chunk.pixels.extend(group.iter().map(|s| (s.0.pixel, list)));
+            }
+        }
+    }
+
+    /// The box of `samples`' view positions, grown to contain the offsets x − q the shader
+    /// forms in f32 from world positions: rounding at most ε max|coordinate| per axis, and
+    /// the f64 view rotation's departure from a rotation (about 1e-7 |x − q|), with
+    /// |x − q| <= 2 max|coordinate|: 8 ε max|coordinate| over these samples and every VPL.
+    fn receivers(&self, samples: &[(Sample, Place)]) -> ReceiverBox {
+        let (lo, hi, extent) = samples.iter().fold(
+            (
+                DVec3::splat(f64::INFINITY),
+                DVec3::splat(f64::NEG_INFINITY),
+                self.vpl_extent,
+            ),
+            |(lo, hi, e), (_, p)| (lo.min(p.view), hi.max(p.view), e.max(p.extent)),
+        );
+        let pad = 8.0 * f64::from(f32::EPSILON) * f64::from(extent);
+        ReceiverBox::new(lo - pad, hi + pad)
+    }
+
+    /// The VPLs of `list` whose bound reaches `receivers`, into `out` (cleared first).
+    fn filter(&self, receivers: &ReceiverBox, list: &[u32], out: &mut Vec<u32>) {
+        out.clear();
+        out.extend(list.iter().filter(|&&i| {
+            let (bound, q) = &self.bounds[i as usize];
+            bound.may_exceed_xi(receivers, *q)
+        }));
+    }
+}
+
+/// The block of the tile pixel at column `a`, row `b` of the tile.
+#[inline]
+pub(crate) fn block_of(a: u32, b: u32) -> u8 {
+    ((b / BLOCK) * BLOCKS_PER_ROW + a / BLOCK) as u8
+}
+
+/// Lists reused from block to block.
+#[derive(Default)]
+pub(crate) struct Scratch {
+    spheres: Vec<u32>,
+    ellipsoids: Vec<u32>,
+}
