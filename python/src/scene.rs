@@ -62,7 +62,8 @@ struct CompareJob<'a> {
     spec: Option<&'a str>,
     options: &'a Options,
     base: Stochastic,
-    strategies: &'a [Strategy],
+    /// The strategies to compare; `None`: every one the backend runs.
+    strategies: Option<&'a [Strategy]>,
     reference: bool,
 }
 
@@ -113,7 +114,11 @@ impl Job for CompareJob<'_> {
             seed,
             visibility,
         };
-        for &strategy in self.strategies {
+        let all: Vec<Strategy> = Strategy::ALL
+            .into_iter()
+            .filter(|&s| r.capabilities().runs(s))
+            .collect();
+        for &strategy in self.strategies.unwrap_or(&all) {
             let st = Stochastic {
                 strategy,
                 metrics: true,
@@ -373,8 +378,8 @@ impl PyScene {
         PyFrame::new(py, data)
     }
 
-    /// Every strategy of `culling` on the same G-buffer, VPLs and ξ, each with its culling
-    /// metrics, and (with `reference`) every VPL with p = 1 as `"reference_vpl"`. Returns a
+    /// Every strategy of `culling` (default: every one the backend runs) on the same
+    /// G-buffer, VPLs and ξ, each with its culling metrics, and (with `reference`) every VPL with p = 1 as `"reference_vpl"`. Returns a
     /// dict from name to `Frame`.
     #[pyo3(signature = (culling=None, reference=true, **options))]
     fn compare<'py>(
@@ -385,20 +390,21 @@ impl PyScene {
         options: Option<&Bound<'py, PyDict>>,
     ) -> PyResult<Bound<'py, PyDict>> {
         let parsed = Options::parse(options, COMPARE)?;
-        let strategies = match culling {
-            Some(names) => names
-                .iter()
-                .map(|n| strategy(n))
-                .collect::<PyResult<Vec<_>>>()?,
-            None => Strategy::ALL.to_vec(),
-        };
+        let strategies = culling
+            .map(|names| {
+                names
+                    .iter()
+                    .map(|n| strategy(n))
+                    .collect::<PyResult<Vec<_>>>()
+            })
+            .transpose()?;
         let base = Options::stochastic(options)?;
         let spec = self.spec.clone();
         let job = CompareJob {
             spec: spec.as_deref(),
             options: &parsed,
             base,
-            strategies: &strategies,
+            strategies: strategies.as_deref(),
             reference,
         };
         let frames = self.run(py, &parsed, job)?;

@@ -13,7 +13,7 @@ use crate::frame::{LightSampling, Method, RenderError, RenderSettings, Shaded, T
 use crate::framebuffer::Image;
 use crate::scene::Scene;
 use crate::shader::SampledLights;
-use crate::strategy::Strategy;
+use crate::strategy::{GlossyBound, Strategy};
 use crate::vpl::Vpl;
 
 /// Called with the number of pixel-passes finished.
@@ -42,9 +42,16 @@ pub struct Capabilities {
     pub references: bool,
     /// VPLs sampled at equal count with the VSGLs' importance.
     pub sampled_vpls: bool,
+    /// The `tight` and `clustered-tight` culling strategies (`GlossyBound::Tight`).
+    pub tight_culling: bool,
 }
 
 impl Capabilities {
+    /// Whether the backend runs the culling strategy `strategy`.
+    pub fn runs(&self, strategy: Strategy) -> bool {
+        self.tight_culling || strategy.parts().1 != GlossyBound::Tight
+    }
+
     /// [`RenderError::Unsupported`] naming the first thing `settings` asks for that
     /// `backend` (with these capabilities) does not have.
     pub fn check(
@@ -57,6 +64,9 @@ impl Capabilities {
             Method::SampledVpls(_) if !self.sampled_vpls => Some("sampled VPLs"),
             Method::Vsgl(_) if settings.visibility && !self.vsgl_visibility => {
                 Some("visibility for VSGLs")
+            }
+            Method::Stochastic(s) if !self.runs(s.strategy) => {
+                Some("the tight culling strategies (tight, clustered-tight)")
             }
             Method::Stochastic(_) | Method::VplReference | Method::SampledVpls(_)
                 if settings.visibility && !self.vpl_visibility =>

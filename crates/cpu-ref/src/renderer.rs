@@ -48,6 +48,7 @@ impl Renderer for CpuRenderer {
             vsgl_visibility: true,
             references: true,
             sampled_vpls: true,
+            tight_culling: true,
         }
     }
 

@@ -193,7 +193,14 @@ impl GpuView {
             glossy: match glossy {
                 GlossyBound::Sphere => GLOSSY_SPHERE,
                 GlossyBound::EnclosingSphere => GLOSSY_ENCLOSING_SPHERE,
-                GlossyBound::Ellipsoid | GlossyBound::Tight => GLOSSY_ELLIPSOID,
+                GlossyBound::Ellipsoid => GLOSSY_ELLIPSOID,
+                GlossyBound::Tight => {
+                    return Err(GpuError::Input(
+                        "the tight culling strategies (tight, clustered-tight) run on the CPU \
+                         only (--backend cpu)"
+                            .into(),
+                    ))
+                }
             },
             count,
             slack: BOUND_SLACK,

@@ -184,6 +184,7 @@ impl Renderer for GpuRenderer {
             vsgl_visibility: true,
             references: false,
             sampled_vpls: false,
+            tight_culling: false,
         }
     }
 

@@ -54,7 +54,7 @@ fn random_lobe(rng: &mut Rng) -> TestLobe {
     );
     let omega_i = Frame::from_unit(n).to_world(local).normalize();
     let flux = Vec3::new(rng.f32(), rng.f32(), rng.f32()) * 10f32.powf(rng.range(-6.0, 6.0));
-    if rng.u64() % 4 == 0 {
+    if rng.u64().is_multiple_of(4) {
         let kd = Vec3::new(rng.f32(), rng.f32(), rng.f32());
         return TestLobe::Diffuse(DiffuseLobe::new(Vec3::ZERO, n, flux, kd).unwrap());
     }
@@ -81,7 +81,7 @@ fn random_params(rng: &mut Rng) -> StochasticParams {
 /// the time for a glossy lobe, anywhere above the surface otherwise.
 fn direction(rng: &mut Rng, lobe: &TestLobe) -> Vec3 {
     if let TestLobe::Glossy(l) = lobe {
-        if rng.u64() % 2 == 0 {
+        if rng.u64().is_multiple_of(2) {
             let spread = 4.0 * l.alpha() * rng.f32();
             let t = Frame::from_unit(l.reflection());
             let phi = rng.range(0.0, core::f32::consts::TAU);
@@ -104,7 +104,7 @@ fn accepted(lobe: &TestLobe, params: &StochasticParams, d: Vec3) -> bool {
 fn box_around(rng: &mut Rng, x: DVec3) -> (DVec3, DVec3) {
     let scale = x.length() * 10f64.powf(f64::from(rng.range(-7.0, 1.0)));
     let size = DVec3::new(rng.f64(), rng.f64(), rng.f64()) * scale;
-    let size = if rng.u64() % 4 == 0 {
+    let size = if rng.u64().is_multiple_of(4) {
         // A slab: one axis (almost) flat, as a planar tile's receivers.
         size * DVec3::new(1.0, 1.0, 1e-6)
     } else {
@@ -134,7 +134,7 @@ fn for_accepted_boxes(
                 continue;
             }
             let l = l_max
-                * if rng.u64() % 4 == 0 {
+                * if rng.u64().is_multiple_of(4) {
                     rng.f32()
                 } else {
                     1.0 - 0.1 * rng.f32()

@@ -82,7 +82,8 @@ pub fn reference(vpl: &Vpl, delta: f32, view: &CullView, glossy: GlossyBound) ->
                 GlossyBound::EnclosingSphere => {
                     sphere(Sphere::enclosing(&Spheroid::new(&lobe, &params).unwrap()))
                 }
-                GlossyBound::Ellipsoid => {
+                // The tight strategies cull with the spheroid before their box bound.
+                GlossyBound::Ellipsoid | GlossyBound::Tight => {
                     let spheroid = Spheroid::new(&lobe, &params).unwrap();
                     if spheroid.is_empty() {
                         return Reference::Empty;

@@ -1,12 +1,43 @@
-//! `GpuCuller`: every strategy of `slc_core::Strategy::ALL`, also bound as a
-//! `slc_core::Culler`, and its lists left on the GPU read by the shading pass.
+//! `GpuCuller`: every strategy of `slc_core::Strategy::ALL` but the CPU-only tight ones (which
+//! it refuses), also bound as a `slc_core::Culler`, and its lists left on the GPU read by the
+//! shading pass.
 use crate::common::gpu;
 use crate::tiled::frame;
-use slc_core::{builtin, CullInput, Culler, Interleaving, Strategy};
+use slc_core::{builtin, CullInput, Culler, GlossyBound, Interleaving, Strategy};
 use slc_gpu_wgpu::cull_frame::CullFrame;
 use slc_gpu_wgpu::culler::GpuCuller;
 use slc_gpu_wgpu::gpu_lists::read_lists;
 use slc_gpu_wgpu::shade_pass::ShadePass;
+
+/// The strategies the GPU runs: all but the tight ones (`GlossyBound::Tight`, CPU only).
+pub fn on_gpu() -> Vec<Strategy> {
+    Strategy::ALL
+        .into_iter()
+        .filter(|s| s.parts().1 != GlossyBound::Tight)
+        .collect()
+}
+
+/// The tight strategies are refused with an error that names the CPU backend, by the culler
+/// and by the renderer's capability check.
+#[test]
+fn tight_strategies_are_refused_with_a_clear_error() {
+    let Some(ctx) = gpu() else { return };
+    let culler = GpuCuller::new(&ctx).unwrap();
+    let scene = builtin("default").unwrap();
+    let camera = scene.camera_or_default();
+    let (gbuffer, vpls) = frame(&scene, &camera, (16, 16), 4);
+    let input = CullInput {
+        gbuffer: &gbuffer,
+        camera: &camera,
+        vpls: &vpls,
+        delta: 1e-3,
+        interleaving: Interleaving { k: 2, seed: 4 },
+    };
+    for strategy in [Strategy::Tight, Strategy::ClusteredTight] {
+        let e = culler.cull(&ctx, &input, strategy).unwrap_err();
+        assert!(e.to_string().contains("--backend cpu"), "{e}");
+    }
+}
 
 /// Each name runs its own strategy: the GPU's lists by name equal the CPU strategy's of the
 /// same name but for a few entries decided within rounding (classified in `tiled.rs` and
@@ -25,11 +56,12 @@ fn every_strategy_by_name_matches_the_cpu_strategy_of_that_name() {
         delta: 1e-3,
         interleaving: Interleaving { k: 2, seed: 4 },
     };
-    let cpu: Vec<_> = Strategy::ALL
+    let strategies = on_gpu();
+    let cpu: Vec<_> = strategies
         .iter()
         .map(|&s| slc_cull::culler(s).cull(&input).unwrap())
         .collect();
-    for (i, &name) in Strategy::ALL.iter().enumerate() {
+    for (i, &name) in strategies.iter().enumerate() {
         let gpu = culler.cull(&ctx, &input, name).unwrap();
         // The same strategy bound as a `Culler` of frames on the GPU.
         let bound = culler.culler(&ctx, name);
@@ -51,7 +83,7 @@ fn every_strategy_by_name_matches_the_cpu_strategy_of_that_name() {
             .sum();
         eprintln!("{name}: {entries} pixel-VPL pairs on the CPU, {own} differing");
         assert!(own <= 10 && own * 10_000 <= entries, "{name}: {own}");
-        for (j, other) in Strategy::ALL.iter().enumerate().filter(|&(j, _)| j != i) {
+        for (j, other) in strategies.iter().enumerate().filter(|&(j, _)| j != i) {
             let d = differing(&cpu[j]);
             assert!(d > 100, "{name} looks like {other}: {d} differing entries");
         }
@@ -76,7 +108,7 @@ fn shading_reads_every_strategys_lists_on_the_gpu() {
             delta: 1e-3,
             interleaving: Interleaving { k, seed: 2 },
         };
-        for strategy in Strategy::ALL {
+        for strategy in on_gpu() {
             let name = strategy.name();
             let frame = CullFrame::upload(&ctx, &input).unwrap();
             let on_gpu = culler.cull_frame(&ctx, &frame, strategy).unwrap();

@@ -19,7 +19,6 @@ use glam::Vec3;
 use slc_bounds::Fresnel;
 use slc_core::frame::LobeSelection;
 use slc_core::frame::{Method, RenderSettings};
-use slc_core::Strategy;
 use slc_core::{Camera, CullInput, GBuffer, GSample, Interleaving, Mesh, Scene};
 use slc_cpu_ref::gbuffer::{trace_gbuffer, PixelSample};
 use slc_cpu_ref::prepare;
@@ -338,7 +337,7 @@ fn culling_and_shading_read_the_gpu_gbuffer_in_place() {
         interleaving,
     };
     // Every strategy: the tiled, clustered and unculled passes all read positions.
-    for strategy in Strategy::ALL {
+    for strategy in crate::culler::on_gpu() {
         let name = strategy.name();
         let frame = CullFrame::upload(&ctx, &input).unwrap();
         let uploaded = culler.cull_frame(&ctx, &frame, strategy).unwrap();
