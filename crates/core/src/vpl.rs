@@ -1,6 +1,6 @@
 //! Virtual point lights.
 use glam::Vec3;
-use slc_bounds::Brdf;
+use slc_bounds::{BoundsError, Brdf, DiffuseLobe, GlossyLobe};
 
 /// Which lobe of the surface BRDF a VPL reflects with. A reflective-shadow-map texel yields a
 /// diffuse VPL (where kd > 0) and a glossy VPL (where the specular layer reflects); together
@@ -47,5 +47,23 @@ impl Vpl {
             VplLobe::Glossy => self.brdf.specular(self.normal, self.omega_i, omega_o),
         };
         self.flux * f * cos_o
+    }
+
+    /// The diffuse lobe of this VPL (eq. 4 with f = kd/π) around the origin, validated by
+    /// slc-bounds: the form every bound of it is built from.
+    pub fn diffuse_lobe(&self) -> Result<DiffuseLobe, BoundsError> {
+        DiffuseLobe::new(Vec3::ZERO, self.normal, self.flux, self.brdf.kd)
+    }
+
+    /// The glossy lobe of this VPL (eq. 4, 6) around the origin, validated by slc-bounds.
+    pub fn glossy_lobe(&self) -> Result<GlossyLobe, BoundsError> {
+        GlossyLobe::new(
+            Vec3::ZERO,
+            self.normal,
+            self.omega_i,
+            self.brdf.alpha,
+            self.flux,
+            self.brdf.fresnel,
+        )
     }
 }

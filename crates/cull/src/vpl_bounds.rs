@@ -6,9 +6,7 @@ use crate::partition::Partition;
 use crate::view::CullView;
 use glam::{DVec3, Mat3, Vec3};
 use rayon::prelude::*;
-use slc_bounds::{
-    BoxBound, DiffuseLobe, GlossyLobe, Sphere, Spheroid, StochasticParams, TestSpace,
-};
+use slc_bounds::{BoxBound, Sphere, Spheroid, StochasticParams, TestSpace};
 pub use slc_core::GlossyBound;
 use slc_core::{CullError, Vpl, VplLobe};
 
@@ -80,10 +78,10 @@ impl LocalBound {
                 if vpl.normal.dot(vpl.omega_i) <= 0.0 {
                     return Ok(Self::Empty);
                 }
-                Ok(Self::sphere(Sphere::diffuse(&diffuse_lobe(vpl)?, params)?))
+                Ok(Self::sphere(Sphere::diffuse(&vpl.diffuse_lobe()?, params)?))
             }
             VplLobe::Glossy => {
-                let lobe = glossy_lobe(vpl)?;
+                let lobe = vpl.glossy_lobe()?;
                 Ok(match glossy {
                     GlossyBound::Sphere => Self::sphere(Sphere::around_vpl(&lobe, params)?),
                     GlossyBound::EnclosingSphere => {
@@ -120,35 +118,13 @@ impl LocalBound {
     }
 }
 
-/// The diffuse lobe of `vpl` (eq. 4 with f = kd/π) around the origin.
-fn diffuse_lobe(vpl: &Vpl) -> Result<DiffuseLobe, CullError> {
-    Ok(DiffuseLobe::new(
-        Vec3::ZERO,
-        vpl.normal,
-        vpl.flux,
-        vpl.brdf.kd,
-    )?)
-}
-
-/// The glossy lobe of `vpl` (eq. 4, 6) around the origin.
-fn glossy_lobe(vpl: &Vpl) -> Result<GlossyLobe, CullError> {
-    Ok(GlossyLobe::new(
-        Vec3::ZERO,
-        vpl.normal,
-        vpl.omega_i,
-        vpl.brdf.alpha,
-        vpl.flux,
-        vpl.brdf.fresnel,
-    )?)
-}
-
 /// The bound of p over boxes of receivers (`slc_bounds::BoxBound`) of `vpl`'s lobe, in
 /// world axes with q at the origin. A diffuse VPL with ωi below its surface reflects nothing
 /// (its culling bound is empty, so it is never refined).
 pub(crate) fn lobe_box_bound(vpl: &Vpl, params: &StochasticParams) -> Result<BoxBound, CullError> {
     Ok(match vpl.lobe {
-        VplLobe::Diffuse => BoxBound::diffuse(&diffuse_lobe(vpl)?, params),
-        VplLobe::Glossy => BoxBound::glossy(&glossy_lobe(vpl)?, params),
+        VplLobe::Diffuse => BoxBound::diffuse(&vpl.diffuse_lobe()?, params),
+        VplLobe::Glossy => BoxBound::glossy(&vpl.glossy_lobe()?, params),
     })
 }
 
@@ -246,7 +222,7 @@ pub(crate) fn subregion_bounds(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use slc_bounds::{Brdf, Fresnel};
+    use slc_bounds::{Brdf, Fresnel, GlossyLobe};
     use slc_core::Camera;
 
     fn view() -> CullView {

@@ -6,7 +6,7 @@
 use crate::context::GpuError;
 use bytemuck::{Pod, Zeroable};
 use glam::Vec3;
-use slc_bounds::{DiffuseLobe, Fresnel, GlossyLobe, StochasticParams};
+use slc_bounds::{Fresnel, StochasticParams};
 use slc_core::{Camera, GSample, Interleaving, Vpl, VplLobe};
 use slc_cull::{CullView, GlossyBound};
 
@@ -91,21 +91,12 @@ impl GpuVpl {
         let lobe = match vpl.lobe {
             VplLobe::Diffuse => {
                 if vpl.normal.dot(vpl.omega_i) > 0.0 {
-                    DiffuseLobe::new(Vec3::ZERO, vpl.normal, vpl.flux, vpl.brdf.kd)
-                        .map_err(|e| invalid(&e))?;
+                    vpl.diffuse_lobe().map_err(|e| invalid(&e))?;
                 }
                 LOBE_DIFFUSE
             }
             VplLobe::Glossy => {
-                GlossyLobe::new(
-                    Vec3::ZERO,
-                    vpl.normal,
-                    vpl.omega_i,
-                    vpl.brdf.alpha,
-                    vpl.flux,
-                    vpl.brdf.fresnel,
-                )
-                .map_err(|e| invalid(&e))?;
+                vpl.glossy_lobe().map_err(|e| invalid(&e))?;
                 LOBE_GLOSSY
             }
         };

@@ -11,9 +11,7 @@
 //! - BS·c: 1e-5 |BS|_F (|c| + |p| + |eye|) (a matrix-vector product's rounding).
 use crate::common::gpu;
 use glam::{DMat3, DVec3, Vec3};
-use slc_bounds::{
-    Brdf, DiffuseLobe, Fresnel, GlossyLobe, Sphere, Spheroid, StochasticParams, TestSpace,
-};
+use slc_bounds::{Brdf, Fresnel, Sphere, Spheroid, StochasticParams, TestSpace};
 use slc_core::frame::LobeSelection;
 use slc_core::{builtin, Camera, Interleaving, Vpl, VplLobe};
 use slc_cpu_ref::rsm::{trace_rsm, TexelSample};
@@ -64,19 +62,11 @@ pub fn reference(vpl: &Vpl, delta: f32, view: &CullView, glossy: GlossyBound) ->
             if vpl.normal.dot(vpl.omega_i) <= 0.0 {
                 return Reference::Empty;
             }
-            let lobe = DiffuseLobe::new(Vec3::ZERO, vpl.normal, vpl.flux, vpl.brdf.kd).unwrap();
+            let lobe = vpl.diffuse_lobe().unwrap();
             sphere(Sphere::diffuse(&lobe, &params).unwrap())
         }
         VplLobe::Glossy => {
-            let lobe = GlossyLobe::new(
-                Vec3::ZERO,
-                vpl.normal,
-                vpl.omega_i,
-                vpl.brdf.alpha,
-                vpl.flux,
-                vpl.brdf.fresnel,
-            )
-            .unwrap();
+            let lobe = vpl.glossy_lobe().unwrap();
             match glossy {
                 GlossyBound::Sphere => sphere(Sphere::around_vpl(&lobe, &params).unwrap()),
                 GlossyBound::EnclosingSphere => {

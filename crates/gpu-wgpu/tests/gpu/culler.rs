@@ -17,22 +17,37 @@ pub fn on_gpu() -> Vec<Strategy> {
         .collect()
 }
 
+/// The built-in default scene and its camera.
+fn default_scene() -> (slc_core::Scene, slc_core::Camera) {
+    let scene = builtin("default").unwrap();
+    let camera = scene.camera_or_default();
+    (scene, camera)
+}
+
+/// A cull input with δ = 1e-3 and K = 2.
+fn input_k2<'a>(
+    gbuffer: &'a slc_core::GBuffer,
+    camera: &'a slc_core::Camera,
+    vpls: &'a [slc_core::Vpl],
+) -> CullInput<'a> {
+    CullInput {
+        gbuffer,
+        camera,
+        vpls,
+        delta: 1e-3,
+        interleaving: Interleaving { k: 2, seed: 4 },
+    }
+}
+
 /// The tight strategies are refused with an error that names the CPU backend, by the culler
 /// and by the renderer's capability check.
 #[test]
 fn tight_strategies_are_refused_with_a_clear_error() {
     let Some(ctx) = gpu() else { return };
     let culler = GpuCuller::new(&ctx).unwrap();
-    let scene = builtin("default").unwrap();
-    let camera = scene.camera_or_default();
+    let (scene, camera) = default_scene();
     let (gbuffer, vpls) = frame(&scene, &camera, (16, 16), 4);
-    let input = CullInput {
-        gbuffer: &gbuffer,
-        camera: &camera,
-        vpls: &vpls,
-        delta: 1e-3,
-        interleaving: Interleaving { k: 2, seed: 4 },
-    };
+    let input = input_k2(&gbuffer, &camera, &vpls);
     for strategy in [Strategy::Tight, Strategy::ClusteredTight] {
         let e = culler.cull(&ctx, &input, strategy).unwrap_err();
         assert!(e.to_string().contains("--backend cpu"), "{e}");
@@ -46,16 +61,9 @@ fn tight_strategies_are_refused_with_a_clear_error() {
 fn every_strategy_by_name_matches_the_cpu_strategy_of_that_name() {
     let Some(ctx) = gpu() else { return };
     let culler = GpuCuller::new(&ctx).unwrap();
-    let scene = builtin("default").unwrap();
-    let camera = scene.camera_or_default();
+    let (scene, camera) = default_scene();
     let (gbuffer, vpls) = frame(&scene, &camera, (72, 50), 16);
-    let input = CullInput {
-        gbuffer: &gbuffer,
-        camera: &camera,
-        vpls: &vpls,
-        delta: 1e-3,
-        interleaving: Interleaving { k: 2, seed: 4 },
-    };
+    let input = input_k2(&gbuffer, &camera, &vpls);
     let strategies = on_gpu();
     let cpu: Vec<_> = strategies
         .iter()
