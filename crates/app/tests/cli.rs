@@ -656,55 +656,33 @@ fn gpu_compare_names_backend_and_adapter_and_misses_nothing() {
         .into_iter()
         .partition(|s| s.parts().1 != slc_core::GlossyBound::Tight);
     let on_gpu: Vec<_> = on_gpu.iter().map(|s| s.name()).collect();
-    for s in cpu_only {
-        let o = slc()
+    let gpu_compare = |(width, height): (&str, &str), rsm: &str, culling: &str| {
+        slc()
             .args([
                 "compare",
                 "--backend",
                 "gpu",
                 "--width",
-                "8",
+                width,
                 "--height",
-                "8",
+                height,
             ])
-            .args([
-                "--rsm",
-                "2",
-                "--no-reference",
-                "--culling",
-                s.name(),
-                "--out",
-            ])
+            .args(["--rsm", rsm, "--interleave", "2", "--culling", culling])
+            .arg("--no-reference")
+            .arg("--out")
             .arg(&out)
             .output()
-            .unwrap();
+            .unwrap()
+    };
+    for s in cpu_only {
+        let o = gpu_compare(("8", "8"), "2", s.name());
         let err = String::from_utf8_lossy(&o.stderr);
         assert!(
             !o.status.success() && err.contains("--backend cpu"),
             "{s}: {err}"
         );
     }
-    let o = slc()
-        .args([
-            "compare",
-            "--backend",
-            "gpu",
-            "--width",
-            "32",
-            "--height",
-            "24",
-            "--rsm",
-            "4",
-            "--interleave",
-            "2",
-            "--culling",
-            &on_gpu.join(","),
-            "--no-reference",
-            "--out",
-        ])
-        .arg(&out)
-        .output()
-        .unwrap();
+    let o = gpu_compare(("32", "24"), "4", &on_gpu.join(","));
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let md = std::fs::read_to_string(out.join("report.md")).unwrap();
     assert!(md.contains("Backend gpu, adapter "), "{md}");
