@@ -20,6 +20,9 @@ pub(crate) const BLOCK: u32 = 8;
 /// Blocks per tile row.
 const BLOCKS_PER_ROW: u32 = TILE_SIZE / BLOCK;
 
+/// Blocks per tile.
+pub(crate) const BLOCKS: usize = (BLOCKS_PER_ROW * BLOCKS_PER_ROW) as usize;
+
 /// Where a sample sits: its view-space position, the largest |coordinate| of its world
 /// position, and its refinement block.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -67,12 +70,13 @@ impl Refiner {
         })
     }
 
-    /// Cuts the lists `spheres` and `ellipsoids` of one cluster's `samples` (ordered by block,
-    /// then depth) per block, or per half of a block: each gets the merge of the VPLs whose
-    /// [`BoxBound`] reaches the box of its receivers. Pushes the lists to `chunk` and the samples' (pixel, list).
+    /// Cuts the lists `spheres` and `ellipsoids` of one cluster's `samples` (ordered by
+    /// block) per block, or per half of a block (its samples are reordered, near half
+    /// first): each gets the merge of the VPLs whose [`BoxBound`] reaches the box of its
+    /// receivers. Pushes the lists to `chunk` and the samples' (pixel, list).
     pub(crate) fn cut(
         &self,
-        samples: &[(Sample, Place)],
+        samples: &mut [(Sample, Place)],
         spheres: &[u32],
         ellipsoids: &[u32],
         scratch: &mut Scratch,
@@ -82,11 +86,10 @@ impl Refiner {
         while let Some(first) = rest.first() {
             let block = first.1.block;
             let run = rest.iter().take_while(|s| s.1.block == block).count();
-            let (block_samples, tail) = rest.split_at(run);
+            let (block_samples, tail) = std::mem::take(&mut rest).split_at_mut(run);
             rest = tail;
             let near = if self.split_blocks {
-                let half_z = 0.5 * (block_samples[0].0.z + block_samples[run - 1].0.z);
-                block_samples.partition_point(|s| s.0.z < half_z)
+                split_at_half_depth(block_samples)
             } else {
                 0
             };
@@ -128,6 +131,25 @@ impl Refiner {
             bound.may_exceed_xi(receivers, *q)
         }));
     }
+}
+
+/// Moves the samples nearer than the middle of their depth range to the front (Modified
+/// HalfZ) and returns how many there are.
+fn split_at_half_depth(samples: &mut [(Sample, Place)]) -> usize {
+    let (lo, hi) = samples
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), s| {
+            (lo.min(s.0.z), hi.max(s.0.z))
+        });
+    let half_z = 0.5 * (lo + hi);
+    let mut near = 0;
+    for i in 0..samples.len() {
+        if samples[i].0.z < half_z {
+            samples.swap(i, near);
+            near += 1;
+        }
+    }
+    near
 }
 
 /// The block of the tile pixel at column `a`, row `b` of the tile.

@@ -5,7 +5,7 @@ use crate::depth::{depth_range, DepthSplit, Sample, MAX_CLUSTERS};
 use crate::frusta::TileFrusta;
 use crate::lists::{assemble, pixel_count, ListChunk};
 use crate::partition::Partition;
-use crate::refine::{block_of, Place, Refiner, Scratch};
+use crate::refine::{block_of, Place, Refiner, Scratch, BLOCKS};
 use crate::tiles::{tiles, Tile};
 use crate::view::CullView;
 use crate::vpl_bounds::{subregion_bounds, GlossyBound, SubregionBounds};
@@ -97,8 +97,11 @@ struct Worker {
     samples: Vec<Sample>,
     /// Per sample: where it sits, for the refinement (`tight` only).
     places: Vec<Place>,
-    /// The samples of one cluster with their places, ordered by block (`tight` only).
-    cluster_samples: Vec<(Sample, Place)>,
+    /// The samples with their places ordered by cluster and block, and where each
+    /// (cluster, block) starts (`tight` only).
+    ordered: Vec<(Sample, Place)>,
+    key_starts: Vec<usize>,
+    key_next: Vec<usize>,
     scratch: Scratch,
     ranges: Vec<[f64; 2]>,
     frusta: TileFrusta,
@@ -152,19 +155,31 @@ impl Worker {
 
     /// The `tight` strategies' lists: each cluster's hits cut per block ([`Refiner::cut`]).
     fn refine(&mut self, refiner: &Refiner, clusters: usize) {
+        // The tile's samples ordered by (cluster, block): a counting sort on that key.
+        let key = |s: &Sample, p: &Place| usize::from(s.cluster) * BLOCKS + usize::from(p.block);
+        self.key_starts.clear();
+        self.key_starts.resize(clusters * BLOCKS + 1, 0);
+        for (s, p) in self.samples.iter().zip(&self.places) {
+            self.key_starts[key(s, p) + 1] += 1;
+        }
+        for k in 1..self.key_starts.len() {
+            self.key_starts[k] += self.key_starts[k - 1];
+        }
+        let (Some(&s0), Some(&p0)) = (self.samples.first(), self.places.first()) else {
+            return;
+        };
+        self.ordered.clear();
+        self.ordered.resize(self.samples.len(), (s0, p0));
+        self.key_next.clone_from(&self.key_starts);
+        for (s, p) in self.samples.iter().zip(&self.places) {
+            let slot = &mut self.key_next[key(s, p)];
+            self.ordered[*slot] = (*s, *p);
+            *slot += 1;
+        }
         for c in 0..clusters {
-            self.cluster_samples.clear();
-            self.cluster_samples.extend(
-                self.samples
-                    .iter()
-                    .zip(&self.places)
-                    .filter(|(s, _)| usize::from(s.cluster) == c)
-                    .map(|(s, p)| (*s, *p)),
-            );
-            self.cluster_samples
-                .sort_unstable_by(|a, b| a.1.block.cmp(&b.1.block).then(a.0.z.total_cmp(&b.0.z)));
+            let range = self.key_starts[c * BLOCKS]..self.key_starts[(c + 1) * BLOCKS];
             refiner.cut(
-                &self.cluster_samples,
+                &mut self.ordered[range],
                 &self.sphere_hits[c],
                 &self.ellipsoid_hits[c],
                 &mut self.scratch,

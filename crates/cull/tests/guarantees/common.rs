@@ -254,6 +254,23 @@ pub fn check_all(input: &CullInput, label: &str) -> Vec<(&'static str, CullMetri
             }
         }
     }
+    // A tight strategy only cuts its base strategy's lists: pixel by pixel a subset.
+    let lists_of = |s: Strategy| &lists[Strategy::ALL.iter().position(|&t| t == s).unwrap()];
+    for (tight, base) in [
+        (Strategy::Tight, Strategy::Ellipsoid),
+        (Strategy::ClusteredTight, Strategy::Clustered),
+    ] {
+        let (t, b) = (lists_of(tight), lists_of(base));
+        for p in 0..input.gbuffer.samples.len() {
+            let base_list = b.for_pixel(p);
+            assert!(
+                t.for_pixel(p)
+                    .iter()
+                    .all(|i| base_list.binary_search(i).is_ok()),
+                "{label}: {tight} lists a VPL {base} does not at pixel {p}"
+            );
+        }
+    }
     Strategy::ALL
         .iter()
         .map(|s| s.name())
