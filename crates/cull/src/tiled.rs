@@ -222,12 +222,14 @@ impl Worker {
                 z: p.z,
                 cluster: 0,
             });
-            let i = i as u32;
-            self.places.push(Place {
-                view: p,
-                extent: g.position.abs().max_element(),
-                block: block_of(i % columns, i / columns),
-            });
+            if frame.refiner.is_some() {
+                let i = i as u32;
+                self.places.push(Place {
+                    view: p,
+                    extent: g.position.abs().max_element(),
+                    block: block_of(i % columns, i / columns),
+                });
+            }
         }
         Ok((!self.samples.is_empty()).then_some((lo, hi)))
     }
