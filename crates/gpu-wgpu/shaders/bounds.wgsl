@@ -52,14 +52,16 @@ fn cos_theta_h_max(cos_i: f32) -> f32 {
     return c / sqrt(2.0 * (1.0 + sin_i));
 }
 
-// F_max(omega_i): supplemental eq. (2) (Schlick) and eq. (6) (dielectric).
+// F_max(omega_i): supplemental eq. (2) (Schlick) and eq. (6) (dielectric), the dielectric's
+// end 4 f32 ulps past theta_h_max (DIELECTRIC_ULPS in crates/bounds/src/fresnel.rs).
 fn fresnel_max(vpl: Vpl, cos_i: f32) -> vec3<f32> {
     let c = cos_theta_h_max(cos_i);
     if vpl.info.y == FRESNEL_SCHLICK {
         return fresnel_schlick(vpl.f0.xyz, c);
     }
     let eta = vpl.omega_i_eta.w;
-    return vec3<f32>(max(fresnel_dielectric(eta, 1.0), fresnel_dielectric(eta, c)));
+    let past = c * (1.0 - 4.0 * 1.1920929e-7);
+    return vec3<f32>(max(fresnel_dielectric(eta, 1.0), fresnel_dielectric(eta, past)));
 }
 
 fn finite(x: f32) -> bool {
