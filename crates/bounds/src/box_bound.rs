@@ -66,8 +66,8 @@ pub struct BoxBound {
     /// The largest intensity in any direction: Φk/π, or for a glossy VPL
     /// scalar(Φ F_max(ωi)) G1(ωi)/(4 ωi·n) D(1) (eq. 9 at its peak, the r/α sphere).
     peak: f64,
-    /// δ ξ of eq. (2)-(3): p > ξ needs I > δ ξ l².
-    delta_xi: f64,
+    /// δ ξ of eq. (2)-(3) (p > ξ needs I > δ ξ l²), divided by 1 + [`PROBABILITY_SLACK`].
+    delta_xi_shrunk: f64,
 }
 
 impl BoxBound {
@@ -93,7 +93,7 @@ impl BoxBound {
             },
             normal,
             peak: f_max * g1_i / (core::f64::consts::PI * alpha * alpha),
-            delta_xi: delta_xi(params),
+            delta_xi_shrunk: delta_xi_shrunk(params),
         }
     }
 
@@ -104,7 +104,7 @@ impl BoxBound {
             lobe: Lobe::Diffuse { peak },
             normal: lobe.normal().as_dvec3().normalize(),
             peak,
-            delta_xi: delta_xi(params),
+            delta_xi_shrunk: delta_xi_shrunk(params),
         }
     }
 
@@ -137,7 +137,7 @@ impl BoxBound {
         if l2_min <= 0.0 {
             return true;
         }
-        let threshold = self.delta_xi * l2_min / (1.0 + PROBABILITY_SLACK);
+        let threshold = self.delta_xi_shrunk * l2_min;
         if self.peak <= threshold {
             return false;
         }
@@ -202,9 +202,9 @@ impl ReceiverBox {
     }
 }
 
-/// δ ξ, in f64.
-fn delta_xi(params: &StochasticParams) -> f64 {
-    f64::from(params.delta()) * f64::from(params.xi())
+/// δ ξ / (1 + [`PROBABILITY_SLACK`]), in f64.
+fn delta_xi_shrunk(params: &StochasticParams) -> f64 {
+    f64::from(params.delta()) * f64::from(params.xi()) / (1.0 + PROBABILITY_SLACK)
 }
 
 /// The largest Fresnel factor per channel over half vectors with ωi·ωh in `[cos_h, 1]`:
