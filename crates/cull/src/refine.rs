@@ -8,7 +8,7 @@
 use crate::depth::Sample;
 use crate::lists::ListChunk;
 use crate::view::CullView;
-use crate::vpl_bounds::lobe_box_bound;
+use crate::vpl_bounds::{lobe_box_bound, SubregionBounds, ViewEllipsoid};
 use glam::DVec3;
 use rayon::prelude::*;
 use slc_bounds::{BoxBound, ReceiverBox, StochasticParams};
@@ -32,20 +32,23 @@ pub(crate) struct Place {
     pub block: u8,
 }
 
-/// Every VPL's [`BoxBound`] in the culling view with its view-space position, and the
-/// largest |coordinate| of the VPLs' world positions.
+/// Every VPL's [`BoxBound`] in the culling view with its view-space position, the
+/// spheroids of the glossy ones (by VPL index), and the largest |coordinate| of the VPLs'
+/// world positions.
 pub(crate) struct Refiner {
     bounds: Vec<(BoxBound, DVec3)>,
+    spheroids: Vec<Option<ViewEllipsoid>>,
     vpl_extent: f32,
     /// Whether each block's samples are split at their half depth.
     split_blocks: bool,
 }
 
 impl Refiner {
-    /// The bounds of `vpls` for δ = `delta` in `view`; `split_blocks` splits each block's
-    /// samples at their half depth.
+    /// The bounds of `vpls` for δ = `delta` in `view`, with the spheroids of `culled` (the
+    /// tile culling's bounds); `split_blocks` splits each block's samples at their half depth.
     pub(crate) fn new(
         vpls: &[Vpl],
+        culled: &[SubregionBounds],
         delta: f32,
         view: &CullView,
         split_blocks: bool,
@@ -63,8 +66,13 @@ impl Refiner {
             .iter()
             .map(|v| v.position.abs().max_element())
             .fold(0.0, f32::max);
+        let mut spheroids = vec![None; vpls.len()];
+        for e in culled.iter().flat_map(|s| &s.ellipsoids) {
+            spheroids[e.index as usize] = Some(*e);
+        }
         Ok(Self {
             bounds,
+            spheroids,
             vpl_extent,
             split_blocks,
         })
@@ -97,9 +105,23 @@ impl Refiner {
                 if group.is_empty() {
                     continue;
                 }
-                let receivers = self.receivers(group);
-                self.filter(&receivers, spheres, &mut scratch.spheres);
-                self.filter(&receivers, ellipsoids, &mut scratch.ellipsoids);
+                let (lo, hi) = self.receivers(group);
+                let receivers = ReceiverBox::new(lo, hi);
+                // A sphere's own test is the box bound's first (the peak intensity against the
+                // distance); a spheroid's is tested against the box first, being cheaper.
+                let (center, half) = (0.5 * (lo + hi), 0.5 * (hi - lo));
+                let reaches = |i: u32| self.reaches(i, &receivers);
+                scratch.spheres.clear();
+                scratch
+                    .spheres
+                    .extend(spheres.iter().copied().filter(|&i| reaches(i)));
+                scratch.ellipsoids.clear();
+                scratch
+                    .ellipsoids
+                    .extend(ellipsoids.iter().copied().filter(|&i| {
+                        self.spheroids[i as usize].is_none_or(|e| spheroid_meets(&e, center, half))
+                            && reaches(i)
+                    }));
                 let list = chunk.push_merged(&scratch.spheres, &scratch.ellipsoids);
                 chunk.pixels.extend(group.iter().map(|s| (s.0.pixel, list)));
             }
@@ -110,7 +132,7 @@ impl Refiner {
     /// forms in f32 from world positions: rounding at most ε max|coordinate| per axis, and
     /// the f64 view rotation's departure from a rotation (about 1e-7 |x − q|), with
     /// |x − q| <= 2 max|coordinate|: 8 ε max|coordinate| over these samples and every VPL.
-    fn receivers(&self, samples: &[(Sample, Place)]) -> ReceiverBox {
+    fn receivers(&self, samples: &[(Sample, Place)]) -> (DVec3, DVec3) {
         let (lo, hi, extent) = samples.iter().fold(
             (
                 DVec3::splat(f64::INFINITY),
@@ -120,17 +142,25 @@ impl Refiner {
             |(lo, hi, e), (_, p)| (lo.min(p.view), hi.max(p.view), e.max(p.extent)),
         );
         let pad = 8.0 * f64::from(f32::EPSILON) * f64::from(extent);
-        ReceiverBox::new(lo - pad, hi + pad)
+        (lo - pad, hi + pad)
     }
 
-    /// The VPLs of `list` whose bound reaches `receivers`, into `out` (cleared first).
-    fn filter(&self, receivers: &ReceiverBox, list: &[u32], out: &mut Vec<u32>) {
-        out.clear();
-        out.extend(list.iter().filter(|&&i| {
-            let (bound, q) = &self.bounds[i as usize];
-            bound.may_exceed_xi(receivers, *q)
-        }));
+    /// Whether VPL `i`'s box bound reaches `receivers`.
+    #[inline]
+    fn reaches(&self, i: u32, receivers: &ReceiverBox) -> bool {
+        let (bound, q) = &self.bounds[i as usize];
+        bound.may_exceed_xi(receivers, *q)
     }
+}
+
+/// Whether the spheroid `e` (the unit ball around BS·c in its test space, eq. 16-17) meets
+/// the box `center ± half`, whose image under BS lies in the box BS·center ± |BS| half.
+#[inline]
+fn spheroid_meets(e: &ViewEllipsoid, center: DVec3, half: DVec3) -> bool {
+    let [a, b, c] = e.columns;
+    let mapped = a * center.x + b * center.y + c * center.z - e.center;
+    let extent = a.abs() * half.x + b.abs() * half.y + c.abs() * half.z;
+    (mapped.abs() - extent).max(DVec3::ZERO).length_squared() <= 1.0
 }
 
 /// Moves the samples nearer than the middle of their depth range to the front (Modified

@@ -52,6 +52,7 @@ pub(crate) fn cull(
     let refiner = match glossy {
         GlossyBound::Tight => Some(Refiner::new(
             input.vpls,
+            &bounds,
             input.delta,
             &view,
             clustering == Clustering::HalfZ,
