@@ -14,8 +14,10 @@
 //!   φ <= min(∠(a, ωi) + β, π); Schlick's F grows with that angle, a dielectric's is
 //!   quasiconvex in it (supplemental eq. 6), so its largest value is at an end of the range;
 //!   and the angle never exceeds θh_max(ωi) of supplemental eq. (2);
-//! - G1(ωo) grows with ωo·n (eq. 8), so it is at most G1 of the cone's largest cosine to n,
-//!   and 0 when the whole cone lies below the VPL's tangent plane (I = 0 there, eq. 4);
+//! - G1(ωo) grows with ωo·n (eq. 8), so it is at most G1 of the largest ωo·n over the box:
+//!   the cone's largest cosine to n, or h/l_min with h the largest n·(x − q) at a corner
+//!   (the VPL's tangent plane), whichever is smaller; 0 when the box lies below that plane
+//!   (I = 0 there, eq. 4);
 //! - l² >= the squared distance from q to the box.
 //!
 //! A diffuse VPL (eq. 4 with f = kd/π) has I(ωo) = Φk/π ωo·n, bounded by the cone's largest
@@ -56,9 +58,9 @@ enum Lobe {
 }
 
 /// One VPL's bound of p over boxes of receivers, in the frame its vectors were given in
-/// (normalised in f64: a cosine near 1 must resolve 1 − cos of order α², far below the f32
-/// rounding of a unit vector's length)
-/// ([`Self::rotated`] moves it to another, e.g. a culling view).
+/// ([`Self::rotated`] moves it to another, e.g. a culling view). Its directions are
+/// normalised in f64: a cosine near 1 must resolve 1 − cos of order α², far below the f32
+/// rounding of a unit vector's length.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct BoxBound {
     lobe: Lobe,
@@ -143,8 +145,7 @@ impl BoxBound {
         }
         // h = the largest n·d over the box (at a corner): ωo·n <= h/|d|.
         let h = (self.normal * lo).max(self.normal * hi).element_sum();
-        let l2_max = lo.abs().max(hi.abs()).length_squared();
-        if h < 0.0 && h * h >= CONE_SLACK * CONE_SLACK * l2_max {
+        if h < 0.0 && h * h >= CONE_SLACK * CONE_SLACK * lo.abs().max(hi.abs()).length_squared() {
             return false;
         }
         let cone = Cone::around(receivers.center - q, receivers.radius);
@@ -173,7 +174,7 @@ impl BoxBound {
                 let g1_o = f64::from(ggx::g1(alpha as f32, cos_o as f32));
                 // The smallest cos(φ/2) = ωi·ωh over the cone, no smaller than cos θh_max.
                 let cos_h = (0.5 * (1.0 + cone.min_cos(omega_i))).sqrt().max(cos_h_max);
-                let f = f64::from(scalar_intensity(flux * fresnel_max(fresnel, cos_h)));
+                let f = f64::from(scalar_intensity(flux * fresnel.max_from(cos_h as f32)));
                 f * g1_i * g1_o * d > threshold
             }
         }
@@ -205,17 +206,6 @@ impl ReceiverBox {
 /// δ ξ / (1 + [`PROBABILITY_SLACK`]), in f64.
 fn delta_xi_shrunk(params: &StochasticParams) -> f64 {
     f64::from(params.delta()) * f64::from(params.xi()) / (1.0 + PROBABILITY_SLACK)
-}
-
-/// The largest Fresnel factor per channel over half vectors with ωi·ωh in `[cos_h, 1]`:
-/// Schlick's at `cos_h` (it grows with the angle), a dielectric's at an end (quasiconvex,
-/// supplemental eq. 6).
-fn fresnel_max(fresnel: Fresnel, cos_h: f64) -> Vec3 {
-    let c = cos_h as f32;
-    match fresnel {
-        Fresnel::Schlick(_) => fresnel.eval(c),
-        Fresnel::Dielectric(_) => fresnel.eval(c).max(fresnel.eval(1.0)),
-    }
 }
 
 /// The cone of directions from the origin to a box: axis a, and cos β, sin β of its

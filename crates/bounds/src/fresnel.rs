@@ -24,17 +24,25 @@ impl Fresnel {
 
     /// F_max(ωi): the largest Fresnel factor over all half vectors reachable from an incoming
     /// direction with cosine `cos_i` to the normal; supplemental eq. (2) for Schlick and
-    /// eq. (6) for dielectrics. A dielectric's end is taken [`DIELECTRIC_ULPS`] f32 ulps past
-    /// θh_max: for η < 1 its slope is unbounded near total internal reflection, where an f32
-    /// cosine of a reachable half vector rounded a few ulps beyond cos θh_max would otherwise
-    /// exceed the bound (Schlick's slope is at most 5, so an ulp changes it by 6e-7 at most).
+    /// eq. (6) for dielectrics: [`Self::max_from`] the cosine of θh_max(ωi).
     #[inline]
     pub fn max_over_half_vectors(&self, cos_i: f32) -> Vec3 {
-        let c = cos_theta_h_max(cos_i);
+        self.max_from(cos_theta_h_max(cos_i))
+    }
+
+    /// The largest Fresnel factor per channel over half vectors with ωi·ωh in `[cos_h, 1]`:
+    /// Schlick's at `cos_h` (it grows with the angle, supplemental eq. 2), a dielectric's at an
+    /// end of the range (quasiconvex, supplemental eq. 6). A dielectric's far end is taken
+    /// [`DIELECTRIC_ULPS`] f32 ulps further: for η < 1 its slope is unbounded near total
+    /// internal reflection, where an f32 cosine of a reachable half vector rounded a few ulps
+    /// past `cos_h` would otherwise exceed the bound (Schlick's slope is at most 5, so an ulp
+    /// changes it by 6e-7 at most).
+    #[inline]
+    pub fn max_from(&self, cos_h: f32) -> Vec3 {
         match *self {
-            Fresnel::Schlick(f0) => schlick(f0, c),
+            Fresnel::Schlick(f0) => schlick(f0, cos_h),
             Fresnel::Dielectric(eta) => {
-                let past = c * (1.0 - DIELECTRIC_ULPS * f32::EPSILON);
+                let past = cos_h * (1.0 - DIELECTRIC_ULPS * f32::EPSILON);
                 Vec3::splat(dielectric(eta, 1.0).max(dielectric(eta, past)))
             }
         }

@@ -20,7 +20,7 @@ pub const FRUSTUM_SLACK: f64 = 1e-6;
 
 /// A closed axis-aligned box.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
-struct Box3 {
+pub(crate) struct Box3 {
     min: DVec3,
     max: DVec3,
 }
@@ -37,10 +37,23 @@ impl Box3 {
         }
     }
 
+    /// The box around the image of the box `center ± half` under the ellipsoid's test space
+    /// BS (eq. 16-17): BS·center ± |BS| half, since BS is linear.
+    #[inline]
+    pub(crate) fn in_test_space(e: &ViewEllipsoid, center: DVec3, half: DVec3) -> Self {
+        let [a, b, c] = e.columns;
+        let mapped = a * center.x + b * center.y + c * center.z;
+        let extent = a.abs() * half.x + b.abs() * half.y + c.abs() * half.z;
+        Self {
+            min: mapped - extent,
+            max: mapped + extent,
+        }
+    }
+
     /// Whether the closed ball of squared radius `radius_sq` around `center` meets the box
     /// (`ComputeSquaredDistanceToBox` of Listing 2).
     #[inline]
-    fn meets_ball(&self, center: DVec3, radius_sq: f64) -> bool {
+    pub(crate) fn meets_ball(&self, center: DVec3, radius_sq: f64) -> bool {
         let gap = (self.min - center).max(center - self.max).max(DVec3::ZERO);
         gap.length_squared() <= radius_sq
     }

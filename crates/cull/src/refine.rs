@@ -6,6 +6,7 @@
 //! group's receivers (docs/tight-bounds.md). 8×8 blocks measured best on Sponza: 4×4 ones
 //! list fewer false positives but cost more culling than they save in shading.
 use crate::depth::Sample;
+use crate::frusta::Box3;
 use crate::lists::ListChunk;
 use crate::view::CullView;
 use crate::vpl_bounds::{lobe_box_bound, SubregionBounds, ViewEllipsoid};
@@ -154,13 +155,10 @@ impl Refiner {
 }
 
 /// Whether the spheroid `e` (the unit ball around BS·c in its test space, eq. 16-17) meets
-/// the box `center ± half`, whose image under BS lies in the box BS·center ± |BS| half.
+/// the box `center ± half`.
 #[inline]
 fn spheroid_meets(e: &ViewEllipsoid, center: DVec3, half: DVec3) -> bool {
-    let [a, b, c] = e.columns;
-    let mapped = a * center.x + b * center.y + c * center.z - e.center;
-    let extent = a.abs() * half.x + b.abs() * half.y + c.abs() * half.z;
-    (mapped.abs() - extent).max(DVec3::ZERO).length_squared() <= 1.0
+    Box3::in_test_space(e, center, half).meets_ball(e.center, 1.0)
 }
 
 /// Moves the samples nearer than the middle of their depth range to the front (Modified

@@ -191,7 +191,7 @@ fn lobe_name(lobe: &TestLobe) -> String {
 #[test]
 fn rotation_moves_bound_and_box_together() {
     let mut rng = Rng::new(9);
-    let mut agree = 0;
+    let (mut kept, mut cut) = (0, 0);
     for _ in 0..2_000 {
         let lobe = random_lobe(&mut rng);
         let params = random_params(&mut rng);
@@ -220,10 +220,13 @@ fn rotation_moves_bound_and_box_together() {
                 bound.may_exceed_xi(&ReceiverBox::new(blo, bhi), DVec3::ZERO),
                 "rotation lost a box"
             );
+            kept += 1;
+        } else {
+            cut += 1;
         }
-        agree += 1;
     }
-    assert_eq!(agree, 2_000);
+    // Both outcomes occur, so the implication is exercised.
+    assert!(kept > 100 && cut > 100, "kept {kept}, cut {cut}");
 }
 
 /// Where the spheroid of eq. (12)-(15) cannot cull (points inside it), small boxes below the
