@@ -6,7 +6,8 @@
 //!   bytes after the last whole chunk or beyond the header's length are ignored.
 //! - **Required extensions** (`extensionsRequired`) must be ones slc reads
 //!   ([`SUPPORTED_EXTENSIONS`]); any other (Draco, meshopt, KTX2 textures, ...) is an
-//!   `unsupported: NAME` error. Other used extensions are ignored with one note.
+//!   `unsupported: NAME` error. Other used extensions are ignored and listed
+//!   ([`Parsed::ignored_extensions`]).
 //! - **Animations** are dropped with a note (slc renders the rest pose); their channels need
 //!   not target a node.
 //! - **Textures** whose image comes only through an extension (`EXT_texture_webp`,
@@ -37,6 +38,8 @@ const IMAGE_EXTENSIONS: [&str; 4] = [
 pub(crate) struct Parsed {
     pub document: gltf::Document,
     pub blob: Option<Vec<u8>>,
+    /// The used extensions slc does not read.
+    pub ignored_extensions: Vec<String>,
 }
 
 /// Parses a `.gltf` or `.glb` file's bytes as the module documentation says.
@@ -48,7 +51,7 @@ pub(crate) fn parse(bytes: &[u8], warnings: &mut Vec<String>) -> Result<Parsed, 
     };
     let mut root: Value = serde_json::from_slice(json).map_err(|e| format!("invalid JSON: {e}"))?;
     let object = root.as_object_mut().ok_or("the JSON is not an object")?;
-    check_extensions(object, warnings)?;
+    let ignored_extensions = check_extensions(object)?;
     if let Some(Value::Array(a)) = object.remove("animations") {
         if !a.is_empty() {
             warnings.push(format!(
@@ -65,6 +68,7 @@ pub(crate) fn parse(bytes: &[u8], warnings: &mut Vec<String>) -> Result<Parsed, 
     Ok(Parsed {
         document,
         blob: blob.map(<[u8]>::to_vec),
+        ignored_extensions,
     })
 }
 
@@ -128,12 +132,9 @@ fn split_glb<'a>(
     Ok((json.ok_or("GLB: no JSON chunk")?, bin))
 }
 
-/// Refuses required extensions slc does not read; notes used ones it ignores. Removes
+/// Refuses required extensions slc does not read; returns the used ones it ignores. Removes
 /// `extensionsRequired` (checked here, not by the `gltf` crate's own list).
-fn check_extensions(
-    object: &mut serde_json::Map<String, Value>,
-    warnings: &mut Vec<String>,
-) -> Result<(), String> {
+fn check_extensions(object: &mut serde_json::Map<String, Value>) -> Result<Vec<String>, String> {
     let names = |v: Option<&Value>| -> Vec<String> {
         v.and_then(Value::as_array)
             .map(|a| {
@@ -153,17 +154,10 @@ fn check_extensions(
             SUPPORTED_EXTENSIONS.join(", ")
         ));
     }
-    let ignored: Vec<String> = names(object.get("extensionsUsed"))
+    Ok(names(object.get("extensionsUsed"))
         .into_iter()
         .filter(|e| !SUPPORTED_EXTENSIONS.contains(&e.as_str()))
-        .collect();
-    if !ignored.is_empty() {
-        warnings.push(format!(
-            "extensions not modelled by slc are ignored: {}",
-            ignored.join(", ")
-        ));
-    }
-    Ok(())
+        .collect())
 }
 
 /// Gives textures without `source` the image of their image extension; returns the indices

@@ -56,7 +56,11 @@ pub fn load_gltf(path: &Path) -> Result<Scene, SceneError> {
         message,
     };
     let mut warnings = Vec::new();
-    let Parsed { document, blob } = parse(&bytes, &mut warnings).map_err(error)?;
+    let Parsed {
+        document,
+        blob,
+        ignored_extensions,
+    } = parse(&bytes, &mut warnings).map_err(error)?;
     let base = path.parent().unwrap_or(Path::new("."));
     let buffers = load_buffers(&document, base, blob).map_err(error)?;
 
@@ -69,6 +73,11 @@ pub fn load_gltf(path: &Path) -> Result<Scene, SceneError> {
     };
     scene.report.warnings = warnings;
     load_materials(&document, &buffers, base, &mut scene);
+    for e in ignored_extensions {
+        if !scene.report.ignored.contains_key(&e) {
+            scene.report.ignore(&e, "the file");
+        }
+    }
     let mut default_material_index = None;
     let mut visited = vec![false; document.nodes().len()];
     let mut stack: Vec<(gltf::Node, Mat4)> = root_nodes(&document)

@@ -6,12 +6,18 @@
 //! be read or decoded gives a warning and the factor alone is used. `KHR_materials_ior` sets
 //! [`Material::eta`] for non-metallic materials (metallic factor 0) when `ior` >= 1; a metal's
 //! Fresnel reflectance is its base colour, so `eta` stays `None` there (and without the
-//! extension: Schlick with F0 = 0.04, the glTF default `ior` 1.5). Emission and alpha modes are
-//! ignored with a warning.
+//! extension: Schlick with F0 = 0.04, the glTF default `ior` 1.5).
+//!
+//! `normalTexture` (linear, with its `scale`) becomes [`Material::normal_map`]; `alphaMode:
+//! MASK` becomes [`Material::alpha_mask`] with `alphaCutoff` (default 0.5), the base colour
+//! factor's alpha and the base-colour image's alpha channel. `alphaMode: BLEND` is drawn
+//! opaque. Emission, blending and every material extension slc does not read are recorded in
+//! [`LoadReport::ignored`](crate::LoadReport) with the materials that use them.
+use crate::gltf_document::SUPPORTED_EXTENSIONS;
 use crate::gltf_loader::read_uri;
 use crate::import_util::small_alpha_warning;
-use crate::material::{Material, MaterialModel};
-use crate::scene::Scene;
+use crate::material::{AlphaMask, Material, MaterialModel, NormalMap};
+use crate::scene::{LoadReport, Scene};
 use crate::texture::TextureId;
 use crate::texture_decode::{decode_texture, Encoding};
 use glam::Vec3;
@@ -32,6 +38,8 @@ pub(crate) fn default_material() -> Material {
         },
         eta: None,
         double_sided: false,
+        normal_map: None,
+        alpha_mask: None,
     }
 }
 
@@ -54,30 +62,37 @@ pub(crate) fn load_materials(
             .name()
             .map_or_else(|| format!("material {i}"), str::to_string);
         let pbr = m.pbr_metallic_roughness();
-        let [r, g, b, _] = pbr.base_color_factor();
+        let [r, g, b, a] = pbr.base_color_factor();
         let base_color_texture = pbr
             .base_color_texture()
-            .and_then(|t| textures.get(&t, Encoding::Srgb, &name, scene));
+            .and_then(|t| textures.get(t.texture(), t.tex_coord(), Encoding::Srgb, &name, scene));
         let metallic_roughness_texture = pbr
             .metallic_roughness_texture()
-            .and_then(|t| textures.get(&t, Encoding::Linear, &name, scene));
+            .and_then(|t| textures.get(t.texture(), t.tex_coord(), Encoding::Linear, &name, scene));
+        let normal_map = m.normal_texture().and_then(|t| {
+            let texture =
+                textures.get(t.texture(), t.tex_coord(), Encoding::Linear, &name, scene)?;
+            Some(NormalMap {
+                texture,
+                scale: t.scale(),
+            })
+        });
+        let alpha_mask = match m.alpha_mode() {
+            gltf::material::AlphaMode::Mask => Some(AlphaMask {
+                cutoff: m.alpha_cutoff().unwrap_or(0.5),
+                factor: a,
+                texture: pbr.base_color_texture().and_then(|t| {
+                    textures.get(t.texture(), t.tex_coord(), Encoding::Alpha, &name, scene)
+                }),
+            }),
+            _ => None,
+        };
         let (metallic, roughness) = (pbr.metallic_factor(), pbr.roughness_factor());
-        let warnings = &mut scene.report.warnings;
-        warnings.extend(small_alpha_warning(
+        scene.report.warnings.extend(small_alpha_warning(
             &name,
             roughness.clamp(0.0, 1.0).powi(2),
         ));
-        if Vec3::from(m.emissive_factor()).max_element() > 0.0 {
-            warnings.push(format!(
-                "material '{name}': emission is ignored (only punctual lights emit)"
-            ));
-        }
-        if m.alpha_mode() != gltf::material::AlphaMode::Opaque {
-            warnings.push(format!(
-                "material '{name}': alpha mode {:?} is ignored (treated as opaque)",
-                m.alpha_mode()
-            ));
-        }
+        record_ignored(&m, &name, &mut scene.report);
         scene.materials.push(Material {
             name,
             model: MaterialModel::MetallicRoughness {
@@ -91,7 +106,25 @@ pub(crate) fn load_materials(
                 .ior()
                 .filter(|&ior| metallic == 0.0 && ior.is_finite() && ior >= 1.0),
             double_sided: m.double_sided(),
+            normal_map,
+            alpha_mask,
         });
+    }
+}
+
+/// Records what of material `m` slc does not model: emission, alpha blending (drawn opaque),
+/// and extensions other than the ones it reads.
+fn record_ignored(m: &gltf::Material, name: &str, report: &mut LoadReport) {
+    if Vec3::from(m.emissive_factor()).max_element() > 0.0 || m.emissive_texture().is_some() {
+        report.ignore("emission", name);
+    }
+    if m.alpha_mode() == gltf::material::AlphaMode::Blend {
+        report.ignore("alphaMode BLEND (drawn opaque)", name);
+    }
+    for e in m.extensions().into_iter().flat_map(|e| e.keys()) {
+        if !SUPPORTED_EXTENSIONS.contains(&e.as_str()) {
+            report.ignore(e, name);
+        }
     }
 }
 
@@ -106,19 +139,20 @@ struct TextureLoader<'a> {
 impl TextureLoader<'_> {
     fn get(
         &mut self,
-        info: &gltf::texture::Info,
+        texture: gltf::Texture,
+        tex_coord: u32,
         encoding: Encoding,
         material: &str,
         scene: &mut Scene,
     ) -> Option<TextureId> {
-        let image = info.texture().source();
+        let image = texture.source();
         let name = image
             .name()
             .map_or_else(|| format!("image {}", image.index()), str::to_string);
-        if info.tex_coord() != 0 {
+        if tex_coord != 0 {
             scene.report.warnings.push(format!(
                 "material '{material}': texture '{name}' uses TEXCOORD_{} (only TEXCOORD_0 is read); the factor is used instead",
-                info.tex_coord()
+                tex_coord
             ));
             return None;
         }

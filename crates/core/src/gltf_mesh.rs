@@ -2,11 +2,11 @@
 //! [`crate::gltf_accessor`].
 use crate::gltf_accessor::{read_floats, read_indices};
 use crate::mesh::Mesh;
-use glam::{Mat3, Mat4, Vec2, Vec3};
+use glam::{Mat3, Mat4, Vec2, Vec3, Vec4};
 use gltf::accessor::DataType;
 use gltf::Semantic;
 
-/// Component types read for POSITION, NORMAL and TEXCOORD_0: floats, and the integer types of
+/// Component types read for POSITION, NORMAL, TANGENT and TEXCOORD_0: floats, and the integer types of
 /// `KHR_mesh_quantization` (normalized where the accessor says so).
 const ATTRIBUTE_TYPES: [DataType; 5] = [
     DataType::F32,
@@ -17,8 +17,9 @@ const ATTRIBUTE_TYPES: [DataType; 5] = [
 ];
 
 /// Reads a triangle primitive placed by `world`. Positions go through `world`, normals through
-/// its inverse transpose (renormalized later by the loader), and the winding is flipped where
-/// `world` mirrors. Non-fatal problems are pushed to `warnings`; malformed accessors are errors.
+/// its inverse transpose (renormalized later by the loader), tangents through its linear part
+/// (renormalized), and the winding and the tangents' handedness are flipped where `world`
+/// mirrors. Non-fatal problems are pushed to `warnings`; malformed accessors are errors.
 pub(crate) fn primitive_mesh(
     primitive: &gltf::Primitive,
     buffers: &[Vec<u8>],
@@ -53,6 +54,22 @@ pub(crate) fn primitive_mesh(
         None => None,
     };
 
+    let linear = Mat3::from_mat4(world);
+    let mirrored = linear.determinant() < 0.0;
+    let tangents = match primitive.get(&Semantic::Tangents) {
+        Some(acc) => Some(
+            read_floats::<4>(&acc, buffers, &at("TANGENT", &acc), &ATTRIBUTE_TYPES)?
+                .into_iter()
+                .map(|[x, y, z, w]| {
+                    let t = (linear * Vec3::new(x, y, z)).normalize_or_zero();
+                    let w = if (w < 0.0) != mirrored { -1.0 } else { 1.0 };
+                    t.extend(w)
+                })
+                .collect::<Vec<Vec4>>(),
+        ),
+        None => None,
+    };
+
     let uvs = match primitive.get(&Semantic::TexCoords(0)) {
         Some(acc) => Some(
             read_floats::<2>(&acc, buffers, &at("TEXCOORD_0", &acc), &ATTRIBUTE_TYPES)?
@@ -76,7 +93,6 @@ pub(crate) fn primitive_mesh(
             indices.len()
         ));
     }
-    let mirrored = Mat3::from_mat4(world).determinant() < 0.0;
     let triangles = indices
         .chunks_exact(3)
         .map(|t| {
@@ -92,6 +108,7 @@ pub(crate) fn primitive_mesh(
         positions,
         normals,
         uvs,
+        tangents,
         triangles,
         material,
     })

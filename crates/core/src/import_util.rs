@@ -2,14 +2,17 @@
 use crate::material::ALPHA_MIN;
 use crate::mesh::Mesh;
 use crate::scene::Scene;
+use crate::tangents::generate_tangents;
 
 /// Cleans `mesh` and adds it to `scene` unless nothing is left of it.
 ///
 /// - Shading normals are dropped (the face normal is used, with a warning) when their count
 ///   differs from the vertex count, or when a vertex with a finite position has a zero or
 ///   non-finite normal; otherwise they are renormalized.
-/// - Texture coordinates are dropped (with a warning) when their count differs.
+/// - Texture coordinates and tangents are dropped (with a warning) when their count differs.
 /// - Defective triangles are removed and counted in `scene.report.skipped`.
+/// - A mesh whose material has a normal map and that has no tangents gets MikkTSpace ones
+///   ([`generate_tangents`]); without texture coordinates the map cannot apply (a warning).
 pub(crate) fn add_mesh(scene: &mut Scene, mut mesh: Mesh) {
     if let Some(normals) = &mut mesh.normals {
         let bad = normals.len() != mesh.positions.len()
@@ -38,9 +41,32 @@ pub(crate) fn add_mesh(scene: &mut Scene, mut mesh: Mesh) {
         ));
         mesh.uvs = None;
     }
+    if mesh
+        .tangents
+        .as_ref()
+        .is_some_and(|t| t.len() != mesh.positions.len() || t.iter().any(|t| !t.is_finite()))
+    {
+        scene.report.warnings.push(format!(
+            "mesh '{}': tangents missing or non-finite for some vertices; they are generated",
+            mesh.name
+        ));
+        mesh.tangents = None;
+    }
     let skipped = mesh.remove_defective_triangles();
     if skipped.total() > 0 {
         scene.report.skipped.merge(skipped);
+    }
+    let normal_mapped = scene
+        .materials
+        .get(mesh.material)
+        .is_some_and(|m| m.normal_map.is_some());
+    if normal_mapped && mesh.tangents.is_none() {
+        if let Err(e) = generate_tangents(&mut mesh) {
+            scene.report.warnings.push(format!(
+                "mesh '{}': its normal map is not applied ({e})",
+                mesh.name
+            ));
+        }
     }
     if !mesh.triangles.is_empty() {
         scene.meshes.push(mesh);
@@ -66,7 +92,7 @@ mod tests {
             normals,
             uvs,
             triangles: vec![[0, 1, 2], [0, 2, 3]],
-            material: 0,
+            ..Default::default()
         }
     }
 

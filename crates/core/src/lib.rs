@@ -56,6 +56,7 @@ pub mod settings;
 pub mod shader;
 pub mod shapes;
 pub mod strategy;
+pub mod tangents;
 pub mod texture;
 #[cfg(feature = "loaders")]
 mod texture_decode;
@@ -78,7 +79,7 @@ pub use framebuffer::{GBuffer, GSample, Image};
 pub use light::{Incident, Light, MAX_RADIOMETRIC};
 #[cfg(feature = "loaders")]
 pub use load::{load_scene, load_scene_file, MAX_DROPPED_SHARE};
-pub use material::{Material, MaterialModel, ALPHA_MIN};
+pub use material::{AlphaMask, Material, MaterialModel, NormalMap, ALPHA_MIN};
 pub use mesh::Mesh;
 pub use render::{render, render_loaded};
 pub use renderer::{BackendInfo, Capabilities, PreparedFrame, Progress, Renderer};

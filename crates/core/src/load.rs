@@ -55,6 +55,7 @@ pub fn load_scene_file(path: &Path) -> Result<Scene, SceneError> {
         }),
     }?;
     scene.source = Some(path.to_path_buf());
+    scene.report.summarize_ignored();
     check_dropped(&mut scene)?;
     Ok(scene)
 }

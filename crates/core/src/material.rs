@@ -1,6 +1,6 @@
 //! Materials: a Lambertian diffuse layer plus a GGX specular layer.
 use crate::texture::{Texture, TextureId};
-use glam::{Vec2, Vec3};
+use glam::{Vec2, Vec3, Vec4};
 use slc_bounds::{Brdf, Fresnel};
 
 /// The smallest GGX α a material may have. The method cannot render α = 0 (perfect mirrors):
@@ -42,6 +42,57 @@ pub struct Material {
     /// One-sided surfaces (the default) are black and reflect nothing seen from behind; they
     /// still block light. Two-sided ones flip their normal towards the viewer.
     pub double_sided: bool,
+    /// A tangent-space normal map perturbing the shading normal (glTF `normalTexture`).
+    pub normal_map: Option<NormalMap>,
+    /// A cut-out mask (glTF `alphaMode: MASK`, OBJ `d` / `map_d`): where the coverage is below
+    /// the cutoff the surface does not exist, for every ray and rasterizer.
+    pub alpha_mask: Option<AlphaMask>,
+}
+
+/// A tangent-space normal map in glTF's convention: texel values `c` in [0, 1]³ encode the
+/// normal `(2c - 1) (scale, scale, 1)` (renormalised) in the frame (T, B, N) with
+/// `B = w (N x T)`, +X towards increasing u and +Y towards decreasing v (the image's up).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct NormalMap {
+    /// A linear texture.
+    pub texture: TextureId,
+    pub scale: f32,
+}
+
+impl NormalMap {
+    /// The perturbed shading normal at a point with interpolated unit normal `n` and tangent
+    /// `tangent` (xyz: the direction of increasing u, w: the handedness ±1), where the map
+    /// reads `texel`. The tangent is made orthogonal to `n` first (Gram-Schmidt), as MikkTSpace
+    /// expects; `None` where the frame or the result degenerates (the caller keeps `n`).
+    pub fn perturb(&self, n: Vec3, tangent: Vec4, texel: Vec3) -> Option<Vec3> {
+        let t = (tangent.truncate() - n * n.dot(tangent.truncate())).try_normalize()?;
+        let b = n.cross(t) * if tangent.w < 0.0 { -1.0 } else { 1.0 };
+        let c = (texel * 2.0 - Vec3::ONE) * Vec3::new(self.scale, self.scale, 1.0);
+        (t * c.x + b * c.y + n * c.z).try_normalize()
+    }
+}
+
+/// A cut-out mask: the surface exists where `factor * texture` (the texture's alpha) is at
+/// least `cutoff` (glTF: "rendered fully opaque" there, "fully transparent" elsewhere).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct AlphaMask {
+    pub cutoff: f32,
+    /// glTF `baseColorFactor`'s alpha, OBJ `d`.
+    pub factor: f32,
+    /// A texture holding the coverage in every channel (see `Encoding::Alpha` of the loaders).
+    pub texture: Option<TextureId>,
+}
+
+impl AlphaMask {
+    /// Whether the surface is cut away at `uv` (without texture coordinates only the factor
+    /// counts).
+    pub fn cuts(&self, uv: Option<Vec2>, textures: &[Texture]) -> bool {
+        let coverage = match (self.texture.and_then(|id| textures.get(id)), uv) {
+            (Some(t), Some(uv)) => t.sample(uv).x,
+            _ => 1.0,
+        };
+        self.factor * coverage < self.cutoff
+    }
 }
 
 impl Material {
@@ -57,6 +108,8 @@ impl Material {
             },
             eta: None,
             double_sided: false,
+            normal_map: None,
+            alpha_mask: None,
         }
     }
 
@@ -104,6 +157,34 @@ impl Material {
         }
     }
 
+    /// The shading normal at a point whose interpolated unit vertex normal is `n`, with
+    /// interpolated `tangent` (xyz; w from the triangle's first vertex) and texture
+    /// coordinate `uv`: `n` perturbed by the normal map (section 3.9.3 of glTF 2.0) where
+    /// the material has one and the mesh has tangents and texture coordinates, else `n`. A
+    /// perturbed normal is kept only on `n`'s side (a broken map or frame keeps `n`).
+    pub fn shading_normal(
+        &self,
+        n: Vec3,
+        tangent: Option<Vec4>,
+        uv: Option<Vec2>,
+        textures: &[Texture],
+    ) -> Vec3 {
+        let (Some(map), Some(tangent), Some(uv)) = (self.normal_map, tangent, uv) else {
+            return n;
+        };
+        let Some(texture) = textures.get(map.texture) else {
+            return n;
+        };
+        map.perturb(n, tangent, texture.sample(uv))
+            .filter(|p| p.dot(n) > 0.0)
+            .unwrap_or(n)
+    }
+
+    /// Whether the surface is cut away at `uv` by its alpha mask (never without one).
+    pub fn cuts(&self, uv: Option<Vec2>, textures: &[Texture]) -> bool {
+        self.alpha_mask.is_some_and(|m| m.cuts(uv, textures))
+    }
+
     /// Whether the specular layer can reflect anything (F0 > 0 or a dielectric).
     pub fn has_specular(&self) -> bool {
         match self.model {
@@ -131,6 +212,8 @@ mod tests {
             },
             eta: None,
             double_sided: false,
+            normal_map: None,
+            alpha_mask: None,
         };
         let b = m.brdf_at(None, &[]);
         assert_eq!(b.kd, Vec3::ZERO);

@@ -1,5 +1,5 @@
 //! Triangle meshes.
-use glam::{Vec2, Vec3};
+use glam::{Vec2, Vec3, Vec4};
 
 /// An indexed triangle mesh in world space with one material.
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -9,6 +9,10 @@ pub struct Mesh {
     /// Per-vertex shading normals; the face normal is used where absent.
     pub normals: Option<Vec<Vec3>>,
     pub uvs: Option<Vec<Vec2>>,
+    /// Per-vertex tangents for normal maps (glTF `TANGENT`): xyz the unit direction of
+    /// increasing u, w = ±1 the handedness, the bitangent being `w (normal x tangent)`.
+    /// Loaders generate MikkTSpace ones ([`crate::tangents`]) where a normal-mapped mesh has none.
+    pub tangents: Option<Vec<Vec4>>,
     pub triangles: Vec<[u32; 3]>,
     /// Index into `Scene::materials`.
     pub material: usize,
@@ -36,6 +40,10 @@ impl Mesh {
                 .is_some_and(|v| tri.iter().any(|&i| i as usize >= v.len()))
             || self
                 .uvs
+                .as_ref()
+                .is_some_and(|v| tri.iter().any(|&i| i as usize >= v.len()))
+            || self
+                .tangents
                 .as_ref()
                 .is_some_and(|v| tri.iter().any(|&i| i as usize >= v.len()))
         {

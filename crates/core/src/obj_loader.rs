@@ -16,7 +16,11 @@
 //!   microfacet lobe (`Ns` below 0 or absent: 0, so alpha = 1), clamped to the range from
 //!   [`ALPHA_MIN`] to 1 with a warning when clamped.
 //! - Emission (`Ke`): OBJ emitters are not lights in this project (lights come from the scene
-//!   settings); an emissive material gives a warning and is treated as its reflectance.
+//!   settings); it is listed as ignored and the material is its reflectance. So are bump
+//!   maps (`map_Bump`, `bump`: height maps, not glTF normal maps) and a plain dissolve
+//!   `d` < 1 (transparency; drawn opaque).
+//! - `map_d` makes a cut-out: the surface exists where `d` (default 1) times the map's
+//!   coverage (its alpha channel, else its grey level) is at least 0.5.
 //! - Every OBJ material is `double_sided`: OBJ has no facing convention, so the side a face
 //!   is seen from decides.
 //! - Meshes without a material (no `usemtl`, an unknown name, or an unreadable MTL file, which
@@ -24,7 +28,7 @@
 use crate::error::SceneError;
 use crate::file_read::read_capped;
 use crate::import_util::{add_mesh, small_alpha_warning};
-use crate::material::{Material, MaterialModel, ALPHA_MIN};
+use crate::material::{AlphaMask, Material, MaterialModel, ALPHA_MIN};
 use crate::mesh::Mesh;
 use crate::scene::Scene;
 use crate::texture::TextureId;
@@ -220,6 +224,7 @@ fn convert_mesh(model: tobj::Model, material: usize) -> Mesh {
                 .map(|c| Vec2::new(c[0], 1.0 - c[1]))
                 .collect()
         }),
+        tangents: None,
         triangles: m
             .indices
             .chunks_exact(3)
@@ -233,13 +238,13 @@ fn convert_mesh(model: tobj::Model, material: usize) -> Mesh {
 fn convert_material(
     m: &tobj::Material,
     lib_dir: &Path,
-    textures: &mut HashMap<PathBuf, Option<TextureId>>,
+    textures: &mut HashMap<(PathBuf, Encoding), Option<TextureId>>,
     scene: &mut Scene,
 ) -> Material {
     let kd_texture = m
         .diffuse_texture
         .as_deref()
-        .and_then(|t| texture(&m.name, t, lib_dir, textures, scene));
+        .and_then(|t| texture(&m.name, t, Encoding::Srgb, lib_dir, textures, scene));
     let kd_default = if m.diffuse_texture.is_some() {
         1.0
     } else {
@@ -255,12 +260,31 @@ fn convert_material(
             .warnings
             .extend(small_alpha_warning(&m.name, alpha));
     }
-    if let Some(ke) = m.emissive.filter(|ke| ke.iter().any(|&x| x > 0.0)) {
-        scene.report.warnings.push(format!(
-            "material '{}': emission Ke {ke:?} is ignored: OBJ emitters are not lights here (lights come from the scene settings); it is treated as its reflectance",
-            m.name
-        ));
+    if m.emissive.is_some_and(|ke| ke.iter().any(|&x| x > 0.0)) {
+        scene.report.ignore("emission", &m.name);
     }
+    if m.normal_texture.is_some() {
+        scene.report.ignore("bump map (map_Bump)", &m.name);
+    }
+    let dissolve = m
+        .dissolve
+        .filter(|d| d.is_finite())
+        .map(|d| d.clamp(0.0, 1.0));
+    let alpha_mask = match &m.dissolve_texture {
+        Some(t) => Some(AlphaMask {
+            cutoff: 0.5,
+            factor: dissolve.unwrap_or(1.0),
+            texture: texture(&m.name, t, Encoding::Coverage, lib_dir, textures, scene),
+        }),
+        None => {
+            if dissolve.is_some_and(|d| d < 1.0) {
+                scene
+                    .report
+                    .ignore("transparency d < 1 (drawn opaque)", &m.name);
+            }
+            None
+        }
+    };
     Material {
         name: m.name.clone(),
         model: MaterialModel::Direct {
@@ -271,6 +295,8 @@ fn convert_material(
         },
         eta: None,
         double_sided: true,
+        normal_map: None,
+        alpha_mask,
     }
 }
 
@@ -285,12 +311,14 @@ fn unit_rgb(c: [f32; 3]) -> Vec3 {
     }))
 }
 
-/// The texture of a `map_Kd` statement (decoded once per file), or `None` with a warning.
+/// The texture of a `map_Kd` or `map_d` statement (decoded once per file and encoding), or
+/// `None` with a warning.
 fn texture(
     material: &str,
     statement: &str,
+    encoding: Encoding,
     lib_dir: &Path,
-    textures: &mut HashMap<PathBuf, Option<TextureId>>,
+    textures: &mut HashMap<(PathBuf, Encoding), Option<TextureId>>,
     scene: &mut Scene,
 ) -> Option<TextureId> {
     // Options come before the file name: keep the last word when the statement has options.
@@ -300,22 +328,22 @@ fn texture(
         statement
     };
     let path = lib_dir.join(file.replace('\\', "/"));
-    if let Some(&id) = textures.get(&path) {
+    if let Some(&id) = textures.get(&(path.clone(), encoding)) {
         return id;
     }
-    let id = match read_texture(&path, Encoding::Srgb) {
+    let id = match read_texture(&path, encoding) {
         Ok(t) => {
             scene.textures.push(t);
             Some(scene.textures.len() - 1)
         }
         Err(e) => {
             scene.report.warnings.push(format!(
-                "material '{material}': texture {} cannot be used ({e}); Kd alone is used",
+                "material '{material}': texture {} cannot be used ({e}); the factor alone is used",
                 path.display()
             ));
             None
         }
     };
-    textures.insert(path, id);
+    textures.insert((path, encoding), id);
     id
 }

@@ -6,6 +6,7 @@ use crate::material::Material;
 use crate::mesh::{DefectCounts, Mesh};
 use crate::texture::Texture;
 use glam::Vec3;
+use std::collections::BTreeMap;
 use std::path::PathBuf;
 
 /// What a loader skipped, fixed or could not find, for the user to read.
@@ -16,6 +17,41 @@ pub struct LoadReport {
     /// Human-readable warnings: missing textures (the factor is used instead), clamped
     /// roughness, unsupported features that were ignored.
     pub warnings: Vec<String>,
+    /// Features of the file that slc does not model and ignored (emission, alpha blending,
+    /// glTF extensions such as `KHR_materials_clearcoat`, OBJ bump maps), each with the
+    /// materials that use it ("the file" for file-wide ones). [`LoadReport::summarize_ignored`]
+    /// turns them into one warning.
+    pub ignored: BTreeMap<String, Vec<String>>,
+}
+
+impl LoadReport {
+    /// Records that `by` (a material's name, or "the file") uses `feature`, which is ignored.
+    pub fn ignore(&mut self, feature: &str, by: &str) {
+        let users = self.ignored.entry(feature.to_string()).or_default();
+        if !users.iter().any(|u| u == by) {
+            users.push(by.to_string());
+        }
+    }
+
+    /// Adds one warning naming every ignored feature and how many materials use it (nothing
+    /// when none was ignored).
+    pub fn summarize_ignored(&mut self) {
+        if self.ignored.is_empty() {
+            return;
+        }
+        let list: Vec<String> = self
+            .ignored
+            .iter()
+            .map(|(feature, users)| match users.as_slice() {
+                [one] => format!("{feature} ({one})"),
+                many => format!("{feature} ({} materials)", many.len()),
+            })
+            .collect();
+        self.warnings.push(format!(
+            "not modelled by slc, ignored: {} (the list is in report.json)",
+            list.join(", ")
+        ));
+    }
 }
 
 /// A scene in world space (right-handed, +y up by convention of the loaders' sources).

@@ -364,6 +364,8 @@ fn metallic_roughness_materials_are_overridden() {
         },
         eta: None,
         double_sided: true,
+        normal_map: None,
+        alpha_mask: None,
     };
     let o = |alpha, f0| MaterialOverride {
         pattern: "head".into(),

@@ -10,12 +10,18 @@ use std::sync::OnceLock;
 pub(crate) enum Encoding {
     /// sRGB-encoded colour (glTF base colour, OBJ `map_Kd`).
     Srgb,
-    /// Values stored linearly (glTF metallic-roughness).
+    /// Values stored linearly (glTF metallic-roughness and normal maps).
     Linear,
+    /// The alpha channel (linear; 1 where the image has none), stored in all three channels:
+    /// the coverage of a glTF cut-out mask.
+    Alpha,
+    /// The alpha channel where the image has one, else its first (grey) channel, linear, in
+    /// all three channels: the coverage of an OBJ `map_d`.
+    Coverage,
 }
 
-/// Decodes an encoded image (format guessed from its content) into a texture named `name`.
-/// Alpha is dropped; 8- and 16-bit images are supported.
+/// Decodes an encoded image (format guessed from its content) into a texture named `name`:
+/// its RGB, or its alpha channel for [`Encoding::Alpha`]; 8- and 16-bit images are supported.
 pub(crate) fn decode_texture(
     bytes: &[u8],
     name: &str,
@@ -27,16 +33,34 @@ pub(crate) fn decode_texture(
         .decode()
         .map_err(|e| e.to_string())?;
     let (width, height) = (image.width(), image.height());
-    let rgb = image.into_rgb16();
-    let lut = match encoding {
-        Encoding::Srgb => srgb_lut(),
-        Encoding::Linear => linear_lut(),
+    let channel = match encoding {
+        Encoding::Alpha => Some(3),
+        Encoding::Coverage => Some(if image.color().has_alpha() { 3 } else { 0 }),
+        Encoding::Srgb | Encoding::Linear => None,
     };
-    let texels = rgb
-        .as_raw()
-        .chunks_exact(3)
-        .map(|c| Vec3::new(lut[c[0] as usize], lut[c[1] as usize], lut[c[2] as usize]))
-        .collect();
+    let texels = match channel {
+        Some(k) => {
+            let lut = linear_lut();
+            image
+                .into_rgba16()
+                .as_raw()
+                .chunks_exact(4)
+                .map(|c| Vec3::splat(lut[c[k] as usize]))
+                .collect()
+        }
+        None => {
+            let lut = match encoding {
+                Encoding::Srgb => srgb_lut(),
+                _ => linear_lut(),
+            };
+            image
+                .into_rgb16()
+                .as_raw()
+                .chunks_exact(3)
+                .map(|c| Vec3::new(lut[c[0] as usize], lut[c[1] as usize], lut[c[2] as usize]))
+                .collect()
+        }
+    };
     Ok(Texture {
         name: name.to_string(),
         width,
@@ -89,6 +113,36 @@ mod tests {
         assert!((t.texels[1].x - srgb_to_linear(128.0 / 255.0)).abs() < 1e-6);
         let t = decode_texture(&png_2x1(), "t", Encoding::Linear).unwrap();
         assert!((t.texels[1].y - 128.0 / 255.0).abs() < 1e-6);
+        // No alpha channel: fully covered.
+        let t = decode_texture(&png_2x1(), "t", Encoding::Alpha).unwrap();
+        assert_eq!(t.texels, vec![Vec3::ONE; 2]);
+    }
+
+    #[test]
+    fn alpha_decoding() {
+        let img = image::RgbaImage::from_raw(2, 1, vec![9, 9, 9, 0, 9, 9, 9, 128]).unwrap();
+        let mut bytes = Vec::new();
+        img.write_to(&mut Cursor::new(&mut bytes), image::ImageFormat::Png)
+            .unwrap();
+        for encoding in [Encoding::Alpha, Encoding::Coverage] {
+            let t = decode_texture(&bytes, "t", encoding).unwrap();
+            assert_eq!(t.texels[0], Vec3::ZERO);
+            assert!(
+                (t.texels[1] - Vec3::splat(128.0 / 255.0))
+                    .abs()
+                    .max_element()
+                    < 1e-6
+            );
+        }
+        // A grey map_d without alpha: its grey level.
+        let t = decode_texture(&png_2x1(), "t", Encoding::Coverage).unwrap();
+        assert_eq!(t.texels[0], Vec3::ZERO);
+        assert!(
+            (t.texels[1] - Vec3::splat(128.0 / 255.0))
+                .abs()
+                .max_element()
+                < 1e-6
+        );
     }
 
     #[test]

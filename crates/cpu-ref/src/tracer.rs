@@ -1,12 +1,15 @@
-//! Ray casting against the scene's triangles with an obvhs compressed wide BVH.
+//! Ray casting against the scene's triangles with an obvhs compressed wide BVH. Triangles of
+//! alpha-masked materials are cut out where their mask says so, for every query (camera,
+//! RSM and shadow rays): a hit there is ignored and the ray goes on (any-hit test).
 use crate::watertight::{barycentric, ShearedRay};
-use glam::{Vec3, Vec3A};
+use glam::{Vec2, Vec3, Vec3A};
 use obvhs::cwbvh::{builder::build_cwbvh_from_tris, CwBvh};
 use obvhs::ray::{Ray, RayHit};
 use obvhs::triangle::Triangle;
 use obvhs::BvhBuildParams;
 use slc_bounds::Brdf;
-use slc_core::Scene;
+use slc_core::texture::Texture;
+use slc_core::{AlphaMask, Scene};
 use std::time::Duration;
 
 /// Which mesh triangle a BVH primitive is.
@@ -14,6 +17,18 @@ use std::time::Duration;
 struct PrimRef {
     mesh: u32,
     tri: u32,
+    /// Index into `Tracer::cutouts`, [`NOT_MASKED`] for opaque triangles.
+    cutout: u32,
+}
+
+const NOT_MASKED: u32 = u32::MAX;
+
+/// What the any-hit test of an alpha-masked triangle needs.
+#[derive(Clone, Copy, Debug)]
+struct Cutout {
+    /// The texture coordinates of its vertices (`None`: the mask's factor alone counts).
+    uvs: Option<[Vec2; 3]>,
+    mask: AlphaMask,
 }
 
 /// A BVH over every triangle of a scene, with closest-hit and occlusion queries.
@@ -22,6 +37,9 @@ pub struct Tracer {
     /// Triangles in BVH primitive order.
     tris: Vec<Triangle>,
     prims: Vec<PrimRef>,
+    cutouts: Vec<Cutout>,
+    /// The scene's textures, for the masks of `cutouts` (empty when nothing is masked).
+    textures: Vec<Texture>,
     /// Offset that lifts ray origins off surfaces, relative to the scene's size.
     epsilon: f32,
 }
@@ -45,13 +63,24 @@ impl Tracer {
     pub fn new(scene: &Scene) -> Self {
         let mut tris = Vec::with_capacity(scene.triangle_count());
         let mut prims = Vec::with_capacity(scene.triangle_count());
+        let mut cutouts = Vec::new();
         for (mi, mesh) in scene.meshes.iter().enumerate() {
+            let mask = scene.materials[mesh.material].alpha_mask;
             for (ti, t) in mesh.triangles.iter().enumerate() {
                 let [v0, v1, v2] = t.map(|i| Vec3A::from(mesh.positions[i as usize]));
                 tris.push(Triangle { v0, v1, v2 });
+                let cutout = match mask {
+                    Some(mask) => {
+                        let uvs = mesh.uvs.as_ref().map(|uv| t.map(|i| uv[i as usize]));
+                        cutouts.push(Cutout { uvs, mask });
+                        cutouts.len() as u32 - 1
+                    }
+                    None => NOT_MASKED,
+                };
                 prims.push(PrimRef {
                     mesh: mi as u32,
                     tri: ti as u32,
+                    cutout,
                 });
             }
         }
@@ -63,11 +92,52 @@ impl Tracer {
         let order = &bvh.primitive_indices;
         let tris = order.iter().map(|&i| tris[i as usize]).collect();
         let prims = order.iter().map(|&i| prims[i as usize]).collect();
+        let textures = match cutouts.is_empty() {
+            true => Vec::new(),
+            false => scene.textures.clone(),
+        };
         Self {
             bvh,
             tris,
             prims,
+            cutouts,
+            textures,
             epsilon: Self::scene_epsilon(scene),
+        }
+    }
+
+    /// The ray's distance to BVH primitive `id` within (tmin, tmax], infinite where it misses
+    /// or meets the triangle where its mask cuts it away.
+    #[inline]
+    fn hit_distance(
+        &self,
+        ray: &ShearedRay,
+        id: usize,
+        origin: Vec3,
+        dir: Vec3,
+        tmin: f32,
+        tmax: f32,
+    ) -> f32 {
+        let tri = &self.tris[id];
+        let t = ray.intersect(tri, tmin, tmax);
+        let cutout = self.prims[id].cutout;
+        if cutout == NOT_MASKED || t == f32::INFINITY {
+            return t;
+        }
+        let c = &self.cutouts[cutout as usize];
+        let uv = c.uvs.map(|[a, b, cc]| {
+            let (w0, w1, w2) = barycentric(
+                tri.v0.into(),
+                tri.v1.into(),
+                tri.v2.into(),
+                origin + dir * t,
+            );
+            a * w0 + b * w1 + cc * w2
+        });
+        if c.mask.cuts(uv, &self.textures) {
+            f32::INFINITY
+        } else {
+            t
         }
     }
 
@@ -97,7 +167,7 @@ impl Tracer {
         let sheared = ShearedRay::new(origin, dir);
         let mut hit = RayHit::none();
         if !self.bvh.ray_traverse(ray, &mut hit, |r, id| {
-            sheared.intersect(&self.tris[id], r.tmin, r.tmax)
+            self.hit_distance(&sheared, id, origin, dir, r.tmin, r.tmax)
         }) {
             return None;
         }
@@ -129,7 +199,7 @@ impl Tracer {
         let ray = Ray::new(from.into(), dir.into(), tmin, tmax);
         let sheared = ShearedRay::new(from, dir);
         self.bvh.ray_traverse_miss(ray, |r, id| {
-            sheared.intersect(&self.tris[id], r.tmin, r.tmax)
+            self.hit_distance(&sheared, id, from, dir, r.tmin, r.tmax)
         })
     }
 
@@ -154,11 +224,21 @@ impl Tracer {
         let [a, b, c] = idx.map(|i| mesh.positions[i]);
         let mut ng = (b - a).cross(c - a).normalize();
         let (w0, w1, w2) = barycentric(a, b, c, position);
-        let mut ns = mesh
+        let interpolated = mesh
             .normals
             .as_ref()
             .and_then(|n| (n[idx[0]] * w0 + n[idx[1]] * w1 + n[idx[2]] * w2).try_normalize())
             .unwrap_or(ng);
+        let uv = mesh
+            .uvs
+            .as_ref()
+            .map(|t| t[idx[0]] * w0 + t[idx[1]] * w1 + t[idx[2]] * w2);
+        let tangent = mesh.tangents.as_ref().map(|t| {
+            let xyz =
+                t[idx[0]].truncate() * w0 + t[idx[1]].truncate() * w1 + t[idx[2]].truncate() * w2;
+            xyz.extend(t[idx[0]].w)
+        });
+        let mut ns = material.shading_normal(interpolated, tangent, uv, &scene.textures);
         let mut front = dir.dot(ng) < 0.0;
         if material.double_sided && !front {
             ng = -ng;
@@ -167,10 +247,6 @@ impl Tracer {
         if ns.dot(ng) < 0.0 {
             ns = -ns;
         }
-        let uv = mesh
-            .uvs
-            .as_ref()
-            .map(|t| t[idx[0]] * w0 + t[idx[1]] * w1 + t[idx[2]] * w2);
         let brdf = material.brdf_at(uv, &scene.textures);
         SurfaceHit {
             position,

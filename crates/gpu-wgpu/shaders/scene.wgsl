@@ -127,10 +127,36 @@ fn normalize_or(v: vec3<f32>, fallback: vec3<f32>) -> vec3<f32> {
     return fallback;
 }
 
+// AlphaMask::cuts (Material::cuts): whether material m's mask cuts the surface away at uv
+// (coverage 1 without a texture or texture coordinates).
+fn cut_away(m: SceneMaterial, has_uv: bool, uv: vec2<f32>) -> bool {
+    if (m.info.w & MATERIAL_ALPHA_MASK) == 0u {
+        return false;
+    }
+    return m.map_params.z * lookup(m.maps.y, has_uv, uv).x < m.map_params.y;
+}
+
+// Material::shading_normal with NormalMap::perturb: the unit normal n perturbed by material
+// m's normal map in the frame of `tangent` (xyz, handedness w), kept only on n's side.
+fn mapped_normal(m: SceneMaterial, n: vec3<f32>, tangent: vec4<f32>, uv: vec2<f32>) -> vec3<f32> {
+    let t = normalize_or(tangent.xyz - n * dot(n, tangent.xyz), vec3<f32>(0.0));
+    if all(t == vec3<f32>(0.0)) {
+        return n;
+    }
+    let b = cross(n, t) * select(1.0, -1.0, tangent.w < 0.0);
+    let c = (texture_sample(m.maps.x, uv) * 2.0 - vec3<f32>(1.0))
+        * vec3<f32>(m.map_params.x, m.map_params.x, 1.0);
+    let p = normalize_or(t * c.x + b * c.y + n * c.z, vec3<f32>(0.0));
+    if dot(p, n) > 0.0 {
+        return p;
+    }
+    return n;
+}
+
 // The hit of the ray origin + t dir (t > 0) with triangle `tri`, oriented and shaded as
 // Tracer::surface: barycentrics as watertight.rs barycentric (here in f32), the shading
-// normal interpolated and flipped to the geometric normal's side, two-sided materials
-// facing the ray.
+// normal interpolated, perturbed by the normal map and flipped to the geometric normal's
+// side, two-sided materials facing the ray.
 fn surface(tri: u32, origin: vec3<f32>, dir: vec3<f32>) -> Surface {
     var s: Surface;
     let tr = triangles[tri];
@@ -159,6 +185,14 @@ fn surface(tri: u32, origin: vec3<f32>, dir: vec3<f32>) -> Surface {
         ns = normalize_or(va.normal_v.xyz * w0 + vb.normal_v.xyz * w1 + vc.normal_v.xyz * w2, ng);
     }
     let m = materials[tr.vertices.w];
+    let has_uv = (tr.info.x & TRIANGLE_UVS) != 0u;
+    let uv = vec2<f32>(va.position_u.w, va.normal_v.w) * w0
+        + vec2<f32>(vb.position_u.w, vb.normal_v.w) * w1
+        + vec2<f32>(vc.position_u.w, vc.normal_v.w) * w2;
+    if m.maps.x != NO_TEXTURE && has_uv && (tr.info.x & TRIANGLE_TANGENTS) != 0u {
+        let tangent = va.tangent.xyz * w0 + vb.tangent.xyz * w1 + vc.tangent.xyz * w2;
+        ns = mapped_normal(m, ns, vec4<f32>(tangent, va.tangent.w), uv);
+    }
     s.front = dot(dir, ng) < 0.0;
     if (m.info.w & MATERIAL_DOUBLE_SIDED) != 0u && !s.front {
         ng = -ng;
@@ -169,10 +203,6 @@ fn surface(tri: u32, origin: vec3<f32>, dir: vec3<f32>) -> Surface {
     }
     s.geometric_normal = ng;
     s.shading_normal = ns;
-    let has_uv = (tr.info.x & TRIANGLE_UVS) != 0u;
-    let uv = vec2<f32>(va.position_u.w, va.normal_v.w) * w0
-        + vec2<f32>(vb.position_u.w, vb.normal_v.w) * w1
-        + vec2<f32>(vc.position_u.w, vc.normal_v.w) * w2;
     s.brdf = material_brdf(m, has_uv, uv);
     return s;
 }

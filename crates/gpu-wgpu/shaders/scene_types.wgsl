@@ -1,19 +1,21 @@
 // The flattened scene of src/scene_upload.rs (structs mirror src/raster_types.rs): every
 // mesh's vertices in one array, triangles with global vertex indices and their material,
 // materials, and textures as RGB float triples in one texel array. Prepended to
-// visibility.wgsl and scene.wgsl.
+// scene.wgsl.
 
 struct Vertex {
     // position (xyz), texture coordinate u (w)
     position_u: vec4<f32>,
     // shading normal (xyz, zero without normals), texture coordinate v (w)
     normal_v: vec4<f32>,
+    // tangent (xyz) and handedness (w), zero without tangents
+    tangent: vec4<f32>,
 }
 
 struct Triangle {
     // global vertex indices (xyz), material (w)
     vertices: vec4<u32>,
-    // x: TRIANGLE_NORMALS | TRIANGLE_UVS
+    // x: TRIANGLE_NORMALS | TRIANGLE_UVS | TRIANGLE_TANGENTS
     info: vec4<u32>,
 }
 
@@ -26,6 +28,10 @@ struct SceneMaterial {
     params: vec4<f32>,
     // model, colour texture, metallic-roughness texture, flags
     info: vec4<u32>,
+    // normal-map texture, alpha-mask texture, unused, unused
+    maps: vec4<u32>,
+    // normal-map scale, alpha cutoff, alpha factor, unused
+    map_params: vec4<f32>,
 }
 
 struct TextureInfo {
@@ -38,9 +44,11 @@ struct TextureInfo {
 
 const TRIANGLE_NORMALS: u32 = 1u;
 const TRIANGLE_UVS: u32 = 2u;
+const TRIANGLE_TANGENTS: u32 = 4u;
 const NO_TEXTURE: u32 = 0xffffffffu;
 const MATERIAL_DIRECT: u32 = 0u;
 const MATERIAL_DOUBLE_SIDED: u32 = 1u;
 const MATERIAL_DIELECTRIC: u32 = 2u;
+const MATERIAL_ALPHA_MASK: u32 = 4u;
 const ALPHA_MIN: f32 = 1e-3;
 const F32_MAX: f32 = 3.40282347e38;

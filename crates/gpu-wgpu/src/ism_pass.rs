@@ -121,12 +121,14 @@ pub struct GpuCaster {
 const _: () = assert!(std::mem::size_of::<GpuCaster>() == 32);
 
 /// `settings.points` caster discs sampled uniformly by area over `scene`'s triangles (see the
-/// module docs); none for a scene without area. Deterministic in `settings.seed`.
+/// module docs), less those an alpha mask cuts away (the others keep their density); none
+/// for a scene without area. Deterministic in `settings.seed`.
 pub fn caster_points(scene: &Scene, settings: &IsmSettings) -> Vec<GpuCaster> {
     let mut tris = Vec::new();
     let mut cdf = Vec::new();
     let mut total = 0.0f64;
     for mesh in &scene.meshes {
+        let material = scene.materials.get(mesh.material);
         for t in &mesh.triangles {
             let [a, b, c] = t.map(|i| mesh.positions.get(i as usize).copied());
             let (Some(a), Some(b), Some(c)) = (a, b, c) else {
@@ -138,7 +140,12 @@ pub fn caster_points(scene: &Scene, settings: &IsmSettings) -> Vec<GpuCaster> {
                 continue;
             }
             total += area;
-            tris.push((a, b, c, cross.normalize()));
+            let uvs = mesh
+                .uvs
+                .as_ref()
+                .map(|uv| t.map(|i| uv.get(i as usize).copied()))
+                .and_then(|[a, b, c]| Some([a?, b?, c?]));
+            tris.push((a, b, c, cross.normalize(), material, uvs));
             cdf.push(total);
         }
     }
@@ -148,18 +155,23 @@ pub fn caster_points(scene: &Scene, settings: &IsmSettings) -> Vec<GpuCaster> {
     let radius = settings.footprint
         * (total / (f64::from(settings.points) * std::f64::consts::PI)).sqrt() as f32;
     (0..settings.points)
-        .map(|i| {
+        .filter_map(|i| {
             let u = |k| rng_uniform(settings.seed, i, stream::ISM_CASTERS, k);
             let target = f64::from(u(0)) * total;
             let t = cdf.partition_point(|&c| c < target).min(tris.len() - 1);
-            let (a, b, c, n) = tris[t];
+            let (a, b, c, n, material, uvs) = tris[t];
             let s = u(1).sqrt();
             let r = u(2);
-            let p: Vec3 = a * (1.0 - s) + b * (s * (1.0 - r)) + c * (s * r);
-            GpuCaster {
+            let w = [1.0 - s, s * (1.0 - r), s * r];
+            let uv = uvs.map(|[ua, ub, uc]| ua * w[0] + ub * w[1] + uc * w[2]);
+            if material.is_some_and(|m| m.cuts(uv, &scene.textures)) {
+                return None;
+            }
+            let p: Vec3 = a * w[0] + b * w[1] + c * w[2];
+            Some(GpuCaster {
                 position_radius: [p.x, p.y, p.z, radius],
                 normal: [n.x, n.y, n.z, 0.0],
-            }
+            })
         })
         .collect()
 }

@@ -11,12 +11,16 @@ pub const NO_TEXTURE: u32 = u32::MAX;
 /// `GpuMaterial::info[0]`: `MaterialModel::Direct` or `MaterialModel::MetallicRoughness`.
 pub const MATERIAL_DIRECT: u32 = 0;
 pub const MATERIAL_METALLIC_ROUGHNESS: u32 = 1;
-/// `GpuMaterial::info[3]` bits: two-sided, and a dielectric Fresnel (`Material::eta`).
+/// `GpuMaterial::info[3]` bits: two-sided, a dielectric Fresnel (`Material::eta`), an alpha
+/// mask (`Material::alpha_mask`).
 pub const MATERIAL_DOUBLE_SIDED: u32 = 1;
 pub const MATERIAL_DIELECTRIC: u32 = 2;
-/// `GpuTriangle::info[0]` bits: the mesh has per-vertex normals, texture coordinates.
+pub const MATERIAL_ALPHA_MASK: u32 = 4;
+/// `GpuTriangle::info[0]` bits: the mesh has per-vertex normals, texture coordinates,
+/// tangents.
 pub const TRIANGLE_NORMALS: u32 = 1;
 pub const TRIANGLE_UVS: u32 = 2;
+pub const TRIANGLE_TANGENTS: u32 = 4;
 
 /// One mesh vertex in world space. Keep in sync with `Vertex` in `shaders/scene_types.wgsl`.
 #[repr(C)]
@@ -26,8 +30,10 @@ pub struct GpuVertex {
     pub position_u: [f32; 4],
     /// Shading normal (xyz, zero if the mesh has none) and texture coordinate v (w).
     pub normal_v: [f32; 4],
+    /// Tangent (xyz) and handedness (w) (`Mesh::tangents`; zero if the mesh has none).
+    pub tangent: [f32; 4],
 }
-const _: () = assert!(std::mem::size_of::<GpuVertex>() == 32);
+const _: () = assert!(std::mem::size_of::<GpuVertex>() == 48);
 
 /// One triangle of the flattened scene. Keep in sync with `Triangle` in
 /// `shaders/scene_types.wgsl`.
@@ -53,10 +59,14 @@ pub struct GpuMaterial {
     /// Metallic, roughness, η (dielectric), unused.
     pub params: [f32; 4],
     /// Model, colour texture, metallic-roughness texture ([`NO_TEXTURE`]: none), flags
-    /// ([`MATERIAL_DOUBLE_SIDED`] | [`MATERIAL_DIELECTRIC`]).
+    /// ([`MATERIAL_DOUBLE_SIDED`] | [`MATERIAL_DIELECTRIC`] | [`MATERIAL_ALPHA_MASK`]).
     pub info: [u32; 4],
+    /// Normal-map texture, alpha-mask texture ([`NO_TEXTURE`]: none), unused, unused.
+    pub maps: [u32; 4],
+    /// Normal-map scale, alpha cutoff, alpha factor, unused.
+    pub map_params: [f32; 4],
 }
-const _: () = assert!(std::mem::size_of::<GpuMaterial>() == 64);
+const _: () = assert!(std::mem::size_of::<GpuMaterial>() == 96);
 
 /// Where a texture's RGB texels start in the texel array (in floats) and its size. Keep in
 /// sync with `TextureInfo` in `shaders/scene_types.wgsl`.

@@ -1,18 +1,20 @@
 //! The scene on the GPU: every mesh's vertices and triangles flattened into two storage
-//! buffers, the materials (`slc_core::Material`, both models, η and two-sidedness) and the
+//! buffers, the materials (`slc_core::Material`, both models, η, two-sidedness, normal maps
+//! and alpha masks) and the
 //! textures as RGB float triples, exactly what `Material::brdf_at` and `Texture::sample`
 //! read on the CPU (`shaders/scene.wgsl` mirrors them). Triangle t of the flattened order is
 //! triangle `t − first` of its mesh, meshes in scene order.
 //!
 //! Out-of-domain scenes are [`GpuError::Input`]: no triangle, a vertex, normal or texture
-//! coordinate index past its array, a triangle with a non-finite position, a material index past the
+//! coordinate or tangent index past its array, a triangle with a non-finite position, a material index past the
 //! materials, more triangles than 32-bit triangle ids allow; buffers beyond the
 //! storage-binding limit are [`GpuError::BufferTooLarge`].
 use crate::buffers::upload;
 use crate::context::{GpuContext, GpuError};
 use crate::raster_types::{
-    GpuMaterial, GpuTextureInfo, GpuTriangle, GpuVertex, MATERIAL_DIELECTRIC, MATERIAL_DIRECT,
-    MATERIAL_DOUBLE_SIDED, MATERIAL_METALLIC_ROUGHNESS, NO_TEXTURE, TRIANGLE_NORMALS, TRIANGLE_UVS,
+    GpuMaterial, GpuTextureInfo, GpuTriangle, GpuVertex, MATERIAL_ALPHA_MASK, MATERIAL_DIELECTRIC,
+    MATERIAL_DIRECT, MATERIAL_DOUBLE_SIDED, MATERIAL_METALLIC_ROUGHNESS, NO_TEXTURE,
+    TRIANGLE_NORMALS, TRIANGLE_TANGENTS, TRIANGLE_UVS,
 };
 use glam::Vec3;
 use slc_core::{Material, MaterialModel, Mesh, Scene, TextureId};
@@ -131,6 +133,7 @@ fn append_mesh(
         Some(n),
         mesh.normals.as_ref().map(Vec::len),
         mesh.uvs.as_ref().map(Vec::len),
+        mesh.tangents.as_ref().map(Vec::len),
     ];
     for (k, t) in mesh.triangles.iter().enumerate() {
         if t.iter()
@@ -142,7 +145,8 @@ fn append_mesh(
             return bad(format!("triangle {k} has a non-finite vertex position"));
         }
         let flags = mesh.normals.as_ref().map_or(0, |_| TRIANGLE_NORMALS)
-            | mesh.uvs.as_ref().map_or(0, |_| TRIANGLE_UVS);
+            | mesh.uvs.as_ref().map_or(0, |_| TRIANGLE_UVS)
+            | mesh.tangents.as_ref().map_or(0, |_| TRIANGLE_TANGENTS);
         triangles.push(GpuTriangle {
             vertices: [base + t[0], base + t[1], base + t[2], mesh.material as u32],
             info: [flags, 0, 0, 0],
@@ -160,9 +164,15 @@ fn append_mesh(
             .as_ref()
             .and_then(|v| v.get(i).copied())
             .unwrap_or_default();
+        let tangent = mesh
+            .tangents
+            .as_ref()
+            .and_then(|v| v.get(i).copied())
+            .unwrap_or_default();
         GpuVertex {
             position_u: [p.x, p.y, p.z, uv.x],
             normal_v: [normal.x, normal.y, normal.z, uv.y],
+            tangent: tangent.to_array(),
         }
     }));
     Ok(())
@@ -182,7 +192,22 @@ fn material(m: &Material, texture_count: usize) -> GpuMaterial {
     if m.eta.is_some() {
         flags |= MATERIAL_DIELECTRIC;
     }
+    if m.alpha_mask.is_some() {
+        flags |= MATERIAL_ALPHA_MASK;
+    }
     let eta = m.eta.unwrap_or(0.0);
+    let maps = [
+        texture_id(m.normal_map.map(|n| n.texture), texture_count),
+        texture_id(m.alpha_mask.and_then(|a| a.texture), texture_count),
+        0,
+        0,
+    ];
+    let map_params = [
+        m.normal_map.map_or(1.0, |n| n.scale),
+        m.alpha_mask.map_or(0.0, |a| a.cutoff),
+        m.alpha_mask.map_or(1.0, |a| a.factor),
+        0.0,
+    ];
     match m.model {
         MaterialModel::Direct {
             kd,
@@ -199,6 +224,8 @@ fn material(m: &Material, texture_count: usize) -> GpuMaterial {
                 NO_TEXTURE,
                 flags,
             ],
+            maps,
+            map_params,
         },
         MaterialModel::MetallicRoughness {
             base_color,
@@ -216,6 +243,8 @@ fn material(m: &Material, texture_count: usize) -> GpuMaterial {
                 texture_id(metallic_roughness_texture, texture_count),
                 flags,
             ],
+            maps,
+            map_params,
         },
     }
 }

@@ -7,7 +7,8 @@
 //! where a pixel centre lies within rounding of a triangle edge).
 //!
 //! Both faces of every triangle are drawn: a one-sided surface seen from behind is black but
-//! still hides what lies beyond it, as on the CPU. Pinhole views use reversed depth with an
+//! still hides what lies beyond it, as on the CPU. Where an alpha mask cuts a surface away
+//! (at the rasterizer's interpolated texture coordinate) the fragment is discarded. Pinhole views use reversed depth with an
 //! infinite far plane; the near plane is `NEAR_RELATIVE` times the scene's extent (nearer
 //! surfaces are clipped, the CPU's rays have no near plane).
 use crate::context::{GpuContext, GpuError};
@@ -15,9 +16,10 @@ use crate::raster_types::GpuRasterView;
 use crate::scene_upload::GpuScene;
 use glam::Vec3;
 
-/// `shaders/scene_types.wgsl` followed by the visibility shaders.
+/// `shaders/scene_types.wgsl` and `shaders/scene.wgsl` followed by the visibility shaders.
 pub(crate) const SOURCE: &str = concat!(
     include_str!("../shaders/scene_types.wgsl"),
+    include_str!("../shaders/scene.wgsl"),
     include_str!("../shaders/visibility.wgsl")
 );
 
@@ -177,14 +179,12 @@ impl VisibilityPass {
             "raster view",
             &view.gpu(scene, target.width, target.height),
         );
+        let mut entries = scene_entries(scene);
+        entries.push(entry(5, uniform.as_entire_binding()));
         let bind = ctx.device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("visibility"),
             layout: &self.pipeline.get_bind_group_layout(0),
-            entries: &[
-                entry(0, scene.vertices.as_entire_binding()),
-                entry(1, scene.triangles.as_entire_binding()),
-                entry(2, uniform.as_entire_binding()),
-            ],
+            entries: &entries,
         });
         let timed = ctx.render_timestamps("visibility");
         let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
@@ -220,6 +220,16 @@ fn entry(binding: u32, resource: wgpu::BindingResource<'_>) -> wgpu::BindGroupEn
     wgpu::BindGroupEntry { binding, resource }
 }
 
+/// The scene's buffers at bindings 0-4 (`shaders/scene.wgsl`).
+fn scene_entries(scene: &GpuScene) -> Vec<wgpu::BindGroupEntry<'_>> {
+    scene
+        .bindings()
+        .iter()
+        .enumerate()
+        .map(|(i, b)| entry(i as u32, b.as_entire_binding()))
+        .collect()
+}
+
 /// A resolve dispatch (`gbuffer_pass`, `rsm_pass`): `pipeline` over `groups` (x, y)
 /// workgroups with the scene at bindings 0-4 (`shaders/scene.wgsl`), the uniform `params`
 /// at 5, the target's triangle ids at 6 and `outputs` from 7 on.
@@ -240,12 +250,7 @@ impl Resolve<'_> {
         scene: &GpuScene,
         target: &VisibilityTarget,
     ) {
-        let mut entries: Vec<_> = scene
-            .bindings()
-            .iter()
-            .enumerate()
-            .map(|(i, b)| entry(i as u32, b.as_entire_binding()))
-            .collect();
+        let mut entries = scene_entries(scene);
         entries.push(entry(5, self.params.as_entire_binding()));
         entries.push(entry(6, wgpu::BindingResource::TextureView(&target.ids)));
         entries.extend(
