@@ -8,8 +8,9 @@ use std::path::{Path, PathBuf};
 use std::sync::OnceLock;
 use std::time::SystemTime;
 
-/// The version of the `report.json` layout: 2 added `provenance` and `skipped_by_defect`.
-pub const SCHEMA_VERSION: u32 = 2;
+/// The version of the `report.json` layout: 2 added `provenance` and `skipped_by_defect`,
+/// 3 added `ignored`.
+pub const SCHEMA_VERSION: u32 = 3;
 
 #[derive(Serialize, Debug, Clone)]
 pub struct Provenance {

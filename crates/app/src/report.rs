@@ -70,6 +70,9 @@ pub struct Report {
     /// The removed triangles by defect.
     pub skipped_by_defect: Skipped,
     pub warnings: Vec<String>,
+    /// Features of the scene slc does not model (emission, alpha blending, glTF extensions
+    /// such as `KHR_materials_clearcoat`, OBJ bump maps), each with the materials using it.
+    pub ignored: BTreeMap<String, Vec<String>>,
 }
 
 /// Culling metrics (measured by brute force over all pixel-VPL pairs of each subregion).
@@ -195,6 +198,7 @@ impl Report {
             skipped_triangles: f.scene.report.skipped.total(),
             skipped_by_defect: Skipped::from(f.scene.report.skipped),
             warnings: f.scene.report.warnings.clone(),
+            ignored: f.scene.report.ignored.clone(),
         }
     }
 

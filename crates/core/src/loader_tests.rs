@@ -569,3 +569,123 @@ fn malformed_obj_is_an_error_naming_the_file() {
     }
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+#[test]
+fn gltf_ignored_features_are_listed_once() {
+    let dir = temp_dir("gltf-ignored");
+    let material = r#"{"name": "coat", "alphaMode": "BLEND", "emissiveFactor": [1, 0.5, 0],
+        "extensions": {"KHR_materials_clearcoat": {"clearcoatFactor": 1}, "KHR_materials_sheen": {}, "KHR_materials_ior": {"ior": 1.5}}}"#;
+    let extra = r#", "extensionsUsed": ["KHR_materials_clearcoat", "KHR_materials_sheen", "KHR_materials_ior", "KHR_materials_variants"]"#;
+    let path = write_triangle_gltf(&dir, r#"{"mesh": 0}"#, Vec3::Z, material, extra);
+    let s = load_scene(&path).unwrap();
+    let coat = vec!["coat".to_string()];
+    let expected: Vec<(&str, Vec<String>)> = vec![
+        ("KHR_materials_clearcoat", coat.clone()),
+        ("KHR_materials_sheen", coat.clone()),
+        ("KHR_materials_variants", vec!["the file".to_string()]),
+        ("alphaMode BLEND (drawn opaque)", coat.clone()),
+        ("emission", coat),
+    ];
+    let got: Vec<(&str, Vec<String>)> = s
+        .report
+        .ignored
+        .iter()
+        .map(|(k, v)| (k.as_str(), v.clone()))
+        .collect();
+    assert_eq!(got, expected);
+    let summaries: Vec<&String> = s
+        .report
+        .warnings
+        .iter()
+        .filter(|w| w.contains("not modelled"))
+        .collect();
+    assert_eq!(summaries.len(), 1, "{:?}", s.report.warnings);
+    assert!(
+        summaries[0].contains("KHR_materials_clearcoat (coat)"),
+        "{}",
+        summaries[0]
+    );
+    assert!(s.materials[0].alpha_mask.is_none());
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// `scenes/materials/materials.gltf`: a normal-mapped glossy floor without tangents, a
+/// double-sided alpha-masked sheet.
+#[test]
+fn gltf_normal_maps_masks_and_double_sided() {
+    let path = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../../scenes/materials/materials.gltf"
+    );
+    let s = load_scene(path).unwrap();
+    assert!(s.report.ignored.is_empty(), "{:?}", s.report.ignored);
+    let floor = material_named(&s, "floor_material");
+    let map = floor.normal_map.expect("the floor's normalTexture");
+    assert_eq!(map.scale, 1.0);
+    assert!(floor.alpha_mask.is_none() && !floor.double_sided);
+    let sheet = material_named(&s, "sheet_material");
+    let mask = sheet.alpha_mask.expect("the sheet's MASK");
+    assert_eq!((mask.cutoff, mask.factor), (0.5, 1.0));
+    assert!(sheet.double_sided && sheet.normal_map.is_none());
+    // The coverage texture is the alpha channel: holes (0) on a 16-texel grid, 1 between.
+    let coverage = &s.textures[mask.texture.unwrap()];
+    let at = |u: f32, v: f32| coverage.sample(Vec2::new(u, v)).x;
+    assert_eq!(at(8.5 / 64.0, 8.5 / 64.0), 0.0);
+    assert_eq!(at(0.5 / 64.0, 0.5 / 64.0), 1.0);
+    assert!(sheet.cuts(Some(Vec2::new(8.5 / 64.0, 8.5 / 64.0)), &s.textures));
+    assert!(!sheet.cuts(Some(Vec2::new(0.5 / 64.0, 0.5 / 64.0)), &s.textures));
+    // MikkTSpace tangents were generated for the floor in glTF's convention: T = dp/du = +x,
+    // w = +1 (the bitangent N x T = -z points towards decreasing v, the image's up).
+    let floor_mesh = s.meshes.iter().find(|m| m.name == "floor").unwrap();
+    let tangents = floor_mesh.tangents.as_ref().expect("generated tangents");
+    assert_eq!(tangents.len(), floor_mesh.positions.len());
+    for t in tangents {
+        assert!(close(t.truncate(), Vec3::X) && t.w == 1.0, "{t}");
+    }
+    // Meshes without a normal map get none.
+    assert!(s
+        .meshes
+        .iter()
+        .filter(|m| s.materials[m.material].normal_map.is_none())
+        .all(|m| m.tangents.is_none()));
+}
+
+#[test]
+fn obj_map_d_is_a_cutout_and_bump_maps_are_listed() {
+    let dir = temp_dir("obj-map-d");
+    // A grey 2x1 map_d: black (cut) on the left, white (kept) on the right.
+    image::GrayImage::from_raw(2, 1, vec![0, 255])
+        .unwrap()
+        .save(dir.join("mask.png"))
+        .unwrap();
+    std::fs::write(
+        dir.join("m.mtl"),
+        "newmtl leaf\nKd 0.2 0.6 0.2\nd 0.8\nmap_d mask.png\nmap_Bump bump.png\n\
+         newmtl glass\nKd 1 1 1\nd 0.3\n",
+    )
+    .unwrap();
+    let obj = dir.join("m.obj");
+    std::fs::write(
+        &obj,
+        "mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 0 1\n\
+         g a\nusemtl leaf\nf 1/1 2/2 3/3\ng b\nusemtl glass\nf 1/1 2/2 3/3\n",
+    )
+    .unwrap();
+    let s = load_scene(obj.to_str().unwrap()).unwrap();
+    let leaf = material_named(&s, "leaf");
+    let mask = leaf.alpha_mask.expect("map_d");
+    assert_eq!((mask.cutoff, mask.factor), (0.5, 0.8));
+    assert!(leaf.cuts(Some(Vec2::new(0.25, 0.5)), &s.textures));
+    assert!(!leaf.cuts(Some(Vec2::new(0.75, 0.5)), &s.textures));
+    // d alone is transparency, not a cut-out: drawn opaque, listed.
+    assert!(material_named(&s, "glass").alpha_mask.is_none());
+    assert_eq!(
+        s.report.ignored["transparency d < 1 (drawn opaque)"],
+        vec!["glass".to_string()]
+    );
+    assert_eq!(
+        s.report.ignored["bump map (map_Bump)"],
+        vec!["leaf".to_string()]
+    );
+    std::fs::remove_dir_all(&dir).unwrap();
+}

@@ -221,6 +221,106 @@ mod tests {
         assert!((b.alpha - 0.2).abs() < 1e-6);
     }
 
+    /// A 1x1 normal map storing `texel`.
+    fn normal_mapped(texel: Vec3, scale: f32) -> (Material, Vec<Texture>) {
+        let mut m = Material::direct("m", Vec3::ONE, Vec3::ZERO, 1.0);
+        m.normal_map = Some(NormalMap { texture: 0, scale });
+        let t = Texture {
+            name: "n".into(),
+            width: 1,
+            height: 1,
+            texels: vec![texel],
+        };
+        (m, vec![t])
+    }
+
+    #[test]
+    fn normal_map_frame_follows_gltf() {
+        let (n, t) = (Vec3::Z, Vec4::new(1.0, 0.0, 0.0, 1.0));
+        let uv = Some(Vec2::splat(0.5));
+        let at = |texel: Vec3, scale: f32, tangent: Vec4| {
+            let (m, tex) = normal_mapped(texel, scale);
+            m.shading_normal(n, Some(tangent), uv, &tex)
+        };
+        let close = |a: Vec3, b: Vec3| (a - b).length() < 1e-6;
+        // Flat: the vertex normal.
+        assert!(close(at(Vec3::new(0.5, 0.5, 1.0), 1.0, t), n));
+        // +X leans towards the tangent, +Y towards w (N x T) = +y for w = +1, -y for w = -1.
+        let s = std::f32::consts::FRAC_1_SQRT_2;
+        let x = Vec3::new(0.5 + 0.5 * s, 0.5, 0.5 + 0.5 * s);
+        let y = Vec3::new(0.5, 0.5 + 0.5 * s, 0.5 + 0.5 * s);
+        assert!(close(at(x, 1.0, t), Vec3::new(s, 0.0, s)));
+        assert!(close(at(y, 1.0, t), Vec3::new(0.0, s, s)));
+        assert!(close(
+            at(y, 1.0, Vec4::new(1.0, 0.0, 0.0, -1.0)),
+            Vec3::new(0.0, -s, s)
+        ));
+        // The tangent is made orthogonal to n first; scale multiplies x and y.
+        assert!(close(
+            at(x, 1.0, Vec4::new(1.0, 0.0, 5.0, 1.0)),
+            Vec3::new(s, 0.0, s)
+        ));
+        let half = Vec3::new(0.5, 0.0, 1.0).normalize();
+        assert!(close(at(x, 0.5, t), half));
+        assert!(close(at(x, 0.0, t), n));
+    }
+
+    #[test]
+    fn broken_normal_maps_keep_the_vertex_normal() {
+        let n = Vec3::Z;
+        let uv = Some(Vec2::ZERO);
+        let t = Some(Vec4::new(1.0, 0.0, 0.0, 1.0));
+        // Pointing below the surface, zero, a tangent along n, no tangent, no uv, no texture.
+        for (texel, tangent, uv) in [
+            (Vec3::new(0.5, 0.5, 0.0), t, uv),
+            (Vec3::splat(0.5), t, uv),
+            (
+                Vec3::new(1.0, 0.5, 0.5),
+                Some(Vec4::new(0.0, 0.0, 1.0, 1.0)),
+                uv,
+            ),
+            (Vec3::new(1.0, 0.5, 0.5), None, uv),
+            (Vec3::new(1.0, 0.5, 0.5), t, None),
+        ] {
+            let (m, tex) = normal_mapped(texel, 1.0);
+            assert_eq!(
+                m.shading_normal(n, tangent, uv, &tex),
+                n,
+                "{texel} {tangent:?} {uv:?}"
+            );
+        }
+        let (m, _) = normal_mapped(Vec3::new(1.0, 0.5, 0.5), 1.0);
+        assert_eq!(m.shading_normal(n, t, uv, &[]), n);
+    }
+
+    #[test]
+    fn alpha_mask_cutoff() {
+        let mut m = Material::direct("m", Vec3::ONE, Vec3::ZERO, 1.0);
+        assert!(!m.cuts(None, &[]));
+        let coverage = Texture {
+            name: "a".into(),
+            width: 2,
+            height: 1,
+            texels: vec![Vec3::splat(0.2), Vec3::ONE],
+        };
+        m.alpha_mask = Some(AlphaMask {
+            cutoff: 0.5,
+            factor: 1.0,
+            texture: Some(0),
+        });
+        let tex = [coverage];
+        assert!(m.cuts(Some(Vec2::new(0.25, 0.5)), &tex));
+        assert!(!m.cuts(Some(Vec2::new(0.75, 0.5)), &tex));
+        // Without texture coordinates only the factor counts; the factor scales the texture.
+        assert!(!m.cuts(None, &tex));
+        m.alpha_mask = Some(AlphaMask {
+            cutoff: 0.5,
+            factor: 0.4,
+            texture: Some(0),
+        });
+        assert!(m.cuts(Some(Vec2::new(0.75, 0.5)), &tex) && m.cuts(None, &tex));
+    }
+
     #[test]
     fn alpha_is_clamped() {
         let m = Material::direct("mirror", Vec3::ZERO, Vec3::ONE, 0.0);

@@ -391,3 +391,80 @@ fn bad_settings_and_scenes_are_errors() {
     };
     assert!(render(&nan, &ok, &|_| {}).is_err());
 }
+
+/// An alpha-masked quad (its left half cut away) in front of a wall: camera, RSM and shadow
+/// rays all pass through the cut half and stop at the kept one, from either side.
+#[test]
+fn alpha_masks_cut_every_ray() {
+    use glam::Vec2;
+    use slc_core::texture::Texture;
+    use slc_core::AlphaMask;
+    let mut sheet = quad("sheet", Vec3::ZERO, Vec3::X, Vec3::Y, 1);
+    sheet.uvs = Some(vec![
+        Vec2::new(0.0, 1.0),
+        Vec2::new(1.0, 1.0),
+        Vec2::new(1.0, 0.0),
+        Vec2::new(0.0, 0.0),
+    ]);
+    let wall = quad(
+        "wall",
+        Vec3::new(-5.0, -5.0, -1.0),
+        Vec3::new(10.0, 0.0, 0.0),
+        Vec3::new(0.0, 10.0, 0.0),
+        0,
+    );
+    let light = Light::Point {
+        position: Vec3::new(0.5, 0.5, 1.0),
+        intensity: Vec3::ONE,
+    };
+    let mut s = scene(vec![wall, sheet], false, light);
+    let mut masked = s.materials[0].clone();
+    masked.alpha_mask = Some(AlphaMask {
+        cutoff: 0.5,
+        factor: 1.0,
+        texture: Some(0),
+    });
+    s.materials.push(masked);
+    s.textures.push(Texture {
+        name: "coverage".into(),
+        width: 2,
+        height: 1,
+        texels: vec![Vec3::ZERO, Vec3::ONE],
+    });
+    let tracer = Tracer::new(&s);
+    for (x, expected) in [(0.25, 2.0), (0.75, 1.0)] {
+        let from = Vec3::new(x, 0.5, 1.0);
+        let hit = tracer
+            .intersect(&s, from, Vec3::NEG_Z, f32::INFINITY)
+            .unwrap();
+        assert!(
+            (hit.distance - expected).abs() < 1e-5,
+            "x {x}: {}",
+            hit.distance
+        );
+        let behind = Vec3::new(x, 0.5, -0.5);
+        assert_eq!(tracer.unoccluded(from, behind), expected == 2.0, "x {x}");
+        // From behind the (one-sided) sheet as well.
+        assert_eq!(tracer.unoccluded(behind, from), expected == 2.0, "x {x}");
+    }
+    // The RSM: light through the cut half reaches the wall, the kept half shades it.
+    let rsm = trace_rsm(&s, &tracer, &s.lights[0], 32, TexelSample::Centre);
+    let on_wall = |t: &&slc_cpu_ref::rsm::RsmTexel| t.position.z < -0.5;
+    let lit_wall: Vec<_> = rsm.texels.iter().flatten().filter(on_wall).collect();
+    assert!(lit_wall
+        .iter()
+        .any(|t| t.position.x > 0.0 && t.position.x < 0.5 && (t.position.y - 0.5).abs() < 0.2));
+    assert!(!lit_wall
+        .iter()
+        .any(|t| t.position.x > 0.55 && t.position.x < 0.95 && (t.position.y - 0.5).abs() < 0.2));
+    assert!(rsm
+        .texels
+        .iter()
+        .flatten()
+        .any(|t| t.position.z == 0.0 && t.position.x > 0.5));
+    assert!(!rsm
+        .texels
+        .iter()
+        .flatten()
+        .any(|t| t.position.z == 0.0 && t.position.x < 0.5));
+}

@@ -1,6 +1,7 @@
 //! What the rasterization tests share: the scenes (the built-in default, the glTF reference
-//! room of `shared/reference/cornell-a`, textured Dabrovic Sponza from `shared/scenes`), and
-//! the definition of edge pixels.
+//! room of `shared/reference/cornell-a`, textured Dabrovic Sponza from `shared/scenes`, the
+//! normal-mapped, alpha-masked, double-sided `scenes/materials`), and the definition of edge
+//! pixels.
 //!
 //! **Edge pixel** (of a ray-traced CPU G-buffer): a pixel whose 3 x 3 neighbourhood does not
 //! lie on one surface: some neighbour differs in presence (sample or none), or its
@@ -26,6 +27,18 @@ pub fn cornell_a() -> (Scene, Camera) {
     let path = concat!(
         env!("CARGO_MANIFEST_DIR"),
         "/../../../shared/reference/cornell-a/cornell-a.gltf"
+    );
+    let scene = load_scene(path).unwrap_or_else(|e| panic!("{path}: {e}"));
+    let camera = scene.camera_or_default();
+    (scene, camera)
+}
+
+/// `scenes/materials` (glTF: a normal-mapped glossy floor with generated tangents, a
+/// double-sided alpha-masked sheet, a point light, its own camera).
+pub fn materials() -> (Scene, Camera) {
+    let path = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../../scenes/materials/materials.gltf"
     );
     let scene = load_scene(path).unwrap_or_else(|e| panic!("{path}: {e}"));
     let camera = scene.camera_or_default();

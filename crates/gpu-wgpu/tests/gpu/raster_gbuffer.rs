@@ -1,6 +1,6 @@
 //! The rasterized G-buffer (`GbufferPass`) against the ray-traced one
 //! (`slc_cpu_ref::gbuffer::trace_gbuffer`) on the built-in default scene, the glTF
-//! reference room and textured Sponza.
+//! reference room, textured Sponza and the normal-mapped, alpha-masked `scenes/materials`.
 //!
 //! Edge pixels (defined in `raster_common`, measured on the CPU G-buffer) are where the
 //! rasterizer may pick another triangle than the ray tracer; their fraction is bounded per
@@ -14,7 +14,9 @@
 //! F0, η and α within 1e-6; kd within 1e-6 (untextured) or `TEXTURED_KD_TOLERANCE`
 //! (bilinear texture lookups at texture coordinates that differ in the last bits).
 use crate::common::gpu;
-use crate::raster_common::{cornell_a, default_scene, edge_pixels, extent, fraction, sponza};
+use crate::raster_common::{
+    cornell_a, default_scene, edge_pixels, extent, fraction, materials, sponza,
+};
 use glam::Vec3;
 use slc_bounds::Fresnel;
 use slc_core::frame::LobeSelection;
@@ -244,6 +246,25 @@ fn raster_gbuffer_matches_the_traced_one_on_textured_sponza() {
         "sponza",
         sponza(),
         (160, 100),
+        TEXTURED_KD_TOLERANCE,
+        bounds,
+    );
+}
+
+/// Normal maps (the shading normals agree within `DIRECTION_TOLERANCE`), cut-outs (the
+/// pixels seen through the sheet's holes agree) and the back of the double-sided sheet.
+#[test]
+fn raster_gbuffer_matches_the_traced_one_on_the_materials_scene() {
+    let Some(ctx) = gpu() else { return };
+    let bounds = Bounds {
+        edges: 0.25,
+        edge_mismatches: 1e-2,
+    };
+    check_scene(
+        &ctx,
+        "materials",
+        materials(),
+        (128, 128),
         TEXTURED_KD_TOLERANCE,
         bounds,
     );

@@ -1,7 +1,8 @@
 //! Rasterized RSMs (`RsmPass`) and GPU VPL generation (`VplGenPass`) against
 //! `slc_cpu_ref::rsm::trace_rsm(…, TexelSample::Centre)` and `generate_vpls`, for a spot
 //! light (one face), a point light (six faces), a directional light (orthographic) and a
-//! spot wider than 80° (six faces).
+//! spot wider than 80° (six faces); and for the point light of `scenes/materials` (normal
+//! maps, cut-outs, a double-sided sheet).
 //!
 //! Edge texels are the edge pixels of `raster_common` on each face's texel grid (presence,
 //! normal, plane or material changing in the 3 x 3 neighbourhood; a spot's cone boundary is
@@ -15,11 +16,11 @@
 //! texel's; ids on both sides have bit-identical ξ and the same lobe, and outside edge
 //! texels agree as their texels do; total flux per channel within `TOTAL_FLUX_TOLERANCE`.
 use crate::common::gpu;
-use crate::raster_common::{default_scene, edge_pixels, extent, fraction, lit_scene};
+use crate::raster_common::{default_scene, edge_pixels, extent, fraction, lit_scene, materials};
 use glam::Vec3;
 use slc_bounds::Fresnel;
 use slc_core::frame::LobeSelection;
-use slc_core::{GBuffer, GSample, Light, Vpl};
+use slc_core::{GBuffer, GSample, Light, Scene, Vpl};
 use slc_cpu_ref::rsm::{trace_rsm, Rsm, TexelSample};
 use slc_cpu_ref::vpls::generate_vpls;
 use slc_cpu_ref::Tracer;
@@ -27,7 +28,7 @@ use slc_gpu_wgpu::raster_types::GpuRsmTexel;
 use slc_gpu_wgpu::rsm_pass::RsmPass;
 use slc_gpu_wgpu::scene_upload::GpuScene;
 use slc_gpu_wgpu::vpl_gen_pass::{VplGenPass, VplLobes};
-use slc_gpu_wgpu::GpuError;
+use slc_gpu_wgpu::{GpuContext, GpuError};
 use std::collections::HashMap;
 
 const POSITION_TOLERANCE: f32 = 1e-4;
@@ -124,8 +125,20 @@ fn texel_difference(
 #[test]
 fn raster_rsm_and_gpu_vpls_match_the_cpu() {
     let Some(ctx) = gpu() else { return };
-    let scene = lit_scene();
-    let extent = extent(&scene);
+    rsm_and_vpls_match(&ctx, &lit_scene());
+}
+
+/// The sheet's holes let the light through, its back (lit) reflects, and the floor's VPLs
+/// carry normal-mapped normals.
+#[test]
+fn raster_rsm_and_gpu_vpls_match_the_cpu_on_the_materials_scene() {
+    let Some(ctx) = gpu() else { return };
+    rsm_and_vpls_match(&ctx, &materials().0);
+}
+
+/// Each light's RSM and the VPLs of all of them, GPU against CPU (module documentation).
+fn rsm_and_vpls_match(ctx: &GpuContext, scene: &Scene) {
+    let extent = extent(scene);
     let tracer = Tracer::new(&scene);
     let gpu_scene = GpuScene::upload(&ctx, &scene).unwrap();
     let pass = RsmPass::new(&ctx).unwrap();
