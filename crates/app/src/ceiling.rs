@@ -41,6 +41,7 @@ fn vpls_in_l1() -> ReachChunks {
         .map(|i| Vpl {
             position: Vec3::new(i as f32 * 1e-2, 0.0, 0.0),
             normal: Vec3::Y,
+            geometric_normal: Vec3::Y,
             omega_i: Vec3::new(0.6, 0.8, 0.0),
             flux: Vec3::splat(1e-3),
             brdf: Brdf {

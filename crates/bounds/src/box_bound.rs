@@ -44,8 +44,9 @@ pub const PROBABILITY_SLACK: f64 = 1e-3;
 enum Lobe {
     /// Φk/π of eq. (4) with f = kd/π.
     Diffuse { peak: f64 },
-    /// The glossy lobe of eq. (6): flux, Fresnel, α, ωi, ω_u, θh_max(ωi) as a cosine, and
-    /// G1(ωi)/(4 ωi·n).
+    /// The glossy lobe of eq. (6): flux (times the tilt factor of a tilted shading normal),
+    /// Fresnel, α, ωi, ω_u, θh_max(ωi) as a cosine, G1(ωi)/(4 ωi·n), and whether G1(ωo) is
+    /// bounded over the cone (false for a tilted shading normal: the factor covers it).
     Glossy {
         flux: Vec3,
         fresnel: Fresnel,
@@ -54,6 +55,7 @@ enum Lobe {
         omega_u: DVec3,
         cos_h_max: f64,
         g1_i: f64,
+        g1_o_bounded: bool,
     },
 }
 
@@ -80,12 +82,17 @@ impl BoxBound {
         let normal = lobe.normal().as_dvec3().normalize();
         let alpha = f64::from(lobe.alpha());
         let g1_i = 0.25 * f64::from(ggx::g1_over_cos(lobe.alpha(), cos_i));
+        // A tilted shading normal: the flux times `tilt_factor`, and G1(ωo) bounded by 1
+        // below (`g1_tilt_max` covers G1(ωo)(ωo·n_g)/(ωo·n) in the factor).
+        let tilt = lobe.tilt_factor();
+        let flux = lobe.flux() * tilt;
         let f_max = f64::from(scalar_intensity(
-            lobe.flux() * lobe.fresnel().max_over_half_vectors(cos_i),
+            flux * lobe.fresnel().max_over_half_vectors(cos_i),
         ));
         Self {
             lobe: Lobe::Glossy {
-                flux: lobe.flux(),
+                flux,
+                g1_o_bounded: !lobe.is_tilted(),
                 fresnel: lobe.fresnel(),
                 alpha,
                 omega_i,
@@ -165,13 +172,17 @@ impl BoxBound {
                 omega_u,
                 cos_h_max,
                 g1_i,
+                g1_o_bounded,
             } => {
                 // D(cos(θ_min/2)) of eq. (7) with sin²(θ/2) = (1 − cos θ)/2.
                 let sin2 = 0.5 * (1.0 - cone.max_cos(omega_u));
                 let a2 = alpha * alpha;
                 let denom = a2 + (1.0 - a2) * sin2;
                 let d = a2 / (core::f64::consts::PI * denom * denom);
-                let g1_o = f64::from(ggx::g1(alpha as f32, cos_o as f32));
+                let g1_o = match g1_o_bounded {
+                    true => f64::from(ggx::g1(alpha as f32, cos_o as f32)),
+                    false => 1.0,
+                };
                 // The smallest cos(φ/2) = ωi·ωh over the cone, no smaller than cos θh_max.
                 let cos_h = (0.5 * (1.0 + cone.min_cos(omega_i))).sqrt().max(cos_h_max);
                 let f = f64::from(scalar_intensity(flux * fresnel.max_from(cos_h as f32)));

@@ -5,6 +5,7 @@ use crate::check;
 use crate::error::BoundsError;
 use crate::fresnel::Fresnel;
 use crate::ggx;
+use crate::shading_normal::{emitted_cosine, flux_scale, g1_tilt_max};
 use crate::stochastic::{scalar_intensity, StochasticParams};
 use core::f64::consts::PI;
 use glam::Vec3;
@@ -19,6 +20,8 @@ use glam::Vec3;
 pub struct GlossyLobe {
     position: Vec3,
     normal: Vec3,
+    /// The geometric normal n_g (`normal` unless set by [`Self::with_geometric_normal`]).
+    geometric_normal: Vec3,
     omega_i: Vec3,
     alpha: f32,
     flux: Vec3,
@@ -36,9 +39,11 @@ impl GlossyLobe {
         flux: Vec3,
         fresnel: Fresnel,
     ) -> Result<Self, BoundsError> {
+        let normal = check::unit(normal, "normal")?;
         Ok(Self {
             position: check::finite(position, "position")?,
-            normal: check::unit(normal, "normal")?,
+            normal,
+            geometric_normal: normal,
             omega_i: check::unit(omega_i, "omega_i")?,
             alpha: check::alpha(alpha)?,
             flux: check::non_negative(flux, "flux")?,
@@ -56,6 +61,36 @@ impl GlossyLobe {
     #[inline]
     pub fn normal(&self) -> Vec3 {
         self.normal
+    }
+
+    /// The same VPL on a surface whose geometric normal n_g differs from its shading normal n
+    /// (a normal map): its intensity and bounds follow [`crate::shading_normal`]. `n_g` must
+    /// be a unit vector (within 1e-3); it is used as given when equal to n.
+    pub fn with_geometric_normal(mut self, n_g: Vec3) -> Result<Self, BoundsError> {
+        self.geometric_normal = match n_g == self.normal {
+            true => n_g,
+            false => check::unit(n_g, "geometric normal")?,
+        };
+        Ok(self)
+    }
+
+    /// The geometric normal n_g of [`crate::shading_normal`].
+    #[inline]
+    pub fn geometric_normal(&self) -> Vec3 {
+        self.geometric_normal
+    }
+
+    /// The factor by which this VPL's bounds exceed eq. (9)-(12)'s for the same flux: 1 where
+    /// n = n_g, else `(ωi·n)/(ωi·n_g) (cos θt + (2/α) sin θt)` ([`crate::shading_normal`]).
+    pub fn tilt_factor(&self) -> f32 {
+        flux_scale(self.normal, self.geometric_normal, self.omega_i)
+            * g1_tilt_max(self.normal, self.geometric_normal, self.alpha)
+    }
+
+    /// Whether the shading normal differs from the geometric one.
+    #[inline]
+    pub fn is_tilted(&self) -> bool {
+        self.normal != self.geometric_normal
     }
 
     /// The incoming direction ωi of eq. (4).
@@ -96,23 +131,27 @@ impl GlossyLobe {
 
     /// The scalar radiant intensity I(ωo) = scalar(Φ f(ωi, ωo)) max(ωo·n, 0) of eq. (4), with
     /// the GGX BRDF of eq. (6) (true Fresnel factor, separable Smith G2), reduced to a scalar
-    /// by [`scalar_intensity`]. `omega_o` is the unit direction from the VPL to the shading
+    /// by [`scalar_intensity`]; for a tilted shading normal the cosine is
+    /// [`emitted_cosine`]'s. `omega_o` is the unit direction from the VPL to the shading
     /// point; not validated (per-pixel path), and zero below the surface.
     #[inline]
     pub fn intensity(&self, omega_o: Vec3) -> f32 {
         let f = microfacet(self.normal, self.omega_i, omega_o, self.alpha, self.fresnel);
-        scalar_intensity(self.flux * f) * self.normal.dot(omega_o).max(0.0)
+        scalar_intensity(self.flux * f)
+            * emitted_cosine(self.normal, self.geometric_normal, self.omega_i, omega_o)
     }
 
     /// The radius of eq. (12): `r = sqrt(Φ F_max(ωi) G1(ωi) / (4π δ ξ |ωi·n|))`, where
     /// `Φ F_max` is the largest channel of Φ_c F_max,c(ωi) (supplemental eq. (2), (6)) and
     /// `G1/|ωi·n|` is evaluated in closed form, finite at grazing incidence.
     ///
-    /// Zero when ωi·n <= 0 or the flux is zero (the VPL reflects nothing). Computed in f64; an
+    /// Zero when ωi·n <= 0 or the flux is zero (the VPL reflects nothing). A tilted VPL's
+    /// flux is multiplied by [`Self::tilt_factor`]. Computed in f64; an
     /// [`BoundsError::Overflow`] if r does not fit in an `f32`.
     pub fn radius(&self, params: &StochasticParams) -> Result<f32, BoundsError> {
         let cos_i = self.cos_i();
-        let peak = scalar_intensity(self.flux * self.fresnel.max_over_half_vectors(cos_i));
+        let peak = scalar_intensity(self.flux * self.fresnel.max_over_half_vectors(cos_i))
+            * self.tilt_factor();
         if cos_i <= 0.0 || peak <= 0.0 {
             return Ok(0.0);
         }

@@ -65,6 +65,7 @@ pub mod frustum;
 pub mod ggx;
 pub mod glossy;
 pub mod sg;
+pub mod shading_normal;
 pub mod sphere;
 pub mod spheroid;
 pub mod stochastic;

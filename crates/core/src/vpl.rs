@@ -1,5 +1,6 @@
 //! Virtual point lights.
 use glam::Vec3;
+use slc_bounds::shading_normal::{emitted_cosine, flux_scale};
 use slc_bounds::{BoundsError, Brdf, DiffuseLobe, GlossyLobe};
 
 /// Which lobe of the surface BRDF a VPL reflects with. A reflective-shadow-map texel yields a
@@ -17,8 +18,11 @@ pub enum VplLobe {
 pub struct Vpl {
     /// Position q on the surface.
     pub position: Vec3,
-    /// Unit surface normal n (facing the side the photon arrived from).
+    /// Unit shading normal n (facing the side the photon arrived from): the BRDF's.
     pub normal: Vec3,
+    /// Unit geometric normal n_g on the same side: equal to `normal` unless the surface is
+    /// normal-mapped (then eq. 4 takes the adjoint correction of `slc_bounds::shading_normal`).
+    pub geometric_normal: Vec3,
     /// Unit direction ωi from the VPL towards where the photon came from.
     pub omega_i: Vec3,
     /// Radiant flux Φ of the photon that arrived (W per channel).
@@ -35,10 +39,12 @@ pub struct Vpl {
 
 impl Vpl {
     /// Radiant intensity towards unit direction `omega_o`, paper eq. (4):
-    /// `I(ωo) = Φ f(ωi, ωo) max(ωo·n, 0)` with f the VPL's lobe of the BRDF.
+    /// `I(ωo) = Φ f(ωi, ωo) max(ωo·n, 0)` with f the VPL's lobe of the BRDF; on a tilted
+    /// shading normal the cosine is `slc_bounds::shading_normal::emitted_cosine`'s
+    /// `(ωi·n)(ωo·n_g)/(ωi·n_g)` (Veach's adjoint correction).
     #[inline]
     pub fn intensity(&self, omega_o: Vec3) -> Vec3 {
-        let cos_o = self.normal.dot(omega_o);
+        let cos_o = emitted_cosine(self.normal, self.geometric_normal, self.omega_i, omega_o);
         if cos_o <= 0.0 {
             return Vec3::ZERO;
         }
@@ -50,9 +56,17 @@ impl Vpl {
     }
 
     /// The diffuse lobe of this VPL (eq. 4 with f = kd/π) around the origin, validated by
-    /// slc-bounds: the form every bound of it is built from.
+    /// slc-bounds: the form every bound of it is built from. On a tilted shading normal it is
+    /// the cosine lobe around n_g with flux `Φ (ωi·n)/(ωi·n_g)`, which contains the VPL's
+    /// intensity (`slc_bounds::shading_normal`).
     pub fn diffuse_lobe(&self) -> Result<DiffuseLobe, BoundsError> {
-        DiffuseLobe::new(Vec3::ZERO, self.normal, self.flux, self.brdf.kd)
+        let scale = flux_scale(self.normal, self.geometric_normal, self.omega_i);
+        DiffuseLobe::new(
+            Vec3::ZERO,
+            self.geometric_normal,
+            self.flux * scale,
+            self.brdf.kd,
+        )
     }
 
     /// The glossy lobe of this VPL (eq. 4, 6) around the origin, validated by slc-bounds.
@@ -64,6 +78,13 @@ impl Vpl {
             self.brdf.alpha,
             self.flux,
             self.brdf.fresnel,
-        )
+        )?
+        .with_geometric_normal(self.geometric_normal)
+    }
+
+    /// Whether the shading normal differs from the geometric one (a normal-mapped surface).
+    #[inline]
+    pub fn is_tilted(&self) -> bool {
+        self.normal != self.geometric_normal
     }
 }

@@ -22,6 +22,8 @@ pub struct RsmTexel {
     pub normal: Vec3,
     /// Unit geometric normal (on the lit side).
     pub geometric_normal: Vec3,
+    /// Whether a normal map perturbed `normal` (`SurfaceHit::normal_mapped`).
+    pub normal_mapped: bool,
     /// Unit direction from the surface point towards the light.
     pub omega_i: Vec3,
     /// Radiant flux carried by the texel's photon (W per channel).
@@ -215,6 +217,7 @@ pub fn trace_rsm(
                 position: hit.position,
                 normal: hit.shading_normal,
                 geometric_normal: hit.geometric_normal,
+                normal_mapped: hit.normal_mapped,
                 omega_i: -dir,
                 flux,
                 cross_section,

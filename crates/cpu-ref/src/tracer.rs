@@ -52,6 +52,9 @@ pub struct SurfaceHit {
     pub geometric_normal: Vec3,
     /// Unit shading normal on the same side as `geometric_normal`.
     pub shading_normal: Vec3,
+    /// Whether a normal map perturbed the shading normal (VPLs left there take the adjoint
+    /// correction of `slc_bounds::shading_normal`).
+    pub normal_mapped: bool,
     /// Whether the ray hit the side the (oriented) geometric normal points to. A one-sided
     /// surface seen from behind is black and reflects nothing.
     pub front: bool,
@@ -239,6 +242,7 @@ impl Tracer {
             xyz.extend(t[idx[0]].w)
         });
         let mut ns = material.shading_normal(interpolated, tangent, uv, &scene.textures);
+        let normal_mapped = ns != interpolated;
         let mut front = dir.dot(ng) < 0.0;
         if material.double_sided && !front {
             ng = -ng;
@@ -252,6 +256,7 @@ impl Tracer {
             position,
             geometric_normal: ng,
             shading_normal: ns,
+            normal_mapped,
             front,
             brdf,
             distance,

@@ -78,7 +78,8 @@ pub fn shade_vpls(
                     let c = vpl_contribution(g, vpl, roulette.as_ref().map(|r| &r[k]));
                     if c != Vec3::ZERO
                         && (!visibility
-                            || tracer.unoccluded(from, tracer.lift(vpl.position, vpl.normal)))
+                            || tracer
+                                .unoccluded(from, tracer.lift(vpl.position, vpl.geometric_normal)))
                     {
                         *o += c;
                     }
@@ -228,7 +229,7 @@ impl ListShading<'_> {
                 && (!self.visibility
                     || self
                         .tracer
-                        .unoccluded(from, self.tracer.lift(vpl.position, vpl.normal)))
+                        .unoccluded(from, self.tracer.lift(vpl.position, vpl.geometric_normal)))
             {
                 o += c * self.scale;
             }

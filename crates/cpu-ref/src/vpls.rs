@@ -5,7 +5,10 @@ use slc_core::rng::vpl_xi;
 use slc_core::{Vpl, VplLobe};
 
 /// One diffuse VPL (where kd > 0) and one glossy VPL (where the specular layer reflects) per
-/// lit texel. Texel k of the concatenated maps (light-major, then face, row, column) gives the
+/// lit texel. On a normal-mapped texel the VPL keeps the geometric normal beside the shading
+/// one (its intensity takes the adjoint correction of `slc_bounds::shading_normal`); elsewhere
+/// both are the shading normal, interpolated vertex normals included: eq. (4) as the paper
+/// and the VPL literature evaluate it. Texel k of the concatenated maps (light-major, then face, row, column) gives the
 /// VPL ids 2k (diffuse) and 2k + 1 (glossy); ξ = `vpl_xi(seed, id)`, so every backend draws the
 /// same ξ for the same VPL whatever texels are empty.
 pub fn generate_vpls(maps: &[Rsm], seed: u32, lobes: LobeSelection) -> Vec<Vpl> {
@@ -24,6 +27,10 @@ pub fn generate_vpls(maps: &[Rsm], seed: u32, lobes: LobeSelection) -> Vec<Vpl> 
                     vpls.push(Vpl {
                         position: t.position,
                         normal: t.normal,
+                        geometric_normal: match t.normal_mapped {
+                            true => t.geometric_normal,
+                            false => t.normal,
+                        },
                         omega_i: t.omega_i,
                         flux: t.flux,
                         brdf: t.brdf,

@@ -110,6 +110,7 @@ fn random_vpl(rng: &mut Rng) -> Vpl {
             rng.range(-1.0, 1.0),
         ) * rng.log(-2.0, 3.0),
         normal,
+        geometric_normal: normal,
         omega_i,
         flux: rng.rgb(-6.0, 6.0),
         brdf: Brdf {

@@ -45,6 +45,7 @@ fn run() -> Result<(), Box<dyn std::error::Error>> {
             Vpl {
                 position: Vec3::new(i * 0.4 - 3.0, 0.5, j * 0.4 - 3.0),
                 normal: Vec3::NEG_Y,
+                geometric_normal: Vec3::NEG_Y,
                 omega_i: Vec3::new(0.3, -1.0, 0.1).normalize(),
                 flux: Vec3::splat(0.02),
                 brdf: Brdf {

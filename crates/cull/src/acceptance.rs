@@ -12,7 +12,10 @@
 //!   denominator). Its largest value over the reachable half vectors (supplemental eq. 6)
 //!   would be tighter, but the f32 cosine the shader evaluates it at can fall a few ulps
 //!   below that range's end, where for η < 1 near total internal reflection the factor's
-//!   slope is unbounded.
+//!   slope is unbounded;
+//! - a VPL on a tilted shading normal (`Vpl::is_tilted`: the adjoint cosine of
+//!   `slc_bounds::shading_normal` replaces ωo·n) always passes where ωo·n > 0; its own bound
+//!   (`reach`) still applies.
 use crate::lanes::{clamp01, cross, dot, max, Real, F8, M8};
 use core::f32::consts::{FRAC_1_PI, PI};
 use slc_bounds::{ggx, Fresnel, StochasticParams};
@@ -37,6 +40,8 @@ pub(crate) struct Acceptance<R: Real> {
     emitted: [R; 3],
     /// Set for a glossy VPL (the microfacet lobe), clear for a diffuse one.
     glossy: R::Mask,
+    /// Set for a VPL on a tilted shading normal (passes wherever ωo·n > 0).
+    tilted: R::Mask,
     xi: R,
     delta: R,
 }
@@ -72,6 +77,7 @@ impl Acceptance<f32> {
             fresnel_b: fresnel_b.to_array(),
             emitted: emitted.to_array(),
             glossy,
+            tilted: vpl.is_tilted(),
             xi: params.xi(),
             delta: params.delta(),
         }
@@ -87,6 +93,7 @@ impl Acceptance<f32> {
         fresnel_b: [0.0; 3],
         emitted: [0.0; 3],
         glossy: false,
+        tilted: false,
         xi: 0.5,
         delta: 1.0,
     };
@@ -109,6 +116,9 @@ impl Acceptance<F8> {
             emitted: three(|a| a.emitted),
             glossy: M8(core::array::from_fn(|k| {
                 u32::from(of[k].glossy).wrapping_neg()
+            })),
+            tilted: M8(core::array::from_fn(|k| {
+                u32::from(of[k].tilted).wrapping_neg()
             })),
             xi: one(|a| a.xi),
             delta: one(|a| a.delta),
@@ -158,6 +168,6 @@ impl<R: Real> Acceptance<R> {
         let intensity = max(channel(0), max(channel(1), channel(2)));
         let p = intensity / (self.delta * l2);
         let accepted = cos_o.gt(zero) & intensity.gt(zero) & !p.le(self.xi);
-        accepted | (self.glossy & !well_conditioned & cos_o.gt(zero))
+        accepted | ((self.tilted | (self.glossy & !well_conditioned)) & cos_o.gt(zero))
     }
 }

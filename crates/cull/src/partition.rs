@@ -78,6 +78,7 @@ mod tests {
             .map(|id| Vpl {
                 position: Vec3::ZERO,
                 normal: Vec3::Y,
+                geometric_normal: Vec3::Y,
                 omega_i: Vec3::Y,
                 flux: Vec3::ONE,
                 brdf: Brdf {

@@ -240,6 +240,7 @@ mod tests {
         Vpl {
             position: Vec3::new(100.2, 0.5, -0.3),
             normal: Vec3::Z,
+            geometric_normal: Vec3::Z,
             omega_i,
             flux,
             brdf: Brdf {

@@ -149,8 +149,9 @@ fn diffuse_bound(vpl: Vpl, q: vec3<f32>, index: u32) -> Bound {
     if dot(vpl.normal_alpha.xyz, vpl.omega_i_eta.xyz) <= 0.0 {
         return empty_bound(index);
     }
-    let n = normalize(vpl.normal_alpha.xyz);
-    let reflected = scalar(vpl.flux.xyz * vpl.kd.xyz);
+    // Vpl::diffuse_lobe: around n_g with the flux times flux_scale (w) where normal-mapped.
+    let n = normalize(vpl.geometric_tilt.xyz);
+    let reflected = scalar(vpl.flux.xyz * vpl.geometric_tilt.w * vpl.kd.xyz);
     // sqrt(a / (pi delta xi)) as a quotient of roots: no f32 overflow or underflow in between.
     let range = sqrt(reflected / PI) / (sqrt(view.delta) * sqrt(vpl.position_xi.w));
     return sphere_bound(q, (range * DIFFUSE_OFFSET) * n, range * DIFFUSE_RADIUS, index);
@@ -161,7 +162,8 @@ fn glossy_bound(vpl: Vpl, q: vec3<f32>, index: u32) -> Bound {
     let wi = normalize(vpl.omega_i_eta.xyz);
     let alpha = vpl.normal_alpha.w;
     let cos_i = dot(n, wi);
-    let peak = scalar(vpl.flux.xyz * fresnel_max(vpl, cos_i));
+    // GlossyLobe::radius: the flux times the tilt factor (w, 1 unless normal-mapped).
+    let peak = scalar(vpl.flux.xyz * fresnel_max(vpl, cos_i)) * vpl.geometric_tilt.w;
     if cos_i <= 0.0 || peak <= 0.0 {
         return empty_bound(index);
     }

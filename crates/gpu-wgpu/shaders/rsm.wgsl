@@ -35,6 +35,8 @@ struct RsmTexel {
     kd: vec4<f32>,
     f0: vec4<f32>,
     info: vec4<u32>,
+    // geometric normal (xyz), 1 where normal-mapped (w)
+    geometric: vec4<f32>,
 }
 
 struct ShadowTexel {
@@ -106,7 +108,7 @@ fn main(@builtin(global_invocation_id) gid: vec3<u32>) {
         flux = intensity * texel_solid_angle(x, y, ts * e);
     }
     var out = RsmTexel(vec4<f32>(0.0), vec4<f32>(0.0), vec4<f32>(0.0), vec4<f32>(0.0),
-                       vec4<f32>(0.0), vec4<f32>(0.0), vec4<u32>(0u));
+                       vec4<f32>(0.0), vec4<f32>(0.0), vec4<u32>(0u), vec4<f32>(0.0));
     var occluder = ShadowTexel(vec4<f32>(0.0), vec4<f32>(0.0));
     let id = textureLoad(ids, vec2<i32>(gid.xy), 0).x;
     if id != 0u {
@@ -122,6 +124,7 @@ fn main(@builtin(global_invocation_id) gid: vec3<u32>) {
                     vec4<f32>(s.brdf.kd, 0.0),
                     vec4<f32>(s.brdf.f0, 0.0),
                     vec4<u32>(s.brdf.fresnel_kind, 0u, 0u, 0u),
+                    vec4<f32>(s.geometric_normal, select(0.0, 1.0, s.normal_mapped)),
                 );
             }
         }

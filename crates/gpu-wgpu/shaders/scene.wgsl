@@ -31,6 +31,8 @@ struct Surface {
     position: vec3<f32>,
     geometric_normal: vec3<f32>,
     shading_normal: vec3<f32>,
+    // whether a normal map perturbed the shading normal (SurfaceHit::normal_mapped)
+    normal_mapped: bool,
     brdf: SurfaceBrdf,
 }
 
@@ -191,7 +193,9 @@ fn surface(tri: u32, origin: vec3<f32>, dir: vec3<f32>) -> Surface {
         + vec2<f32>(vc.position_u.w, vc.normal_v.w) * w2;
     if m.maps.x != NO_TEXTURE && has_uv && (tr.info.x & TRIANGLE_TANGENTS) != 0u {
         let tangent = va.tangent.xyz * w0 + vb.tangent.xyz * w1 + vc.tangent.xyz * w2;
-        ns = mapped_normal(m, ns, vec4<f32>(tangent, va.tangent.w), uv);
+        let mapped = mapped_normal(m, ns, vec4<f32>(tangent, va.tangent.w), uv);
+        s.normal_mapped = any(mapped != ns);
+        ns = mapped;
     }
     s.front = dot(dir, ng) < 0.0;
     if (m.info.w & MATERIAL_DOUBLE_SIDED) != 0u && !s.front {

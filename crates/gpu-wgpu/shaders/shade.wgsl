@@ -42,11 +42,25 @@ fn sample_material(s: Sample) -> Material {
     return Material(s.kd, FresnelModel(s.fresnel, s.f0, s.omega_o_eta.w), s.normal_alpha.w);
 }
 
+// slc_bounds::shading_normal::emitted_cosine: max(w.n, 0) where n_g = n (eq. 4), else the
+// adjoint correction (w_i.n)(w.n_g)/(w_i.n_g) above both planes.
+fn emitted_cosine(n: vec3<f32>, n_g: vec3<f32>, wi: vec3<f32>, w: vec3<f32>) -> f32 {
+    if all(n == n_g) {
+        return max(dot(n, w), 0.0);
+    }
+    let gi = dot(n_g, wi);
+    let go = dot(n_g, w);
+    if gi <= 0.0 || go <= 0.0 || dot(n, w) <= 0.0 {
+        return 0.0;
+    }
+    return max(dot(n, wi), 0.0) * go / gi;
+}
+
 // Radiant intensity of eq. (4) towards unit direction w: Phi f(w_i, w) max(w.n, 0), f the
-// VPL's lobe (Vpl::intensity).
+// VPL's lobe, with the adjoint cosine of a normal-mapped VPL (Vpl::intensity).
 fn vpl_intensity(v: Vpl, w: vec3<f32>) -> vec3<f32> {
     let n = v.normal_alpha.xyz;
-    let cos_o = dot(n, w);
+    let cos_o = emitted_cosine(n, v.geometric_tilt.xyz, v.omega_i_eta.xyz, w);
     if cos_o <= 0.0 {
         return vec3<f32>(0.0);
     }

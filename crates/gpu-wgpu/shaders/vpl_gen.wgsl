@@ -29,6 +29,8 @@ struct RsmTexel {
     kd: vec4<f32>,
     f0: vec4<f32>,
     info: vec4<u32>,
+    // geometric normal (xyz), 1 where normal-mapped (w)
+    geometric: vec4<f32>,
 }
 
 @group(0) @binding(0) var<uniform> params: VplGenParams;
@@ -65,6 +67,8 @@ fn make_vpl(t: RsmTexel, lobe: u32, id: u32) -> Vpl {
         t.kd,
         t.f0,
         vec4<u32>(lobe, t.info.x, id, 0u),
+        // The bound factor (w) is GpuVpl::new's, when the VPL is packed for culling.
+        vec4<f32>(select(t.normal_alpha.xyz, t.geometric.xyz, t.geometric.w != 0.0), 1.0),
     );
 }
 

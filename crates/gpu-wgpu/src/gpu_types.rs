@@ -6,6 +6,7 @@
 use crate::context::GpuError;
 use bytemuck::{Pod, Zeroable};
 use glam::Vec3;
+use slc_bounds::shading_normal::flux_scale;
 use slc_bounds::{Fresnel, StochasticParams};
 use slc_core::{Camera, GSample, Interleaving, Vpl, VplLobe};
 use slc_cull::{CullView, GlossyBound};
@@ -68,8 +69,12 @@ pub struct GpuVpl {
     /// Lobe ([`LOBE_DIFFUSE`], [`LOBE_GLOSSY`]), Fresnel model ([`FRESNEL_SCHLICK`],
     /// [`FRESNEL_DIELECTRIC`]), VPL id, unused.
     pub info: [u32; 4],
+    /// The geometric normal n_g (xyz) and the bound factor of `slc_bounds::shading_normal`
+    /// (w): `flux_scale` for a diffuse VPL, `GlossyLobe::tilt_factor` for a glossy one, 1
+    /// where n_g = n.
+    pub geometric_tilt: [f32; 4],
 }
-const _: () = assert!(std::mem::size_of::<GpuVpl>() == 112);
+const _: () = assert!(std::mem::size_of::<GpuVpl>() == 128);
 
 fn vec4(v: Vec3, w: f32) -> [f32; 4] {
     [v.x, v.y, v.z, w]
@@ -88,16 +93,17 @@ impl GpuVpl {
             )));
         }
         StochasticParams::new(delta, vpl.xi).map_err(|e| invalid(&e))?;
-        let lobe = match vpl.lobe {
+        let (lobe, tilt) = match vpl.lobe {
             VplLobe::Diffuse => {
                 if vpl.normal.dot(vpl.omega_i) > 0.0 {
                     vpl.diffuse_lobe().map_err(|e| invalid(&e))?;
                 }
-                LOBE_DIFFUSE
+                let scale = flux_scale(vpl.normal, vpl.geometric_normal, vpl.omega_i);
+                (LOBE_DIFFUSE, scale)
             }
             VplLobe::Glossy => {
-                vpl.glossy_lobe().map_err(|e| invalid(&e))?;
-                LOBE_GLOSSY
+                let lobe = vpl.glossy_lobe().map_err(|e| invalid(&e))?;
+                (LOBE_GLOSSY, lobe.tilt_factor())
             }
         };
         let (fresnel, f0, eta) = match vpl.brdf.fresnel {
@@ -112,6 +118,7 @@ impl GpuVpl {
             kd: vec4(vpl.brdf.kd, 0.0),
             f0: vec4(f0, 0.0),
             info: [lobe, fresnel, vpl.id, 0],
+            geometric_tilt: vec4(vpl.geometric_normal, tilt),
         })
     }
 }

@@ -162,8 +162,11 @@ pub struct GpuRsmTexel {
     pub f0: [f32; 4],
     /// Fresnel model (`gpu_types::FRESNEL_SCHLICK`, `FRESNEL_DIELECTRIC`), unused.
     pub info: [u32; 4],
+    /// Unit geometric normal on the lit side (xyz), 1 where a normal map perturbed the
+    /// shading normal, 0 where not (w) (`slc_cpu_ref::rsm::RsmTexel::normal_mapped`).
+    pub geometric: [f32; 4],
 }
-const _: () = assert!(std::mem::size_of::<GpuRsmTexel>() == 112);
+const _: () = assert!(std::mem::size_of::<GpuRsmTexel>() == 128);
 
 /// The nearest surface along one shadow-map texel's ray, whichever side it faces (the RSM's
 /// depth kept as a shadow map). Keep in sync with `ShadowTexel` in `shaders/rsm.wgsl` and

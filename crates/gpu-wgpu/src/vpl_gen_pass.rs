@@ -67,6 +67,7 @@ fn unpack(v: &GpuVpl) -> Vpl {
     Vpl {
         position: v3(v.position_xi),
         normal: v3(v.normal_alpha),
+        geometric_normal: v3(v.geometric_tilt),
         omega_i: v3(v.omega_i_eta),
         flux: v3(v.flux),
         brdf: Brdf {

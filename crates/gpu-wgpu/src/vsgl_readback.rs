@@ -64,6 +64,7 @@ pub fn cpu_rsm(ctx: &GpuContext, rsm: &GpuRsm) -> Result<Rsm, GpuError> {
                 position,
                 normal: xyz(t.normal_alpha),
                 geometric_normal: if g.dot(omega_i) < 0.0 { -g } else { g },
+                normal_mapped: t.geometric[3] != 0.0,
                 omega_i,
                 flux: xyz(t.flux),
                 cross_section,

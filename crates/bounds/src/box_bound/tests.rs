@@ -38,7 +38,9 @@ impl TestLobe {
 }
 
 /// A random lobe at the extremes: α from 1e-4 to 1, ωi from normal to grazing incidence,
-/// Schlick or dielectric Fresnel (η below and above 1), flux from 1e-6 to 1e6.
+/// Schlick or dielectric Fresnel (η below and above 1), flux from 1e-6 to 1e6; a third of
+/// the glossy ones on a tilted shading normal (a geometric normal up to 0.8 rad away, from
+/// 1e-6 rad, with ωi above it: `crate::shading_normal`).
 fn random_lobe(rng: &mut Rng) -> TestLobe {
     let n = rng.unit();
     let theta_i = match rng.u64() % 4 {
@@ -64,7 +66,16 @@ fn random_lobe(rng: &mut Rng) -> TestLobe {
         1 => Fresnel::Dielectric(rng.range(0.2, 0.99)),
         _ => Fresnel::Dielectric(rng.range(1.01, 5.0)),
     };
-    TestLobe::Glossy(GlossyLobe::new(Vec3::ZERO, n, omega_i, alpha, flux, fresnel).unwrap())
+    let lobe = GlossyLobe::new(Vec3::ZERO, n, omega_i, alpha, flux, fresnel).unwrap();
+    if rng.u64().is_multiple_of(3) {
+        let tilt = 10f32.powf(rng.range(-6.0, -0.1));
+        let axis = n.cross(rng.unit()).normalize();
+        let n_g = glam::Quat::from_axis_angle(axis, tilt) * n;
+        if n_g.dot(omega_i) > 0.0 {
+            return TestLobe::Glossy(lobe.with_geometric_normal(n_g.normalize()).unwrap());
+        }
+    }
+    TestLobe::Glossy(lobe)
 }
 
 fn random_params(rng: &mut Rng) -> StochasticParams {

@@ -153,4 +153,23 @@ proptest! {
         let dirs = directions(&lobe, &mut Rng::new(seed), 1000);
         assert_conservative(&lobe, &params, &dirs);
     }
+
+    /// The same lobes on a tilted shading normal (`crate::shading_normal`): the geometric
+    /// normal up to 0.8 rad from n, ωi above it.
+    #[test]
+    fn random_tilted_lobes_are_bounded(
+        (lobe, params) in lobe_and_params(),
+        tilt in 1e-6f32..0.8,
+        axis in prop::array::uniform3(-1.0f32..1.0),
+        seed in any::<u64>(),
+    ) {
+        let n = lobe.normal();
+        let axis = n.cross(Vec3::from_array(axis)).normalize_or_zero();
+        prop_assume!(axis != Vec3::ZERO);
+        let n_g = (glam::Quat::from_axis_angle(axis, tilt) * n).normalize();
+        prop_assume!(n_g.dot(lobe.omega_i()) > 1e-3);
+        let lobe = lobe.with_geometric_normal(n_g).unwrap();
+        let dirs = directions(&lobe, &mut Rng::new(seed), 1000);
+        assert_conservative(&lobe, &params, &dirs);
+    }
 }

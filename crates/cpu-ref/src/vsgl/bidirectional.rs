@@ -38,6 +38,7 @@ pub fn camera_rsm(gbuffer: &GBuffer, camera: &Camera) -> Rsm {
                     position: g.position,
                     normal: g.normal,
                     geometric_normal: g.geometric_normal,
+                    normal_mapped: false,
                     omega_i: g.omega_o,
                     flux: Vec3::ONE,
                     cross_section: (pixel_side * g.depth).powi(2),

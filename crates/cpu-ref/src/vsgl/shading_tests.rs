@@ -15,6 +15,7 @@ fn texel(omega_i: Vec3, kd: Vec3, f0: f32, alpha: f32) -> RsmTexel {
         position: Vec3::ZERO,
         normal: Vec3::Z,
         geometric_normal: Vec3::Z,
+        normal_mapped: false,
         omega_i: omega_i.normalize(),
         flux: Vec3::new(1.0, 2.0, 0.5),
         cross_section: 0.0,
@@ -146,6 +147,7 @@ fn a_point_like_diffuse_vsgl_is_its_vpl_times_the_cosine_fits() {
     let vpl = Vpl {
         position: t.position,
         normal: t.normal,
+        geometric_normal: t.normal,
         omega_i: t.omega_i,
         flux: t.flux,
         brdf: t.brdf,
@@ -200,6 +202,7 @@ fn a_point_like_glossy_vsgl_follows_its_glossy_vpl() {
         let vpl = Vpl {
             position: t.position,
             normal: t.normal,
+            geometric_normal: t.normal,
             omega_i: t.omega_i,
             flux: t.flux,
             brdf: t.brdf,

@@ -242,6 +242,7 @@ fn plane_texel(position: Vec3, flux: f32) -> RsmTexel {
         position,
         normal: Vec3::Z,
         geometric_normal: Vec3::Z,
+        normal_mapped: false,
         omega_i: Vec3::new(0.3, 0.0, 1.0).normalize(),
         flux: Vec3::splat(flux),
         cross_section: 0.0,

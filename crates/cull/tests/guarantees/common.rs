@@ -1,6 +1,7 @@
 //! Scenes, VPLs and the checks shared by the guarantee tests.
 use glam::Vec3;
 use rayon::prelude::*;
+use slc_bounds::shading_normal::flux_scale;
 use slc_bounds::{scalar_intensity, Brdf, Fresnel, StochasticParams};
 use slc_core::frame::LobeSelection;
 use slc_core::Strategy;
@@ -181,6 +182,7 @@ pub fn room_vpls(rng: &mut Rng, n: u32) -> Vec<Vpl> {
             Vpl {
                 position,
                 normal,
+                geometric_normal: normal,
                 omega_i,
                 flux,
                 brdf: Brdf {
@@ -283,7 +285,8 @@ pub fn check_all(input: &CullInput, label: &str) -> Vec<(&'static str, CullMetri
 /// metrics' truth (which skips the pairs outside each VPL's own bound) must count too. Only
 /// pairs beyond twice the range of the VPL's peak intensity are skipped: p > ξ needs
 /// l² < I/(δ ξ) (eq. 5), and I(ωo) <= max(Φ kd)/π for a diffuse VPL, max(Φ)/(4π α² ωi·n) for
-/// a glossy one (eq. 4, 6: F <= 1, G2 <= 1, D <= 1/(π α²)).
+/// a glossy one (eq. 4, 6: F <= 1, G2 <= 1, D <= 1/(π α²)), times the tilt factor of a
+/// normal-mapped one.
 fn accepted_pairs(input: &CullInput) -> u64 {
     let w = input.gbuffer.width.max(1);
     let params: Vec<_> = input
@@ -292,11 +295,18 @@ fn accepted_pairs(input: &CullInput) -> u64 {
         .map(|v| {
             let r = StochasticParams::new(input.delta, v.xi).unwrap();
             let cos_i = f64::from(v.normal.dot(v.omega_i));
+            // A normal-mapped VPL's intensity may exceed these by its tilt factor
+            // (`slc_bounds::shading_normal`).
             let peak = match v.lobe {
-                VplLobe::Diffuse => (v.flux * v.brdf.kd).as_dvec3().max_element() / PI,
+                VplLobe::Diffuse => {
+                    let scale = flux_scale(v.normal, v.geometric_normal, v.omega_i);
+                    (v.flux * v.brdf.kd).as_dvec3().max_element() / PI * f64::from(scale)
+                }
                 VplLobe::Glossy => {
                     let alpha = f64::from(v.brdf.alpha);
-                    f64::from(v.flux.max_element()) / (4.0 * PI * alpha * alpha * cos_i)
+                    let tilt = v.glossy_lobe().map_or(1.0, |l| l.tilt_factor());
+                    f64::from(v.flux.max_element()) * f64::from(tilt)
+                        / (4.0 * PI * alpha * alpha * cos_i)
                 }
             };
             (r, 2.0 * peak / (f64::from(input.delta) * f64::from(v.xi)))
@@ -379,6 +389,27 @@ pub fn glossy_floor_scene() -> (Scene, Camera) {
         0.1,
     ));
     scene.meshes[floor].material = scene.materials.len() - 1;
+    (scene, camera)
+}
+
+/// `scenes/materials`: a glossy floor whose normal map tilts its shading normals up to 25°
+/// off the geometric one (so its VPLs' lobes and bounds are built around tilted normals),
+/// and a double-sided alpha-masked sheet; with the floor's roughness set to `roughness`.
+pub fn materials_scene(roughness: f32) -> (Scene, Camera) {
+    let path = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../../scenes/materials/materials.gltf"
+    );
+    let mut scene = load_scene(path).unwrap_or_else(|e| panic!("{path}: {e}"));
+    let floor = scene
+        .materials
+        .iter_mut()
+        .find(|m| m.normal_map.is_some())
+        .expect("the normal-mapped floor");
+    if let MaterialModel::MetallicRoughness { roughness: r, .. } = &mut floor.model {
+        *r = roughness;
+    }
+    let camera = scene.camera_or_default();
     (scene, camera)
 }
 

@@ -270,6 +270,7 @@ fn bounds_of_extreme_vpls_match_the_cpu() {
                             vpls.push(Vpl {
                                 position: Vec3::new(0.4 * ni as f32 - 0.5, 0.3, -0.2 * ni as f32),
                                 normal: n,
+                                geometric_normal: n,
                                 omega_i: wi,
                                 flux,
                                 brdf: Brdf {
@@ -317,6 +318,7 @@ fn invalid_vpls_are_errors() {
     let good = Vpl {
         position: Vec3::ZERO,
         normal: Vec3::Y,
+        geometric_normal: Vec3::Y,
         omega_i: Vec3::Y,
         flux: Vec3::ONE,
         brdf: Brdf {

@@ -23,11 +23,11 @@
 //!   weight then moves a few pixels of its tile by a large amount): the percentile
 //!   bounds those, the mean bounds everything.
 use crate::common::gpu;
-use crate::raster_common::{default_scene, edge_pixels, extent, lit_scene};
+use crate::raster_common::{default_scene, edge_pixels, extent, lit_scene, materials};
 use slc_core::frame::LobeSelection;
 use slc_core::frame::{Method, RenderSettings, Stochastic};
 use slc_core::shader::{ShadeInput, Shader};
-use slc_core::{Image, Interleaving};
+use slc_core::{Camera, Image, Interleaving, Scene};
 use slc_cpu_ref::direct::shade_direct;
 use slc_cpu_ref::Tracer;
 use slc_cpu_ref::{prepare, CpuRenderer};
@@ -40,6 +40,7 @@ use slc_gpu_wgpu::scene_upload::GpuScene;
 use slc_gpu_wgpu::shade_pass::ShadePass;
 use slc_gpu_wgpu::tiled_cull_pass::TiledCuller;
 use slc_gpu_wgpu::vpl_gen_pass::{VplGenPass, VplLobes};
+use slc_gpu_wgpu::GpuContext;
 
 const FLOOR: f32 = 1e-2;
 
@@ -105,7 +106,29 @@ fn shadow_mapped_direct_light_matches_shadow_rays() {
 #[test]
 fn rasterized_gpu_frame_matches_the_cpu_frame() {
     let Some(ctx) = gpu() else { return };
-    let (scene, camera) = default_scene();
+    frame_matches(&ctx, "default", default_scene(), (6e-3, 1e-2));
+}
+
+/// Normal-mapped VPLs (the adjoint cosine and tilted bounds), cut-outs, a double-sided sheet.
+/// The indirect light agrees as on the default scene (measured: mean 4.1e-4, 99th percentile
+/// 6.8e-3); the frame's bounds are wider because the 16 holes of the sheet cast many more
+/// shadow boundaries, where the 32² shadow-map faces and the shadow rays differ (measured:
+/// mean 6.4e-3, 99th percentile 1.1e-2).
+#[test]
+fn rasterized_gpu_frame_matches_the_cpu_frame_on_the_materials_scene() {
+    let Some(ctx) = gpu() else { return };
+    frame_matches(&ctx, "materials", materials(), (1.2e-2, 2.5e-2));
+}
+
+/// The frame comparison of the module documentation on `scene` seen by `camera`, with the
+/// frame's bounds on the mean and 99th-percentile error (the indirect light's are 1e-3 and
+/// 1e-2 everywhere).
+fn frame_matches(
+    ctx: &GpuContext,
+    label: &str,
+    (scene, camera): (Scene, Camera),
+    (max_mean, max_p99): (f64, f32),
+) {
     let settings = RenderSettings {
         width: 128,
         height: 96,
@@ -141,48 +164,41 @@ fn rasterized_gpu_frame_matches_the_cpu_frame() {
     // The GPU frame, every stage on the GPU; only the VPLs are read back (the culler's
     // bounds pass takes them from the CPU).
     let (w, h) = (settings.width, settings.height);
-    let gpu_scene = GpuScene::upload(&ctx, &scene).unwrap();
-    let gbuffer = GbufferPass::new(&ctx)
+    let gpu_scene = GpuScene::upload(ctx, &scene).unwrap();
+    let gbuffer = GbufferPass::new(ctx)
         .unwrap()
-        .render(&ctx, &gpu_scene, &camera, w, h, (0.5, 0.5))
+        .render(ctx, &gpu_scene, &camera, w, h, (0.5, 0.5))
         .unwrap();
-    let rsm = RsmPass::new(&ctx).unwrap();
+    let rsm = RsmPass::new(ctx).unwrap();
     let maps: Vec<_> = scene
         .lights
         .iter()
         .map(|l| {
-            rsm.render(&ctx, &gpu_scene, l, settings.rsm_resolution)
+            rsm.render(ctx, &gpu_scene, l, settings.rsm_resolution)
                 .unwrap()
         })
         .collect();
-    let vpls = VplGenPass::new(&ctx)
+    let vpls = VplGenPass::new(ctx)
         .unwrap()
-        .generate(&ctx, &maps, settings.seed, VplLobes::Both)
+        .generate(ctx, &maps, settings.seed, VplLobes::Both)
         .unwrap()
-        .read_back(&ctx)
+        .read_back(ctx)
         .unwrap();
-    let lists = TiledCuller::new(&ctx)
+    let lists = TiledCuller::new(ctx)
         .unwrap()
         .cull_frame(
-            &ctx,
+            ctx,
             &CullFrame::on_gpu(&gbuffer, &vpls, stochastic.delta, interleaving),
             GlossyBound::Ellipsoid,
         )
         .unwrap();
-    let indirect = ShadePass::new(&ctx)
+    let indirect = ShadePass::new(ctx)
         .unwrap()
-        .shade_gpu_gbuffer(
-            &ctx,
-            &gbuffer,
-            &vpls,
-            stochastic.delta,
-            interleaving,
-            &lists,
-        )
+        .shade_gpu_gbuffer(ctx, &gbuffer, &vpls, stochastic.delta, interleaving, &lists)
         .unwrap();
-    let direct = DirectPass::new(&ctx)
+    let direct = DirectPass::new(ctx)
         .unwrap()
-        .render(&ctx, &gpu_scene, &gbuffer, &maps)
+        .render(ctx, &gpu_scene, &gbuffer, &maps)
         .unwrap();
     let frame = indirect.add(&direct);
     assert!(frame.is_finite_non_negative());
@@ -191,7 +207,7 @@ fn rasterized_gpu_frame_matches_the_cpu_frame() {
     let (mean, p99, above) = errors(&cpu, &frame, &inside);
     let (ind_mean, ind_p99, _) = errors(&cpu_indirect, &indirect, &inside);
     eprintln!(
-        "frame: {} VPLs on the CPU, {} on the GPU; {:.2}% edge pixels; outside them mean \
+        "{label} frame: {} VPLs on the CPU, {} on the GPU; {:.2}% edge pixels; outside them mean \
          error {mean:.2e}, 99th percentile {p99:.2e}, {:.2}% above 1e-3 (indirect alone \
          {ind_mean:.2e}, {ind_p99:.2e}); means {} vs {}",
         prepared.vpls.len(),
@@ -202,11 +218,11 @@ fn rasterized_gpu_frame_matches_the_cpu_frame() {
         cpu.mean()
     );
     assert!(
-        mean <= 6e-3 && p99 <= 1e-2,
-        "frame: mean {mean:.3e}, p99 {p99:.3e}"
+        mean <= max_mean && p99 <= max_p99,
+        "{label} frame: mean {mean:.3e}, p99 {p99:.3e}"
     );
     assert!(
         ind_mean <= 1e-3 && ind_p99 <= 1e-2,
-        "indirect: mean {ind_mean:.3e}, p99 {ind_p99:.3e}"
+        "{label} indirect: mean {ind_mean:.3e}, p99 {ind_p99:.3e}"
     );
 }

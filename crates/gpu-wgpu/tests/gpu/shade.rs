@@ -292,6 +292,7 @@ fn extreme_frame() -> (GBuffer, Vec<Vpl>, LightLists) {
         vpls.push(Vpl {
             position,
             normal: normal.normalize(),
+            geometric_normal: normal.normalize(),
             omega_i: omega_i.normalize(),
             flux,
             brdf: Brdf {
