@@ -68,7 +68,8 @@ pub struct BoxBound {
     lobe: Lobe,
     normal: DVec3,
     /// The largest intensity in any direction: Φk/π, or for a glossy VPL
-    /// scalar(Φ F_max(ωi)) G1(ωi)/(4 ωi·n) D(1) (eq. 9 at its peak, the r/α sphere).
+    /// scalar(Φ F_max(ωi)) G1(ωi)/(4 ωi·n) D(1) (eq. 9 at its peak, the r/α sphere), Φ times
+    /// `GlossyLobe::tilt_factor` on a tilted shading normal.
     peak: f64,
     /// δ ξ of eq. (2)-(3) (p > ξ needs I > δ ξ l²), divided by 1 + [`PROBABILITY_SLACK`].
     delta_xi_shrunk: f64,

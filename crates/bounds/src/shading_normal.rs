@@ -21,30 +21,37 @@
 use crate::ggx;
 use glam::Vec3;
 
+/// The smallest ωi·n_g at which a tilted VPL reflects: the factor 1/(ωi·n_g) stays below 1e6,
+/// so its flux stays finite (a photon grazing the geometric surface closer than that is
+/// dropped; it carries a vanishing share of any map's flux).
+pub const MIN_COS_GEOMETRIC: f32 = 1e-6;
+
 /// The cosine factor of `I(ωo) = Φ f(ωi, ωo) cos_e` (module documentation): `max(ωo·n, 0)`
-/// where `n == n_g` (eq. 4), else `(ωi·n)(ωo·n_g)/(ωi·n_g)` where ωi and ωo lie above the
-/// geometric plane, else 0. All vectors are unit; f is one-sided in n.
+/// where `n == n_g` (eq. 4), else `(ωi·n)(ωo·n_g)/(ωi·n_g)` where ωi (by at least
+/// [`MIN_COS_GEOMETRIC`]) and ωo lie above the geometric plane, else 0. All vectors are
+/// unit; f is one-sided in n.
 #[inline]
 pub fn emitted_cosine(n: Vec3, n_g: Vec3, omega_i: Vec3, omega_o: Vec3) -> f32 {
     if n == n_g {
         return n.dot(omega_o).max(0.0);
     }
     let (gi, go) = (n_g.dot(omega_i), n_g.dot(omega_o));
-    if gi <= 0.0 || go <= 0.0 || n.dot(omega_o) <= 0.0 {
+    if gi < MIN_COS_GEOMETRIC || go <= 0.0 || n.dot(omega_o) <= 0.0 {
         return 0.0;
     }
     n.dot(omega_i).max(0.0) * go / gi
 }
 
 /// `(ωi·n)/(ωi·n_g)`: the flux Φ' that multiplies f (ωo·n_g); 1 where `n == n_g`, 0 where
-/// ωi lies below either plane (the VPL reflects nothing).
+/// ωi lies below n's plane or within [`MIN_COS_GEOMETRIC`] of n_g's (the VPL reflects
+/// nothing).
 #[inline]
 pub fn flux_scale(n: Vec3, n_g: Vec3, omega_i: Vec3) -> f32 {
     if n == n_g {
         return 1.0;
     }
     let (ci, gi) = (n.dot(omega_i), n_g.dot(omega_i));
-    if ci <= 0.0 || gi <= 0.0 {
+    if ci <= 0.0 || gi < MIN_COS_GEOMETRIC {
         return 0.0;
     }
     ci / gi

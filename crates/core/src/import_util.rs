@@ -47,7 +47,7 @@ pub(crate) fn add_mesh(scene: &mut Scene, mut mesh: Mesh) {
         .is_some_and(|t| t.len() != mesh.positions.len() || t.iter().any(|t| !t.is_finite()))
     {
         scene.report.warnings.push(format!(
-            "mesh '{}': tangents missing or non-finite for some vertices; they are generated",
+            "mesh '{}': tangents missing or non-finite for some vertices; they are dropped (and generated where a normal map needs them)",
             mesh.name
         ));
         mesh.tangents = None;

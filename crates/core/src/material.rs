@@ -157,27 +157,25 @@ impl Material {
         }
     }
 
-    /// The shading normal at a point whose interpolated unit vertex normal is `n`, with
-    /// interpolated `tangent` (xyz; w from the triangle's first vertex) and texture
-    /// coordinate `uv`: `n` perturbed by the normal map (section 3.9.3 of glTF 2.0) where
-    /// the material has one and the mesh has tangents and texture coordinates, else `n`. A
-    /// perturbed normal is kept only on `n`'s side (a broken map or frame keeps `n`).
-    pub fn shading_normal(
+    /// The normal-mapped shading normal at a point whose interpolated unit vertex normal is
+    /// `n` on a triangle with face normal `geometric` (either side), with interpolated
+    /// `tangent` (xyz; w from the triangle's first vertex) and texture coordinate `uv`: `n`
+    /// perturbed by the normal map (section 3.9.3 of glTF 2.0). `None` (the caller keeps
+    /// `n`) where the material has no map, the mesh no tangents or texture coordinates, or
+    /// the perturbed normal would leave `n`'s side or cross the triangle's plane.
+    pub fn mapped_normal(
         &self,
         n: Vec3,
+        geometric: Vec3,
         tangent: Option<Vec4>,
         uv: Option<Vec2>,
         textures: &[Texture],
-    ) -> Vec3 {
-        let (Some(map), Some(tangent), Some(uv)) = (self.normal_map, tangent, uv) else {
-            return n;
-        };
-        let Some(texture) = textures.get(map.texture) else {
-            return n;
-        };
+    ) -> Option<Vec3> {
+        let (map, tangent, uv) = (self.normal_map?, tangent?, uv?);
+        let texture = textures.get(map.texture)?;
+        let side = n.dot(geometric);
         map.perturb(n, tangent, texture.sample(uv))
-            .filter(|p| p.dot(n) > 0.0)
-            .unwrap_or(n)
+            .filter(|p| p.dot(n) > 0.0 && p.dot(geometric) * side > 0.0)
     }
 
     /// Whether the surface is cut away at `uv` by its alpha mask (never without one).
@@ -240,7 +238,7 @@ mod tests {
         let uv = Some(Vec2::splat(0.5));
         let at = |texel: Vec3, scale: f32, tangent: Vec4| {
             let (m, tex) = normal_mapped(texel, scale);
-            m.shading_normal(n, Some(tangent), uv, &tex)
+            m.mapped_normal(n, n, Some(tangent), uv, &tex).unwrap_or(n)
         };
         let close = |a: Vec3, b: Vec3| (a - b).length() < 1e-6;
         // Flat: the vertex normal.
@@ -284,13 +282,19 @@ mod tests {
         ] {
             let (m, tex) = normal_mapped(texel, 1.0);
             assert_eq!(
-                m.shading_normal(n, tangent, uv, &tex),
+                m.mapped_normal(n, n, tangent, uv, &tex).unwrap_or(n),
                 n,
                 "{texel} {tangent:?} {uv:?}"
             );
         }
         let (m, _) = normal_mapped(Vec3::new(1.0, 0.5, 0.5), 1.0);
-        assert_eq!(m.shading_normal(n, t, uv, &[]), n);
+        assert_eq!(m.mapped_normal(n, n, t, uv, &[]), None);
+        // A tilt that crosses the triangle's plane (a steep vertex normal, tilted further).
+        let (m, tex) = normal_mapped(Vec3::new(1.0, 0.5, 0.75), 1.0);
+        let steep = Vec3::new(0.9, 0.0, 0.1).normalize();
+        let tangent = Some(Vec4::new(0.1, 0.0, -0.9, 1.0));
+        assert!(m.mapped_normal(steep, steep, tangent, uv, &tex).is_some());
+        assert_eq!(m.mapped_normal(steep, Vec3::Z, tangent, uv, &tex), None);
     }
 
     #[test]

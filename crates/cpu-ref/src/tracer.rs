@@ -38,7 +38,7 @@ pub struct Tracer {
     tris: Vec<Triangle>,
     prims: Vec<PrimRef>,
     cutouts: Vec<Cutout>,
-    /// The scene's textures, for the masks of `cutouts` (empty when nothing is masked).
+    /// The textures of the masks of `cutouts` (their own copies, indexed by the masks).
     textures: Vec<Texture>,
     /// Offset that lifts ray origins off surfaces, relative to the scene's size.
     epsilon: f32,
@@ -67,8 +67,20 @@ impl Tracer {
         let mut tris = Vec::with_capacity(scene.triangle_count());
         let mut prims = Vec::with_capacity(scene.triangle_count());
         let mut cutouts = Vec::new();
+        // The masks' textures only, each once; the masks refer to them by their new index.
+        let mut textures: Vec<Texture> = Vec::new();
+        let mut copied = std::collections::HashMap::new();
         for (mi, mesh) in scene.meshes.iter().enumerate() {
-            let mask = scene.materials[mesh.material].alpha_mask;
+            let mask = scene.materials[mesh.material].alpha_mask.map(|mut m| {
+                m.texture = m.texture.and_then(|id| {
+                    let texture = scene.textures.get(id)?;
+                    Some(*copied.entry(id).or_insert_with(|| {
+                        textures.push(texture.clone());
+                        textures.len() - 1
+                    }))
+                });
+                m
+            });
             for (ti, t) in mesh.triangles.iter().enumerate() {
                 let [v0, v1, v2] = t.map(|i| Vec3A::from(mesh.positions[i as usize]));
                 tris.push(Triangle { v0, v1, v2 });
@@ -95,10 +107,6 @@ impl Tracer {
         let order = &bvh.primitive_indices;
         let tris = order.iter().map(|&i| tris[i as usize]).collect();
         let prims = order.iter().map(|&i| prims[i as usize]).collect();
-        let textures = match cutouts.is_empty() {
-            true => Vec::new(),
-            false => scene.textures.clone(),
-        };
         Self {
             bvh,
             tris,
@@ -241,8 +249,9 @@ impl Tracer {
                 t[idx[0]].truncate() * w0 + t[idx[1]].truncate() * w1 + t[idx[2]].truncate() * w2;
             xyz.extend(t[idx[0]].w)
         });
-        let mut ns = material.shading_normal(interpolated, tangent, uv, &scene.textures);
-        let normal_mapped = ns != interpolated;
+        let mapped = material.mapped_normal(interpolated, ng, tangent, uv, &scene.textures);
+        let normal_mapped = mapped.is_some();
+        let mut ns = mapped.unwrap_or(interpolated);
         let mut front = dir.dot(ng) < 0.0;
         if material.double_sided && !front {
             ng = -ng;

@@ -49,8 +49,8 @@ pub(crate) struct Acceptance<R: Real> {
 impl Acceptance<f32> {
     /// The roulette test of `vpl` under `params` (its δ and ξ). `dark` marks a VPL the shader
     /// gives 0 at every pair (see `reach`): its intensity is 0, so it passes only where a
-    /// glossy half vector is formed in f64 (and there the bound test of `reach`, whose limit
-    /// is −1 for such a VPL, rejects it first).
+    /// glossy half vector is formed in f64 or the VPL is tilted (and there the bound test of
+    /// `reach`, whose limit is −1 for such a VPL, rejects it first).
     pub(crate) fn new(vpl: &Vpl, params: &StochasticParams, dark: bool) -> Self {
         let brdf = &vpl.brdf;
         let glossy = vpl.lobe == VplLobe::Glossy;

@@ -50,10 +50,13 @@
 //! // A diffuse VPL half a unit above the floor's centre, facing down, and one above the
 //! // camera facing up.
 //! let lamp = Vpl {
-//!     position: Vec3::new(0.0, 0.5, 0.0), normal: Vec3::NEG_Y, omega_i: Vec3::NEG_Y,
-//!     flux: Vec3::ONE, brdf, lobe: VplLobe::Diffuse, id: 0, xi: 0.5,
+//!     position: Vec3::new(0.0, 0.5, 0.0), normal: Vec3::NEG_Y, geometric_normal: Vec3::NEG_Y,
+//!     omega_i: Vec3::NEG_Y, flux: Vec3::ONE, brdf, lobe: VplLobe::Diffuse, id: 0, xi: 0.5,
 //! };
-//! let above = Vpl { position: Vec3::new(0.0, 10.0, 0.0), normal: Vec3::Y, omega_i: Vec3::Y, id: 2, ..lamp };
+//! let above = Vpl {
+//!     position: Vec3::new(0.0, 10.0, 0.0), normal: Vec3::Y, geometric_normal: Vec3::Y,
+//!     omega_i: Vec3::Y, id: 2, ..lamp
+//! };
 //! let vpls = [lamp, above];
 //! let input = CullInput {
 //!     gbuffer: &gbuffer, camera: &camera, vpls: &vpls, delta: 1e-3,

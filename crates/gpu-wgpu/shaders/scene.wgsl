@@ -138,21 +138,23 @@ fn cut_away(m: SceneMaterial, has_uv: bool, uv: vec2<f32>) -> bool {
     return m.map_params.z * lookup(m.maps.y, has_uv, uv).x < m.map_params.y;
 }
 
-// Material::shading_normal with NormalMap::perturb: the unit normal n perturbed by material
-// m's normal map in the frame of `tangent` (xyz, handedness w), kept only on n's side.
-fn mapped_normal(m: SceneMaterial, n: vec3<f32>, tangent: vec4<f32>, uv: vec2<f32>) -> vec3<f32> {
+// Material::mapped_normal with NormalMap::perturb: the unit normal n perturbed by material
+// m's normal map in the frame of `tangent` (xyz, handedness w), kept only on n's side and on
+// n's side of the triangle's plane (face normal g); the zero vector where it is not kept.
+fn mapped_normal(m: SceneMaterial, n: vec3<f32>, g: vec3<f32>, tangent: vec4<f32>,
+                 uv: vec2<f32>) -> vec3<f32> {
     let t = normalize_or(tangent.xyz - n * dot(n, tangent.xyz), vec3<f32>(0.0));
     if all(t == vec3<f32>(0.0)) {
-        return n;
+        return vec3<f32>(0.0);
     }
     let b = cross(n, t) * select(1.0, -1.0, tangent.w < 0.0);
     let c = (texture_sample(m.maps.x, uv) * 2.0 - vec3<f32>(1.0))
         * vec3<f32>(m.map_params.x, m.map_params.x, 1.0);
     let p = normalize_or(t * c.x + b * c.y + n * c.z, vec3<f32>(0.0));
-    if dot(p, n) > 0.0 {
+    if dot(p, n) > 0.0 && dot(p, g) * dot(n, g) > 0.0 {
         return p;
     }
-    return n;
+    return vec3<f32>(0.0);
 }
 
 // The hit of the ray origin + t dir (t > 0) with triangle `tri`, oriented and shaded as
@@ -193,9 +195,11 @@ fn surface(tri: u32, origin: vec3<f32>, dir: vec3<f32>) -> Surface {
         + vec2<f32>(vc.position_u.w, vc.normal_v.w) * w2;
     if m.maps.x != NO_TEXTURE && has_uv && (tr.info.x & TRIANGLE_TANGENTS) != 0u {
         let tangent = va.tangent.xyz * w0 + vb.tangent.xyz * w1 + vc.tangent.xyz * w2;
-        let mapped = mapped_normal(m, ns, vec4<f32>(tangent, va.tangent.w), uv);
-        s.normal_mapped = any(mapped != ns);
-        ns = mapped;
+        let mapped = mapped_normal(m, ns, ng, vec4<f32>(tangent, va.tangent.w), uv);
+        s.normal_mapped = any(mapped != vec3<f32>(0.0));
+        if s.normal_mapped {
+            ns = mapped;
+        }
     }
     s.front = dot(dir, ng) < 0.0;
     if (m.info.w & MATERIAL_DOUBLE_SIDED) != 0u && !s.front {

@@ -42,6 +42,9 @@ fn sample_material(s: Sample) -> Material {
     return Material(s.kd, FresnelModel(s.fresnel, s.f0, s.omega_o_eta.w), s.normal_alpha.w);
 }
 
+// slc_bounds::shading_normal::MIN_COS_GEOMETRIC.
+const MIN_COS_GEOMETRIC: f32 = 1e-6;
+
 // slc_bounds::shading_normal::emitted_cosine: max(w.n, 0) where n_g = n (eq. 4), else the
 // adjoint correction (w_i.n)(w.n_g)/(w_i.n_g) above both planes.
 fn emitted_cosine(n: vec3<f32>, n_g: vec3<f32>, wi: vec3<f32>, w: vec3<f32>) -> f32 {
@@ -50,7 +53,7 @@ fn emitted_cosine(n: vec3<f32>, n_g: vec3<f32>, wi: vec3<f32>, w: vec3<f32>) -> 
     }
     let gi = dot(n_g, wi);
     let go = dot(n_g, w);
-    if gi <= 0.0 || go <= 0.0 || dot(n, w) <= 0.0 {
+    if gi < MIN_COS_GEOMETRIC || go <= 0.0 || dot(n, w) <= 0.0 {
         return 0.0;
     }
     return max(dot(n, wi), 0.0) * go / gi;

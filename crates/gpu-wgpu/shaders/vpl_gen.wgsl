@@ -67,7 +67,8 @@ fn make_vpl(t: RsmTexel, lobe: u32, id: u32) -> Vpl {
         t.kd,
         t.f0,
         vec4<u32>(lobe, t.info.x, id, 0u),
-        // The bound factor (w) is GpuVpl::new's, when the VPL is packed for culling.
+        // The bound factor (w) is not formed here: the VPLs are read back and packed for
+        // culling and shading by GpuVpl::new, which forms it (1 is right only untilted).
         vec4<f32>(select(t.normal_alpha.xyz, t.geometric.xyz, t.geometric.w != 0.0), 1.0),
     );
 }

@@ -43,7 +43,10 @@ impl VplLobes {
     }
 }
 
-/// VPLs on the GPU in the [`GpuVpl`] layout the bounds and shading passes read.
+/// VPLs on the GPU in the [`GpuVpl`] layout the bounds and shading passes read, except the
+/// bound factor `geometric_tilt.w`, which only [`GpuVpl::new`] forms: it is 1 here, right
+/// only for VPLs whose shading normal is the geometric one, so these VPLs are read back
+/// ([`GpuVpls::read_back`]) and packed again before culling.
 pub struct GpuVpls {
     pub buffer: wgpu::Buffer,
     pub count: u32,

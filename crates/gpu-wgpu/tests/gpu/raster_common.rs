@@ -24,22 +24,23 @@ pub fn default_scene() -> (Scene, Camera) {
 /// `shared/reference/cornell-a` (glTF, metallic-roughness materials, a point light, its own
 /// camera).
 pub fn cornell_a() -> (Scene, Camera) {
-    let path = concat!(
+    with_its_camera(concat!(
         env!("CARGO_MANIFEST_DIR"),
         "/../../../shared/reference/cornell-a/cornell-a.gltf"
-    );
-    let scene = load_scene(path).unwrap_or_else(|e| panic!("{path}: {e}"));
-    let camera = scene.camera_or_default();
-    (scene, camera)
+    ))
 }
 
 /// `scenes/materials` (glTF: a normal-mapped glossy floor with generated tangents, a
 /// double-sided alpha-masked sheet, a point light, its own camera).
 pub fn materials() -> (Scene, Camera) {
-    let path = concat!(
+    with_its_camera(concat!(
         env!("CARGO_MANIFEST_DIR"),
         "/../../scenes/materials/materials.gltf"
-    );
+    ))
+}
+
+/// A scene file and the camera it carries.
+fn with_its_camera(path: &str) -> (Scene, Camera) {
     let scene = load_scene(path).unwrap_or_else(|e| panic!("{path}: {e}"));
     let camera = scene.camera_or_default();
     (scene, camera)
