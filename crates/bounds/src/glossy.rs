@@ -74,12 +74,6 @@ impl GlossyLobe {
         Ok(self)
     }
 
-    /// The geometric normal n_g of [`crate::shading_normal`].
-    #[inline]
-    pub fn geometric_normal(&self) -> Vec3 {
-        self.geometric_normal
-    }
-
     /// The factor by which this VPL's bounds exceed eq. (9)-(12)'s for the same flux: 1 where
     /// n = n_g, else `(ωi·n)/(ωi·n_g) (cos θt + (2/α) sin θt)` ([`crate::shading_normal`]).
     pub fn tilt_factor(&self) -> f32 {

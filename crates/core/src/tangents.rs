@@ -60,11 +60,6 @@ impl Corners<'_> {
     fn vertex(&self, face: usize, vert: usize) -> usize {
         self.mesh.triangles[face][vert] as usize
     }
-
-    fn face_normal(&self, face: usize) -> Vec3 {
-        let [a, b, c] = self.mesh.triangles[face].map(|i| self.mesh.positions[i as usize]);
-        (b - a).cross(c - a).normalize_or_zero()
-    }
 }
 
 impl Geometry for Corners<'_> {
@@ -83,7 +78,7 @@ impl Geometry for Corners<'_> {
     fn normal(&self, face: usize, vert: usize) -> [f32; 3] {
         match &self.mesh.normals {
             Some(normals) => normals[self.vertex(face, vert)].to_array(),
-            None => self.face_normal(face).to_array(),
+            None => face_normal(self.mesh, face).to_array(),
         }
     }
 
@@ -101,6 +96,12 @@ impl Geometry for Corners<'_> {
     }
 }
 
+/// The unit normal of triangle `face` by its winding (zero for a degenerate one).
+fn face_normal(mesh: &Mesh, face: usize) -> Vec3 {
+    let [a, b, c] = mesh.triangles[face].map(|i| mesh.positions[i as usize]);
+    (b - a).cross(c - a).normalize_or_zero()
+}
+
 /// Stores one tangent per vertex, duplicating a vertex for each further distinct tangent its
 /// triangle corners were given.
 fn split_by_tangent(mesh: &mut Mesh, corners: &[Option<TangentSpace>]) {
@@ -111,10 +112,7 @@ fn split_by_tangent(mesh: &mut Mesh, corners: &[Option<TangentSpace>]) {
         let v = mesh.triangles[face][vert];
         let normal = match &mesh.normals {
             Some(normals) => normals[v as usize],
-            None => {
-                let [a, b, c] = mesh.triangles[face].map(|i| mesh.positions[i as usize]);
-                (b - a).cross(c - a).normalize_or_zero()
-            }
+            None => face_normal(mesh, face),
         };
         let tangent = gltf_tangent(*t, normal);
         let key = (v, tangent.to_array().map(f32::to_bits));

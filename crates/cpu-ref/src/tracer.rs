@@ -118,33 +118,19 @@ impl Tracer {
     }
 
     /// The ray's distance to BVH primitive `id` within (tmin, tmax], infinite where it misses
-    /// or meets the triangle where its mask cuts it away.
+    /// or meets the triangle where its mask cuts it away (at the hit's own barycentrics).
     #[inline]
-    fn hit_distance(
-        &self,
-        ray: &ShearedRay,
-        id: usize,
-        origin: Vec3,
-        dir: Vec3,
-        tmin: f32,
-        tmax: f32,
-    ) -> f32 {
+    fn hit_distance(&self, ray: &ShearedRay, id: usize, tmin: f32, tmax: f32) -> f32 {
         let tri = &self.tris[id];
-        let t = ray.intersect(tri, tmin, tmax);
         let cutout = self.prims[id].cutout;
-        if cutout == NOT_MASKED || t == f32::INFINITY {
-            return t;
+        if cutout == NOT_MASKED {
+            return ray.intersect(tri, tmin, tmax);
         }
+        let Some((t, [w0, w1, w2])) = ray.hit(tri, tmin, tmax) else {
+            return f32::INFINITY;
+        };
         let c = &self.cutouts[cutout as usize];
-        let uv = c.uvs.map(|[a, b, cc]| {
-            let (w0, w1, w2) = barycentric(
-                tri.v0.into(),
-                tri.v1.into(),
-                tri.v2.into(),
-                origin + dir * t,
-            );
-            a * w0 + b * w1 + cc * w2
-        });
+        let uv = c.uvs.map(|[a, b, cc]| a * w0 + b * w1 + cc * w2);
         if c.mask.cuts(uv, &self.textures) {
             f32::INFINITY
         } else {
@@ -178,7 +164,7 @@ impl Tracer {
         let sheared = ShearedRay::new(origin, dir);
         let mut hit = RayHit::none();
         if !self.bvh.ray_traverse(ray, &mut hit, |r, id| {
-            self.hit_distance(&sheared, id, origin, dir, r.tmin, r.tmax)
+            self.hit_distance(&sheared, id, r.tmin, r.tmax)
         }) {
             return None;
         }
@@ -209,9 +195,8 @@ impl Tracer {
     fn segment_is_free(&self, from: Vec3, dir: Vec3, tmin: f32, tmax: f32) -> bool {
         let ray = Ray::new(from.into(), dir.into(), tmin, tmax);
         let sheared = ShearedRay::new(from, dir);
-        self.bvh.ray_traverse_miss(ray, |r, id| {
-            self.hit_distance(&sheared, id, from, dir, r.tmin, r.tmax)
-        })
+        self.bvh
+            .ray_traverse_miss(ray, |r, id| self.hit_distance(&sheared, id, r.tmin, r.tmax))
     }
 
     /// A point just off the surface at `p` on the side of `n`.

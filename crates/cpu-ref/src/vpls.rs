@@ -5,12 +5,14 @@ use slc_core::rng::vpl_xi;
 use slc_core::{Vpl, VplLobe};
 
 /// One diffuse VPL (where kd > 0) and one glossy VPL (where the specular layer reflects) per
-/// lit texel. On a normal-mapped texel the VPL keeps the geometric normal beside the shading
-/// one (its intensity takes the adjoint correction of `slc_bounds::shading_normal`); elsewhere
-/// both are the shading normal, interpolated vertex normals included: eq. (4) as the paper
-/// and the VPL literature evaluate it. Texel k of the concatenated maps (light-major, then face, row, column) gives the
+/// lit texel. Texel k of the concatenated maps (light-major, then face, row, column) gives the
 /// VPL ids 2k (diffuse) and 2k + 1 (glossy); ξ = `vpl_xi(seed, id)`, so every backend draws the
 /// same ξ for the same VPL whatever texels are empty.
+///
+/// On a normal-mapped texel the VPL keeps the geometric normal beside the shading one (its
+/// intensity takes the adjoint correction of `slc_bounds::shading_normal`); elsewhere both are
+/// the shading normal, interpolated vertex normals included: eq. (4) as the paper and the VPL
+/// literature evaluate it.
 pub fn generate_vpls(maps: &[Rsm], seed: u32, lobes: LobeSelection) -> Vec<Vpl> {
     let mut vpls = Vec::new();
     let mut base = 0u32;

@@ -40,6 +40,13 @@ impl ShearedRay {
     /// Distance t to the triangle in units of the ray's direction, if hit with tmin < t <= tmax.
     #[inline]
     pub fn intersect(&self, tri: &Triangle, tmin: f32, tmax: f32) -> f32 {
+        self.hit(tri, tmin, tmax).map_or(f32::INFINITY, |(t, _)| t)
+    }
+
+    /// The hit with tmin < t <= tmax: t and the barycentric weights of (v0, v1, v2) at it
+    /// (U, V, W over their sum, the algorithm's own).
+    #[inline]
+    pub fn hit(&self, tri: &Triangle, tmin: f32, tmax: f32) -> Option<(f32, [f32; 3])> {
         let [kx, ky, kz] = self.k;
         let (a, b, c) = (
             tri.v0 - self.origin,
@@ -61,19 +68,15 @@ impl ShearedRay {
             w = d(bx, ay, by, ax);
         }
         if (u < 0.0 || v < 0.0 || w < 0.0) && (u > 0.0 || v > 0.0 || w > 0.0) {
-            return f32::INFINITY;
+            return None;
         }
         let det = u + v + w;
         if det == 0.0 {
-            return f32::INFINITY;
+            return None;
         }
         let (az, bz, cz) = (self.s.z * a[kz], self.s.z * b[kz], self.s.z * c[kz]);
         let t = (u * az + v * bz + w * cz) / det;
-        if t > tmin && t <= tmax {
-            t
-        } else {
-            f32::INFINITY
-        }
+        (t > tmin && t <= tmax).then(|| (t, [u / det, v / det, w / det]))
     }
 }
 
@@ -109,6 +112,25 @@ mod tests {
         let miss = ShearedRay::new(Vec3::new(0.8, 0.8, 1.0), Vec3::NEG_Z);
         assert_eq!(miss.intersect(&t, 0.0, f32::INFINITY), f32::INFINITY);
         assert_eq!(r.intersect(&t, 0.0, 0.5), f32::INFINITY);
+    }
+
+    /// The hit's own weights locate the hit point, for either winding and a slanted ray.
+    #[test]
+    fn hit_weights_reconstruct_the_hit_point() {
+        let (a, b, c) = (
+            Vec3::new(0.1, -0.2, 0.3),
+            Vec3::new(1.4, 0.1, -0.2),
+            Vec3::Y,
+        );
+        let origin = Vec3::new(0.3, 0.2, 2.0);
+        let dir = Vec3::new(0.1, 0.05, -1.0).normalize();
+        let r = ShearedRay::new(origin, dir);
+        for t in [tri(a, b, c), tri(a, c, b)] {
+            let (d, [w0, w1, w2]) = r.hit(&t, 0.0, f32::INFINITY).unwrap();
+            let p = Vec3::from(t.v0) * w0 + Vec3::from(t.v1) * w1 + Vec3::from(t.v2) * w2;
+            assert!((w0 + w1 + w2 - 1.0).abs() < 1e-6);
+            assert!((p - (origin + dir * d)).length() < 1e-5, "{p}");
+        }
     }
 
     /// Rays through the shared diagonal of a quad hit one of its two triangles, always.

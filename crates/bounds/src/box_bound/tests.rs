@@ -69,7 +69,10 @@ fn random_lobe(rng: &mut Rng) -> TestLobe {
     let lobe = GlossyLobe::new(Vec3::ZERO, n, omega_i, alpha, flux, fresnel).unwrap();
     if rng.u64().is_multiple_of(3) {
         let tilt = 10f32.powf(rng.range(-6.0, -0.1));
-        let axis = n.cross(rng.unit()).normalize();
+        let axis = n
+            .cross(rng.unit())
+            .try_normalize()
+            .unwrap_or_else(|| n.any_orthonormal_vector());
         let n_g = glam::Quat::from_axis_angle(axis, tilt) * n;
         if n_g.dot(omega_i) > 0.0 {
             return TestLobe::Glossy(lobe.with_geometric_normal(n_g.normalize()).unwrap());

@@ -1,6 +1,7 @@
 //! No strategy ever culls a contributing VPL (missed pairs = 0 against the brute-force truth).
 use crate::common::*;
 use slc_core::frame::LobeSelection;
+use slc_core::{Camera, GBuffer, Vpl};
 
 /// 300 random rooms: a floor G-buffer by ray casting (jittered, often exactly on pixel corners
 /// and edges; sky above the horizon), VPLs on the walls and ceiling, hanging just above the
@@ -43,22 +44,15 @@ fn synthetic_rooms_never_miss() {
 fn default_scene_never_misses() {
     let (scene, camera) = default_scene();
     let (gbuffer, vpls) = frame(&scene, &camera, (160, 120), 16, LobeSelection::Both);
-    for (k, delta) in [
+    let cases = [
         (1, 1e-3),
         (4, 1e-3),
         (4, 1e-5),
         (4, 1e-1),
         (1, 1e-2),
         (8, 1e-3),
-    ] {
-        let label = format!("default scene, K {k}, delta {delta}");
-        let all = check_all(&input(&gbuffer, &camera, &vpls, delta, k), &label);
-        println!("{label}, {} VPLs", vpls.len());
-        for (name, m) in &all {
-            println!("{}", line(name, m));
-        }
-        assert!(of(&all, "none").true_positive_pairs > 5_000);
-    }
+    ];
+    never_misses("default scene", (&gbuffer, &camera, &vpls), &cases);
 }
 
 /// Dabrovic Sponza (with a point light, a camera in the atrium and glossy layers of α from
@@ -72,15 +66,8 @@ fn sponza_never_misses() {
         seen > gbuffer.samples.len() / 2,
         "the camera sees the atrium: {seen}"
     );
-    for (k, delta) in [(1, 1e-3), (4, 1e-3), (1, 1e-2), (4, 1e-1)] {
-        let label = format!("sponza, K {k}, delta {delta}");
-        let all = check_all(&input(&gbuffer, &camera, &vpls, delta, k), &label);
-        println!("{label}, {} VPLs", vpls.len());
-        for (name, m) in &all {
-            println!("{}", line(name, m));
-        }
-        assert!(of(&all, "none").true_positive_pairs > 5_000);
-    }
+    let cases = [(1, 1e-3), (4, 1e-3), (1, 1e-2), (4, 1e-1)];
+    never_misses("sponza", (&gbuffer, &camera, &vpls), &cases);
 }
 
 /// `scenes/materials` (normal-mapped glossy floor, cut-outs, a double-sided sheet) with the
@@ -91,14 +78,26 @@ fn materials_scene_never_misses() {
     for roughness in [0.4, 0.1] {
         let (scene, camera) = materials_scene(roughness);
         let (gbuffer, vpls) = frame(&scene, &camera, (128, 128), 24, LobeSelection::Both);
-        for (k, delta) in [(1, 1e-3), (4, 1e-3), (4, 1e-2)] {
-            let label = format!("materials, roughness {roughness}, K {k}, delta {delta}");
-            let all = check_all(&input(&gbuffer, &camera, &vpls, delta, k), &label);
-            println!("{label}, {} VPLs", vpls.len());
-            for (name, m) in &all {
-                println!("{}", line(name, m));
-            }
-            assert!(of(&all, "none").true_positive_pairs > 5_000);
+        let label = format!("materials, roughness {roughness}");
+        let cases = [(1, 1e-3), (4, 1e-3), (4, 1e-2)];
+        never_misses(&label, (&gbuffer, &camera, &vpls), &cases);
+    }
+}
+
+/// [`check_all`] on one frame for each (K, δ) of `cases`, printing every strategy's metrics;
+/// each case must hold more than 5,000 contributing pairs (so that "no miss" says something).
+fn never_misses(
+    label: &str,
+    (gbuffer, camera, vpls): (&GBuffer, &Camera, &[Vpl]),
+    cases: &[(u32, f32)],
+) {
+    for &(k, delta) in cases {
+        let label = format!("{label}, K {k}, delta {delta}");
+        let all = check_all(&input(gbuffer, camera, vpls, delta, k), &label);
+        println!("{label}, {} VPLs", vpls.len());
+        for (name, m) in &all {
+            println!("{}", line(name, m));
         }
+        assert!(of(&all, "none").true_positive_pairs > 5_000);
     }
 }
