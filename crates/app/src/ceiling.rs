@@ -48,6 +48,7 @@ fn vpls_in_l1() -> ReachChunks {
                 kd: Vec3::splat(0.5),
                 fresnel: Fresnel::Schlick(Vec3::splat(0.04)),
                 alpha: 0.1,
+                anisotropy: None,
             },
             lobe: VplLobe::Glossy,
             id: i,

@@ -44,9 +44,10 @@ pub const PROBABILITY_SLACK: f64 = 1e-3;
 enum Lobe {
     /// Φk/π of eq. (4) with f = kd/π.
     Diffuse { peak: f64 },
-    /// The glossy lobe of eq. (6): flux (times the tilt factor of a tilted shading normal),
-    /// Fresnel, α, ωi, ω_u, θh_max(ωi) as a cosine, G1(ωi)/(4 ωi·n), and whether G1(ωo) is
-    /// bounded over the cone (false for a tilted shading normal: the factor covers it).
+    /// The glossy lobe of eq. (6): flux (times `GlossyLobe::bound_factor` of a tilted or
+    /// anisotropic lobe), Fresnel, α (`GlossyLobe::alpha`), ωi, ω_u, θh_max(ωi) as a cosine,
+    /// G1(ωi)/(4 ωi·n), and the α whose G1 bounds G1(ωo) over the cone (the lobe's smallest;
+    /// none for a tilted shading normal: the factor covers it).
     Glossy {
         flux: Vec3,
         fresnel: Fresnel,
@@ -55,7 +56,7 @@ enum Lobe {
         omega_u: DVec3,
         cos_h_max: f64,
         g1_i: f64,
-        g1_o_bounded: bool,
+        g1_o_alpha: Option<f32>,
     },
 }
 
@@ -69,7 +70,7 @@ pub struct BoxBound {
     normal: DVec3,
     /// The largest intensity in any direction: Φk/π, or for a glossy VPL
     /// scalar(Φ F_max(ωi)) G1(ωi)/(4 ωi·n) D(1) (eq. 9 at its peak, the r/α sphere), Φ times
-    /// `GlossyLobe::tilt_factor` on a tilted shading normal.
+    /// `GlossyLobe::bound_factor` on a tilted shading normal or an anisotropic lobe.
     peak: f64,
     /// δ ξ of eq. (2)-(3) (p > ξ needs I > δ ξ l²), divided by 1 + [`PROBABILITY_SLACK`].
     delta_xi_shrunk: f64,
@@ -83,17 +84,18 @@ impl BoxBound {
         let normal = lobe.normal().as_dvec3().normalize();
         let alpha = f64::from(lobe.alpha());
         let g1_i = 0.25 * f64::from(ggx::g1_over_cos(lobe.alpha(), cos_i));
-        // A tilted shading normal: the flux times `tilt_factor`, and G1(ωo) bounded by 1
-        // below (`g1_tilt_max` covers G1(ωo)(ωo·n_g)/(ωo·n) in the factor).
-        let tilt = lobe.tilt_factor();
-        let flux = lobe.flux() * tilt;
+        // A tilted shading normal: the flux times `bound_factor`, and G1(ωo) bounded by 1
+        // below (`g1_tilt_max` covers G1(ωo)(ωo·n_g)/(ωo·n) in the factor). An anisotropic
+        // lobe: the isotropic one of its largest α with the flux times `bound_factor`, and
+        // G1(ωo) bounded by the isotropic G1 of its smallest α (`crate::anisotropy`).
+        let flux = lobe.flux() * lobe.bound_factor();
         let f_max = f64::from(scalar_intensity(
             flux * lobe.fresnel().max_over_half_vectors(cos_i),
         ));
         Self {
             lobe: Lobe::Glossy {
                 flux,
-                g1_o_bounded: !lobe.is_tilted(),
+                g1_o_alpha: (!lobe.is_tilted()).then(|| lobe.alpha_min()),
                 fresnel: lobe.fresnel(),
                 alpha,
                 omega_i,
@@ -173,17 +175,14 @@ impl BoxBound {
                 omega_u,
                 cos_h_max,
                 g1_i,
-                g1_o_bounded,
+                g1_o_alpha,
             } => {
                 // D(cos(θ_min/2)) of eq. (7) with sin²(θ/2) = (1 − cos θ)/2.
                 let sin2 = 0.5 * (1.0 - cone.max_cos(omega_u));
                 let a2 = alpha * alpha;
                 let denom = a2 + (1.0 - a2) * sin2;
                 let d = a2 / (core::f64::consts::PI * denom * denom);
-                let g1_o = match g1_o_bounded {
-                    true => f64::from(ggx::g1(alpha as f32, cos_o as f32)),
-                    false => 1.0,
-                };
+                let g1_o = g1_o_alpha.map_or(1.0, |a| f64::from(ggx::g1(a, cos_o as f32)));
                 // The smallest cos(φ/2) = ωi·ωh over the cone, no smaller than cos θh_max.
                 let cos_h = (0.5 * (1.0 + cone.min_cos(omega_i))).sqrt().max(cos_h_max);
                 let f = f64::from(scalar_intensity(flux * fresnel.max_from(cos_h as f32)));

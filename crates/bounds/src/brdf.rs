@@ -1,4 +1,5 @@
 //! The surface BRDF: Lambertian diffuse plus the GGX microfacet specular lobe.
+use crate::anisotropy::Anisotropy;
 use crate::fresnel::Fresnel;
 use crate::ggx;
 use core::f32::consts::FRAC_1_PI;
@@ -6,13 +7,17 @@ use glam::Vec3;
 
 /// A one-sided diffuse + GGX BRDF, `f(ωi, ωo) = kd/π + F(ωi·ωh) D(ωh·n) G1(ωi) G1(ωo) / (4 |ωi·n| |ωo·n|)`
 /// (paper eq. (6) with the separable Smith G2 of section 4.1). The diffuse term is not weighted
-/// by (1 - F). Zero unless both directions are on the side the normal points to.
+/// by (1 - F). Zero unless both directions are on the side the normal points to. With an
+/// [`Anisotropy`], D and G1 are the anisotropic GGX's ([`crate::anisotropy`]).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Brdf {
     pub kd: Vec3,
     pub fresnel: Fresnel,
-    /// GGX roughness α in (0, 1].
+    /// GGX roughness α in (0, 1]; the roughness along the bitangent where anisotropic.
     pub alpha: f32,
+    /// The tangent and its roughness α_t of an anisotropic lobe (`KHR_materials_anisotropy`);
+    /// the tangent is perpendicular to the shading normal the BRDF is evaluated with.
+    pub anisotropy: Option<Anisotropy>,
 }
 
 impl Brdf {
@@ -38,34 +43,59 @@ impl Brdf {
     /// The microfacet part, paper eq. (6) with GGX D (eq. 7) and separable Smith G2 (eq. 8).
     #[inline]
     pub fn specular(&self, n: Vec3, omega_i: Vec3, omega_o: Vec3) -> Vec3 {
-        microfacet(n, omega_i, omega_o, self.alpha, self.fresnel)
+        microfacet(
+            n,
+            omega_i,
+            omega_o,
+            self.alpha,
+            self.anisotropy.as_ref(),
+            self.fresnel,
+        )
     }
 }
 
 /// The GGX microfacet BRDF, paper eq. (6): `F(ωi·ωh) G2(ωi, ωo) D(ωh·n) / (4 |ωi·n| |ωo·n|)`,
 /// with the separable Smith G2; zero unless both directions are above the surface. `n`,
 /// `omega_i` and `omega_o` are unit vectors, the directions pointing away from the surface.
+/// With an `anisotropy`, D and G1 are the anisotropic GGX's with α along the bitangent.
 #[inline]
-pub fn microfacet(n: Vec3, omega_i: Vec3, omega_o: Vec3, alpha: f32, fresnel: Fresnel) -> Vec3 {
+pub fn microfacet(
+    n: Vec3,
+    omega_i: Vec3,
+    omega_o: Vec3,
+    alpha: f32,
+    anisotropy: Option<&Anisotropy>,
+    fresnel: Fresnel,
+) -> Vec3 {
     let cos_i = n.dot(omega_i);
     let cos_o = n.dot(omega_o);
     if cos_i <= 0.0 || cos_o <= 0.0 {
         return Vec3::ZERO;
     }
     // G1/cos for each direction keeps grazing angles finite (no 0/0).
-    let g = ggx::g1_over_cos(alpha, cos_i) * ggx::g1_over_cos(alpha, cos_o);
+    let (g, alpha_min) = match anisotropy {
+        None => (
+            ggx::g1_over_cos(alpha, cos_i) * ggx::g1_over_cos(alpha, cos_o),
+            alpha,
+        ),
+        Some(a) => (
+            a.g1_over_cos(alpha, n, omega_i) * a.g1_over_cos(alpha, n, omega_o),
+            a.alpha_min(alpha),
+        ),
+    };
     // sin² θh from the cross product keeps D accurate near its peak even for tiny α.
     let s = omega_i + omega_o;
     let s2 = s.length_squared();
     // The f32 sum of (nearly) unit vectors is off by ~1e-7, which tilts ωh by ~1e-7/|s|: far
     // below the lobe width α unless ωi and ωo are almost opposite (grazing incidence near the
     // mirror direction) and α is tiny. Only then is the half vector formed in f64.
-    let (d, cos_ih) = if s2 * alpha * alpha > 1e-6 {
+    let (d, cos_ih) = if s2 * alpha_min * alpha_min > 1e-6 {
         let h = s / s2.sqrt();
-        (
-            ggx::d_with_sin2(alpha, n.dot(h), n.cross(h).length_squared()),
-            omega_i.dot(h),
-        )
+        let d = match anisotropy {
+            None => ggx::d_with_sin2(alpha, n.dot(h), n.cross(h).length_squared()),
+            Some(a) => a.d(alpha, n, h),
+        };
+        (d, omega_i.dot(h))
     } else {
         let (wi, wo, nd) = (
             omega_i.as_dvec3(),
@@ -74,10 +104,21 @@ pub fn microfacet(n: Vec3, omega_i: Vec3, omega_o: Vec3, alpha: f32, fresnel: Fr
         );
         let wi = wi / wi.length();
         let h = (wi + wo / wo.length()).normalize();
-        (
-            ggx::d_with_sin2(alpha, nd.dot(h) as f32, nd.cross(h).length_squared() as f32),
-            wi.dot(h) as f32,
-        )
+        let d = match anisotropy {
+            None => ggx::d_with_sin2(alpha, nd.dot(h) as f32, nd.cross(h).length_squared() as f32),
+            Some(a) => {
+                let t = a.tangent.as_dvec3();
+                let b = nd.cross(t);
+                ggx::d_anisotropic(
+                    a.alpha_t,
+                    alpha,
+                    t.dot(h) as f32,
+                    b.dot(h) as f32,
+                    nd.dot(h) as f32,
+                )
+            }
+        };
+        (d, wi.dot(h) as f32)
     };
     fresnel.eval(cos_ih) * (0.25 * d * g)
 }
@@ -108,7 +149,7 @@ mod tests {
             let (wi, wo) = (rng.above(n), rng.above(n));
             let alpha = rng.range(0.05, 1.0);
             let f0 = rng.f32();
-            let got = microfacet(n, wi, wo, alpha, Fresnel::Schlick(Vec3::splat(f0))).x;
+            let got = microfacet(n, wi, wo, alpha, None, Fresnel::Schlick(Vec3::splat(f0))).x;
             let want = reference(n, wi, wo, f64::from(alpha), f64::from(f0));
             assert!(
                 (f64::from(got) - want).abs() <= 1e-4 * want + 1e-7,
@@ -124,6 +165,7 @@ mod tests {
             kd: Vec3::new(0.5, 0.2, 0.1),
             fresnel: Fresnel::Dielectric(1.5),
             alpha: 0.3,
+            anisotropy: None,
         };
         for _ in 0..500 {
             let n = rng.unit();
@@ -148,8 +190,8 @@ mod tests {
         let alpha = 1e-4f32;
         let n = Vec3::Z;
         let wo = Vec3::new(2e-4f32.sin(), 0.0, 2e-4f32.cos());
-        let f = microfacet(n, n, wo, alpha, Fresnel::Schlick(Vec3::ONE)).x;
-        let peak = microfacet(n, n, n, alpha, Fresnel::Schlick(Vec3::ONE)).x;
+        let f = microfacet(n, n, wo, alpha, None, Fresnel::Schlick(Vec3::ONE)).x;
+        let peak = microfacet(n, n, n, alpha, None, Fresnel::Schlick(Vec3::ONE)).x;
         assert!((f / peak - 0.25).abs() < 0.01, "{}", f / peak);
     }
 }

@@ -22,6 +22,8 @@ pub enum BoundsError {
     Negative(&'static str),
     /// The named direction is not of unit length (tolerance 1e-3 on the length).
     NotUnit(&'static str),
+    /// The named direction is not perpendicular to the normal (tolerance 1e-4 on the cosine).
+    NotPerpendicular(&'static str),
     /// A matrix that must be a rotation is not orthonormal with determinant +1 (tolerance 1e-4).
     NotRotation,
     /// Ellipsoid semi-axes must be all positive, or all zero for an empty bound.
@@ -43,6 +45,7 @@ impl fmt::Display for BoundsError {
             Self::NotFinite(what) => write!(f, "{what} has a NaN or infinite component"),
             Self::Negative(what) => write!(f, "{what} has a negative component"),
             Self::NotUnit(what) => write!(f, "{what} is not a unit vector"),
+            Self::NotPerpendicular(what) => write!(f, "{what} is not perpendicular to the normal"),
             Self::NotRotation => write!(f, "matrix is not a rotation (orthonormal, det +1)"),
             Self::InvalidSemiAxes(a) => {
                 write!(f, "semi-axes must be all positive or all zero, got {a}")

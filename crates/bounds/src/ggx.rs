@@ -48,6 +48,31 @@ pub fn g2_separable(alpha: f32, cos_i: f32, cos_o: f32) -> f32 {
     g1(alpha, cos_i) * g1(alpha, cos_o)
 }
 
+/// Anisotropic GGX normal distribution function (Heitz 2014, "Understanding the
+/// masking-shadowing function", eq. 85; glTF `KHR_materials_anisotropy`):
+/// `D(m) = χ⁺(m·n) / (π α_t α_b ((m·t/α_t)² + (m·b/α_b)² + (m·n)²)²)` for a unit micro-normal
+/// m with components `m_t`, `m_b`, `m_n` in the orthonormal frame (t, b, n). Equal to eq. (7)
+/// where α_t = α_b.
+#[inline]
+pub fn d_anisotropic(alpha_t: f32, alpha_b: f32, m_t: f32, m_b: f32, m_n: f32) -> f32 {
+    if m_n <= 0.0 {
+        return 0.0;
+    }
+    let (x, y) = (m_t / alpha_t, m_b / alpha_b);
+    let denom = x * x + y * y + m_n * m_n;
+    1.0 / (PI * alpha_t * alpha_b * denom * denom)
+}
+
+/// `G1(ω) / |ω·n|` of the anisotropic Smith masking function (Heitz 2014, eq. 86):
+/// `2 / (|ω_n| + sqrt(ω_n² + α_t² ω_t² + α_b² ω_b²))`, eq. (8) with α² sin²θ replaced by the
+/// projected roughness `α_t² ω_t² + α_b² ω_b²` (ω's components in the frame (t, b, n)).
+#[inline]
+pub fn g1_over_cos_anisotropic(alpha_t: f32, alpha_b: f32, w_t: f32, w_b: f32, w_n: f32) -> f32 {
+    let (x, y) = (alpha_t * w_t, alpha_b * w_b);
+    let c = w_n.abs();
+    2.0 / (c + (c * c + x * x + y * y).sqrt())
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -1,5 +1,6 @@
 //! A glossy VPL: the GGX specular lobe of its radiant intensity (eq. 4, 6) and the radius r
 //! of its bounding spheroid (eq. 12).
+use crate::anisotropy::Anisotropy;
 use crate::brdf::microfacet;
 use crate::check;
 use crate::error::BoundsError;
@@ -23,7 +24,10 @@ pub struct GlossyLobe {
     /// The geometric normal n_g (`normal` unless set by [`Self::with_geometric_normal`]).
     geometric_normal: Vec3,
     omega_i: Vec3,
+    /// α of eq. (7); the roughness along the bitangent where anisotropic.
     alpha: f32,
+    /// Set by [`Self::with_anisotropy`].
+    anisotropy: Option<Anisotropy>,
     flux: Vec3,
     fresnel: Fresnel,
 }
@@ -46,6 +50,7 @@ impl GlossyLobe {
             geometric_normal: normal,
             omega_i: check::unit(omega_i, "omega_i")?,
             alpha: check::alpha(alpha)?,
+            anisotropy: None,
             flux: check::non_negative(flux, "flux")?,
             fresnel: check::fresnel(fresnel)?,
         })
@@ -74,11 +79,43 @@ impl GlossyLobe {
         Ok(self)
     }
 
-    /// The factor by which this VPL's bounds exceed eq. (9)-(12)'s for the same flux: 1 where
-    /// n = n_g, else `(ωi·n)/(ωi·n_g) (cos θt + (2/α) sin θt)` ([`crate::shading_normal`]).
-    pub fn tilt_factor(&self) -> f32 {
-        flux_scale(self.normal, self.geometric_normal, self.omega_i)
-            * g1_tilt_max(self.normal, self.geometric_normal, self.alpha)
+    /// The same VPL with an anisotropic lobe (`None`: isotropic): α_t along the tangent, this
+    /// lobe's α along the bitangent ([`crate::anisotropy`]). The tangent must be a unit
+    /// vector (within 1e-3) perpendicular to the shading normal within 1e-4, α_t in (0, 1].
+    pub fn with_anisotropy(mut self, anisotropy: Option<Anisotropy>) -> Result<Self, BoundsError> {
+        self.anisotropy = match anisotropy {
+            None => None,
+            Some(a) => {
+                let tangent = check::unit(a.tangent, "tangent")?;
+                if tangent.dot(self.normal).abs() > 1e-4 {
+                    return Err(BoundsError::NotPerpendicular("tangent"));
+                }
+                Some(Anisotropy {
+                    tangent,
+                    alpha_t: check::alpha(a.alpha_t)?,
+                })
+            }
+        };
+        Ok(self)
+    }
+
+    /// The anisotropy set by [`Self::with_anisotropy`].
+    #[inline]
+    pub fn anisotropy(&self) -> Option<Anisotropy> {
+        self.anisotropy
+    }
+
+    /// The factor by which this VPL's bounds exceed eq. (9)-(12)'s, taken with [`Self::alpha`],
+    /// for the same flux: the product of the shading-normal factor (1 where n = n_g, else
+    /// `(ωi·n)/(ωi·n_g) (cos θt + (2/α_min) sin θt)`, [`crate::shading_normal`]) and the
+    /// anisotropy's (1 if isotropic, else [`Anisotropy::bound_factor`]).
+    pub fn bound_factor(&self) -> f32 {
+        let tilt = flux_scale(self.normal, self.geometric_normal, self.omega_i)
+            * g1_tilt_max(self.normal, self.geometric_normal, self.alpha_min());
+        match self.anisotropy {
+            None => tilt,
+            Some(a) => tilt * a.bound_factor(self.alpha, self.normal, self.omega_i),
+        }
     }
 
     /// Whether the shading normal differs from the geometric one.
@@ -93,10 +130,18 @@ impl GlossyLobe {
         self.omega_i
     }
 
-    /// The GGX roughness α of eq. (7).
+    /// The GGX roughness α of eq. (7) the bounds use: the lobe's α, or for an anisotropic
+    /// lobe the larger of α_t and α_b (the isotropic lobe that bounds it, with
+    /// [`Self::bound_factor`]).
     #[inline]
     pub fn alpha(&self) -> f32 {
-        self.alpha
+        self.anisotropy.map_or(self.alpha, |a| a.alpha_max(self.alpha))
+    }
+
+    /// The smallest roughness of the lobe (α if isotropic): G1 of it bounds the lobe's G1.
+    #[inline]
+    pub fn alpha_min(&self) -> f32 {
+        self.anisotropy.map_or(self.alpha, |a| a.alpha_min(self.alpha))
     }
 
     /// The RGB flux Φ of eq. (4).
@@ -130,7 +175,14 @@ impl GlossyLobe {
     /// point; not validated (per-pixel path), and zero below the surface.
     #[inline]
     pub fn intensity(&self, omega_o: Vec3) -> f32 {
-        let f = microfacet(self.normal, self.omega_i, omega_o, self.alpha, self.fresnel);
+        let f = microfacet(
+            self.normal,
+            self.omega_i,
+            omega_o,
+            self.alpha,
+            self.anisotropy.as_ref(),
+            self.fresnel,
+        );
         scalar_intensity(self.flux * f)
             * emitted_cosine(self.normal, self.geometric_normal, self.omega_i, omega_o)
     }
@@ -139,17 +191,18 @@ impl GlossyLobe {
     /// `Φ F_max` is the largest channel of Φ_c F_max,c(ωi) (supplemental eq. (2), (6)) and
     /// `G1/|ωi·n|` is evaluated in closed form, finite at grazing incidence.
     ///
-    /// Zero when ωi·n <= 0 or the flux is zero (the VPL reflects nothing). A tilted VPL's
-    /// flux is multiplied by [`Self::tilt_factor`]. Computed in f64; an
-    /// [`BoundsError::Overflow`] if r does not fit in an `f32`.
+    /// Zero when ωi·n <= 0 or the flux is zero (the VPL reflects nothing). A tilted or
+    /// anisotropic VPL's flux is multiplied by [`Self::bound_factor`], with α =
+    /// [`Self::alpha`]. Computed in f64; an [`BoundsError::Overflow`] if r does not fit in
+    /// an `f32`.
     pub fn radius(&self, params: &StochasticParams) -> Result<f32, BoundsError> {
         let cos_i = self.cos_i();
         let peak = scalar_intensity(self.flux * self.fresnel.max_over_half_vectors(cos_i))
-            * self.tilt_factor();
+            * self.bound_factor();
         if cos_i <= 0.0 || peak <= 0.0 {
             return Ok(0.0);
         }
-        let numerator = f64::from(peak) * f64::from(ggx::g1_over_cos(self.alpha, cos_i));
+        let numerator = f64::from(peak) * f64::from(ggx::g1_over_cos(self.alpha(), cos_i));
         let denominator = 4.0 * PI * f64::from(params.delta()) * f64::from(params.xi());
         check::fits((numerator / denominator).sqrt(), "spheroid radius r")
     }

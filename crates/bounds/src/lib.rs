@@ -54,6 +54,7 @@
 //! # Ok::<(), slc_bounds::BoundsError>(())
 //! ```
 pub mod aabb;
+pub mod anisotropy;
 pub mod box_bound;
 pub mod brdf;
 mod check;
@@ -74,6 +75,7 @@ pub mod test_space;
 mod test_util;
 
 pub use aabb::Aabb;
+pub use anisotropy::Anisotropy;
 pub use box_bound::{BoxBound, ReceiverBox};
 pub use brdf::Brdf;
 pub use diffuse::DiffuseLobe;

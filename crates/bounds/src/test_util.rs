@@ -83,3 +83,14 @@ pub fn log_angles(lo: f64, hi: f64, count: usize) -> Vec<f64> {
         .map(|k| lo * (hi / lo).powf(k as f64 / (count - 1) as f64))
         .collect()
 }
+
+/// A random tangent perpendicular to `n` with α_t from 1e-4 to 1.
+pub fn random_anisotropy(rng: &mut Rng, n: Vec3) -> crate::Anisotropy {
+    let t = rng.unit();
+    crate::Anisotropy {
+        tangent: (t - n * n.dot(t))
+            .try_normalize()
+            .unwrap_or_else(|| n.any_orthonormal_vector()),
+        alpha_t: 10f32.powf(rng.range(-4.0, 0.0)),
+    }
+}

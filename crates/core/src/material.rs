@@ -154,6 +154,7 @@ impl Material {
             kd: kd.clamp(Vec3::ZERO, Vec3::ONE),
             fresnel,
             alpha: alpha.clamp(ALPHA_MIN, 1.0),
+            anisotropy: None,
         }
     }
 

@@ -127,6 +127,7 @@ mod tests {
                 kd: Vec3::splat(0.5),
                 fresnel: Fresnel::Schlick(Vec3::ZERO),
                 alpha: 1.0,
+                anisotropy: None,
             },
         })
     }

@@ -75,6 +75,7 @@ mod tests {
                 kd: Vec3::splat(kd),
                 fresnel: Fresnel::Schlick(Vec3::splat(0.9)),
                 alpha,
+                anisotropy: None,
             };
             let omega_o = Vec3::new((1.0f32 - cos_o * cos_o).sqrt(), 0.0, cos_o);
             let m = 400_000u32;

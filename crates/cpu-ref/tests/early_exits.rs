@@ -117,6 +117,7 @@ fn random_vpl(rng: &mut Rng) -> Vpl {
             kd: Vec3::new(rng.f32(), rng.f32(), rng.f32()),
             fresnel,
             alpha: rng.log(-4.0, 0.0),
+            anisotropy: None,
         },
         lobe: if rng.f32() < 0.5 {
             VplLobe::Diffuse
@@ -166,6 +167,7 @@ fn receiver(rng: &mut Rng, x: Vec3, omega: Vec3) -> GSample {
             kd: Vec3::new(rng.f32(), rng.f32(), rng.f32()),
             fresnel: Fresnel::Schlick(Vec3::splat(rng.f32())),
             alpha: rng.log(-3.0, 0.0),
+            anisotropy: None,
         },
     }
 }

@@ -15,6 +15,7 @@ fn run() -> Result<(), Box<dyn std::error::Error>> {
         kd: Vec3::splat(0.5),
         fresnel: Fresnel::Schlick(Vec3::splat(0.04)),
         alpha: 0.2,
+        anisotropy: None,
     };
     let (w, h) = (64, 48);
     let samples = (0..w * h)

@@ -35,7 +35,7 @@
 //! // A camera 4 units above a floor (y = 0) looking straight down; a 32x32 G-buffer of the
 //! // floor from each pixel's centre ray.
 //! let camera = Camera::look_at(Vec3::new(0.0, 4.0, 0.0), Vec3::ZERO, Vec3::Z, 1.0).unwrap();
-//! let brdf = Brdf { kd: Vec3::splat(0.5), fresnel: Fresnel::Schlick(Vec3::splat(0.04)), alpha: 0.3 };
+//! let brdf = Brdf { kd: Vec3::splat(0.5), fresnel: Fresnel::Schlick(Vec3::splat(0.04)), alpha: 0.3, anisotropy: None };
 //! let (w, h) = (32, 32);
 //! let samples = (0..w * h)
 //!     .map(|p| {

@@ -85,6 +85,7 @@ mod tests {
                     kd: Vec3::ONE,
                     fresnel: Fresnel::Schlick(Vec3::ZERO),
                     alpha: 1.0,
+                    anisotropy: None,
                 },
                 lobe: VplLobe::Diffuse,
                 id,

@@ -247,6 +247,7 @@ mod tests {
                 kd: Vec3::splat(0.5),
                 fresnel: Fresnel::Schlick(Vec3::splat(0.9)),
                 alpha,
+                anisotropy: None,
             },
             lobe,
             id: 0,

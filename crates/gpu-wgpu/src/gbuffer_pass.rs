@@ -93,6 +93,7 @@ impl GpuGBuffer {
                 kd: Vec3::from_array(s.kd),
                 fresnel,
                 alpha: s.normal_alpha[3],
+                anisotropy: None,
             },
         }
     }

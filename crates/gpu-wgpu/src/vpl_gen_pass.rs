@@ -77,6 +77,7 @@ fn unpack(v: &GpuVpl) -> Vpl {
             kd: v3(v.kd),
             fresnel,
             alpha: v.normal_alpha[3],
+            anisotropy: None,
         },
         lobe: if v.info[0] == LOBE_DIFFUSE {
             VplLobe::Diffuse

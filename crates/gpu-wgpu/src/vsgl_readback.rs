@@ -72,6 +72,7 @@ pub fn cpu_rsm(ctx: &GpuContext, rsm: &GpuRsm) -> Result<Rsm, GpuError> {
                     kd: xyz(t.kd),
                     fresnel,
                     alpha: t.normal_alpha[3],
+                    anisotropy: None,
                 },
             })
         })

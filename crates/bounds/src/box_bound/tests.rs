@@ -4,7 +4,7 @@
 use super::*;
 use crate::frame::Frame;
 use crate::spheroid::Spheroid;
-use crate::test_util::Rng;
+use crate::test_util::{random_anisotropy, Rng};
 use glam::{DQuat, DVec3};
 
 /// A VPL of either lobe with the lobe's own intensity of eq. (4).
@@ -40,7 +40,8 @@ impl TestLobe {
 /// A random lobe at the extremes: α from 1e-4 to 1, ωi from normal to grazing incidence,
 /// Schlick or dielectric Fresnel (η below and above 1), flux from 1e-6 to 1e6; a third of
 /// the glossy ones on a tilted shading normal (a geometric normal up to 0.8 rad away, from
-/// 1e-6 rad, with ωi above it: `crate::shading_normal`).
+/// 1e-6 rad, with ωi above it: `crate::shading_normal`), a third (independently) anisotropic
+/// with α_t from 1e-4 to 1 along a random tangent (`crate::anisotropy`).
 fn random_lobe(rng: &mut Rng) -> TestLobe {
     let n = rng.unit();
     let theta_i = match rng.u64() % 4 {
@@ -66,7 +67,11 @@ fn random_lobe(rng: &mut Rng) -> TestLobe {
         1 => Fresnel::Dielectric(rng.range(0.2, 0.99)),
         _ => Fresnel::Dielectric(rng.range(1.01, 5.0)),
     };
-    let lobe = GlossyLobe::new(Vec3::ZERO, n, omega_i, alpha, flux, fresnel).unwrap();
+    let mut lobe = GlossyLobe::new(Vec3::ZERO, n, omega_i, alpha, flux, fresnel).unwrap();
+    if rng.u64().is_multiple_of(3) {
+        let anisotropy = random_anisotropy(rng, n);
+        lobe = lobe.with_anisotropy(Some(anisotropy)).unwrap();
+    }
     if rng.u64().is_multiple_of(3) {
         let tilt = 10f32.powf(rng.range(-6.0, -0.1));
         let axis = n

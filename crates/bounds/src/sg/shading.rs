@@ -95,6 +95,7 @@ mod tests {
             kd: Vec3::new(0.8, 0.5, 0.2),
             fresnel: Fresnel::Schlick(Vec3::splat(0.04)),
             alpha,
+            anisotropy: None,
         }
     }
 

@@ -172,4 +172,32 @@ proptest! {
         let dirs = directions(&lobe, &mut Rng::new(seed), 1000);
         assert_conservative(&lobe, &params, &dirs);
     }
+
+    /// The same lobes made anisotropic (`crate::anisotropy`): α_t from 1e-4 to 1 along a
+    /// random tangent, α along the bitangent; the spheroid of the larger α with the flux
+    /// times the bound factor. Probed also along the tangent and the bitangent planes.
+    #[test]
+    fn random_anisotropic_lobes_are_bounded(
+        (lobe, params) in lobe_and_params(),
+        log_alpha_t in -4.0f32..=0.0,
+        seed in any::<u64>(),
+    ) {
+        let mut rng = Rng::new(seed);
+        let mut a = crate::test_util::random_anisotropy(&mut rng, lobe.normal());
+        a.alpha_t = 10f32.powf(log_alpha_t);
+        let lobe = lobe.with_anisotropy(Some(a)).unwrap();
+        let mut dirs = directions(&lobe, &mut rng, 1000);
+        let u = lobe.reflection();
+        let angles = crate::test_util::log_angles(1e-3 * f64::from(lobe.alpha_min()), 3.0, 60);
+        for axis in [a.tangent, lobe.normal().cross(a.tangent)] {
+            let side = (axis - u * u.dot(axis)).normalize_or_zero();
+            for &t in &angles {
+                for sign in [-1.0, 1.0] {
+                    let (c, s) = (t.cos() as f32, (sign * t.sin()) as f32);
+                    dirs.push((u * c + side * s).normalize());
+                }
+            }
+        }
+        assert_conservative(&lobe, &params, &dirs);
+    }
 }

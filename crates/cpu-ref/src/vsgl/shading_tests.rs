@@ -23,6 +23,7 @@ fn texel(omega_i: Vec3, kd: Vec3, f0: f32, alpha: f32) -> RsmTexel {
             kd,
             fresnel: Fresnel::Schlick(Vec3::splat(f0)),
             alpha,
+            anisotropy: None,
         },
     }
 }
@@ -77,6 +78,7 @@ fn a_small_vsgl_is_its_sg_point_light() {
         kd: Vec3::new(0.6, 0.3, 0.2),
         fresnel: Fresnel::Schlick(Vec3::splat(0.3)),
         alpha: 0.4,
+        anisotropy: None,
     };
     let receivers = [
         receiver(
@@ -143,6 +145,7 @@ fn a_point_like_diffuse_vsgl_is_its_vpl_times_the_cosine_fits() {
         kd: Vec3::new(0.3, 0.6, 0.9),
         fresnel: Fresnel::Schlick(Vec3::ZERO),
         alpha: 0.5,
+        anisotropy: None,
     };
     let vpl = Vpl {
         position: t.position,
@@ -214,6 +217,7 @@ fn a_point_like_glossy_vsgl_follows_its_glossy_vpl() {
             kd: Vec3::splat(0.5),
             fresnel: Fresnel::Schlick(Vec3::ZERO),
             alpha: 1.0,
+            anisotropy: None,
         };
         let mirror = Vec3::new(-omega_i.x, 0.0, omega_i.z);
         for off in [0.0f32, 0.5 * alpha.to_degrees().min(20.0)] {
@@ -261,6 +265,7 @@ fn shading_is_finite_at_the_extremes() {
                 kd: Vec3::splat(0.5),
                 fresnel: Fresnel::Schlick(Vec3::splat(0.9)),
                 alpha,
+                anisotropy: None,
             };
             [0.0f32, 89.99, 90.0]
                 .iter()
@@ -332,6 +337,7 @@ fn a_flat_cluster_does_not_light_its_own_plane_with_the_clamped_cosine() {
         kd: Vec3::splat(0.5),
         fresnel: Fresnel::Schlick(Vec3::ZERO),
         alpha: 0.5,
+        anisotropy: None,
     };
     for x in [1.0f32, 1.5, 3.0] {
         let g = receiver(

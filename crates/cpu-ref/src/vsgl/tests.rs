@@ -250,6 +250,7 @@ fn plane_texel(position: Vec3, flux: f32) -> RsmTexel {
             kd: Vec3::new(0.5, 0.4, 0.3),
             fresnel: Fresnel::Schlick(Vec3::splat(0.04)),
             alpha: 0.3,
+            anisotropy: None,
         },
     }
 }

@@ -70,6 +70,7 @@ pub fn floor_gbuffer(camera: &Camera, width: u32, height: u32, rng: &mut Rng) ->
         kd: Vec3::splat(0.5),
         fresnel: Fresnel::Schlick(Vec3::splat(0.04)),
         alpha: 0.5,
+        anisotropy: None,
     };
     let jitter = |rng: &mut Rng| match rng.below(4) {
         0 => 0.0,
@@ -189,6 +190,7 @@ pub fn room_vpls(rng: &mut Rng, n: u32) -> Vec<Vpl> {
                     kd,
                     fresnel,
                     alpha: rng.log(-3.0, 0.0),
+                    anisotropy: None,
                 },
                 lobe: if rng.chance(0.5) {
                     VplLobe::Diffuse

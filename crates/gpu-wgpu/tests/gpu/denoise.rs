@@ -185,6 +185,7 @@ fn extremes(camera: &Camera, w: u32, h: u32, seed: u64) -> (GBuffer, Image) {
                 Fresnel::Dielectric(1.0),
             ]),
             alpha: 0.3,
+            anisotropy: None,
         };
         samples.push(Some(GSample {
             position,

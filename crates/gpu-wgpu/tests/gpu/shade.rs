@@ -278,7 +278,7 @@ fn extreme_frame() -> (GBuffer, Vec<Vpl>, LightLists) {
                 geometric_normal: Vec3::Z,
                 omega_o,
                 depth: 1.0,
-                brdf: Brdf { kd, fresnel, alpha },
+                brdf: Brdf { kd, fresnel, alpha, anisotropy: None },
             }));
         }
     }
@@ -303,6 +303,7 @@ fn extreme_frame() -> (GBuffer, Vec<Vpl>, LightLists) {
                     Fresnel::Schlick(Vec3::splat(0.9))
                 },
                 alpha,
+                anisotropy: None,
             },
             lobe,
             id: vpls.len() as u32,

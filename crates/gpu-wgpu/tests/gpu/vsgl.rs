@@ -173,6 +173,7 @@ fn extreme_gbuffer() -> GBuffer {
                     kd,
                     fresnel,
                     alpha: [1e-3, 0.02, 0.3, 1.0][(y % 4) as usize],
+                    anisotropy: None,
                 },
             }));
         }

@@ -215,6 +215,7 @@ fn a_wall_between_shadows_and_the_open_is_unchanged() {
                 kd: Vec3::splat(0.5),
                 fresnel: Fresnel::Schlick(Vec3::splat(0.04)),
                 alpha: 0.3,
+                anisotropy: None,
             },
         })
     };
