@@ -274,7 +274,22 @@ def build():
         sheet_mat,
     ]
 
-    # ---- binary buffer: one bufferView per accessor (as cornell-a) ----
+    textures = {
+        "textures": [{"name": "ridges_normal", "source": 0, "sampler": 0},
+                     {"name": "holes_color", "source": 1, "sampler": 0}],
+        # 9729 LINEAR for both mag and min (bilinear, no mipmaps: what the Mitsuba reference
+        # does), 10497 REPEAT
+        "samplers": [{"magFilter": 9729, "minFilter": 9729, "wrapS": 10497, "wrapT": 10497}],
+        "images": [{"name": "ridges_normal", "uri": "ridges_normal.png", "mimeType": "image/png"},
+                   {"name": "holes_color", "uri": "holes_color.png", "mimeType": "image/png"}],
+    }
+    return pack_gltf(NAME, meshes, materials, textures)
+
+
+def pack_gltf(name, meshes, materials, textures, extensions_used=()):
+    """The glTF document and its binary buffer for `meshes` ((name, mesh, material index); a
+    mesh may carry "tangents", VEC4), `materials`, `textures` (the textures / samplers / images
+    entries), the module's camera and point light; one bufferView per accessor (as cornell-a)."""
     blob = bytearray()
     buffer_views, accessors = [], []
 
@@ -304,33 +319,35 @@ def build():
         return add(data, 5126, acc_type, len(vectors), 34962, minmax)
 
     gltf_meshes = []
-    for name, m, mat in meshes:
+    for mesh_name, m, mat in meshes:
         attrs = {"POSITION": vec_accessor(m["positions"], "VEC3", True),
                  "NORMAL": vec_accessor(m["normals"], "VEC3", False)}
+        if m.get("tangents") is not None:
+            attrs["TANGENT"] = vec_accessor(m["tangents"], "VEC4", False)
         if m["uvs"] is not None:
             attrs["TEXCOORD_0"] = vec_accessor(m["uvs"], "VEC2", False)
         idx = add(struct.pack("<6I", *m["indices"]), 5125, "SCALAR", 6, 34963)
-        gltf_meshes.append({"name": name, "primitives": [
+        gltf_meshes.append({"name": mesh_name, "primitives": [
             {"attributes": attrs, "indices": idx, "material": mat, "mode": 4}]})
 
     # Camera: forward = (0,0,-1) = the node's -z, up = +y: identity rotation.
     yfov = math.radians(CAMERA_YFOV_DEG)
-    nodes = [{"name": name, "mesh": k} for k, (name, _, _) in enumerate(meshes)]
+    nodes = [{"name": mesh_name, "mesh": k} for k, (mesh_name, _, _) in enumerate(meshes)]
     nodes.append({"name": "camera", "camera": 0, "translation": list(CAMERA_EYE),
                   "rotation": [0.0, 0.0, 0.0, 1.0]})
     nodes.append({"name": "point_light", "translation": list(LIGHT_POS),
                   "extensions": {"KHR_lights_punctual": {"light": 0}}})
 
     gltf = {
-        "asset": {"version": "2.0", "generator": "scenes/materials/make_scene.py",
+        "asset": {"version": "2.0", "generator": "scenes/%s/make_scene.py" % name,
                   "extras": {"units": "lengths in m; point light intensity = radiant intensity "
                                       "in W/sr per RGB channel (NOT candela)"}},
-        "extensionsUsed": ["KHR_lights_punctual"],
+        "extensionsUsed": ["KHR_lights_punctual"] + list(extensions_used),
         "extensions": {"KHR_lights_punctual": {"lights": [
             {"name": "point_light", "type": "point", "color": [1.0, 1.0, 1.0],
              "intensity": LIGHT_INTENSITY}]}},
         "scene": 0,
-        "scenes": [{"name": NAME, "nodes": list(range(len(nodes)))}],
+        "scenes": [{"name": name, "nodes": list(range(len(nodes)))}],
         "nodes": nodes,
         "cameras": [{"name": "camera", "type": "perspective",
                      "perspective": {"yfov": yfov, "aspectRatio": IMAGE_W / IMAGE_H,
@@ -340,17 +357,13 @@ def build():
                                 "up": [0.0, 1.0, 0.0]}}],
         "meshes": gltf_meshes,
         "materials": materials,
-        "textures": [{"name": "ridges_normal", "source": 0, "sampler": 0},
-                     {"name": "holes_color", "source": 1, "sampler": 0}],
-        # 9729 LINEAR for both mag and min (bilinear, no mipmaps: what the Mitsuba reference
-        # does), 10497 REPEAT
-        "samplers": [{"magFilter": 9729, "minFilter": 9729, "wrapS": 10497, "wrapT": 10497}],
-        "images": [{"name": "ridges_normal", "uri": "ridges_normal.png", "mimeType": "image/png"},
-                   {"name": "holes_color", "uri": "holes_color.png", "mimeType": "image/png"}],
+    }
+    gltf.update(textures)
+    gltf.update({
         "accessors": accessors,
         "bufferViews": buffer_views,
-        "buffers": [{"uri": NAME + ".bin", "byteLength": len(blob)}],
-    }
+        "buffers": [{"uri": name + ".bin", "byteLength": len(blob)}],
+    })
     return gltf, bytes(blob)
 
 

@@ -14,6 +14,7 @@
 //! - G1(ωo) <= 1 as in eq. (9), and `G1_a(ωo) <= G1(α_min)(ωo)` where a bound keeps it (the
 //!   tight box bound, the tilt factor of [`crate::shading_normal`]), since the projected
 //!   roughness α(ωo) of eq. (86) lies between α_min and α_max.
+use crate::frame::Frame;
 use crate::ggx;
 use glam::Vec3;
 
@@ -54,6 +55,25 @@ impl Anisotropy {
             b.dot(omega),
             n.dot(omega),
         )
+    }
+
+    /// The tangent as an angle φ in the plane of the unit normal `n`: t = cos φ x + sin φ y
+    /// with (x, y) the frame of Duff et al. 2017 around n ([`Frame::new`]); a compact form for
+    /// G-buffers ([`Self::from_angle`] inverts it).
+    pub fn angle(&self, n: Vec3) -> f32 {
+        let f = Frame::from_unit(n);
+        f.y.dot(self.tangent).atan2(f.x.dot(self.tangent))
+    }
+
+    /// The anisotropy whose tangent has angle `phi` around the unit normal `n`
+    /// ([`Self::angle`]).
+    pub fn from_angle(n: Vec3, phi: f32, alpha_t: f32) -> Self {
+        let f = Frame::from_unit(n);
+        let (sin, cos) = phi.sin_cos();
+        Self {
+            tangent: f.x * cos + f.y * sin,
+            alpha_t,
+        }
     }
 
     /// The larger roughness α_max = max(α_t, α_b): the isotropic lobe that bounds this one.
@@ -171,8 +191,7 @@ mod tests {
                     / (PI
                         * alpha_t
                         * alpha_b
-                        * ((m.x / alpha_t).powi(2) + (m.y / alpha_b).powi(2) + m.z * m.z)
-                            .powi(2));
+                        * ((m.x / alpha_t).powi(2) + (m.y / alpha_b).powi(2) + m.z * m.z).powi(2));
                 sum += d * w.dot(m).max(0.0) * dm;
             }
         }
@@ -202,6 +221,18 @@ mod tests {
     }
 
     #[test]
+    fn angle_round_trips() {
+        let mut rng = Rng::new(7);
+        for _ in 0..10_000 {
+            let n = rng.unit();
+            let a = random_anisotropy(&mut rng, n);
+            let b = Anisotropy::from_angle(n, a.angle(n), a.alpha_t);
+            assert!((a.tangent - b.tangent).length() < 1e-5, "{a:?} {b:?}");
+            assert!(b.tangent.dot(n).abs() < 1e-5);
+        }
+    }
+
+    #[test]
     fn the_isotropic_lobe_of_alpha_max_bounds_it() {
         let mut rng = Rng::new(6);
         let mut closest: f32 = 0.0;
@@ -220,7 +251,11 @@ mod tests {
             };
             let own = f64::from(a.d(alpha_b, n, m)) * f64::from(a.g1_over_cos(alpha_b, n, omega_i));
             let iso = f64::from(k)
-                * f64::from(ggx::d_with_sin2(a_max, n.dot(m), n.cross(m).length_squared()))
+                * f64::from(ggx::d_with_sin2(
+                    a_max,
+                    n.dot(m),
+                    n.cross(m).length_squared(),
+                ))
                 * f64::from(ggx::g1_over_cos(a_max, n.dot(omega_i)));
             assert!(own <= iso * (1.0 + 2e-4), "{own} > {iso}");
             closest = closest.max((own / iso) as f32);
@@ -231,7 +266,10 @@ mod tests {
                 ggx::g1_over_cos(a_max, n.dot(w)),
                 ggx::g1_over_cos(a.alpha_min(alpha_b), n.dot(w)),
             );
-            assert!(g >= lo * (1.0 - 1e-4) && g <= hi * (1.0 + 1e-4), "{lo} {g} {hi}");
+            assert!(
+                g >= lo * (1.0 - 1e-4) && g <= hi * (1.0 + 1e-4),
+                "{lo} {g} {hi}"
+            );
         }
         // The factor is reached: the bound is tight at the peak.
         assert!(closest > 0.99, "{closest}");

@@ -135,13 +135,15 @@ impl GlossyLobe {
     /// [`Self::bound_factor`]).
     #[inline]
     pub fn alpha(&self) -> f32 {
-        self.anisotropy.map_or(self.alpha, |a| a.alpha_max(self.alpha))
+        self.anisotropy
+            .map_or(self.alpha, |a| a.alpha_max(self.alpha))
     }
 
     /// The smallest roughness of the lobe (α if isotropic): G1 of it bounds the lobe's G1.
     #[inline]
     pub fn alpha_min(&self) -> f32 {
-        self.anisotropy.map_or(self.alpha, |a| a.alpha_min(self.alpha))
+        self.anisotropy
+            .map_or(self.alpha, |a| a.alpha_min(self.alpha))
     }
 
     /// The RGB flux Φ of eq. (4).

@@ -19,8 +19,9 @@
 use serde_json::Value;
 
 /// The extensions slc reads, which a file may require.
-pub const SUPPORTED_EXTENSIONS: [&str; 4] = [
+pub const SUPPORTED_EXTENSIONS: [&str; 5] = [
     "KHR_lights_punctual",
+    "KHR_materials_anisotropy",
     "KHR_materials_ior",
     "KHR_mesh_quantization",
     "EXT_texture_webp",

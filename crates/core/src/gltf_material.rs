@@ -11,12 +11,13 @@
 //! `normalTexture` (linear, with its `scale`) becomes [`Material::normal_map`]; `alphaMode:
 //! MASK` becomes [`Material::alpha_mask`] with `alphaCutoff` (default 0.5), the base colour
 //! factor's alpha and the base-colour image's alpha channel. `alphaMode: BLEND` is drawn
-//! opaque. Emission, blending and every material extension slc does not read are recorded in
+//! opaque. `KHR_materials_anisotropy`'s strength and rotation become
+//! [`Material::anisotropy`]; its `anisotropyTexture` is not read (listed as ignored). Emission, blending and every material extension slc does not read are recorded in
 //! [`LoadReport::ignored`](crate::LoadReport) with the materials that use them.
 use crate::gltf_document::SUPPORTED_EXTENSIONS;
 use crate::gltf_loader::read_uri;
 use crate::import_util::small_alpha_warning;
-use crate::material::{AlphaMask, Material, MaterialModel, NormalMap};
+use crate::material::{AlphaMask, Material, MaterialAnisotropy, MaterialModel, NormalMap};
 use crate::scene::{LoadReport, Scene};
 use crate::texture::TextureId;
 use crate::texture_decode::{decode_texture, Encoding};
@@ -40,6 +41,7 @@ pub(crate) fn default_material() -> Material {
         double_sided: false,
         normal_map: None,
         alpha_mask: None,
+        anisotropy: None,
     }
 }
 
@@ -93,6 +95,7 @@ pub(crate) fn load_materials(
             roughness.clamp(0.0, 1.0).powi(2),
         ));
         record_ignored(&m, &name, &mut scene.report);
+        let anisotropy = read_anisotropy(&m, &name, &mut scene.report);
         scene.materials.push(Material {
             name,
             model: MaterialModel::MetallicRoughness {
@@ -108,6 +111,7 @@ pub(crate) fn load_materials(
             double_sided: m.double_sided(),
             normal_map,
             alpha_mask,
+            anisotropy,
         });
     }
 }
@@ -126,6 +130,44 @@ fn record_ignored(m: &gltf::Material, name: &str, report: &mut LoadReport) {
             report.ignore(e, name);
         }
     }
+}
+
+/// `KHR_materials_anisotropy` of material `m`: `None` without the extension or with strength
+/// 0. A strength outside [0, 1] is clamped and a non-finite value replaced by the default
+/// (0), with a warning; the texture is listed as ignored.
+fn read_anisotropy(
+    m: &gltf::Material,
+    name: &str,
+    report: &mut LoadReport,
+) -> Option<MaterialAnisotropy> {
+    const NAME: &str = "KHR_materials_anisotropy";
+    let ext = m.extensions()?.get(NAME)?;
+    if ext.get("anisotropyTexture").is_some() {
+        report.ignore("KHR_materials_anisotropy anisotropyTexture", name);
+    }
+    let mut read = |key: &str, range: (f32, f32)| {
+        let value = ext
+            .get(key)
+            .map(|v| v.as_f64().map_or(f32::NAN, |x| x as f32));
+        match value {
+            None => 0.0,
+            Some(x) if x.is_finite() && x >= range.0 && x <= range.1 => x,
+            Some(x) => {
+                let fixed = if x.is_finite() {
+                    x.clamp(range.0, range.1)
+                } else {
+                    0.0
+                };
+                report.warnings.push(format!(
+                    "material '{name}': {NAME} {key} {x} is out of range; {fixed} is used"
+                ));
+                fixed
+            }
+        }
+    };
+    let strength = read("anisotropyStrength", (0.0, 1.0));
+    let rotation = read("anisotropyRotation", (f32::MIN, f32::MAX));
+    (strength > 0.0).then_some(MaterialAnisotropy { strength, rotation })
 }
 
 /// Decodes each (image, encoding) pair once; failures are remembered (and warned about) once.

@@ -11,8 +11,9 @@ use crate::tangents::generate_tangents;
 ///   non-finite normal; otherwise they are renormalized.
 /// - Texture coordinates and tangents are dropped (with a warning) when their count differs.
 /// - Defective triangles are removed and counted in `scene.report.skipped`.
-/// - A mesh whose material has a normal map and that has no tangents gets MikkTSpace ones
-///   ([`generate_tangents`]); without texture coordinates the map cannot apply (a warning).
+/// - A mesh whose material has a normal map or an anisotropy and that has no tangents gets
+///   MikkTSpace ones ([`generate_tangents`]); without texture coordinates neither can apply
+///   (a warning).
 pub(crate) fn add_mesh(scene: &mut Scene, mut mesh: Mesh) {
     if let Some(normals) = &mut mesh.normals {
         let bad = normals.len() != mesh.positions.len()
@@ -47,7 +48,7 @@ pub(crate) fn add_mesh(scene: &mut Scene, mut mesh: Mesh) {
         .is_some_and(|t| t.len() != mesh.positions.len() || t.iter().any(|t| !t.is_finite()))
     {
         scene.report.warnings.push(format!(
-            "mesh '{}': tangents missing or non-finite for some vertices; they are dropped (and generated where a normal map needs them)",
+            "mesh '{}': tangents missing or non-finite for some vertices; they are dropped (and generated where a normal map or an anisotropy needs them)",
             mesh.name
         ));
         mesh.tangents = None;
@@ -56,14 +57,14 @@ pub(crate) fn add_mesh(scene: &mut Scene, mut mesh: Mesh) {
     if skipped.total() > 0 {
         scene.report.skipped.merge(skipped);
     }
-    let normal_mapped = scene
+    let needs_tangents = scene
         .materials
         .get(mesh.material)
-        .is_some_and(|m| m.normal_map.is_some());
-    if normal_mapped && mesh.tangents.is_none() {
+        .is_some_and(|m| m.normal_map.is_some() || m.anisotropy.is_some());
+    if needs_tangents && mesh.tangents.is_none() {
         if let Err(e) = generate_tangents(&mut mesh) {
             scene.report.warnings.push(format!(
-                "mesh '{}': its normal map is not applied ({e})",
+                "mesh '{}': its normal map or anisotropy is not applied ({e})",
                 mesh.name
             ));
         }

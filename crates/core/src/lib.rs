@@ -79,7 +79,7 @@ pub use framebuffer::{GBuffer, GSample, Image};
 pub use light::{Incident, Light, MAX_RADIOMETRIC};
 #[cfg(feature = "loaders")]
 pub use load::{load_scene, load_scene_file, MAX_DROPPED_SHARE};
-pub use material::{AlphaMask, Material, MaterialModel, NormalMap, ALPHA_MIN};
+pub use material::{AlphaMask, Material, MaterialAnisotropy, MaterialModel, NormalMap, ALPHA_MIN};
 pub use mesh::Mesh;
 pub use render::{render, render_loaded};
 pub use renderer::{BackendInfo, Capabilities, PreparedFrame, Progress, Renderer};

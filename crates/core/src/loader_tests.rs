@@ -1,7 +1,7 @@
 //! Loader tests on the real scene files of `shared/` and on broken files written to a
 //! temporary folder. Paths are relative to this crate: the repository's parent folder holds
 //! `shared/`.
-use crate::material::MaterialModel;
+use crate::material::{MaterialAnisotropy, MaterialModel};
 use crate::{load_scene, Light, Scene, SceneError};
 use glam::{Vec2, Vec3};
 use slc_bounds::Fresnel;
@@ -687,5 +687,51 @@ fn obj_map_d_is_a_cutout_and_bump_maps_are_listed() {
         s.report.ignored["bump map (map_Bump)"],
         vec!["leaf".to_string()]
     );
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn gltf_anisotropy_is_read() {
+    let dir = temp_dir("gltf-anisotropy");
+    let read = |ext: &str| {
+        let material = format!(
+            r#"{{"name": "brushed", "extensions": {{"KHR_materials_anisotropy": {ext}}}}}"#
+        );
+        let extra = r#", "extensionsUsed": ["KHR_materials_anisotropy"], "extensionsRequired": ["KHR_materials_anisotropy"]"#;
+        let path = write_triangle_gltf(&dir, r#"{"mesh": 0}"#, Vec3::Z, &material, extra);
+        load_scene(&path).unwrap()
+    };
+    let s = read(r#"{"anisotropyStrength": 0.6, "anisotropyRotation": 0.5}"#);
+    assert_eq!(
+        s.materials[0].anisotropy,
+        Some(MaterialAnisotropy {
+            strength: 0.6,
+            rotation: 0.5
+        })
+    );
+    assert!(s.report.ignored.is_empty(), "{:?}", s.report.ignored);
+    // Without texture coordinates no tangents can be generated: said, and drawn isotropic.
+    let warnings = s.report.warnings.join("\n");
+    assert!(warnings.contains("anisotropy is not applied"), "{warnings}");
+    assert!(s.meshes[0].tangents.is_none());
+    // Defaults (strength 0: isotropic), a clamped strength, the texture listed as ignored.
+    assert_eq!(read("{}").materials[0].anisotropy, None);
+    let s = read(r#"{"anisotropyStrength": 2, "anisotropyTexture": {"index": 0}}"#);
+    assert_eq!(
+        s.materials[0].anisotropy,
+        Some(MaterialAnisotropy {
+            strength: 1.0,
+            rotation: 0.0
+        })
+    );
+    assert!(s
+        .report
+        .warnings
+        .join("\n")
+        .contains("anisotropyStrength 2"));
+    assert!(s
+        .report
+        .ignored
+        .contains_key("KHR_materials_anisotropy anisotropyTexture"));
     std::fs::remove_dir_all(&dir).unwrap();
 }

@@ -1,7 +1,7 @@
 //! Materials: a Lambertian diffuse layer plus a GGX specular layer.
 use crate::texture::{Texture, TextureId};
 use glam::{Vec2, Vec3, Vec4};
-use slc_bounds::{Brdf, Fresnel};
+use slc_bounds::{Anisotropy, Brdf, Fresnel};
 
 /// The smallest GGX α a material may have. The method cannot render α = 0 (perfect mirrors):
 /// the bounding spheroid's polar semi-axis grows as (1+α²)/(2α) and the GGX peak as 1/(πα²).
@@ -47,6 +47,43 @@ pub struct Material {
     /// A cut-out mask (glTF `alphaMode: MASK`, OBJ `d` / `map_d`): where the coverage is below
     /// the cutoff the surface does not exist, for every ray and rasterizer.
     pub alpha_mask: Option<AlphaMask>,
+    /// An anisotropic specular lobe (glTF `KHR_materials_anisotropy`).
+    pub anisotropy: Option<MaterialAnisotropy>,
+}
+
+/// glTF `KHR_materials_anisotropy` (its factors; the texture is not read): the GGX roughness
+/// grows to `α_t = mix(α, 1, s²)` along a direction rotated by `rotation` (radians,
+/// counter-clockwise) from the tangent towards the bitangent; α stays along the
+/// perpendicular direction.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct MaterialAnisotropy {
+    /// `anisotropyStrength` s in [0, 1].
+    pub strength: f32,
+    /// `anisotropyRotation` in radians.
+    pub rotation: f32,
+}
+
+impl MaterialAnisotropy {
+    /// The lobe's anisotropy at a point with unit shading normal `n`, interpolated `tangent`
+    /// (xyz: the direction of increasing u, w: the handedness ±1) and roughness `alpha`: the
+    /// glTF frame T (orthogonalised against n), B = w (n × T), the direction
+    /// `cos(rotation) T + sin(rotation) B` and `α_t = α + (1 − α) s²`. `None` where s = 0 (the
+    /// lobe is isotropic) or the frame degenerates.
+    pub fn at(&self, n: Vec3, tangent: Vec4, alpha: f32) -> Option<Anisotropy> {
+        let s = self.strength.clamp(0.0, 1.0);
+        if s == 0.0 {
+            return None;
+        }
+        let (t, b) = tangent_frame(n, tangent)?;
+        let (sin, cos) = self.rotation.sin_cos();
+        let direction = (t * cos + b * sin).try_normalize()?;
+        // Orthogonal to n up to the f32 rounding of the frame: remove what is left.
+        let direction = (direction - n * n.dot(direction)).try_normalize()?;
+        Some(Anisotropy {
+            tangent: direction,
+            alpha_t: (alpha + (1.0 - alpha) * s * s).clamp(alpha, 1.0),
+        })
+    }
 }
 
 /// A tangent-space normal map in glTF's convention: texel values `c` in [0, 1]³ encode the
@@ -65,11 +102,18 @@ impl NormalMap {
     /// reads `texel`. The tangent is made orthogonal to `n` first (Gram-Schmidt), as MikkTSpace
     /// expects; `None` where the frame or the result degenerates (the caller keeps `n`).
     pub fn perturb(&self, n: Vec3, tangent: Vec4, texel: Vec3) -> Option<Vec3> {
-        let t = (tangent.truncate() - n * n.dot(tangent.truncate())).try_normalize()?;
-        let b = n.cross(t) * if tangent.w < 0.0 { -1.0 } else { 1.0 };
+        let (t, b) = tangent_frame(n, tangent)?;
         let c = (texel * 2.0 - Vec3::ONE) * Vec3::new(self.scale, self.scale, 1.0);
         (t * c.x + b * c.y + n * c.z).try_normalize()
     }
+}
+
+/// glTF's tangent frame at a point with unit normal `n` and interpolated `tangent` (xyz: the
+/// direction of increasing u, w: the handedness ±1): T, the tangent made orthogonal to n
+/// (Gram-Schmidt, as MikkTSpace expects), and B = w (n × T); `None` where T degenerates.
+fn tangent_frame(n: Vec3, tangent: Vec4) -> Option<(Vec3, Vec3)> {
+    let t = (tangent.truncate() - n * n.dot(tangent.truncate())).try_normalize()?;
+    Some((t, n.cross(t) * if tangent.w < 0.0 { -1.0 } else { 1.0 }))
 }
 
 /// A cut-out mask: the surface exists where `factor * texture` (the texture's alpha) is at
@@ -110,6 +154,7 @@ impl Material {
             double_sided: false,
             normal_map: None,
             alpha_mask: None,
+            anisotropy: None,
         }
     }
 
@@ -156,6 +201,24 @@ impl Material {
             alpha: alpha.clamp(ALPHA_MIN, 1.0),
             anisotropy: None,
         }
+    }
+
+    /// The BRDF at a surface point: [`Self::brdf_at`] with the anisotropy of
+    /// [`MaterialAnisotropy::at`] for unit shading normal `n` and interpolated `tangent`
+    /// (isotropic without tangents).
+    pub fn surface_brdf(
+        &self,
+        uv: Option<Vec2>,
+        n: Vec3,
+        tangent: Option<Vec4>,
+        textures: &[Texture],
+    ) -> Brdf {
+        let mut brdf = self.brdf_at(uv, textures);
+        brdf.anisotropy = self
+            .anisotropy
+            .zip(tangent)
+            .and_then(|(a, t)| a.at(n, t, brdf.alpha));
+        brdf
     }
 
     /// The normal-mapped shading normal at a point whose interpolated unit vertex normal is
@@ -213,11 +276,49 @@ mod tests {
             double_sided: false,
             normal_map: None,
             alpha_mask: None,
+            anisotropy: None,
         };
         let b = m.brdf_at(None, &[]);
         assert_eq!(b.kd, Vec3::ZERO);
         assert_eq!(b.fresnel, Fresnel::Schlick(Vec3::new(0.95, 0.64, 0.54)));
         assert!((b.alpha - 0.2).abs() < 1e-6);
+    }
+
+    #[test]
+    fn anisotropy_follows_khr_materials_anisotropy() {
+        let mut m = Material::direct("m", Vec3::ONE, Vec3::splat(0.5), 0.25);
+        let n = Vec3::Z;
+        let tangent = Vec4::new(1.0, 0.0, 0.3, 1.0); // not orthogonal to n: Gram-Schmidt
+        assert_eq!(m.surface_brdf(None, n, Some(tangent), &[]).anisotropy, None);
+        let at = |strength: f32, rotation: f32, w: f32| {
+            MaterialAnisotropy { strength, rotation }.at(n, tangent.with_w(w), 0.25)
+        };
+        // α_t = mix(α, 1, s²) along T rotated towards B = w (n × T).
+        let a = at(0.5, 0.0, 1.0).unwrap();
+        assert!((a.alpha_t - (0.25 + 0.75 * 0.25)).abs() < 1e-6);
+        assert!((a.tangent - Vec3::X).length() < 1e-6);
+        let quarter = core::f32::consts::FRAC_PI_2;
+        assert!((at(1.0, quarter, 1.0).unwrap().tangent - Vec3::Y).length() < 1e-6);
+        assert!((at(1.0, quarter, -1.0).unwrap().tangent + Vec3::Y).length() < 1e-6);
+        assert_eq!(at(1.0, 0.0, 1.0).unwrap().alpha_t, 1.0);
+        assert_eq!(at(0.0, 0.3, 1.0), None);
+        assert_eq!(
+            MaterialAnisotropy {
+                strength: 1.0,
+                rotation: 0.0
+            }
+            .at(n, Vec4::new(0.0, 0.0, 1.0, 1.0), 0.25),
+            None,
+            "a tangent along the normal has no frame"
+        );
+        m.anisotropy = Some(MaterialAnisotropy {
+            strength: 0.5,
+            rotation: 0.0,
+        });
+        let brdf = m.surface_brdf(None, n, Some(tangent), &[]);
+        assert_eq!(brdf.anisotropy, at(0.5, 0.0, 1.0));
+        assert_eq!(brdf.alpha, 0.25);
+        assert_eq!(m.surface_brdf(None, n, None, &[]).anisotropy, None);
     }
 
     /// A 1x1 normal map storing `texel`.

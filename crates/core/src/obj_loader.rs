@@ -297,6 +297,7 @@ fn convert_material(
         double_sided: true,
         normal_map: None,
         alpha_mask,
+        anisotropy: None,
     }
 }
 

@@ -366,6 +366,7 @@ fn metallic_roughness_materials_are_overridden() {
         double_sided: true,
         normal_map: None,
         alpha_mask: None,
+        anisotropy: None,
     };
     let o = |alpha, f0| MaterialOverride {
         pattern: "head".into(),

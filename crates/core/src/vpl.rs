@@ -69,7 +69,8 @@ impl Vpl {
         )
     }
 
-    /// The glossy lobe of this VPL (eq. 4, 6) around the origin, validated by slc-bounds.
+    /// The glossy lobe of this VPL (eq. 4, 6; anisotropic where its BRDF is) around the
+    /// origin, validated by slc-bounds.
     pub fn glossy_lobe(&self) -> Result<GlossyLobe, BoundsError> {
         GlossyLobe::new(
             Vec3::ZERO,
@@ -79,7 +80,8 @@ impl Vpl {
             self.flux,
             self.brdf.fresnel,
         )?
-        .with_geometric_normal(self.geometric_normal)
+        .with_geometric_normal(self.geometric_normal)?
+        .with_anisotropy(self.brdf.anisotropy)
     }
 
     /// Whether the shading normal differs from the geometric one (a normal-mapped surface).

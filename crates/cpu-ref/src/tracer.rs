@@ -245,7 +245,7 @@ impl Tracer {
         if ns.dot(ng) < 0.0 {
             ns = -ns;
         }
-        let brdf = material.brdf_at(uv, &scene.textures);
+        let brdf = material.surface_brdf(uv, ns, tangent, &scene.textures);
         SurfaceHit {
             position,
             geometric_normal: ng,

@@ -14,8 +14,9 @@
 //!   below that range's end, where for η < 1 near total internal reflection the factor's
 //!   slope is unbounded;
 //! - a VPL on a tilted shading normal (`Vpl::is_tilted`: the adjoint cosine of
-//!   `slc_bounds::shading_normal` replaces ωo·n) always passes where ωo·n > 0; its own bound
-//!   (`reach`) still applies.
+//!   `slc_bounds::shading_normal` replaces ωo·n) or with an anisotropic lobe
+//!   (`slc_bounds::anisotropy`) always passes where ωo·n > 0; its own bound (`reach`) still
+//!   applies.
 use crate::lanes::{clamp01, cross, dot, max, Real, F8, M8};
 use core::f32::consts::{FRAC_1_PI, PI};
 use slc_bounds::{ggx, Fresnel, StochasticParams};
@@ -40,8 +41,9 @@ pub(crate) struct Acceptance<R: Real> {
     emitted: [R; 3],
     /// Set for a glossy VPL (the microfacet lobe), clear for a diffuse one.
     glossy: R::Mask,
-    /// Set for a VPL on a tilted shading normal (passes wherever ωo·n > 0).
-    tilted: R::Mask,
+    /// Set for a VPL whose intensity the lanes do not form (a tilted shading normal, an
+    /// anisotropic lobe): it passes wherever ωo·n > 0.
+    unmodelled: R::Mask,
     xi: R,
     delta: R,
 }
@@ -49,7 +51,7 @@ pub(crate) struct Acceptance<R: Real> {
 impl Acceptance<f32> {
     /// The roulette test of `vpl` under `params` (its δ and ξ). `dark` marks a VPL the shader
     /// gives 0 at every pair (see `reach`): its intensity is 0, so it passes only where a
-    /// glossy half vector is formed in f64 or the VPL is tilted (and there the bound test of
+    /// glossy half vector is formed in f64 or the VPL is unmodelled (and there the bound test of
     /// `reach`, whose limit is −1 for such a VPL, rejects it first).
     pub(crate) fn new(vpl: &Vpl, params: &StochasticParams, dark: bool) -> Self {
         let brdf = &vpl.brdf;
@@ -77,7 +79,7 @@ impl Acceptance<f32> {
             fresnel_b: fresnel_b.to_array(),
             emitted: emitted.to_array(),
             glossy,
-            tilted: vpl.is_tilted(),
+            unmodelled: vpl.is_tilted() || brdf.anisotropy.is_some(),
             xi: params.xi(),
             delta: params.delta(),
         }
@@ -93,7 +95,7 @@ impl Acceptance<f32> {
         fresnel_b: [0.0; 3],
         emitted: [0.0; 3],
         glossy: false,
-        tilted: false,
+        unmodelled: false,
         xi: 0.5,
         delta: 1.0,
     };
@@ -117,8 +119,8 @@ impl Acceptance<F8> {
             glossy: M8(core::array::from_fn(|k| {
                 u32::from(of[k].glossy).wrapping_neg()
             })),
-            tilted: M8(core::array::from_fn(|k| {
-                u32::from(of[k].tilted).wrapping_neg()
+            unmodelled: M8(core::array::from_fn(|k| {
+                u32::from(of[k].unmodelled).wrapping_neg()
             })),
             xi: one(|a| a.xi),
             delta: one(|a| a.delta),
@@ -168,6 +170,6 @@ impl<R: Real> Acceptance<R> {
         let intensity = max(channel(0), max(channel(1), channel(2)));
         let p = intensity / (self.delta * l2);
         let accepted = cos_o.gt(zero) & intensity.gt(zero) & !p.le(self.xi);
-        accepted | ((self.tilted | (self.glossy & !well_conditioned)) & cos_o.gt(zero))
+        accepted | ((self.unmodelled | (self.glossy & !well_conditioned)) & cos_o.gt(zero))
     }
 }

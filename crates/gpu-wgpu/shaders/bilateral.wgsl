@@ -35,7 +35,6 @@ struct BilateralParams {
 // The G-buffer positions [x, y, z, 1] (gsample.wgsl).
 @group(0) @binding(4) var<storage, read> positions: array<vec4<f32>>;
 
-const SAMPLE_PRESENT: u32 = 1u;
 const WORKGROUP: u32 = 64u;
 
 fn value(p: u32) -> vec3<f32> {
@@ -45,11 +44,11 @@ fn value(p: u32) -> vec3<f32> {
 // kd + F(1) of eq. (6) (Fresnel::eval(1.0)), at least 1e-3 per channel (denoise.rs
 // reflectance).
 fn reflectance(s: Sample) -> vec3<f32> {
-    var f = vec3<f32>(fresnel_dielectric(s.omega_o_eta.w, 1.0));
-    if s.fresnel == FRESNEL_SCHLICK {
-        f = fresnel_schlick(s.f0, 1.0);
+    var f = vec3<f32>(fresnel_dielectric(s.f0_eta.x, 1.0));
+    if sample_fresnel_kind(s) == FRESNEL_SCHLICK {
+        f = fresnel_schlick(s.f0_eta, 1.0);
     }
-    return max(s.kd + f, vec3<f32>(1e-3));
+    return max(s.kd_alpha_t.xyz + f, vec3<f32>(1e-3));
 }
 
 fn depth(p: u32) -> f32 {
@@ -68,7 +67,7 @@ fn main(
     }
     let g = samples[p];
     var out = value(p);
-    if g.present == SAMPLE_PRESENT {
+    if sample_present(g) {
         let x = i32(p % params.width);
         let y = i32(p / params.width);
         let step = select(vec2<i32>(0, 1), vec2<i32>(1, 0), params.axis == 0u);
@@ -85,7 +84,7 @@ fn main(
             }
             let q = u32(yy) * params.width + u32(xx);
             let gq = samples[q];
-            if gq.present != SAMPLE_PRESENT {
+            if !sample_present(gq) {
                 continue;
             }
             let dz = (depth(q) - z) / max(z, 1e-6);

@@ -99,14 +99,6 @@ fn sphere_bound(q: vec3<f32>, center: vec3<f32>, radius: f32, index: u32) -> Bou
                  vec4<f32>(c, r2), BOUND_SPHERE, index, 0u, 0u);
 }
 
-// The x axis of the frame of Duff et al. 2017 around the unit vector z (crates/bounds frame.rs).
-fn frame_x(z: vec3<f32>) -> vec3<f32> {
-    let s = select(-1.0, 1.0, z.z >= 0.0);
-    let a = -1.0 / (s + z.z);
-    let b = z.x * z.y * a;
-    return vec3<f32>(1.0 + s * z.x * z.x * a, s * b, -s * z.x);
-}
-
 // R = [omega_u, omega_w x omega_u, omega_w] of eq. (14).
 fn spheroid_rotation(omega_u: vec3<f32>, n: vec3<f32>) -> mat3x3<f32> {
     let cr = cross(omega_u, n);
@@ -160,9 +152,12 @@ fn diffuse_bound(vpl: Vpl, q: vec3<f32>, index: u32) -> Bound {
 fn glossy_bound(vpl: Vpl, q: vec3<f32>, index: u32) -> Bound {
     let n = normalize(vpl.normal_alpha.xyz);
     let wi = normalize(vpl.omega_i_eta.xyz);
-    let alpha = vpl.normal_alpha.w;
+    // GlossyLobe::alpha: an anisotropic lobe is bounded by the isotropic one of its larger
+    // alpha, its flux times the bound factor (slc_bounds::anisotropy).
+    let alpha = max(vpl.normal_alpha.w, vpl.anisotropy.w);
     let cos_i = dot(n, wi);
-    // GlossyLobe::radius: the flux times the tilt factor (w, 1 unless normal-mapped).
+    // GlossyLobe::radius: the flux times the bound factor (w, 1 unless normal-mapped or
+    // anisotropic).
     let peak = scalar(vpl.flux.xyz * fresnel_max(vpl, cos_i)) * vpl.geometric_tilt.w;
     if cos_i <= 0.0 || peak <= 0.0 {
         return empty_bound(index);

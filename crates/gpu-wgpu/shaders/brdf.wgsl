@@ -24,11 +24,25 @@ struct FresnelModel {
     eta: f32,
 }
 
-// A BRDF as brdf.rs's Brdf: diffuse reflectance, Fresnel model, GGX roughness alpha.
+// A BRDF as brdf.rs's Brdf: diffuse reflectance, Fresnel model, GGX roughness alpha, and an
+// anisotropy's unit tangent and alpha_t (alpha_t = 0: isotropic; alpha is then the roughness
+// along the bitangent cross(n, tangent), slc_bounds::anisotropy).
 struct Material {
     kd: vec3<f32>,
     fresnel: FresnelModel,
     alpha: f32,
+    tangent: vec3<f32>,
+    alpha_t: f32,
+}
+
+// The BRDF of a G-buffer sample (gsample.wgsl; GpuSample::brdf): the tangent rebuilt from its
+// angle in the frame of frame.wgsl (Anisotropy::from_angle).
+fn sample_material(s: Sample) -> Material {
+    let n = s.normal_alpha.xyz;
+    let phi = s.omega_o_phi.w;
+    let tangent = frame_x(n) * cos(phi) + frame_y(n) * sin(phi);
+    return Material(s.kd_alpha_t.xyz, FresnelModel(sample_fresnel_kind(s), s.f0_eta, s.f0_eta.x),
+                    s.normal_alpha.w, tangent, s.kd_alpha_t.w);
 }
 
 // GGX D of eq. (7) from cos and sin^2 of the microfacet angle (ggx.rs d_with_sin2).
@@ -39,6 +53,27 @@ fn ggx_d_with_sin2(alpha: f32, cos_m: f32, sin2_m: f32) -> f32 {
     let a2 = alpha * alpha;
     let denom = a2 * cos_m * cos_m + max(sin2_m, 0.0);
     return a2 / (PI * denom * denom);
+}
+
+// The anisotropic GGX D (ggx.rs d_anisotropic, Heitz 2014 eq. 85) of a micro-normal with
+// components (m_t, m_b, m_n) in the frame (t, b, n).
+fn ggx_d_anisotropic(alpha_t: f32, alpha_b: f32, m_t: f32, m_b: f32, m_n: f32) -> f32 {
+    if m_n <= 0.0 {
+        return 0.0;
+    }
+    let x = m_t / alpha_t;
+    let y = m_b / alpha_b;
+    let denom = x * x + y * y + m_n * m_n;
+    return 1.0 / (PI * alpha_t * alpha_b * denom * denom);
+}
+
+// G1(w) / |w.n| of the anisotropic Smith function (ggx.rs g1_over_cos_anisotropic, Heitz 2014
+// eq. 86).
+fn ggx_g1_over_cos_anisotropic(alpha_t: f32, alpha_b: f32, w_t: f32, w_b: f32, w_n: f32) -> f32 {
+    let x = alpha_t * w_t;
+    let y = alpha_b * w_b;
+    let c = abs(w_n);
+    return 2.0 / (c + sqrt(c * c + x * x + y * y));
 }
 
 fn fresnel_eval(f: FresnelModel, cos_h: f32) -> vec3<f32> {
@@ -85,22 +120,40 @@ fn accurate_cross(a: vec3<f32>, b: vec3<f32>) -> vec3<f32> {
 }
 
 // The GGX microfacet BRDF of eq. (6): F(wi.h) D(n.h) G1(wi) G1(wo) / (4 |wi.n| |wo.n|), zero
-// unless both directions are above the surface (brdf.rs microfacet). sin^2 of the half
-// vector's angle comes from |n x h|^2, which resolves D near its peak for tiny alpha.
-fn microfacet(n: vec3<f32>, wi: vec3<f32>, wo: vec3<f32>, alpha: f32, f: FresnelModel) -> vec3<f32> {
+// unless both directions are above the surface (brdf.rs microfacet), D and G1 anisotropic
+// where m is. sin^2 of the half vector's angle comes from |n x h|^2, which resolves D near its
+// peak for tiny alpha.
+fn microfacet(n: vec3<f32>, wi: vec3<f32>, wo: vec3<f32>, m: Material) -> vec3<f32> {
+    let alpha = m.alpha;
+    let f = m.fresnel;
     let cos_i = dot(n, wi);
     let cos_o = dot(n, wo);
     if cos_i <= 0.0 || cos_o <= 0.0 {
         return vec3<f32>(0.0);
     }
-    let g = ggx_g1_over_cos(alpha, cos_i) * ggx_g1_over_cos(alpha, cos_o);
+    let t = m.tangent;
+    let b = cross(n, t);
+    let anisotropic = m.alpha_t > 0.0;
+    var g: f32;
+    var alpha_min = alpha;
+    if anisotropic {
+        g = ggx_g1_over_cos_anisotropic(m.alpha_t, alpha, dot(t, wi), dot(b, wi), dot(n, wi))
+            * ggx_g1_over_cos_anisotropic(m.alpha_t, alpha, dot(t, wo), dot(b, wo), dot(n, wo));
+        alpha_min = min(m.alpha_t, alpha);
+    } else {
+        g = ggx_g1_over_cos(alpha, cos_i) * ggx_g1_over_cos(alpha, cos_o);
+    }
     let s = wi + wo;
     let s2 = length_sq(s);
     var d: f32;
     var cos_ih: f32;
-    if s2 * alpha * alpha > 1e-6 {
+    if s2 * alpha_min * alpha_min > 1e-6 {
         let h = s / sqrt(s2);
-        d = ggx_d_with_sin2(alpha, dot(n, h), length_sq(cross(n, h)));
+        if anisotropic {
+            d = ggx_d_anisotropic(m.alpha_t, alpha, dot(t, h), dot(b, h), dot(n, h));
+        } else {
+            d = ggx_d_with_sin2(alpha, dot(n, h), length_sq(cross(n, h)));
+        }
         cos_ih = dot(wi, h);
     } else {
         // The CPU's f64 branch (see the header), emulated in f32: wi + wo is exact where its
@@ -111,7 +164,12 @@ fn microfacet(n: vec3<f32>, wi: vec3<f32>, wo: vec3<f32>, alpha: f32, f: Fresnel
         let t = (wi + wo) - (wi * ei + wo * eo);
         let h = t / sqrt(length_sq(t));
         let n2 = length_sq(n);
-        d = ggx_d_with_sin2(alpha, dot(n, h) / sqrt(n2), length_sq(accurate_cross(n, h)) / n2);
+        if anisotropic {
+            let nn = n / sqrt(n2);
+            d = ggx_d_anisotropic(m.alpha_t, alpha, dot(t, h), dot(cross(nn, t), h), dot(nn, h));
+        } else {
+            d = ggx_d_with_sin2(alpha, dot(n, h) / sqrt(n2), length_sq(accurate_cross(n, h)) / n2);
+        }
         cos_ih = dot(wi, h) * (1.0 - ei);
     }
     return fresnel_eval(f, cos_ih) * (0.25 * d * g);
@@ -123,7 +181,7 @@ fn brdf_eval(m: Material, n: vec3<f32>, wi: vec3<f32>, wo: vec3<f32>) -> vec3<f3
     if dot(n, wi) <= 0.0 || dot(n, wo) <= 0.0 {
         return vec3<f32>(0.0);
     }
-    return m.kd * FRAC_1_PI + microfacet(n, wi, wo, m.alpha, m.fresnel);
+    return m.kd * FRAC_1_PI + microfacet(n, wi, wo, m);
 }
 
 // The Lambertian part kd/pi alone, one-sided (brdf.rs Brdf::diffuse): a diffuse VPL's BRDF.

@@ -167,7 +167,7 @@ fn main(
         return;
     }
     let s = samples[pixel];
-    if s.present == 0u {
+    if !sample_present(s) {
         return;
     }
     let x = positions[pixel].xyz;
@@ -183,8 +183,8 @@ fn main(
     if !visible(x) {
         return;
     }
-    let m = Material(s.kd, FresnelModel(s.fresnel, s.f0, s.omega_o_eta.w), s.normal_alpha.w);
-    let c = brdf_eval(m, n, inc.omega_i, s.omega_o_eta.xyz) * inc.irradiance * cos_l;
+    let c = brdf_eval(sample_material(s), n, inc.omega_i, s.omega_o_phi.xyz) * inc.irradiance
+        * cos_l;
     image[3u * pixel] += c.x;
     image[3u * pixel + 1u] += c.y;
     image[3u * pixel + 2u] += c.z;

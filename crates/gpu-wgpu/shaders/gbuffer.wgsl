@@ -42,20 +42,25 @@ fn main(@builtin(global_invocation_id) gid: vec3<u32>) {
     }
     let pixel = gid.y * params.width + gid.x;
     let id = textureLoad(ids, vec2<i32>(gid.xy), 0).x;
-    var out = Sample(vec4<f32>(0.0), vec4<f32>(0.0), vec3<f32>(0.0), 0u, vec3<f32>(0.0), 0u);
+    var out = Sample(vec4<f32>(0.0), vec4<f32>(0.0), vec4<f32>(0.0), vec3<f32>(0.0), 0u);
     var normal = vec4<f32>(0.0);
     var position = vec4<f32>(0.0);
     if id != 0u {
         let dir = ray_direction(gid.x, gid.y);
         let s = surface(id - 1u, params.position.xyz, dir);
         if s.hit && s.front {
+            // GpuSample::new: the tangent as its angle (Anisotropy::angle), a dielectric's eta
+            // in f0_eta.x.
+            let n = s.shading_normal;
+            let t = s.brdf.tangent;
+            let phi = select(0.0, atan2(dot(frame_y(n), t), dot(frame_x(n), t)), s.brdf.alpha_t > 0.0);
+            let dielectric = s.brdf.fresnel_kind != 0u;
             out = Sample(
-                vec4<f32>(s.shading_normal, s.brdf.alpha),
-                vec4<f32>(-dir, s.brdf.eta),
-                s.brdf.kd,
-                1u,
-                s.brdf.f0,
-                s.brdf.fresnel_kind,
+                vec4<f32>(n, s.brdf.alpha),
+                vec4<f32>(-dir, phi),
+                vec4<f32>(s.brdf.kd, s.brdf.alpha_t),
+                select(s.brdf.f0, vec3<f32>(s.brdf.eta, 0.0, 0.0), dielectric),
+                SAMPLE_PRESENT | select(0u, SAMPLE_DIELECTRIC, dielectric),
             );
             normal = vec4<f32>(s.geometric_normal, 0.0);
             position = vec4<f32>(s.position, 1.0);

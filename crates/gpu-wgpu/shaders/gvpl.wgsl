@@ -10,7 +10,10 @@ struct Vpl {
     f0: vec4<f32>,
     info: vec4<u32>,
     // The geometric normal n_g (xyz; the shading normal unless normal-mapped) and the bound
-    // factor of slc_bounds::shading_normal (w: flux_scale for a diffuse VPL, GlossyLobe::
-    // tilt_factor for a glossy one; 1 unless tilted; set by GpuVpl::new).
+    // factor (w: slc_bounds::shading_normal's flux_scale for a diffuse VPL,
+    // GlossyLobe::bound_factor for a glossy one; 1 unless tilted or anisotropic; set by
+    // GpuVpl::new).
     geometric_tilt: vec4<f32>,
+    // The anisotropy's tangent (xyz) and alpha_t (w), zero where isotropic.
+    anisotropy: vec4<f32>,
 }

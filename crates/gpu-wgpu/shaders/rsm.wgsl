@@ -27,18 +27,6 @@ struct RsmParams {
     falloff: vec4<f32>,
 }
 
-struct RsmTexel {
-    position: vec4<f32>,
-    normal_alpha: vec4<f32>,
-    omega_i_eta: vec4<f32>,
-    flux: vec4<f32>,
-    kd: vec4<f32>,
-    f0: vec4<f32>,
-    info: vec4<u32>,
-    // geometric normal (xyz), 1 where normal-mapped (w)
-    geometric: vec4<f32>,
-}
-
 struct ShadowTexel {
     position: vec4<f32>,
     normal: vec4<f32>,
@@ -108,7 +96,8 @@ fn main(@builtin(global_invocation_id) gid: vec3<u32>) {
         flux = intensity * texel_solid_angle(x, y, ts * e);
     }
     var out = RsmTexel(vec4<f32>(0.0), vec4<f32>(0.0), vec4<f32>(0.0), vec4<f32>(0.0),
-                       vec4<f32>(0.0), vec4<f32>(0.0), vec4<u32>(0u), vec4<f32>(0.0));
+                       vec4<f32>(0.0), vec4<f32>(0.0), vec4<u32>(0u), vec4<f32>(0.0),
+                       vec4<f32>(0.0));
     var occluder = ShadowTexel(vec4<f32>(0.0), vec4<f32>(0.0));
     let id = textureLoad(ids, vec2<i32>(gid.xy), 0).x;
     if id != 0u {
@@ -125,6 +114,7 @@ fn main(@builtin(global_invocation_id) gid: vec3<u32>) {
                     vec4<f32>(s.brdf.f0, 0.0),
                     vec4<u32>(s.brdf.fresnel_kind, 0u, 0u, 0u),
                     vec4<f32>(s.geometric_normal, select(0.0, 1.0, s.normal_mapped)),
+                    vec4<f32>(s.brdf.tangent, s.brdf.alpha_t),
                 );
             }
         }

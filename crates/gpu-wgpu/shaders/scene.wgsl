@@ -20,6 +20,9 @@ struct SurfaceBrdf {
     f0: vec3<f32>,
     eta: f32,
     alpha: f32,
+    // An anisotropy's unit tangent and alpha_t (0: isotropic; Brdf::anisotropy).
+    tangent: vec3<f32>,
+    alpha_t: f32,
 }
 
 struct Surface {
@@ -157,6 +160,27 @@ fn mapped_normal(m: SceneMaterial, n: vec3<f32>, g: vec3<f32>, tangent: vec4<f32
     return vec3<f32>(0.0);
 }
 
+// MaterialAnisotropy::at: material m's anisotropy at a point with unit shading normal n and
+// interpolated tangent (xyz, handedness w), as (direction, alpha_t) for roughness alpha; zero
+// where the material is isotropic or the frame degenerates.
+fn material_anisotropy(m: SceneMaterial, n: vec3<f32>, tangent: vec4<f32>, alpha: f32) -> vec4<f32> {
+    let s = m.anisotropy.x;
+    if s == 0.0 {
+        return vec4<f32>(0.0);
+    }
+    let t = normalize_or(tangent.xyz - n * dot(n, tangent.xyz), vec3<f32>(0.0));
+    if all(t == vec3<f32>(0.0)) {
+        return vec4<f32>(0.0);
+    }
+    let b = cross(n, t) * select(1.0, -1.0, tangent.w < 0.0);
+    let d = normalize_or(t * m.anisotropy.y + b * m.anisotropy.z, vec3<f32>(0.0));
+    let direction = normalize_or(d - n * dot(n, d), vec3<f32>(0.0));
+    if all(direction == vec3<f32>(0.0)) {
+        return vec4<f32>(0.0);
+    }
+    return vec4<f32>(direction, clamp(alpha + (1.0 - alpha) * s * s, alpha, 1.0));
+}
+
 // The hit of the ray origin + t dir (t > 0) with triangle `tri`, oriented and shaded as
 // Tracer::surface: barycentrics as watertight.rs barycentric (here in f32), the shading
 // normal interpolated, perturbed by the normal map and flipped to the geometric normal's
@@ -193,9 +217,11 @@ fn surface(tri: u32, origin: vec3<f32>, dir: vec3<f32>) -> Surface {
     let uv = vec2<f32>(va.position_u.w, va.normal_v.w) * w0
         + vec2<f32>(vb.position_u.w, vb.normal_v.w) * w1
         + vec2<f32>(vc.position_u.w, vc.normal_v.w) * w2;
-    if m.maps.x != NO_TEXTURE && has_uv && (tr.info.x & TRIANGLE_TANGENTS) != 0u {
-        let tangent = va.tangent.xyz * w0 + vb.tangent.xyz * w1 + vc.tangent.xyz * w2;
-        let mapped = mapped_normal(m, ns, ng, vec4<f32>(tangent, va.tangent.w), uv);
+    let has_tangents = (tr.info.x & TRIANGLE_TANGENTS) != 0u;
+    let tangent = vec4<f32>(va.tangent.xyz * w0 + vb.tangent.xyz * w1 + vc.tangent.xyz * w2,
+                            va.tangent.w);
+    if m.maps.x != NO_TEXTURE && has_uv && has_tangents {
+        let mapped = mapped_normal(m, ns, ng, tangent, uv);
         s.normal_mapped = any(mapped != vec3<f32>(0.0));
         if s.normal_mapped {
             ns = mapped;
@@ -212,5 +238,10 @@ fn surface(tri: u32, origin: vec3<f32>, dir: vec3<f32>) -> Surface {
     s.geometric_normal = ng;
     s.shading_normal = ns;
     s.brdf = material_brdf(m, has_uv, uv);
+    if has_tangents {
+        let a = material_anisotropy(m, ns, tangent, s.brdf.alpha);
+        s.brdf.tangent = a.xyz;
+        s.brdf.alpha_t = a.w;
+    }
     return s;
 }

@@ -32,6 +32,8 @@ struct SceneMaterial {
     maps: vec4<u32>,
     // normal-map scale, alpha cutoff, alpha factor, unused
     map_params: vec4<f32>,
+    // KHR_materials_anisotropy: strength (0: isotropic), cos and sin of the rotation, unused
+    anisotropy: vec4<f32>,
 }
 
 struct TextureInfo {

@@ -35,11 +35,8 @@ const NO_LIST: u32 = 0xffffffffu;
 const WORKGROUP: u32 = 64u;
 
 fn vpl_material(v: Vpl) -> Material {
-    return Material(v.kd.xyz, FresnelModel(v.info.y, v.f0.xyz, v.omega_i_eta.w), v.normal_alpha.w);
-}
-
-fn sample_material(s: Sample) -> Material {
-    return Material(s.kd, FresnelModel(s.fresnel, s.f0, s.omega_o_eta.w), s.normal_alpha.w);
+    return Material(v.kd.xyz, FresnelModel(v.info.y, v.f0.xyz, v.omega_i_eta.w), v.normal_alpha.w,
+                    v.anisotropy.xyz, v.anisotropy.w);
 }
 
 // slc_bounds::shading_normal::MIN_COS_GEOMETRIC.
@@ -72,7 +69,7 @@ fn vpl_intensity(v: Vpl, w: vec3<f32>) -> vec3<f32> {
     if v.info.x == LOBE_DIFFUSE {
         f = brdf_diffuse(m, n, v.omega_i_eta.xyz, w);
     } else {
-        f = microfacet(n, v.omega_i_eta.xyz, w, m.alpha, m.fresnel);
+        f = microfacet(n, v.omega_i_eta.xyz, w, m);
     }
     return v.flux.xyz * f * cos_o;
 }
@@ -112,7 +109,7 @@ fn vpl_contribution(s: Sample, x: vec3<f32>, v: Vpl) -> vec3<f32> {
     if weight == 0.0 {
         return vec3<f32>(0.0);
     }
-    return brdf_eval(sample_material(s), n, -omega, s.omega_o_eta.xyz) * intensity
+    return brdf_eval(sample_material(s), n, -omega, s.omega_o_phi.xyz) * intensity
         * (weight * cos_x / l2);
 }
 
@@ -130,7 +127,7 @@ fn main(
     let x = positions[pixel].xyz;
     var sum = vec3<f32>(0.0);
     let list = pixel_list[pixel];
-    if s.present != 0u && list != NO_LIST && list < params.list_count {
+    if sample_present(s) && list != NO_LIST && list < params.list_count {
         let end = offsets[list + 1u];
         for (var e = offsets[list]; e < end; e++) {
             let k = indices[e];

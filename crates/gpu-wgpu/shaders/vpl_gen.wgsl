@@ -21,18 +21,6 @@ struct VplGenParams {
     pad1: u32,
 }
 
-struct RsmTexel {
-    position: vec4<f32>,
-    normal_alpha: vec4<f32>,
-    omega_i_eta: vec4<f32>,
-    flux: vec4<f32>,
-    kd: vec4<f32>,
-    f0: vec4<f32>,
-    info: vec4<u32>,
-    // geometric normal (xyz), 1 where normal-mapped (w)
-    geometric: vec4<f32>,
-}
-
 @group(0) @binding(0) var<uniform> params: VplGenParams;
 @group(0) @binding(1) var<storage, read> texels: array<RsmTexel>;
 // Counts (CULL_COUNT) or offsets after the scan (CULL_WRITE), per global texel.
@@ -68,8 +56,10 @@ fn make_vpl(t: RsmTexel, lobe: u32, id: u32) -> Vpl {
         t.f0,
         vec4<u32>(lobe, t.info.x, id, 0u),
         // The bound factor (w) is not formed here: the VPLs are read back and packed for
-        // culling and shading by GpuVpl::new, which forms it (1 is right only untilted).
+        // culling and shading by GpuVpl::new, which forms it (1 is right only where
+        // neither tilted nor anisotropic).
         vec4<f32>(select(t.normal_alpha.xyz, t.geometric.xyz, t.geometric.w != 0.0), 1.0),
+        t.anisotropy,
     );
 }
 

@@ -69,21 +69,22 @@ fn finite3(v: vec3<f32>) -> bool {
 // SG sharpness 2/alpha^2 that fits f32.
 fn valid_surface(s: Sample) -> bool {
     let n = s.normal_alpha.xyz;
-    let wo = s.omega_o_eta.xyz;
+    let wo = s.omega_o_phi.xyz;
     let alpha = s.normal_alpha.w;
-    if !(finite3(n) && finite3(wo) && finite3(s.kd)) {
+    let kd = s.kd_alpha_t.xyz;
+    if !(finite3(n) && finite3(wo) && finite3(kd)) {
         return false;
     }
     if abs(length(n) - 1.0) > UNIT_TOLERANCE || abs(length(wo) - 1.0) > UNIT_TOLERANCE {
         return false;
     }
-    if !(alpha > 0.0 && alpha <= 1.0) || !sg_finite(2.0 / (alpha * alpha)) || any(s.kd < vec3<f32>(0.0)) {
+    if !(alpha > 0.0 && alpha <= 1.0) || !sg_finite(2.0 / (alpha * alpha)) || any(kd < vec3<f32>(0.0)) {
         return false;
     }
-    if s.fresnel == FRESNEL_SCHLICK {
-        return all(s.f0 >= vec3<f32>(0.0)) && all(s.f0 <= vec3<f32>(1.0));
+    if sample_fresnel_kind(s) == FRESNEL_SCHLICK {
+        return all(s.f0_eta >= vec3<f32>(0.0)) && all(s.f0_eta <= vec3<f32>(1.0));
     }
-    let eta = s.omega_o_eta.w;
+    let eta = s.f0_eta.x;
     return eta > 0.0 && sg_finite(eta);
 }
 
@@ -92,7 +93,7 @@ fn valid_surface(s: Sample) -> bool {
 // F(wo.n) G1(wo.n)^2 / (4 wo.n); a view below the surface shades to zero.
 fn make_surface(s: Sample) -> Surface {
     let n = s.normal_alpha.xyz / length(s.normal_alpha.xyz);
-    let wo = s.omega_o_eta.xyz / length(s.omega_o_eta.xyz);
+    let wo = s.omega_o_phi.xyz / length(s.omega_o_phi.xyz);
     let alpha = s.normal_alpha.w;
     let a2 = alpha * alpha;
     let cos_o = dot(n, wo);
@@ -106,13 +107,13 @@ fn make_surface(s: Sample) -> Surface {
     }
     let g = ggx_g1_over_cos(alpha, c);
     var f: vec3<f32>;
-    if s.fresnel == FRESNEL_SCHLICK {
-        f = fresnel_schlick(s.f0, c);
+    if sample_fresnel_kind(s) == FRESNEL_SCHLICK {
+        f = fresnel_schlick(s.f0_eta, c);
     } else {
-        f = vec3<f32>(fresnel_dielectric(s.omega_o_eta.w, c));
+        f = vec3<f32>(fresnel_dielectric(s.f0_eta.x, c));
     }
     let lobe = Sg(mirror, (2.0 / a2) / (4.0 * c), 1.0 / (PI * a2));
-    return Surface(s.kd * (1.0 / PI), n, lobe, f * (0.25 * g * g * c));
+    return Surface(s.kd_alpha_t.xyz * (1.0 / PI), n, lobe, f * (0.25 * g * g * c));
 }
 
 // SgSurface::radiance: diffuse + specular of VSGL eq. (2) for the incoming SG light, each
@@ -191,7 +192,7 @@ fn main(
     }
     let s = samples[pixel];
     var sum = vec3<f32>(0.0);
-    if s.present != 0u {
+    if sample_present(s) {
         if valid_surface(s) {
             let surface = make_surface(s);
             let x = positions[pixel].xyz;
@@ -253,7 +254,7 @@ fn main_visible(
     }
     let s = samples[pixel];
     var sum = vec3<f32>(0.0);
-    if s.present != 0u {
+    if sample_present(s) {
         if valid_surface(s) {
             let surface = make_surface(s);
             let x = positions[pixel].xyz;

@@ -18,6 +18,7 @@ pub(crate) const SOURCE: &str = concat!(
     include_str!("../shaders/rng.wgsl"),
     include_str!("../shaders/bound.wgsl"),
     include_str!("../shaders/fresnel_ggx.wgsl"),
+    include_str!("../shaders/frame.wgsl"),
     include_str!("../shaders/gvpl.wgsl"),
     include_str!("../shaders/bounds.wgsl")
 );

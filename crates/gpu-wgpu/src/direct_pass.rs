@@ -22,6 +22,7 @@ use slc_core::{Image, Light};
 /// `shaders/fresnel_ggx.wgsl` and `shaders/brdf.wgsl` followed by the direct-light kernel.
 pub(crate) const SOURCE: &str = concat!(
     include_str!("../shaders/fresnel_ggx.wgsl"),
+    include_str!("../shaders/frame.wgsl"),
     include_str!("../shaders/brdf.wgsl"),
     include_str!("../shaders/gsample.wgsl"),
     include_str!("../shaders/direct.wgsl")

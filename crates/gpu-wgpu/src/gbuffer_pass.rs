@@ -14,17 +14,17 @@
 //! CPU's `PixelSample::Centre`).
 use crate::buffers::{output, read_back, uniform};
 use crate::context::{GpuContext, GpuError};
-use crate::gpu_types::{GpuSample, FRESNEL_DIELECTRIC, SAMPLE_EMPTY};
+use crate::gpu_types::GpuSample;
 use crate::raster_types::GpuGbufferParams;
 use crate::scene_upload::GpuScene;
 use crate::visibility_pass::{RasterView, Resolve, VisibilityPass, VisibilityTarget};
 use glam::Vec3;
-use slc_bounds::{Brdf, Fresnel};
 use slc_core::{Camera, GBuffer, GSample};
 
 /// `shaders/scene_types.wgsl` and `shaders/scene.wgsl` followed by the resolve kernel.
 pub(crate) const SOURCE: &str = concat!(
     include_str!("../shaders/scene_types.wgsl"),
+    include_str!("../shaders/frame.wgsl"),
     include_str!("../shaders/scene.wgsl"),
     include_str!("../shaders/gsample.wgsl"),
     include_str!("../shaders/gbuffer.wgsl")
@@ -66,7 +66,7 @@ impl GpuGBuffer {
         let samples = samples
             .iter()
             .zip(normals.iter().zip(&positions))
-            .map(|(s, (ng, x))| (s.present != SAMPLE_EMPTY).then(|| self.unpack(s, ng, x)))
+            .map(|(s, (ng, x))| s.is_present().then(|| self.unpack(s, ng, x)))
             .collect();
         Ok(GBuffer {
             width: self.width,
@@ -78,23 +78,13 @@ impl GpuGBuffer {
     fn unpack(&self, s: &GpuSample, ng: &[f32; 4], x: &[f32; 4]) -> GSample {
         let v = |a: [f32; 4]| Vec3::new(a[0], a[1], a[2]);
         let position = v(*x);
-        let fresnel = if s.fresnel == FRESNEL_DIELECTRIC {
-            Fresnel::Dielectric(s.omega_o_eta[3])
-        } else {
-            Fresnel::Schlick(Vec3::from_array(s.f0))
-        };
         GSample {
             position,
             normal: v(s.normal_alpha),
             geometric_normal: v(*ng),
-            omega_o: v(s.omega_o_eta),
+            omega_o: v(s.omega_o_phi),
             depth: self.camera.view_depth(position),
-            brdf: Brdf {
-                kd: Vec3::from_array(s.kd),
-                fresnel,
-                alpha: s.normal_alpha[3],
-                anisotropy: None,
-            },
+            brdf: s.brdf(),
         }
     }
 }

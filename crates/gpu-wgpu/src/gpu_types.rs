@@ -7,7 +7,7 @@ use crate::context::GpuError;
 use bytemuck::{Pod, Zeroable};
 use glam::Vec3;
 use slc_bounds::shading_normal::flux_scale;
-use slc_bounds::{Fresnel, StochasticParams};
+use slc_bounds::{Anisotropy, Brdf, Fresnel, StochasticParams};
 use slc_core::{Camera, GSample, Interleaving, Vpl, VplLobe};
 use slc_cull::{CullView, GlossyBound};
 
@@ -69,15 +69,31 @@ pub struct GpuVpl {
     /// Lobe ([`LOBE_DIFFUSE`], [`LOBE_GLOSSY`]), Fresnel model ([`FRESNEL_SCHLICK`],
     /// [`FRESNEL_DIELECTRIC`]), VPL id, unused.
     pub info: [u32; 4],
-    /// The geometric normal n_g (xyz) and the bound factor of `slc_bounds::shading_normal`
-    /// (w): `flux_scale` for a diffuse VPL, `GlossyLobe::tilt_factor` for a glossy one, 1
-    /// where n_g = n.
+    /// The geometric normal n_g (xyz) and the bound factor (w): `flux_scale` of
+    /// `slc_bounds::shading_normal` for a diffuse VPL, `GlossyLobe::bound_factor` for a
+    /// glossy one (tilted shading normal, anisotropy), 1 where neither applies.
     pub geometric_tilt: [f32; 4],
+    /// The anisotropy's tangent (xyz) and α_t (w), zero where the lobe is isotropic
+    /// (`slc_bounds::Anisotropy`).
+    pub anisotropy: [f32; 4],
 }
-const _: () = assert!(std::mem::size_of::<GpuVpl>() == 128);
+const _: () = assert!(std::mem::size_of::<GpuVpl>() == 144);
 
 fn vec4(v: Vec3, w: f32) -> [f32; 4] {
     [v.x, v.y, v.z, w]
+}
+
+/// An anisotropy as the shaders store it: the tangent (xyz) and α_t (w); zero if isotropic.
+pub fn gpu_anisotropy(a: Option<Anisotropy>) -> [f32; 4] {
+    a.map_or([0.0; 4], |a| vec4(a.tangent, a.alpha_t))
+}
+
+/// The anisotropy of [`gpu_anisotropy`]'s form (α_t = 0: isotropic).
+pub fn anisotropy_from_gpu(a: [f32; 4]) -> Option<Anisotropy> {
+    (a[3] > 0.0).then(|| Anisotropy {
+        tangent: Vec3::new(a[0], a[1], a[2]),
+        alpha_t: a[3],
+    })
 }
 
 impl GpuVpl {
@@ -103,7 +119,7 @@ impl GpuVpl {
             }
             VplLobe::Glossy => {
                 let lobe = vpl.glossy_lobe().map_err(|e| invalid(&e))?;
-                (LOBE_GLOSSY, lobe.tilt_factor())
+                (LOBE_GLOSSY, lobe.bound_factor())
             }
         };
         let (fresnel, f0, eta) = match vpl.brdf.fresnel {
@@ -119,6 +135,7 @@ impl GpuVpl {
             f0: vec4(f0, 0.0),
             info: [lobe, fresnel, vpl.id, 0],
             geometric_tilt: vec4(vpl.geometric_normal, tilt),
+            anisotropy: gpu_anisotropy(vpl.brdf.anisotropy),
         })
     }
 }
@@ -342,8 +359,10 @@ pub struct GpuPartitionParams {
 const _: () = assert!(std::mem::size_of::<GpuPartitionParams>() == 16);
 
 /// `GpuSample::present`: whether the pixel holds a G-buffer sample (0: empty, e.g. sky).
+/// `GpuSample::flags`: bit 0 set where the pixel has a sample, bit 1 for a dielectric Fresnel.
 pub const SAMPLE_EMPTY: u32 = 0;
 pub const SAMPLE_PRESENT: u32 = 1;
+pub const SAMPLE_DIELECTRIC: u32 = 2;
 
 /// One G-buffer pixel ([`slc_core::GSample`] or an empty pixel) as the shading pass reads it.
 /// Keep in sync with `Sample` in `shaders/gsample.wgsl` (64 bytes: a 1920 x 1080 G-buffer fits
@@ -351,19 +370,18 @@ pub const SAMPLE_PRESENT: u32 = 1;
 #[repr(C)]
 #[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
 pub struct GpuSample {
-    /// Unit shading normal (xyz) and GGX roughness α (w).
+    /// Unit shading normal (xyz) and GGX roughness α (w; along the bitangent where
+    /// anisotropic).
     pub normal_alpha: [f32; 4],
-    /// Unit direction towards the camera ωo (xyz) and the relative index η of a dielectric
-    /// Fresnel (w).
-    pub omega_o_eta: [f32; 4],
-    /// Diffuse reflectance kd.
-    pub kd: [f32; 3],
-    /// [`SAMPLE_PRESENT`] or [`SAMPLE_EMPTY`].
-    pub present: u32,
-    /// Schlick F0.
-    pub f0: [f32; 3],
-    /// The Fresnel model: [`FRESNEL_SCHLICK`] or [`FRESNEL_DIELECTRIC`].
-    pub fresnel: u32,
+    /// Unit direction towards the camera ωo (xyz) and an anisotropy's tangent as its angle
+    /// around the normal (w; `slc_bounds::Anisotropy::angle`).
+    pub omega_o_phi: [f32; 4],
+    /// Diffuse reflectance kd (xyz) and an anisotropy's α_t (w; 0 where isotropic).
+    pub kd_alpha_t: [f32; 4],
+    /// Schlick F0 (xyz), or the relative index η of a dielectric Fresnel (x).
+    pub f0_eta: [f32; 3],
+    /// [`SAMPLE_PRESENT`] | [`SAMPLE_DIELECTRIC`]; [`SAMPLE_EMPTY`] for an empty pixel.
+    pub flags: u32,
 }
 const _: () = assert!(std::mem::size_of::<GpuSample>() == 64);
 
@@ -371,11 +389,10 @@ impl GpuSample {
     /// An empty pixel: shaded black.
     pub const EMPTY: Self = Self {
         normal_alpha: [0.0; 4],
-        omega_o_eta: [0.0; 4],
-        kd: [0.0; 3],
-        present: SAMPLE_EMPTY,
-        f0: [0.0; 3],
-        fresnel: 0,
+        omega_o_phi: [0.0; 4],
+        kd_alpha_t: [0.0; 4],
+        f0_eta: [0.0; 3],
+        flags: SAMPLE_EMPTY,
     };
 
     /// Packs a G-buffer sample (its position goes to the separate positions array,
@@ -384,17 +401,45 @@ impl GpuSample {
         let Some(g) = sample else {
             return Self::EMPTY;
         };
-        let (fresnel, f0, eta) = match g.brdf.fresnel {
-            Fresnel::Schlick(f0) => (FRESNEL_SCHLICK, f0, 0.0),
-            Fresnel::Dielectric(eta) => (FRESNEL_DIELECTRIC, Vec3::ZERO, eta),
+        let (flags, f0_eta) = match g.brdf.fresnel {
+            Fresnel::Schlick(f0) => (SAMPLE_PRESENT, f0),
+            Fresnel::Dielectric(eta) => (SAMPLE_PRESENT | SAMPLE_DIELECTRIC, Vec3::X * eta),
         };
+        let (phi, alpha_t) = g
+            .brdf
+            .anisotropy
+            .map_or((0.0, 0.0), |a| (a.angle(g.normal), a.alpha_t));
         Self {
             normal_alpha: vec4(g.normal, g.brdf.alpha),
-            omega_o_eta: vec4(g.omega_o, eta),
-            kd: g.brdf.kd.to_array(),
-            present: SAMPLE_PRESENT,
-            f0: f0.to_array(),
-            fresnel,
+            omega_o_phi: vec4(g.omega_o, phi),
+            kd_alpha_t: vec4(g.brdf.kd, alpha_t),
+            f0_eta: f0_eta.to_array(),
+            flags,
+        }
+    }
+
+    /// Whether the pixel has a sample.
+    pub fn is_present(&self) -> bool {
+        self.flags & SAMPLE_PRESENT != 0
+    }
+
+    /// The sample's BRDF (the inverse of [`Self::new`]'s packing, the tangent rebuilt from
+    /// its angle).
+    pub fn brdf(&self) -> Brdf {
+        let normal = Vec3::new(
+            self.normal_alpha[0],
+            self.normal_alpha[1],
+            self.normal_alpha[2],
+        );
+        Brdf {
+            kd: Vec3::new(self.kd_alpha_t[0], self.kd_alpha_t[1], self.kd_alpha_t[2]),
+            fresnel: match self.flags & SAMPLE_DIELECTRIC != 0 {
+                true => Fresnel::Dielectric(self.f0_eta[0]),
+                false => Fresnel::Schlick(Vec3::from_array(self.f0_eta)),
+            },
+            alpha: self.normal_alpha[3],
+            anisotropy: (self.kd_alpha_t[3] > 0.0)
+                .then(|| Anisotropy::from_angle(normal, self.omega_o_phi[3], self.kd_alpha_t[3])),
         }
     }
 }

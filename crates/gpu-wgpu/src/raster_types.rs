@@ -65,8 +65,11 @@ pub struct GpuMaterial {
     pub maps: [u32; 4],
     /// Normal-map scale, alpha cutoff, alpha factor, unused.
     pub map_params: [f32; 4],
+    /// `KHR_materials_anisotropy`: strength (0: isotropic), cos and sin of the rotation,
+    /// unused (`slc_core::MaterialAnisotropy`).
+    pub anisotropy: [f32; 4],
 }
-const _: () = assert!(std::mem::size_of::<GpuMaterial>() == 96);
+const _: () = assert!(std::mem::size_of::<GpuMaterial>() == 112);
 
 /// Where a texture's RGB texels start in the texel array (in floats) and its size. Keep in
 /// sync with `TextureInfo` in `shaders/scene_types.wgsl`.
@@ -146,7 +149,7 @@ pub struct GpuRsmParams {
 const _: () = assert!(std::mem::size_of::<GpuRsmParams>() == 128);
 
 /// What one RSM texel saw (`slc_cpu_ref::rsm::RsmTexel`, or nothing). Keep in sync with
-/// `RsmTexel` in `shaders/rsm.wgsl` and `shaders/vpl_gen.wgsl`.
+/// `RsmTexel` in `shaders/rsm_texel.wgsl`.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
 pub struct GpuRsmTexel {
@@ -165,8 +168,11 @@ pub struct GpuRsmTexel {
     /// Unit geometric normal on the lit side (xyz), 1 where a normal map perturbed the
     /// shading normal, 0 where not (w) (`slc_cpu_ref::rsm::RsmTexel::normal_mapped`).
     pub geometric: [f32; 4],
+    /// The BRDF's anisotropy: tangent (xyz), α_t (w), zero where isotropic
+    /// (`gpu_types::gpu_anisotropy`).
+    pub anisotropy: [f32; 4],
 }
-const _: () = assert!(std::mem::size_of::<GpuRsmTexel>() == 128);
+const _: () = assert!(std::mem::size_of::<GpuRsmTexel>() == 144);
 
 /// The nearest surface along one shadow-map texel's ray, whichever side it faces (the RSM's
 /// depth kept as a shadow map). Keep in sync with `ShadowTexel` in `shaders/rsm.wgsl` and

@@ -25,6 +25,7 @@ use slc_core::Light;
 pub(crate) const SOURCE: &str = concat!(
     include_str!("../shaders/scene_types.wgsl"),
     include_str!("../shaders/scene.wgsl"),
+    include_str!("../shaders/rsm_texel.wgsl"),
     include_str!("../shaders/rsm.wgsl")
 );
 

@@ -208,6 +208,10 @@ fn material(m: &Material, texture_count: usize) -> GpuMaterial {
         m.alpha_mask.map_or(1.0, |a| a.factor),
         0.0,
     ];
+    let anisotropy = m.anisotropy.map_or([0.0; 4], |a| {
+        let (sin, cos) = a.rotation.sin_cos();
+        [a.strength.clamp(0.0, 1.0), cos, sin, 0.0]
+    });
     match m.model {
         MaterialModel::Direct {
             kd,
@@ -226,6 +230,7 @@ fn material(m: &Material, texture_count: usize) -> GpuMaterial {
             ],
             maps,
             map_params,
+            anisotropy,
         },
         MaterialModel::MetallicRoughness {
             base_color,
@@ -245,6 +250,7 @@ fn material(m: &Material, texture_count: usize) -> GpuMaterial {
             ],
             maps,
             map_params,
+            anisotropy,
         },
     }
 }

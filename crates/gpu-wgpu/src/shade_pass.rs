@@ -26,6 +26,7 @@ use slc_core::{CullInput, Image, Interleaving, LightLists, Vpl};
 /// `shaders/brdf.wgsl` followed by the shading kernel.
 pub(crate) const SOURCE: &str = concat!(
     include_str!("../shaders/fresnel_ggx.wgsl"),
+    include_str!("../shaders/frame.wgsl"),
     include_str!("../shaders/brdf.wgsl"),
     include_str!("../shaders/gsample.wgsl"),
     include_str!("../shaders/gvpl.wgsl"),

@@ -7,7 +7,8 @@
 use crate::buffers::{output, read_back, uniform, upload, Grid};
 use crate::context::{GpuContext, GpuError};
 use crate::gpu_types::{
-    GpuCullStatus, GpuVpl, CULL_COUNT, CULL_WRITE, FRESNEL_DIELECTRIC, LOBE_DIFFUSE,
+    anisotropy_from_gpu, GpuCullStatus, GpuVpl, CULL_COUNT, CULL_WRITE, FRESNEL_DIELECTRIC,
+    LOBE_DIFFUSE,
 };
 use crate::raster_types::GpuVplGenParams;
 use crate::rsm_pass::GpuRsm;
@@ -21,6 +22,7 @@ pub(crate) const SOURCE: &str = concat!(
     include_str!("../shaders/rng.wgsl"),
     include_str!("../shaders/fresnel_ggx.wgsl"),
     include_str!("../shaders/gvpl.wgsl"),
+    include_str!("../shaders/rsm_texel.wgsl"),
     include_str!("../shaders/vpl_gen.wgsl")
 );
 const WORKGROUP: u32 = 64;
@@ -77,7 +79,7 @@ fn unpack(v: &GpuVpl) -> Vpl {
             kd: v3(v.kd),
             fresnel,
             alpha: v.normal_alpha[3],
-            anisotropy: None,
+            anisotropy: anisotropy_from_gpu(v.anisotropy),
         },
         lobe: if v.info[0] == LOBE_DIFFUSE {
             VplLobe::Diffuse

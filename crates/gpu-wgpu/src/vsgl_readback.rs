@@ -8,7 +8,7 @@ use slc_cpu_ref::rsm::{rectangle_solid_angle, Rsm, RsmTexel};
 use slc_cpu_ref::vsgl::Vsgl;
 
 use crate::context::{GpuContext, GpuError};
-use crate::gpu_types::FRESNEL_SCHLICK;
+use crate::gpu_types::{anisotropy_from_gpu, FRESNEL_SCHLICK};
 use crate::rsm_pass::GpuRsm;
 use crate::vsgl_types::{VsglInput, VsglLobe};
 
@@ -72,7 +72,7 @@ pub fn cpu_rsm(ctx: &GpuContext, rsm: &GpuRsm) -> Result<Rsm, GpuError> {
                     kd: xyz(t.kd),
                     fresnel,
                     alpha: t.normal_alpha[3],
-                    anisotropy: None,
+                    anisotropy: anisotropy_from_gpu(t.anisotropy),
                 },
             })
         })

@@ -297,17 +297,20 @@ fn accepted_pairs(input: &CullInput) -> u64 {
         .map(|v| {
             let r = StochasticParams::new(input.delta, v.xi).unwrap();
             let cos_i = f64::from(v.normal.dot(v.omega_i));
-            // A normal-mapped VPL's intensity may exceed these by its tilt factor
-            // (`slc_bounds::shading_normal`).
+            // A normal-mapped or anisotropic VPL's intensity may exceed these by its bound
+            // factor (`slc_bounds::shading_normal`, `slc_bounds::anisotropy`), with the
+            // lobe's largest α.
             let peak = match v.lobe {
                 VplLobe::Diffuse => {
                     let scale = flux_scale(v.normal, v.geometric_normal, v.omega_i);
                     (v.flux * v.brdf.kd).as_dvec3().max_element() / PI * f64::from(scale)
                 }
                 VplLobe::Glossy => {
-                    let alpha = f64::from(v.brdf.alpha);
-                    let tilt = v.glossy_lobe().map_or(1.0, |l| l.tilt_factor());
-                    f64::from(v.flux.max_element()) * f64::from(tilt)
+                    let (alpha, factor) = v
+                        .glossy_lobe()
+                        .map_or((v.brdf.alpha, 1.0), |l| (l.alpha(), l.bound_factor()));
+                    let alpha = f64::from(alpha);
+                    f64::from(v.flux.max_element()) * f64::from(factor)
                         / (4.0 * PI * alpha * alpha * cos_i)
                 }
             };

@@ -278,7 +278,12 @@ fn extreme_frame() -> (GBuffer, Vec<Vpl>, LightLists) {
                 geometric_normal: Vec3::Z,
                 omega_o,
                 depth: 1.0,
-                brdf: Brdf { kd, fresnel, alpha, anisotropy: None },
+                brdf: Brdf {
+                    kd,
+                    fresnel,
+                    alpha,
+                    anisotropy: None,
+                },
             }));
         }
     }
