@@ -10,7 +10,11 @@ BRDF (exactly the one documented in ../shared/reference/cornell-a (beside the re
        = a^2 / (pi ((a^2 - 1) cos^2 th_h + 1)^2)
     G1 = 2 / (1 + sqrt(1 + a^2 tan^2 th_v))                  (separable Smith, NOT height-correlated)
 
-with a = alpha (the GGX alpha = roughness^2). One-sided: f = 0 unless both directions lie above
+with a = alpha (the GGX alpha = roughness^2). Anisotropic (glTF KHR_materials_anisotropy, when
+`alpha_t` is given): D and G1 are Mitsuba's own anisotropic GGX (mi.MicrofacetDistribution with
+alpha_u = alpha_t along the direction cos(rotation) s + sin(rotation) t of the local shading
+frame (s = normalized dp/du, t = n x s), alpha_v = alpha across it), with the same separable
+Smith G and Schlick F. One-sided: f = 0 unless both directions lie above
 the shading normal (cos_i > 0 and cos_o > 0 in Mitsuba's local shading frame). The diffuse term
 is NOT weighted by (1 - F). Like every Mitsuba BSDF, eval() returns f * cos_o.
 
@@ -18,7 +22,10 @@ Parameters
     kd     texture (e.g. {'type': 'rgb', 'value': ...} or a 'bitmap'): the diffuse albedo,
            base colour x (1 - metallic). A plain RGB triple is also accepted.
     f0     RGB: Schlick's F0 = 0.04 (1 - metallic) + base colour x metallic.
-    alpha  float: GGX alpha.
+    alpha  float: GGX alpha (across the anisotropy direction where anisotropic).
+    alpha_t   float (optional): GGX alpha along the anisotropy direction.
+    rotation  float (optional, radians, default 0): the anisotropy direction's angle from s
+              towards t.
 
 Importance sampling: a one-sample mixture of cosine-weighted hemisphere sampling (probability
 1 - p_spec) and GGX visible-normal sampling (Heitz 2018, Mitsuba's MicrofacetDistribution with
@@ -32,6 +39,8 @@ Usage:
     bsdf = mi.load_dict({'type': 'diffuse_ggx', 'kd': {'type': 'rgb', 'value': [0.7, 0.7, 0.7]},
                          'f0': [0.04, 0.04, 0.04], 'alpha': 1.0})
 """
+import math
+
 import drjit as dr
 import mitsuba as mi
 
@@ -60,6 +69,10 @@ class DiffuseGGX(mi.BSDF):
         self.f0 = mi.Color3f(*self.f0_rgb)
         self.alpha_value = float(props['alpha'])
         self.alpha = mi.Float(self.alpha_value)
+        self.anisotropic = props.has_property('alpha_t')
+        self.alpha_t_value = float(props['alpha_t']) if self.anisotropic else self.alpha_value
+        rotation = float(props['rotation']) if props.has_property('rotation') else 0.0
+        self.rot_cos, self.rot_sin = math.cos(rotation), math.sin(rotation)
 
         # Probability of sampling the specular lobe (a constant per material).
         ms = sum(self.f0_rgb) / 3.0
@@ -90,6 +103,20 @@ class DiffuseGGX(mi.BSDF):
         tan2 = dr.maximum(1.0 - c2, 0.0) / c2
         return 2.0 / (1.0 + dr.sqrt(1.0 + dr.square(self.alpha) * tan2))
 
+    def _distribution(self):
+        """Mitsuba's GGX with visible-normal sampling: (alpha_t, alpha) in the rotated frame."""
+        if self.anisotropic:
+            return mi.MicrofacetDistribution(mi.MicrofacetType.GGX, self.alpha_t_value,
+                                             self.alpha_value, True)
+        return mi.MicrofacetDistribution(mi.MicrofacetType.GGX, self.alpha, True)
+
+    def _rotate(self, v, sign=1.0):
+        """v in the frame whose x axis is the anisotropy direction (sign -1: back)."""
+        if not self.anisotropic:
+            return v
+        c, s = self.rot_cos, sign * self.rot_sin
+        return mi.Vector3f(c * v.x + s * v.y, -s * v.x + c * v.y, v.z)
+
     def _f_cos(self, si, wo, active):
         """f(wi, wo) * cos_o in the local shading frame, 0 unless both cosines are > 0."""
         wi = si.wi
@@ -101,8 +128,14 @@ class DiffuseGGX(mi.BSDF):
         h = dr.normalize(wi + wo)
         wi_h = dr.clip(dr.dot(wi, h), 0.0, 1.0)
         fresnel = self.f0 + (1.0 - self.f0) * dr.power(1.0 - wi_h, 5.0)
-        d = self._ggx_d(mi.Frame3f.cos_theta(h))
-        g = self._smith_g1(cos_i) * self._smith_g1(cos_o)
+        if self.anisotropic:
+            distr = self._distribution()
+            hr = self._rotate(h)
+            d = distr.eval(hr)
+            g = distr.G(self._rotate(wi), self._rotate(wo), hr)
+        else:
+            d = self._ggx_d(mi.Frame3f.cos_theta(h))
+            g = self._smith_g1(cos_i) * self._smith_g1(cos_o)
         spec = fresnel * (d * g / (4.0 * cos_i * cos_o))
         value = (kd * dr.inv_pi + spec) * cos_o
         return dr.select(active, value, 0.0), active
@@ -114,9 +147,9 @@ class DiffuseGGX(mi.BSDF):
         active = active & (cos_i > 0.0) & (cos_o > 0.0)
         pdf_d = cos_o * dr.inv_pi
         m = dr.normalize(wi + wo)
-        distr = mi.MicrofacetDistribution(mi.MicrofacetType.GGX, self.alpha, True)
+        distr = self._distribution()
         # visible-normal pdf of m, times the Jacobian of the reflection d(wo)/d(m) = 1/(4 wo.m)
-        pdf_g = distr.pdf(wi, m) / (4.0 * dr.abs(dr.dot(wo, m)))
+        pdf_g = distr.pdf(self._rotate(wi), self._rotate(m)) / (4.0 * dr.abs(dr.dot(wo, m)))
         pdf = (1.0 - self.p_spec) * pdf_d + self.p_spec * pdf_g
         return dr.select(active, pdf, 0.0)
 
@@ -139,8 +172,9 @@ class DiffuseGGX(mi.BSDF):
 
         choose_spec = sample1 < self.p_spec
         wo_d = mi.warp.square_to_cosine_hemisphere(sample2)
-        distr = mi.MicrofacetDistribution(mi.MicrofacetType.GGX, self.alpha, True)
-        m, _ = distr.sample(wi, sample2)
+        distr = self._distribution()
+        m, _ = distr.sample(self._rotate(wi), sample2)
+        m = self._rotate(m, -1.0)
         wo_g = mi.reflect(wi, m)
         wo = dr.select(choose_spec, wo_g, wo_d)
 
@@ -169,8 +203,9 @@ class DiffuseGGX(mi.BSDF):
         pass
 
     def to_string(self):
-        return ('DiffuseGGX[kd=%s, f0=%s, alpha=%g, p_spec=%g]'
-                % (self.kd, self.f0_rgb, self.alpha_value, self.p_spec))
+        return ('DiffuseGGX[kd=%s, f0=%s, alpha=%g, alpha_t=%g, rotation=(%g, %g), p_spec=%g]'
+                % (self.kd, self.f0_rgb, self.alpha_value, self.alpha_t_value, self.rot_cos,
+                   self.rot_sin, self.p_spec))
 
 
 def register():

@@ -306,6 +306,15 @@ def material_bsdf(g, mat, mask_filter):
     else:
         kd = {"type": "rgb", "value": [b * (1.0 - metallic) for b in base[:3]]}
     bsdf = {"type": "diffuse_ggx", "kd": kd, "f0": f0, "alpha": alpha}
+    aniso = mat.get("extensions", {}).get("KHR_materials_anisotropy")
+    if aniso is not None:
+        assert "anisotropyTexture" not in aniso
+        strength = aniso.get("anisotropyStrength", 0.0)
+        # KHR_materials_anisotropy: alpha_t = mix(alpha, 1, strength^2) along
+        # cos(rotation) T + sin(rotation) B; T = dp/du and B = cross(N, T) are Mitsuba's s and
+        # t where the tangent frame has w = +1 (checked in build_scene).
+        bsdf["alpha_t"] = alpha + (1.0 - alpha) * strength * strength
+        bsdf["rotation"] = aniso.get("anisotropyRotation", 0.0)
 
     normal_info = mat.get("normalTexture")
     if normal_info is not None:
@@ -339,6 +348,31 @@ def material_bsdf(g, mat, mask_filter):
     return mi.load_dict(bsdf)
 
 
+def check_tangents(tangents, pos, nrm, uv, idx):
+    """Stored glTF tangents must be what Mitsuba uses: T = normalize(dp/du) (made orthogonal to
+    N) with w = +1, i.e. B = cross(N, T) points towards decreasing v, per triangle."""
+    def vec(a, k, n):
+        return a[n * k:n * k + n]
+    for f in range(len(idx) // 3):
+        i0, i1, i2 = idx[3 * f:3 * f + 3]
+        p0, p1, p2 = (vec(pos, i, 3) for i in (i0, i1, i2))
+        t0, t1, t2 = (vec(uv, i, 2) for i in (i0, i1, i2))
+        e1 = [a - b for a, b in zip(p1, p0)]
+        e2 = [a - b for a, b in zip(p2, p0)]
+        du1, dv1 = t1[0] - t0[0], t1[1] - t0[1]
+        du2, dv2 = t2[0] - t0[0], t2[1] - t0[1]
+        det = du1 * dv2 - du2 * dv1
+        dpdu = [(dv2 * a - dv1 * b) / det for a, b in zip(e1, e2)]
+        dpdv = [(du1 * b - du2 * a) / det for a, b in zip(e1, e2)]
+        for i in (i0, i1, i2):
+            t = vec(tangents, i, 4)
+            n = vec(nrm, i, 3)
+            length = math.sqrt(sum(c * c for c in dpdu))
+            assert max(abs(a - b / length) for a, b in zip(t[:3], dpdu)) < 1e-6, (t, dpdu)
+            b = (n[1] * t[2] - n[2] * t[1], n[2] * t[0] - n[0] * t[2], n[0] * t[1] - n[1] * t[0])
+            assert t[3] == 1.0 and sum(x * y for x, y in zip(b, dpdv)) < 0.0, "w = +1 needed"
+
+
 def build_scene(g, width, height, pass_spp, max_depth, mask_filter):
     shapes = {}
     triangles = 0
@@ -350,6 +384,8 @@ def build_scene(g, width, height, pass_spp, max_depth, mask_filter):
             uv = g.accessor(prim["attributes"]["TEXCOORD_0"]) if "TEXCOORD_0" in prim["attributes"] else None
             idx = g.accessor(prim["indices"])
             nv, nf = len(pos) // 3, len(idx) // 3
+            if "TANGENT" in prim["attributes"]:
+                check_tangents(g.accessor(prim["attributes"]["TANGENT"]), pos, nrm, uv, idx)
             props = mi.Properties()
             props["bsdf"] = material_bsdf(g, g.doc["materials"][prim["material"]], mask_filter)
             mesh = mi.Mesh("%s_%d" % (name, pi), nv, nf, props=props,

@@ -418,6 +418,20 @@ pub fn materials_scene(roughness: f32) -> (Scene, Camera) {
     (scene, camera)
 }
 
+/// `scenes/anisotropy`: a brushed floor and a brushed panel (glTF `KHR_materials_anisotropy`,
+/// α_t up to 0.84 against α 0.09 and 0.16), so that VPLs and receivers are anisotropic and the
+/// bounds are the isotropic ones of the larger α with the flux times the bound factor.
+pub fn anisotropy_scene() -> (Scene, Camera) {
+    let path = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../../scenes/anisotropy/anisotropy.gltf"
+    );
+    let scene = load_scene(path).unwrap_or_else(|e| panic!("{path}: {e}"));
+    assert!(scene.materials.iter().any(|m| m.anisotropy.is_some()));
+    let camera = scene.camera_or_default();
+    (scene, camera)
+}
+
 /// Dabrovic Sponza from `shared/scenes` with what the OBJ lacks: a point light of 60 W/sr in
 /// the middle of the atrium, a camera inside it looking along its long (x) axis, and a
 /// glossy layer on every material (F0 0.04 to 0.9, α from 1e-3 to 1 by material), so both

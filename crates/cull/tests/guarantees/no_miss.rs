@@ -84,6 +84,17 @@ fn materials_scene_never_misses() {
     }
 }
 
+/// `scenes/anisotropy`, K = 1 and 4, δ 1e-3 and 1e-2: anisotropic VPLs (their bounds: the
+/// isotropic lobe of the larger α, the flux times `GlossyLobe::bound_factor`) miss nothing.
+#[test]
+fn anisotropy_scene_never_misses() {
+    let (scene, camera) = anisotropy_scene();
+    let (gbuffer, vpls) = frame(&scene, &camera, (128, 128), 24, LobeSelection::Both);
+    assert!(vpls.iter().any(|v| v.brdf.anisotropy.is_some()));
+    let cases = [(1, 1e-3), (4, 1e-3), (4, 1e-2)];
+    never_misses("anisotropy", (&gbuffer, &camera, &vpls), &cases);
+}
+
 /// [`check_all`] on one frame for each (K, δ) of `cases`, printing every strategy's metrics;
 /// each case must hold more than 5,000 contributing pairs (so that "no miss" says something).
 fn never_misses(

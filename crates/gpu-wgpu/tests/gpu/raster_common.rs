@@ -39,6 +39,15 @@ pub fn materials() -> (Scene, Camera) {
     ))
 }
 
+/// `scenes/anisotropy` (glTF `KHR_materials_anisotropy`: a brushed floor with generated
+/// tangents, a brushed panel with stored tangents and a rotated anisotropy).
+pub fn anisotropy() -> (Scene, Camera) {
+    with_its_camera(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../../scenes/anisotropy/anisotropy.gltf"
+    ))
+}
+
 /// A scene file and the camera it carries.
 fn with_its_camera(path: &str) -> (Scene, Camera) {
     let scene = load_scene(path).unwrap_or_else(|e| panic!("{path}: {e}"));
@@ -105,6 +114,7 @@ fn same_surface(a: &GSample, b: &GSample, tolerance: f32) -> bool {
         && a.geometric_normal.dot(b.position - a.position).abs() <= tolerance
         && a.brdf.fresnel == b.brdf.fresnel
         && a.brdf.alpha == b.brdf.alpha
+        && a.brdf.anisotropy.map(|x| x.alpha_t) == b.brdf.anisotropy.map(|x| x.alpha_t)
 }
 
 /// The edge pixels of a `width` x `height` grid of samples (see the module documentation),

@@ -23,7 +23,7 @@
 //!   weight then moves a few pixels of its tile by a large amount): the percentile
 //!   bounds those, the mean bounds everything.
 use crate::common::gpu;
-use crate::raster_common::{default_scene, edge_pixels, extent, lit_scene, materials};
+use crate::raster_common::{anisotropy, default_scene, edge_pixels, extent, lit_scene, materials};
 use slc_core::frame::LobeSelection;
 use slc_core::frame::{Method, RenderSettings, Stochastic};
 use slc_core::shader::{ShadeInput, Shader};
@@ -118,6 +118,14 @@ fn rasterized_gpu_frame_matches_the_cpu_frame() {
 fn rasterized_gpu_frame_matches_the_cpu_frame_on_the_materials_scene() {
     let Some(ctx) = gpu() else { return };
     frame_matches(&ctx, "materials", materials(), (1.2e-2, 2.5e-2));
+}
+
+/// Anisotropic VPLs and receivers (both backends' anisotropic GGX, the bounds of the larger α
+/// with the flux times the bound factor, the tangent of a G-buffer sample as an angle).
+#[test]
+fn rasterized_gpu_frame_matches_the_cpu_frame_on_the_anisotropy_scene() {
+    let Some(ctx) = gpu() else { return };
+    frame_matches(&ctx, "anisotropy", anisotropy(), (1.2e-2, 2.5e-2));
 }
 
 /// The frame comparison of the module documentation on `scene` seen by `camera`, with the

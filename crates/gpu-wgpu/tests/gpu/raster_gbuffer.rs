@@ -15,7 +15,7 @@
 //! (bilinear texture lookups at texture coordinates that differ in the last bits).
 use crate::common::gpu;
 use crate::raster_common::{
-    cornell_a, default_scene, edge_pixels, extent, fraction, materials, sponza,
+    anisotropy, cornell_a, default_scene, edge_pixels, extent, fraction, materials, sponza,
 };
 use glam::Vec3;
 use slc_bounds::Fresnel;
@@ -69,16 +69,24 @@ fn difference(cpu: &GSample, gpu: &GSample, kd_tolerance: f32) -> Option<String>
         (Fresnel::Dielectric(a), Fresnel::Dielectric(b)) => (a - b).abs(),
         _ => f32::INFINITY,
     };
+    // The anisotropy: the tangent (within the direction tolerance) and α_t.
+    let anisotropy = match (gpu.brdf.anisotropy, cpu.brdf.anisotropy) {
+        (None, None) => 0.0,
+        (Some(a), Some(b)) => ((a.tangent - b.tangent).length() / DIRECTION_TOLERANCE)
+            .max((a.alpha_t - b.alpha_t).abs() / PARAMETER_TOLERANCE),
+        _ => f32::INFINITY,
+    };
     let ok = position <= POSITION_TOLERANCE
         && (gpu.depth - cpu.depth).abs() <= POSITION_TOLERANCE * cpu.depth
         && direction <= DIRECTION_TOLERANCE
         && kd <= kd_tolerance
         && fresnel <= PARAMETER_TOLERANCE
-        && (gpu.brdf.alpha - cpu.brdf.alpha).abs() <= PARAMETER_TOLERANCE;
+        && (gpu.brdf.alpha - cpu.brdf.alpha).abs() <= PARAMETER_TOLERANCE
+        && anisotropy <= 1.0;
     (!ok).then(|| {
         format!(
             "position {position:.2e} of depth, direction {direction:.2e}, kd {kd:.2e}, \
-             fresnel {fresnel:.2e}, alpha {} vs {}",
+             fresnel {fresnel:.2e}, alpha {} vs {}, anisotropy {anisotropy:.2e} of the tolerance",
             gpu.brdf.alpha, cpu.brdf.alpha
         )
     })
@@ -264,6 +272,26 @@ fn raster_gbuffer_matches_the_traced_one_on_the_materials_scene() {
         &ctx,
         "materials",
         materials(),
+        (128, 128),
+        TEXTURED_KD_TOLERANCE,
+        bounds,
+    );
+}
+
+/// Anisotropic lobes (`KHR_materials_anisotropy`): the tangent frames (generated on the floor,
+/// stored on the panel), the rotation and α_t agree; the sample's tangent travels as an angle
+/// (`GpuSample`).
+#[test]
+fn raster_gbuffer_matches_the_traced_one_on_the_anisotropy_scene() {
+    let Some(ctx) = gpu() else { return };
+    let bounds = Bounds {
+        edges: 0.25,
+        edge_mismatches: 1e-2,
+    };
+    check_scene(
+        &ctx,
+        "anisotropy",
+        anisotropy(),
         (128, 128),
         TEXTURED_KD_TOLERANCE,
         bounds,

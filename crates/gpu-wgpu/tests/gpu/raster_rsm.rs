@@ -16,7 +16,9 @@
 //! texel's; ids on both sides have bit-identical ξ and the same lobe, and outside edge
 //! texels agree as their texels do; total flux per channel within `TOTAL_FLUX_TOLERANCE`.
 use crate::common::gpu;
-use crate::raster_common::{default_scene, edge_pixels, extent, fraction, lit_scene, materials};
+use crate::raster_common::{
+    anisotropy, default_scene, edge_pixels, extent, fraction, lit_scene, materials,
+};
 use glam::Vec3;
 use slc_bounds::Fresnel;
 use slc_core::frame::LobeSelection;
@@ -24,6 +26,7 @@ use slc_core::{GBuffer, GSample, Light, Scene, Vpl};
 use slc_cpu_ref::rsm::{trace_rsm, Rsm, TexelSample};
 use slc_cpu_ref::vpls::generate_vpls;
 use slc_cpu_ref::Tracer;
+use slc_gpu_wgpu::gpu_types::anisotropy_from_gpu;
 use slc_gpu_wgpu::raster_types::GpuRsmTexel;
 use slc_gpu_wgpu::rsm_pass::RsmPass;
 use slc_gpu_wgpu::scene_upload::GpuScene;
@@ -109,7 +112,19 @@ fn texel_difference(
         .max((v(g.f0) - f0).abs())
         .max_element()
         .max((g.normal_alpha[3] - c.brdf.alpha).abs())
-        .max((g.omega_i_eta[3] - eta).abs());
+        .max((g.omega_i_eta[3] - eta).abs())
+        .max(
+            match (anisotropy_from_gpu(g.anisotropy), c.brdf.anisotropy) {
+                (None, None) => 0.0,
+                (Some(a), Some(b)) => (a.alpha_t - b.alpha_t).abs(),
+                _ => f32::INFINITY,
+            },
+        );
+    let tangent = match (anisotropy_from_gpu(g.anisotropy), c.brdf.anisotropy) {
+        (Some(a), Some(b)) => (a.tangent - b.tangent).length(),
+        _ => 0.0,
+    };
+    let direction = direction.max(tangent);
     let ok = position <= POSITION_TOLERANCE
         && direction <= DIRECTION_TOLERANCE
         && flux <= 1.0
@@ -134,6 +149,13 @@ fn raster_rsm_and_gpu_vpls_match_the_cpu() {
 fn raster_rsm_and_gpu_vpls_match_the_cpu_on_the_materials_scene() {
     let Some(ctx) = gpu() else { return };
     rsm_and_vpls_match(&ctx, &materials().0);
+}
+
+/// The floor's and the panel's VPLs carry anisotropic lobes (tangent and α_t).
+#[test]
+fn raster_rsm_and_gpu_vpls_match_the_cpu_on_the_anisotropy_scene() {
+    let Some(ctx) = gpu() else { return };
+    rsm_and_vpls_match(&ctx, &anisotropy().0);
 }
 
 /// Each light's RSM and the VPLs of all of them, GPU against CPU (module documentation).
@@ -265,6 +287,15 @@ fn compare_vpls(cpu: &[Vpl], gpu: &[Vpl], edges: &[bool], floors: &[f32]) {
             "VPL {}",
             c.id
         );
+        let same_anisotropy = match (g.brdf.anisotropy, c.brdf.anisotropy) {
+            (None, None) => true,
+            (Some(a), Some(b)) => {
+                (a.tangent - b.tangent).length() <= DIRECTION_TOLERANCE
+                    && (a.alpha_t - b.alpha_t).abs() <= 1e-6
+            }
+            _ => false,
+        };
+        assert!(same_anisotropy, "VPL {}: anisotropy", c.id);
         assert!(
             (g.position - c.position).length()
                 <= POSITION_TOLERANCE * c.position.length().max(1.0) * 10.0,
