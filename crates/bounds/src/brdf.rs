@@ -40,6 +40,15 @@ impl Brdf {
         self.kd * FRAC_1_PI
     }
 
+    /// The isotropic roughness that stands for this lobe where a method has no anisotropic
+    /// form (the spherical Gaussians of VSGL): α, or sqrt(α_t α) for an anisotropic lobe, whose
+    /// isotropic GGX has the same peak D(n) = 1/(π α_t α).
+    #[inline]
+    pub fn isotropic_alpha(&self) -> f32 {
+        self.anisotropy
+            .map_or(self.alpha, |a| (a.alpha_t * self.alpha).sqrt())
+    }
+
     /// The microfacet part, paper eq. (6) with GGX D (eq. 7) and separable Smith G2 (eq. 8).
     #[inline]
     pub fn specular(&self, n: Vec3, omega_i: Vec3, omega_o: Vec3) -> Vec3 {

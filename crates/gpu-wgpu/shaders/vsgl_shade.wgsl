@@ -64,13 +64,21 @@ fn finite3(v: vec3<f32>) -> bool {
     return sg_finite(v.x) && sg_finite(v.y) && sg_finite(v.z);
 }
 
+// Brdf::isotropic_alpha: an anisotropic lobe's SG stands on sqrt(alpha_t alpha).
+fn isotropic_alpha(s: Sample) -> f32 {
+    if s.kd_alpha_t.w > 0.0 {
+        return sqrt(s.kd_alpha_t.w * s.normal_alpha.w);
+    }
+    return s.normal_alpha.w;
+}
+
 // Whether the sample is inside the domain SgSurface::new accepts (check.rs): unit normal and
 // view, kd finite and >= 0, alpha in (0, 1], F0 in [0, 1] or eta finite and > 0, and a GGX
 // SG sharpness 2/alpha^2 that fits f32.
 fn valid_surface(s: Sample) -> bool {
     let n = s.normal_alpha.xyz;
     let wo = s.omega_o_phi.xyz;
-    let alpha = s.normal_alpha.w;
+    let alpha = isotropic_alpha(s);
     let kd = s.kd_alpha_t.xyz;
     if !(finite3(n) && finite3(wo) && finite3(kd)) {
         return false;
@@ -94,7 +102,7 @@ fn valid_surface(s: Sample) -> bool {
 fn make_surface(s: Sample) -> Surface {
     let n = s.normal_alpha.xyz / length(s.normal_alpha.xyz);
     let wo = s.omega_o_phi.xyz / length(s.omega_o_phi.xyz);
-    let alpha = s.normal_alpha.w;
+    let alpha = isotropic_alpha(s);
     let a2 = alpha * alpha;
     let cos_o = dot(n, wo);
     if cos_o <= 0.0 {

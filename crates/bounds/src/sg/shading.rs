@@ -25,10 +25,11 @@ pub struct SgSurface {
 impl SgSurface {
     /// The shading point; `n` and `omega_o` are unit vectors (within 1e-3), `brdf` has a
     /// finite non-negative `kd`, α in (0, 1] and a valid Fresnel model. A view below the
-    /// surface shades to zero (the BRDF is one-sided).
+    /// surface shades to zero (the BRDF is one-sided). An anisotropic lobe is shaded as the
+    /// isotropic one of [`Brdf::isotropic_alpha`] (spherical Gaussians are isotropic).
     pub fn new(n: Vec3, omega_o: Vec3, brdf: &Brdf) -> Result<Self, BoundsError> {
         let kd = check::non_negative(brdf.kd, "kd")?;
-        let specular = SpecularLobeSg::new(n, omega_o, brdf.alpha, brdf.fresnel)?;
+        let specular = SpecularLobeSg::new(n, omega_o, brdf.isotropic_alpha(), brdf.fresnel)?;
         let normal = check::unit(n, "normal")?;
         let front = normal.dot(omega_o) > 0.0;
         Ok(Self {

@@ -35,7 +35,7 @@ impl TexelLobes {
         let n = texel.normal;
         let diffuse_lobe = SphericalGaussian::normalized(n, COSINE_LOBE_SHARPNESS)?;
         let brdf = texel.brdf;
-        let specular = SpecularLobeSg::new(n, texel.omega_i, brdf.alpha, brdf.fresnel)?;
+        let specular = SpecularLobeSg::new(n, texel.omega_i, brdf.isotropic_alpha(), brdf.fresnel)?;
         let specular_lobe = specular.lobe.to_normalized();
         if n.dot(texel.omega_i) <= 0.0 {
             return Ok(Self {
