@@ -114,7 +114,7 @@ fn direct_light_errors(
         .unwrap()
         .render(ctx, &gpu_scene, &gbuffer, &maps)
         .unwrap();
-    let cpu_direct = shade_direct(&Tracer::new(&scene), &scene.lights, &read);
+    let cpu_direct = shade_direct(&Tracer::new(scene), &scene.lights, &read);
     let lit: Vec<bool> = read.samples.iter().map(Option::is_some).collect();
     let (mean, p99, above) = errors(&cpu_direct, &gpu_direct, &lit);
     eprintln!(
