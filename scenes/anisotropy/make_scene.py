@@ -18,7 +18,6 @@ v grows against B). Mitsuba's shading frame is s = normalize(dp/du - N (N . dp/d
 t = cross(N, s): the same T and B.
 """
 import importlib.util
-import json
 import os
 
 HERE = os.path.dirname(os.path.abspath(__file__))
@@ -87,11 +86,7 @@ def build():
 
 def main():
     gltf, blob = build()
-    with open(os.path.join(HERE, NAME + ".gltf"), "w", encoding="utf-8", newline="\n") as f:
-        json.dump(gltf, f, indent=1)
-        f.write("\n")
-    with open(os.path.join(HERE, NAME + ".bin"), "wb") as f:
-        f.write(blob)
+    room.write_gltf(HERE, NAME, gltf, blob)
     print("wrote %s.gltf, %s.bin (%d B)" % (NAME, NAME, len(blob)))
 
 

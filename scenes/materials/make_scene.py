@@ -367,13 +367,18 @@ def pack_gltf(name, meshes, materials, textures, extensions_used=()):
     return gltf, bytes(blob)
 
 
-def main():
-    gltf, blob = build()
-    with open(os.path.join(HERE, NAME + ".gltf"), "w", encoding="utf-8", newline="\n") as f:
+def write_gltf(directory, name, gltf, blob):
+    """Writes `name`.gltf (JSON, indent 1, LF) and `name`.bin into `directory`."""
+    with open(os.path.join(directory, name + ".gltf"), "w", encoding="utf-8", newline="\n") as f:
         json.dump(gltf, f, indent=1)
         f.write("\n")
-    with open(os.path.join(HERE, NAME + ".bin"), "wb") as f:
+    with open(os.path.join(directory, name + ".bin"), "wb") as f:
         f.write(blob)
+
+
+def main():
+    gltf, blob = build()
+    write_gltf(HERE, NAME, gltf, blob)
     with open(os.path.join(HERE, "ridges_normal.png"), "wb") as f:
         f.write(png_bytes(TEX_N, TEX_N, ridges_rows(), 3))
     with open(os.path.join(HERE, "holes_color.png"), "wb") as f:

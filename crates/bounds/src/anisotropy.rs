@@ -113,34 +113,42 @@ mod tests {
     use core::f64::consts::PI;
     use glam::DVec3;
 
-    /// ∫ D_a(m) (m·n) dm over the hemisphere (1: the projected microfacet area), with D from
-    /// the implementation. The micro-normals are m = normalize(α_t r cos φ, α_b r sin φ, 1),
-    /// points of the plane z = 1 projected onto the sphere (dm = dA/|p|³, dA = α_t α_b r dr dφ),
-    /// which spreads the peak of either width over the grid; r = tan ψ covers the tail.
-    fn projected_area(alpha_t: f64, alpha_b: f64) -> f64 {
-        let (nr, nphi) = (4000, 64);
-        let mut sum = 0.0;
+    /// Sums `f(m, dm)` over the hemisphere of micro-normals on a grid fitted to a lobe of
+    /// roughness (α_t, α_b): m = normalize(α_t r cos φ, α_b r sin φ, 1), points of the plane
+    /// z = 1 projected onto the sphere (dm = dA/|p|³ with dA = α_t α_b r dr dφ), which spreads
+    /// the peak of either width over the grid; r = tan ψ covers the tail.
+    fn stretched_grid(
+        (alpha_t, alpha_b): (f64, f64),
+        (nr, nphi): (usize, usize),
+        mut f: impl FnMut(DVec3, f64),
+    ) {
         for i in 0..nr {
-            // r = tan(ψ), ψ in (0, π/2): dr = sec² ψ dψ.
             let psi = (i as f64 + 0.5) / nr as f64 * PI / 2.0;
             let (r, dr) = (psi.tan(), 1.0 / psi.cos().powi(2) * PI / 2.0 / nr as f64);
             for j in 0..nphi {
                 let phi = (j as f64 + 0.5) / nphi as f64 * 2.0 * PI;
                 let (x, y) = (alpha_t * r * phi.cos(), alpha_b * r * phi.sin());
                 let len = (x * x + y * y + 1.0).sqrt();
-                let (mt, mb, mn) = (x / len, y / len, 1.0 / len);
-                // dm = α_t α_b r dr dφ / len³ (the Jacobian of the stretched gnomonic map).
                 let dm = alpha_t * alpha_b * r * dr * (2.0 * PI / nphi as f64) / len.powi(3);
-                let d = ggx::d_anisotropic(
-                    alpha_t as f32,
-                    alpha_b as f32,
-                    mt as f32,
-                    mb as f32,
-                    mn as f32,
-                );
-                sum += f64::from(d) * mn * dm;
+                f(DVec3::new(x, y, 1.0) / len, dm);
             }
         }
+    }
+
+    /// ∫ D_a(m) (m·n) dm over the hemisphere (1: the projected microfacet area), with D from
+    /// the implementation.
+    fn projected_area(alpha_t: f64, alpha_b: f64) -> f64 {
+        let mut sum = 0.0;
+        stretched_grid((alpha_t, alpha_b), (4000, 64), |m, dm| {
+            let d = ggx::d_anisotropic(
+                alpha_t as f32,
+                alpha_b as f32,
+                m.x as f32,
+                m.y as f32,
+                m.z as f32,
+            );
+            sum += f64::from(d) * m.z * dm;
+        });
         sum
     }
 
@@ -173,28 +181,15 @@ mod tests {
         }
     }
 
-    /// G1 by its definition (eq. 8 with D_a): |ω·n| / ∫ D_a(m) max(ω·m, 0) dm, on the
-    /// stretched grid of [`projected_area`].
+    /// G1 by its definition (eq. 8 with D_a): |ω·n| / ∫ D_a(m) max(ω·m, 0) dm, with D_a
+    /// written out in f64.
     fn g1_numeric(alpha_t: f64, alpha_b: f64, w: DVec3) -> f64 {
-        let (nr, nphi) = (3000, 256);
         let mut sum = 0.0;
-        for i in 0..nr {
-            let psi = (i as f64 + 0.5) / nr as f64 * PI / 2.0;
-            let (r, dr) = (psi.tan(), 1.0 / psi.cos().powi(2) * PI / 2.0 / nr as f64);
-            for j in 0..nphi {
-                let phi = (j as f64 + 0.5) / nphi as f64 * 2.0 * PI;
-                let (x, y) = (alpha_t * r * phi.cos(), alpha_b * r * phi.sin());
-                let len = (x * x + y * y + 1.0).sqrt();
-                let m = DVec3::new(x, y, 1.0) / len;
-                let dm = alpha_t * alpha_b * r * dr * (2.0 * PI / nphi as f64) / len.powi(3);
-                let d = 1.0
-                    / (PI
-                        * alpha_t
-                        * alpha_b
-                        * ((m.x / alpha_t).powi(2) + (m.y / alpha_b).powi(2) + m.z * m.z).powi(2));
-                sum += d * w.dot(m).max(0.0) * dm;
-            }
-        }
+        stretched_grid((alpha_t, alpha_b), (3000, 256), |m, dm| {
+            let s = (m.x / alpha_t).powi(2) + (m.y / alpha_b).powi(2) + m.z * m.z;
+            let d = 1.0 / (PI * alpha_t * alpha_b * s * s);
+            sum += d * w.dot(m).max(0.0) * dm;
+        });
         w.z / sum
     }
 
