@@ -7,6 +7,8 @@
 // each texel within its angular radius (at most max_splat texels away, clamped at the map's
 // border, not wrapped across the octahedral seams) the distance along the texel's centre
 // direction to the disc, where that ray hits it, so that surfaces close without a hole fill.
+// Each map draws its own run of points_per_map casters (a random subset: the casters are
+// independent samples); holes are filled afterwards by ism_fill.wgsl.
 // ism_map.wgsl comes first. Linear workgroup index wid.y * num_workgroups.x + wid.x.
 
 struct Caster {
@@ -20,6 +22,7 @@ struct Caster {
 @group(0) @binding(1) var<storage, read_write> depth: array<atomic<u32>>;
 @group(0) @binding(2) var<storage, read> casters: array<Caster>;
 @group(0) @binding(3) var<storage, read> centres: array<vec4<f32>>;
+
 
 const WORKGROUP: u32 = 64u;
 // The bits of +inf: an empty texel.
@@ -38,7 +41,15 @@ fn clear(
     }
 }
 
-// One invocation per (map, point): item = map * point_count + point.
+// Where map `map`'s run of casters starts: a hash of its index (pcg), uniform over the casters.
+fn map_offset(map: u32) -> u32 {
+    var h = map * 747796405u + 2891336453u;
+    h = ((h >> ((h >> 28u) + 4u)) ^ h) * 277803737u;
+    h = (h >> 22u) ^ h;
+    return h % ism.point_count;
+}
+
+// One invocation per (map, point of its run): item = map * points_per_map + j.
 @compute @workgroup_size(64)
 fn main(
     @builtin(workgroup_id) wid: vec3<u32>,
@@ -46,11 +57,12 @@ fn main(
     @builtin(local_invocation_index) lid: u32,
 ) {
     let item = (wid.y * groups.x + wid.x) * WORKGROUP + lid;
-    if item >= ism.point_count * ism.map_count {
+    if item >= ism.points_per_map * ism.map_count {
         return;
     }
-    let map = item / ism.point_count;
-    let c = casters[item % ism.point_count];
+    let map = item / ism.points_per_map;
+    let j = item % ism.points_per_map;
+    let c = casters[(map_offset(map) + j) % ism.point_count];
     let d = c.position_radius.xyz - centres[map].xyz;
     let r = c.position_radius.w;
     let dist = length(d);

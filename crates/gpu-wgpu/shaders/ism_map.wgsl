@@ -19,6 +19,14 @@ struct IsmParams {
     // of the receiver's incidence (slope-scaled).
     bias_constant: f32,
     bias_slope: f32,
+    // The points each map draws: a run of the caster array from an offset of its own
+    // (map_offset), wrapping; point_count when every map takes every point.
+    points_per_map: u32,
+    // Pull-push hole filling: an empty texel takes the mean depth of the filled texels of its
+    // ancestor 2^l texels wide, the nearest l in 1..=fill_levels where any is filled; 0: off.
+    fill_levels: u32,
+    pad0: u32,
+    pad1: u32,
 }
 
 fn oct_sign(v: vec2<f32>) -> vec2<f32> {

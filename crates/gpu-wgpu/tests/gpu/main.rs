@@ -9,6 +9,7 @@ mod common;
 mod culler;
 mod denoise;
 mod faults;
+mod ism;
 mod profile;
 mod raster_common;
 mod raster_frame;

@@ -169,9 +169,31 @@ fn ism_settings_sweep() {
             println!("footprint {footprint} bias {bias_constant}/{bias_slope}: mean {mean:.4} p99 {p99:.4}");
         }
     }
+    // Discs or the paper's one-texel points (max_splat 0), shared or per-map points, and
+    // pull-push hole filling.
+    for max_splat in [4, 0] {
+        for (points, points_per_map) in [(8192, 8192), (65536, 8192), (262144, 8192)] {
+            for fill_levels in [0, 1, 2, 3, 4] {
+                let s = IsmSettings {
+                    points,
+                    points_per_map,
+                    fill_levels,
+                    max_splat,
+                    ..base
+                };
+                let (gpu, _) = gpu_images(&ctx, &f, &s);
+                let (mean, p99) = error_stats(&gpu, &cpu);
+                println!(
+                    "max splat {max_splat}, {points} points, {points_per_map} per map, fill \
+                     levels {fill_levels}: mean {mean:.4} p99 {p99:.4}"
+                );
+            }
+        }
+    }
     for (points, resolution) in [(32768, 64), (8192, 128), (32768, 128), (131072, 256)] {
         let s = IsmSettings {
             points,
+            points_per_map: points,
             resolution,
             max_splat: 4 * resolution / 64,
             ..base
