@@ -128,6 +128,8 @@ class Scene:
         roughness: Optional[float] = None,
         eta: Optional[float] = None,
         double_sided: Optional[bool] = None,
+        anisotropy_strength: Optional[float] = None,
+        anisotropy_rotation: Optional[float] = None,
     ) -> Scene:
         """A copy with the materials `pattern` (name or glob) matches overridden."""
     @property

@@ -295,9 +295,10 @@ impl PyScene {
 
     /// A copy of the scene with the materials `pattern` matches overridden (as a settings
     /// file's `[[materials]]`: `pattern` is a name or a glob with `*`; kd and f0 in [0, 1],
-    /// alpha or roughness = √alpha in (0, 1], eta above 0). The copy is loaded anew on its
-    /// first render; this scene is unchanged.
-    #[pyo3(signature = (pattern, *, kd=None, f0=None, alpha=None, roughness=None, eta=None, double_sided=None))]
+    /// alpha or roughness = √alpha in (0, 1], eta above 0, glTF KHR_materials_anisotropy's
+    /// strength in [0, 1] and rotation in radians). The copy is loaded anew on its first
+    /// render; this scene is unchanged.
+    #[pyo3(signature = (pattern, *, kd=None, f0=None, alpha=None, roughness=None, eta=None, double_sided=None, anisotropy_strength=None, anisotropy_rotation=None))]
     #[allow(clippy::too_many_arguments)]
     fn with_materials(
         &self,
@@ -308,9 +309,20 @@ impl PyScene {
         roughness: Option<f32>,
         eta: Option<f32>,
         double_sided: Option<bool>,
+        anisotropy_strength: Option<f32>,
+        anisotropy_rotation: Option<f32>,
     ) -> PyResult<Self> {
-        let o = MaterialOverride::new(pattern, kd, f0, alpha, roughness, eta, double_sided)
-            .map_err(PyValueError::new_err)?;
+        let o = MaterialOverride::new(
+            pattern,
+            kd,
+            f0,
+            alpha,
+            roughness,
+            eta,
+            double_sided,
+            (anisotropy_strength, anisotropy_rotation),
+        )
+        .map_err(PyValueError::new_err)?;
         let mut scene = self.scene.clone();
         scene
             .override_materials(std::slice::from_ref(&o))
@@ -322,6 +334,8 @@ impl PyScene {
             o.alpha.map(|v| format!("alpha {v}")),
             eta.map(|v| format!("eta {v}")),
             double_sided.map(|v| format!("double_sided {v}")),
+            o.anisotropy
+                .map(|a| format!("anisotropy {} at {} rad", a.strength, a.rotation)),
         ]
         .into_iter()
         .flatten()

@@ -221,6 +221,25 @@ def test_a_scene_with_overridden_materials_is_a_new_scene(scene):
         scene.with_materials("copper")
 
 
+def test_an_anisotropic_override_changes_the_image(scene):
+    # The built-in meshes have no texture coordinates, so no tangents: said, not applied.
+    plain = scene.with_materials("copper", anisotropy_strength=0.9)
+    assert any("anisotropy is not applied" in w for w in plain.warnings)
+    room = slc.Scene.load(REPO / "scenes/anisotropy/anisotropy.gltf")
+    turned = room.with_materials("brushed_*", anisotropy_strength=0.9, anisotropy_rotation=0.4)
+    assert any("anisotropy 0.9 at 0.4 rad" in w for w in turned.warnings)
+    options = dict(SMALL, culling=["ellipsoid"], reference=False)
+    a, b = turned.compare(**options), room.compare(**options)
+    assert np.isfinite(a["ellipsoid"].indirect).all()
+    assert not np.array_equal(a["ellipsoid"].indirect, b["ellipsoid"].indirect)
+    # The culling never drops a contributing pair of the anisotropic VPLs.
+    assert a["ellipsoid"].report["metrics"]["missed_pairs"] == 0
+    with pytest.raises(ValueError, match="anisotropy_strength 1.5"):
+        scene.with_materials("copper", anisotropy_strength=1.5)
+    with pytest.raises(ValueError, match="needs anisotropy_strength"):
+        scene.with_materials("copper", anisotropy_rotation=0.4)
+
+
 def test_the_example_sweeps_delta_and_writes_a_plot(tmp_path):
     out = tmp_path / "sweep.png"
     subprocess.run(

@@ -45,6 +45,8 @@
 //! alpha = 0.1                   # GGX alpha in (0, 1]; or roughness = 0.316 (alpha = roughness^2)
 //! eta = 1.5                     # relative index of refraction > 0: exact dielectric Fresnel
 //! double_sided = true
+//! anisotropy_strength = 0.8     # KHR_materials_anisotropy strength in [0, 1] (0: isotropic)
+//! anisotropy_rotation = 0.5     # its rotation in radians from the tangent (default 0)
 //! ```
 //!
 //! Rules:
@@ -61,7 +63,10 @@
 //!   (`kd = base (1 - metallic)`, `F0 = 0.04 (1 - metallic) + base metallic`,
 //!   `alpha = roughness^2`, the base-colour texture then multiplies `kd`) before the override's
 //!   values are set; a warning tells when textures no longer apply in full. An `alpha` below
-//!   [`ALPHA_MIN`] is clamped up to it with a warning, as the loaders do.
+//!   [`ALPHA_MIN`] is clamped up to it with a warning, as the loaders do. An anisotropy
+//!   (glTF `KHR_materials_anisotropy`, [`MaterialAnisotropy`]) replaces the material's; meshes
+//!   that lack tangents for it get MikkTSpace ones (a warning where they cannot: no texture
+//!   coordinates).
 //!
 //! The same from code, on a built-in scene instead of the named file:
 //!
@@ -84,8 +89,9 @@ use crate::file_read::read_capped;
 use crate::import_util::small_alpha_warning;
 use crate::light::Light;
 use crate::load::{extension, load_scene_file};
-use crate::material::{Material, MaterialModel, ALPHA_MIN};
+use crate::material::{Material, MaterialAnisotropy, MaterialModel, ALPHA_MIN};
 use crate::scene::Scene;
+use crate::tangents::generate_tangents;
 use glam::Vec3;
 use serde::Deserialize;
 use std::path::{Path, PathBuf};
@@ -118,6 +124,8 @@ pub struct MaterialOverride {
     pub alpha: Option<f32>,
     pub eta: Option<f32>,
     pub double_sided: Option<bool>,
+    /// Strength and rotation of an anisotropic lobe (strength 0 makes it isotropic).
+    pub anisotropy: Option<MaterialAnisotropy>,
 }
 
 /// Loads the scene a settings file names and applies the settings to it.
@@ -251,6 +259,20 @@ fn apply_overrides(overrides: &[MaterialOverride], scene: &mut Scene) {
             scene.report.warnings.extend(o.apply_to(m));
         }
     }
+    for mesh in &mut scene.meshes {
+        let anisotropic = scene
+            .materials
+            .get(mesh.material)
+            .is_some_and(|m| m.anisotropy.is_some());
+        if anisotropic && mesh.tangents.is_none() {
+            if let Err(e) = generate_tangents(mesh) {
+                scene.report.warnings.push(format!(
+                    "mesh '{}': its anisotropy is not applied ({e})",
+                    mesh.name
+                ));
+            }
+        }
+    }
 }
 
 impl Scene {
@@ -276,6 +298,7 @@ impl MaterialOverride {
         roughness: Option<f32>,
         eta: Option<f32>,
         double_sided: Option<bool>,
+        (anisotropy_strength, anisotropy_rotation): (Option<f32>, Option<f32>),
     ) -> Result<Self, String> {
         RawMaterial {
             name: pattern.to_string(),
@@ -285,6 +308,8 @@ impl MaterialOverride {
             roughness,
             eta,
             double_sided,
+            anisotropy_strength,
+            anisotropy_rotation,
         }
         .validate()
     }
@@ -298,6 +323,9 @@ impl MaterialOverride {
         }
         if let Some(double_sided) = self.double_sided {
             m.double_sided = double_sided;
+        }
+        if let Some(a) = self.anisotropy {
+            m.anisotropy = (a.strength > 0.0).then_some(a);
         }
         if let Some(alpha) = self.alpha {
             warnings.extend(small_alpha_warning(&m.name, alpha));
@@ -431,6 +459,8 @@ struct RawMaterial {
     roughness: Option<f32>,
     eta: Option<f32>,
     double_sided: Option<bool>,
+    anisotropy_strength: Option<f32>,
+    anisotropy_rotation: Option<f32>,
 }
 
 /// A colour: one number for grey or `[r, g, b]`.
@@ -602,22 +632,50 @@ impl RawMaterial {
             }
             eta => eta,
         };
+        let anisotropy = match (self.anisotropy_strength, self.anisotropy_rotation) {
+            (None, None) => None,
+            (None, Some(_)) => {
+                return Err(with_name(
+                    "anisotropy_rotation needs anisotropy_strength".into(),
+                ))
+            }
+            (Some(s), rotation) => {
+                let strength = match s {
+                    s if (0.0..=1.0).contains(&s) => s,
+                    s => {
+                        return Err(with_name(format!(
+                            "anisotropy_strength {s} must lie in [0, 1]"
+                        )))
+                    }
+                };
+                let rotation = rotation.unwrap_or(0.0);
+                if !rotation.is_finite() {
+                    return Err(with_name(format!(
+                        "anisotropy_rotation {rotation} must be finite"
+                    )));
+                }
+                Some(MaterialAnisotropy { strength, rotation })
+            }
+        };
         let o = MaterialOverride {
             kd: kd.map_err(with_name)?,
             f0: f0.map_err(with_name)?,
             alpha,
             eta,
             double_sided: self.double_sided,
+            anisotropy,
             pattern: self.name,
         };
         let sets_nothing = o.kd.is_none()
             && o.f0.is_none()
             && o.alpha.is_none()
             && o.eta.is_none()
-            && o.double_sided.is_none();
+            && o.double_sided.is_none()
+            && o.anisotropy.is_none();
         if sets_nothing {
             return Err(format!(
-                "'{}' sets nothing (give kd, f0, alpha or roughness, eta or double_sided)",
+                "'{}' sets nothing (give kd, f0, alpha or roughness, eta, double_sided or \
+                 anisotropy_strength)",
                 o.pattern
             ));
         }

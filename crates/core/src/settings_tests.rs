@@ -375,6 +375,7 @@ fn metallic_roughness_materials_are_overridden() {
         alpha,
         eta: None,
         double_sided: None,
+        anisotropy: None,
     };
     // alpha alone keeps the model and sets roughness = sqrt(alpha).
     let mut m = metal();
@@ -401,6 +402,68 @@ fn metallic_roughness_materials_are_overridden() {
         ..o(None, None)
     };
     assert_eq!(kd.apply_to(&mut m).len(), 1);
+}
+
+/// An anisotropy override sets the material's (strength 0 removes it), is validated, and the
+/// meshes that lack tangents for it get generated ones.
+#[test]
+fn anisotropy_overrides() {
+    let text = |body: &str| format!("scene = \"x.obj\"\n[[materials]]\nname = \"floor\"\n{body}\n");
+    let read = |body: &str| Settings::parse(&text(body), Path::new("s.toml"));
+    let ok = read("anisotropy_strength = 0.8\nanisotropy_rotation = 0.5").unwrap();
+    assert_eq!(
+        ok.materials[0].anisotropy,
+        Some(MaterialAnisotropy {
+            strength: 0.8,
+            rotation: 0.5
+        })
+    );
+    for (body, error) in [
+        ("anisotropy_strength = 1.5", "anisotropy_strength 1.5"),
+        ("anisotropy_rotation = 0.5", "needs anisotropy_strength"),
+        ("anisotropy_strength = -0.1", "anisotropy_strength -0.1"),
+    ] {
+        let e = read(body).unwrap_err().to_string();
+        assert!(e.contains(error), "{body}: {e}");
+    }
+    // On a scene: the quad has texture coordinates but no tangents.
+    let mut scene = crate::builtin("default").unwrap();
+    let name = scene.materials[0].name.clone();
+    let meshes: Vec<usize> = (0..scene.meshes.len())
+        .filter(|&i| scene.meshes[i].material == 0)
+        .collect();
+    assert!(!meshes.is_empty());
+    let o = MaterialOverride::new(&name, None, None, None, None, None, None, (Some(0.5), None))
+        .unwrap();
+    scene.override_materials(std::slice::from_ref(&o)).unwrap();
+    assert_eq!(
+        scene.materials[0].anisotropy,
+        Some(MaterialAnisotropy {
+            strength: 0.5,
+            rotation: 0.0
+        })
+    );
+    for i in meshes {
+        let m = &scene.meshes[i];
+        assert!(
+            m.tangents.is_some() || m.uvs.is_none(),
+            "mesh {} has texture coordinates but no tangents",
+            m.name
+        );
+        if m.uvs.is_none() {
+            assert!(scene
+                .report
+                .warnings
+                .iter()
+                .any(|w| w.contains("anisotropy is not applied")));
+        }
+    }
+    let off = MaterialOverride::new(&name, None, None, None, None, None, None, (Some(0.0), None))
+        .unwrap();
+    scene
+        .override_materials(std::slice::from_ref(&off))
+        .unwrap();
+    assert_eq!(scene.materials[0].anisotropy, None);
 }
 
 #[test]

@@ -115,6 +115,10 @@ pub fn settings_toml(
         if let Some(double_sided) = m.double_sided {
             let _ = writeln!(t, "double_sided = {double_sided}");
         }
+        if let Some(a) = m.anisotropy {
+            let _ = writeln!(t, "anisotropy_strength = {:?}", a.strength);
+            let _ = writeln!(t, "anisotropy_rotation = {:?}", a.rotation);
+        }
     }
     t
 }
@@ -157,6 +161,10 @@ mod tests {
                 alpha: Some(0.2),
                 eta: Some(1.5),
                 double_sided: Some(true),
+                anisotropy: Some(slc_core::MaterialAnisotropy {
+                    strength: 0.7,
+                    rotation: -0.3,
+                }),
             }],
         };
         let text = settings_toml(&origin, &camera, &scene.lights, "slc render saved.toml");
