@@ -22,7 +22,8 @@ pub enum BoundsError {
     Negative(&'static str),
     /// The named direction is not of unit length (tolerance 1e-3 on the length).
     NotUnit(&'static str),
-    /// The named direction is not perpendicular to the normal (tolerance 1e-4 on the cosine).
+    /// The named direction is not perpendicular to the normal (tolerance 1e-4 on the cosine,
+    /// less for a sharp anisotropic lobe: `GlossyLobe::with_anisotropy`).
     NotPerpendicular(&'static str),
     /// A matrix that must be a rotation is not orthonormal with determinant +1 (tolerance 1e-4).
     NotRotation,

@@ -81,18 +81,22 @@ impl GlossyLobe {
 
     /// The same VPL with an anisotropic lobe (`None`: isotropic): α_t along the tangent, this
     /// lobe's α along the bitangent ([`crate::anisotropy`]). The tangent must be a unit
-    /// vector (within 1e-3) perpendicular to the shading normal within 1e-4, α_t in (0, 1].
+    /// vector (within 1e-3) perpendicular to the shading normal within 1e-4 and α_t/2 (the
+    /// bound factor covers what is left), α_t in (0, 1]. It is used as given, as the shader
+    /// uses it.
     pub fn with_anisotropy(mut self, anisotropy: Option<Anisotropy>) -> Result<Self, BoundsError> {
         self.anisotropy = match anisotropy {
             None => None,
             Some(a) => {
-                let tangent = check::unit(a.tangent, "tangent")?;
-                if tangent.dot(self.normal).abs() > 1e-4 {
+                check::unit(a.tangent, "tangent")?;
+                let alpha_t = check::alpha(a.alpha_t)?;
+                let off = a.tangent.dot(self.normal).abs();
+                if off > 1e-4 || off >= 0.5 * alpha_t {
                     return Err(BoundsError::NotPerpendicular("tangent"));
                 }
                 Some(Anisotropy {
-                    tangent,
-                    alpha_t: check::alpha(a.alpha_t)?,
+                    tangent: a.tangent,
+                    alpha_t,
                 })
             }
         };

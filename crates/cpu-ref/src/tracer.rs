@@ -242,8 +242,13 @@ impl Tracer {
             ng = -ng;
             front = true;
         }
+        // A flipped shading normal (the back of a double-sided surface) keeps the tangent
+        // frame's bitangent, as glTF viewers flip T and B with it: the anisotropy keeps its
+        // line on both sides (Mitsuba's `twosided` mirrors only the normal's axis).
+        let mut tangent = tangent;
         if ns.dot(ng) < 0.0 {
             ns = -ns;
+            tangent = tangent.map(|t| t.with_w(-t.w));
         }
         let brdf = material.surface_brdf(uv, ns, tangent, &scene.textures);
         SurfaceHit {

@@ -161,8 +161,8 @@ fn microfacet(n: vec3<f32>, wi: vec3<f32>, wo: vec3<f32>, m: Material) -> vec3<f
         // computed first-order correction, and n x h uses error-compensated products.
         let ei = 0.5 * norm2_minus_one(wi);
         let eo = 0.5 * norm2_minus_one(wo);
-        let t = (wi + wo) - (wi * ei + wo * eo);
-        let h = t / sqrt(length_sq(t));
+        let sum = (wi + wo) - (wi * ei + wo * eo);
+        let h = sum / sqrt(length_sq(sum));
         let n2 = length_sq(n);
         if anisotropic {
             let nn = n / sqrt(n2);

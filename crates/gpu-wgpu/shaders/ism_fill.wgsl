@@ -1,7 +1,8 @@
 // Pull-push hole filling of imperfect shadow maps (Ritschel et al. 2008, section 3.3), after
 // the splatting of ism.wgsl: `pull` builds pyramid level pull_level.x, each texel the mean
-// depth of its 2x2 children where at least three are filled (a gap inside a surface; at a
-// silhouette against empty directions fewer are), +inf elsewhere; `fill` gives each
+// depth of its 2x2 children where all but one of them are filled (three of four; at a map's
+// odd border, one of two): a gap inside a surface; at a silhouette against empty directions
+// fewer are. +inf elsewhere. `fill` gives each
 // empty texel of the maps the depth of its nearest filled ancestor, levels 1 to fill_levels.
 // ism_map.wgsl comes first. Linear workgroup index wid.y * num_workgroups.x + wid.x.
 
@@ -59,11 +60,13 @@ fn pull(
     let below = level_size(l - 1u);
     var sum = 0.0;
     var count = 0.0;
+    var children = 0.0;
     for (var dy = 0u; dy < 2u; dy++) {
         for (var dx = 0u; dx < 2u; dx++) {
             let cx = 2u * x + dx;
             let cy = 2u * y + dy;
             if cx < below && cy < below {
+                children += 1.0;
                 let d = level_depth(l - 1u, map, cx, cy);
                 if d <= F32_MAX {
                     sum += d;
@@ -72,7 +75,8 @@ fn pull(
             }
         }
     }
-    pyramid[level_start(l) + i] = select(bitcast<f32>(EMPTY), sum / count, count >= 3.0);
+    let enough = count >= max(children - 1.0, 1.0);
+    pyramid[level_start(l) + i] = select(bitcast<f32>(EMPTY), sum / count, enough);
 }
 
 // Each empty texel of the maps takes its nearest filled ancestor's depth (levels 1 to

@@ -218,7 +218,7 @@ fn surface(tri: u32, origin: vec3<f32>, dir: vec3<f32>) -> Surface {
         + vec2<f32>(vb.position_u.w, vb.normal_v.w) * w1
         + vec2<f32>(vc.position_u.w, vc.normal_v.w) * w2;
     let has_tangents = (tr.info.x & TRIANGLE_TANGENTS) != 0u;
-    let tangent = vec4<f32>(va.tangent.xyz * w0 + vb.tangent.xyz * w1 + vc.tangent.xyz * w2,
+    var tangent = vec4<f32>(va.tangent.xyz * w0 + vb.tangent.xyz * w1 + vc.tangent.xyz * w2,
                             va.tangent.w);
     if m.maps.x != NO_TEXTURE && has_uv && has_tangents {
         let mapped = mapped_normal(m, ns, ng, tangent, uv);
@@ -232,8 +232,10 @@ fn surface(tri: u32, origin: vec3<f32>, dir: vec3<f32>) -> Surface {
         ng = -ng;
         s.front = true;
     }
+    // A flipped shading normal keeps the tangent frame's bitangent (Tracer::surface).
     if dot(ns, ng) < 0.0 {
         ns = -ns;
+        tangent.w = -tangent.w;
     }
     s.geometric_normal = ng;
     s.shading_normal = ns;

@@ -17,10 +17,11 @@
 //!   disc with that ray's distance to it. Splats are clamped at the map border, not wrapped
 //!   across the octahedral seams.
 //! * Holes (`fill_levels` > 0): pull-push (Ritschel et al. 2008, section 3.3). A pyramid of
-//!   levels 1..=fill_levels holds at each texel the mean depth of its 2×2 children where at
-//!   least three of them are filled (a gap inside a surface; a silhouette against empty
-//!   directions has fewer), and each empty texel of the map takes the depth of its nearest
-//!   filled ancestor. Holes wider than 2^fill_levels texels (open sky) stay empty.
+//!   levels 1..=fill_levels holds at each texel the mean depth of its 2×2 children where all
+//!   but one of them are filled (a gap inside a surface; a silhouette against empty
+//!   directions has fewer; at an odd map's border a parent has two children), and each empty
+//!   texel of the map takes the depth of its nearest filled ancestor. Holes wider than
+//!   2^fill_levels texels (open sky) stay empty.
 //! * Lookup (`ism_visible` in `shaders/vsgl_shade.wgsl`, used by
 //!   [`crate::vsgl_shade_pass::VsglShadePass`]'s visibility entry points): the receiver lifted by
 //!   the tracer's epsilon along its geometric normal is visible when its distance to `μ_v` is
@@ -73,7 +74,8 @@ pub struct IsmSettings {
     /// `tan θ` (see the module docs).
     pub bias_constant: f32,
     pub bias_slope: f32,
-    /// The caster points each map draws (at most `points`; see the module docs).
+    /// The caster points each map draws (at most `points`; see the module docs). Set it with
+    /// `points` when growing the pool: it does not follow it.
     pub points_per_map: u32,
     /// Pull-push levels of the hole filling (0: none; see the module docs).
     pub fill_levels: u32,

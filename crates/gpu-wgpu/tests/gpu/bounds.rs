@@ -11,7 +11,7 @@
 //! - BS·c: 1e-5 |BS|_F (|c| + |p| + |eye|) (a matrix-vector product's rounding).
 use crate::common::gpu;
 use glam::{DMat3, DVec3, Vec3};
-use slc_bounds::{Brdf, Fresnel, Sphere, Spheroid, StochasticParams, TestSpace};
+use slc_bounds::{Anisotropy, Brdf, Fresnel, Sphere, Spheroid, StochasticParams, TestSpace};
 use slc_core::frame::LobeSelection;
 use slc_core::{builtin, Camera, Interleaving, Vpl, VplLobe};
 use slc_cpu_ref::rsm::{trace_rsm, TexelSample};
@@ -277,7 +277,12 @@ fn bounds_of_extreme_vpls_match_the_cpu() {
                                     kd: Vec3::new(0.7, 0.2, 0.0),
                                     fresnel,
                                     alpha,
-                                    anisotropy: None,
+                                    // Every fourth lobe anisotropic: the GPU's α = max(α, α_t)
+                                    // and the CPU's bound factor.
+                                    anisotropy: (id % 4 == 1).then(|| Anisotropy {
+                                        tangent: n.cross(t).normalize(),
+                                        alpha_t: [0.8, 2e-3, 0.1][id % 3],
+                                    }),
                                 },
                                 lobe,
                                 id: id as u32,

@@ -18,7 +18,7 @@ use crate::common::gpu;
 use crate::tiled::frame;
 use glam::Vec3;
 use slc_bounds::stochastic::{scalar_intensity, StochasticParams};
-use slc_bounds::{Brdf, Fresnel};
+use slc_bounds::{Anisotropy, Brdf, Fresnel};
 use slc_core::{
     builtin, CullInput, GBuffer, GSample, Image, Interleaving, LightLists, Vpl, VplLobe, NO_LIST,
 };
@@ -243,8 +243,10 @@ fn shading_straight_from_gpu_lists() {
 }
 
 /// A synthetic frame of extreme cases: sky pixels (some pointing at a list), grazing view and
-/// grazing light, α = 1e-3 on both sides, dielectric Fresnel, zero flux, a VPL lit from
-/// below, VPLs on the shaded surface, tiny and large ξ, and empty lists.
+/// grazing light, α = 1e-3 on both sides, anisotropic lobes on both sides (α_t from 1e-3 to
+/// 0.9 against α down to 1e-3, so that the half vector of nearly opposite directions takes
+/// the shader's compensated branch), dielectric Fresnel, zero flux, a VPL lit from below,
+/// VPLs on the shaded surface, tiny and large ξ, and empty lists.
 fn extreme_frame() -> (GBuffer, Vec<Vpl>, LightLists) {
     let (w, h) = (40u32, 30u32);
     let mut samples = Vec::new();
@@ -272,6 +274,11 @@ fn extreme_frame() -> (GBuffer, Vec<Vpl>, LightLists) {
             } else {
                 Vec3::new(0.6, 0.4, 0.2)
             };
+            let angle = 0.37 * y as f32;
+            let anisotropy = (x % 8 >= 4).then(|| Anisotropy {
+                tangent: Vec3::new(angle.cos(), angle.sin(), 0.0),
+                alpha_t: [0.5, 1e-3, 0.9, 0.01][((x / 2) % 4) as usize],
+            });
             samples.push(Some(GSample {
                 position,
                 normal: Vec3::Z,
@@ -282,7 +289,7 @@ fn extreme_frame() -> (GBuffer, Vec<Vpl>, LightLists) {
                     kd,
                     fresnel,
                     alpha,
-                    anisotropy: None,
+                    anisotropy,
                 },
             }));
         }
@@ -294,10 +301,16 @@ fn extreme_frame() -> (GBuffer, Vec<Vpl>, LightLists) {
     };
     let mut vpls = Vec::new();
     let mut push = |position: Vec3, normal: Vec3, omega_i: Vec3, flux: Vec3, alpha, lobe, xi| {
+        let k = vpls.len();
+        let normal = normal.normalize();
+        let anisotropy = (k % 2 == 1).then(|| Anisotropy {
+            tangent: normal.any_orthonormal_vector(),
+            alpha_t: [0.6, 2e-3, 0.05][k % 3],
+        });
         vpls.push(Vpl {
             position,
-            normal: normal.normalize(),
-            geometric_normal: normal.normalize(),
+            normal,
+            geometric_normal: normal,
             omega_i: omega_i.normalize(),
             flux,
             brdf: Brdf {
@@ -308,7 +321,7 @@ fn extreme_frame() -> (GBuffer, Vec<Vpl>, LightLists) {
                     Fresnel::Schlick(Vec3::splat(0.9))
                 },
                 alpha,
-                anisotropy: None,
+                anisotropy,
             },
             lobe,
             id: vpls.len() as u32,
@@ -431,6 +444,88 @@ fn extreme_inputs_match_the_cpu() {
             );
         }
     }
+}
+
+/// A receiver whose normal has z = −0.0 (a vertical wall's normal after a flip): the sample
+/// stores its tangent as an angle in the normal's frame (`GpuSample`), so the shader must
+/// build the frame as the CPU does (the sign of −0.0 included) or the lobe turns by 90°.
+/// Two receivers, z = −0.0 and +0.0, lit by one diffuse VPL, seen off the mirror direction
+/// across the anisotropy, where the lobe's orientation decides the value.
+#[test]
+fn tangent_angles_agree_at_negative_zero_normals() {
+    let Some(ctx) = gpu() else { return };
+    let shader = ShadePass::new(&ctx).unwrap();
+    let scene = builtin("default").unwrap();
+    let camera = scene.camera_or_default();
+    let a = core::f32::consts::FRAC_1_SQRT_2;
+    let samples: Vec<_> = [-0.0f32, 0.0]
+        .iter()
+        .map(|&z| {
+            let n = Vec3::new(a, a, z);
+            let t = Vec3::new(a, -a, 0.0);
+            let b = n.cross(t);
+            Some(GSample {
+                position: Vec3::ZERO,
+                normal: n,
+                geometric_normal: n,
+                omega_o: (n - 0.5 * t + 0.2 * b).normalize(),
+                depth: 1.0,
+                brdf: Brdf {
+                    kd: Vec3::ZERO,
+                    fresnel: Fresnel::Schlick(Vec3::ONE),
+                    alpha: 0.05,
+                    anisotropy: Some(Anisotropy {
+                        tangent: t,
+                        alpha_t: 0.9,
+                    }),
+                },
+            })
+        })
+        .collect();
+    let light = (Vec3::new(a, a, 0.0) + 0.5 * Vec3::new(a, -a, 0.0)).normalize();
+    let vpls = vec![Vpl {
+        position: light,
+        normal: -light,
+        geometric_normal: -light,
+        omega_i: -light,
+        flux: Vec3::ONE,
+        brdf: Brdf {
+            kd: Vec3::splat(0.5),
+            fresnel: Fresnel::Schlick(Vec3::splat(0.04)),
+            alpha: 1.0,
+            anisotropy: None,
+        },
+        lobe: VplLobe::Diffuse,
+        id: 0,
+        xi: 1e-6,
+    }];
+    let gbuffer = GBuffer {
+        width: 2,
+        height: 1,
+        samples,
+    };
+    let lists = LightLists {
+        offsets: vec![0, 1],
+        indices: vec![0],
+        pixel_list: vec![0, 0],
+    };
+    let input = CullInput {
+        gbuffer: &gbuffer,
+        camera: &camera,
+        vpls: &vpls,
+        delta: 1e-3,
+        interleaving: Interleaving { k: 1, seed: 0 },
+    };
+    check(
+        &ctx,
+        &shader,
+        &Tracer::new(&scene),
+        &input,
+        &lists,
+        "normal z = -0.0",
+    );
+    let cpu = shade_lists(&Tracer::new(&scene), &input, &lists, false, &|_| ()).unwrap();
+    assert!(cpu.pixels[0].max_element() > 0.0, "the receiver is lit");
 }
 
 /// Lists that do not fit the input, and invalid δ or ξ, are errors.
