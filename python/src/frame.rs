@@ -45,6 +45,7 @@ impl FrameData {
             metrics: frame.metrics.as_ref(),
             sampled_lights: frame.sampled_lights,
             images: &images,
+            readback_bytes: frame.readback_bytes.as_ref(),
         });
         Ok(Self {
             report: serde_json::to_string(&report).map_err(|e| e.to_string())?,

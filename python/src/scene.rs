@@ -89,6 +89,7 @@ impl Job for CompareJob<'_> {
             gpu_timings,
             metrics,
             sampled_lights: None,
+            readback_bytes: None,
         };
         let message = |e: slc_core::RenderError| e.to_string();
         let p = r.prepare(scene, loaded, settings, None).map_err(message)?;

@@ -24,6 +24,7 @@ use slc_app::reference::{all_vpl_reference, cpu_input};
 use slc_app::repeat::repeated;
 use slc_app::report::{FrameFacts, Report};
 use slc_core::frame::{Method, RenderSettings, Stochastic, Timings};
+use slc_core::render::readback_since;
 use slc_core::shader::{frame_timings, SampledLights, ShadeInput, Shader as _};
 use slc_core::{Image, PreparedFrame, Renderer, Scene, Strategy};
 use slc_cpu_ref::{CpuFrames, CpuPrepared, CpuRenderer};
@@ -118,9 +119,11 @@ impl OnBackend for Compare<'_> {
             f.rsm
         );
         let loaded = r.load(&scene).map_err(message)?;
+        let before_prepare = r.readback_bytes();
         let p = r
             .prepare(&scene, &loaded, &settings, None)
             .map_err(message)?;
+        let prepare_readback = readback_since(r, before_prepare);
         // The CPU's reference and unculled estimate read the backend's frame (back).
         let cpu_p = r.cpu_frame(&scene, &loaded, &p).map_err(message)?;
         let cpu = cpu_input(&scene, &cpu_p, f.seed, f.visibility);
@@ -147,6 +150,7 @@ impl OnBackend for Compare<'_> {
                 metrics: None,
                 sampled_lights: None,
                 images: &images,
+                readback_bytes: None,
             };
             Report::new(&facts).write(&mut dir_out, dir)?;
         }
@@ -166,8 +170,16 @@ impl OnBackend for Compare<'_> {
         for strategy in strategies {
             let s = Stochastic { strategy, ..base };
             let bar = bar(pixels, strategy.name().to_string());
+            let before_shade = r.readback_bytes();
             let out = s.shade(r, input, &|n| bar.inc(n)).map_err(message)?;
             bar.finish_and_clear();
+            // The frame's reads: its preparation's and this strategy's shading's.
+            let readback = readback_since(r, before_shade).map(|mut shade| {
+                for (k, v) in prepare_readback.iter().flatten() {
+                    *shade.entry(k.clone()).or_default() += v;
+                }
+                shade
+            });
             let runs = match args.repeat {
                 1 => vec![out.timings.clone()],
                 n => {
@@ -235,6 +247,7 @@ impl OnBackend for Compare<'_> {
                 metrics: Some(m),
                 sampled_lights: None,
                 images: &images,
+                readback_bytes: readback.as_ref(),
             };
             Report::new(&facts).write(&mut dir_out, dir)?;
             rows.push(Row {
@@ -341,6 +354,7 @@ fn sampled_lights<R: Renderer>(
             metrics: None,
             sampled_lights: out.sampled_lights,
             images: &images,
+            readback_bytes: None,
         };
         Report::new(&facts).write(dir_out, dir)?;
         let lights = out.sampled_lights.unwrap_or(0);

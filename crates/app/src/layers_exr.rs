@@ -157,7 +157,7 @@ mod tests {
         assert_eq!(layers["metrics"]["lights"], [0.0, 1.0, 2.0, 3.0, 4.0, 5.0]);
         assert_eq!(layers["metrics"]["fdr"][5], 0.75);
         let p: serde_json::Value = serde_json::from_str(&json).unwrap();
-        assert_eq!(p["schema_version"], 3);
+        assert_eq!(p["schema_version"], 4);
         std::fs::remove_dir_all(&root).ok();
     }
 

@@ -9,8 +9,8 @@ use std::sync::OnceLock;
 use std::time::SystemTime;
 
 /// The version of the `report.json` layout: 2 added `provenance` and `skipped_by_defect`,
-/// 3 added `ignored`.
-pub const SCHEMA_VERSION: u32 = 3;
+/// 3 added `ignored`, 4 added `gpu_readback`.
+pub const SCHEMA_VERSION: u32 = 4;
 
 #[derive(Serialize, Debug, Clone)]
 pub struct Provenance {

@@ -138,6 +138,7 @@ impl OnBackend for Render<'_> {
             metrics: frame.metrics.as_ref(),
             sampled_lights: frame.sampled_lights,
             images: &images,
+            readback_bytes: frame.readback_bytes.as_ref(),
         };
         Report::new(&facts).write(&mut out, "")?;
         out.commit()?;

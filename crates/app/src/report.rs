@@ -63,6 +63,9 @@ pub struct Report {
     /// GPU execution time per pass from timestamp queries (the GPU backend on an adapter that
     /// has them, `total` included); `null` otherwise, with a note saying why.
     pub gpu_timings_ms: Option<BTreeMap<String, f64>>,
+    /// Bytes the frame read back from the GPU (its preparation and its shading, the metrics'
+    /// reads included), by what was read; `null` on the CPU backend.
+    pub gpu_readback: Option<Readback>,
     pub metrics: Metrics,
     /// Mean RGB of each written image.
     pub image_means: BTreeMap<&'static str, [f32; 3]>,
@@ -117,6 +120,24 @@ pub struct FrameFacts<'a> {
     /// Distinct sampled lights, for the VSGL and sampled-VPL methods.
     pub sampled_lights: Option<usize>,
     pub images: &'a [(&'static str, &'a Image)],
+    /// Bytes read back from the device, by what was read (GPU backend).
+    pub readback_bytes: Option<&'a BTreeMap<String, u64>>,
+}
+
+/// What a frame read back from the GPU.
+#[derive(Clone, Debug, Serialize)]
+pub struct Readback {
+    pub total_bytes: u64,
+    pub by_label: BTreeMap<String, u64>,
+}
+
+impl Readback {
+    fn of(by_label: &BTreeMap<String, u64>) -> Self {
+        Self {
+            total_bytes: by_label.values().sum(),
+            by_label: by_label.clone(),
+        }
+    }
 }
 
 /// Milliseconds per pass and their `total`, the medians over the runs.
@@ -189,6 +210,7 @@ impl Report {
             timing_runs: f.timings.len(),
             timings_spread_ms: (f.timings.len() > 1).then(|| spread_per_pass(f.timings)),
             gpu_timings_ms: f.gpu_timings.map(|t| medians(std::slice::from_ref(t))),
+            gpu_readback: f.readback_bytes.map(Readback::of),
             metrics: f.metrics.into(),
             image_means: f
                 .images

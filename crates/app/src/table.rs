@@ -261,7 +261,7 @@ mod tests {
             serde_json::from_str(&std::fs::read_to_string(root.join("t.json")).unwrap()).unwrap();
         assert_eq!(json["settings"]["vpls"], 7);
         assert_eq!(json["rows"][1]["ms"], serde_json::Value::Null);
-        assert_eq!(json["provenance"]["schema_version"], 3);
+        assert_eq!(json["provenance"]["schema_version"], 4);
         std::fs::remove_dir_all(&root).ok();
     }
 }

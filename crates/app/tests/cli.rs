@@ -595,9 +595,27 @@ fn gpu_render_agrees_with_the_cpu_render_and_names_its_adapter() {
             assert!(ms > 0.0, "{pass}: {report}");
         }
     }
+    // What the frame read back from the GPU, by what was read: at least the VPLs (the
+    // culler's bounds pass takes them from the CPU) and both images, adding up.
+    let readback = &report["gpu_readback"];
+    let by_label = readback["by_label"]
+        .as_object()
+        .expect("gpu_readback.by_label");
+    for label in ["vpls", "direct image", "indirect image"] {
+        assert!(
+            by_label
+                .get(label)
+                .and_then(|b| b.as_u64())
+                .is_some_and(|b| b > 0),
+            "{label}: {readback}"
+        );
+    }
+    let sum: u64 = by_label.values().filter_map(|b| b.as_u64()).sum();
+    assert_eq!(readback["total_bytes"].as_u64(), Some(sum), "{readback}");
     let cpu_report: serde_json::Value = read_report(&cpu);
     assert_eq!(cpu_report["notes"], serde_json::json!([]));
     assert!(cpu_report["gpu_timings_ms"].is_null());
+    assert!(cpu_report["gpu_readback"].is_null());
     // The GPU rasterizes its own G-buffer and RSM (the per-pixel conformance of those passes
     // is in crates/gpu-wgpu/tests/gpu/raster_*.rs): here the frames must agree on average
     // and the GPU's culling must miss nothing.

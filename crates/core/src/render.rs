@@ -6,6 +6,7 @@ use crate::renderer::{PreparedFrame, Progress, Renderer};
 use crate::rng::pcg_hash;
 use crate::scene::Scene;
 use crate::shader::{AllVplShader, SampledLights, SampledShader, ShadeInput, Shader};
+use std::collections::BTreeMap;
 
 /// The seed of ξ, interleaving and sampled points of pass `pass` (`None`: the one pass of a
 /// frame without jitter).
@@ -74,6 +75,7 @@ pub fn render_loaded<R: Renderer>(
     let (w, h) = (settings.width, settings.height);
     let mut timings = Timings::default();
     let mut gpu_timings = None;
+    let readback_before = r.readback_bytes();
     let mut frame = RenderedFrame {
         direct: Image::new(w, h),
         indirect: Image::new(w, h),
@@ -82,6 +84,7 @@ pub fn render_loaded<R: Renderer>(
         gpu_timings: None,
         metrics: None,
         sampled_lights: None,
+        readback_bytes: None,
     };
     for pass in 0..settings.spp {
         if settings.method == Method::Path {
@@ -127,5 +130,24 @@ pub fn render_loaded<R: Renderer>(
     }
     frame.timings = timings;
     frame.gpu_timings = gpu_timings;
+    frame.readback_bytes = readback_since(r, readback_before);
     Ok(frame)
+}
+
+/// The bytes `r` read back since its counters were `before` ([`Renderer::readback_bytes`]),
+/// by what was read.
+pub fn readback_since<R: Renderer>(
+    r: &R,
+    before: Option<BTreeMap<String, u64>>,
+) -> Option<BTreeMap<String, u64>> {
+    let (now, before) = (r.readback_bytes()?, before.unwrap_or_default());
+    Some(
+        now.into_iter()
+            .map(|(k, v)| {
+                let d = v - before.get(&k).copied().unwrap_or(0);
+                (k, d)
+            })
+            .filter(|(_, d)| *d > 0)
+            .collect(),
+    )
 }

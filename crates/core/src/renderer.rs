@@ -15,6 +15,7 @@ use crate::scene::Scene;
 use crate::shader::SampledLights;
 use crate::strategy::{GlossyBound, Strategy};
 use crate::vpl::Vpl;
+use std::collections::BTreeMap;
 
 /// Called with the number of pixel-passes finished.
 pub type Progress<'a> = &'a (dyn Fn(u64) + Sync);
@@ -118,6 +119,12 @@ pub trait Renderer {
 
     /// What a report of a frame rendered with `settings` says about this backend.
     fn info(&self, settings: &RenderSettings) -> BackendInfo;
+
+    /// Bytes read back from a device so far, by what was read (cumulative); `None` for a
+    /// backend without one.
+    fn readback_bytes(&self) -> Option<BTreeMap<String, u64>> {
+        None
+    }
 
     /// [`RenderError::Unsupported`] if `settings` asks for something this backend lacks.
     fn check(&self, settings: &RenderSettings) -> Result<(), RenderError> {

@@ -113,6 +113,7 @@ pub fn read_back<T: Pod>(
     let out = bytemuck::pod_collect_to_vec(&view);
     drop(view);
     staging.unmap();
+    ctx.count_readback(label, size);
     Ok(out)
 }
 

@@ -13,6 +13,7 @@
 //!   (`buffers::Grid`), and beyond 65535² workgroups refused ([`GpuError::TooManyWorkgroups`]).
 use crate::buffers::Grid;
 use crate::profiler::Profiler;
+use std::collections::BTreeMap;
 use std::sync::{Arc, Mutex};
 use std::time::Duration;
 
@@ -76,9 +77,24 @@ pub struct GpuContext {
     lost: Arc<Mutex<Option<String>>>,
     /// The running timestamp profile, if any (`profiler.rs`).
     pub(crate) profiler: Mutex<Option<Profiler>>,
+    /// Bytes read back from the device so far, by what was read ([`Self::readback_bytes`]).
+    readback: Mutex<BTreeMap<String, u64>>,
 }
 
 impl GpuContext {
+    /// Bytes read back from the device since the context was made, by the label of what was
+    /// read (`buffers::read_back`): what a frame costs the bus beyond its passes.
+    pub fn readback_bytes(&self) -> BTreeMap<String, u64> {
+        self.readback.lock().map(|m| m.clone()).unwrap_or_default()
+    }
+
+    /// Counts `bytes` read back as `label`.
+    pub(crate) fn count_readback(&self, label: &str, bytes: u64) {
+        if let Ok(mut m) = self.readback.lock() {
+            *m.entry(label.to_owned()).or_default() += bytes;
+        }
+    }
+
     /// The warning every front end prints on a software adapter (None on a GPU): its times
     /// say nothing about a GPU.
     pub fn software_warning(&self) -> Option<String> {
@@ -146,6 +162,7 @@ impl GpuContext {
             limits,
             lost,
             profiler: Mutex::new(None),
+            readback: Mutex::new(BTreeMap::new()),
         })
     }
 
@@ -167,6 +184,7 @@ impl GpuContext {
             software: is_software_adapter(info),
             lost: Arc::new(Mutex::new(None)),
             profiler: Mutex::new(None),
+            readback: Mutex::new(BTreeMap::new()),
         }
     }
 

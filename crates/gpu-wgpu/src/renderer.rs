@@ -44,6 +44,7 @@ use slc_cpu_ref::vsgl::{bidirectional_importance, ImportanceMap, MipRsm};
 use slc_cpu_ref::{CpuFrames, CpuPrepared, Tracer};
 use std::borrow::Cow;
 use std::cell::OnceCell;
+use std::collections::BTreeMap;
 use std::sync::Arc;
 
 fn gpu(e: GpuError) -> RenderError {
@@ -200,6 +201,10 @@ impl Renderer for GpuRenderer {
             adapter: self.ctx.adapter_name.clone(),
             notes,
         }
+    }
+
+    fn readback_bytes(&self) -> Option<BTreeMap<String, u64>> {
+        Some(self.ctx.readback_bytes())
     }
 
     fn load(&self, scene: &Scene) -> Result<GpuLoadedScene, RenderError> {

@@ -234,7 +234,8 @@ impl ShadePass {
     }
 }
 
-/// A `width` x `height` image from an RGB buffer on the GPU (3 f32 per pixel, row-major).
+/// A `width` x `height` image from an RGB buffer on the GPU (3 f32 per pixel, row-major):
+/// the indirect light every shading pass leaves there (read back as `indirect image`).
 pub fn read_image(
     ctx: &GpuContext,
     rgb: &wgpu::Buffer,
@@ -246,7 +247,7 @@ pub fn read_image(
     if pixels == 0 {
         return Ok(image);
     }
-    let rgb: Vec<f32> = read_back(ctx, "image", rgb, 3 * pixels)?;
+    let rgb: Vec<f32> = read_back(ctx, "indirect image", rgb, 3 * pixels)?;
     for (p, c) in image.pixels.iter_mut().zip(rgb.chunks_exact(3)) {
         *p = Vec3::new(c[0], c[1], c[2]);
     }

@@ -2,6 +2,7 @@
 use super::timings::Timings;
 use crate::culling::CullMetrics;
 use crate::framebuffer::Image;
+use std::collections::BTreeMap;
 
 /// The indirect light one shader made from a prepared frame, with what it cost.
 #[derive(Clone, Debug)]
@@ -49,6 +50,9 @@ pub struct RenderedFrame {
     pub metrics: Option<CullMetrics>,
     /// Distinct sampled lights shaded in the last pass (VSGL and sampled-VPL methods).
     pub sampled_lights: Option<usize>,
+    /// Bytes read back from the device while rendering, summed over the passes, by what was
+    /// read (metrics included; `None` for a backend without a device).
+    pub readback_bytes: Option<BTreeMap<String, u64>>,
 }
 
 impl RenderedFrame {
