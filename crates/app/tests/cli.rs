@@ -32,7 +32,7 @@ fn render_writes_images_and_report() {
         "\"shader\": \"vpl\"",
         "\"total\":",
         "\"false_discovery_rate\": null",
-        "\"schema_version\": 3",
+        "\"schema_version\": 4",
         "\"slc_version\":",
         "\"git_commit\":",
         "\"started_at\":",
