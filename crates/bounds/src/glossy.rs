@@ -103,12 +103,6 @@ impl GlossyLobe {
         Ok(self)
     }
 
-    /// The anisotropy set by [`Self::with_anisotropy`].
-    #[inline]
-    pub fn anisotropy(&self) -> Option<Anisotropy> {
-        self.anisotropy
-    }
-
     /// The factor by which this VPL's bounds exceed eq. (9)-(12)'s, taken with [`Self::alpha`],
     /// for the same flux: the product of the shading-normal factor (1 where n = n_g, else
     /// `(ωi·n)/(ωi·n_g) (cos θt + (2/α_min) sin θt)`, [`crate::shading_normal`]) and the
