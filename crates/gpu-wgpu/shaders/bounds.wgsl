@@ -25,6 +25,8 @@ struct View {
 @group(0) @binding(0) var<uniform> view: View;
 @group(0) @binding(1) var<storage, read> vpls: array<Vpl>;
 @group(0) @binding(2) var<storage, read_write> bounds: array<Bound>;
+// The tight strategies' bounds of p over boxes (box_bound.wgsl, prepended).
+@group(0) @binding(3) var<storage, read_write> box_bounds: array<BoxBound>;
 
 const LOBE_DIFFUSE: u32 = 0u;
 const GLOSSY_SPHERE: u32 = 0u;
@@ -40,11 +42,6 @@ fn view_rotation() -> mat3x3<f32> {
     return mat3x3<f32>(view.rotation[0].xyz, view.rotation[1].xyz, view.rotation[2].xyz);
 }
 
-// The largest channel: the scalar intensity convention of crates/bounds (stochastic.rs).
-fn scalar(v: vec3<f32>) -> f32 {
-    return max(v.x, max(v.y, v.z));
-}
-
 // cos of the largest angle between omega_i and a half vector (supplemental, after eq. 2).
 fn cos_theta_h_max(cos_i: f32) -> f32 {
     let c = clamp(cos_i, 0.0, 1.0);
@@ -52,16 +49,9 @@ fn cos_theta_h_max(cos_i: f32) -> f32 {
     return c / sqrt(2.0 * (1.0 + sin_i));
 }
 
-// F_max(omega_i): supplemental eq. (2) (Schlick) and eq. (6) (dielectric), the dielectric's
-// end 4 f32 ulps past theta_h_max (DIELECTRIC_ULPS in crates/bounds/src/fresnel.rs).
+// F_max(omega_i): supplemental eq. (2) (Schlick) and eq. (6) (dielectric) at theta_h_max.
 fn fresnel_max(vpl: Vpl, cos_i: f32) -> vec3<f32> {
-    let c = cos_theta_h_max(cos_i);
-    if vpl.info.y == FRESNEL_SCHLICK {
-        return fresnel_schlick(vpl.f0.xyz, c);
-    }
-    let eta = vpl.omega_i_eta.w;
-    let past = c * (1.0 - 4.0 * 1.1920929e-7);
-    return vec3<f32>(max(fresnel_dielectric(eta, 1.0), fresnel_dielectric(eta, past)));
+    return fresnel_max_from(vpl.info.y, vpl.f0.xyz, vpl.omega_i_eta.w, cos_theta_h_max(cos_i));
 }
 
 fn finite(x: f32) -> bool {
@@ -192,6 +182,59 @@ fn glossy_bound(vpl: Vpl, q: vec3<f32>, index: u32) -> Bound {
                  vec4<f32>(center, 1.0), BOUND_ELLIPSOID, index, 0u, 0u);
 }
 
+fn max_abs(v: vec3<f32>) -> f32 {
+    let a = abs(v);
+    return max(a.x, max(a.y, a.z));
+}
+
+// slc_bounds::BoxBound::glossy / diffuse rotated into the view (BoxBound::rotated), for the
+// camera-relative position q: its factors as the CPU forms them, with the growth of the
+// boxes for the f32 rounding of R q, of the receivers' R (x - eye) and of the shader's x - q
+// (16 ulps of the largest coordinates involved; tight_cull.wgsl adds the receivers').
+fn box_bound(vpl: Vpl, q: vec3<f32>) -> BoxBound {
+    let rot = view_rotation();
+    let slack = 16.0 * 1.1920929e-7 * (max_abs(vpl.position_xi.xyz) + max_abs(view.eye.xyz));
+    let delta_xi = view.delta * vpl.position_xi.w / (1.0 + PROBABILITY_SLACK);
+    var b = BoxBound(vec4<f32>(rot * q, slack), vec4<f32>(0.0), vec4<f32>(0.0), vec4<f32>(0.0),
+                     vec4<f32>(0.0), vpl.f0, vec4<u32>(BOX_EMPTY, vpl.info.y, 0u,
+                     bitcast<u32>(delta_xi)));
+    if vpl.info.x == LOBE_DIFFUSE {
+        // Vpl::diffuse_lobe: around n_g, Phi k / pi with the flux times flux_scale.
+        let n = normalize(vpl.geometric_tilt.xyz);
+        if dot(vpl.normal_alpha.xyz, vpl.omega_i_eta.xyz) > 0.0 {
+            let peak = scalar(vpl.flux.xyz * vpl.geometric_tilt.w * vpl.kd.xyz) / PI;
+            b.normal_peak = vec4<f32>(normalize(rot * n), peak);
+            b.info.x = BOX_DIFFUSE;
+        }
+        return b;
+    }
+    let n = normalize(vpl.normal_alpha.xyz);
+    let wi = normalize(vpl.omega_i_eta.xyz);
+    let alpha = max(vpl.normal_alpha.w, vpl.anisotropy.w);
+    let cos_i = dot(n, wi);
+    let flux = vpl.flux.xyz * vpl.geometric_tilt.w;
+    let g1_i = 0.25 * ggx_g1_over_cos(alpha, cos_i);
+    let peak = scalar(flux * fresnel_max(vpl, cos_i)) * g1_i / (PI * alpha * alpha);
+    if !(cos_i > 0.0) {
+        return b;
+    }
+    // G1(w_o) by the lobe's smallest alpha, or by 1 on a tilted shading normal.
+    var g1_alpha = vpl.normal_alpha.w;
+    if vpl.anisotropy.w > 0.0 {
+        g1_alpha = min(g1_alpha, vpl.anisotropy.w);
+    }
+    if any(vpl.normal_alpha.xyz != vpl.geometric_tilt.xyz) {
+        g1_alpha = 0.0;
+    }
+    b.normal_peak = vec4<f32>(normalize(rot * n), peak);
+    b.omega_i_cos_h_max = vec4<f32>(normalize(rot * wi), cos_theta_h_max(cos_i));
+    b.omega_u_g1_i = vec4<f32>(normalize(rot * (2.0 * cos_i * n - wi)), g1_i);
+    b.flux_alpha = vec4<f32>(flux, alpha);
+    b.info.x = BOX_GLOSSY;
+    b.info.z = bitcast<u32>(g1_alpha);
+    return b;
+}
+
 @compute @workgroup_size(64)
 fn main(
     @builtin(workgroup_id) wid: vec3<u32>,
@@ -213,4 +256,5 @@ fn main(
     }
     b.subregion = vpl_subregion(view.seed, vpl.info.z, view.k);
     bounds[i] = b;
+    box_bounds[i] = box_bound(vpl, q);
 }

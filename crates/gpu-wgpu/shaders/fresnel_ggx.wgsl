@@ -4,6 +4,11 @@
 const PI: f32 = 3.14159265358979;
 const FRESNEL_SCHLICK: u32 = 0u;
 
+// The largest channel: the scalar intensity convention of crates/bounds (stochastic.rs).
+fn scalar(v: vec3<f32>) -> f32 {
+    return max(v.x, max(v.y, v.z));
+}
+
 // G1(v) / |v.n| of eq. (8): 2 / (|cos| + sqrt((1 - a2) cos^2 + a2)), finite at grazing
 // incidence (ggx.rs g1_over_cos).
 fn ggx_g1_over_cos(alpha: f32, cos_v: f32) -> f32 {
@@ -33,4 +38,16 @@ fn fresnel_dielectric(eta: f32, cos_h: f32) -> f32 {
     let perp = (c - g) / (c + g);
     let par = (g - e2c) / (g + e2c);
     return 0.5 * (perp * perp + par * par);
+}
+
+// The largest F over half vectors at angles from omega_i of at least acos(cos_h)
+// (fresnel.rs Fresnel::max_from): Schlick's at cos_h; a dielectric's, quasiconvex in the
+// angle (supplemental eq. 6), at one of the ends, evaluated 4 f32 ulps past cos_h
+// (DIELECTRIC_ULPS).
+fn fresnel_max_from(model: u32, f0: vec3<f32>, eta: f32, cos_h: f32) -> vec3<f32> {
+    if model == FRESNEL_SCHLICK {
+        return fresnel_schlick(f0, cos_h);
+    }
+    let past = cos_h * (1.0 - 4.0 * 1.1920929e-7);
+    return vec3<f32>(max(fresnel_dielectric(eta, 1.0), fresnel_dielectric(eta, past)));
 }

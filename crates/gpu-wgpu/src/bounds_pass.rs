@@ -8,6 +8,7 @@
 //! bounds at relative 1e-5.
 use crate::buffers::{output, read_back, uniform, upload, Grid};
 use crate::context::{GpuContext, GpuError};
+use crate::cull_types::GpuBoxBound;
 use crate::gpu_types::{GpuBound, GpuView, GpuVpl, BOUND_OVERFLOW};
 use slc_core::{Camera, Interleaving, Vpl};
 use slc_cull::GlossyBound;
@@ -18,6 +19,7 @@ pub(crate) const SOURCE: &str = concat!(
     include_str!("../shaders/rng.wgsl"),
     include_str!("../shaders/bound.wgsl"),
     include_str!("../shaders/fresnel_ggx.wgsl"),
+    include_str!("../shaders/box_bound.wgsl"),
     include_str!("../shaders/frame.wgsl"),
     include_str!("../shaders/gvpl.wgsl"),
     include_str!("../shaders/bounds.wgsl")
@@ -37,9 +39,11 @@ pub struct BoundsSettings<'a> {
     pub interleaving: Interleaving,
 }
 
-/// The bounds of a set of VPLs on the GPU, one [`GpuBound`] per VPL in input order.
+/// The bounds of a set of VPLs on the GPU, one [`GpuBound`] and one [`GpuBoxBound`] (what
+/// the tight strategies refine with) per VPL in input order.
 pub struct GpuBounds {
     pub buffer: wgpu::Buffer,
+    pub box_bounds: wgpu::Buffer,
     pub count: usize,
 }
 
@@ -82,19 +86,21 @@ impl BoundsPass {
         )?;
         let vpl_buffer = upload(ctx, "vpls", &packed)?;
         let bounds = output::<GpuBound>(ctx, "bounds", vpls.len())?;
+        let box_bounds = output::<GpuBoxBound>(ctx, "box bounds", vpls.len())?;
         let grid = Grid::for_items(ctx, u64::from(count), WORKGROUP)?;
         ctx.scoped("bounds", || {
             let view_buffer = uniform(ctx, "bounds view", &view);
             ctx.dispatch(
                 "bounds",
                 &self.pipeline,
-                &[&view_buffer, &vpl_buffer, &bounds],
+                &[&view_buffer, &vpl_buffer, &bounds, &box_bounds],
                 grid,
             );
             Ok(())
         })?;
         Ok(GpuBounds {
             buffer: bounds,
+            box_bounds,
             count: vpls.len(),
         })
     }

@@ -25,6 +25,7 @@ use crate::gpu_lists::{no_lists, read_lists};
 use crate::gpu_types::{GpuCullStatus, CULL_COUNT, CULL_WRITE};
 use crate::partition_pass::PartitionPass;
 use crate::scan_pass::ScanPass;
+use crate::tight_cull_pass::{BaseLayout, TightRefiner};
 use slc_core::{CullInput, LightLists};
 use slc_cull::{CullView, GlossyBound};
 
@@ -50,6 +51,7 @@ pub struct ClusteredCuller {
     bounds: BoundsPass,
     partition: PartitionPass,
     scan: ScanPass,
+    tight: TightRefiner,
     depth: wgpu::ComputePipeline,
     cull: wgpu::ComputePipeline,
 }
@@ -62,6 +64,7 @@ impl ClusteredCuller {
                 bounds,
                 partition: PartitionPass::new(ctx),
                 scan: ScanPass::new(ctx),
+                tight: TightRefiner::new(ctx),
                 depth: ctx.compute_pipeline("cluster depth", DEPTH_SOURCE),
                 cull: ctx.compute_pipeline("clustered cull", CULL_SOURCE),
             })
@@ -224,13 +227,21 @@ impl ClusteredCuller {
             ctx.queue.submit([encoder.finish()]);
             Ok(())
         })?;
-        Ok(GpuLightLists {
+        let lists = GpuLightLists {
             offsets,
             indices: lists,
             pixel_list,
             list_count,
             entries: total,
             pixels,
-        })
+        };
+        if glossy != GlossyBound::Tight {
+            return Ok(lists);
+        }
+        let layout = BaseLayout {
+            clusters: CLUSTER_SLICES,
+            split: false,
+        };
+        self.tight.refine(ctx, frame, lists, &bounds, layout)
     }
 }

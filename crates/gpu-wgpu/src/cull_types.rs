@@ -1,4 +1,4 @@
-//! `#[repr(C)]` twins of the WGSL structs of the no-culling and clustered culling passes,
+//! `#[repr(C)]` twins of the WGSL structs of the no-culling, clustered and tight culling passes,
 //! in the convention of [`crate::gpu_types`]: each names the WGSL file whose struct of the
 //! same name must keep the same fields in the same order, a compile-time check holds its
 //! size, and a unit test compares it with the layout naga computes from the shader.
@@ -42,6 +42,54 @@ pub struct GpuClusterFrusta {
 }
 const _: () = assert!(std::mem::size_of::<GpuClusterFrusta>() == 288);
 
+/// One VPL's bound of p(ωo, l) of eq. (2) over boxes of receivers (`slc_bounds::BoxBound`,
+/// docs/tight-bounds.md) in the culling view, written by `shaders/bounds.wgsl` for the tight
+/// strategies. Keep in sync with `BoxBound` in `shaders/box_bound.wgsl`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
+pub struct GpuBoxBound {
+    /// q = R (position − eye) (xyz) and the growth of every box tested against this VPL for
+    /// the f32 rounding of q, of the receivers' view positions and of the shader's offsets
+    /// x − q (w).
+    pub q_slack: [f32; 4],
+    /// The lobe's normal in view (xyz) and the largest intensity in any direction (w).
+    pub normal_peak: [f32; 4],
+    /// ωi (xyz) and cos θh_max(ωi) of supplemental eq. (2) (w).
+    pub omega_i_cos_h_max: [f32; 4],
+    /// The mirror direction ω_u (xyz) and G1(ωi)/(4 ωi·n) (w).
+    pub omega_u_g1_i: [f32; 4],
+    /// Φ times `GlossyLobe::bound_factor` (xyz) and α (w, the lobe's largest).
+    pub flux_alpha: [f32; 4],
+    /// Schlick's F0 (xyz) and a dielectric's η (w).
+    pub f0_eta: [f32; 4],
+    /// [`BOX_EMPTY`], [`BOX_DIFFUSE`] or [`BOX_GLOSSY`]; the Fresnel model; the bits of the
+    /// α whose G1 bounds G1(ωo) (0.0: bounded by 1, a tilted normal); the bits of
+    /// δ ξ / (1 + `PROBABILITY_SLACK`).
+    pub info: [u32; 4],
+}
+const _: () = assert!(std::mem::size_of::<GpuBoxBound>() == 112);
+
+/// `GpuBoxBound::info[0]`: never listed, a diffuse lobe (eq. 4, f = kd/π), a glossy one.
+pub const BOX_EMPTY: u32 = 0;
+pub const BOX_DIFFUSE: u32 = 1;
+pub const BOX_GLOSSY: u32 = 2;
+
+/// The refinement of the tight strategies (`shaders/tight_cull.wgsl`): the base strategy's
+/// lists per tile and whether each block's samples of a list are split at their half depth.
+/// Keep in sync with `TightParams` in `shaders/tight_cull.wgsl`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
+pub struct GpuTightParams {
+    /// Lists per tile of the base strategy: 2 (Modified HalfZ) or [`CLUSTER_SLICES`].
+    pub clusters: u32,
+    /// 2 where each block's samples of a list are split at their half depth, else 1.
+    pub halves: u32,
+    /// max |coordinate| of the eye: the boxes grow for the rounding of R (x − eye).
+    pub eye_extent: f32,
+    pub pad: u32,
+}
+const _: () = assert!(std::mem::size_of::<GpuTightParams>() == 16);
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -66,6 +114,21 @@ mod tests {
                 crate::clustered_cull_pass::CULL_SOURCE,
                 "ClusterFrusta",
                 size_of::<GpuClusterFrusta>(),
+            ),
+            (
+                crate::bounds_pass::SOURCE,
+                "BoxBound",
+                size_of::<GpuBoxBound>(),
+            ),
+            (
+                crate::tight_cull_pass::SOURCE,
+                "BoxBound",
+                size_of::<GpuBoxBound>(),
+            ),
+            (
+                crate::tight_cull_pass::SOURCE,
+                "TightParams",
+                size_of::<GpuTightParams>(),
             ),
         ];
         for (source, name, size) in cases {

@@ -208,14 +208,8 @@ impl GpuView {
             glossy: match glossy {
                 GlossyBound::Sphere => GLOSSY_SPHERE,
                 GlossyBound::EnclosingSphere => GLOSSY_ENCLOSING_SPHERE,
-                GlossyBound::Ellipsoid => GLOSSY_ELLIPSOID,
-                GlossyBound::Tight => {
-                    return Err(GpuError::Input(
-                        "the tight culling strategies (tight, clustered-tight) run on the CPU \
-                         only (--backend cpu)"
-                            .into(),
-                    ))
-                }
+                // The tight strategies cull with the spheroid first (`tight_cull_pass`).
+                GlossyBound::Ellipsoid | GlossyBound::Tight => GLOSSY_ELLIPSOID,
             },
             count,
             slack: BOUND_SLACK,

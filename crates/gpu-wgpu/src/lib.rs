@@ -85,6 +85,7 @@ pub mod rsm_pass;
 pub mod scan_pass;
 pub mod scene_upload;
 pub mod shade_pass;
+pub mod tight_cull_pass;
 pub mod tile_depth_pass;
 pub mod tiled_cull_pass;
 pub mod visibility_pass;

@@ -185,7 +185,7 @@ impl Renderer for GpuRenderer {
             vsgl_visibility: true,
             references: false,
             sampled_vpls: false,
-            tight_culling: false,
+            tight_culling: true,
         }
     }
 

@@ -19,6 +19,7 @@ use crate::gpu_lists::{no_lists, read_lists};
 use crate::gpu_types::{GpuCullStatus, GpuTileFrusta, CULL_COUNT, CULL_WRITE};
 use crate::partition_pass::PartitionPass;
 use crate::scan_pass::ScanPass;
+use crate::tight_cull_pass::{BaseLayout, TightRefiner};
 use crate::tile_depth_pass::{TileDepthBuffers, TileDepthPass};
 use slc_core::{CullInput, LightLists};
 use slc_cull::{CullView, GlossyBound};
@@ -39,6 +40,7 @@ pub struct TiledCuller {
     partition: PartitionPass,
     depth: TileDepthPass,
     scan: ScanPass,
+    tight: TightRefiner,
     pipeline: wgpu::ComputePipeline,
 }
 
@@ -51,6 +53,7 @@ impl TiledCuller {
                 partition: PartitionPass::new(ctx),
                 depth: TileDepthPass::new(ctx),
                 scan: ScanPass::new(ctx),
+                tight: TightRefiner::new(ctx),
                 pipeline: ctx.compute_pipeline("tiled cull", SOURCE),
             })
         })
@@ -204,14 +207,22 @@ impl TiledCuller {
             ctx.queue.submit([encoder.finish()]);
             Ok(())
         })?;
-        Ok(GpuLightLists {
+        let lists = GpuLightLists {
             offsets,
             indices: lists,
             pixel_list,
             list_count: lists_count,
             entries: total,
             pixels,
-        })
+        };
+        if glossy != GlossyBound::Tight {
+            return Ok(lists);
+        }
+        let layout = BaseLayout {
+            clusters: 2,
+            split: true,
+        };
+        self.tight.refine(ctx, frame, lists, &bounds, layout)
     }
 
     fn encode_cull(

@@ -1,6 +1,5 @@
-//! `GpuCuller`: every strategy of `slc_core::Strategy::ALL` but the CPU-only tight ones (which
-//! it refuses), also bound as a `slc_core::Culler`, and its lists left on the GPU read by the
-//! shading pass.
+//! `GpuCuller`: every strategy of `slc_core::Strategy::ALL`, also bound as a
+//! `slc_core::Culler`, and its lists left on the GPU read by the shading pass.
 use crate::common::gpu;
 use crate::tiled::frame;
 use slc_core::{builtin, CullInput, Culler, GlossyBound, Interleaving, Strategy};
@@ -8,14 +7,6 @@ use slc_gpu_wgpu::cull_frame::CullFrame;
 use slc_gpu_wgpu::culler::GpuCuller;
 use slc_gpu_wgpu::gpu_lists::read_lists;
 use slc_gpu_wgpu::shade_pass::ShadePass;
-
-/// The strategies the GPU runs: all but the tight ones (`GlossyBound::Tight`, CPU only).
-pub fn on_gpu() -> Vec<Strategy> {
-    Strategy::ALL
-        .into_iter()
-        .filter(|s| s.parts().1 != GlossyBound::Tight)
-        .collect()
-}
 
 /// The built-in default scene and its camera.
 fn default_scene() -> (slc_core::Scene, slc_core::Camera) {
@@ -39,24 +30,10 @@ fn input_k2<'a>(
     }
 }
 
-/// The tight strategies are refused with an error that names the CPU backend, by the culler
-/// and by the renderer's capability check.
-#[test]
-fn tight_strategies_are_refused_with_a_clear_error() {
-    let Some(ctx) = gpu() else { return };
-    let culler = GpuCuller::new(&ctx).unwrap();
-    let (scene, camera) = default_scene();
-    let (gbuffer, vpls) = frame(&scene, &camera, (16, 16), 4);
-    let input = input_k2(&gbuffer, &camera, &vpls);
-    for strategy in [Strategy::Tight, Strategy::ClusteredTight] {
-        let e = culler.cull(&ctx, &input, strategy).unwrap_err();
-        assert!(e.to_string().contains("--backend cpu"), "{e}");
-    }
-}
-
 /// Each name runs its own strategy: the GPU's lists by name equal the CPU strategy's of the
 /// same name but for a few entries decided within rounding (classified in `tiled.rs` and
-/// `clustered.rs`); every other strategy's lists differ in hundreds of entries or more.
+/// `clustered.rs`; the tight ones, whose bound the GPU forms in f32 with wider slacks, within
+/// 1%: `tight.rs`); every other strategy's lists differ in hundreds of entries or more.
 #[test]
 fn every_strategy_by_name_matches_the_cpu_strategy_of_that_name() {
     let Some(ctx) = gpu() else { return };
@@ -64,7 +41,7 @@ fn every_strategy_by_name_matches_the_cpu_strategy_of_that_name() {
     let (scene, camera) = default_scene();
     let (gbuffer, vpls) = frame(&scene, &camera, (72, 50), 16);
     let input = input_k2(&gbuffer, &camera, &vpls);
-    let strategies = on_gpu();
+    let strategies = Strategy::ALL;
     let cpu: Vec<_> = strategies
         .iter()
         .map(|&s| slc_cull::culler(s).cull(&input).unwrap())
@@ -90,7 +67,11 @@ fn every_strategy_by_name_matches_the_cpu_strategy_of_that_name() {
             .map(|p| cpu[i].for_pixel(p).len())
             .sum();
         eprintln!("{name}: {entries} pixel-VPL pairs on the CPU, {own} differing");
-        assert!(own <= 10 && own * 10_000 <= entries, "{name}: {own}");
+        if name.parts().1 == GlossyBound::Tight {
+            assert!(own * 100 <= entries, "{name}: {own}");
+        } else {
+            assert!(own <= 10 && own * 10_000 <= entries, "{name}: {own}");
+        }
         for (j, other) in strategies.iter().enumerate().filter(|&(j, _)| j != i) {
             let d = differing(&cpu[j]);
             assert!(d > 100, "{name} looks like {other}: {d} differing entries");
@@ -116,7 +97,7 @@ fn shading_reads_every_strategys_lists_on_the_gpu() {
             delta: 1e-3,
             interleaving: Interleaving { k, seed: 2 },
         };
-        for strategy in on_gpu() {
+        for strategy in Strategy::ALL {
             let name = strategy.name();
             let frame = CullFrame::upload(&ctx, &input).unwrap();
             let on_gpu = culler.cull_frame(&ctx, &frame, strategy).unwrap();

@@ -17,6 +17,7 @@ mod raster_gbuffer;
 mod raster_rsm;
 mod rng;
 mod shade;
+mod tight;
 mod tiled;
 mod vsgl;
 mod vsgl_visibility;

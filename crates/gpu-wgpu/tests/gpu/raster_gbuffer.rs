@@ -386,7 +386,7 @@ fn culling_and_shading_read_the_gpu_gbuffer_in_place() {
         interleaving,
     };
     // Every strategy: the tiled, clustered and unculled passes all read positions.
-    for strategy in crate::culler::on_gpu() {
+    for strategy in slc_core::Strategy::ALL {
         let name = strategy.name();
         let frame = CullFrame::upload(&ctx, &input).unwrap();
         let uploaded = culler.cull_frame(&ctx, &frame, strategy).unwrap();

@@ -1,0 +1,142 @@
+//! The refinement of the `tight` and `clustered-tight` strategies on the GPU
+//! (`shaders/tight_cull.wgsl`, the twin of `slc_cull`'s `refine.rs`; docs/tight-bounds.md):
+//! the lists of a tiled culling (two Modified HalfZ clusters per tile) or a clustered one
+//! (32 depth slices) with the spheroid, cut per 8 x 8 block of each tile, and in the tiled
+//! layout once more at each block's own half depth, keeping a VPL only where its
+//! `slc_bounds::BoxBound` (formed in f32 by `shaders/bounds.wgsl`, `GpuBoxBound`) may exceed
+//! ξ in the box of the group's receivers.
+//!
+//! Counting, a scan and writing, as the base cullers; the base lists' pixel entries are
+//! rewritten in place to point to the groups. One count read back sizes the list buffer.
+use crate::bounds_pass::GpuBounds;
+use crate::buffers::{output, uniform, upload, Grid};
+use crate::context::{GpuContext, GpuError};
+use crate::cull_frame::{cull_params, read_status, tile_grid, CullFrame};
+use crate::cull_types::GpuTightParams;
+use crate::gpu_lists::GpuLightLists;
+use crate::gpu_types::{GpuCullStatus, CULL_COUNT, CULL_WRITE};
+use crate::scan_pass::ScanPass;
+use slc_cull::CullView;
+
+/// The tile grid, the bound records and their tests followed by the refinement kernel.
+pub(crate) const SOURCE: &str = concat!(
+    include_str!("../shaders/tiles.wgsl"),
+    include_str!("../shaders/bound.wgsl"),
+    include_str!("../shaders/fresnel_ggx.wgsl"),
+    include_str!("../shaders/box_bound.wgsl"),
+    include_str!("../shaders/tight_cull.wgsl")
+);
+
+/// Refinement blocks per tile (2 x 2 blocks of 8 x 8 pixels: `slc_cull`'s `BLOCK`).
+const BLOCKS_PER_TILE: u32 = 4;
+
+/// The refinement's pipelines.
+pub struct TightRefiner {
+    scan: ScanPass,
+    pipeline: wgpu::ComputePipeline,
+}
+
+/// How the base strategy grouped each tile's pixels.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct BaseLayout {
+    /// Lists per tile: 2 (Modified HalfZ) or the clustered strategies' 32 slices.
+    pub clusters: u32,
+    /// Whether each block's samples of a list are split at their half depth.
+    pub split: bool,
+}
+
+impl TightRefiner {
+    pub fn new(ctx: &GpuContext) -> Self {
+        Self {
+            scan: ScanPass::new(ctx),
+            pipeline: ctx.compute_pipeline("tight cull", SOURCE),
+        }
+    }
+
+    /// Refines `base`, the lists of `frame` culled with `bounds` in `layout`, left on the
+    /// GPU: one list per group of a block (possibly empty), each pixel pointing to its
+    /// group's. Every list is a subset of the pixel's base list, in its order.
+    pub(crate) fn refine(
+        &self,
+        ctx: &GpuContext,
+        frame: &CullFrame,
+        base: GpuLightLists,
+        bounds: &GpuBounds,
+        layout: BaseLayout,
+    ) -> Result<GpuLightLists, GpuError> {
+        if base.pixels == 0 {
+            return Ok(base);
+        }
+        let slots = layout.clusters * if layout.split { 2 } else { 1 };
+        let tiles = tile_grid(frame, BLOCKS_PER_TILE * slots)?;
+        let list_count = BLOCKS_PER_TILE * slots * tiles.2;
+        let view = CullView::new(frame.camera, frame.width, frame.height)
+            .map_err(|e| GpuError::Input(e.to_string()))?;
+        let grid = Grid::new(
+            u64::from(BLOCKS_PER_TILE) * u64::from(tiles.2),
+            ctx.limits.max_compute_workgroups_per_dimension,
+        )?;
+        let tight = uniform(
+            ctx,
+            "tight params",
+            &GpuTightParams {
+                clusters: layout.clusters,
+                halves: if layout.split { 2 } else { 1 },
+                eye_extent: frame.camera.position.abs().max_element(),
+                pad: 0,
+            },
+        );
+        let offsets = output::<u32>(ctx, "tight list offsets", list_count as usize + 1)?;
+        let status = upload(ctx, "tight cull status", &[GpuCullStatus::CLEAR])?;
+        let no_entries = output::<u32>(ctx, "no lists", 1)?;
+        let run = |mode: u32, lists: &wgpu::Buffer, scan: bool| {
+            let label = if mode == CULL_COUNT {
+                "tight cull (count)"
+            } else {
+                "tight cull (write)"
+            };
+            let params = uniform(ctx, label, &cull_params(frame, &view, tiles, mode));
+            ctx.scoped(label, || {
+                let mut encoder = ctx
+                    .device
+                    .create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some(label) });
+                ctx.encode_dispatch(
+                    &mut encoder,
+                    "tight cull",
+                    &self.pipeline,
+                    &[
+                        &params,
+                        &tight,
+                        &frame.positions,
+                        &base.pixel_list,
+                        &base.offsets,
+                        &base.indices,
+                        &bounds.buffer,
+                        &bounds.box_bounds,
+                        &offsets,
+                        lists,
+                    ],
+                    grid,
+                );
+                if scan {
+                    self.scan
+                        .encode(ctx, &mut encoder, &offsets, list_count, &status);
+                }
+                ctx.queue.submit([encoder.finish()]);
+                Ok(())
+            })
+        };
+        run(CULL_COUNT, &no_entries, true)?;
+        let total = read_status(ctx, &status, frame.width)?;
+        let lists = output::<u32>(ctx, "tight light lists", total as usize)?;
+        run(CULL_WRITE, &lists, false)?;
+        Ok(GpuLightLists {
+            offsets,
+            indices: lists,
+            pixel_list: base.pixel_list,
+            list_count,
+            entries: total,
+            pixels: base.pixels,
+        })
+    }
+}
