@@ -46,10 +46,13 @@ var<workgroup> box_lo: array<atomic<u32>, 96>;
 var<workgroup> box_hi: array<atomic<u32>, 96>;
 var<workgroup> slot_extent: array<atomic<u32>, 32>;
 var<workgroup> slot_count: array<atomic<u32>, 32>;
-var<workgroup> current: u32;
+// Slots holding a sample (bit s), and its copy for workgroupUniformLoad.
+var<workgroup> occupied: atomic<u32>;
+var<workgroup> occupied_mask: u32;
 var<workgroup> range: vec2<u32>;
 var<workgroup> written: u32;
-var<workgroup> scan: array<u32, 64>;
+// The entries of the round kept (bit e of word e / 32).
+var<workgroup> kept: array<atomic<u32>, 2>;
 
 // A u32 whose unsigned order is the order of the finite f32 `f`.
 fn order_key(f: f32) -> u32 {
@@ -109,6 +112,9 @@ fn main(
         atomicStore(&slot_extent[lid], 0u);
         atomicStore(&slot_count[lid], 0u);
     }
+    if lid == 0u {
+        atomicStore(&occupied, 0u);
+    }
     workgroupBarrier();
     let tile = tile_of(t, params);
     let a = (block % 2u) * BLOCK + lid % BLOCK;
@@ -152,19 +158,27 @@ fn main(
     workgroupBarrier();
     let slots = tight.clusters * tight.halves;
     let first_group = (4u * t + block) * slots;
-    for (var s = 0u; s < slots; s++) {
+    // Empty groups get empty lists at once; the workgroup walks the occupied ones.
+    if lid < slots {
+        if atomicLoad(&slot_count[lid]) != 0u {
+            atomicOr(&occupied, 1u << lid);
+        } else if !write {
+            offsets[first_group + lid] = 0u;
+        }
+    }
+    workgroupBarrier();
+    if lid == 0u {
+        occupied_mask = atomicLoad(&occupied);
+    }
+    var remaining = workgroupUniformLoad(&occupied_mask);
+    while remaining != 0u {
+        let s = firstTrailingBit(remaining);
+        remaining &= remaining - 1u;
         let group = first_group + s;
         if lid == 0u {
-            current = atomicLoad(&slot_count[s]);
             let list = t * tight.clusters + s / tight.halves;
             range = vec2<u32>(base_offsets[list], base_offsets[list + 1u]);
             written = 0u;
-        }
-        if workgroupUniformLoad(&current) == 0u {
-            if !write && lid == 0u {
-                offsets[group] = 0u;
-            }
-            continue;
         }
         let r = workgroupUniformLoad(&range);
         // The box grown for the f32 rounding of R (x - eye) (refine.rs Refiner::receivers).
@@ -180,33 +194,36 @@ fn main(
         let half = 0.5 * (hi - lo);
         let radius = length(half) * (1.0 + 4.0 * F32_EPSILON);
         for (var base = r.x; base < r.y; base += GROUP) {
+            // Each thread tests one entry and sets its bit; an entry's place is the number
+            // of kept entries before it, so the lists keep the base list's order, ascending
+            // in the VPL index.
+            if lid < 2u {
+                atomicStore(&kept[lid], 0u);
+            }
+            workgroupBarrier();
             let j = base + lid;
             var i = 0u;
-            var keep = 0u;
+            var keep = false;
             if j < r.y {
                 i = base_indices[j];
-                keep = select(0u, 1u, reaches(i, lo, hi, center, half, radius));
+                keep = reaches(i, lo, hi, center, half, radius);
             }
-            // Inclusive prefix sum of the kept entries (Hillis-Steele): lists stay in the
-            // base list's order, ascending in the VPL index.
-            scan[lid] = keep;
-            for (var d = 1u; d < GROUP; d <<= 1u) {
-                workgroupBarrier();
-                var value = scan[lid];
-                if lid >= d {
-                    value += scan[lid - d];
-                }
-                workgroupBarrier();
-                scan[lid] = value;
+            if keep {
+                atomicOr(&kept[lid / 32u], 1u << (lid % 32u));
             }
             workgroupBarrier();
-            if write && keep != 0u {
-                lists[offsets[group] + written + scan[lid] - 1u] = i;
+            let low = atomicLoad(&kept[0]);
+            let high = atomicLoad(&kept[1]);
+            if write && keep {
+                var before = countOneBits(low & ((1u << lid) - 1u));
+                if lid >= 32u {
+                    before = countOneBits(low) + countOneBits(high & ((1u << (lid - 32u)) - 1u));
+                }
+                lists[offsets[group] + written + before] = i;
             }
-            let total = scan[GROUP - 1u];
             workgroupBarrier();
             if lid == 0u {
-                written += total;
+                written += countOneBits(low) + countOneBits(high);
             }
         }
         if !write && lid == 0u {
