@@ -14,6 +14,9 @@
 @group(0) @binding(3) var<storage, read_write> pixel_list: array<u32>;
 // GpuCullStatus: [0] smallest pixel whose sample is not in front of the camera.
 @group(0) @binding(4) var<storage, read_write> status: array<atomic<u32>, 4>;
+// The subregions' VPLs (partition.wgsl): subregion s holds order[sub_offsets[s] ..
+// sub_offsets[s + 1]]; each tile's range goes to its frusta (info.yz).
+@group(0) @binding(5) var<storage, read> sub_offsets: array<u32>;
 
 var<workgroup> lows: array<vec4<f32>, 256>;
 var<workgroup> highs: array<vec4<f32>, 256>;
@@ -89,8 +92,9 @@ fn main(
     if lid != 0u {
         return;
     }
+    let range = vec2<u32>(sub_offsets[tile.subregion], sub_offsets[tile.subregion + 1u]);
     if !(lo.z <= hi.z) {
-        frusta[t] = TileFrusta(vec4<f32>(0.0), vec4<f32>(0.0), vec4<u32>(0u));
+        frusta[t] = TileFrusta(vec4<f32>(0.0), vec4<f32>(0.0), vec4<u32>(0u, range, 0u));
         return;
     }
     let near_hi = highs[0].x;
@@ -120,6 +124,6 @@ fn main(
             select(vec2<f32>(0.0), vec2<f32>(lo.z * shrink, near_hi * grow), (mask & 1u) != 0u),
             select(vec2<f32>(0.0), vec2<f32>(far_lo * shrink, hi.z * grow), (mask & 2u) != 0u),
         ),
-        vec4<u32>(mask, 0u, 0u, 0u),
+        vec4<u32>(mask, range, 0u),
     );
 }

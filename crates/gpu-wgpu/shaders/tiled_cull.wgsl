@@ -15,10 +15,9 @@
 @group(0) @binding(2) var<storage, read> bounds: array<Bound>;
 @group(0) @binding(3) var<storage, read_write> offsets: array<u32>;
 @group(0) @binding(4) var<storage, read_write> lists: array<u32>;
-// The subregions' VPLs (partition.wgsl): subregion s holds order[sub_offsets[s] ..
-// sub_offsets[s + 1]], ascending, empty bounds left out.
-@group(0) @binding(5) var<storage, read> sub_offsets: array<u32>;
-@group(0) @binding(6) var<storage, read> order: array<u32>;
+// The subregions' VPLs (partition.wgsl), ascending, empty bounds left out: the tile's are
+// order[info.y .. info.z] of its frusta.
+@group(0) @binding(5) var<storage, read> order: array<u32>;
 
 const MODE_WRITE: u32 = 1u;
 const GROUP: u32 = 256u;
@@ -87,8 +86,7 @@ fn main(
         staged_count = vec2<u32>(0u);
         flushed_count = vec2<u32>(0u);
         tile_mask = frusta[t].info.x;
-        let s = t / (params.tiles_x * params.tiles_y);
-        sub_range = vec2<u32>(sub_offsets[s], sub_offsets[s + 1u]);
+        sub_range = frusta[t].info.yz;
     }
     let mask = workgroupUniformLoad(&tile_mask);
     let range = workgroupUniformLoad(&sub_range);

@@ -25,7 +25,8 @@ struct TileFrusta {
     rect: vec4<f32>,
     // near [z0, z1], far [z0, z1].
     ranges: vec4<f32>,
-    // x: cluster mask (bit 0 near, bit 1 far).
+    // x: cluster mask (bit 0 near, bit 1 far); yz: the range of the tile's subregion's VPLs
+    // in the partition's order.
     info: vec4<u32>,
 }
 

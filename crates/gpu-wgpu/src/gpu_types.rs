@@ -298,7 +298,8 @@ pub struct GpuTileFrusta {
     pub rect: [f32; 4],
     /// Near cluster [z0, z1] (xy), far cluster [z0, z1] (zw).
     pub ranges: [f32; 4],
-    /// Cluster mask (x: bit 0 near, bit 1 far; 0 = no sample in the tile), unused.
+    /// Cluster mask (x: bit 0 near, bit 1 far; 0 = no sample in the tile); the range of the
+    /// tile's subregion's VPLs in the partition's order (y..z); unused (w).
     pub info: [u32; 4],
 }
 const _: () = assert!(std::mem::size_of::<GpuTileFrusta>() == 48);

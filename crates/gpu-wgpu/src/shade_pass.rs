@@ -30,6 +30,7 @@ pub(crate) const SOURCE: &str = concat!(
     include_str!("../shaders/brdf.wgsl"),
     include_str!("../shaders/gsample.wgsl"),
     include_str!("../shaders/gvpl.wgsl"),
+    include_str!("../shaders/vpl_eval.wgsl"),
     include_str!("../shaders/shade.wgsl")
 );
 const WORKGROUP: u32 = 64;

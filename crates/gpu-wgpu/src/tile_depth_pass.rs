@@ -22,6 +22,8 @@ pub struct TileDepthBuffers<'a> {
     pub pixel_list: &'a wgpu::Buffer,
     /// `GpuCullStatus` (the smallest bad pixel is recorded).
     pub status: &'a wgpu::Buffer,
+    /// The subregions' VPL ranges (`partition_pass`): each tile's is copied to its frusta.
+    pub sub_offsets: &'a wgpu::Buffer,
 }
 
 /// The compiled depth pipeline.
@@ -54,6 +56,7 @@ impl TileDepthPass {
                 buffers.frusta,
                 buffers.pixel_list,
                 buffers.status,
+                buffers.sub_offsets,
             ],
             tiles,
         );

@@ -155,6 +155,7 @@ impl TiledCuller {
                     frusta: &frusta,
                     pixel_list: &pixel_list,
                     status: &status,
+                    sub_offsets: &partition.sub_offsets,
                 },
                 grid,
             );
@@ -167,7 +168,6 @@ impl TiledCuller {
                     &bounds.buffer,
                     &offsets,
                     &no_entries,
-                    &partition.sub_offsets,
                     &partition.order,
                 ],
                 grid,
@@ -199,7 +199,6 @@ impl TiledCuller {
                     &bounds.buffer,
                     &offsets,
                     &lists,
-                    &partition.sub_offsets,
                     &partition.order,
                 ],
                 grid,
@@ -229,7 +228,7 @@ impl TiledCuller {
         &self,
         ctx: &GpuContext,
         encoder: &mut wgpu::CommandEncoder,
-        buffers: [&wgpu::Buffer; 7],
+        buffers: [&wgpu::Buffer; 6],
         tiles: Grid,
     ) {
         ctx.encode_dispatch(encoder, "tiled cull", &self.pipeline, &buffers, tiles);
