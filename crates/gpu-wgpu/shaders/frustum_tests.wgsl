@@ -47,3 +47,24 @@ fn bound_box(b: Bound, rect: vec4<f32>, out: ptr<function, BoundBox>) -> bool {
     }
     return false;
 }
+
+// Which of a Modified HalfZ tile's clusters (x near, y far; TileFrusta of tiles.wgsl) the
+// bound may touch: the whole tile first, then each cluster.
+fn tile_hits(b: Bound, f: TileFrusta, mask: u32) -> vec2<u32> {
+    var test: BoundBox;
+    if !bound_box(b, f.rect, &test) {
+        return vec2<u32>(0u);
+    }
+    let has_near = (mask & 1u) != 0u;
+    let has_far = (mask & 2u) != 0u;
+    let whole = vec2<f32>(select(f.ranges.z, f.ranges.x, has_near),
+                          select(f.ranges.y, f.ranges.w, has_far));
+    if !box_meets(test, whole) {
+        return vec2<u32>(0u);
+    }
+    if mask != 3u {
+        return vec2<u32>(mask & 1u, mask >> 1u);
+    }
+    return vec2<u32>(select(0u, 1u, box_meets(test, f.ranges.xy)),
+                     select(0u, 1u, box_meets(test, f.ranges.zw)));
+}

@@ -7,18 +7,6 @@
 // src/gpu_types.rs; one invocation per pixel, linear workgroup index wid.y * num_workgroups.x
 // + wid.x (buffers::Grid).
 
-struct ShadeParams {
-    width: u32,
-    height: u32,
-    pixel_count: u32,
-    vpl_count: u32,
-    list_count: u32,
-    delta: f32,
-    // K^2 of the interleaved sampling (section 6).
-    scale: f32,
-    pad: u32,
-}
-
 @group(0) @binding(0) var<uniform> params: ShadeParams;
 @group(0) @binding(1) var<storage, read> samples: array<Sample>;
 @group(0) @binding(2) var<storage, read> vpls: array<Vpl>;

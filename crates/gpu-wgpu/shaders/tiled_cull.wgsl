@@ -32,27 +32,6 @@ var<workgroup> flushed_count: vec2<u32>;
 var<workgroup> tile_mask: u32;
 var<workgroup> sub_range: vec2<u32>;
 
-// Which clusters (x near, y far) the bound may touch: whole tile first, then each cluster
-// (frustum_tests.wgsl).
-fn hits(b: Bound, f: TileFrusta, mask: u32) -> vec2<u32> {
-    var test: BoundBox;
-    if !bound_box(b, f.rect, &test) {
-        return vec2<u32>(0u);
-    }
-    let has_near = (mask & 1u) != 0u;
-    let has_far = (mask & 2u) != 0u;
-    let whole = vec2<f32>(select(f.ranges.z, f.ranges.x, has_near),
-                          select(f.ranges.y, f.ranges.w, has_far));
-    if !box_meets(test, whole) {
-        return vec2<u32>(0u);
-    }
-    if mask != 3u {
-        return vec2<u32>(mask & 1u, mask >> 1u);
-    }
-    return vec2<u32>(select(0u, 1u, box_meets(test, f.ranges.xy)),
-                     select(0u, 1u, box_meets(test, f.ranges.zw)));
-}
-
 // Copies the staged lists to the output after what was flushed before.
 fn flush(t: u32, lid: u32) {
     let n = staged_count;
@@ -104,7 +83,7 @@ fn main(
         var hit = vec2<u32>(0u);
         if j < range.y {
             i = order[j];
-            hit = hits(bounds[i], f, mask);
+            hit = tile_hits(bounds[i], f, mask);
         }
         // Inclusive prefix sum of the hits (Hillis-Steele).
         scan[lid] = hit;

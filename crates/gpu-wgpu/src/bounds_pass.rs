@@ -44,6 +44,8 @@ pub struct BoundsSettings<'a> {
 pub struct GpuBounds {
     pub buffer: wgpu::Buffer,
     pub box_bounds: wgpu::Buffer,
+    /// The VPLs as uploaded (`GpuVpl`), for the passes that shade them.
+    pub vpls: wgpu::Buffer,
     pub count: usize,
 }
 
@@ -101,6 +103,7 @@ impl BoundsPass {
         Ok(GpuBounds {
             buffer: bounds,
             box_bounds,
+            vpls: vpl_buffer,
             count: vpls.len(),
         })
     }

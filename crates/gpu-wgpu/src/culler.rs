@@ -8,8 +8,8 @@ use crate::context::{GpuContext, GpuError};
 use crate::cull_frame::CullFrame;
 use crate::gpu_lists::{read_lists, GpuLightLists};
 use crate::none_cull_pass::NoneCuller;
-use crate::tiled_cull_pass::TiledCuller;
-use slc_core::{CullInput, Culler, Layout, LightLists, Strategy};
+use crate::tiled_cull_pass::{TiledCuller, TiledFrame};
+use slc_core::{CullInput, Culler, GlossyBound, Layout, LightLists, Strategy};
 
 /// The pipelines of every strategy.
 pub struct GpuCuller {
@@ -60,6 +60,55 @@ impl GpuCuller {
             (Layout::Unculled, _) => self.none.cull_frame(ctx, frame),
             (Layout::Tiled, glossy) => self.tiled.cull_frame(ctx, frame, glossy),
             (Layout::Clustered, glossy) => self.clustered.cull_frame(ctx, frame, glossy),
+        }
+    }
+}
+
+/// What a frame's culling step leaves for its shading step (`GpuRenderer`): the frusta of a
+/// tiled strategy, culled and shaded in one pass (`tiled_shade_pass`, the paper's Fig. 2),
+/// or the lists of the others (clustered, tight, unculled), shaded by `shade_pass`.
+pub enum FrameLists {
+    Tiles(TiledFrame),
+    Lists(GpuLightLists),
+}
+
+impl GpuCuller {
+    /// Whether a frame of `strategy` is culled and shaded in one pass: the tiled strategies
+    /// but the tight one.
+    pub fn one_pass(strategy: Strategy) -> bool {
+        matches!(strategy.parts(), (Layout::Tiled, glossy) if glossy != GlossyBound::Tight)
+    }
+
+    /// The culling step of a frame: [`FrameLists::Tiles`] where [`Self::one_pass`], else
+    /// [`Self::cull_frame`]'s lists.
+    pub fn prepare_frame(
+        &self,
+        ctx: &GpuContext,
+        frame: &CullFrame,
+        strategy: Strategy,
+    ) -> Result<FrameLists, GpuError> {
+        match strategy.parts() {
+            (Layout::Tiled, glossy) if Self::one_pass(strategy) => {
+                match self.tiled.prepare(ctx, frame, glossy)? {
+                    Some(tiles) => Ok(FrameLists::Tiles(tiles)),
+                    None => Ok(FrameLists::Lists(crate::gpu_lists::no_lists(ctx)?)),
+                }
+            }
+            _ => Ok(FrameLists::Lists(self.cull_frame(ctx, frame, strategy)?)),
+        }
+    }
+
+    /// The lists of a culling step, built from the frusta where it kept only those (for the
+    /// metrics).
+    pub fn frame_lists(
+        &self,
+        ctx: &GpuContext,
+        frame: &CullFrame,
+        lists: &FrameLists,
+    ) -> Result<GpuLightLists, GpuError> {
+        match lists {
+            FrameLists::Tiles(tiles) => self.tiled.lists(ctx, frame, tiles),
+            FrameLists::Lists(lists) => Ok(lists.clone()),
         }
     }
 }

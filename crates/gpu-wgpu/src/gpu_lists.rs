@@ -6,7 +6,8 @@ use slc_core::{LightLists, NO_LIST};
 
 /// Light lists on the GPU in [`LightLists`]' CSR layout: list `l` holds
 /// `indices[offsets[l]..offsets[l + 1]]` (VPL indices), pixel `p` shades with list
-/// `pixel_list[p]` ([`NO_LIST`]: none). Empty lists are allowed.
+/// `pixel_list[p]` ([`NO_LIST`]: none). Empty lists are allowed. Clones share the buffers.
+#[derive(Clone)]
 pub struct GpuLightLists {
     pub offsets: wgpu::Buffer,
     pub indices: wgpu::Buffer,

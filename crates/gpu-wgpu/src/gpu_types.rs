@@ -445,7 +445,7 @@ pub fn gpu_position(sample: Option<&GSample>) -> [f32; 4] {
     sample.map_or([0.0; 4], |s| s.position.extend(1.0).to_array())
 }
 
-/// Parameters of the shading pass. Keep in sync with `ShadeParams` in `shaders/shade.wgsl`.
+/// Parameters of the shading pass. Keep in sync with `ShadeParams` in `shaders/vpl_eval.wgsl`.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
 pub struct GpuShadeParams {

@@ -88,6 +88,7 @@ pub mod shade_pass;
 pub mod tight_cull_pass;
 pub mod tile_depth_pass;
 pub mod tiled_cull_pass;
+pub mod tiled_shade_pass;
 pub mod visibility_pass;
 pub mod vpl_gen_pass;
 pub mod vsgl_readback;

@@ -1,7 +1,8 @@
 //! The GPU backend of the renderer API: [`GpuRenderer`] runs every step of
 //! `slc_core::Renderer` on wgpu — the rasterized G-buffer, the RSMs (also the shadow maps),
-//! VPL generation, direct light, culling by any strategy with light lists that stay on the
-//! GPU, shading and the cross bilateral filter — on a device it opens
+//! VPL generation, direct light, culling by any strategy (the tiled ones culled and shaded
+//! in one pass, [`crate::tiled_shade_pass`]; the others with light lists that stay on the
+//! GPU), shading and the cross bilateral filter — on a device it opens
 //! ([`GpuRenderer::new`]) or one the host owns ([`GpuRenderer::from_context`] with
 //! [`GpuContext::from_device`]). What comes back to the CPU: the VPLs once per frame (the
 //! culler's bounds pass reads them from the CPU), the images, and the G-buffer and lists
@@ -15,16 +16,17 @@
 //! execution times of the same passes come beside them.
 use crate::context::{GpuContext, GpuError};
 use crate::cull_frame::CullFrame;
-use crate::culler::GpuCuller;
+use crate::culler::{FrameLists, GpuCuller};
 use crate::denoise_pass::{BilateralSettings, DenoisePass, Guide};
 use crate::direct_pass::DirectPass;
 use crate::gbuffer_pass::{GbufferPass, GpuGBuffer};
-use crate::gpu_lists::{read_lists, GpuLightLists};
+use crate::gpu_lists::read_lists;
 use crate::ism_pass::{caster_points, GpuCaster, IsmPass, IsmSettings};
-use crate::renderer_notes::{frame_notes, vsgl_note, METRICS_NOTE};
+use crate::renderer_notes::{frame_notes, vsgl_note, METRICS_NOTE, ONE_PASS_NOTE};
 use crate::rsm_pass::{GpuRsm, RsmPass};
 use crate::scene_upload::GpuScene;
 use crate::shade_pass::{read_image, ShadePass};
+use crate::tiled_shade_pass::TiledShadePass;
 use crate::vpl_gen_pass::{VplGenPass, VplLobes};
 use crate::vsgl_readback::{cpu_rsm, vsgl_input};
 use crate::vsgl_shade_pass::{GpuVsgls, VsglShadePass};
@@ -36,8 +38,8 @@ use slc_core::render::pass_seed;
 use slc_core::rng::{stream, uniform};
 use slc_core::shader::SampledLights;
 use slc_core::{
-    BackendInfo, Camera, Capabilities, CullInput, CullMetrics, Culler, GBuffer, Image,
-    Interleaving, PreparedFrame, Progress, Renderer, Scene, Strategy, Vpl,
+    BackendInfo, Camera, Capabilities, CullInput, CullMetrics, GBuffer, Image, Interleaving,
+    PreparedFrame, Progress, Renderer, Scene, Strategy, Vpl,
 };
 use slc_cpu_ref::sampled_lights::sample_vsgls;
 use slc_cpu_ref::vsgl::{bidirectional_importance, ImportanceMap, MipRsm};
@@ -110,6 +112,7 @@ pub struct GpuRenderer {
     direct: DirectPass,
     culler: GpuCuller,
     shader: ShadePass,
+    tiled_shader: TiledShadePass,
     vsgl_shader: VsglShadePass,
     ism: IsmPass,
     denoiser: DenoisePass,
@@ -131,6 +134,7 @@ impl GpuRenderer {
             direct: DirectPass::new(&ctx)?,
             culler: GpuCuller::new(&ctx)?,
             shader: ShadePass::new(&ctx)?,
+            tiled_shader: TiledShadePass::new(&ctx),
             vsgl_shader: VsglShadePass::new(&ctx)?,
             ism: IsmPass::new(&ctx)?,
             denoiser: DenoisePass::new(&ctx)?,
@@ -172,7 +176,7 @@ impl GpuRenderer {
 impl Renderer for GpuRenderer {
     type Scene = GpuLoadedScene;
     type Prepared = GpuPrepared;
-    type Lists = GpuLightLists;
+    type Lists = FrameLists;
     type Image = wgpu::Buffer;
 
     fn name(&self) -> &'static str {
@@ -191,10 +195,16 @@ impl Renderer for GpuRenderer {
 
     fn info(&self, settings: &RenderSettings) -> BackendInfo {
         let mut notes = frame_notes(&self.ctx);
-        match settings.method {
-            Method::Stochastic(s) if s.metrics => notes.push(METRICS_NOTE.into()),
-            Method::Vsgl(_) => notes.push(vsgl_note(settings.visibility)),
-            _ => {}
+        if let Method::Stochastic(s) = settings.method {
+            if GpuCuller::one_pass(s.strategy) {
+                notes.push(ONE_PASS_NOTE.into());
+            }
+            if s.metrics {
+                notes.push(METRICS_NOTE.into());
+            }
+        }
+        if let Method::Vsgl(_) = settings.method {
+            notes.push(vsgl_note(settings.visibility));
         }
         BackendInfo {
             backend: "gpu",
@@ -290,11 +300,13 @@ impl Renderer for GpuRenderer {
         strategy: Strategy,
         delta: f32,
         interleaving: Interleaving,
-    ) -> Result<GpuLightLists, RenderError> {
+    ) -> Result<FrameLists, RenderError> {
         self.step("culling", || {
-            self.culler
-                .culler(&self.ctx, strategy)
-                .cull(&Self::cull_frame(p, delta, interleaving))
+            self.culler.prepare_frame(
+                &self.ctx,
+                &Self::cull_frame(p, delta, interleaving),
+                strategy,
+            )
         })
     }
 
@@ -302,7 +314,7 @@ impl Renderer for GpuRenderer {
         &self,
         _loaded: &GpuLoadedScene,
         p: &GpuPrepared,
-        lists: &GpuLightLists,
+        lists: &FrameLists,
         delta: f32,
         interleaving: Interleaving,
         visibility: bool,
@@ -311,15 +323,21 @@ impl Renderer for GpuRenderer {
         if visibility {
             return Err(self.unsupported("shadow rays between VPLs and pixels (visibility)"));
         }
-        let image = self.step("shading", || {
-            self.shader.shade_gpu_gbuffer_on_gpu(
+        let image = self.step("shading", || match lists {
+            FrameLists::Tiles(tiles) => self.tiled_shader.shade(
+                &self.ctx,
+                &Self::cull_frame(p, delta, interleaving),
+                &p.gbuffer.samples,
+                tiles,
+            ),
+            FrameLists::Lists(lists) => self.shader.shade_gpu_gbuffer_on_gpu(
                 &self.ctx,
                 &p.gbuffer,
                 &p.vpls,
                 delta,
                 interleaving,
                 lists,
-            )
+            ),
         })?;
         // One dispatch shades every pixel: they are done together.
         progress(u64::from(p.gbuffer.width) * u64::from(p.gbuffer.height));
@@ -348,10 +366,14 @@ impl Renderer for GpuRenderer {
     fn measure(
         &self,
         p: &GpuPrepared,
-        lists: &GpuLightLists,
+        lists: &FrameLists,
         delta: f32,
         interleaving: Interleaving,
     ) -> Result<CullMetrics, RenderError> {
+        let lists = self
+            .culler
+            .frame_lists(&self.ctx, &Self::cull_frame(p, delta, interleaving), lists)
+            .map_err(gpu)?;
         let input = CullInput {
             gbuffer: self.cpu_gbuffer(p)?,
             camera: &p.camera,
@@ -359,7 +381,7 @@ impl Renderer for GpuRenderer {
             delta,
             interleaving,
         };
-        let read = read_lists(&self.ctx, lists).map_err(gpu)?;
+        let read = read_lists(&self.ctx, &lists).map_err(gpu)?;
         Ok(slc_cull::metrics::measure(&input, &read)?)
     }
 

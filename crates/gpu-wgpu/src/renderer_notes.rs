@@ -35,9 +35,16 @@ pub fn frame_notes(ctx: &GpuContext) -> Vec<String> {
     ]
 }
 
+/// The note of frames of a tiled strategy (but `tight`), culled and shaded in one pass.
+pub const ONE_PASS_NOTE: &str = "tiled culling and shading in one pass (the paper's Fig. 2, \
+     tiled_shade): 'culling' times the bounds, partition and tile-depth passes, 'shading' the \
+     one pass that tests each tile's VPLs and shades its pixels from the hits in workgroup \
+     memory; no light list is stored or read back";
+
 /// The note of frames whose culling metrics were measured.
 pub const METRICS_NOTE: &str = "metrics were measured by brute force on the CPU against the \
-     GPU's light lists and G-buffer, read back after the timed passes";
+     GPU's light lists and G-buffer, read back after the timed passes (a one-pass tiled \
+     frame's lists built then by the list passes, which list the same VPLs)";
 
 /// The note of a GPU VSGL frame: what ran where, and with `visibility` what the GPU used
 /// for it.

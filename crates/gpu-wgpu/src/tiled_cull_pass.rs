@@ -10,13 +10,13 @@
 //! One count read back between the two culling dispatches sizes the list buffer exactly; a
 //! total beyond the storage-binding limit is refused ([`GpuError::BufferTooLarge`]).
 //! [`TiledCuller::cull_on_gpu`] leaves the lists on the GPU for `shade_pass` instead.
-use crate::bounds_pass::{BoundsPass, BoundsSettings};
+use crate::bounds_pass::{BoundsPass, BoundsSettings, GpuBounds};
 use crate::buffers::{output, uniform, upload, Grid};
 use crate::context::{GpuContext, GpuError};
 use crate::cull_frame::{check_input, cull_params, read_status, tile_grid, CullFrame, CullSizes};
 use crate::gpu_lists::GpuLightLists;
 use crate::gpu_lists::{no_lists, read_lists};
-use crate::gpu_types::{GpuCullStatus, GpuTileFrusta, CULL_COUNT, CULL_WRITE};
+use crate::gpu_types::{GpuCullParams, GpuCullStatus, GpuTileFrusta, CULL_COUNT, CULL_WRITE};
 use crate::partition_pass::PartitionPass;
 use crate::scan_pass::ScanPass;
 use crate::tight_cull_pass::{BaseLayout, TightRefiner};
@@ -81,20 +81,38 @@ impl TiledCuller {
         self.cull_frame(ctx, &CullFrame::upload(ctx, input)?, glossy)
     }
 
-    /// Culls `frame` without a readback: the lists stay on the GPU in the CSR layout the
-    /// shading pass reads ([`GpuLightLists`]), two per tile (near and far cluster, possibly
-    /// empty), each pixel pointing to its cluster's list ([`slc_core::NO_LIST`] without a sample).
+    /// Culls `frame` without reading the lists back: they stay on the GPU in the CSR layout
+    /// the shading pass reads ([`GpuLightLists`]), two per tile (near and far cluster,
+    /// possibly empty), each pixel pointing to its cluster's list ([`slc_core::NO_LIST`]
+    /// without a sample). With [`GlossyBound::Tight`] each list is then refined per block
+    /// (`tight_cull_pass`).
     pub fn cull_frame(
         &self,
         ctx: &GpuContext,
         frame: &CullFrame,
         glossy: GlossyBound,
     ) -> Result<GpuLightLists, GpuError> {
+        match self.prepare(ctx, frame, glossy)? {
+            Some(tiles) => self.lists(ctx, frame, &tiles),
+            None => no_lists(ctx),
+        }
+    }
+
+    /// The passes before the lists: per-VPL bounds, the subregions' VPLs and the Modified
+    /// HalfZ frusta of every tile (with each pixel's cluster), encoded and submitted; `None`
+    /// for a frame without pixels. Errors on invalid input and on buffers beyond the
+    /// device's limits; faults on the GPU are read with the lists or the shaded image.
+    pub fn prepare(
+        &self,
+        ctx: &GpuContext,
+        frame: &CullFrame,
+        glossy: GlossyBound,
+    ) -> Result<Option<TiledFrame>, GpuError> {
         let CullSizes {
             pixels, vpl_count, ..
         } = check_input(frame)?;
         if pixels == 0 {
-            return no_lists(ctx);
+            return Ok(None);
         }
         let (width, height) = (frame.width, frame.height);
         let view = CullView::new(frame.camera, width, height)
@@ -112,30 +130,20 @@ impl TiledCuller {
             },
         )?;
         let tiles = tile_grid(frame, 2)?;
-        let tile_count = tiles.2;
-        let lists_count = 2 * tile_count;
         let grid = Grid::new(
-            u64::from(tile_count),
+            u64::from(tiles.2),
             ctx.limits.max_compute_workgroups_per_dimension,
         )?;
-        let positions = frame.positions.clone();
-        let frusta = output::<GpuTileFrusta>(ctx, "tile frusta", tile_count as usize)?;
+        let frusta = output::<GpuTileFrusta>(ctx, "tile frusta", tiles.2 as usize)?;
         let pixel_list = output::<u32>(ctx, "pixel lists", pixels as usize)?;
-        let offsets = output::<u32>(ctx, "list offsets", lists_count as usize + 1)?;
         let status = upload(ctx, "cull status", &[GpuCullStatus::CLEAR])?;
-        let count_params = uniform(
-            ctx,
-            "cull params (count)",
-            &cull_params(frame, &view, tiles, CULL_COUNT),
-        );
-        // Counting writes no list entry: a placeholder fills the binding.
-        let no_entries = output::<u32>(ctx, "no lists", 1)?;
+        let params = cull_params(frame, &view, tiles, CULL_COUNT);
         let k = frame.interleaving.k;
-        let partition = ctx.scoped("tiled cull (count)", || {
+        let partition = ctx.scoped("tile depth", || {
             let mut encoder = ctx
                 .device
                 .create_command_encoder(&wgpu::CommandEncoderDescriptor {
-                    label: Some("tiled cull (count)"),
+                    label: Some("tile depth"),
                 });
             let partition = self.partition.encode(
                 ctx,
@@ -150,8 +158,8 @@ impl TiledCuller {
                 ctx,
                 &mut encoder,
                 &TileDepthBuffers {
-                    params: &count_params,
-                    positions: &positions,
+                    params: &uniform(ctx, "cull params (depth)", &params),
+                    positions: &frame.positions,
                     frusta: &frusta,
                     pixel_list: &pixel_list,
                     status: &status,
@@ -159,78 +167,114 @@ impl TiledCuller {
                 },
                 grid,
             );
-            self.encode_cull(
-                ctx,
-                &mut encoder,
-                [
-                    &count_params,
-                    &frusta,
-                    &bounds.buffer,
-                    &offsets,
-                    &no_entries,
-                    &partition.order,
-                ],
-                grid,
-            );
-            self.scan
-                .encode(ctx, &mut encoder, &offsets, lists_count, &status);
             ctx.queue.submit([encoder.finish()]);
             Ok(partition)
         })?;
-        let total = read_status(ctx, &status, width)?;
-        let lists = output::<u32>(ctx, "light lists", total as usize)?;
-        let write_params = uniform(
-            ctx,
-            "cull params (write)",
-            &cull_params(frame, &view, tiles, CULL_WRITE),
-        );
-        ctx.scoped("tiled cull (write)", || {
-            let mut encoder = ctx
-                .device
-                .create_command_encoder(&wgpu::CommandEncoderDescriptor {
-                    label: Some("tiled cull (write)"),
-                });
-            self.encode_cull(
+        Ok(Some(TiledFrame {
+            bounds,
+            order: partition.order,
+            frusta,
+            pixel_list,
+            status,
+            params,
+            grid,
+            pixels,
+            glossy,
+        }))
+    }
+
+    /// The lists of a prepared frame: counted per cluster, scanned, one count read back to
+    /// size the list buffer, written; refined per block for [`GlossyBound::Tight`] (which
+    /// rewrites the frame's pixel lists in place: `tiles` is spent then).
+    pub fn lists(
+        &self,
+        ctx: &GpuContext,
+        frame: &CullFrame,
+        tiles: &TiledFrame,
+    ) -> Result<GpuLightLists, GpuError> {
+        let lists_count = 2 * tiles.params.tile_count;
+        let offsets = output::<u32>(ctx, "list offsets", lists_count as usize + 1)?;
+        // Counting writes no list entry: a placeholder fills the binding.
+        let no_entries = output::<u32>(ctx, "no lists", 1)?;
+        let run = |mode: u32, entries: &wgpu::Buffer| {
+            let label = if mode == CULL_COUNT {
+                "tiled cull (count)"
+            } else {
+                "tiled cull (write)"
+            };
+            let params = uniform(
                 ctx,
-                &mut encoder,
-                [
-                    &write_params,
-                    &frusta,
-                    &bounds.buffer,
-                    &offsets,
-                    &lists,
-                    &partition.order,
-                ],
-                grid,
+                label,
+                &GpuCullParams {
+                    mode,
+                    ..tiles.params
+                },
             );
-            ctx.queue.submit([encoder.finish()]);
-            Ok(())
-        })?;
+            ctx.scoped(label, || {
+                let mut encoder = ctx
+                    .device
+                    .create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some(label) });
+                ctx.encode_dispatch(
+                    &mut encoder,
+                    "tiled cull",
+                    &self.pipeline,
+                    &[
+                        &params,
+                        &tiles.frusta,
+                        &tiles.bounds.buffer,
+                        &offsets,
+                        entries,
+                        &tiles.order,
+                    ],
+                    tiles.grid,
+                );
+                if mode == CULL_COUNT {
+                    self.scan
+                        .encode(ctx, &mut encoder, &offsets, lists_count, &tiles.status);
+                }
+                ctx.queue.submit([encoder.finish()]);
+                Ok(())
+            })
+        };
+        run(CULL_COUNT, &no_entries)?;
+        let total = read_status(ctx, &tiles.status, frame.width)?;
+        let entries = output::<u32>(ctx, "light lists", total as usize)?;
+        run(CULL_WRITE, &entries)?;
         let lists = GpuLightLists {
             offsets,
-            indices: lists,
-            pixel_list,
+            indices: entries,
+            pixel_list: tiles.pixel_list.clone(),
             list_count: lists_count,
             entries: total,
-            pixels,
+            pixels: tiles.pixels,
         };
-        if glossy != GlossyBound::Tight {
+        if tiles.glossy != GlossyBound::Tight {
             return Ok(lists);
         }
         let layout = BaseLayout {
             clusters: 2,
             split: true,
         };
-        self.tight.refine(ctx, frame, lists, &bounds, layout)
+        self.tight.refine(ctx, frame, lists, &tiles.bounds, layout)
     }
+}
 
-    fn encode_cull(
-        &self,
-        ctx: &GpuContext,
-        encoder: &mut wgpu::CommandEncoder,
-        buffers: [&wgpu::Buffer; 6],
-        tiles: Grid,
-    ) {
-        ctx.encode_dispatch(encoder, "tiled cull", &self.pipeline, &buffers, tiles);
-    }
+/// A tiled culling up to its frusta ([`TiledCuller::prepare`]): what the list passes
+/// ([`TiledCuller::lists`]) and the one-pass shading (`tiled_shade_pass`) read.
+pub struct TiledFrame {
+    pub bounds: GpuBounds,
+    /// The subregions' VPLs in ascending order (`partition_pass`); each tile's range is in
+    /// its frusta.
+    pub order: wgpu::Buffer,
+    /// `GpuTileFrusta` per tile.
+    pub frusta: wgpu::Buffer,
+    /// Each pixel's cluster list (2 t + 0 near, 2 t + 1 far; `NO_LIST` without a sample).
+    pub pixel_list: wgpu::Buffer,
+    /// The fault record of the passes so far (`GpuCullStatus`).
+    pub status: wgpu::Buffer,
+    /// The tile grid and culling view.
+    pub params: GpuCullParams,
+    pub grid: Grid,
+    pub pixels: u32,
+    pub glossy: GlossyBound,
 }

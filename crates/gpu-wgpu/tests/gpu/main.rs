@@ -19,5 +19,6 @@ mod rng;
 mod shade;
 mod tight;
 mod tiled;
+mod tiled_shade;
 mod vsgl;
 mod vsgl_visibility;

@@ -1,0 +1,91 @@
+//! Tiled culling and shading in one pass on the GPU (`shaders/tiled_shade.wgsl`, the
+//! paper's Fig. 2): after the bounds, partition and tile-depth passes of
+//! [`TiledCuller::prepare`](crate::tiled_cull_pass::TiledCuller::prepare), one workgroup
+//! per tile tests its subregion's VPLs 256 at a time against the tile's frusta and shades
+//! each pixel from the hits of its cluster, kept in workgroup memory. No list is counted,
+//! scanned, stored or read back; the image equals `shade_pass` over the tiled culler's lists
+//! (the same VPLs in the same order).
+//!
+//! This is the tiled strategies' frame path. The list passes stay where lists are needed:
+//! the brute-force metrics, the clustered layout (32 slices per tile) and the tight
+//! strategies' per-block refinement.
+use crate::buffers::{output, uniform};
+use crate::context::{GpuContext, GpuError};
+use crate::cull_frame::{read_status, CullFrame};
+use crate::gpu_types::GpuShadeParams;
+use crate::tiled_cull_pass::TiledFrame;
+
+/// The tile grid, the frusta tests, the BRDF and one VPL's contribution, then the kernel.
+pub(crate) const SOURCE: &str = concat!(
+    include_str!("../shaders/tiles.wgsl"),
+    include_str!("../shaders/bound.wgsl"),
+    include_str!("../shaders/frustum_tests.wgsl"),
+    include_str!("../shaders/fresnel_ggx.wgsl"),
+    include_str!("../shaders/frame.wgsl"),
+    include_str!("../shaders/brdf.wgsl"),
+    include_str!("../shaders/gsample.wgsl"),
+    include_str!("../shaders/gvpl.wgsl"),
+    include_str!("../shaders/vpl_eval.wgsl"),
+    include_str!("../shaders/tiled_shade.wgsl")
+);
+
+/// The compiled one-pass pipeline.
+pub struct TiledShadePass {
+    pipeline: wgpu::ComputePipeline,
+}
+
+impl TiledShadePass {
+    pub fn new(ctx: &GpuContext) -> Self {
+        Self {
+            pipeline: ctx.compute_pipeline("tiled shade", SOURCE),
+        }
+    }
+
+    /// The indirect image of `frame` (its `GpuSample`s in `samples`), culled as `tiles` and
+    /// shaded in the same pass: RGB, 3 f32 per pixel row-major, left on the GPU. The culling
+    /// passes' fault record is read afterwards (16 bytes): a sample behind the camera or a
+    /// bound beyond f32 is an error, as with the lists.
+    pub fn shade(
+        &self,
+        ctx: &GpuContext,
+        frame: &CullFrame,
+        samples: &wgpu::Buffer,
+        tiles: &TiledFrame,
+    ) -> Result<wgpu::Buffer, GpuError> {
+        let image = output::<f32>(ctx, "indirect image", 3 * tiles.pixels as usize)?;
+        let params = GpuShadeParams {
+            width: frame.width,
+            height: frame.height,
+            pixel_count: tiles.pixels,
+            vpl_count: tiles.bounds.count as u32,
+            list_count: 0,
+            delta: frame.delta,
+            scale: frame.interleaving.scale(),
+            pad: 0,
+        };
+        ctx.scoped("tiled shade", || {
+            let cull = uniform(ctx, "tiled shade cull params", &tiles.params);
+            let shade = uniform(ctx, "tiled shade params", &params);
+            ctx.dispatch(
+                "tiled shade",
+                &self.pipeline,
+                &[
+                    &cull,
+                    &shade,
+                    &tiles.frusta,
+                    &tiles.bounds.buffer,
+                    &tiles.order,
+                    &tiles.bounds.vpls,
+                    samples,
+                    &frame.positions,
+                    &tiles.pixel_list,
+                    &image,
+                ],
+                tiles.grid,
+            );
+            Ok(())
+        })?;
+        read_status(ctx, &tiles.status, frame.width)?;
+        Ok(image)
+    }
+}

@@ -1,0 +1,97 @@
+//! The one-pass tiled culling and shading (`tiled_shade_pass`) against the tiled culler's
+//! lists shaded by `shade_pass`: the same image, pixel for pixel, for every tiled strategy,
+//! several K and the edge cases (a frame without pixels, VPLs that reach nothing).
+use crate::common::gpu;
+use crate::tiled::frame;
+use slc_core::{builtin, CullInput, GlossyBound, Interleaving, Vpl};
+use slc_gpu_wgpu::buffers::upload;
+use slc_gpu_wgpu::cull_frame::CullFrame;
+use slc_gpu_wgpu::gpu_types::GpuSample;
+use slc_gpu_wgpu::shade_pass::{read_image, ShadePass};
+use slc_gpu_wgpu::tiled_cull_pass::TiledCuller;
+use slc_gpu_wgpu::tiled_shade_pass::TiledShadePass;
+use slc_gpu_wgpu::GpuContext;
+
+/// The one-pass image of `input` with `glossy` bounds, and the image of its lists.
+fn both(
+    ctx: &GpuContext,
+    input: &CullInput,
+    glossy: GlossyBound,
+) -> (slc_core::Image, slc_core::Image) {
+    let culler = TiledCuller::new(ctx).unwrap();
+    let frame = CullFrame::upload(ctx, input).unwrap();
+    let samples: Vec<GpuSample> = input
+        .gbuffer
+        .samples
+        .iter()
+        .map(|s| GpuSample::new(s.as_ref()))
+        .collect();
+    let samples = upload(ctx, "samples", &samples).unwrap();
+    let tiles = culler.prepare(ctx, &frame, glossy).unwrap().unwrap();
+    let one = TiledShadePass::new(ctx)
+        .shade(ctx, &frame, &samples, &tiles)
+        .unwrap();
+    let one = read_image(ctx, &one, frame.width, frame.height).unwrap();
+    let lists = culler.cull_frame(ctx, &frame, glossy).unwrap();
+    let want = ShadePass::new(ctx)
+        .unwrap()
+        .shade_gpu_lists(ctx, input, &lists)
+        .unwrap();
+    (one, want)
+}
+
+#[test]
+fn one_pass_shades_exactly_the_lists() {
+    let Some(ctx) = gpu() else { return };
+    let scene = builtin("default").unwrap();
+    let camera = scene.camera_or_default();
+    let (gbuffer, vpls) = frame(&scene, &camera, (72, 50), 16);
+    for k in [1, 3, 8] {
+        for glossy in [
+            GlossyBound::Sphere,
+            GlossyBound::EnclosingSphere,
+            GlossyBound::Ellipsoid,
+        ] {
+            let input = CullInput {
+                gbuffer: &gbuffer,
+                camera: &camera,
+                vpls: &vpls,
+                delta: 1e-3,
+                interleaving: Interleaving { k, seed: 6 },
+            };
+            let (one, want) = both(&ctx, &input, glossy);
+            let lit = want.pixels.iter().filter(|p| p.max_element() > 0.0).count();
+            assert!(lit * 2 > want.pixels.len(), "{glossy:?} K {k}: {lit} lit");
+            assert_eq!(one.pixels, want.pixels, "{glossy:?} K {k}");
+        }
+    }
+}
+
+/// VPLs whose bounds reach no tile (flux zero, or far behind the camera) shade nothing; no
+/// VPL at all, the same.
+#[test]
+fn one_pass_without_reachable_vpls_is_black() {
+    let Some(ctx) = gpu() else { return };
+    let scene = builtin("default").unwrap();
+    let camera = scene.camera_or_default();
+    let (gbuffer, vpls) = frame(&scene, &camera, (40, 30), 4);
+    let dark: Vec<Vpl> = vpls
+        .iter()
+        .map(|v| Vpl {
+            flux: glam::Vec3::ZERO,
+            ..*v
+        })
+        .collect();
+    for vpls in [&dark[..], &[]] {
+        let input = CullInput {
+            gbuffer: &gbuffer,
+            camera: &camera,
+            vpls,
+            delta: 1e-3,
+            interleaving: Interleaving { k: 2, seed: 1 },
+        };
+        let (one, want) = both(&ctx, &input, GlossyBound::Ellipsoid);
+        assert!(one.pixels.iter().all(|p| *p == glam::Vec3::ZERO));
+        assert_eq!(one.pixels, want.pixels);
+    }
+}
