@@ -68,7 +68,7 @@ impl GpuCuller {
 /// tiled strategy, culled and shaded in one pass (`tiled_shade_pass`, the paper's Fig. 2),
 /// or the lists of the others (clustered, tight, unculled), shaded by `shade_pass`.
 pub enum FrameLists {
-    Tiles(TiledFrame),
+    Tiles(Box<TiledFrame>),
     Lists(GpuLightLists),
 }
 
@@ -90,7 +90,7 @@ impl GpuCuller {
         match strategy.parts() {
             (Layout::Tiled, glossy) if Self::one_pass(strategy) => {
                 match self.tiled.prepare(ctx, frame, glossy)? {
-                    Some(tiles) => Ok(FrameLists::Tiles(tiles)),
+                    Some(tiles) => Ok(FrameLists::Tiles(Box::new(tiles))),
                     None => Ok(FrameLists::Lists(crate::gpu_lists::no_lists(ctx)?)),
                 }
             }
