@@ -22,9 +22,6 @@ fn vpl_material(v: Vpl) -> Material {
                     v.anisotropy.xyz, v.anisotropy.w);
 }
 
-// slc_bounds::shading_normal::MIN_COS_GEOMETRIC.
-const MIN_COS_GEOMETRIC: f32 = 1e-6;
-
 // slc_bounds::shading_normal::emitted_cosine: max(w.n, 0) where n_g = n (eq. 4), else the
 // adjoint correction (w_i.n)(w.n_g)/(w_i.n_g) above both planes.
 fn emitted_cosine(n: vec3<f32>, n_g: vec3<f32>, wi: vec3<f32>, w: vec3<f32>) -> f32 {

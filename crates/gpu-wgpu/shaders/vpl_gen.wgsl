@@ -47,7 +47,7 @@ fn reflects(t: RsmTexel) -> bool {
 }
 
 fn make_vpl(t: RsmTexel, lobe: u32, id: u32) -> Vpl {
-    return Vpl(
+    var v = Vpl(
         vec4<f32>(t.position.xyz, vpl_xi(params.seed, id)),
         t.normal_alpha,
         t.omega_i_eta,
@@ -55,12 +55,11 @@ fn make_vpl(t: RsmTexel, lobe: u32, id: u32) -> Vpl {
         t.kd,
         t.f0,
         vec4<u32>(lobe, t.info.x, id, 0u),
-        // The bound factor (w) is not formed here: the VPLs are read back and packed for
-        // culling and shading by GpuVpl::new, which forms it (1 is right only where
-        // neither tilted nor anisotropic).
         vec4<f32>(select(t.normal_alpha.xyz, t.geometric.xyz, t.geometric.w != 0.0), 1.0),
         t.anisotropy,
     );
+    v.geometric_tilt.w = vpl_bound_factor(v);
+    return v;
 }
 
 @compute @workgroup_size(64)

@@ -26,7 +26,8 @@ use slc_core::{GBuffer, GSample, Light, Scene, Vpl};
 use slc_cpu_ref::rsm::{trace_rsm, Rsm, TexelSample};
 use slc_cpu_ref::vpls::generate_vpls;
 use slc_cpu_ref::Tracer;
-use slc_gpu_wgpu::gpu_types::anisotropy_from_gpu;
+use slc_gpu_wgpu::buffers::read_back;
+use slc_gpu_wgpu::gpu_types::{anisotropy_from_gpu, GpuVpl};
 use slc_gpu_wgpu::raster_types::GpuRsmTexel;
 use slc_gpu_wgpu::rsm_pass::RsmPass;
 use slc_gpu_wgpu::scene_upload::GpuScene;
@@ -376,4 +377,44 @@ fn invalid_lights_and_resolutions_are_errors() {
         "{:?}",
         r.err()
     );
+}
+
+/// The bound factor the GPU forms for its own VPLs (`vpl_bound_factor` in gvpl.wgsl, in
+/// f32) is never below the CPU's (`GpuVpl::new`, f64) and at most 3e-4 above it, on the
+/// normal-mapped materials scene and the anisotropy scene, where it is not 1.
+#[test]
+fn gpu_vpl_bound_factors_cover_the_cpus() {
+    let Some(ctx) = gpu() else { return };
+    for (name, (scene, _)) in [("materials", materials()), ("anisotropy", anisotropy())] {
+        let gpu_scene = GpuScene::upload(&ctx, &scene).unwrap();
+        let pass = RsmPass::new(&ctx).unwrap();
+        let maps: Vec<_> = scene
+            .lights
+            .iter()
+            .map(|l| pass.render(&ctx, &gpu_scene, l, RESOLUTION).unwrap())
+            .collect();
+        let generated = VplGenPass::new(&ctx)
+            .unwrap()
+            .generate(&ctx, &maps, SEED, VplLobes::Both)
+            .unwrap();
+        let raw: Vec<GpuVpl> =
+            read_back(&ctx, "vpls", &generated.buffer, generated.count as usize).unwrap();
+        let vpls = generated.read_back(&ctx).unwrap();
+        let mut not_one = 0;
+        for (i, (v, g)) in vpls.iter().zip(&raw).enumerate() {
+            let cpu = GpuVpl::new(v, i, 1e-3).unwrap().geometric_tilt[3];
+            let gpu = g.geometric_tilt[3];
+            assert!(
+                gpu >= cpu && gpu <= cpu * (1.0 + 3e-4),
+                "{name} VPL {i} ({:?}): GPU {gpu}, CPU {cpu}",
+                v.lobe
+            );
+            not_one += usize::from(cpu != 1.0);
+        }
+        eprintln!(
+            "{name}: {} VPLs, {not_one} with a factor other than 1",
+            vpls.len()
+        );
+        assert!(not_one > 100, "{name}: {not_one}");
+    }
 }
