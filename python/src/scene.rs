@@ -84,7 +84,7 @@ impl Job for CompareJob<'_> {
         let frame = |p: &R::Prepared, indirect, (timings, gpu_timings), metrics| RenderedFrame {
             direct: p.direct().clone(),
             indirect,
-            vpl_count: p.vpls().len(),
+            vpl_count: p.vpl_count(),
             timings,
             gpu_timings,
             metrics,
@@ -171,7 +171,7 @@ impl Job for VplsJob<'_> {
             .prepare(scene, loaded, &self.options.settings, None)
             .map_err(|e| e.to_string())?;
         let mut c = VplColumns::default();
-        for v in p.vpls() {
+        for v in p.vpls().map_err(|e| e.to_string())? {
             c.position.extend(v.position.to_array());
             c.normal.extend(v.normal.to_array());
             c.omega_i.extend(v.omega_i.to_array());

@@ -151,7 +151,7 @@ impl OnBackend for Sweep<'_> {
             &device,
             f,
             &args.pipeline,
-            p.vpls().len(),
+            p.vpl_count(),
         );
         let table = (provenance, columns);
         write_outputs(args, &mut out, &table, &scene, &strategies, &points)?;

@@ -148,12 +148,12 @@ impl OnBackend for VsglSweep<'_> {
                 interleave: 1,
                 no_denoise: true,
             },
-            p.vpls().len(),
+            p.vpl_count(),
         );
         let facts = SweepFacts {
             scene: &scene.name,
             texels,
-            vpls: p.vpls().len(),
+            vpls: p.vpl_count(),
             reference_ms,
             vsgl_backend: r.name(),
         };

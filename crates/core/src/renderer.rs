@@ -89,8 +89,11 @@ impl Capabilities {
 /// A frame up to its VPLs and direct light, as any backend leaves it.
 pub trait PreparedFrame {
     fn camera(&self) -> &Camera;
-    /// The VPLs, sorted by id.
-    fn vpls(&self) -> &[Vpl];
+    /// The number of VPLs.
+    fn vpl_count(&self) -> usize;
+    /// The VPLs, sorted by id; a backend that keeps them on a device reads them back on
+    /// first use, which can fail.
+    fn vpls(&self) -> Result<&[Vpl], RenderError>;
     fn direct(&self) -> &Image;
     /// Wall-clock milliseconds of the preparing passes.
     fn timings(&self) -> &Timings;

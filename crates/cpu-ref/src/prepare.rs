@@ -7,7 +7,7 @@ use crate::gbuffer::{trace_gbuffer, PixelSample};
 use crate::rsm::{trace_rsm, Rsm, TexelSample};
 use crate::tracer::Tracer;
 use crate::vpls::generate_vpls;
-use slc_core::frame::{RenderSettings, Timings};
+use slc_core::frame::{RenderError, RenderSettings, Timings};
 use slc_core::render::pass_seed;
 use slc_core::{Camera, GBuffer, Image, PreparedFrame, Scene, Vpl};
 use std::sync::Arc;
@@ -31,8 +31,12 @@ impl PreparedFrame for CpuPrepared {
         &self.camera
     }
 
-    fn vpls(&self) -> &[Vpl] {
-        &self.vpls
+    fn vpl_count(&self) -> usize {
+        self.vpls.len()
+    }
+
+    fn vpls(&self) -> Result<&[Vpl], RenderError> {
+        Ok(&self.vpls)
     }
 
     fn direct(&self) -> &Image {

@@ -1,6 +1,6 @@
 // No culling (crates/cull/src/strategies/none.rs): every pixel with a sample gets every VPL
-// of its interleaved subregion (paper section 6). rng.wgsl and bound.wgsl prepended; one
-// invocation per VPL or pixel, whichever are more:
+// of its interleaved subregion (paper section 6). rng.wgsl, bound.wgsl and gvpl.wgsl
+// prepended; one invocation per VPL or pixel, whichever are more:
 // - VPL i becomes a bound that reaches everything (a sphere of infinite radius) recording
 //   its subregion, vpl_subregion(seed, id, K), so that partition.wgsl groups all VPLs by
 //   subregion in ascending order: subregion s's list is the partition's segment s;
@@ -20,8 +20,8 @@ struct NoneParams {
 }
 
 @group(0) @binding(0) var<uniform> params: NoneParams;
-// The VPLs' ids (Vpl::id).
-@group(0) @binding(1) var<storage, read> ids: array<u32>;
+// The VPLs (gvpl.wgsl): their ids, info.z (Vpl::id).
+@group(0) @binding(1) var<storage, read> vpls: array<Vpl>;
 // The G-buffer positions [x, y, z, 1], zero where the pixel has no sample.
 @group(0) @binding(2) var<storage, read> positions: array<vec4<f32>>;
 @group(0) @binding(3) var<storage, read_write> bounds: array<Bound>;
@@ -40,7 +40,7 @@ fn main(
         let zero = vec4<f32>(0.0);
         let everywhere = vec4<f32>(0.0, 0.0, 0.0, bitcast<f32>(0x7f800000u));
         bounds[i] = Bound(array<vec4<f32>, 3>(zero, zero, zero), everywhere, BOUND_SPHERE, i,
-                          vpl_subregion(params.seed, ids[i], params.k), 0u);
+                          vpl_subregion(params.seed, vpls[i].info.z, params.k), 0u);
     }
     if i < params.pixel_count {
         let x = i % params.width;

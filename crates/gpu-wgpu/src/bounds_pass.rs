@@ -6,10 +6,11 @@
 //! `BOUND_SLACK`. The CPU validates the VPLs (as `slc_cull` does) before upload; the GPU
 //! computes in f32 (the CPU in f64 where `slc_bounds` does), which the conformance test
 //! bounds at relative 1e-5.
-use crate::buffers::{output, read_back, uniform, upload, Grid};
+use crate::buffers::{output, read_back, uniform, Grid};
 use crate::context::{GpuContext, GpuError};
+use crate::cull_frame::FrameVpls;
 use crate::cull_types::GpuBoxBound;
-use crate::gpu_types::{GpuBound, GpuView, GpuVpl, BOUND_OVERFLOW};
+use crate::gpu_types::{GpuBound, GpuView, BOUND_OVERFLOW};
 use slc_core::{Camera, Interleaving, Vpl};
 use slc_cull::GlossyBound;
 
@@ -63,20 +64,17 @@ impl BoundsPass {
         })
     }
 
-    /// Validates and uploads `vpls`, then computes their bounds (left on the GPU).
+    /// The bounds of `vpls` (left on the GPU); VPLs on the CPU are validated and uploaded
+    /// first ([`FrameVpls::records`]).
     pub fn run(
         &self,
         ctx: &GpuContext,
-        vpls: &[Vpl],
+        vpls: FrameVpls,
         settings: &BoundsSettings,
     ) -> Result<GpuBounds, GpuError> {
         let count = u32::try_from(vpls.len())
             .map_err(|_| GpuError::Input(format!("{} VPLs exceed u32 indices", vpls.len())))?;
-        let packed = vpls
-            .iter()
-            .enumerate()
-            .map(|(i, v)| GpuVpl::new(v, i, settings.delta))
-            .collect::<Result<Vec<_>, _>>()?;
+        let vpl_buffer = vpls.records(ctx, settings.delta)?;
         let view = GpuView::new(
             settings.camera,
             settings.width,
@@ -86,7 +84,6 @@ impl BoundsPass {
             settings.interleaving,
             count,
         )?;
-        let vpl_buffer = upload(ctx, "vpls", &packed)?;
         let bounds = output::<GpuBound>(ctx, "bounds", vpls.len())?;
         let box_bounds = output::<GpuBoxBound>(ctx, "box bounds", vpls.len())?;
         let grid = Grid::for_items(ctx, u64::from(count), WORKGROUP)?;
@@ -116,7 +113,7 @@ impl BoundsPass {
         vpls: &[Vpl],
         settings: &BoundsSettings,
     ) -> Result<Vec<GpuBound>, GpuError> {
-        let gpu = self.run(ctx, vpls, settings)?;
+        let gpu = self.run(ctx, FrameVpls::Cpu(vpls), settings)?;
         let bounds: Vec<GpuBound> = read_back(ctx, "bounds", &gpu.buffer, gpu.count)?;
         if let Some(b) = bounds.iter().find(|b| b.kind == BOUND_OVERFLOW) {
             return Err(GpuError::Input(format!(

@@ -6,7 +6,8 @@
 use crate::buffers::{read_back, upload};
 use crate::context::{GpuContext, GpuError};
 use crate::gbuffer_pass::GpuGBuffer;
-use crate::gpu_types::{GpuCullParams, GpuCullStatus, FRUSTUM_SLACK, MAX_K};
+use crate::gpu_types::{GpuCullParams, GpuCullStatus, GpuVpl, FRUSTUM_SLACK, MAX_K};
+use crate::vpl_gen_pass::GpuVpls;
 use slc_core::{Camera, CullInput, Interleaving, Vpl, TILE_SIZE};
 use slc_cull::CullView;
 
@@ -17,7 +18,7 @@ pub struct CullFrame<'a> {
     pub width: u32,
     pub height: u32,
     pub camera: &'a Camera,
-    pub vpls: &'a [Vpl],
+    pub vpls: FrameVpls<'a>,
     /// δ of eq. (2).
     pub delta: f32,
     pub interleaving: Interleaving,
@@ -50,7 +51,7 @@ impl<'a> CullFrame<'a> {
             width: g.width,
             height: g.height,
             camera: input.camera,
-            vpls: input.vpls,
+            vpls: FrameVpls::Cpu(input.vpls),
             delta: input.delta,
             interleaving: input.interleaving,
             positions: upload(ctx, "gbuffer positions", &positions)?,
@@ -61,7 +62,7 @@ impl<'a> CullFrame<'a> {
     /// the culling view.
     pub fn on_gpu(
         gbuffer: &'a GpuGBuffer,
-        vpls: &'a [Vpl],
+        vpls: impl Into<FrameVpls<'a>>,
         delta: f32,
         interleaving: Interleaving,
     ) -> Self {
@@ -69,11 +70,67 @@ impl<'a> CullFrame<'a> {
             width: gbuffer.width,
             height: gbuffer.height,
             camera: &gbuffer.camera,
-            vpls,
+            vpls: vpls.into(),
             delta,
             interleaving,
             positions: gbuffer.positions.clone(),
         }
+    }
+}
+
+/// The VPLs a frame is culled and shaded with: on the CPU (validated and packed as
+/// [`GpuVpl`]s by [`FrameVpls::records`]) or generated on the GPU
+/// (`vpl_gen_pass::VplGenPass`, complete records that never leave the device).
+#[derive(Clone, Copy)]
+pub enum FrameVpls<'a> {
+    Cpu(&'a [Vpl]),
+    Gpu(&'a GpuVpls),
+}
+
+impl FrameVpls<'_> {
+    pub fn len(&self) -> usize {
+        match self {
+            Self::Cpu(v) => v.len(),
+            Self::Gpu(v) => v.count as usize,
+        }
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+
+    /// The [`GpuVpl`] records on the GPU: the CPU's validated for δ = `delta` exactly as the
+    /// CPU culler validates them (`GpuVpl::new`) and uploaded, or the GPU's own buffer.
+    pub fn records(&self, ctx: &GpuContext, delta: f32) -> Result<wgpu::Buffer, GpuError> {
+        match self {
+            Self::Cpu(vpls) => {
+                let packed = vpls
+                    .iter()
+                    .enumerate()
+                    .map(|(i, v)| GpuVpl::new(v, i, delta))
+                    .collect::<Result<Vec<_>, _>>()?;
+                upload(ctx, "vpls", &packed)
+            }
+            Self::Gpu(vpls) => Ok(vpls.buffer.clone()),
+        }
+    }
+}
+
+impl<'a> From<&'a [Vpl]> for FrameVpls<'a> {
+    fn from(v: &'a [Vpl]) -> Self {
+        Self::Cpu(v)
+    }
+}
+
+impl<'a> From<&'a Vec<Vpl>> for FrameVpls<'a> {
+    fn from(v: &'a Vec<Vpl>) -> Self {
+        Self::Cpu(v)
+    }
+}
+
+impl<'a> From<&'a GpuVpls> for FrameVpls<'a> {
+    fn from(v: &'a GpuVpls) -> Self {
+        Self::Gpu(v)
     }
 }
 

@@ -21,6 +21,7 @@ use slc_core::{CullInput, LightLists};
 pub(crate) const SOURCE: &str = concat!(
     include_str!("../shaders/rng.wgsl"),
     include_str!("../shaders/bound.wgsl"),
+    include_str!("../shaders/gvpl.wgsl"),
     include_str!("../shaders/none_cull.wgsl")
 );
 const WORKGROUP: u32 = 64;
@@ -82,8 +83,7 @@ impl NoneCuller {
             seed: frame.interleaving.seed,
             pad: [0; 3],
         };
-        let ids: Vec<u32> = frame.vpls.iter().map(|v| v.id).collect();
-        let ids = upload(ctx, "vpl ids", &ids)?;
+        let vpls = frame.vpls.records(ctx, frame.delta)?;
         let bounds = output::<GpuBound>(ctx, "unculled bounds", vpl_count as usize)?;
         let pixel_list = output::<u32>(ctx, "pixel lists", pixels as usize)?;
         // The partition's scan records its total here; nothing can overflow.
@@ -100,7 +100,7 @@ impl NoneCuller {
                 &mut encoder,
                 "no culling",
                 &self.pipeline,
-                &[&params, &ids, &frame.positions, &bounds, &pixel_list],
+                &[&params, &vpls, &frame.positions, &bounds, &pixel_list],
                 grid,
             );
             let partition = self.partition.encode(

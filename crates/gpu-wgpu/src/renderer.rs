@@ -4,9 +4,9 @@
 //! in one pass, [`crate::tiled_shade_pass`]; the others with light lists that stay on the
 //! GPU), shading and the cross bilateral filter — on a device it opens
 //! ([`GpuRenderer::new`]) or one the host owns ([`GpuRenderer::from_context`] with
-//! [`GpuContext::from_device`]). What comes back to the CPU: the VPLs once per frame (the
-//! culler's bounds pass reads them from the CPU), the images, and the G-buffer and lists
-//! where the brute-force metrics or a CPU reference need them ([`CpuFrames`]). VSGLs: the
+//! [`GpuContext::from_device`]). What comes back to the CPU: the images, two status records,
+//! and the G-buffer, VPLs and lists where the brute-force metrics or a CPU reference need
+//! them ([`CpuFrames`]). VSGLs: the
 //! RSMs are read back, the VSGLs built and sampled on the CPU (`slc_cpu_ref::vsgl`) and shaded
 //! on the GPU ([`crate::vsgl_shade_pass`]), with visibility from imperfect shadow maps to each
 //! VSGL's `μ_v` ([`crate::ism_pass`]).
@@ -27,7 +27,7 @@ use crate::rsm_pass::{GpuRsm, RsmPass};
 use crate::scene_upload::GpuScene;
 use crate::shade_pass::{read_image, ShadePass};
 use crate::tiled_shade_pass::TiledShadePass;
-use crate::vpl_gen_pass::{VplGenPass, VplLobes};
+use crate::vpl_gen_pass::{GpuVpls, VplGenPass, VplLobes};
 use crate::vsgl_readback::{cpu_rsm, vsgl_input};
 use crate::vsgl_shade_pass::{GpuVsgls, VsglShadePass};
 use slc_bounds::sg::MeanMap;
@@ -72,13 +72,17 @@ pub struct GpuPrepared {
     pub gbuffer: GpuGBuffer,
     /// The RSMs, one per light in the scene's order (VSGLs are built from them).
     pub maps: Vec<GpuRsm>,
-    pub vpls: Vec<Vpl>,
+    /// The VPLs, generated on the GPU and left there.
+    pub vpls: GpuVpls,
     pub direct: Image,
     pub timings: Timings,
     /// Timestamp times of the passes, where the adapter has trustworthy ones.
     pub gpu_timings: Option<Timings>,
     /// The G-buffer read back, once something on the CPU needs it.
     cpu_gbuffer: OnceCell<GBuffer>,
+    /// The VPLs read back, once something on the CPU needs them.
+    cpu_vpls: OnceCell<Vec<Vpl>>,
+    ctx: Arc<GpuContext>,
 }
 
 impl PreparedFrame for GpuPrepared {
@@ -86,8 +90,16 @@ impl PreparedFrame for GpuPrepared {
         &self.camera
     }
 
-    fn vpls(&self) -> &[Vpl] {
-        &self.vpls
+    fn vpl_count(&self) -> usize {
+        self.vpls.count as usize
+    }
+
+    fn vpls(&self) -> Result<&[Vpl], RenderError> {
+        if let Some(v) = self.cpu_vpls.get() {
+            return Ok(v);
+        }
+        let v = self.vpls.read_back(&self.ctx).map_err(gpu)?;
+        Ok(self.cpu_vpls.get_or_init(|| v))
     }
 
     fn direct(&self) -> &Image {
@@ -105,7 +117,7 @@ impl PreparedFrame for GpuPrepared {
 
 /// The device and the compiled GPU passes, created once and used for every frame.
 pub struct GpuRenderer {
-    ctx: GpuContext,
+    ctx: Arc<GpuContext>,
     gbuffer: GbufferPass,
     rsm: RsmPass,
     vpl_gen: VplGenPass,
@@ -138,7 +150,7 @@ impl GpuRenderer {
             vsgl_shader: VsglShadePass::new(&ctx)?,
             ism: IsmPass::new(&ctx)?,
             denoiser: DenoisePass::new(&ctx)?,
-            ctx,
+            ctx: Arc::new(ctx),
         })
     }
 
@@ -270,9 +282,7 @@ impl Renderer for GpuRenderer {
             })?;
             let vpls = t.time("vpl_generation", || {
                 self.step("vpl_generation", || {
-                    self.vpl_gen
-                        .generate(ctx, &maps, seed, lobes)?
-                        .read_back(ctx)
+                    self.vpl_gen.generate(ctx, &maps, seed, lobes)
                 })
             })?;
             let direct = t.time("direct", || {
@@ -291,6 +301,8 @@ impl Renderer for GpuRenderer {
             timings,
             gpu_timings,
             cpu_gbuffer: OnceCell::new(),
+            cpu_vpls: OnceCell::new(),
+            ctx: Arc::clone(&self.ctx),
         })
     }
 
@@ -377,7 +389,7 @@ impl Renderer for GpuRenderer {
         let input = CullInput {
             gbuffer: self.cpu_gbuffer(p)?,
             camera: &p.camera,
-            vpls: &p.vpls,
+            vpls: p.vpls()?,
             delta,
             interleaving,
         };
@@ -522,7 +534,7 @@ impl CpuFrames for GpuRenderer {
                 .map(|m| cpu_rsm(&self.ctx, m))
                 .collect::<Result<_, _>>()
                 .map_err(gpu)?,
-            vpls: p.vpls.clone(),
+            vpls: p.vpls()?.to_vec(),
             direct: p.direct.clone(),
             timings: p.timings.clone(),
         }))

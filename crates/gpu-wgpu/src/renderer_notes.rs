@@ -12,8 +12,9 @@ pub fn frame_notes(ctx: &GpuContext) -> Vec<String> {
              the cross bilateral filter",
             ctx.adapter_name
         ),
-        "the VPLs are read back once per frame for the culler's bounds pass; the images are \
-         read back at the end of the frame"
+        "the VPLs stay on the GPU from their generation to the shading; the images are read \
+         back at the end of the frame, and two 16-byte status records (the VPL count, the \
+         culling's faults) on the way"
             .to_string(),
         if ctx.timestamps_trusted {
             "timings_ms of GPU passes are wall clock around the GPU work (uploads, readbacks \

@@ -17,11 +17,12 @@
 //! grazing opposition) is emulated with compensated f32 arithmetic, see `shaders/brdf.wgsl`.
 use crate::buffers::{output, read_back, uniform, upload, Grid};
 use crate::context::{GpuContext, GpuError};
+use crate::cull_frame::FrameVpls;
 use crate::gbuffer_pass::GpuGBuffer;
 use crate::gpu_lists::GpuLightLists;
-use crate::gpu_types::{gpu_position, GpuSample, GpuShadeParams, GpuVpl, MAX_K};
+use crate::gpu_types::{gpu_position, GpuSample, GpuShadeParams, MAX_K};
 use glam::Vec3;
-use slc_core::{CullInput, Image, Interleaving, LightLists, Vpl};
+use slc_core::{CullInput, Image, Interleaving, LightLists};
 
 /// `shaders/brdf.wgsl` followed by the shading kernel.
 pub(crate) const SOURCE: &str = concat!(
@@ -39,7 +40,7 @@ const WORKGROUP: u32 = 64;
 struct Frame<'a> {
     width: u32,
     height: u32,
-    vpls: &'a [Vpl],
+    vpls: FrameVpls<'a>,
     delta: f32,
     interleaving: Interleaving,
 }
@@ -102,7 +103,7 @@ impl ShadePass {
         let frame = Frame {
             width: g.width,
             height: g.height,
-            vpls: input.vpls,
+            vpls: FrameVpls::Cpu(input.vpls),
             delta: input.delta,
             interleaving: input.interleaving,
         };
@@ -111,11 +112,11 @@ impl ShadePass {
 
     /// [`Self::shade_gpu_lists`] for a G-buffer rendered on the GPU
     /// ([`crate::gbuffer_pass::GbufferPass`]), read where it lies.
-    pub fn shade_gpu_gbuffer(
+    pub fn shade_gpu_gbuffer<'a>(
         &self,
         ctx: &GpuContext,
         gbuffer: &GpuGBuffer,
-        vpls: &[Vpl],
+        vpls: impl Into<FrameVpls<'a>>,
         delta: f32,
         interleaving: Interleaving,
         lists: &GpuLightLists,
@@ -123,7 +124,7 @@ impl ShadePass {
         let frame = Frame {
             width: gbuffer.width,
             height: gbuffer.height,
-            vpls,
+            vpls: vpls.into(),
             delta,
             interleaving,
         };
@@ -133,11 +134,11 @@ impl ShadePass {
     /// [`Self::shade_gpu_gbuffer`] without the readback: the image stays on the GPU as RGB,
     /// 3 f32 per pixel row-major (what `denoise_pass::DenoisePass::filter_on_gpu` reads; see
     /// [`read_image`]).
-    pub fn shade_gpu_gbuffer_on_gpu(
+    pub fn shade_gpu_gbuffer_on_gpu<'a>(
         &self,
         ctx: &GpuContext,
         gbuffer: &GpuGBuffer,
-        vpls: &[Vpl],
+        vpls: impl Into<FrameVpls<'a>>,
         delta: f32,
         interleaving: Interleaving,
         lists: &GpuLightLists,
@@ -145,7 +146,7 @@ impl ShadePass {
         let frame = Frame {
             width: gbuffer.width,
             height: gbuffer.height,
-            vpls,
+            vpls: vpls.into(),
             delta,
             interleaving,
         };
@@ -193,12 +194,7 @@ impl ShadePass {
             return output::<f32>(ctx, "indirect image", 0);
         }
         // The same validation as the culler's (δ and ξ of eq. 2-3, the lobes).
-        let vpls = input
-            .vpls
-            .iter()
-            .enumerate()
-            .map(|(i, v)| GpuVpl::new(v, i, input.delta))
-            .collect::<Result<Vec<_>, _>>()?;
+        let vpls = input.vpls.records(ctx, input.delta)?;
         let params = GpuShadeParams {
             width: input.width,
             height: input.height,
@@ -209,7 +205,6 @@ impl ShadePass {
             scale: input.interleaving.scale(),
             pad: 0,
         };
-        let vpls = upload(ctx, "vpls", &vpls)?;
         let out = output::<f32>(ctx, "indirect image", 3 * pixels as usize)?;
         let grid = Grid::for_items(ctx, pixels, WORKGROUP)?;
         ctx.scoped("shade", || {

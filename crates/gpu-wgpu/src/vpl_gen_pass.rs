@@ -45,10 +45,10 @@ impl VplLobes {
     }
 }
 
-/// VPLs on the GPU in the [`GpuVpl`] layout the bounds and shading passes read, except the
-/// bound factor `geometric_tilt.w`, which only [`GpuVpl::new`] forms: it is 1 here, right
-/// only for VPLs whose shading normal is the geometric one, so these VPLs are read back
-/// ([`GpuVpls::read_back`]) and packed again before culling.
+/// VPLs on the GPU in the [`GpuVpl`] layout the bounds and shading passes read, complete:
+/// the bound factor `geometric_tilt.w` is formed in f32 (`vpl_bound_factor` in
+/// `shaders/vpl_gen.wgsl`), never below [`GpuVpl::new`]'s. They stay on the GPU for a frame;
+/// [`GpuVpls::read_back`] brings them to the CPU where something there needs them.
 pub struct GpuVpls {
     pub buffer: wgpu::Buffer,
     pub count: u32,
