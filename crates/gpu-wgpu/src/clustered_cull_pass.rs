@@ -144,15 +144,10 @@ impl ClusteredCuller {
         let depth_range = upload(ctx, "depth range", &[u32::MAX, 0])?;
         // Counting writes no list entry: a placeholder fills the binding.
         let no_entries = output::<u32>(ctx, "no lists", 1)?;
-        let partition = ctx.scoped("clustered cull (count)", || {
-            let mut encoder = ctx
-                .device
-                .create_command_encoder(&wgpu::CommandEncoderDescriptor {
-                    label: Some("clustered cull (count)"),
-                });
+        let partition = ctx.submit("clustered cull (count)", |encoder| {
             let partition = self.partition.encode(
                 ctx,
-                &mut encoder,
+                encoder,
                 &self.scan,
                 &bounds.buffer,
                 vpl_count,
@@ -165,7 +160,7 @@ impl ClusteredCuller {
             ] {
                 let params = params(label, mode);
                 ctx.encode_dispatch(
-                    &mut encoder,
+                    encoder,
                     label,
                     &self.depth,
                     &[
@@ -181,7 +176,7 @@ impl ClusteredCuller {
             }
             let count = params("clustered cull params (count)", CULL_COUNT);
             ctx.encode_dispatch(
-                &mut encoder,
+                encoder,
                 "clustered cull",
                 &self.cull,
                 &[
@@ -196,21 +191,15 @@ impl ClusteredCuller {
                 grid,
             );
             self.scan
-                .encode(ctx, &mut encoder, &offsets, list_count, &status);
-            ctx.queue.submit([encoder.finish()]);
+                .encode(ctx, encoder, &offsets, list_count, &status);
             Ok(partition)
         })?;
         let total = read_status(ctx, &status, width)?;
         let lists = output::<u32>(ctx, "light lists", total as usize)?;
-        ctx.scoped("clustered cull (write)", || {
+        ctx.submit("clustered cull (write)", |encoder| {
             let write = params("clustered cull params (write)", CULL_WRITE);
-            let mut encoder = ctx
-                .device
-                .create_command_encoder(&wgpu::CommandEncoderDescriptor {
-                    label: Some("clustered cull (write)"),
-                });
             ctx.encode_dispatch(
-                &mut encoder,
+                encoder,
                 "clustered cull",
                 &self.cull,
                 &[
@@ -224,7 +213,6 @@ impl ClusteredCuller {
                 ],
                 grid,
             );
-            ctx.queue.submit([encoder.finish()]);
             Ok(())
         })?;
         let lists = GpuLightLists {

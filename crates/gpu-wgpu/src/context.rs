@@ -298,6 +298,23 @@ impl GpuContext {
         grid.dispatch(&mut pass);
     }
 
+    /// The passes `f` records in one command buffer, submitted at once, checked as the pass
+    /// `label` ([`GpuContext::scoped`]).
+    pub fn submit<T>(
+        &self,
+        label: &'static str,
+        f: impl FnOnce(&mut wgpu::CommandEncoder) -> Result<T, GpuError>,
+    ) -> Result<T, GpuError> {
+        self.scoped(label, || {
+            let mut encoder = self
+                .device
+                .create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some(label) });
+            let out = f(&mut encoder)?;
+            self.queue.submit([encoder.finish()]);
+            Ok(out)
+        })
+    }
+
     /// [`GpuContext::encode_dispatch`] in a command buffer of its own, submitted at once.
     pub fn dispatch(
         &self,

@@ -96,12 +96,9 @@ impl TightRefiner {
                 "tight cull (write)"
             };
             let params = uniform(ctx, label, &cull_params(frame, &view, tiles, mode));
-            ctx.scoped(label, || {
-                let mut encoder = ctx
-                    .device
-                    .create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some(label) });
+            ctx.submit(label, |encoder| {
                 ctx.encode_dispatch(
-                    &mut encoder,
+                    encoder,
                     "tight cull",
                     &self.pipeline,
                     &[
@@ -120,9 +117,8 @@ impl TightRefiner {
                 );
                 if scan {
                     self.scan
-                        .encode(ctx, &mut encoder, &offsets, list_count, &status);
+                        .encode(ctx, encoder, &offsets, list_count, &status);
                 }
-                ctx.queue.submit([encoder.finish()]);
                 Ok(())
             })
         };

@@ -139,15 +139,10 @@ impl TiledCuller {
         let status = upload(ctx, "cull status", &[GpuCullStatus::CLEAR])?;
         let params = cull_params(frame, &view, tiles, CULL_COUNT);
         let k = frame.interleaving.k;
-        let partition = ctx.scoped("tile depth", || {
-            let mut encoder = ctx
-                .device
-                .create_command_encoder(&wgpu::CommandEncoderDescriptor {
-                    label: Some("tile depth"),
-                });
+        let partition = ctx.submit("tile depth", |encoder| {
             let partition = self.partition.encode(
                 ctx,
-                &mut encoder,
+                encoder,
                 &self.scan,
                 &bounds.buffer,
                 vpl_count,
@@ -156,7 +151,7 @@ impl TiledCuller {
             )?;
             self.depth.encode(
                 ctx,
-                &mut encoder,
+                encoder,
                 &TileDepthBuffers {
                     params: &uniform(ctx, "cull params (depth)", &params),
                     positions: &frame.positions,
@@ -167,7 +162,6 @@ impl TiledCuller {
                 },
                 grid,
             );
-            ctx.queue.submit([encoder.finish()]);
             Ok(partition)
         })?;
         Ok(Some(TiledFrame {
@@ -210,12 +204,9 @@ impl TiledCuller {
                     ..tiles.params
                 },
             );
-            ctx.scoped(label, || {
-                let mut encoder = ctx
-                    .device
-                    .create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some(label) });
+            ctx.submit(label, |encoder| {
                 ctx.encode_dispatch(
-                    &mut encoder,
+                    encoder,
                     "tiled cull",
                     &self.pipeline,
                     &[
@@ -230,9 +221,8 @@ impl TiledCuller {
                 );
                 if mode == CULL_COUNT {
                     self.scan
-                        .encode(ctx, &mut encoder, &offsets, lists_count, &tiles.status);
+                        .encode(ctx, encoder, &offsets, lists_count, &tiles.status);
                 }
-                ctx.queue.submit([encoder.finish()]);
                 Ok(())
             })
         };
