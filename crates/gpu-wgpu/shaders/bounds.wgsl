@@ -196,7 +196,8 @@ fn box_bound(vpl: Vpl, q: vec3<f32>) -> BoxBound {
     let slack = 16.0 * 1.1920929e-7 * (max_abs(vpl.position_xi.xyz) + max_abs(view.eye.xyz));
     let delta_xi = view.delta * vpl.position_xi.w / (1.0 + PROBABILITY_SLACK);
     var b = BoxBound(vec4<f32>(rot * q, slack), vec4<f32>(0.0), vec4<f32>(0.0), vec4<f32>(0.0),
-                     vec4<f32>(0.0), vpl.f0, vec4<u32>(BOX_EMPTY, vpl.info.y, 0u,
+                     vec4<f32>(0.0), vec4<f32>(vpl.f0.xyz, vpl.omega_i_eta.w),
+                     vec4<u32>(BOX_EMPTY, vpl.info.y, 0u,
                      bitcast<u32>(delta_xi)));
     if vpl.info.x == LOBE_DIFFUSE {
         // Vpl::diffuse_lobe: around n_g, Phi k / pi with the flux times flux_scale.

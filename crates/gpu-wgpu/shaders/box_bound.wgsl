@@ -70,8 +70,10 @@ fn cone_min_cos(c: Cone, u: vec3<f32>) -> f32 {
 }
 
 // BoxBound::may_exceed_xi: whether p > xi may hold at a receiver of the view-space box
-// [box_lo, box_hi] (bounding ball: `center`, `radius`). The box is grown by the VPL's slack;
-// every rejection is a comparison that NaN fails, so a NaN keeps the VPL.
+// [box_lo, box_hi] (bounding ball: `center`, `radius`). The box is grown by the VPL's slack.
+// The inputs are finite (the tile passes refuse non-finite samples, the bounds pass
+// non-finite VPLs); an overflow to infinity or NaN on the way reaches a rejection written as
+// a comparison that NaN fails, so it keeps the VPL.
 fn box_may_exceed_xi(b: BoxBound, box_lo: vec3<f32>, box_hi: vec3<f32>, center: vec3<f32>,
                      radius: f32) -> bool {
     let q = b.q_slack.xyz;

@@ -49,8 +49,9 @@ fn reflects(t: RsmTexel) -> bool {
 // The factor GpuVpl::new stores in geometric_tilt.w, formed in f32 so that the VPLs
 // never leave the GPU: a diffuse VPL's flux_scale, a glossy one's
 // GlossyLobe::bound_factor. The CPU forms the tilt and anisotropy factors in f64 with a
-// relative margin of 1e-5; here the margin is 1e-4, which covers f32's rounding (a few
-// 1e-7 relative) with room, so the factor is never below the CPU's.
+// relative margin of 1e-5; here the margin is 1e-4, which covers f32's relative rounding (a
+// few 1e-7) with room, the tilt's sine grows by 1e-6 for its absolute rounding, and the
+// diffuse ratio by 1e-6: the factor is never below the CPU's.
 fn vpl_bound_factor(v: Vpl) -> f32 {
     let n = v.normal_alpha.xyz;
     let n_g = v.geometric_tilt.xyz;
@@ -64,7 +65,7 @@ fn vpl_bound_factor(v: Vpl) -> f32 {
         if ci <= 0.0 || gi < MIN_COS_GEOMETRIC {
             return 0.0;
         }
-        scale = ci / gi;
+        scale = ci / gi * (1.0 + 1e-6);
     }
     // LOBE_DIFFUSE.
     if v.info.x == 0u {
@@ -79,7 +80,9 @@ fn vpl_bound_factor(v: Vpl) -> f32 {
         let a = normalize(n);
         let b = normalize(n_g);
         let cos_t = clamp(dot(a, b), -1.0, 1.0);
-        let sin_t = min(length(cross(a, b)), 1.0);
+        // The sine's f32 error is absolute (about 2e-7): 1e-6 more covers it before the
+        // division by alpha magnifies it.
+        let sin_t = min(length(cross(a, b)) + 1e-6, 1.0);
         let bound = max(cos_t, 0.0) + 2.0 * sin_t / alpha_min;
         factor *= max(bound, ggx_g1_over_cos(alpha_min, 1.0)) * (1.0 + 1e-4);
     }

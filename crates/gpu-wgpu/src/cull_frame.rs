@@ -8,6 +8,7 @@ use crate::context::{GpuContext, GpuError};
 use crate::gbuffer_pass::GpuGBuffer;
 use crate::gpu_types::{GpuCullParams, GpuCullStatus, GpuVpl, FRUSTUM_SLACK, MAX_K};
 use crate::vpl_gen_pass::GpuVpls;
+use slc_bounds::StochasticParams;
 use slc_core::{Camera, CullInput, Interleaving, Vpl, TILE_SIZE};
 use slc_cull::CullView;
 
@@ -111,7 +112,12 @@ impl FrameVpls<'_> {
                     .collect::<Result<Vec<_>, _>>()?;
                 upload(ctx, "vpls", &packed)
             }
-            Self::Gpu(vpls) => Ok(vpls.buffer.clone()),
+            Self::Gpu(vpls) => {
+                // Generated VPLs are valid by construction (ξ in (0, 1)); δ is checked as
+                // the CPU's records check it.
+                StochasticParams::new(delta, 0.5).map_err(|e| GpuError::Input(e.to_string()))?;
+                Ok(vpls.buffer.clone())
+            }
         }
     }
 }

@@ -37,7 +37,8 @@ impl GpuCuller {
     }
 
     /// The lists of `strategy` for `input` (uploaded), read back: equal to the CPU
-    /// strategy's per pixel (up to f32-versus-f64 decisions at bound and slice boundaries).
+    /// strategy's per pixel (up to f32-versus-f64 decisions at bound and slice boundaries;
+    /// the tight strategies' f32 bound keeps up to 1% more entries).
     pub fn cull(
         &self,
         ctx: &GpuContext,

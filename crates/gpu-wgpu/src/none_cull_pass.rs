@@ -5,7 +5,8 @@
 //! Each VPL becomes a bound that reaches everything, tagged with its subregion, and
 //! `partition_pass` groups them by subregion (a stable counting sort): the partition's K²
 //! segments are the lists, one per subregion, and each pixel points to its subregion's.
-//! As on the CPU, the VPLs themselves are not validated (only shading reads them).
+//! VPLs from the CPU are validated as for every GPU pass (`FrameVpls::records`, as the
+//! shading pass would), where the CPU's unculled strategy does not look at them.
 use crate::buffers::{output, uniform, upload, Grid};
 use crate::context::{GpuContext, GpuError};
 use crate::cull_frame::{check_input, CullFrame, CullSizes};

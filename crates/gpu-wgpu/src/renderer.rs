@@ -4,7 +4,7 @@
 //! in one pass, [`crate::tiled_shade_pass`]; the others with light lists that stay on the
 //! GPU), shading and the cross bilateral filter — on a device it opens
 //! ([`GpuRenderer::new`]) or one the host owns ([`GpuRenderer::from_context`] with
-//! [`GpuContext::from_device`]). What comes back to the CPU: the images, two status records,
+//! [`GpuContext::from_device`]). What comes back to the CPU: the images, 16-byte status records,
 //! and the G-buffer, VPLs and lists where the brute-force metrics or a CPU reference need
 //! them ([`CpuFrames`]). VSGLs: the
 //! RSMs are read back, the VSGLs built and sampled on the CPU (`slc_cpu_ref::vsgl`) and shaded

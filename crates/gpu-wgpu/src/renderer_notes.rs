@@ -8,13 +8,14 @@ pub fn frame_notes(ctx: &GpuContext) -> Vec<String> {
         format!(
             "every pass ran on the GPU ({}): G-buffer and RSMs by rasterization (visibility \
              buffer resolved by the pixel's own ray), VPL generation, direct light with the \
-             RSM depth as shadow maps, culling (light lists kept on the GPU), shading and \
-             the cross bilateral filter",
+             RSM depth as shadow maps, culling and shading (the tiled strategies in one \
+             pass, the others with light lists kept on the GPU) and the cross bilateral \
+             filter",
             ctx.adapter_name
         ),
         "the VPLs stay on the GPU from their generation to the shading; the images are read \
-         back at the end of the frame, and two 16-byte status records (the VPL count, the \
-         culling's faults) on the way"
+         back at the end of the frame, and 16-byte status records on the way (the VPL count; \
+         each culling pass's faults and list total)"
             .to_string(),
         if ctx.timestamps_trusted {
             "timings_ms of GPU passes are wall clock around the GPU work (uploads, readbacks \

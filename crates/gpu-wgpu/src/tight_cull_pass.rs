@@ -30,6 +30,10 @@ pub(crate) const SOURCE: &str = concat!(
 /// Refinement blocks per tile (2 x 2 blocks of 8 x 8 pixels: `slc_cull`'s `BLOCK`).
 const BLOCKS_PER_TILE: u32 = 4;
 
+// A block's groups are bits of one u32 in the kernel (MAX_SLOTS): the clustered layout's
+// slices must fit.
+const _: () = assert!(crate::cull_types::CLUSTER_SLICES <= 32);
+
 /// The refinement's pipelines.
 pub struct TightRefiner {
     scan: ScanPass,

@@ -60,7 +60,8 @@ impl TiledCuller {
     }
 
     /// Culls `input` with `glossy` bounds for glossy VPLs (the section-6 sphere for diffuse
-    /// ones) and two Modified HalfZ clusters per tile. Errors on invalid input (as the CPU
+    /// ones) and two Modified HalfZ clusters per tile (with [`GlossyBound::Tight`], their
+    /// groups per 8 x 8 block, `tight_cull_pass`). Errors on invalid input (as the CPU
     /// culler), on buffers beyond the device's limits and on device faults.
     pub fn cull(
         &self,
