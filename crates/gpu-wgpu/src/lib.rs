@@ -17,10 +17,16 @@
 //!   with workgroup-shared light lists, sized by [`scan_pass`]; the sphere,
 //!   enclosing-sphere and ellipsoid strategies, read back as `slc_core::LightLists` or left
 //!   on the GPU for shading;
+//! - [`tight_cull_pass`]: the `tight` and `clustered-tight` refinement, per 8 x 8 block,
+//!   by the bound of p over the block's receivers (`shaders/box_bound.wgsl`, the f32 twin of
+//!   `slc_bounds::BoxBound`; docs/tight-bounds.md);
 //! - [`shade_pass`]: stochastic VPL shading from light lists (eq. 2-4 and 6-8 with the K²
-//!   weight of section 6; `shaders/brdf.wgsl`, `shaders/shade.wgsl`), the twin of
-//!   `slc_cpu_ref::vpl_shading::shade_lists` without visibility, lists uploaded or straight
-//!   from the tiled culler;
+//!   weight of section 6; `shaders/brdf.wgsl`, `shaders/vpl_eval.wgsl`, `shaders/shade.wgsl`),
+//!   the twin of `slc_cpu_ref::vpl_shading::shade_lists` without visibility, lists uploaded
+//!   or straight from a culler;
+//! - [`tiled_shade_pass`]: tiled culling and shading in one pass (the paper's Fig. 2): the
+//!   hits of each batch of a tile's VPLs in workgroup bit masks, no list stored; the
+//!   renderer's path for the tiled strategies;
 //! - [`scene_upload`]: the scene (triangles, normals, texture coordinates, materials and
 //!   textures) in storage buffers, [`scene_upload::GpuScene`];
 //! - [`visibility_pass`]: the nearest triangle per pixel by rasterization (depth test), from
@@ -31,7 +37,7 @@
 //!   point light = six faces, spot = one, directional = orthographic), whose depth is kept
 //!   as a shadow map;
 //! - [`vpl_gen_pass`]: VPLs from RSM texels in compute (twin of `slc_cpu_ref::vpls`, same
-//!   ids and ξ), compacted by a scan;
+//!   ids and ξ), compacted by a scan, complete with their bound factor, left on the GPU;
 //! - [`direct_pass`]: direct light per G-buffer pixel (twin of `slc_cpu_ref::direct`) with
 //!   the RSM depth as shadow maps instead of shadow rays;
 //! - [`none_cull_pass`]: no culling (every VPL of the pixel's subregion), the twin of
