@@ -45,7 +45,7 @@ pub(crate) const CULL_SOURCE: &str = concat!(
     include_str!("../shaders/clustered_cull.wgsl")
 );
 
-/// The clustered culler's pipelines (the three clustered strategies, by the [`GlossyBound`]
+/// The clustered culler's pipelines (the four clustered strategies, by the [`GlossyBound`]
 /// passed to [`ClusteredCuller::cull`]).
 pub struct ClusteredCuller {
     bounds: BoundsPass,
@@ -73,7 +73,8 @@ impl ClusteredCuller {
 
     /// Culls `input` with `glossy` bounds for glossy VPLs (the section-6 sphere for diffuse
     /// ones) against up to 32 depth slices per tile: `slc_cull`'s `clustered` (ellipsoid),
-    /// `clustered-sphere` or `clustered-enclosing-sphere`. Errors on invalid input (as the
+    /// `clustered-sphere`, `clustered-enclosing-sphere` or `clustered-tight` (each slice's
+    /// list then refined per 8 x 8 block, `tight_cull_pass`). Errors on invalid input (as the
     /// CPU culler), on buffers beyond the device's limits and on device faults.
     pub fn cull(
         &self,

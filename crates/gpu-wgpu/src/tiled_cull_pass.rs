@@ -9,7 +9,10 @@
 //!
 //! One count read back between the two culling dispatches sizes the list buffer exactly; a
 //! total beyond the storage-binding limit is refused ([`GpuError::BufferTooLarge`]).
-//! [`TiledCuller::cull_on_gpu`] leaves the lists on the GPU for `shade_pass` instead.
+//! [`TiledCuller::cull_on_gpu`] leaves the lists on the GPU for `shade_pass` instead;
+//! [`TiledCuller::prepare`] stops before the lists, for the one-pass culling and shading of
+//! `tiled_shade_pass`, and [`TiledCuller::lists`] builds them from there. With
+//! [`GlossyBound::Tight`] the lists are refined per block (`tight_cull_pass`).
 use crate::bounds_pass::{BoundsPass, BoundsSettings, GpuBounds};
 use crate::buffers::{output, uniform, upload, Grid};
 use crate::context::{GpuContext, GpuError};
@@ -33,8 +36,8 @@ pub(crate) const SOURCE: &str = concat!(
     include_str!("../shaders/tiled_cull.wgsl")
 );
 
-/// The tiled culler's pipelines (sphere, enclosing-sphere and ellipsoid strategies, by the
-/// [`GlossyBound`] passed to [`TiledCuller::cull`]).
+/// The tiled culler's pipelines (sphere, enclosing-sphere, ellipsoid and tight strategies,
+/// by the [`GlossyBound`] passed to [`TiledCuller::cull`]).
 pub struct TiledCuller {
     bounds: BoundsPass,
     partition: PartitionPass,
