@@ -15,6 +15,24 @@ pub enum Backend {
     Gpu,
 }
 
+/// How the GPU backend runs the tiled strategies (`sphere`, `enclosing-sphere`,
+/// `ellipsoid`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum GpuTiled {
+    /// Culled and shaded in one pass, the lists only in workgroup memory (the paper's Fig. 2).
+    OnePass,
+    /// Culled into light lists, then shaded by a second pass (the images are the same).
+    Lists,
+}
+
+/// The backend a command runs on, as `--backend` and `--gpu-tiled` chose it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct BackendChoice {
+    pub backend: Backend,
+    /// The GPU's tiled strategies culled and shaded in one pass.
+    pub one_pass: bool,
+}
+
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
 pub enum Shader {
     /// VPLs with the stochastic estimate and culling (or a reference).
@@ -97,6 +115,10 @@ pub struct FrameArgs {
     pub height: u32,
     #[arg(long, value_enum, default_value_t = Backend::Cpu)]
     pub backend: Backend,
+    /// With `--backend gpu`: the tiled strategies culled and shaded in one pass (the default)
+    /// or culled into light lists and shaded by a second pass, to compare the two.
+    #[arg(long, value_enum)]
+    pub gpu_tiled: Option<GpuTiled>,
     #[arg(long, value_enum, default_value_t = Shader::Vpl)]
     pub shader: Shader,
     /// Reflective-shadow-map resolution per face (a point light has six faces; each texel makes
@@ -129,6 +151,18 @@ pub fn stops(s: &str) -> Result<f32, String> {
 }
 
 impl FrameArgs {
+    /// The backend `--backend` and `--gpu-tiled` choose; `--gpu-tiled` without the GPU
+    /// backend is an error.
+    pub fn backend_choice(&self) -> Result<BackendChoice, String> {
+        if self.backend != Backend::Gpu && self.gpu_tiled.is_some() {
+            return Err("--gpu-tiled chooses how the GPU backend culls; add --backend gpu".into());
+        }
+        Ok(BackendChoice {
+            backend: self.backend,
+            one_pass: self.gpu_tiled != Some(GpuTiled::Lists),
+        })
+    }
+
     /// Loads the scene, printing its loader warnings.
     pub fn load(&self) -> Result<Scene, String> {
         let scene =

@@ -2,7 +2,7 @@
 //! renderer API (`slc_core::Renderer`, with `slc_cpu_ref::CpuFrames` for what only the CPU
 //! computes) and run here on the backend `--backend` names. Without the `gpu` feature the
 //! GPU backend is an error naming the feature.
-use crate::args::Backend;
+use crate::args::{Backend, BackendChoice};
 use slc_core::RenderError;
 use slc_cpu_ref::{CpuFrames, CpuRenderer};
 
@@ -11,17 +11,19 @@ pub trait OnBackend {
     fn run<R: CpuFrames>(self, r: &R) -> Result<(), String>;
 }
 
-/// Runs `command` on `backend`.
-pub fn run_on(backend: Backend, command: impl OnBackend) -> Result<(), String> {
-    match backend {
+/// Runs `command` on the backend `on` names.
+pub fn run_on(on: BackendChoice, command: impl OnBackend) -> Result<(), String> {
+    match on.backend {
         Backend::Cpu => command.run(&CpuRenderer),
-        Backend::Gpu => run_on_gpu(command),
+        Backend::Gpu => run_on_gpu(on.one_pass, command),
     }
 }
 
 #[cfg(feature = "gpu")]
-fn run_on_gpu(command: impl OnBackend) -> Result<(), String> {
-    let gpu = slc_gpu_wgpu::GpuRenderer::new().map_err(|e| e.to_string())?;
+fn run_on_gpu(one_pass: bool, command: impl OnBackend) -> Result<(), String> {
+    let gpu = slc_gpu_wgpu::GpuRenderer::new()
+        .map_err(|e| e.to_string())?
+        .with_one_pass(one_pass);
     warn_if_software(gpu.context());
     command.run(&gpu)
 }
@@ -35,7 +37,7 @@ pub fn warn_if_software(ctx: &slc_gpu_wgpu::GpuContext) {
 }
 
 #[cfg(not(feature = "gpu"))]
-fn run_on_gpu(_command: impl OnBackend) -> Result<(), String> {
+fn run_on_gpu(_one_pass: bool, _command: impl OnBackend) -> Result<(), String> {
     Err(
         "this slc was built without the `gpu` feature; rebuild with it (the default) or use \
          --backend cpu"

@@ -85,7 +85,7 @@ pub fn run(args: &BenchArgs) -> Result<(), String> {
         return Err("--repeat must be at least 1 and --culling name a strategy".into());
     }
     run_on(
-        args.frame.backend,
+        args.frame.backend_choice()?,
         Bench {
             args,
             scene,

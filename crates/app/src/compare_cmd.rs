@@ -75,7 +75,7 @@ pub fn run(args: &CompareArgs) -> Result<(), String> {
     settings.validate().map_err(message)?;
     check_memory(&settings, &scene)?;
     run_on(
-        args.frame.backend,
+        args.frame.backend_choice()?,
         Compare {
             args,
             scene,

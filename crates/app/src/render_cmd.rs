@@ -71,7 +71,7 @@ pub fn run(args: &RenderArgs) -> Result<(), String> {
     settings.validate().map_err(message)?;
     check_memory(&settings, &scene)?;
     run_on(
-        args.frame.backend,
+        args.frame.backend_choice()?,
         Render {
             args,
             scene,

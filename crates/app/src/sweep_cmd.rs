@@ -99,7 +99,7 @@ pub fn run(args: &SweepArgs) -> Result<(), String> {
         return Err("sweep needs at least one strategy, one δ and one repetition".into());
     }
     run_on(
-        args.frame.backend,
+        args.frame.backend_choice()?,
         Sweep {
             args,
             scene,

@@ -57,7 +57,7 @@ pub fn run(args: &SweepArgs, out: OutDir) -> Result<(), String> {
         settings.validate().map_err(|e| e.to_string())?;
         check_memory(&settings, &scene)?;
     }
-    run_on(f.backend, VsglSweep { args, scene, out })
+    run_on(f.backend_choice()?, VsglSweep { args, scene, out })
 }
 
 struct VsglSweep<'a> {

@@ -663,6 +663,58 @@ fn gpu_backend_refuses_what_it_lacks_and_suggests_the_cpu() {
     }
 }
 
+/// `--gpu-tiled lists` (cull into light lists, shade in a second pass) renders the same
+/// indirect image as the default one-pass frame; without `--backend gpu` it is an error.
+#[test]
+fn gpu_tiled_lists_render_what_one_pass_renders() {
+    let o = slc()
+        .args([
+            "render",
+            "--width",
+            "8",
+            "--height",
+            "8",
+            "--gpu-tiled",
+            "lists",
+        ])
+        .arg("--out")
+        .arg(out_dir("gpu-tiled-cpu"))
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        !o.status.success() && err.contains("--backend gpu"),
+        "{err}"
+    );
+    if !gpu_available() {
+        return;
+    }
+    let render = |mode: &str| {
+        let out = out_dir(&format!("gpu-tiled-{mode}"));
+        let o = slc()
+            .args(["render", "--backend", "gpu", "--gpu-tiled", mode])
+            .args([
+                "--width",
+                "40",
+                "--height",
+                "30",
+                "--rsm",
+                "8",
+                "--culling",
+                "sphere",
+            ])
+            .arg("--out")
+            .arg(&out)
+            .output()
+            .unwrap();
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        let exr = std::fs::read(out.join("indirect.exr")).unwrap();
+        std::fs::remove_dir_all(&out).ok();
+        exr
+    };
+    assert_eq!(render("one-pass"), render("lists"));
+}
+
 #[test]
 fn gpu_compare_names_backend_and_adapter_and_misses_nothing() {
     if !gpu_available() {

@@ -128,6 +128,9 @@ pub struct GpuRenderer {
     vsgl_shader: VsglShadePass,
     ism: IsmPass,
     denoiser: DenoisePass,
+    /// Whether the tiled strategies are culled and shaded in one pass
+    /// ([`GpuCuller::one_pass`]); else into light lists, shaded by a second pass.
+    one_pass: bool,
 }
 
 impl GpuRenderer {
@@ -151,7 +154,17 @@ impl GpuRenderer {
             ism: IsmPass::new(&ctx)?,
             denoiser: DenoisePass::new(&ctx)?,
             ctx: Arc::new(ctx),
+            one_pass: true,
         })
+    }
+
+    /// The same renderer with the tiled strategies culled and shaded in one pass (`true`, the
+    /// default: `tiled_shade_pass`, the paper's Fig. 2) or culled into light lists and shaded
+    /// by a second pass (`false`: `tiled_cull_pass` and `shade_pass`, to compare the two).
+    /// Both shade the same VPLs in the same order: the images are the same.
+    pub fn with_one_pass(mut self, one_pass: bool) -> Self {
+        self.one_pass = one_pass;
+        self
     }
 
     /// The device the passes run on.
@@ -208,7 +221,7 @@ impl Renderer for GpuRenderer {
     fn info(&self, settings: &RenderSettings) -> BackendInfo {
         let mut notes = frame_notes(&self.ctx);
         if let Method::Stochastic(s) = settings.method {
-            if GpuCuller::one_pass(s.strategy) {
+            if self.one_pass && GpuCuller::one_pass(s.strategy) {
                 notes.push(ONE_PASS_NOTE.into());
             }
             if s.metrics {
@@ -314,11 +327,14 @@ impl Renderer for GpuRenderer {
         interleaving: Interleaving,
     ) -> Result<FrameLists, RenderError> {
         self.step("culling", || {
-            self.culler.prepare_frame(
-                &self.ctx,
-                &Self::cull_frame(p, delta, interleaving),
-                strategy,
-            )
+            let frame = Self::cull_frame(p, delta, interleaving);
+            if self.one_pass {
+                self.culler.prepare_frame(&self.ctx, &frame, strategy)
+            } else {
+                Ok(FrameLists::Lists(
+                    self.culler.cull_frame(&self.ctx, &frame, strategy)?,
+                ))
+            }
         })
     }
 

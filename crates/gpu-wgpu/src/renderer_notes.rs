@@ -8,9 +8,8 @@ pub fn frame_notes(ctx: &GpuContext) -> Vec<String> {
         format!(
             "every pass ran on the GPU ({}): G-buffer and RSMs by rasterization (visibility \
              buffer resolved by the pixel's own ray), VPL generation, direct light with the \
-             RSM depth as shadow maps, culling and shading (the tiled strategies in one \
-             pass, the others with light lists kept on the GPU) and the cross bilateral \
-             filter",
+             RSM depth as shadow maps, culling and shading (light lists kept on the GPU, \
+             or none at all in a one-pass frame) and the cross bilateral filter",
             ctx.adapter_name
         ),
         "the VPLs stay on the GPU from their generation to the shading; the images are read \

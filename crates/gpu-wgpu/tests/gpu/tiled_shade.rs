@@ -1,16 +1,19 @@
 //! The one-pass tiled culling and shading (`tiled_shade_pass`) against the tiled culler's
 //! lists shaded by `shade_pass`: the same image, pixel for pixel, for every tiled strategy,
-//! several K and the edge cases (a frame without pixels, VPLs that reach nothing).
+//! several K and the edge cases (VPLs that reach nothing, no VPL); and the renderer's two
+//! paths (`GpuRenderer::with_one_pass`).
 use crate::common::gpu;
 use crate::tiled::frame;
-use slc_core::{builtin, CullInput, GlossyBound, Interleaving, Vpl};
+use slc_core::frame::{LobeSelection, Method, RenderSettings, Stochastic};
+use slc_core::render::render;
+use slc_core::{builtin, CullInput, GlossyBound, Interleaving, Renderer, Strategy, Vpl};
 use slc_gpu_wgpu::buffers::upload;
 use slc_gpu_wgpu::cull_frame::CullFrame;
 use slc_gpu_wgpu::gpu_types::GpuSample;
 use slc_gpu_wgpu::shade_pass::{read_image, ShadePass};
 use slc_gpu_wgpu::tiled_cull_pass::TiledCuller;
 use slc_gpu_wgpu::tiled_shade_pass::TiledShadePass;
-use slc_gpu_wgpu::GpuContext;
+use slc_gpu_wgpu::{GpuContext, GpuRenderer};
 
 /// The one-pass image of `input` with `glossy` bounds, and the image of its lists.
 fn both(
@@ -93,5 +96,49 @@ fn one_pass_without_reachable_vpls_is_black() {
         let (one, want) = both(&ctx, &input, GlossyBound::Ellipsoid);
         assert!(one.pixels.iter().all(|p| *p == glam::Vec3::ZERO));
         assert_eq!(one.pixels, want.pixels);
+    }
+}
+
+/// The renderer's two paths for the tiled strategies, one pass and lists, render the same
+/// frame; with metrics both measure the same lists.
+#[test]
+fn renderer_one_pass_and_lists_render_the_same_frame() {
+    let Some(ctx) = gpu() else { return };
+    let one_pass = GpuRenderer::from_context(ctx).unwrap();
+    let Some(ctx) = gpu() else { return };
+    let lists = GpuRenderer::from_context(ctx).unwrap().with_one_pass(false);
+    let scene = builtin("default").unwrap();
+    for strategy in [Strategy::Sphere, Strategy::Ellipsoid] {
+        let settings = RenderSettings {
+            width: 64,
+            height: 48,
+            rsm_resolution: 16,
+            seed: 2,
+            method: Method::Stochastic(Stochastic {
+                delta: 1e-3,
+                strategy,
+                interleave: 4,
+                denoise: true,
+                metrics: true,
+            }),
+            visibility: false,
+            spp: 1,
+            lobes: LobeSelection::Both,
+        };
+        let a = render(&one_pass, &scene, &settings, &|_| {}).unwrap();
+        let b = render(&lists, &scene, &settings, &|_| {}).unwrap();
+        assert_eq!(a.indirect.pixels, b.indirect.pixels, "{strategy:?}");
+        assert_eq!(a.metrics, b.metrics, "{strategy:?}");
+        assert_eq!(a.metrics.unwrap().missed_pairs, 0);
+        let one_pass_note = |r: &GpuRenderer| {
+            r.info(&settings)
+                .notes
+                .iter()
+                .any(|n| n.contains("tiled_shade"))
+        };
+        assert!(
+            one_pass_note(&one_pass) && !one_pass_note(&lists),
+            "{strategy:?}"
+        );
     }
 }
