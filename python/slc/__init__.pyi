@@ -13,6 +13,7 @@ STRATEGIES: list[str]
 BUILTIN_SCENES: tuple[str, ...]
 
 Backend = Literal["cpu", "gpu"]
+GpuTiled = Literal["one-pass", "lists"]
 ShaderName = Literal["vpl", "vsgl"]
 Lobes = Literal["both", "diffuse", "glossy"]
 ReferenceName = Literal["vpl", "path"]
@@ -85,6 +86,7 @@ class ListOptions(CullingOptions, total=False):
     culling: Strategy  # "ellipsoid"
 
 class CompareOptions(CullingOptions, total=False):
+    gpu_tiled: GpuTiled  # "one-pass": backend="gpu"'s tiled strategies in one pass, or through light lists (the same image)
     denoise: bool  # True
     visibility: bool  # False: shadow rays to every listed VPL
     progress: bool  # False: progress bars on stderr

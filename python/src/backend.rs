@@ -79,6 +79,7 @@ impl Loaded {
             }
         };
         gpu.check(&options.settings).map_err(|e| e.to_string())?;
+        gpu.set_one_pass(options.one_pass);
         job.run(&*gpu, scene, loaded)
     }
 

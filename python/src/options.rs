@@ -37,6 +37,7 @@ pub const COMPARE: &[&str] = &[
     "width",
     "height",
     "backend",
+    "gpu_tiled",
     "seed",
     "rsm",
     "lobes",
@@ -51,6 +52,7 @@ pub const RENDER: &[&str] = &[
     "width",
     "height",
     "backend",
+    "gpu_tiled",
     "seed",
     "rsm",
     "lobes",
@@ -75,6 +77,9 @@ pub const RENDER: &[&str] = &[
 pub struct Options {
     pub settings: RenderSettings,
     pub backend: Backend,
+    /// The GPU's tiled strategies culled and shaded in one pass (`gpu_tiled="one-pass"`, the
+    /// default) or through light lists (`"lists"`), as `--gpu-tiled`.
+    pub one_pass: bool,
     /// Show progress bars on stderr.
     pub progress: bool,
 }
@@ -152,6 +157,16 @@ impl Options {
             &backend,
             &[("cpu", Backend::Cpu), ("gpu", Backend::Gpu)],
         )?;
+        let gpu_tiled: Option<String> = option!(options, "gpu_tiled", Option<String>, None);
+        let one_pass = match gpu_tiled {
+            None => true,
+            Some(_) if backend != Backend::Gpu => {
+                return Err(PyValueError::new_err(
+                    "gpu_tiled chooses how the GPU backend culls; add backend='gpu'",
+                ))
+            }
+            Some(t) => choose("gpu_tiled", &t, &[("one-pass", true), ("lists", false)])?,
+        };
         let lobes: String = option!(options, "lobes", String, "both".into());
         let lobes = choose(
             "lobes",
@@ -176,6 +191,7 @@ impl Options {
         Ok(Self {
             settings,
             backend,
+            one_pass,
             progress: option!(options, "progress", bool, false),
         })
     }

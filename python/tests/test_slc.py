@@ -201,6 +201,21 @@ def test_the_gpu_backend_renders_the_same_frame_shape():
     assert f.report["backend"] == "gpu"
 
 
+def test_gpu_tiled_lists_render_what_one_pass_renders():
+    with pytest.raises(ValueError, match="backend='gpu'"):
+        slc.render(**SMALL, gpu_tiled="lists")
+    try:
+        one_pass = slc.render(**SMALL, backend="gpu", culling="sphere")
+    except slc.SlcError as e:
+        if "no GPU adapter" in str(e) and not os.environ.get("CI"):
+            pytest.skip(str(e))
+        raise
+    lists = slc.render(**SMALL, backend="gpu", culling="sphere", gpu_tiled="lists")
+    assert np.array_equal(one_pass.indirect, lists.indirect)
+    with pytest.raises(ValueError, match="gpu_tiled"):
+        slc.render(**SMALL, backend="gpu", gpu_tiled="two-pass")
+
+
 def test_a_scene_with_overridden_materials_is_a_new_scene(scene):
     assert "copper" in scene.materials
     sharp = scene.with_materials("copper", alpha=0.01)

@@ -163,8 +163,13 @@ impl GpuRenderer {
     /// by a second pass (`false`: `tiled_cull_pass` and `shade_pass`, to compare the two).
     /// Both shade the same VPLs in the same order: the images are the same.
     pub fn with_one_pass(mut self, one_pass: bool) -> Self {
-        self.one_pass = one_pass;
+        self.set_one_pass(one_pass);
         self
+    }
+
+    /// [`Self::with_one_pass`] on a renderer kept between frames.
+    pub fn set_one_pass(&mut self, one_pass: bool) {
+        self.one_pass = one_pass;
     }
 
     /// The device the passes run on.
