@@ -18,8 +18,9 @@ struct View {
     slack: f32,
     k: u32,
     seed: u32,
-    pad0: u32,
-    pad1: u32,
+    // 1: write each VPL's BoxBound too (the tight strategies), 0: not.
+    box_bounds: u32,
+    pad: u32,
 }
 
 @group(0) @binding(0) var<uniform> view: View;
@@ -257,5 +258,7 @@ fn main(
     }
     b.subregion = vpl_subregion(view.seed, vpl.info.z, view.k);
     bounds[i] = b;
-    box_bounds[i] = box_bound(vpl, q);
+    if view.box_bounds != 0u {
+        box_bounds[i] = box_bound(vpl, q);
+    }
 }

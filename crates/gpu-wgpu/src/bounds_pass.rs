@@ -40,8 +40,8 @@ pub struct BoundsSettings<'a> {
     pub interleaving: Interleaving,
 }
 
-/// The bounds of a set of VPLs on the GPU, one [`GpuBound`] and one [`GpuBoxBound`] (what
-/// the tight strategies refine with) per VPL in input order.
+/// The bounds of a set of VPLs on the GPU, one [`GpuBound`] per VPL in input order, and for
+/// [`GlossyBound::Tight`] one [`GpuBoxBound`] (what the tight refinement tests) per VPL.
 pub struct GpuBounds {
     pub buffer: wgpu::Buffer,
     pub box_bounds: wgpu::Buffer,
@@ -85,7 +85,13 @@ impl BoundsPass {
             count,
         )?;
         let bounds = output::<GpuBound>(ctx, "bounds", vpls.len())?;
-        let box_bounds = output::<GpuBoxBound>(ctx, "box bounds", vpls.len())?;
+        // Only the tight strategies' refinement reads the box bounds.
+        let box_count = if settings.glossy == GlossyBound::Tight {
+            vpls.len()
+        } else {
+            1
+        };
+        let box_bounds = output::<GpuBoxBound>(ctx, "box bounds", box_count)?;
         let grid = Grid::for_items(ctx, u64::from(count), WORKGROUP)?;
         ctx.scoped("bounds", || {
             let view_buffer = uniform(ctx, "bounds view", &view);

@@ -88,15 +88,13 @@ impl GpuCuller {
         frame: &CullFrame,
         strategy: Strategy,
     ) -> Result<FrameLists, GpuError> {
-        match strategy.parts() {
-            (Layout::Tiled, glossy) if Self::one_pass(strategy) => {
-                match self.tiled.prepare(ctx, frame, glossy)? {
-                    Some(tiles) => Ok(FrameLists::Tiles(Box::new(tiles))),
-                    None => Ok(FrameLists::Lists(crate::gpu_lists::no_lists(ctx)?)),
-                }
-            }
-            _ => Ok(FrameLists::Lists(self.cull_frame(ctx, frame, strategy)?)),
+        if !Self::one_pass(strategy) {
+            return Ok(FrameLists::Lists(self.cull_frame(ctx, frame, strategy)?));
         }
+        Ok(match self.tiled.prepare(ctx, frame, strategy.parts().1)? {
+            Some(tiles) => FrameLists::Tiles(Box::new(tiles)),
+            None => FrameLists::Lists(crate::gpu_lists::no_lists(ctx)?),
+        })
     }
 
     /// The lists of a culling step, built from the frusta where it kept only those (for the

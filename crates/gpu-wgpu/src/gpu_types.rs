@@ -166,7 +166,9 @@ pub struct GpuView {
     /// subregion.
     pub k: u32,
     pub seed: u32,
-    pub pad: [u32; 2],
+    /// 1 where each VPL's `GpuBoxBound` is written too (`GlossyBound::Tight`), else 0.
+    pub box_bounds: u32,
+    pub pad: u32,
 }
 const _: () = assert!(std::mem::size_of::<GpuView>() == 96);
 
@@ -215,7 +217,8 @@ impl GpuView {
             slack: BOUND_SLACK,
             k: interleaving.k,
             seed: interleaving.seed,
-            pad: [0; 2],
+            box_bounds: u32::from(glossy == GlossyBound::Tight),
+            pad: 0,
         })
     }
 }

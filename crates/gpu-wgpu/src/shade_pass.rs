@@ -24,16 +24,24 @@ use crate::gpu_types::{gpu_position, GpuSample, GpuShadeParams, MAX_K};
 use glam::Vec3;
 use slc_core::{CullInput, Image, Interleaving, LightLists};
 
-/// `shaders/brdf.wgsl` followed by the shading kernel.
-pub(crate) const SOURCE: &str = concat!(
-    include_str!("../shaders/fresnel_ggx.wgsl"),
-    include_str!("../shaders/frame.wgsl"),
-    include_str!("../shaders/brdf.wgsl"),
-    include_str!("../shaders/gsample.wgsl"),
-    include_str!("../shaders/gvpl.wgsl"),
-    include_str!("../shaders/vpl_eval.wgsl"),
-    include_str!("../shaders/shade.wgsl")
-);
+/// The BRDF and one VPL's contribution (`shaders/vpl_eval.wgsl` and what it reads): the
+/// head of every VPL shading kernel's source (this pass and `tiled_shade_pass`).
+macro_rules! vpl_eval_source {
+    () => {
+        concat!(
+            include_str!("../shaders/fresnel_ggx.wgsl"),
+            include_str!("../shaders/frame.wgsl"),
+            include_str!("../shaders/brdf.wgsl"),
+            include_str!("../shaders/gsample.wgsl"),
+            include_str!("../shaders/gvpl.wgsl"),
+            include_str!("../shaders/vpl_eval.wgsl")
+        )
+    };
+}
+pub(crate) use vpl_eval_source;
+
+/// One VPL's contribution followed by the shading kernel.
+pub(crate) const SOURCE: &str = concat!(vpl_eval_source!(), include_str!("../shaders/shade.wgsl"));
 const WORKGROUP: u32 = 64;
 
 /// What shading needs besides the G-buffer samples.

@@ -13,6 +13,7 @@ use crate::buffers::{output, uniform};
 use crate::context::{GpuContext, GpuError};
 use crate::cull_frame::{read_status, CullFrame};
 use crate::gpu_types::GpuShadeParams;
+use crate::shade_pass::vpl_eval_source;
 use crate::tiled_cull_pass::TiledFrame;
 
 /// The tile grid, the frusta tests, the BRDF and one VPL's contribution, then the kernel.
@@ -20,12 +21,7 @@ pub(crate) const SOURCE: &str = concat!(
     include_str!("../shaders/tiles.wgsl"),
     include_str!("../shaders/bound.wgsl"),
     include_str!("../shaders/frustum_tests.wgsl"),
-    include_str!("../shaders/fresnel_ggx.wgsl"),
-    include_str!("../shaders/frame.wgsl"),
-    include_str!("../shaders/brdf.wgsl"),
-    include_str!("../shaders/gsample.wgsl"),
-    include_str!("../shaders/gvpl.wgsl"),
-    include_str!("../shaders/vpl_eval.wgsl"),
+    vpl_eval_source!(),
     include_str!("../shaders/tiled_shade.wgsl")
 );
 
