@@ -45,12 +45,15 @@ pub struct Capabilities {
     pub sampled_vpls: bool,
     /// The `tight` and `clustered-tight` culling strategies (`GlossyBound::Tight`).
     pub tight_culling: bool,
+    /// The rasterization baselines `splatting` and `clustered-raster` ([`Strategy::RASTER`]).
+    pub raster_culling: bool,
 }
 
 impl Capabilities {
     /// Whether the backend runs the culling strategy `strategy`.
     pub fn runs(&self, strategy: Strategy) -> bool {
-        self.tight_culling || strategy.parts().1 != GlossyBound::Tight
+        (self.tight_culling || strategy.parts().1 != GlossyBound::Tight)
+            && (self.raster_culling || !strategy.is_raster())
     }
 
     /// [`RenderError::Unsupported`] naming the first thing `settings` asks for that
@@ -65,6 +68,9 @@ impl Capabilities {
             Method::SampledVpls(_) if !self.sampled_vpls => Some("sampled VPLs"),
             Method::Vsgl(_) if settings.visibility && !self.vsgl_visibility => {
                 Some("visibility for VSGLs")
+            }
+            Method::Stochastic(s) if !self.runs(s.strategy) && s.strategy.is_raster() => {
+                Some("the rasterization baselines (splatting, clustered-raster)")
             }
             Method::Stochastic(s) if !self.runs(s.strategy) => {
                 Some("the tight culling strategies (tight, clustered-tight)")

@@ -32,6 +32,14 @@ pub enum Layout {
     Tiled,
     /// The same tiles cut into 32 exponential depth slices (section 7).
     Clustered,
+    /// No lists: each VPL's bounding mesh is drawn over its subregion's pixels and shades the
+    /// pixels it covers, blended additively (splatting, Dachsbacher and Stamminger 2006; the
+    /// paper's Table 2 baseline). GPU only.
+    Splatting,
+    /// The clustered grid of [`Layout::Clustered`] filled by rasterizing each VPL's bounding
+    /// mesh at tile resolution, conservatively, into a linked-list node buffer (Örtegren and
+    /// Persson 2016; the paper's Table 2 baseline). GPU only.
+    ClusteredRaster,
 }
 
 /// A culling strategy: a [`Layout`] and, unless unculled, the [`GlossyBound`] of glossy VPLs.
@@ -46,6 +54,8 @@ pub enum Strategy {
     ClusteredEnclosingSphere,
     Tight,
     ClusteredTight,
+    Splatting,
+    ClusteredRaster,
 }
 
 /// A strategy name that names no strategy.
@@ -56,7 +66,8 @@ pub struct UnknownStrategy {
 }
 
 impl Strategy {
-    /// Every strategy, in the order tables list them.
+    /// Every strategy with a culler on both backends (lists the CPU culler `slc_cull::culler`
+    /// and the GPU's compute cullers build), in the order tables list them.
     pub const ALL: [Strategy; 9] = [
         Strategy::None,
         Strategy::Sphere,
@@ -68,6 +79,20 @@ impl Strategy {
         Strategy::Tight,
         Strategy::ClusteredTight,
     ];
+
+    /// The GPU's rasterization baselines of the paper's Table 2 (splatting [DS06], clustered
+    /// shading by conservative rasterization [OP16]): no CPU culler.
+    pub const RASTER: [Strategy; 2] = [Strategy::Splatting, Strategy::ClusteredRaster];
+
+    /// [`Self::ALL`], then [`Self::RASTER`].
+    pub fn every() -> impl Iterator<Item = Strategy> {
+        Self::ALL.into_iter().chain(Self::RASTER)
+    }
+
+    /// Whether the strategy rasterizes bounding meshes ([`Self::RASTER`]).
+    pub fn is_raster(self) -> bool {
+        matches!(self.parts().0, Layout::Splatting | Layout::ClusteredRaster)
+    }
 
     /// The name as the command line, reports and tables spell it.
     pub fn name(self) -> &'static str {
@@ -81,16 +106,19 @@ impl Strategy {
             Self::ClusteredEnclosingSphere => "clustered-enclosing-sphere",
             Self::Tight => "tight",
             Self::ClusteredTight => "clustered-tight",
+            Self::Splatting => "splatting",
+            Self::ClusteredRaster => "clustered-raster",
         }
     }
 
-    /// Every strategy's name, in the order of [`Self::ALL`].
+    /// Every strategy's name, in the order of [`Self::every`].
     pub fn names() -> Vec<&'static str> {
-        Self::ALL.iter().map(|s| s.name()).collect()
+        Self::every().map(|s| s.name()).collect()
     }
 
     /// The layout and the glossy bound (`Ellipsoid` for the unculled layout, where no bound
-    /// is tested).
+    /// is tested; the raster baselines draw the spheroid for glossy VPLs as the paper's
+    /// Table 2 does).
     pub fn parts(self) -> (Layout, GlossyBound) {
         use GlossyBound::{Ellipsoid, EnclosingSphere, Sphere, Tight};
         match self {
@@ -103,6 +131,8 @@ impl Strategy {
             Self::ClusteredEnclosingSphere => (Layout::Clustered, EnclosingSphere),
             Self::Tight => (Layout::Tiled, Tight),
             Self::ClusteredTight => (Layout::Clustered, Tight),
+            Self::Splatting => (Layout::Splatting, Ellipsoid),
+            Self::ClusteredRaster => (Layout::ClusteredRaster, Ellipsoid),
         }
     }
 }
@@ -111,8 +141,7 @@ impl FromStr for Strategy {
     type Err = UnknownStrategy;
 
     fn from_str(name: &str) -> Result<Self, Self::Err> {
-        Self::ALL
-            .into_iter()
+        Self::every()
             .find(|s| s.name() == name)
             .ok_or_else(|| UnknownStrategy { name: name.into() })
     }
@@ -130,13 +159,15 @@ mod tests {
 
     #[test]
     fn names_parse_back_and_are_distinct() {
-        for s in Strategy::ALL {
+        for s in Strategy::every() {
             assert_eq!(s.name().parse::<Strategy>(), Ok(s));
             assert_eq!(s.to_string(), s.name());
         }
         let mut names = Strategy::names();
         names.dedup();
-        assert_eq!(names.len(), Strategy::ALL.len());
+        assert_eq!(names.len(), Strategy::ALL.len() + Strategy::RASTER.len());
+        assert!(Strategy::RASTER.iter().all(|s| s.is_raster()));
+        assert!(!Strategy::ALL.iter().any(|s| s.is_raster()));
         let parts: std::collections::HashSet<_> = Strategy::ALL
             .iter()
             .filter(|s| s.parts().0 != Layout::Unculled)

@@ -49,6 +49,7 @@ impl Renderer for CpuRenderer {
             references: true,
             sampled_vpls: true,
             tight_culling: true,
+            raster_culling: false,
         }
     }
 

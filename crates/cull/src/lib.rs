@@ -92,20 +92,22 @@ pub use frusta::FRUSTUM_SLACK;
 pub use reach::VplReach;
 pub use reach_chunks::ReachChunks;
 pub use strategies::bounded::BoundedCuller;
+pub use strategies::gpu_only::GpuOnly;
 pub use strategies::none::NoCulling;
 pub use view::CullView;
 pub use vpl_bounds::{GlossyBound, BOUND_SLACK};
 
 use slc_core::{CpuCuller, Layout, Strategy};
 
-/// The CPU culler of `strategy`.
+/// The CPU culler of `strategy` ([`GpuOnly`], which culls nothing and says so, for the GPU's
+/// raster baselines).
 pub fn culler(strategy: Strategy) -> Box<dyn CpuCuller> {
-    match BoundedCuller::new(strategy) {
-        Some(c) => Box::new(c),
-        None => {
-            debug_assert_eq!(strategy.parts().0, Layout::Unculled);
-            Box::new(NoCulling)
-        }
+    if let Some(c) = BoundedCuller::new(strategy) {
+        return Box::new(c);
+    }
+    match strategy.parts().0 {
+        Layout::Unculled => Box::new(NoCulling),
+        _ => Box::new(GpuOnly(strategy)),
     }
 }
 
@@ -115,7 +117,7 @@ mod tests {
 
     #[test]
     fn every_strategy_gives_a_culler_of_that_strategy() {
-        for s in Strategy::ALL {
+        for s in Strategy::every() {
             assert_eq!(culler(s).strategy(), s);
         }
     }

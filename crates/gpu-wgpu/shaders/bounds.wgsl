@@ -20,7 +20,8 @@ struct View {
     seed: u32,
     // 1: write each VPL's BoxBound too (the tight strategies), 0: not.
     box_bounds: u32,
-    pad: u32,
+    // 1: write each VPL's Shape too (the raster baselines), 0: not.
+    shapes: u32,
 }
 
 @group(0) @binding(0) var<uniform> view: View;
@@ -28,6 +29,12 @@ struct View {
 @group(0) @binding(2) var<storage, read_write> bounds: array<Bound>;
 // The tight strategies' bounds of p over boxes (box_bound.wgsl, prepended).
 @group(0) @binding(3) var<storage, read_write> box_bounds: array<BoxBound>;
+// The raster baselines' spheroids and spheres as shapes (bound_mesh.wgsl Shape, mirrored here
+// as two vec4s: centre and its semi-axis along the axis, unit axis and the other semi-axes).
+@group(0) @binding(4) var<storage, read_write> shapes: array<array<vec4<f32>, 2>>;
+
+// The shape of the bound being built (no shape: w < 0), set by sphere_bound and glossy_bound.
+var<private> shape: array<vec4<f32>, 2>;
 
 const LOBE_DIFFUSE: u32 = 0u;
 const GLOSSY_SPHERE: u32 = 0u;
@@ -86,6 +93,7 @@ fn sphere_bound(q: vec3<f32>, center: vec3<f32>, radius: f32, index: u32) -> Bou
     if !(finite3(c) && finite(r2)) {
         return overflow_bound(index);
     }
+    shape = array<vec4<f32>, 2>(vec4<f32>(c, grown), vec4<f32>(0.0, 0.0, 1.0, grown));
     return Bound(array<vec4<f32>, 3>(vec4<f32>(0.0), vec4<f32>(0.0), vec4<f32>(0.0)),
                  vec4<f32>(c, r2), BOUND_SPHERE, index, 0u, 0u);
 }
@@ -178,6 +186,8 @@ fn glossy_bound(vpl: Vpl, q: vec3<f32>, index: u32) -> Bound {
     if !(finite3(bs[0]) && finite3(bs[1]) && finite3(bs[2]) && finite3(center)) {
         return overflow_bound(index);
     }
+    shape = array<vec4<f32>, 2>(vec4<f32>(view_rotation() * (q + c), semi.x),
+                                vec4<f32>(rot[0], semi.y));
     return Bound(array<vec4<f32>, 3>(vec4<f32>(bs[0], 0.0), vec4<f32>(bs[1], 0.0),
                                      vec4<f32>(bs[2], 0.0)),
                  vec4<f32>(center, 1.0), BOUND_ELLIPSOID, index, 0u, 0u);
@@ -250,6 +260,7 @@ fn main(
     let vpl = vpls[i];
     // Camera-relative position first, then the rotation (crates/cull/src/view.rs).
     let q = vpl.position_xi.xyz - view.eye.xyz;
+    shape = array<vec4<f32>, 2>(vec4<f32>(0.0, 0.0, 0.0, -1.0), vec4<f32>(0.0, 0.0, 1.0, -1.0));
     var b: Bound;
     if vpl.info.x == LOBE_DIFFUSE {
         b = diffuse_bound(vpl, q, i);
@@ -260,5 +271,8 @@ fn main(
     bounds[i] = b;
     if view.box_bounds != 0u {
         box_bounds[i] = box_bound(vpl, q);
+    }
+    if view.shapes != 0u {
+        shapes[i] = shape;
     }
 }

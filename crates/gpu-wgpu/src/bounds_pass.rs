@@ -9,7 +9,7 @@
 use crate::buffers::{output, read_back, uniform, Grid};
 use crate::context::{GpuContext, GpuError};
 use crate::cull_frame::FrameVpls;
-use crate::cull_types::GpuBoxBound;
+use crate::cull_types::{GpuBoundShape, GpuBoxBound};
 use crate::gpu_types::{GpuBound, GpuView, BOUND_OVERFLOW};
 use slc_core::{Camera, Interleaving, Vpl};
 use slc_cull::GlossyBound;
@@ -38,13 +38,18 @@ pub struct BoundsSettings<'a> {
     pub glossy: GlossyBound,
     /// The interleaved sampling of section 6: each bound records its VPL's subregion.
     pub interleaving: Interleaving,
+    /// Whether each bound is written as a [`GpuBoundShape`] too (the raster baselines draw
+    /// meshes around them).
+    pub shapes: bool,
 }
 
 /// The bounds of a set of VPLs on the GPU, one [`GpuBound`] per VPL in input order, and for
-/// [`GlossyBound::Tight`] one [`GpuBoxBound`] (what the tight refinement tests) per VPL.
+/// [`GlossyBound::Tight`] one [`GpuBoxBound`] (what the tight refinement tests) per VPL,
+/// with [`BoundsSettings::shapes`] one [`GpuBoundShape`] per VPL.
 pub struct GpuBounds {
     pub buffer: wgpu::Buffer,
     pub box_bounds: wgpu::Buffer,
+    pub shapes: wgpu::Buffer,
     /// The VPLs as uploaded (`GpuVpl`), for the passes that shade them.
     pub vpls: wgpu::Buffer,
     pub count: usize,
@@ -75,15 +80,7 @@ impl BoundsPass {
         let count = u32::try_from(vpls.len())
             .map_err(|_| GpuError::Input(format!("{} VPLs exceed u32 indices", vpls.len())))?;
         let vpl_buffer = vpls.records(ctx, settings.delta)?;
-        let view = GpuView::new(
-            settings.camera,
-            settings.width,
-            settings.height,
-            settings.delta,
-            settings.glossy,
-            settings.interleaving,
-            count,
-        )?;
+        let view = GpuView::new(settings, count)?;
         let bounds = output::<GpuBound>(ctx, "bounds", vpls.len())?;
         // Only the tight strategies' refinement reads the box bounds.
         let box_count = if settings.glossy == GlossyBound::Tight {
@@ -92,13 +89,15 @@ impl BoundsPass {
             1
         };
         let box_bounds = output::<GpuBoxBound>(ctx, "box bounds", box_count)?;
+        let shape_count = if settings.shapes { vpls.len() } else { 1 };
+        let shapes = output::<GpuBoundShape>(ctx, "bound shapes", shape_count)?;
         let grid = Grid::for_items(ctx, u64::from(count), WORKGROUP)?;
         ctx.scoped("bounds", || {
             let view_buffer = uniform(ctx, "bounds view", &view);
             ctx.dispatch(
                 "bounds",
                 &self.pipeline,
-                &[&view_buffer, &vpl_buffer, &bounds, &box_bounds],
+                &[&view_buffer, &vpl_buffer, &bounds, &box_bounds, &shapes],
                 grid,
             );
             Ok(())
@@ -106,6 +105,7 @@ impl BoundsPass {
         Ok(GpuBounds {
             buffer: bounds,
             box_bounds,
+            shapes,
             vpls: vpl_buffer,
             count: vpls.len(),
         })

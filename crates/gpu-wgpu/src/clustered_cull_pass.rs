@@ -15,15 +15,15 @@
 //!
 //! The GPU decides in f32 what the CPU decides in f64 (view depths, slice boundaries, box
 //! tests): a sample within rounding of a slice boundary may fall in the neighbouring slice.
-use crate::bounds_pass::{BoundsPass, BoundsSettings};
+use crate::bounds_pass::{BoundsPass, BoundsSettings, GpuBounds};
 use crate::buffers::{output, uniform, upload, Grid};
 use crate::context::{GpuContext, GpuError};
 use crate::cull_frame::{check_input, cull_params, read_status, tile_grid, CullFrame, CullSizes};
 use crate::cull_types::{GpuClusterFrusta, CLUSTER_SLICES, DEPTH_RANGE, DEPTH_SPLIT};
 use crate::gpu_lists::GpuLightLists;
 use crate::gpu_lists::{no_lists, read_lists};
-use crate::gpu_types::{GpuCullStatus, CULL_COUNT, CULL_WRITE};
-use crate::partition_pass::PartitionPass;
+use crate::gpu_types::{GpuCullParams, GpuCullStatus, CULL_COUNT, CULL_WRITE};
+use crate::partition_pass::{GpuPartition, PartitionPass};
 use crate::scan_pass::ScanPass;
 use crate::tight_cull_pass::{BaseLayout, TightRefiner};
 use slc_core::{CullInput, LightLists};
@@ -105,13 +105,30 @@ impl ClusteredCuller {
         frame: &CullFrame,
         glossy: GlossyBound,
     ) -> Result<GpuLightLists, GpuError> {
+        match self.prepare(ctx, frame, glossy, false)? {
+            Some(clusters) => self.lists(ctx, frame, clusters),
+            None => no_lists(ctx),
+        }
+    }
+
+    /// The passes before the lists: per-VPL bounds (as shapes too with `shapes`, for the
+    /// rasterized clusters), the subregions' VPLs, the G-buffer's depth range and each
+    /// tile's occupied slices with each pixel's slice, encoded and submitted; `None` for a
+    /// frame without pixels.
+    pub fn prepare(
+        &self,
+        ctx: &GpuContext,
+        frame: &CullFrame,
+        glossy: GlossyBound,
+        shapes: bool,
+    ) -> Result<Option<ClusterFrame>, GpuError> {
         let CullSizes {
             pixels,
             k,
             vpl_count,
         } = check_input(frame)?;
         if pixels == 0 {
-            return no_lists(ctx);
+            return Ok(None);
         }
         let (width, height) = (frame.width, frame.height);
         let view = CullView::new(frame.camera, width, height)
@@ -126,26 +143,21 @@ impl ClusteredCuller {
                 delta: frame.delta,
                 glossy,
                 interleaving: frame.interleaving,
+                shapes,
             },
         )?;
         let tiles = tile_grid(frame, CLUSTER_SLICES)?;
-        let tile_count = tiles.2;
-        let list_count = CLUSTER_SLICES * tile_count;
         let grid = Grid::new(
-            u64::from(tile_count),
+            u64::from(tiles.2),
             ctx.limits.max_compute_workgroups_per_dimension,
         )?;
-        let params = |label, mode| uniform(ctx, label, &cull_params(frame, &view, tiles, mode));
-        let positions = frame.positions.clone();
-        let frusta = output::<GpuClusterFrusta>(ctx, "cluster frusta", tile_count as usize)?;
+        let params = cull_params(frame, &view, tiles, CULL_COUNT);
+        let frusta = output::<GpuClusterFrusta>(ctx, "cluster frusta", tiles.2 as usize)?;
         let pixel_list = output::<u32>(ctx, "pixel lists", pixels as usize)?;
-        let offsets = output::<u32>(ctx, "list offsets", list_count as usize + 1)?;
         let status = upload(ctx, "cull status", &[GpuCullStatus::CLEAR])?;
         // Smallest and largest depth as f32 bits, before any sample is seen.
         let depth_range = upload(ctx, "depth range", &[u32::MAX, 0])?;
-        // Counting writes no list entry: a placeholder fills the binding.
-        let no_entries = output::<u32>(ctx, "no lists", 1)?;
-        let partition = ctx.submit("clustered cull (count)", |encoder| {
+        let partition = ctx.submit("cluster depth", |encoder| {
             let partition = self.partition.encode(
                 ctx,
                 encoder,
@@ -159,14 +171,14 @@ impl ClusteredCuller {
                 ("cluster depth range", DEPTH_RANGE),
                 ("cluster depth split", DEPTH_SPLIT),
             ] {
-                let params = params(label, mode);
+                let params = uniform(ctx, label, &GpuCullParams { mode, ..params });
                 ctx.encode_dispatch(
                     encoder,
                     label,
                     &self.depth,
                     &[
                         &params,
-                        &positions,
+                        &frame.positions,
                         &frusta,
                         &pixel_list,
                         &status,
@@ -175,62 +187,106 @@ impl ClusteredCuller {
                     grid,
                 );
             }
-            let count = params("clustered cull params (count)", CULL_COUNT);
-            ctx.encode_dispatch(
-                encoder,
-                "clustered cull",
-                &self.cull,
-                &[
-                    &count,
-                    &frusta,
-                    &bounds.buffer,
-                    &offsets,
-                    &no_entries,
-                    &partition.sub_offsets,
-                    &partition.order,
-                ],
-                grid,
-            );
-            self.scan
-                .encode(ctx, encoder, &offsets, list_count, &status);
             Ok(partition)
         })?;
-        let total = read_status(ctx, &status, width)?;
-        let lists = output::<u32>(ctx, "light lists", total as usize)?;
-        ctx.submit("clustered cull (write)", |encoder| {
-            let write = params("clustered cull params (write)", CULL_WRITE);
-            ctx.encode_dispatch(
-                encoder,
-                "clustered cull",
-                &self.cull,
-                &[
-                    &write,
-                    &frusta,
-                    &bounds.buffer,
-                    &offsets,
-                    &lists,
-                    &partition.sub_offsets,
-                    &partition.order,
-                ],
-                grid,
+        Ok(Some(ClusterFrame {
+            bounds,
+            partition,
+            frusta,
+            pixel_list,
+            status,
+            depth_range,
+            params,
+            grid,
+            pixels,
+            glossy,
+        }))
+    }
+
+    /// The lists of a prepared frame: counted per slice, scanned, one count read back to
+    /// size the list buffer, written; refined per block for [`GlossyBound::Tight`].
+    pub fn lists(
+        &self,
+        ctx: &GpuContext,
+        frame: &CullFrame,
+        clusters: ClusterFrame,
+    ) -> Result<GpuLightLists, GpuError> {
+        let list_count = CLUSTER_SLICES * clusters.params.tile_count;
+        let offsets = output::<u32>(ctx, "list offsets", list_count as usize + 1)?;
+        // Counting writes no list entry: a placeholder fills the binding.
+        let no_entries = output::<u32>(ctx, "no lists", 1)?;
+        let run = |label: &'static str, mode: u32, entries: &wgpu::Buffer| {
+            let params = uniform(
+                ctx,
+                label,
+                &GpuCullParams {
+                    mode,
+                    ..clusters.params
+                },
             );
-            Ok(())
-        })?;
+            ctx.submit(label, |encoder| {
+                ctx.encode_dispatch(
+                    encoder,
+                    "clustered cull",
+                    &self.cull,
+                    &[
+                        &params,
+                        &clusters.frusta,
+                        &clusters.bounds.buffer,
+                        &offsets,
+                        entries,
+                        &clusters.partition.sub_offsets,
+                        &clusters.partition.order,
+                    ],
+                    clusters.grid,
+                );
+                if mode == CULL_COUNT {
+                    self.scan
+                        .encode(ctx, encoder, &offsets, list_count, &clusters.status);
+                }
+                Ok(())
+            })
+        };
+        run("clustered cull (count)", CULL_COUNT, &no_entries)?;
+        let total = read_status(ctx, &clusters.status, frame.width)?;
+        let entries = output::<u32>(ctx, "light lists", total as usize)?;
+        run("clustered cull (write)", CULL_WRITE, &entries)?;
         let lists = GpuLightLists {
             offsets,
-            indices: lists,
-            pixel_list,
+            indices: entries,
+            pixel_list: clusters.pixel_list,
             list_count,
             entries: total,
-            pixels,
+            pixels: clusters.pixels,
         };
-        if glossy != GlossyBound::Tight {
+        if clusters.glossy != GlossyBound::Tight {
             return Ok(lists);
         }
         let layout = BaseLayout {
             clusters: CLUSTER_SLICES,
             split: false,
         };
-        self.tight.refine(ctx, frame, lists, &bounds, layout)
+        self.tight
+            .refine(ctx, frame, lists, &clusters.bounds, layout)
     }
+}
+
+/// A clustered culling up to its cluster frusta ([`ClusteredCuller::prepare`]): what the
+/// list passes and the rasterized clusters (`cluster_raster_pass`) read.
+pub struct ClusterFrame {
+    pub bounds: GpuBounds,
+    pub partition: GpuPartition,
+    /// `GpuClusterFrusta` per tile (occupied slices in `info.x`).
+    pub frusta: wgpu::Buffer,
+    /// Each pixel's cluster (32 t + slice; `NO_LIST` without a sample).
+    pub pixel_list: wgpu::Buffer,
+    /// The fault record of the passes so far (`GpuCullStatus`).
+    pub status: wgpu::Buffer,
+    /// The G-buffer's smallest and largest view depth as f32 bits.
+    pub depth_range: wgpu::Buffer,
+    /// The tile grid and culling view.
+    pub params: GpuCullParams,
+    pub grid: Grid,
+    pub pixels: u32,
+    pub glossy: GlossyBound,
 }

@@ -127,11 +127,9 @@ impl GpuContext {
         let adapter_name = adapter_label(&info);
         let timestamps = adapter.features().contains(wgpu::Features::TIMESTAMP_QUERY);
         let timestamps_trusted = timestamps && info.device_type != wgpu::DeviceType::Cpu;
-        let required_features = if timestamps {
-            wgpu::Features::TIMESTAMP_QUERY
-        } else {
-            wgpu::Features::empty()
-        };
+        // Timestamps for the profiles; f32 blending for splatting's sums (`splat_pass`).
+        let required_features = adapter.features()
+            & (wgpu::Features::TIMESTAMP_QUERY | wgpu::Features::FLOAT32_BLENDABLE);
         let limits = adapter.limits();
         let (device, queue) = adapter
             .request_device(&wgpu::DeviceDescriptor {

@@ -25,11 +25,15 @@ pub struct CullFrame<'a> {
     pub interleaving: Interleaving,
     /// `[x, y, z, 1]` per pixel, zero where the pixel has no sample.
     pub positions: wgpu::Buffer,
+    /// The sub-pixel offset (s, t) of every sample: it lies on the ray through pixel
+    /// (x + s, y + t). Only splatting depends on it (its rasterizer samples those rays).
+    pub sample_offset: (f32, f32),
 }
 
 impl<'a> CullFrame<'a> {
     /// `input` with its G-buffer positions uploaded; a G-buffer whose sample count does not
-    /// match its size is an error (as the CPU cullers' first check).
+    /// match its size is an error (as the CPU cullers' first check). Its samples are taken
+    /// to lie on the pixel centres' rays (`slc_cpu_ref::prepare` without a pass).
     pub fn upload(ctx: &GpuContext, input: &CullInput<'a>) -> Result<Self, GpuError> {
         let g = input.gbuffer;
         if u64::from(g.width) * u64::from(g.height) != g.samples.len() as u64 {
@@ -56,6 +60,7 @@ impl<'a> CullFrame<'a> {
             delta: input.delta,
             interleaving: input.interleaving,
             positions: upload(ctx, "gbuffer positions", &positions)?,
+            sample_offset: (0.5, 0.5),
         })
     }
 
@@ -75,6 +80,7 @@ impl<'a> CullFrame<'a> {
             delta,
             interleaving,
             positions: gbuffer.positions.clone(),
+            sample_offset: gbuffer.offset,
         }
     }
 }

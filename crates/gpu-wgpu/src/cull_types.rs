@@ -42,6 +42,53 @@ pub struct GpuClusterFrusta {
 }
 const _: () = assert!(std::mem::size_of::<GpuClusterFrusta>() == 288);
 
+/// One VPL's bound as a shape in the culling view, for the raster baselines' meshes
+/// (`shaders/bound_mesh.wgsl`), written by `shaders/bounds.wgsl` beside its `GpuBound` when
+/// asked: the spheroid of eq. (12)-(15) (or a sphere: both semi-axes equal) with `center` the
+/// view-space centre (xyz) and the semi-axis along `axis` (w), `axis` the unit axis ω_u (xyz)
+/// and the other two semi-axes (w), all grown as the bound. w < 0: no shape (an empty or
+/// overflowed bound). Keep in sync with `Shape` in `shaders/bound_mesh.wgsl`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
+pub struct GpuBoundShape {
+    pub center: [f32; 4],
+    pub axis: [f32; 4],
+}
+const _: () = assert!(std::mem::size_of::<GpuBoundShape>() == 32);
+
+/// Parameters of the raster baselines' passes (`shaders/raster_args.wgsl`, `splat.wgsl`,
+/// `splat_resolve.wgsl`, `cluster_shell.wgsl`, `cluster_fill.wgsl`). Keep in sync with
+/// `RasterParams` in `shaders/bound_mesh.wgsl`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
+pub struct GpuRasterParams {
+    /// (aspect tan(yfov/2), tan(yfov/2), W, H), as `GpuCullParams::image`.
+    pub image: [f32; 4],
+    /// Viewport cell (u, v) of subregion (i, j) spans screen pixels `i + cell (u − shift.x)`
+    /// onwards (the same in y).
+    pub shift: [f32; 2],
+    pub cell: f32,
+    /// δ of eq. (2).
+    pub delta: f32,
+    pub width: u32,
+    pub height: u32,
+    pub k: u32,
+    /// Vertices per mesh draw.
+    pub mesh_vertices: u32,
+    /// Cells per subregion viewport.
+    pub view_w: u32,
+    pub view_h: u32,
+    /// Nodes the node buffer holds.
+    pub capacity: u32,
+    /// K² of the interleaved sampling (section 6).
+    pub scale: f32,
+    pub tiles_x: u32,
+    pub tiles_y: u32,
+    pub vpl_count: u32,
+    pub pad: u32,
+}
+const _: () = assert!(std::mem::size_of::<GpuRasterParams>() == 80);
+
 /// One VPL's bound of p(ωo, l) of eq. (2) over boxes of receivers (`slc_bounds::BoxBound`,
 /// docs/tight-bounds.md) in the culling view, written by `shaders/bounds.wgsl` for the tight
 /// strategies. Keep in sync with `BoxBound` in `shaders/box_bound.wgsl`.

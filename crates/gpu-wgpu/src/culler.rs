@@ -3,11 +3,13 @@
 //! `tiled_cull_pass`, `clustered_cull_pass`) and runs the one of a strategy's layout with its
 //! glossy bound; [`GpuCuller::culler`] binds one strategy as a `slc_core::Culler` whose lists
 //! stay on the GPU for `shade_pass`.
+use crate::cluster_raster_pass::{ClusterRasterizer, NodeFrame};
 use crate::clustered_cull_pass::ClusteredCuller;
 use crate::context::{GpuContext, GpuError};
 use crate::cull_frame::CullFrame;
 use crate::gpu_lists::{read_lists, GpuLightLists};
 use crate::none_cull_pass::NoneCuller;
+use crate::splat_pass::Splatter;
 use crate::tiled_cull_pass::{TiledCuller, TiledFrame};
 use slc_core::{CullInput, Culler, GlossyBound, Layout, LightLists, Strategy};
 
@@ -16,6 +18,8 @@ pub struct GpuCuller {
     none: NoneCuller,
     tiled: TiledCuller,
     clustered: ClusteredCuller,
+    splatter: Splatter,
+    rasterizer: ClusterRasterizer,
 }
 
 impl GpuCuller {
@@ -24,6 +28,8 @@ impl GpuCuller {
             none: NoneCuller::new(ctx)?,
             tiled: TiledCuller::new(ctx)?,
             clustered: ClusteredCuller::new(ctx)?,
+            splatter: Splatter::new(ctx)?,
+            rasterizer: ClusterRasterizer::new(ctx)?,
         })
     }
 
@@ -50,7 +56,8 @@ impl GpuCuller {
     }
 
     /// The lists of `strategy` for `frame` (a G-buffer on the GPU, uploaded or rasterized),
-    /// left on the GPU.
+    /// left on the GPU. The raster baselines, which shade without these lists, give what
+    /// they evaluate: the pixels each splat covers, the rasterized clusters' lists.
     pub fn cull_frame(
         &self,
         ctx: &GpuContext,
@@ -61,15 +68,32 @@ impl GpuCuller {
             (Layout::Unculled, _) => self.none.cull_frame(ctx, frame),
             (Layout::Tiled, glossy) => self.tiled.cull_frame(ctx, frame, glossy),
             (Layout::Clustered, glossy) => self.clustered.cull_frame(ctx, frame, glossy),
+            (Layout::Splatting | Layout::ClusteredRaster, _) => {
+                let lists = self.prepare_frame(ctx, frame, strategy)?;
+                self.frame_lists(ctx, frame, &lists)
+            }
         }
+    }
+
+    /// The splatting pipelines (its frames' shading).
+    pub fn splatter(&self) -> &Splatter {
+        &self.splatter
+    }
+
+    /// The rasterized clusters' pipelines (their frames' shading).
+    pub fn rasterizer(&self) -> &ClusterRasterizer {
+        &self.rasterizer
     }
 }
 
 /// What a frame's culling step leaves for its shading step (`GpuRenderer`): the frusta of a
 /// tiled strategy, culled and shaded in one pass (`tiled_shade_pass`, the paper's Fig. 2),
+/// the bounds splatting draws (`splat_pass`), the rasterized clusters (`cluster_raster_pass`),
 /// or the lists of the others (clustered, tight, unculled), shaded by `shade_pass`.
 pub enum FrameLists {
     Tiles(Box<TiledFrame>),
+    Splats(Box<TiledFrame>),
+    Nodes(Box<NodeFrame>),
     Lists(GpuLightLists),
 }
 
@@ -80,21 +104,42 @@ impl GpuCuller {
         matches!(strategy.parts(), (Layout::Tiled, glossy) if glossy != GlossyBound::Tight)
     }
 
-    /// The culling step of a frame: [`FrameLists::Tiles`] where [`Self::one_pass`], else
-    /// [`Self::cull_frame`]'s lists.
+    /// The culling step of a frame: [`FrameLists::Tiles`] where [`Self::one_pass`], the
+    /// raster baselines' own steps, else [`Self::cull_frame`]'s lists.
     pub fn prepare_frame(
         &self,
         ctx: &GpuContext,
         frame: &CullFrame,
         strategy: Strategy,
     ) -> Result<FrameLists, GpuError> {
+        let no_pixels = || Ok(FrameLists::Lists(crate::gpu_lists::no_lists(ctx)?));
+        match strategy.parts().0 {
+            Layout::Splatting => {
+                return match self
+                    .tiled
+                    .prepare(ctx, frame, GlossyBound::Ellipsoid, true)?
+                {
+                    Some(tiles) => Ok(FrameLists::Splats(Box::new(tiles))),
+                    None => no_pixels(),
+                };
+            }
+            Layout::ClusteredRaster => {
+                return match self.rasterizer.prepare(ctx, &self.clustered, frame)? {
+                    Some(nodes) => Ok(FrameLists::Nodes(Box::new(nodes))),
+                    None => no_pixels(),
+                };
+            }
+            _ => {}
+        }
         if !Self::one_pass(strategy) {
             return Ok(FrameLists::Lists(self.cull_frame(ctx, frame, strategy)?));
         }
-        Ok(match self.tiled.prepare(ctx, frame, strategy.parts().1)? {
-            Some(tiles) => FrameLists::Tiles(Box::new(tiles)),
-            None => FrameLists::Lists(crate::gpu_lists::no_lists(ctx)?),
-        })
+        Ok(
+            match self.tiled.prepare(ctx, frame, strategy.parts().1, false)? {
+                Some(tiles) => FrameLists::Tiles(Box::new(tiles)),
+                None => FrameLists::Lists(crate::gpu_lists::no_lists(ctx)?),
+            },
+        )
     }
 
     /// The lists of a culling step, built from the frusta where it kept only those (for the
@@ -107,6 +152,8 @@ impl GpuCuller {
     ) -> Result<GpuLightLists, GpuError> {
         match lists {
             FrameLists::Tiles(tiles) => self.tiled.lists(ctx, frame, tiles),
+            FrameLists::Splats(tiles) => self.splatter.lists(ctx, frame, tiles),
+            FrameLists::Nodes(nodes) => self.rasterizer.lists(ctx, frame, nodes),
             FrameLists::Lists(lists) => Ok(lists.clone()),
         }
     }

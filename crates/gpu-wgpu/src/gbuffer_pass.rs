@@ -43,6 +43,9 @@ pub struct GpuGBuffer {
     pub geometric_normals: wgpu::Buffer,
     /// `[x, y, z, 1]` per pixel with a sample, zero otherwise: what the tile depth pass reads.
     pub positions: wgpu::Buffer,
+    /// The frame's sub-pixel offset (s, t): each sample lies on the ray through pixel
+    /// (x + s, y + t).
+    pub offset: (f32, f32),
 }
 
 impl GpuGBuffer {
@@ -180,6 +183,7 @@ impl GbufferPass {
             samples,
             geometric_normals,
             positions,
+            offset,
         })
     }
 }

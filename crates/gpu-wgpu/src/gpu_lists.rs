@@ -111,7 +111,7 @@ pub fn read_lists(ctx: &GpuContext, gpu: &GpuLightLists) -> Result<LightLists, G
 
 /// [`LightLists`] from lists that may be empty: empty lists are dropped (their pixels get
 /// `NO_LIST`, as on the CPU) and the rest renumbered in order.
-fn compact(offsets: &[u32], indices: Vec<u32>, pixel_list: &[u32]) -> LightLists {
+pub(crate) fn compact(offsets: &[u32], indices: Vec<u32>, pixel_list: &[u32]) -> LightLists {
     let mut renumber = vec![NO_LIST; offsets.len().saturating_sub(1)];
     let mut kept = vec![0u32];
     for (l, pair) in offsets.windows(2).enumerate() {

@@ -3,12 +3,13 @@
 //! holds its size to the WGSL layout. Only 4-byte scalars and `[f32; 4]` / `[u32; 4]` are
 //! used (WGSL `f32`, `u32`, `vec4<f32>`, `vec4<u32>`), never vec3, so the Rust and WGSL
 //! layouts agree without hidden padding.
+use crate::bounds_pass::BoundsSettings;
 use crate::context::GpuError;
 use bytemuck::{Pod, Zeroable};
 use glam::Vec3;
 use slc_bounds::shading_normal::flux_scale;
 use slc_bounds::{Anisotropy, Brdf, Fresnel, StochasticParams};
-use slc_core::{Camera, GSample, Interleaving, Vpl, VplLobe};
+use slc_core::{GSample, Vpl, VplLobe};
 use slc_cull::{CullView, GlossyBound};
 
 /// Parameters of the RNG conformance pass. Keep in sync with `RngParams` in
@@ -168,7 +169,8 @@ pub struct GpuView {
     pub seed: u32,
     /// 1 where each VPL's `GpuBoxBound` is written too (`GlossyBound::Tight`), else 0.
     pub box_bounds: u32,
-    pub pad: u32,
+    /// 1 where each VPL's `GpuBoundShape` is written too (the raster baselines), else 0.
+    pub shapes: u32,
 }
 const _: () = assert!(std::mem::size_of::<GpuView>() == 96);
 
@@ -180,24 +182,16 @@ pub const MAX_K: u32 = 1024;
 pub const BOUND_SLACK: f32 = slc_cull::BOUND_SLACK as f32;
 
 impl GpuView {
-    /// The view of `camera` for a `width` x `height` image (validated by [`CullView::new`]).
-    pub fn new(
-        camera: &Camera,
-        width: u32,
-        height: u32,
-        delta: f32,
-        glossy: GlossyBound,
-        interleaving: Interleaving,
-        count: u32,
-    ) -> Result<Self, GpuError> {
-        if !(1..=MAX_K).contains(&interleaving.k) {
+    /// The view of `settings` for `count` VPLs (the camera validated by [`CullView::new`]).
+    pub fn new(settings: &BoundsSettings, count: u32) -> Result<Self, GpuError> {
+        if !(1..=MAX_K).contains(&settings.interleaving.k) {
             return Err(GpuError::Input(format!(
                 "interleaving factor K = {} must lie in 1..={MAX_K}",
-                interleaving.k
+                settings.interleaving.k
             )));
         }
-        let view =
-            CullView::new(camera, width, height).map_err(|e| GpuError::Input(e.to_string()))?;
+        let view = CullView::new(settings.camera, settings.width, settings.height)
+            .map_err(|e| GpuError::Input(e.to_string()))?;
         let r = view.rotation();
         Ok(Self {
             rotation: [
@@ -205,9 +199,9 @@ impl GpuView {
                 vec4(r.y_axis, 0.0),
                 vec4(r.z_axis, 0.0),
             ],
-            eye: vec4(camera.position, 0.0),
-            delta,
-            glossy: match glossy {
+            eye: vec4(settings.camera.position, 0.0),
+            delta: settings.delta,
+            glossy: match settings.glossy {
                 GlossyBound::Sphere => GLOSSY_SPHERE,
                 GlossyBound::EnclosingSphere => GLOSSY_ENCLOSING_SPHERE,
                 // The tight strategies cull with the spheroid first (`tight_cull_pass`).
@@ -215,10 +209,10 @@ impl GpuView {
             },
             count,
             slack: BOUND_SLACK,
-            k: interleaving.k,
-            seed: interleaving.seed,
-            box_bounds: u32::from(glossy == GlossyBound::Tight),
-            pad: 0,
+            k: settings.interleaving.k,
+            seed: settings.interleaving.seed,
+            box_bounds: u32::from(settings.glossy == GlossyBound::Tight),
+            shapes: u32::from(settings.shapes),
         })
     }
 }

@@ -66,8 +66,10 @@
 //! Faults are errors ([`GpuError`]): no adapter (suggests `--backend cpu`), device loss
 //! (no hang: bounded waits), buffers beyond the storage-binding limit (refused), dispatches
 //! beyond 65535 workgroups per dimension (split into 2-D grids, [`buffers::Grid`]).
+pub mod bound_mesh;
 pub mod bounds_pass;
 pub mod buffers;
+pub mod cluster_raster_pass;
 pub mod clustered_cull_pass;
 pub mod context;
 pub mod cull_frame;
@@ -80,9 +82,11 @@ pub mod gbuffer_pass;
 pub mod gpu_lists;
 pub mod gpu_types;
 pub mod ism_pass;
+pub mod node_lists;
 pub mod none_cull_pass;
 pub mod partition_pass;
 pub mod profiler;
+pub mod raster_draw;
 pub mod raster_types;
 pub mod renderer;
 mod renderer_notes;
@@ -91,6 +95,7 @@ pub mod rsm_pass;
 pub mod scan_pass;
 pub mod scene_upload;
 pub mod shade_pass;
+pub mod splat_pass;
 pub mod tight_cull_pass;
 pub mod tile_depth_pass;
 pub mod tiled_cull_pass;

@@ -22,7 +22,9 @@ use crate::direct_pass::DirectPass;
 use crate::gbuffer_pass::{GbufferPass, GpuGBuffer};
 use crate::gpu_lists::read_lists;
 use crate::ism_pass::{caster_points, GpuCaster, IsmPass, IsmSettings};
-use crate::renderer_notes::{frame_notes, vsgl_note, METRICS_NOTE, ONE_PASS_NOTE};
+use crate::renderer_notes::{
+    frame_notes, vsgl_note, CLUSTER_RASTER_NOTE, METRICS_NOTE, ONE_PASS_NOTE, SPLAT_NOTE,
+};
 use crate::rsm_pass::{GpuRsm, RsmPass};
 use crate::scene_upload::GpuScene;
 use crate::shade_pass::{read_image, ShadePass};
@@ -220,6 +222,7 @@ impl Renderer for GpuRenderer {
             references: false,
             sampled_vpls: false,
             tight_culling: true,
+            raster_culling: true,
         }
     }
 
@@ -228,6 +231,11 @@ impl Renderer for GpuRenderer {
         if let Method::Stochastic(s) = settings.method {
             if self.one_pass && GpuCuller::one_pass(s.strategy) {
                 notes.push(ONE_PASS_NOTE.into());
+            }
+            match s.strategy {
+                Strategy::Splatting => notes.push(SPLAT_NOTE.into()),
+                Strategy::ClusteredRaster => notes.push(CLUSTER_RASTER_NOTE.into()),
+                _ => {}
             }
             if s.metrics {
                 notes.push(METRICS_NOTE.into());
@@ -333,7 +341,7 @@ impl Renderer for GpuRenderer {
     ) -> Result<FrameLists, RenderError> {
         self.step("culling", || {
             let frame = Self::cull_frame(p, delta, interleaving);
-            if self.one_pass {
+            if self.one_pass || strategy.is_raster() {
                 self.culler.prepare_frame(&self.ctx, &frame, strategy)
             } else {
                 Ok(FrameLists::Lists(
@@ -356,13 +364,18 @@ impl Renderer for GpuRenderer {
         if visibility {
             return Err(self.unsupported("shadow rays between VPLs and pixels (visibility)"));
         }
+        let frame = Self::cull_frame(p, delta, interleaving);
+        let samples = &p.gbuffer.samples;
         let image = self.step("shading", || match lists {
-            FrameLists::Tiles(tiles) => self.tiled_shader.shade(
-                &self.ctx,
-                &Self::cull_frame(p, delta, interleaving),
-                &p.gbuffer.samples,
-                tiles,
-            ),
+            FrameLists::Tiles(tiles) => self.tiled_shader.shade(&self.ctx, &frame, samples, tiles),
+            FrameLists::Splats(tiles) => self
+                .culler
+                .splatter()
+                .shade(&self.ctx, &frame, samples, tiles),
+            FrameLists::Nodes(nodes) => self
+                .culler
+                .rasterizer()
+                .shade(&self.ctx, &frame, samples, nodes),
             FrameLists::Lists(lists) => self.shader.shade_gpu_gbuffer_on_gpu(
                 &self.ctx,
                 &p.gbuffer,

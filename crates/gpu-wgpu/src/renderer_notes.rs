@@ -42,6 +42,19 @@ pub const ONE_PASS_NOTE: &str = "tiled culling and shading in one pass (the pape
      one pass that tests each tile's VPLs and shades its pixels from the hits in workgroup \
      memory; no light list is stored or read back";
 
+/// The note of frames splatted (`splat_pass`).
+pub const SPLAT_NOTE: &str = "splatting [DS06]: 'culling' times the bounds, partition and \
+     tile-depth passes, 'shading' the draws of each VPL's 80-triangle bounding mesh over its \
+     subregion's pixels, blended additively, and the pass back to screen order; metrics count \
+     the pixels each mesh covers";
+
+/// The note of frames culled by rasterized clusters (`cluster_raster_pass`).
+pub const CLUSTER_RASTER_NOTE: &str = "clustered shading by rasterized bounding meshes [OP16]: \
+     'culling' times the bounds, partition and depth-slice passes, the shell pass (each VPL's \
+     20-triangle mesh at tile resolution, conservative by each triangle's cell rectangle, \
+     marked with its vertex depth range) and the fill pass into a linked-list node buffer; \
+     'shading' walks each pixel's cluster list";
+
 /// The note of frames whose culling metrics were measured.
 pub const METRICS_NOTE: &str = "metrics were measured by brute force on the CPU against the \
      GPU's light lists and G-buffer, read back after the timed passes (a one-pass tiled \

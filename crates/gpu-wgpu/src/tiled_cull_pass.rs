@@ -96,7 +96,7 @@ impl TiledCuller {
         frame: &CullFrame,
         glossy: GlossyBound,
     ) -> Result<GpuLightLists, GpuError> {
-        match self.prepare(ctx, frame, glossy)? {
+        match self.prepare(ctx, frame, glossy, false)? {
             Some(tiles) => self.lists(ctx, frame, &tiles),
             None => no_lists(ctx),
         }
@@ -104,13 +104,15 @@ impl TiledCuller {
 
     /// The passes before the lists: per-VPL bounds, the subregions' VPLs and the Modified
     /// HalfZ frusta of every tile (with each pixel's cluster), encoded and submitted; `None`
-    /// for a frame without pixels. Errors on invalid input and on buffers beyond the
-    /// device's limits; faults on the GPU are read with the lists or the shaded image.
+    /// for a frame without pixels. With `shapes` the bounds are written as shapes too (for
+    /// splatting's meshes). Errors on invalid input and on buffers beyond the device's
+    /// limits; faults on the GPU are read with the lists or the shaded image.
     pub fn prepare(
         &self,
         ctx: &GpuContext,
         frame: &CullFrame,
         glossy: GlossyBound,
+        shapes: bool,
     ) -> Result<Option<TiledFrame>, GpuError> {
         let CullSizes {
             pixels, vpl_count, ..
@@ -131,6 +133,7 @@ impl TiledCuller {
                 delta: frame.delta,
                 glossy,
                 interleaving: frame.interleaving,
+                shapes,
             },
         )?;
         let tiles = tile_grid(frame, 2)?;
@@ -171,6 +174,7 @@ impl TiledCuller {
         Ok(Some(TiledFrame {
             bounds,
             order: partition.order,
+            sub_offsets: partition.sub_offsets,
             frusta,
             pixel_list,
             status,
@@ -260,6 +264,8 @@ pub struct TiledFrame {
     /// The subregions' VPLs in ascending order (`partition_pass`); each tile's range is in
     /// its frusta.
     pub order: wgpu::Buffer,
+    /// Subregion s's VPLs are `order[sub_offsets[s]..sub_offsets[s + 1]]`.
+    pub sub_offsets: wgpu::Buffer,
     /// `GpuTileFrusta` per tile.
     pub frusta: wgpu::Buffer,
     /// Each pixel's cluster list (2 t + 0 near, 2 t + 1 far; `NO_LIST` without a sample).

@@ -50,7 +50,10 @@ pub fn paint(painter: &Painter, rect: Rect, width: u32, controls: &Controls) {
             grid(painter, rect, width, TILE_SIZE * k);
             let layout = controls.strategy().map(|s| s.parts().0);
             let what = match layout {
-                Ok(Layout::Clustered) => ", each cut into 32 depth slices (not drawn)",
+                Ok(Layout::Clustered | Layout::ClusteredRaster) => {
+                    ", each cut into 32 depth slices (not drawn)"
+                }
+                Ok(Layout::Splatting) => " (splatting draws meshes, not tiles)",
                 Ok(Layout::Unculled) => " (strategy none culls no tiles)",
                 _ => "",
             };

@@ -21,10 +21,11 @@ pub struct BoundedCuller {
 }
 
 impl BoundedCuller {
-    /// The culler of `strategy`, or `None` for the unculled layout.
+    /// The culler of `strategy`, or `None` for the unculled layout and the GPU's raster
+    /// baselines.
     pub fn new(strategy: Strategy) -> Option<Self> {
         let clustering = match strategy.parts().0 {
-            Layout::Unculled => return None,
+            Layout::Unculled | Layout::Splatting | Layout::ClusteredRaster => return None,
             Layout::Tiled => Clustering::HalfZ,
             Layout::Clustered => Clustering::ExponentialSlices,
         };

@@ -1,5 +1,6 @@
 //! The culling strategies: [`none::NoCulling`], and [`bounded::BoundedCuller`] for every
 //! strategy that tests bounds (they share `tiled` and differ only in the bound of glossy VPLs
-//! and the depth clustering).
+//! and the depth clustering); [`gpu_only::GpuOnly`] names the GPU's raster baselines.
 pub mod bounded;
+pub mod gpu_only;
 pub mod none;

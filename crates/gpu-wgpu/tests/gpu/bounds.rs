@@ -124,6 +124,7 @@ fn compare(
             delta,
             glossy,
             interleaving,
+            shapes: false,
         };
         let gpu: Vec<GpuBound> = pass.compute(ctx, vpls, &settings).unwrap();
         assert_eq!(gpu.len(), vpls.len());
@@ -344,6 +345,7 @@ fn invalid_vpls_are_errors() {
         delta: 1e-3,
         glossy: GlossyBound::Ellipsoid,
         interleaving: Interleaving { k: 1, seed: 0 },
+        shapes: false,
     };
     let bad = [
         Vpl { xi: 0.0, ..good },

@@ -11,6 +11,7 @@ mod denoise;
 mod faults;
 mod ism;
 mod profile;
+mod raster_baselines;
 mod raster_common;
 mod raster_frame;
 mod raster_gbuffer;

@@ -20,7 +20,7 @@ const TIGHT: [(Strategy, Strategy); 2] = [
 
 /// `vpls` with random lobes at the extremes: α log-uniform in 1e-4…1 (a fifth anisotropic),
 /// half the glossy ones dielectric, ξ near 0, near 1 or uniform, flux scaled by 1e-6…1e6.
-fn extreme(vpls: &[Vpl], seed: u32) -> Vec<Vpl> {
+pub fn extreme(vpls: &[Vpl], seed: u32) -> Vec<Vpl> {
     vpls.iter()
         .enumerate()
         .map(|(i, v)| {

@@ -30,7 +30,7 @@ fn both(
         .map(|s| GpuSample::new(s.as_ref()))
         .collect();
     let samples = upload(ctx, "samples", &samples).unwrap();
-    let tiles = culler.prepare(ctx, &frame, glossy).unwrap().unwrap();
+    let tiles = culler.prepare(ctx, &frame, glossy, false).unwrap().unwrap();
     let one = TiledShadePass::new(ctx)
         .shade(ctx, &frame, &samples, &tiles)
         .unwrap();

@@ -328,6 +328,7 @@ fn vsgl_shading_refuses_out_of_domain_input() {
         samples: upload(&ctx, "samples", &samples).unwrap(),
         geometric_normals: upload(&ctx, "normals", &positions).unwrap(),
         positions: upload(&ctx, "positions", &positions).unwrap(),
+        offset: (0.5, 0.5),
     };
     match pass.shade_gpu_gbuffer(&ctx, &on_gpu, &vsgls) {
         Err(GpuError::Input(m)) => assert!(m.starts_with("G-buffer pixel 100:"), "{m}"),

@@ -1,0 +1,322 @@
+//! Clustered shading by conservative rasterization of bounding meshes [OP16], the paper's
+//! Table 2 baseline (`--culling clustered-raster`): the clustered culler's bounds (written as
+//! shapes too), partition and depth slices
+//! ([`ClusteredCuller::prepare`](crate::clustered_cull_pass::ClusteredCuller::prepare): 32
+//! exponential slices of the G-buffer's depth range per 16 x 16 tile of each subregion), then
+//! - the shell pass (`shaders/cluster_shell.wgsl`): each VPL's 20-triangle mesh rasterized at
+//!   tile resolution into its subregion's viewport, conservatively (each triangle drawn as the
+//!   cells around it and kept where it meets them, as the hardware's overestimating mode,
+//!   which wgpu's lavapipe lacks), marking per VPL and tile the slices its surface spans;
+//! - the fill pass (`shaders/cluster_fill.wgsl`): each VPL joins the linked list of every
+//!   occupied slice between its nearest and farthest mark, in a node buffer (`node_lists`);
+//! - shading (`shaders/node_shade.wgsl`): each pixel walks its cluster's list.
+//!
+//! The node buffer's size is a guess (the largest count seen so far); the count is read
+//! with the frame's fault record after shading, and a frame whose nodes did not fit is
+//! filled and shaded again with a buffer of that size. Sums follow the lists' order, which
+//! the GPU's scheduling sets: images equal the list shading's up to f32 rounding.
+use crate::bound_mesh::BoundMesh;
+use crate::buffers::{output, read_back, uniform, Grid};
+use crate::clustered_cull_pass::{ClusterFrame, ClusteredCuller};
+use crate::context::{GpuContext, GpuError};
+use crate::cull_frame::{read_status, CullFrame};
+use crate::cull_types::{GpuRasterParams, CLUSTER_SLICES};
+use crate::gpu_lists::GpuLightLists;
+use crate::gpu_types::GpuShadeParams;
+use crate::node_lists::NodeLists;
+use crate::raster_draw::{atlas, bind, render_pipeline, SubregionDraws};
+use crate::shade_pass::vpl_eval_source;
+use slc_core::TILE_SIZE;
+use slc_cull::GlossyBound;
+use std::cell::{Cell, RefCell};
+
+/// The mesh mapping, then the shell pass.
+pub(crate) const SHELL_SOURCE: &str = concat!(
+    include_str!("../shaders/bound_mesh.wgsl"),
+    include_str!("../shaders/cluster_shell.wgsl")
+);
+
+/// The structs it reads, then the fill pass.
+pub(crate) const FILL_SOURCE: &str = concat!(
+    include_str!("../shaders/bound_mesh.wgsl"),
+    include_str!("../shaders/bound.wgsl"),
+    include_str!("../shaders/clusters.wgsl"),
+    include_str!("../shaders/cluster_fill.wgsl")
+);
+
+/// One VPL's contribution, then the list walk.
+pub(crate) const SHADE_SOURCE: &str = concat!(
+    vpl_eval_source!(),
+    include_str!("../shaders/node_shade.wgsl")
+);
+
+/// The shell pass's target: only its size matters (the fragments write storage).
+const SHELL_TARGET: wgpu::TextureFormat = wgpu::TextureFormat::R8Unorm;
+
+/// Node buffer size the first frame tries.
+const FIRST_CAPACITY: u32 = 1 << 20;
+
+/// Vertices each mesh triangle is drawn with (its cover: two triangles).
+const COVER_VERTICES: u32 = 6;
+
+/// The rasterized clusters' pipelines.
+pub struct ClusterRasterizer {
+    mesh: wgpu::Buffer,
+    mesh_triangles: u32,
+    draws: SubregionDraws,
+    shell: wgpu::RenderPipeline,
+    fill: wgpu::ComputePipeline,
+    shade: wgpu::ComputePipeline,
+    /// The largest node count seen: the next frame's buffer.
+    capacity: Cell<u32>,
+}
+
+/// A frame's rasterized clusters: the clustered culler's frusta and the lists in their
+/// node buffer (replaced when a refill needs a larger one).
+pub struct NodeFrame {
+    pub clusters: ClusterFrame,
+    /// Per VPL slot and tile, the slices its mesh reached (the shell pass's output).
+    pub cells: wgpu::Buffer,
+    pub params: GpuRasterParams,
+    pub lists: RefCell<NodeLists>,
+}
+
+impl ClusterRasterizer {
+    pub fn new(ctx: &GpuContext) -> Result<Self, GpuError> {
+        let mesh = BoundMesh::icosphere(0);
+        ctx.scoped("cluster raster pipelines", || {
+            Ok(Self {
+                mesh: mesh.upload(ctx)?,
+                mesh_triangles: mesh.triangle_count(),
+                draws: SubregionDraws::new(ctx),
+                shell: render_pipeline(
+                    ctx,
+                    "cluster shell",
+                    SHELL_SOURCE,
+                    "fs_main",
+                    wgpu::ColorTargetState {
+                        format: SHELL_TARGET,
+                        blend: None,
+                        write_mask: wgpu::ColorWrites::empty(),
+                    },
+                    None,
+                ),
+                fill: ctx.compute_pipeline("cluster fill", FILL_SOURCE),
+                shade: ctx.compute_pipeline("node shade", SHADE_SOURCE),
+                capacity: Cell::new(FIRST_CAPACITY),
+            })
+        })
+    }
+
+    /// The culling step of a frame: depth slices, shell and fill passes, encoded and
+    /// submitted; `None` for a frame without pixels.
+    pub fn prepare(
+        &self,
+        ctx: &GpuContext,
+        clustered: &ClusteredCuller,
+        frame: &CullFrame,
+    ) -> Result<Option<NodeFrame>, GpuError> {
+        let Some(clusters) = clustered.prepare(ctx, frame, GlossyBound::Ellipsoid, true)? else {
+            return Ok(None);
+        };
+        let p = &clusters.params;
+        let k = p.k;
+        let params = GpuRasterParams {
+            image: p.image,
+            shift: [0.0, 0.0],
+            cell: (TILE_SIZE * k) as f32,
+            delta: frame.delta,
+            width: frame.width,
+            height: frame.height,
+            k,
+            mesh_vertices: COVER_VERTICES * self.mesh_triangles,
+            view_w: p.tiles_x,
+            view_h: p.tiles_y,
+            capacity: self.capacity.get(),
+            scale: frame.interleaving.scale(),
+            tiles_x: p.tiles_x,
+            tiles_y: p.tiles_y,
+            vpl_count: clusters.bounds.count as u32,
+            pad: 0,
+        };
+        let per_sub = u64::from(p.tiles_x) * u64::from(p.tiles_y);
+        let cell_count = per_sub * clusters.bounds.count as u64;
+        let cells = output::<u32>(ctx, "cluster cells", cell_count as usize)?;
+        let target = atlas(
+            ctx,
+            "cluster shell atlas",
+            (k * p.tiles_x, k * p.tiles_y),
+            SHELL_TARGET,
+            k,
+        )?;
+        ctx.submit("cluster shell", |encoder| {
+            let params_buffer = uniform(ctx, "cluster shell params", &params);
+            let group = bind(
+                ctx,
+                "cluster shell",
+                &self.shell.get_bind_group_layout(0),
+                &[
+                    (0, params_buffer.as_entire_binding()),
+                    (1, self.mesh.as_entire_binding()),
+                    (2, clusters.bounds.shapes.as_entire_binding()),
+                    (3, clusters.partition.sub_offsets.as_entire_binding()),
+                    (4, clusters.partition.order.as_entire_binding()),
+                    (5, clusters.depth_range.as_entire_binding()),
+                    (6, cells.as_entire_binding()),
+                ],
+            );
+            let (tx, ty) = (p.tiles_x, p.tiles_y);
+            self.draws.encode(
+                ctx,
+                encoder,
+                "cluster shell",
+                &params,
+                &clusters.partition.sub_offsets,
+                (&self.shell, &group),
+                &target,
+                |_, _| (tx, ty),
+            )
+        })?;
+        let lists = self.fill(ctx, &clusters, &cells, &params)?;
+        Ok(Some(NodeFrame {
+            clusters,
+            cells,
+            params,
+            lists: RefCell::new(lists),
+        }))
+    }
+
+    /// The fill pass into fresh lists of `params.capacity` nodes.
+    fn fill(
+        &self,
+        ctx: &GpuContext,
+        clusters: &ClusterFrame,
+        cells: &wgpu::Buffer,
+        params: &GpuRasterParams,
+    ) -> Result<NodeLists, GpuError> {
+        let list_count = CLUSTER_SLICES * clusters.params.tile_count;
+        let lists = NodeLists::new(ctx, list_count, params.capacity)?;
+        // The node count restarts (GpuCullStatus.total); the faults stay.
+        ctx.queue
+            .write_buffer(&clusters.status, 8, bytemuck::bytes_of(&0u32));
+        let items =
+            u64::from(params.tiles_x) * u64::from(params.tiles_y) * u64::from(params.vpl_count);
+        let params_buffer = uniform(ctx, "cluster fill params", params);
+        ctx.submit("cluster fill", |encoder| {
+            ctx.encode_dispatch(
+                encoder,
+                "cluster fill",
+                &self.fill,
+                &[
+                    &params_buffer,
+                    cells,
+                    &clusters.partition.order,
+                    &clusters.bounds.buffer,
+                    &clusters.frusta,
+                    &lists.heads,
+                    &lists.nodes,
+                    &clusters.status,
+                ],
+                Grid::for_items(ctx, items, 64)?,
+            );
+            Ok(())
+        })?;
+        Ok(lists)
+    }
+
+    /// The indirect image of `frame` (its `GpuSample`s in `samples`) from the rasterized
+    /// clusters: RGB, 3 f32 per pixel row-major, left on the GPU. The fault record and node
+    /// count are read afterwards (16 bytes); nodes that did not fit are filled again into a
+    /// buffer of their count and the frame shaded again.
+    pub fn shade(
+        &self,
+        ctx: &GpuContext,
+        frame: &CullFrame,
+        samples: &wgpu::Buffer,
+        nodes: &NodeFrame,
+    ) -> Result<wgpu::Buffer, GpuError> {
+        let clusters = &nodes.clusters;
+        let image = output::<f32>(ctx, "indirect image", 3 * clusters.pixels as usize)?;
+        let params = uniform(
+            ctx,
+            "node shade params",
+            &GpuShadeParams {
+                width: frame.width,
+                height: frame.height,
+                pixel_count: clusters.pixels,
+                vpl_count: nodes.params.vpl_count,
+                list_count: CLUSTER_SLICES * clusters.params.tile_count,
+                delta: frame.delta,
+                scale: frame.interleaving.scale(),
+                pad: 0,
+            },
+        );
+        let grid = Grid::for_items(ctx, u64::from(clusters.pixels), 64)?;
+        loop {
+            {
+                let lists = nodes.lists.borrow();
+                ctx.scoped("node shade", || {
+                    ctx.dispatch(
+                        "node shade",
+                        &self.shade,
+                        &[
+                            &params,
+                            samples,
+                            &clusters.bounds.vpls,
+                            &frame.positions,
+                            &clusters.pixel_list,
+                            &lists.heads,
+                            &lists.nodes,
+                            &image,
+                        ],
+                        grid,
+                    );
+                    Ok(())
+                })?;
+            }
+            let count = read_status(ctx, &clusters.status, frame.width)?;
+            if count <= nodes.lists.borrow().capacity {
+                self.capacity.set(self.capacity.get().max(count));
+                return Ok(image);
+            }
+            self.refill(ctx, nodes, count)?;
+        }
+    }
+
+    /// The frame's lists in the CSR layout (for the metrics): each cluster's nodes read
+    /// back, ascending, uploaded (filled again first if they did not fit).
+    pub fn lists(
+        &self,
+        ctx: &GpuContext,
+        frame: &CullFrame,
+        nodes: &NodeFrame,
+    ) -> Result<GpuLightLists, GpuError> {
+        let clusters = &nodes.clusters;
+        let count = loop {
+            let count = read_status(ctx, &clusters.status, frame.width)?;
+            if count <= nodes.lists.borrow().capacity {
+                break count;
+            }
+            self.refill(ctx, nodes, count)?;
+        };
+        let pixel_list: Vec<u32> = read_back(
+            ctx,
+            "pixel lists",
+            &clusters.pixel_list,
+            clusters.pixels as usize,
+        )?;
+        let lists = nodes.lists.borrow().read(ctx, count, &pixel_list)?;
+        GpuLightLists::upload(ctx, &lists, clusters.pixels as usize, clusters.bounds.count)
+    }
+
+    /// The fill pass again into a node buffer of `count` nodes (the count it needed).
+    fn refill(&self, ctx: &GpuContext, nodes: &NodeFrame, count: u32) -> Result<(), GpuError> {
+        self.capacity.set(self.capacity.get().max(count));
+        let params = GpuRasterParams {
+            capacity: count,
+            ..nodes.params
+        };
+        *nodes.lists.borrow_mut() = self.fill(ctx, &nodes.clusters, &nodes.cells, &params)?;
+        Ok(())
+    }
+}

@@ -1,0 +1,198 @@
+//! What the raster baselines share (`splat_pass`, `cluster_raster_pass`): their render
+//! pipelines, bind groups by binding number (a pipeline's derived layout holds only the
+//! bindings its entry points use), the indirect draw per interleaved subregion sized on the
+//! GPU (`shaders/raster_args.wgsl`) and the pass that draws every subregion's VPLs into its
+//! own viewport of an atlas.
+use crate::buffers::{uniform, Grid};
+use crate::context::{GpuContext, GpuError};
+use crate::cull_types::GpuRasterParams;
+
+/// `shaders/bound_mesh.wgsl` followed by the argument kernel.
+pub(crate) const ARGS_SOURCE: &str = concat!(
+    include_str!("../shaders/bound_mesh.wgsl"),
+    include_str!("../shaders/raster_args.wgsl")
+);
+
+/// Largest interleaving factor the raster baselines draw with: one draw per subregion.
+pub const MAX_RASTER_K: u32 = 64;
+
+/// A render pipeline of `source` (`vs_main` and `fragment`) drawing triangle lists into one
+/// colour target of `format`, without depth.
+pub(crate) fn render_pipeline(
+    ctx: &GpuContext,
+    label: &'static str,
+    source: &str,
+    fragment: &str,
+    target: wgpu::ColorTargetState,
+    cull_mode: Option<wgpu::Face>,
+) -> wgpu::RenderPipeline {
+    let module = ctx
+        .device
+        .create_shader_module(wgpu::ShaderModuleDescriptor {
+            label: Some(label),
+            source: wgpu::ShaderSource::Wgsl(source.into()),
+        });
+    ctx.device
+        .create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+            label: Some(label),
+            layout: None,
+            vertex: wgpu::VertexState {
+                module: &module,
+                entry_point: Some("vs_main"),
+                compilation_options: Default::default(),
+                buffers: &[],
+            },
+            primitive: wgpu::PrimitiveState {
+                topology: wgpu::PrimitiveTopology::TriangleList,
+                front_face: wgpu::FrontFace::Ccw,
+                cull_mode,
+                ..Default::default()
+            },
+            depth_stencil: None,
+            multisample: wgpu::MultisampleState::default(),
+            fragment: Some(wgpu::FragmentState {
+                module: &module,
+                entry_point: Some(fragment),
+                compilation_options: Default::default(),
+                targets: &[Some(target)],
+            }),
+            multiview_mask: None,
+            cache: None,
+        })
+}
+
+/// A bind group for group 0 of `layout` with each resource at its binding number.
+pub(crate) fn bind(
+    ctx: &GpuContext,
+    label: &'static str,
+    layout: &wgpu::BindGroupLayout,
+    entries: &[(u32, wgpu::BindingResource)],
+) -> wgpu::BindGroup {
+    let entries: Vec<_> = entries
+        .iter()
+        .map(|(binding, resource)| wgpu::BindGroupEntry {
+            binding: *binding,
+            resource: resource.clone(),
+        })
+        .collect();
+    ctx.device.create_bind_group(&wgpu::BindGroupDescriptor {
+        label: Some(label),
+        layout,
+        entries: &entries,
+    })
+}
+
+/// A colour target texture of `width` x `height` cells (K viewports across and down); an
+/// error beyond the adapter's texture size or the raster baselines' largest K.
+pub(crate) fn atlas(
+    ctx: &GpuContext,
+    label: &'static str,
+    (width, height): (u32, u32),
+    format: wgpu::TextureFormat,
+    k: u32,
+) -> Result<wgpu::TextureView, GpuError> {
+    if k > MAX_RASTER_K {
+        return Err(GpuError::Input(format!(
+            "the raster baselines draw once per subregion: K = {k} exceeds {MAX_RASTER_K}"
+        )));
+    }
+    let max = ctx.limits.max_texture_dimension_2d;
+    if width > max || height > max {
+        return Err(GpuError::Input(format!(
+            "{label} of {width}x{height} exceeds the adapter's {max} texels"
+        )));
+    }
+    let texture = ctx.device.create_texture(&wgpu::TextureDescriptor {
+        label: Some(label),
+        size: wgpu::Extent3d {
+            width: width.max(1),
+            height: height.max(1),
+            depth_or_array_layers: 1,
+        },
+        mip_level_count: 1,
+        sample_count: 1,
+        dimension: wgpu::TextureDimension::D2,
+        format,
+        usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::TEXTURE_BINDING,
+        view_formats: &[],
+    });
+    Ok(texture.create_view(&Default::default()))
+}
+
+/// The per-subregion draws of the raster baselines.
+pub(crate) struct SubregionDraws {
+    args: wgpu::ComputePipeline,
+}
+
+impl SubregionDraws {
+    pub fn new(ctx: &GpuContext) -> Self {
+        Self {
+            args: ctx.compute_pipeline("raster args", ARGS_SOURCE),
+        }
+    }
+
+    /// Records the draws of `pipeline` (with `bind` at group 0) for every subregion of
+    /// `params` into `target`, cleared first: subregion (i, j)'s VPLs
+    /// (`order[sub_offsets[s]..sub_offsets[s + 1]]`) as instances of `params.mesh_vertices`
+    /// vertices, in the viewport at (i view_w, j view_h) cut to `extent(i, j)` cells.
+    #[allow(clippy::too_many_arguments)]
+    pub fn encode(
+        &self,
+        ctx: &GpuContext,
+        encoder: &mut wgpu::CommandEncoder,
+        label: &'static str,
+        params: &GpuRasterParams,
+        sub_offsets: &wgpu::Buffer,
+        (pipeline, bind): (&wgpu::RenderPipeline, &wgpu::BindGroup),
+        target: &wgpu::TextureView,
+        extent: impl Fn(u32, u32) -> (u32, u32),
+    ) -> Result<(), GpuError> {
+        let k = params.k;
+        let subregions = k * k;
+        let args = ctx.device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("raster draw args"),
+            size: 16 * u64::from(subregions),
+            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::INDIRECT,
+            mapped_at_creation: false,
+        });
+        let params_buffer = uniform(ctx, "raster params", params);
+        ctx.encode_dispatch(
+            encoder,
+            "raster args",
+            &self.args,
+            &[&params_buffer, sub_offsets, &args],
+            Grid::for_items(ctx, u64::from(subregions), 64)?,
+        );
+        let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+            label: Some(label),
+            color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+                view: target,
+                depth_slice: None,
+                resolve_target: None,
+                ops: wgpu::Operations {
+                    load: wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT),
+                    store: wgpu::StoreOp::Store,
+                },
+            })],
+            depth_stencil_attachment: None,
+            timestamp_writes: None,
+            occlusion_query_set: None,
+            multiview_mask: None,
+        });
+        pass.set_pipeline(pipeline);
+        pass.set_bind_group(0, bind, &[]);
+        let (vw, vh) = (params.view_w, params.view_h);
+        for s in 0..subregions {
+            let (i, j) = (s % k, s / k);
+            let (w, h) = extent(i, j);
+            if w == 0 || h == 0 {
+                continue;
+            }
+            let (x, y) = (i * vw, j * vh);
+            pass.set_viewport(x as f32, y as f32, vw as f32, vh as f32, 0.0, 1.0);
+            pass.set_scissor_rect(x, y, w.min(vw), h.min(vh));
+            pass.draw_indirect(&args, 16 * u64::from(s));
+        }
+        Ok(())
+    }
+}

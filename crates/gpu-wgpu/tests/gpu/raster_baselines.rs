@@ -1,0 +1,138 @@
+//! The rasterization baselines of the paper's Table 2 (`splat_pass` [DS06],
+//! `cluster_raster_pass` [OP16]): no pair with p > ξ is ever missed (every pair counted by the
+//! CPU's brute force), with the scene's VPLs and with VPLs at the extremes (bounds that hold
+//! the camera, α 1e-4…1, ξ near 0 and 1, δ over twelve decades), at several K; they cull
+//! (fewer pairs than no culling); and the renderer's images equal the tiled ellipsoid's up to
+//! f32 rounding of the sums' order, with the same true positives.
+use crate::common::gpu;
+use crate::tight::extreme;
+use slc_core::frame::{LobeSelection, Method, RenderSettings, Stochastic};
+use slc_core::render::render;
+use slc_core::{builtin, Camera, CullInput, GBuffer, Interleaving, Scene, Strategy, Vpl};
+use slc_cpu_ref::gbuffer::{trace_gbuffer, PixelSample};
+use slc_cpu_ref::rsm::{trace_rsm, TexelSample};
+use slc_cpu_ref::vpls::generate_vpls;
+use slc_cpu_ref::Tracer;
+use slc_gpu_wgpu::culler::GpuCuller;
+use slc_gpu_wgpu::GpuRenderer;
+
+/// A G-buffer sampled at pixel centres (splatting rasterizes those rays) and the VPLs of an
+/// RSM of `rsm`².
+fn centred_frame(
+    scene: &Scene,
+    camera: &Camera,
+    (w, h): (u32, u32),
+    rsm: u32,
+) -> (GBuffer, Vec<Vpl>) {
+    let tracer = Tracer::new(scene);
+    let gbuffer = trace_gbuffer(scene, &tracer, camera, w, h, PixelSample::Centre);
+    let maps: Vec<_> = scene
+        .lights
+        .iter()
+        .map(|l| trace_rsm(scene, &tracer, l, rsm, TexelSample::Centre))
+        .collect();
+    (gbuffer, generate_vpls(&maps, 11, LobeSelection::Both))
+}
+
+#[test]
+fn raster_baselines_miss_no_pair() {
+    let Some(ctx) = gpu() else { return };
+    let culler = GpuCuller::new(&ctx).unwrap();
+    let scene = builtin("default").unwrap();
+    let camera = scene.camera_or_default();
+    let (gbuffer, vpls) = centred_frame(&scene, &camera, (64, 48), 16);
+    let wild = extreme(&vpls, 3);
+    let cases: Vec<(&str, &[Vpl], f32, u32)> = vec![
+        ("scene", &vpls, 1e-3, 1),
+        ("scene", &vpls, 1e-3, 3),
+        ("scene", &vpls, 1e-2, 8),
+        ("extreme", &wild, 1e-9, 1),
+        ("extreme", &wild, 1e-3, 4),
+        ("extreme", &wild, 1e3, 2),
+    ];
+    for (name, vpls, delta, k) in cases {
+        let input = CullInput {
+            gbuffer: &gbuffer,
+            camera: &camera,
+            vpls,
+            delta,
+            interleaving: Interleaving { k, seed: 4 },
+        };
+        let none = culler.cull(&ctx, &input, Strategy::None).unwrap();
+        let all = slc_cull::metrics::measure(&input, &none).unwrap();
+        for strategy in Strategy::RASTER {
+            let lists = culler.cull(&ctx, &input, strategy).unwrap();
+            let m = slc_cull::metrics::measure(&input, &lists).unwrap();
+            let label = format!("{strategy} {name} δ {delta} K {k}");
+            println!(
+                "{label}: TP {} FP {} (none {}) missed {}",
+                m.true_positive_pairs,
+                m.false_positive_pairs,
+                all.false_positive_pairs,
+                m.missed_pairs
+            );
+            assert_eq!(m.missed_pairs, 0, "{label}");
+            assert_eq!(m.true_positive_pairs, all.true_positive_pairs, "{label}");
+            if name == "scene" {
+                assert!(
+                    10 * m.false_positive_pairs < 9 * all.false_positive_pairs,
+                    "{label}: {} of {} false positives",
+                    m.false_positive_pairs,
+                    all.false_positive_pairs
+                );
+            }
+        }
+    }
+}
+
+/// Every frame of the renderer with a raster baseline: the tiled ellipsoid's image up to the
+/// rounding of a different summation order, and its true positives.
+#[test]
+fn raster_baselines_render_the_tiled_image() {
+    let Some(ctx) = gpu() else { return };
+    let renderer = GpuRenderer::from_context(ctx).unwrap();
+    let scene = builtin("default").unwrap();
+    let settings = |strategy| RenderSettings {
+        width: 64,
+        height: 48,
+        rsm_resolution: 16,
+        seed: 2,
+        method: Method::Stochastic(Stochastic {
+            delta: 1e-3,
+            strategy,
+            interleave: 4,
+            denoise: false,
+            metrics: true,
+        }),
+        visibility: false,
+        spp: 1,
+        lobes: LobeSelection::Both,
+    };
+    let want = render(&renderer, &scene, &settings(Strategy::Ellipsoid), &|_| {}).unwrap();
+    let lit = want
+        .indirect
+        .pixels
+        .iter()
+        .filter(|p| p.max_element() > 0.0)
+        .count();
+    assert!(lit * 2 > want.indirect.pixels.len(), "{lit} lit");
+    for strategy in Strategy::RASTER {
+        let got = render(&renderer, &scene, &settings(strategy), &|_| {}).unwrap();
+        for (p, (a, b)) in got
+            .indirect
+            .pixels
+            .iter()
+            .zip(&want.indirect.pixels)
+            .enumerate()
+        {
+            let tolerance = 1e-4 * a.max_element().max(b.max_element()) + 1e-9;
+            assert!(
+                (*a - *b).abs().max_element() <= tolerance,
+                "{strategy} pixel {p}: {a} against {b}"
+            );
+        }
+        let (m, w) = (got.metrics.unwrap(), want.metrics.as_ref().unwrap());
+        assert_eq!(m.missed_pairs, 0, "{strategy}");
+        assert_eq!(m.true_positive_pairs, w.true_positive_pairs, "{strategy}");
+    }
+}
