@@ -121,6 +121,8 @@ impl OnBackend for Bench<'_> {
         // The listed pairs, and so the ceiling, are counted by the CPU only.
         let ceiling = (device.backend == "cpu").then(ceiling::exit_test_mpairs_per_s);
         let mut rows = Vec::new();
+        // (frame, strategy, culling + shading ms) for the paper's Table 2 layout.
+        let mut table2 = Vec::new();
         let mut md = format!(
             "# slc bench: {}\n\nBackend {}, adapter {}, {} rayon threads, δ = {}, K = {}, lobes {:?}, median (min–max) of {} runs. Milliseconds per pass; M pairs/s: the pixel-VPL pairs the lists hold over the shading time (the CPU counts them; n/a on the GPU, whose lists stay there); ceiling: {}.\n\n{}| resolution | VPLs | strategy | {} | culling + shading | M pairs/s | of ceiling |\n|---|---|---|{}---|---|---|\n",
             scene.name,
@@ -208,10 +210,12 @@ impl OnBackend for Bench<'_> {
                         vpl_count,
                     );
                     rows.push((settings, row));
+                    table2.push((format!("{w}x{h}, {vpl_count} VPLs"), strategy, cs));
                     eprintln!("  {strategy}: culling + shading {cs:.1} ms");
                 }
             }
         }
+        md.push_str(&paper_layout(&table2, &format!("{:?}", args.frame.lobes)));
         let json = serde_json::json!({
             "provenance": provenance,
             "rows": rows
@@ -227,6 +231,55 @@ impl OnBackend for Bench<'_> {
         println!("wrote {}", args.out.display());
         Ok(())
     }
+}
+
+/// The paper's Table 2 layout of `cells` (frame, strategy, culling + shading ms): one row per
+/// strategy under the paper's names, one column per frame, each time followed by its ratio
+/// to the tiled ellipsoid's ("ours") on the same frame where that was run.
+fn paper_layout(cells: &[(String, Strategy, f64)], lobes: &str) -> String {
+    let mut frames: Vec<&str> = Vec::new();
+    let mut strategies: Vec<Strategy> = Vec::new();
+    for (frame, strategy, _) in cells {
+        if !frames.contains(&frame.as_str()) {
+            frames.push(frame);
+        }
+        if !strategies.contains(strategy) {
+            strategies.push(*strategy);
+        }
+    }
+    let time = |frame: &str, strategy: Strategy| {
+        cells
+            .iter()
+            .find(|(f, s, _)| f == frame && *s == strategy)
+            .map(|c| c.2)
+    };
+    let mut md = format!(
+        "\n## Table 2 layout: culling + shading (ms), {lobes} VPLs\n\nThe paper's Table 2 \
+         (its rows; this run's frames as columns); in brackets the ratio to the tiled \
+         ellipsoid's time on the same frame.\n\n| method | {} |\n|---|{}\n",
+        frames.join(" | "),
+        "---|".repeat(frames.len())
+    );
+    for strategy in strategies {
+        let name = match strategy {
+            Strategy::Splatting => "Splatting [DS06]".to_string(),
+            Strategy::ClusteredRaster => "Clustered shading [OP16]".to_string(),
+            Strategy::Ellipsoid => "Our culling & shading (ellipsoid)".to_string(),
+            other => other.name().to_string(),
+        };
+        let row: Vec<String> = frames
+            .iter()
+            .map(
+                |&f| match (time(f, strategy), time(f, Strategy::Ellipsoid)) {
+                    (Some(t), Some(ours)) if ours > 0.0 => format!("{t:.2} ({:.2}×)", t / ours),
+                    (Some(t), _) => format!("{t:.2}"),
+                    (None, _) => "—".into(),
+                },
+            )
+            .collect();
+        let _ = writeln!(md, "| {name} | {} |", row.join(" | "));
+    }
+    md
 }
 
 /// One strategy on one frame in `bench.json` / `bench.csv`: the median of each pass over the
@@ -309,5 +362,40 @@ impl BenchRow {
             min: self.culling_plus_shading_ms_min,
             max: self.culling_plus_shading_ms_max,
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Rows under the paper's names, one column per frame, ratios to the ellipsoid's time,
+    /// a dash where a strategy did not run on a frame.
+    #[test]
+    fn paper_layout_has_the_papers_rows_and_ratios() {
+        let cells = vec![
+            ("64x48, 10 VPLs".to_string(), Strategy::Ellipsoid, 2.0),
+            ("64x48, 10 VPLs".to_string(), Strategy::Splatting, 5.0),
+            ("64x48, 10 VPLs".to_string(), Strategy::ClusteredRaster, 3.0),
+            ("128x96, 40 VPLs".to_string(), Strategy::Splatting, 7.0),
+        ];
+        let md = paper_layout(&cells, "Glossy");
+        assert!(md.contains("Glossy VPLs"), "{md}");
+        assert!(
+            md.contains("| method | 64x48, 10 VPLs | 128x96, 40 VPLs |"),
+            "{md}"
+        );
+        assert!(
+            md.contains("| Our culling & shading (ellipsoid) | 2.00 (1.00×) | — |"),
+            "{md}"
+        );
+        assert!(
+            md.contains("| Splatting [DS06] | 5.00 (2.50×) | 7.00 |"),
+            "{md}"
+        );
+        assert!(
+            md.contains("| Clustered shading [OP16] | 3.00 (1.50×) | — |"),
+            "{md}"
+        );
     }
 }

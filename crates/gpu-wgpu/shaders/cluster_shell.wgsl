@@ -7,11 +7,13 @@
 // cluster_fill.wgsl fills the span.
 //
 // Conservative rasterization without the adapter feature (lavapipe has none): each triangle
-// is drawn as its cover, the rectangle of whole cells around its projection (6 vertices), a
-// superset of the cells the hardware's overestimating mode gives. A triangle reaching the eye
-// plane covers every cell from depth 0. Each cell is marked with the triangle's vertex depth
-// range. ([OP16] keeps only the cells the triangle meets and cuts the range by its plane over
-// the tile, which is tighter; not done here.)
+// is drawn as its cover, the rectangle of whole cells around its projection (6 vertices), and
+// the fragment keeps a cell only where the triangle meets it (edge functions with a margin):
+// every cell the triangle touches, as the hardware's overestimating mode. Each kept cell is
+// marked with the triangle's depth range over it (its vertices' range cut by its plane at the
+// cell's corners, as [OP16]); a triangle reaching the eye plane marks every cell from depth 0.
+// Marks before the nearest sample or past the farthest go to the first or last slice: the
+// fill spans from the nearest mark to the farthest, so neither end may be dropped.
 // bound_mesh.wgsl is prepended.
 
 @group(0) @binding(0) var<uniform> params: RasterParams;
@@ -34,11 +36,34 @@ const FAR_CELLS: f32 = 1e6;
 
 struct ShellVertex {
     @builtin(position) position: vec4<f32>,
-    // The slot in the partition's order and the subregion.
-    @location(0) @interpolate(flat) ids: vec2<u32>,
-    // The triangle's depth range (smallest, largest); a negative smallest depth: the
-    // triangle reaches the eye plane (every cell, from depth 0).
-    @location(1) @interpolate(flat) depth: vec2<f32>,
+    // The slot in the partition's order, the subregion and the mesh triangle.
+    @location(0) @interpolate(flat) ids: vec3<u32>,
+}
+
+// One mesh triangle in the culling view and in the subregion's viewport: its vertices' view
+// positions, their viewport positions (cells) and whether those are usable (every vertex in
+// front of the eye and within FAR_CELLS).
+struct Triangle {
+    p: array<vec3<f32>, 3>,
+    uv: array<vec2<f32>, 3>,
+    projected: bool,
+}
+
+fn triangle(j: u32, s: u32, t: u32) -> Triangle {
+    let sh = shapes[order[j]];
+    let ij = subregion_xy(s);
+    var tri: Triangle;
+    tri.projected = true;
+    for (var k = 0u; k < 3u; k++) {
+        let p = shape_point(sh, mesh[3u * t + k].xyz);
+        let h = viewport_h(p, ij.x, ij.y);
+        tri.p[k] = p;
+        tri.uv[k] = h.xy / h.z;
+        if !(p.z > 0.0 && all(abs(tri.uv[k]) < vec2<f32>(FAR_CELLS))) {
+            tri.projected = false;
+        }
+    }
+    return tri;
 }
 
 @vertex
@@ -49,42 +74,22 @@ fn vs_main(@builtin(vertex_index) vertex: u32, @builtin(instance_index) instance
     let j = sub_offsets[s] + instance;
     let sh = shapes[order[j]];
     var out: ShellVertex;
-    out.ids = vec2<u32>(j, s);
     out.position = vec4<f32>(0.0, 0.0, 0.0, 1.0);
     if sh.center.w < 0.0 {
         return out;
     }
     let t = local / 6u;
-    let ij = subregion_xy(s);
-    let p0 = shape_point(sh, mesh[3u * t].xyz);
-    let p1 = shape_point(sh, mesh[3u * t + 1u].xyz);
-    let p2 = shape_point(sh, mesh[3u * t + 2u].xyz);
-    let h0 = viewport_h(p0, ij.x, ij.y);
-    let h1 = viewport_h(p1, ij.x, ij.y);
-    let h2 = viewport_h(p2, ij.x, ij.y);
-    let z_max = max(p0.z, max(p1.z, p2.z));
+    out.ids = vec3<u32>(j, s, t);
+    let tri = triangle(j, s, t);
+    let z_max = max(tri.p[0].z, max(tri.p[1].z, tri.p[2].z));
     let view = vec2<f32>(f32(params.view_w), f32(params.view_h));
     var lo = vec2<f32>(0.0);
     var hi = view;
-    var z_min = min(p0.z, min(p1.z, p2.z));
-    if z_min > 0.0 {
-        let a = h0.xy / h0.z;
-        let b = h1.xy / h1.z;
-        let c = h2.xy / h2.z;
+    if tri.projected {
         // Whole cells around the projection, at least one, within the viewport.
-        lo = clamp(floor(min(a, min(b, c))), vec2<f32>(0.0), view);
-        hi = clamp(floor(max(a, max(b, c))) + 1.0, vec2<f32>(0.0), view);
-        out.depth = vec2<f32>(z_min, z_max);
-        let far_out = vec2<f32>(FAR_CELLS);
-        if !(all(abs(a) < far_out) && all(abs(b) < far_out) && all(abs(c) < far_out)) {
-            // Projected too far out for the edge functions (or not at all, NaN): the whole
-            // viewport.
-            lo = vec2<f32>(0.0);
-            hi = view;
-            out.depth.x = -1.0;
-        }
-    } else {
-        out.depth = vec2<f32>(-1.0, z_max);
+        lo = clamp(floor(min(tri.uv[0], min(tri.uv[1], tri.uv[2]))), vec2<f32>(0.0), view);
+        hi = clamp(floor(max(tri.uv[0], max(tri.uv[1], tri.uv[2]))) + 1.0, vec2<f32>(0.0),
+                   view);
     }
     if z_max <= 0.0 {
         // Wholly behind the eye: nothing in front to bound.
@@ -109,17 +114,88 @@ fn slice_of(z: f32, near: f32, far: f32) -> u32 {
     return u32(clamp(s, 0.0, f32(SLICES - 1u)));
 }
 
+// 2D cross product of (b - a) and (p - a).
+fn edge(a: vec2<f32>, b: vec2<f32>, p: vec2<f32>) -> f32 {
+    let e = b - a;
+    let d = p - a;
+    return e.x * d.y - e.y * d.x;
+}
+
+// Whether the cell [lo, lo + 1]^2 lies strictly beyond the edge p -> q of a triangle wound
+// as `orient`: all four corners outside, by more than a margin for f32 rounding.
+fn beyond_edge(p: vec2<f32>, q: vec2<f32>, orient: f32, lo: vec2<f32>) -> bool {
+    let margin = (SLACK * length(q - p) * (length(lo - p) + 2.0) + 1e-6) + 0.5 * length(q - p);
+    let limit = -margin;
+    return orient * edge(p, q, lo) < limit && orient * edge(p, q, lo + vec2<f32>(1.0, 0.0)) < limit
+        && orient * edge(p, q, lo + vec2<f32>(0.0, 1.0)) < limit
+        && orient * edge(p, q, lo + vec2<f32>(1.0, 1.0)) < limit;
+}
+
+// Whether the projected triangle (a, b, c) meets the cell [lo, lo + 1]^2: no edge has the
+// cell strictly beyond it (an edge's separating axis; the cover already keeps to the
+// triangle's bounding box).
+fn meets_cell(a: vec2<f32>, b: vec2<f32>, c: vec2<f32>, lo: vec2<f32>) -> bool {
+    let orient = sign(edge(a, b, c));
+    if orient == 0.0 {
+        return true;
+    }
+    return !(beyond_edge(a, b, orient, lo) || beyond_edge(b, c, orient, lo)
+             || beyond_edge(c, a, orient, lo));
+}
+
+// The image-plane point at unit depth of viewport position uv of subregion (i, j).
+fn image_point(uv: vec2<f32>, ij: vec2<u32>) -> vec3<f32> {
+    let screen = vec2<f32>(ij) + (uv - params.shift) * params.cell;
+    return vec3<f32>((2.0 * screen / params.image.zw - 1.0) * params.image.xy, 1.0);
+}
+
+// The triangle's depth range over the cell: its vertices' range, cut by its plane's depths
+// d / (n.ray) at the cell's corners where no ray of the cell runs parallel to the plane
+// (1/z is linear in the image plane, so the corners bound it); from 0 where a vertex is not
+// in front of the eye.
+fn cell_depths(tri: Triangle, lo: vec2<f32>, ij: vec2<u32>) -> vec2<f32> {
+    let z = vec3<f32>(tri.p[0].z, tri.p[1].z, tri.p[2].z);
+    var range = vec2<f32>(min(z.x, min(z.y, z.z)), max(z.x, max(z.y, z.z)));
+    if !tri.projected {
+        return vec2<f32>(0.0, range.y);
+    }
+    let n = cross(tri.p[1] - tri.p[0], tri.p[2] - tri.p[0]);
+    let d = dot(n, tri.p[0]);
+    let first = dot(n, image_point(lo, ij));
+    var corners = vec2<f32>(3.4e38, 0.0);
+    for (var m = 0u; m < 4u; m++) {
+        let den = dot(n, image_point(lo + vec2<f32>(f32(m & 1u), f32(m >> 1u)), ij));
+        if !(den * first > 0.0) {
+            return range;
+        }
+        let zc = d / den;
+        corners = vec2<f32>(min(corners.x, zc), max(corners.y, zc));
+    }
+    if corners.x == corners.x && corners.y == corners.y {
+        range = vec2<f32>(max(range.x, corners.x), min(range.y, corners.y));
+    }
+    return range;
+}
+
 @fragment
 fn fs_main(in: ShellVertex) -> @location(0) vec4<f32> {
     let ij = subregion_xy(in.ids.y);
     let cell = vec2<u32>(in.position.xy) - ij * vec2<u32>(params.view_w, params.view_h);
-    let z_lo = max(in.depth.x * (1.0 - SLACK), 0.0);
-    let z_hi = in.depth.y * (1.0 + SLACK);
-    let near = bitcast<f32>(depth_range[0]);
-    let far = bitcast<f32>(depth_range[1]);
-    if z_hi < near || z_lo > far {
+    let lo = vec2<f32>(cell);
+    let tri = triangle(in.ids.x, in.ids.y, in.ids.z);
+    if tri.projected && !meets_cell(tri.uv[0], tri.uv[1], tri.uv[2], lo) {
         discard;
     }
+    let depths = vec2<f32>(select(0.0, min(tri.p[0].z, min(tri.p[1].z, tri.p[2].z)), tri.projected), max(tri.p[0].z, max(tri.p[1].z, tri.p[2].z)));
+    let z_lo = max(depths.x * (1.0 - SLACK), 0.0);
+    let z_hi = depths.y * (1.0 + SLACK);
+    if z_lo > z_hi {
+        discard;
+    }
+    // Depths before the nearest sample or past the farthest still mark the first or last
+    // slice: the fill spans from the nearest mark to the farthest, so the ends must be there.
+    let near = bitcast<f32>(depth_range[0]);
+    let far = bitcast<f32>(depth_range[1]);
     let s_lo = slice_of(z_lo, near, far);
     let s_hi = slice_of(z_hi, near, far);
     let span = ((0xffffffffu >> (SLICES - 1u - s_hi)) >> s_lo) << s_lo;
