@@ -45,10 +45,11 @@ fn run_on_gpu(_one_pass: bool, _command: impl OnBackend) -> Result<(), String> {
     )
 }
 
-/// A library error as the command reports it: what a backend lacks points to the CPU one.
+/// A library error as the command reports it: what a backend lacks points to the one that
+/// has it.
 pub fn message(e: RenderError) -> String {
     match e {
-        RenderError::Unsupported { .. } => format!("{e} (--backend cpu)"),
+        RenderError::Unsupported { instead, .. } => format!("{e} (--backend {instead})"),
         _ => e.to_string(),
     }
 }

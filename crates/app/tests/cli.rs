@@ -715,14 +715,31 @@ fn gpu_tiled_lists_render_what_one_pass_renders() {
     assert_eq!(render("one-pass"), render("lists"));
 }
 
+/// The raster baselines are the GPU's: on the CPU backend a clear error, before any work.
+#[test]
+fn raster_baselines_on_the_cpu_are_refused() {
+    for culling in ["splatting", "clustered-raster"] {
+        let o = slc()
+            .args(["render", "--width", "16", "--height", "12", "--rsm", "4"])
+            .args(["--culling", culling])
+            .arg("--out")
+            .arg(out_dir(&format!("raster-cpu-{culling}")))
+            .output()
+            .unwrap();
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert!(!o.status.success(), "{culling}: {err}");
+        assert!(err.contains("rasterization baselines"), "{culling}: {err}");
+    }
+}
+
 #[test]
 fn gpu_compare_names_backend_and_adapter_and_misses_nothing() {
     if !gpu_available() {
         return;
     }
     let out = out_dir("compare-gpu");
-    // Every strategy, the tight ones included.
-    let on_gpu: Vec<_> = slc_core::Strategy::ALL.iter().map(|s| s.name()).collect();
+    // Every strategy, the tight ones and the raster baselines included.
+    let on_gpu: Vec<_> = slc_core::Strategy::every().map(|s| s.name()).collect();
     let gpu_compare = |(width, height): (&str, &str), rsm: &str, culling: &str| {
         slc()
             .args([

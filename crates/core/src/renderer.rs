@@ -82,10 +82,16 @@ impl Capabilities {
             }
             _ => None,
         };
+        // Only the GPU rasterizes; everything else missing somewhere is on the CPU.
+        let instead = match settings.method {
+            Method::Stochastic(s) if s.strategy.is_raster() => "gpu",
+            _ => "cpu",
+        };
         match missing {
             Some(what) => Err(RenderError::Unsupported {
                 backend,
                 what: what.into(),
+                instead,
             }),
             None => Ok(()),
         }
@@ -249,6 +255,7 @@ pub trait Renderer {
         RenderError::Unsupported {
             backend: self.name(),
             what: what.into(),
+            instead: "cpu",
         }
     }
 }

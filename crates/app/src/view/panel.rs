@@ -92,7 +92,7 @@ fn render_controls(ui: &mut Ui, c: &mut Controls) {
             egui::ComboBox::from_label("strategy")
                 .selected_text(current)
                 .show_ui(ui, |ui| {
-                    for s in Strategy::ALL {
+                    for s in Strategy::every() {
                         if ui.selectable_label(current == s.name(), s.name()).clicked() {
                             c.estimate.culling = s.name().to_string();
                         }

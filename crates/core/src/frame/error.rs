@@ -13,9 +13,14 @@ pub enum RenderError {
     Cull(#[from] CullError),
     #[error("invalid render settings: {0}")]
     Settings(String),
-    /// The backend does not have what the settings ask for.
-    #[error("the {backend} backend does not support {what}; render on the cpu backend")]
-    Unsupported { backend: &'static str, what: String },
+    /// The backend does not have what the settings ask for; `instead` names the backend
+    /// that has it.
+    #[error("the {backend} backend does not support {what}; render on the {instead} backend")]
+    Unsupported {
+        backend: &'static str,
+        what: String,
+        instead: &'static str,
+    },
     /// A pass produced NaN or infinite pixels (an input whose products overflow f32).
     #[error("the {pass} pass produced {count} non-finite pixel(s) of {pixels} (NaN or infinity): some radiometric input overflows f32; lower the light's intensity or check the scene's values")]
     NonFinite {
