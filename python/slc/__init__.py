@@ -49,7 +49,8 @@ def render(scene=None, **options):
 
 
 def compare(scene=None, culling=None, reference=True, **options):
-    """Every strategy of ``culling`` (default: all of :data:`STRATEGIES`) on the same
+    """Every strategy of ``culling`` (default: each of :data:`STRATEGIES` the backend runs;
+    ``splatting`` and ``clustered-raster`` only on ``backend="gpu"``) on the same
     G-buffer, VPLs and ξ, each with its culling metrics (``Frame.lights``, ``Frame.fdr``,
     ``report["metrics"]``), and with ``reference`` every VPL with p = 1 as
     ``"reference_vpl"``. Returns a dict from name to :class:`Frame`."""

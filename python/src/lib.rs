@@ -32,7 +32,9 @@ fn _slc(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     m.add(
         "STRATEGIES",
-        slc_core::Strategy::ALL.map(|s| s.name()).to_vec(),
+        slc_core::Strategy::every()
+            .map(|s| s.name())
+            .collect::<Vec<_>>(),
     )?;
     Ok(())
 }

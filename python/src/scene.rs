@@ -115,8 +115,7 @@ impl Job for CompareJob<'_> {
             seed,
             visibility,
         };
-        let all: Vec<Strategy> = Strategy::ALL
-            .into_iter()
+        let all: Vec<Strategy> = Strategy::every()
             .filter(|&s| r.capabilities().runs(s))
             .collect();
         for &strategy in self.strategies.unwrap_or(&all) {

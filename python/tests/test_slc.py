@@ -216,6 +216,29 @@ def test_gpu_tiled_lists_render_what_one_pass_renders():
         slc.render(**SMALL, backend="gpu", gpu_tiled="two-pass")
 
 
+def test_raster_baselines_run_on_the_gpu_only():
+    with pytest.raises(slc.SlcError, match="rasterization baselines"):
+        slc.render(**SMALL, culling="splatting")
+    assert {"splatting", "clustered-raster"} <= set(slc.STRATEGIES)
+    try:
+        frames = slc.compare(
+            **SMALL,
+            backend="gpu",
+            culling=["ellipsoid", "splatting", "clustered-raster"],
+            reference=False,
+        )
+    except slc.SlcError as e:
+        if "no GPU adapter" in str(e) and not os.environ.get("CI"):
+            pytest.skip(str(e))
+        raise
+    ours = frames["ellipsoid"]
+    for name in ["splatting", "clustered-raster"]:
+        m = frames[name].report["metrics"]
+        assert m["missed_pairs"] == 0, name
+        assert m["true_positive_pairs"] == ours.report["metrics"]["true_positive_pairs"]
+        np.testing.assert_allclose(frames[name].indirect, ours.indirect, rtol=1e-3, atol=1e-7)
+
+
 def test_a_scene_with_overridden_materials_is_a_new_scene(scene):
     assert "copper" in scene.materials
     sharp = scene.with_materials("copper", alpha=0.01)
