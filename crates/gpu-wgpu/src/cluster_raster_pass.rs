@@ -28,7 +28,8 @@ use crate::raster_draw::{atlas, bind, render_pipeline, SubregionDraws};
 use crate::shade_pass::vpl_eval_source;
 use slc_core::TILE_SIZE;
 use slc_cull::GlossyBound;
-use std::cell::{Cell, RefCell};
+use std::cell::RefCell;
+use std::sync::atomic::{AtomicU32, Ordering};
 
 /// The mesh mapping, then the shell pass.
 pub(crate) const SHELL_SOURCE: &str = concat!(
@@ -68,7 +69,7 @@ pub struct ClusterRasterizer {
     fill: wgpu::ComputePipeline,
     shade: wgpu::ComputePipeline,
     /// The largest node count seen: the next frame's buffer.
-    capacity: Cell<u32>,
+    capacity: AtomicU32,
 }
 
 /// A frame's rasterized clusters: the clustered culler's frusta and the lists in their
@@ -103,7 +104,7 @@ impl ClusterRasterizer {
                 ),
                 fill: ctx.compute_pipeline("cluster fill", FILL_SOURCE),
                 shade: ctx.compute_pipeline("node shade", SHADE_SOURCE),
-                capacity: Cell::new(FIRST_CAPACITY),
+                capacity: AtomicU32::new(FIRST_CAPACITY),
             })
         })
     }
@@ -132,7 +133,7 @@ impl ClusterRasterizer {
             mesh_vertices: COVER_VERTICES * self.mesh_triangles,
             view_w: p.tiles_x,
             view_h: p.tiles_y,
-            capacity: self.capacity.get(),
+            capacity: self.capacity.load(Ordering::Relaxed),
             scale: frame.interleaving.scale(),
             tiles_x: p.tiles_x,
             tiles_y: p.tiles_y,
@@ -276,7 +277,7 @@ impl ClusterRasterizer {
             }
             let count = read_status(ctx, &clusters.status, frame.width)?;
             if count <= nodes.lists.borrow().capacity {
-                self.capacity.set(self.capacity.get().max(count));
+                self.capacity.fetch_max(count, Ordering::Relaxed);
                 return Ok(image);
             }
             self.refill(ctx, nodes, count)?;
@@ -311,7 +312,7 @@ impl ClusterRasterizer {
 
     /// The fill pass again into a node buffer of `count` nodes (the count it needed).
     fn refill(&self, ctx: &GpuContext, nodes: &NodeFrame, count: u32) -> Result<(), GpuError> {
-        self.capacity.set(self.capacity.get().max(count));
+        self.capacity.fetch_max(count, Ordering::Relaxed);
         let params = GpuRasterParams {
             capacity: count,
             ..nodes.params

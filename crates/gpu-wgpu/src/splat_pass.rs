@@ -23,7 +23,7 @@ use crate::node_lists::NodeLists;
 use crate::raster_draw::{atlas, bind, render_pipeline, SubregionDraws};
 use crate::shade_pass::vpl_eval_source;
 use crate::tiled_cull_pass::TiledFrame;
-use std::cell::Cell;
+use std::sync::atomic::{AtomicU32, Ordering};
 
 /// The mesh mapping and one VPL's contribution, then the splatting shaders.
 pub(crate) const SOURCE: &str = concat!(
@@ -54,7 +54,7 @@ pub struct Splatter {
     list: wgpu::RenderPipeline,
     resolve: wgpu::ComputePipeline,
     /// The largest node count seen: the next metrics frame's buffer.
-    capacity: Cell<u32>,
+    capacity: AtomicU32,
 }
 
 impl Splatter {
@@ -105,7 +105,7 @@ impl Splatter {
                     Some(wgpu::Face::Front),
                 ),
                 resolve: ctx.compute_pipeline("splat resolve", RESOLVE_SOURCE),
-                capacity: Cell::new(FIRST_CAPACITY),
+                capacity: AtomicU32::new(FIRST_CAPACITY),
             })
         })
     }
@@ -236,7 +236,7 @@ impl Splatter {
         tiles: &TiledFrame,
     ) -> Result<GpuLightLists, GpuError> {
         loop {
-            let capacity = self.capacity.get();
+            let capacity = self.capacity.load(Ordering::Relaxed);
             let params = self.params(frame, tiles, capacity);
             let nodes = NodeLists::new(ctx, tiles.pixels, capacity)?;
             let status = upload(ctx, "splat list status", &[GpuCullStatus::CLEAR])?;
@@ -263,7 +263,7 @@ impl Splatter {
             })?;
             let count = read_status(ctx, &status, frame.width)?;
             if count > capacity {
-                self.capacity.set(count);
+                self.capacity.fetch_max(count, Ordering::Relaxed);
                 continue;
             }
             let pixel_list: Vec<u32> = (0..tiles.pixels).collect();

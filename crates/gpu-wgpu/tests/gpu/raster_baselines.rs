@@ -6,33 +6,13 @@
 //! f32 rounding of the sums' order, with the same true positives.
 use crate::common::gpu;
 use crate::tight::extreme;
+use crate::tiled::frame_sampled;
 use slc_core::frame::{LobeSelection, Method, RenderSettings, Stochastic};
 use slc_core::render::render;
-use slc_core::{builtin, Camera, CullInput, GBuffer, Interleaving, Scene, Strategy, Vpl};
-use slc_cpu_ref::gbuffer::{trace_gbuffer, PixelSample};
-use slc_cpu_ref::rsm::{trace_rsm, TexelSample};
-use slc_cpu_ref::vpls::generate_vpls;
-use slc_cpu_ref::Tracer;
+use slc_core::{builtin, CullInput, Interleaving, Strategy, Vpl};
+use slc_cpu_ref::gbuffer::PixelSample;
 use slc_gpu_wgpu::culler::GpuCuller;
 use slc_gpu_wgpu::GpuRenderer;
-
-/// A G-buffer sampled at pixel centres (splatting rasterizes those rays) and the VPLs of an
-/// RSM of `rsm`².
-fn centred_frame(
-    scene: &Scene,
-    camera: &Camera,
-    (w, h): (u32, u32),
-    rsm: u32,
-) -> (GBuffer, Vec<Vpl>) {
-    let tracer = Tracer::new(scene);
-    let gbuffer = trace_gbuffer(scene, &tracer, camera, w, h, PixelSample::Centre);
-    let maps: Vec<_> = scene
-        .lights
-        .iter()
-        .map(|l| trace_rsm(scene, &tracer, l, rsm, TexelSample::Centre))
-        .collect();
-    (gbuffer, generate_vpls(&maps, 11, LobeSelection::Both))
-}
 
 #[test]
 fn raster_baselines_miss_no_pair() {
@@ -40,7 +20,8 @@ fn raster_baselines_miss_no_pair() {
     let culler = GpuCuller::new(&ctx).unwrap();
     let scene = builtin("default").unwrap();
     let camera = scene.camera_or_default();
-    let (gbuffer, vpls) = centred_frame(&scene, &camera, (64, 48), 16);
+    // Pixel centres: splatting rasterizes the rays through them.
+    let (gbuffer, vpls) = frame_sampled(&scene, &camera, (64, 48), 16, PixelSample::Centre);
     let wild = extreme(&vpls, 3);
     let cases: Vec<(&str, &[Vpl], f32, u32)> = vec![
         ("scene", &vpls, 1e-3, 1),
@@ -134,5 +115,33 @@ fn raster_baselines_render_the_tiled_image() {
         let (m, w) = (got.metrics.unwrap(), want.metrics.as_ref().unwrap());
         assert_eq!(m.missed_pairs, 0, "{strategy}");
         assert_eq!(m.true_positive_pairs, w.true_positive_pairs, "{strategy}");
+    }
+}
+
+/// An image whose size K does not divide, and no VPL at all: nothing missed, and without
+/// VPLs empty lists and no error.
+#[test]
+fn raster_baselines_at_odd_sizes_and_without_vpls() {
+    let Some(ctx) = gpu() else { return };
+    let culler = GpuCuller::new(&ctx).unwrap();
+    let scene = builtin("default").unwrap();
+    let camera = scene.camera_or_default();
+    let (gbuffer, vpls) = frame_sampled(&scene, &camera, (37, 23), 8, PixelSample::Centre);
+    for (vpls, k) in [(&vpls[..], 3), (&vpls[..], 5), (&[][..], 2)] {
+        let input = CullInput {
+            gbuffer: &gbuffer,
+            camera: &camera,
+            vpls,
+            delta: 1e-3,
+            interleaving: Interleaving { k, seed: 1 },
+        };
+        for strategy in Strategy::RASTER {
+            let lists = culler.cull(&ctx, &input, strategy).unwrap();
+            let m = slc_cull::metrics::measure(&input, &lists).unwrap();
+            assert_eq!(m.missed_pairs, 0, "{strategy} K {k}");
+            if vpls.is_empty() {
+                assert!(lists.indices.is_empty(), "{strategy}");
+            }
+        }
     }
 }

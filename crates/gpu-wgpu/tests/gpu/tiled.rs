@@ -16,16 +16,21 @@ use slc_cull::{CullView, GlossyBound, FRUSTUM_SLACK};
 use slc_gpu_wgpu::tiled_cull_pass::TiledCuller;
 use slc_gpu_wgpu::GpuError;
 
-pub fn frame(scene: &Scene, camera: &Camera, (w, h): (u32, u32), rsm: u32) -> (GBuffer, Vec<Vpl>) {
+pub fn frame(scene: &Scene, camera: &Camera, size: (u32, u32), rsm: u32) -> (GBuffer, Vec<Vpl>) {
+    let jittered = PixelSample::Jittered { seed: 5, index: 0 };
+    frame_sampled(scene, camera, size, rsm, jittered)
+}
+
+/// [`frame`] with the G-buffer's samples taken at `sample` in each pixel.
+pub fn frame_sampled(
+    scene: &Scene,
+    camera: &Camera,
+    (w, h): (u32, u32),
+    rsm: u32,
+    sample: PixelSample,
+) -> (GBuffer, Vec<Vpl>) {
     let tracer = Tracer::new(scene);
-    let gbuffer = trace_gbuffer(
-        scene,
-        &tracer,
-        camera,
-        w,
-        h,
-        PixelSample::Jittered { seed: 5, index: 0 },
-    );
+    let gbuffer = trace_gbuffer(scene, &tracer, camera, w, h, sample);
     let maps: Vec<_> = scene
         .lights
         .iter()
