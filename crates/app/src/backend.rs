@@ -49,7 +49,10 @@ fn run_on_gpu(_one_pass: bool, _command: impl OnBackend) -> Result<(), String> {
 /// has it.
 pub fn message(e: RenderError) -> String {
     match e {
-        RenderError::Unsupported { instead, .. } => format!("{e} (--backend {instead})"),
+        RenderError::Unsupported {
+            instead: Some(backend),
+            ..
+        } => format!("{e} (--backend {backend})"),
         _ => e.to_string(),
     }
 }

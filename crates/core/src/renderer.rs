@@ -82,10 +82,13 @@ impl Capabilities {
             }
             _ => None,
         };
-        // Only the GPU rasterizes; everything else missing somewhere is on the CPU.
-        let instead = match settings.method {
-            Method::Stochastic(s) if s.strategy.is_raster() => "gpu",
-            _ => "cpu",
+        // What is missing is on the other backend, but for a raster baseline (GPU only) with
+        // what only the CPU has (visibility).
+        let raster = matches!(settings.method, Method::Stochastic(s) if s.strategy.is_raster());
+        let instead = match (raster, self.raster_culling) {
+            (true, false) => Some("gpu"),
+            (true, true) => None,
+            (false, _) => Some("cpu"),
         };
         match missing {
             Some(what) => Err(RenderError::Unsupported {
@@ -255,7 +258,68 @@ pub trait Renderer {
         RenderError::Unsupported {
             backend: self.name(),
             what: what.into(),
-            instead: "cpu",
+            instead: Some("cpu"),
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::frame::{LobeSelection, Stochastic};
+
+    fn stochastic(strategy: Strategy, visibility: bool) -> RenderSettings {
+        RenderSettings {
+            width: 8,
+            height: 8,
+            rsm_resolution: 4,
+            seed: 0,
+            method: Method::Stochastic(Stochastic {
+                delta: 1e-3,
+                strategy,
+                interleave: 2,
+                denoise: false,
+                metrics: false,
+            }),
+            visibility,
+            spp: 1,
+            lobes: LobeSelection::Both,
+        }
+    }
+
+    /// A refusal names the backend that has what is missing, or none where no backend has
+    /// the combination (a raster baseline, GPU only, with visibility, CPU only).
+    #[test]
+    fn refusals_point_to_the_backend_that_has_it() {
+        let cpu = Capabilities {
+            vpl_visibility: true,
+            vsgl_visibility: true,
+            references: true,
+            sampled_vpls: true,
+            tight_culling: true,
+            raster_culling: false,
+        };
+        let gpu = Capabilities {
+            vpl_visibility: false,
+            references: false,
+            sampled_vpls: false,
+            raster_culling: true,
+            ..cpu
+        };
+        let hint = |caps: Capabilities, backend, settings| match caps.check(backend, &settings) {
+            Err(RenderError::Unsupported { instead, .. }) => instead,
+            other => panic!("{other:?}"),
+        };
+        let raster = stochastic(Strategy::Splatting, false);
+        assert_eq!(hint(cpu, "cpu", raster.clone()), Some("gpu"));
+        assert!(gpu.check("gpu", &raster).is_ok());
+        assert_eq!(
+            hint(gpu, "gpu", stochastic(Strategy::Ellipsoid, true)),
+            Some("cpu")
+        );
+        let both = stochastic(Strategy::ClusteredRaster, true);
+        assert_eq!(hint(gpu, "gpu", both.clone()), None);
+        let e = gpu.check("gpu", &both).unwrap_err().to_string();
+        assert!(e.ends_with("no backend has it"), "{e}");
     }
 }

@@ -41,6 +41,10 @@ fn main(
         let slice = firstTrailingBit(bits);
         bits &= bits - 1u;
         let n = atomicAdd(&status[2], 1u);
+        if n == 0xffffffffu {
+            // The count wraps: GpuCullStatus.total_overflow.
+            atomicStore(&status[3], 1u);
+        }
         if n < params.capacity {
             nodes[n] = vec2<u32>(i, atomicExchange(&heads[SLICES * t + slice], n));
         }

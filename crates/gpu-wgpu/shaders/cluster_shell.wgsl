@@ -28,6 +28,10 @@
 @group(0) @binding(6) var<storage, read_write> cells: array<atomic<u32>>;
 
 const SLICES: u32 = 32u;
+// The plane cut of cell_depths: the smallest sine between a corner's ray and the triangle's
+// plane, and the relative growth of the cut for its rounding.
+const MIN_SIN: f32 = 1e-2;
+const CORNER_SLACK: f32 = 1e-3;
 // Relative growth of depth ranges for f32 rounding.
 const SLACK: f32 = 1e-5;
 // Viewport coordinates beyond which a triangle covers every cell (its cover's corners would
@@ -105,13 +109,17 @@ fn vs_main(@builtin(vertex_index) vertex: u32, @builtin(instance_index) instance
     return out;
 }
 
-// Slice of depth z among SLICES exponential slices of [near, far] (cluster_depth.wgsl).
+// Slice of depth z among SLICES exponential slices of [near, far], as cluster_depth.wgsl
+// computes it for the samples (the same f32 operations); depths at or below near: slice 0.
 fn slice_of(z: f32, near: f32, far: f32) -> u32 {
-    if z <= near || far <= near {
+    if z <= near {
         return 0u;
     }
-    let s = floor((log(z) - log(near)) * f32(SLICES) / (log(far) - log(near)));
-    return u32(clamp(s, 0.0, f32(SLICES - 1u)));
+    let log_near = log(near);
+    let span = log(far) - log_near;
+    let scale = select(0.0, f32(SLICES) / span, span > 0.0);
+    let key = floor((log(z) - log_near) * scale);
+    return u32(clamp(key, 0.0, f32(SLICES - 1u)));
 }
 
 // 2D cross product of (b - a) and (p - a).
@@ -124,7 +132,7 @@ fn edge(a: vec2<f32>, b: vec2<f32>, p: vec2<f32>) -> f32 {
 // Whether the cell [lo, lo + 1]^2 lies strictly beyond the edge p -> q of a triangle wound
 // as `orient`: all four corners outside, by more than a margin for f32 rounding.
 fn beyond_edge(p: vec2<f32>, q: vec2<f32>, orient: f32, lo: vec2<f32>) -> bool {
-    let margin = (SLACK * length(q - p) * (length(lo - p) + 2.0) + 1e-6) + 0.5 * length(q - p);
+    let margin = SLACK * length(q - p) * (length(lo - p) + 2.0) + 1e-6;
     let limit = -margin;
     return orient * edge(p, q, lo) < limit && orient * edge(p, q, lo + vec2<f32>(1.0, 0.0)) < limit
         && orient * edge(p, q, lo + vec2<f32>(0.0, 1.0)) < limit
@@ -150,31 +158,34 @@ fn image_point(uv: vec2<f32>, ij: vec2<u32>) -> vec3<f32> {
 }
 
 // The triangle's depth range over the cell: its vertices' range, cut by its plane's depths
-// d / (n.ray) at the cell's corners where no ray of the cell runs parallel to the plane
-// (1/z is linear in the image plane, so the corners bound it); from 0 where a vertex is not
-// in front of the eye.
+// d / (n.ray) at the cell's corners (1/z is linear in the image plane, so the corners bound
+// it) where every corner's ray meets the plane at more than about 0.6 degrees (the cut is
+// skipped for planes seen nearly edge-on, whose d / (n.ray) rounding grows), grown by
+// CORNER_SLACK; from 0 where a vertex is not in front of the eye.
 fn cell_depths(tri: Triangle, lo: vec2<f32>, ij: vec2<u32>) -> vec2<f32> {
     let z = vec3<f32>(tri.p[0].z, tri.p[1].z, tri.p[2].z);
-    var range = vec2<f32>(min(z.x, min(z.y, z.z)), max(z.x, max(z.y, z.z)));
+    let range = vec2<f32>(min(z.x, min(z.y, z.z)), max(z.x, max(z.y, z.z)));
     if !tri.projected {
         return vec2<f32>(0.0, range.y);
     }
     let n = cross(tri.p[1] - tri.p[0], tri.p[2] - tri.p[0]);
     let d = dot(n, tri.p[0]);
-    let first = dot(n, image_point(lo, ij));
     var corners = vec2<f32>(3.4e38, 0.0);
     for (var m = 0u; m < 4u; m++) {
-        let den = dot(n, image_point(lo + vec2<f32>(f32(m & 1u), f32(m >> 1u)), ij));
-        if !(den * first > 0.0) {
+        let ray = image_point(lo + vec2<f32>(f32(m & 1u), f32(m >> 1u)), ij);
+        let den = dot(n, ray);
+        if !(abs(den) > MIN_SIN * length(n) * length(ray)) {
             return range;
         }
         let zc = d / den;
         corners = vec2<f32>(min(corners.x, zc), max(corners.y, zc));
     }
-    if corners.x == corners.x && corners.y == corners.y {
-        range = vec2<f32>(max(range.x, corners.x), min(range.y, corners.y));
+    // The corners must see the plane in front (all depths positive) and on one side.
+    if !(corners.x > 0.0 && corners.y < 3.4e38) {
+        return range;
     }
-    return range;
+    return vec2<f32>(max(range.x, corners.x * (1.0 - CORNER_SLACK)),
+                     min(range.y, corners.y * (1.0 + CORNER_SLACK)));
 }
 
 @fragment
@@ -186,7 +197,7 @@ fn fs_main(in: ShellVertex) -> @location(0) vec4<f32> {
     if tri.projected && !meets_cell(tri.uv[0], tri.uv[1], tri.uv[2], lo) {
         discard;
     }
-    let depths = vec2<f32>(select(0.0, min(tri.p[0].z, min(tri.p[1].z, tri.p[2].z)), tri.projected), max(tri.p[0].z, max(tri.p[1].z, tri.p[2].z)));
+    let depths = cell_depths(tri, lo, ij);
     let z_lo = max(depths.x * (1.0 - SLACK), 0.0);
     let z_hi = depths.y * (1.0 + SLACK);
     if z_lo > z_hi {

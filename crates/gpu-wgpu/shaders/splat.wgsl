@@ -85,6 +85,10 @@ fn fs_list(in: SplatVertex) -> @location(0) vec4<f32> {
         discard;
     }
     let n = atomicAdd(&node_count[2], 1u);
+    if n == END {
+        // The count wraps: GpuCullStatus.total_overflow.
+        atomicStore(&node_count[3], 1u);
+    }
     if n < params.capacity {
         nodes[n] = vec2<u32>(in.ids.x, atomicExchange(&heads[pixel], n));
     }

@@ -277,7 +277,6 @@ impl ClusterRasterizer {
             }
             let count = read_status(ctx, &clusters.status, frame.width)?;
             if count <= nodes.lists.borrow().capacity {
-                self.capacity.fetch_max(count, Ordering::Relaxed);
                 return Ok(image);
             }
             self.refill(ctx, nodes, count)?;

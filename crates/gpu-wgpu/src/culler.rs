@@ -44,7 +44,9 @@ impl GpuCuller {
 
     /// The lists of `strategy` for `input` (uploaded), read back: equal to the CPU
     /// strategy's per pixel (up to f32-versus-f64 decisions at bound and slice boundaries;
-    /// the tight strategies' f32 bound keeps up to 1% more entries).
+    /// the tight strategies' f32 bound keeps up to 1% more entries). Splatting takes the
+    /// uploaded samples to lie on the pixel centres' rays ([`CullFrame::upload`]): a G-buffer
+    /// jittered per pixel would be splatted along other rays.
     pub fn cull(
         &self,
         ctx: &GpuContext,

@@ -222,7 +222,12 @@ impl Renderer for GpuRenderer {
             references: false,
             sampled_vpls: false,
             tight_culling: true,
-            raster_culling: true,
+            // Splatting sums by blending into f32 targets (`splat_pass`).
+            raster_culling: self
+                .ctx
+                .device
+                .features()
+                .contains(wgpu::Features::FLOAT32_BLENDABLE),
         }
     }
 

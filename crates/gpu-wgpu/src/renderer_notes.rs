@@ -51,9 +51,10 @@ pub const SPLAT_NOTE: &str = "splatting [DS06]: 'culling' times the bounds, part
 /// The note of frames culled by rasterized clusters (`cluster_raster_pass`).
 pub const CLUSTER_RASTER_NOTE: &str = "clustered shading by rasterized bounding meshes [OP16]: \
      'culling' times the bounds, partition and depth-slice passes, the shell pass (each VPL's \
-     20-triangle mesh at tile resolution, conservative by each triangle's cell rectangle, \
-     marked with its vertex depth range) and the fill pass into a linked-list node buffer; \
-     'shading' walks each pixel's cluster list";
+     20-triangle mesh at tile resolution, conservatively: every cell a triangle meets, marked \
+     with its depth range there) and the fill pass into a linked-list node buffer; 'shading' \
+     walks each pixel's cluster list (and, where the node buffer was too small, fills and \
+     shades again)";
 
 /// The note of frames whose culling metrics were measured.
 pub const METRICS_NOTE: &str = "metrics were measured by brute force on the CPU against the \

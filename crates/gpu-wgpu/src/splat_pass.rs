@@ -235,6 +235,8 @@ impl Splatter {
         frame: &CullFrame,
         tiles: &TiledFrame,
     ) -> Result<GpuLightLists, GpuError> {
+        // The faults of the culling passes (a sample behind the camera, a bound beyond f32).
+        read_status(ctx, &tiles.status, frame.width)?;
         loop {
             let capacity = self.capacity.load(Ordering::Relaxed);
             let params = self.params(frame, tiles, capacity);

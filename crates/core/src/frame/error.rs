@@ -14,12 +14,12 @@ pub enum RenderError {
     #[error("invalid render settings: {0}")]
     Settings(String),
     /// The backend does not have what the settings ask for; `instead` names the backend
-    /// that has it.
-    #[error("the {backend} backend does not support {what}; render on the {instead} backend")]
+    /// that has it (`None`: no backend has that combination).
+    #[error("the {backend} backend does not support {what}{}", elsewhere(.instead))]
     Unsupported {
         backend: &'static str,
         what: String,
-        instead: &'static str,
+        instead: Option<&'static str>,
     },
     /// A pass produced NaN or infinite pixels (an input whose products overflow f32).
     #[error("the {pass} pass produced {count} non-finite pixel(s) of {pixels} (NaN or infinity): some radiometric input overflows f32; lower the light's intensity or check the scene's values")]
@@ -37,5 +37,13 @@ impl RenderError {
     /// Wraps a backend's own error.
     pub fn backend(e: impl std::error::Error + Send + Sync + 'static) -> Self {
         Self::Backend(Box::new(e))
+    }
+}
+
+/// The hint of [`RenderError::Unsupported`]: the backend to render on instead, if any.
+fn elsewhere(instead: &Option<&'static str>) -> String {
+    match instead {
+        Some(backend) => format!("; render on the {backend} backend"),
+        None => "; no backend has it".into(),
     }
 }
