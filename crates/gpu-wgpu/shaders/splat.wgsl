@@ -23,6 +23,26 @@
 
 const END: u32 = 0xffffffffu;
 
+// Subregion pixels the mesh's silhouette lies beyond the bound's: the rasterizer snaps
+// vertices to its sub-pixel grid (at coarsest 1/16 of a pixel in Vulkan, so by at most
+// 1/32), which a growth relative to the bound does not cover when the bound is a few pixels
+// wide.
+const SNAP_PIXELS: f32 = 0.0625;
+
+// The shape grown so that its mesh covers every pixel whose ray passes within SNAP_PIXELS of
+// the bound: eps = SNAP_PIXELS subregion pixels at the bound's farthest depth, and the shape
+// scaled about its centre by 1 + eps/r (r the smaller semi-axis), which holds every point
+// within eps of it (a ball of radius eps is inside eps/r times the shape, and for a convex
+// shape S, S + (eps/r) S = (1 + eps/r) S).
+fn snap_grown(sh: Shape) -> Shape {
+    let far = max(sh.center.z + sh.center.w, 0.0);
+    let eps = SNAP_PIXELS * params.cell * 2.0 * params.image.y / params.image.w * far;
+    var grown = sh;
+    grown.axis.w = sh.axis.w + eps;
+    grown.center.w = sh.center.w + eps * (sh.center.w / sh.axis.w);
+    return grown;
+}
+
 struct SplatVertex {
     @builtin(position) position: vec4<f32>,
     // The VPL and its subregion.
@@ -44,7 +64,7 @@ fn vs_main(@builtin(vertex_index) vertex: u32, @builtin(instance_index) instance
     }
     let m = mesh[vertex % params.mesh_vertices].xyz;
     let ij = subregion_xy(s);
-    out.position = viewport_clip(viewport_h(shape_point(sh, m), ij.x, ij.y));
+    out.position = viewport_clip(viewport_h(shape_point(snap_grown(sh), m), ij.x, ij.y));
     return out;
 }
 
