@@ -41,6 +41,14 @@ impl Interleaving {
         }
     }
 
+    /// The size of subregion `(sx, sy)`'s image for a `width` x `height` screen: the pixels
+    /// sx, sx + K, ... below the width by sy, sy + K, ... below the height (0 past the edge).
+    #[inline]
+    pub fn subregion_size(&self, width: u32, height: u32, [sx, sy]: [u32; 2]) -> [u32; 2] {
+        let side = |s: u32, n: u32| n.saturating_sub(s).div_ceil(self.k);
+        [side(sx, width), side(sy, height)]
+    }
+
     /// The factor every contribution is multiplied by: K².
     pub fn scale(&self) -> f32 {
         self.subregions() as f32

@@ -83,10 +83,10 @@ impl Capabilities {
             _ => None,
         };
         // What is missing is on the other backend, but for a raster baseline (GPU only) with
-        // what only the CPU has (visibility).
+        // what only the CPU has (visibility), or on a GPU that cannot run it.
         let raster = matches!(settings.method, Method::Stochastic(s) if s.strategy.is_raster());
         let instead = match (raster, self.raster_culling) {
-            (true, false) => Some("gpu"),
+            (true, false) => (backend != "gpu").then_some("gpu"),
             (true, true) => None,
             (false, _) => Some("cpu"),
         };
@@ -321,5 +321,10 @@ mod tests {
         assert_eq!(hint(gpu, "gpu", both.clone()), None);
         let e = gpu.check("gpu", &both).unwrap_err().to_string();
         assert!(e.ends_with("no backend has it"), "{e}");
+        let no_blending = Capabilities {
+            raster_culling: false,
+            ..gpu
+        };
+        assert_eq!(hint(no_blending, "gpu", raster), None);
     }
 }

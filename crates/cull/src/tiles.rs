@@ -42,11 +42,10 @@ pub(crate) fn tiles(width: u32, height: u32, k: u32) -> Vec<Tile> {
     out
 }
 
-/// The size of subregion `(sx, sy)`'s image: the pixels sx, sx + K, ... below the width, and
-/// sy, sy + K, ... below the height.
+/// The size of subregion `sub`'s image ([`Interleaving::subregion_size`]).
 #[inline]
-fn subregion_size(width: u32, height: u32, k: u32, [sx, sy]: [u32; 2]) -> [u32; 2] {
-    [(width - sx).div_ceil(k), (height - sy).div_ceil(k)]
+fn subregion_size(width: u32, height: u32, k: u32, sub: [u32; 2]) -> [u32; 2] {
+    Interleaving { k, seed: 0 }.subregion_size(width, height, sub)
 }
 
 impl Tile {

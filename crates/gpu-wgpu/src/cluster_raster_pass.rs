@@ -148,7 +148,6 @@ impl ClusterRasterizer {
             "cluster shell atlas",
             (k * p.tiles_x, k * p.tiles_y),
             SHELL_TARGET,
-            k,
         )?;
         ctx.submit("cluster shell", |encoder| {
             let params_buffer = uniform(ctx, "cluster shell params", &params);
@@ -175,7 +174,7 @@ impl ClusterRasterizer {
                 &clusters.partition.sub_offsets,
                 (&self.shell, &group),
                 &target,
-                |_, _| (tx, ty),
+                |_, _| [tx, ty],
             )
         })?;
         let lists = self.fill(ctx, &clusters, &cells, &params)?;

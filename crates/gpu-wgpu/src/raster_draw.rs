@@ -83,19 +83,13 @@ pub(crate) fn bind(
 }
 
 /// A colour target texture of `width` x `height` cells (K viewports across and down); an
-/// error beyond the adapter's texture size or the raster baselines' largest K.
+/// error beyond the adapter's texture size.
 pub(crate) fn atlas(
     ctx: &GpuContext,
     label: &'static str,
     (width, height): (u32, u32),
     format: wgpu::TextureFormat,
-    k: u32,
 ) -> Result<wgpu::TextureView, GpuError> {
-    if k > MAX_RASTER_K {
-        return Err(GpuError::Input(format!(
-            "the raster baselines draw once per subregion: K = {k} exceeds {MAX_RASTER_K}"
-        )));
-    }
     let max = ctx.limits.max_texture_dimension_2d;
     if width > max || height > max {
         return Err(GpuError::Input(format!(
@@ -134,7 +128,8 @@ impl SubregionDraws {
     /// Records the draws of `pipeline` (with `bind` at group 0) for every subregion of
     /// `params` into `target`, cleared first: subregion (i, j)'s VPLs
     /// (`order[sub_offsets[s]..sub_offsets[s + 1]]`) as instances of `params.mesh_vertices`
-    /// vertices, in the viewport at (i view_w, j view_h) cut to `extent(i, j)` cells.
+    /// vertices, in the viewport at (i view_w, j view_h) cut to `extent(i, j)` cells. K
+    /// beyond [`MAX_RASTER_K`] is an error.
     #[allow(clippy::too_many_arguments)]
     pub fn encode(
         &self,
@@ -145,9 +140,14 @@ impl SubregionDraws {
         sub_offsets: &wgpu::Buffer,
         (pipeline, bind): (&wgpu::RenderPipeline, &wgpu::BindGroup),
         target: &wgpu::TextureView,
-        extent: impl Fn(u32, u32) -> (u32, u32),
+        extent: impl Fn(u32, u32) -> [u32; 2],
     ) -> Result<(), GpuError> {
         let k = params.k;
+        if k > MAX_RASTER_K {
+            return Err(GpuError::Input(format!(
+                "the raster baselines draw once per subregion: K = {k} exceeds {MAX_RASTER_K}"
+            )));
+        }
         let subregions = k * k;
         let args = ctx.device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("raster draw args"),
@@ -184,7 +184,7 @@ impl SubregionDraws {
         let (vw, vh) = (params.view_w, params.view_h);
         for s in 0..subregions {
             let (i, j) = (s % k, s / k);
-            let (w, h) = extent(i, j);
+            let [w, h] = extent(i, j);
             if w == 0 || h == 0 {
                 continue;
             }

@@ -8,8 +8,8 @@
 //! and the blend adds the contributions in f32 (`shaders/splat.wgsl`). No list exists; a
 //! pass puts the atlas back in screen order (`shaders/splat_resolve.wgsl`).
 //!
-//! The blend needs `Features::FLOAT32_BLENDABLE` (desktop GPUs and lavapipe have it); an
-//! adapter without it shades with an error. The sums' order is the rasterizer's, so images
+//! The blend needs `Features::FLOAT32_BLENDABLE` (lavapipe has it): the renderer offers
+//! the raster baselines only with it, and [`Splatter::shade`] without it is an error. The sums' order is the rasterizer's, so images
 //! equal the list shading's up to f32 rounding. For the metrics, the same draws append each
 //! covered pixel's VPL to a per-pixel list in a node buffer (`node_lists`).
 use crate::bound_mesh::BoundMesh;
@@ -23,6 +23,7 @@ use crate::node_lists::NodeLists;
 use crate::raster_draw::{atlas, bind, render_pipeline, SubregionDraws};
 use crate::shade_pass::vpl_eval_source;
 use crate::tiled_cull_pass::TiledFrame;
+use slc_core::Interleaving;
 use std::sync::atomic::{AtomicU32, Ordering};
 
 /// The mesh mapping and one VPL's contribution, then the splatting shaders.
@@ -149,9 +150,9 @@ impl Splatter {
             "splat atlas",
             (k * params.view_w, k * params.view_h),
             ATLAS,
-            k,
         )?;
-        let extent = |i: u32, j: u32| (sub_extent(i, w, k), sub_extent(j, h, k));
+        let interleaving = Interleaving { k, seed: 0 };
+        let extent = |i: u32, j: u32| interleaving.subregion_size(w, h, [i, j]);
         self.draws.encode(
             ctx,
             encoder,
@@ -272,15 +273,5 @@ impl Splatter {
             let lists = nodes.read(ctx, count, &pixel_list)?;
             return GpuLightLists::upload(ctx, &lists, tiles.pixels as usize, tiles.bounds.count);
         }
-    }
-}
-
-/// Pixels of subregion coordinate `s` along an image side of `size` pixels (tiles.wgsl
-/// subregion_extent).
-fn sub_extent(s: u32, size: u32, k: u32) -> u32 {
-    if s >= size {
-        0
-    } else {
-        (size - s).div_ceil(k)
     }
 }

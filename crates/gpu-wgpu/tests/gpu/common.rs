@@ -1,4 +1,7 @@
-//! The device shared by the tests and the no-adapter policy.
+//! The device shared by the tests and the no-adapter policy, and the small stochastic frame
+//! the renderer tests compare strategies on.
+use slc_core::frame::{LobeSelection, Method, RenderSettings, Stochastic};
+use slc_core::Strategy;
 use slc_gpu_wgpu::{GpuContext, GpuError};
 
 /// A device for one test. No adapter: with `CI` set the test fails (CI installs lavapipe, so
@@ -16,5 +19,25 @@ pub fn gpu() -> Option<GpuContext> {
             None
         }
         Err(e) => panic!("GPU device could not be created: {e}"),
+    }
+}
+
+/// A 64x48 frame of `strategy` (RSM 16², δ 1e-3, K 4, with metrics), denoised or not.
+pub fn small_frame(strategy: Strategy, denoise: bool) -> RenderSettings {
+    RenderSettings {
+        width: 64,
+        height: 48,
+        rsm_resolution: 16,
+        seed: 2,
+        method: Method::Stochastic(Stochastic {
+            delta: 1e-3,
+            strategy,
+            interleave: 4,
+            denoise,
+            metrics: true,
+        }),
+        visibility: false,
+        spp: 1,
+        lobes: LobeSelection::Both,
     }
 }

@@ -4,10 +4,9 @@
 //! the camera, α 1e-4…1, ξ near 0 and 1, δ over twelve decades), at several K; they cull
 //! (fewer pairs than no culling); and the renderer's images equal the tiled ellipsoid's up to
 //! f32 rounding of the sums' order, with the same true positives.
-use crate::common::gpu;
+use crate::common::{gpu, small_frame};
 use crate::tight::extreme;
 use crate::tiled::frame_sampled;
-use slc_core::frame::{LobeSelection, Method, RenderSettings, Stochastic};
 use slc_core::render::render;
 use slc_core::{builtin, CullInput, Interleaving, Strategy, Vpl};
 use slc_cpu_ref::gbuffer::PixelSample;
@@ -73,22 +72,7 @@ fn raster_baselines_render_the_tiled_image() {
     let Some(ctx) = gpu() else { return };
     let renderer = GpuRenderer::from_context(ctx).unwrap();
     let scene = builtin("default").unwrap();
-    let settings = |strategy| RenderSettings {
-        width: 64,
-        height: 48,
-        rsm_resolution: 16,
-        seed: 2,
-        method: Method::Stochastic(Stochastic {
-            delta: 1e-3,
-            strategy,
-            interleave: 4,
-            denoise: false,
-            metrics: true,
-        }),
-        visibility: false,
-        spp: 1,
-        lobes: LobeSelection::Both,
-    };
+    let settings = |strategy| small_frame(strategy, false);
     let want = render(&renderer, &scene, &settings(Strategy::Ellipsoid), &|_| {}).unwrap();
     let lit = want
         .indirect
@@ -142,6 +126,20 @@ fn raster_baselines_at_odd_sizes_and_without_vpls() {
             if vpls.is_empty() {
                 assert!(lists.indices.is_empty(), "{strategy}");
             }
+        }
+    }
+    // One draw per subregion: K beyond 64 is refused, not drawn 4,225 times.
+    let input = CullInput {
+        gbuffer: &gbuffer,
+        camera: &camera,
+        vpls: &vpls,
+        delta: 1e-3,
+        interleaving: Interleaving { k: 65, seed: 1 },
+    };
+    for strategy in Strategy::RASTER {
+        match culler.cull(&ctx, &input, strategy) {
+            Err(e) => assert!(e.to_string().contains("exceeds 64"), "{strategy}: {e}"),
+            Ok(_) => panic!("{strategy} drew K = 65"),
         }
     }
 }

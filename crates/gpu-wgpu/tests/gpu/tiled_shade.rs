@@ -2,9 +2,8 @@
 //! lists shaded by `shade_pass`: the same image, pixel for pixel, for every tiled strategy,
 //! several K and the edge cases (VPLs that reach nothing, no VPL); and the renderer's two
 //! paths (`GpuRenderer::with_one_pass`).
-use crate::common::gpu;
+use crate::common::{gpu, small_frame};
 use crate::tiled::frame;
-use slc_core::frame::{LobeSelection, Method, RenderSettings, Stochastic};
 use slc_core::render::render;
 use slc_core::{builtin, CullInput, GlossyBound, Interleaving, Renderer, Strategy, Vpl};
 use slc_gpu_wgpu::buffers::upload;
@@ -109,22 +108,7 @@ fn renderer_one_pass_and_lists_render_the_same_frame() {
     let lists = GpuRenderer::from_context(ctx).unwrap().with_one_pass(false);
     let scene = builtin("default").unwrap();
     for strategy in [Strategy::Sphere, Strategy::Ellipsoid] {
-        let settings = RenderSettings {
-            width: 64,
-            height: 48,
-            rsm_resolution: 16,
-            seed: 2,
-            method: Method::Stochastic(Stochastic {
-                delta: 1e-3,
-                strategy,
-                interleave: 4,
-                denoise: true,
-                metrics: true,
-            }),
-            visibility: false,
-            spp: 1,
-            lobes: LobeSelection::Both,
-        };
+        let settings = small_frame(strategy, true);
         let a = render(&one_pass, &scene, &settings, &|_| {}).unwrap();
         let b = render(&lists, &scene, &settings, &|_| {}).unwrap();
         assert_eq!(a.indirect.pixels, b.indirect.pixels, "{strategy:?}");
