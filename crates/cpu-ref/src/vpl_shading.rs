@@ -7,7 +7,7 @@ use slc_bounds::stochastic::{scalar_intensity, StochasticParams};
 use slc_bounds::BoundsError;
 use slc_core::{CullError, CullInput, GBuffer, GSample, Image, LightLists, Vpl, NO_LIST};
 use slc_cull::tiles::{Tile, TileOrder};
-use slc_cull::{ReachChunks, VplReach};
+use slc_cull::{ReachChunks, ReceiverChunks, VplReach};
 
 /// How each VPL's contribution is weighted.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -99,8 +99,11 @@ pub fn shade_vpls(
 /// list at a time by [`ReachChunks`]) are skipped before the receiver's BRDF: their
 /// contribution is exactly 0, so the image is the same bit for bit. The pixels are shaded tile
 /// by tile in the deinterleaved order of [`TileOrder`] (the culling's tiles), each tile's
-/// pixels grouped by list and each list's VPLs packed once per tile into chunks of eight
-/// (tested one by one where a list shades fewer than [`PACK_MIN_PIXELS`] pixels of the tile).
+/// pixels grouped by list. A list that shades at least [`RECEIVER_LANES_MIN_PIXELS`] pixels
+/// of the tile is shaded VPL by VPL, eight of its pixels per test ([`ReceiverChunks`]); a
+/// shorter run pixel by pixel, its VPLs packed into chunks of eight ([`ReachChunks`]), or
+/// tested one by one where it has fewer than [`PACK_MIN_PIXELS`] pixels. Every pixel sums
+/// its VPLs in the list's order in all three.
 pub fn shade_lists(
     tracer: &Tracer,
     input: &CullInput,
@@ -181,16 +184,21 @@ struct ListShading<'a> {
 }
 
 /// Scratch reused from tile to tile: the tile's (list, slot, pixel) triples of its pixels
-/// with a list, and the chunks of the list being shaded.
+/// with a list, the chunks of the list being shaded (VPLs in lanes), and the receivers of a
+/// run shaded VPL by VPL (pixels in lanes) with their samples, sums and passing bits.
 #[derive(Default)]
-struct TileScratch {
+struct TileScratch<'a> {
     pixels: Vec<(u32, u32, u32)>,
     chunks: ReachChunks,
+    receivers: ReceiverChunks,
+    samples: Vec<(u32, &'a GSample)>,
+    sums: Vec<Vec3>,
+    bits: Vec<u8>,
 }
 
-impl ListShading<'_> {
+impl<'a> ListShading<'a> {
     /// Shades the pixels of `tile` into `out` (its run in tile order), list by list.
-    fn tile(&self, tile: &Tile, k: u32, out: &mut [Vec3], scratch: &mut TileScratch) {
+    fn tile(&self, tile: &Tile, k: u32, out: &mut [Vec3], scratch: &mut TileScratch<'a>) {
         let width = self.gbuffer.width;
         scratch.pixels.clear();
         for (slot, [x, y]) in tile.pixels(k).enumerate() {
@@ -201,10 +209,15 @@ impl ListShading<'_> {
             }
         }
         scratch.pixels.sort_unstable();
-        for run in scratch.pixels.chunk_by(|a, b| a.0 == b.0) {
+        let pixels = core::mem::take(&mut scratch.pixels);
+        for run in pixels.chunk_by(|a, b| a.0 == b.0) {
             let l = run[0].0 as usize;
             let list = &self.lists.indices
                 [self.lists.offsets[l] as usize..self.lists.offsets[l + 1] as usize];
+            if run.len() >= RECEIVER_LANES_MIN_PIXELS {
+                self.run_by_vpl(list, run, out, scratch);
+                continue;
+            }
             let packed = run.len() >= PACK_MIN_PIXELS;
             if packed {
                 scratch.chunks.refill(self.vpls, self.reach, [list]);
@@ -215,23 +228,74 @@ impl ListShading<'_> {
                 }
             }
         }
+        scratch.pixels = pixels;
+    }
+
+    /// Shades the pixels `run` (list, slot, pixel) that share `list`, VPL by VPL in the list's
+    /// order, each VPL tested against eight of the pixels at a time ([`ReceiverChunks`]).
+    /// Every pixel still sums its VPLs in the list's order, so its estimate is the same bit
+    /// for bit as [`Self::pixel`]'s.
+    fn run_by_vpl(
+        &self,
+        list: &[u32],
+        run: &[(u32, u32, u32)],
+        out: &mut [Vec3],
+        scratch: &mut TileScratch<'a>,
+    ) {
+        let samples = &mut scratch.samples;
+        samples.clear();
+        samples.extend(run.iter().filter_map(|&(_, slot, p)| {
+            self.gbuffer.samples[p as usize].as_ref().map(|g| (slot, g))
+        }));
+        scratch
+            .receivers
+            .refill(samples.iter().map(|(_, g)| (g.position, g.normal)));
+        scratch.sums.clear();
+        scratch.sums.resize(samples.len(), Vec3::ZERO);
+        for &k in list {
+            let vpl = &self.vpls[k as usize];
+            let reach = &self.reach[k as usize];
+            if !reach.receivers_passing(vpl.position, &scratch.receivers, &mut scratch.bits) {
+                continue;
+            }
+            for (c, &bits) in scratch.bits.iter().enumerate() {
+                let mut bits = bits;
+                while bits != 0 {
+                    let i = c * 8 + bits.trailing_zeros() as usize;
+                    bits &= bits - 1;
+                    if let Some(v) = self.contribution(samples[i].1, k) {
+                        scratch.sums[i] += v;
+                    }
+                }
+            }
+        }
+        for (&(slot, _), &sum) in samples.iter().zip(&scratch.sums) {
+            out[slot as usize] = sum;
+        }
+    }
+
+    /// The weighted contribution of VPL `k` at `g` (eq. 3 with the interleaving's K²), `None`
+    /// where it is 0 or, with visibility, occluded.
+    #[inline]
+    fn contribution(&self, g: &GSample, k: u32) -> Option<Vec3> {
+        let vpl = &self.vpls[k as usize];
+        let c = vpl_contribution(g, vpl, Some(&self.roulette[k as usize]));
+        let visible = c != Vec3::ZERO
+            && (!self.visibility
+                || self.tracer.unoccluded(
+                    self.tracer.lift(g.position, g.geometric_normal),
+                    self.tracer.lift(vpl.position, vpl.geometric_normal),
+                ));
+        visible.then(|| c * self.scale)
     }
 
     /// The estimate at `g` from the VPLs of `list` (packed in `chunks` when given) that pass
     /// the early exits, in the list's order.
     fn pixel(&self, g: &GSample, list: &[u32], chunks: Option<&ReachChunks>) -> Vec3 {
-        let from = self.tracer.lift(g.position, g.geometric_normal);
         let mut o = Vec3::ZERO;
         let mut shade = |k: u32| {
-            let vpl = &self.vpls[k as usize];
-            let c = vpl_contribution(g, vpl, Some(&self.roulette[k as usize]));
-            if c != Vec3::ZERO
-                && (!self.visibility
-                    || self
-                        .tracer
-                        .unoccluded(from, self.tracer.lift(vpl.position, vpl.geometric_normal)))
-            {
-                o += c * self.scale;
+            if let Some(v) = self.contribution(g, k) {
+                o += v;
             }
         };
         match chunks {
@@ -248,6 +312,10 @@ impl ListShading<'_> {
         o
     }
 }
+
+/// When a list shades at least this many pixels of a tile, they are shaded VPL by VPL with the
+/// pixels in lanes ([`ReceiverChunks`]): a VPL's passing pixels then fill whole chunks.
+pub const RECEIVER_LANES_MIN_PIXELS: usize = 8;
 
 /// When a list shades fewer pixels of a tile than this, packing its VPLs into chunks of eight
 /// costs more than it saves: its pixels are shaded with the scalar bound and sign tests

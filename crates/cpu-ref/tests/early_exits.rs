@@ -10,7 +10,7 @@ use glam::Vec3;
 use slc_bounds::{scalar_intensity, Brdf, Fresnel, StochasticParams};
 use slc_core::{GSample, Vpl, VplLobe};
 use slc_cpu_ref::vpl_shading::vpl_contribution;
-use slc_cull::{ReachChunks, VplReach};
+use slc_cull::{ReachChunks, ReceiverChunks, VplReach};
 
 /// xorshift64*, uniform floats in [0, 1).
 struct Rng(u64);
@@ -179,6 +179,9 @@ fn no_early_exit_drops_an_accepted_or_contributing_pair() {
     let mut exact = 0u32;
     let cases = 400_000u32;
     let mut recent = Vec::new();
+    let mut receivers = Vec::new();
+    let mut receiver_lanes = ReceiverChunks::default();
+    let mut bits = Vec::new();
     for case in 0..cases {
         let vpl = random_vpl(&mut rng);
         let params = StochasticParams::new(rng.log(-9.0, 3.0), vpl.xi).unwrap();
@@ -243,6 +246,23 @@ fn no_early_exit_drops_an_accepted_or_contributing_pair() {
                 .collect();
             assert_eq!(lanes, scalar, "case {case}");
         }
+        // The receivers-in-lanes test (`ReceiverChunks`) passes exactly the receivers the
+        // scalar one passes: this VPL against the last 11 receivers (a full chunk and a
+        // partial one).
+        receivers.push((g.position, g.normal));
+        if receivers.len() > 11 {
+            receivers.remove(0);
+        }
+        receiver_lanes.refill(receivers.iter().copied());
+        let any = reach.receivers_passing(vpl.position, &receiver_lanes, &mut bits);
+        let lanes: Vec<usize> = (0..receivers.len())
+            .filter(|&i| bits[i / 8] & (1 << (i % 8)) != 0)
+            .collect();
+        let scalar: Vec<usize> = (0..receivers.len())
+            .filter(|&i| reach.may_contribute(receivers[i].0 - vpl.position, receivers[i].1))
+            .collect();
+        assert_eq!(lanes, scalar, "case {case}: receivers in lanes");
+        assert_eq!(any, !scalar.is_empty(), "case {case}");
         accepted += u32::from(accepts);
         contributing += u32::from(contribution != Vec3::ZERO);
         edge += u32::from(accepts && (p - params.xi()) < 1e-3 * params.xi());

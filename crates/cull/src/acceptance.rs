@@ -17,7 +17,7 @@
 //!   `slc_bounds::shading_normal` replaces ωo·n) or with an anisotropic lobe
 //!   (`slc_bounds::anisotropy`) always passes where ωo·n > 0; its own bound (`reach`) still
 //!   applies.
-use crate::lanes::{clamp01, cross, dot, max, Real, F8, M8};
+use crate::lanes::{clamp01, cross, dot, max, Lanes8, Real, F8, M8};
 use core::f32::consts::{FRAC_1_PI, PI};
 use slc_bounds::{ggx, Fresnel, StochasticParams};
 use slc_core::{Vpl, VplLobe};
@@ -102,6 +102,24 @@ impl Acceptance<f32> {
 }
 
 impl Acceptance<F8> {
+    /// The eight lanes as `L` ([`Lanes8::load`]).
+    #[inline(always)]
+    pub(crate) fn load<L: Lanes8>(&self) -> Acceptance<L> {
+        Acceptance {
+            omega_i: self.omega_i.each_ref().map(L::load),
+            alpha: L::load(&self.alpha),
+            alpha_sq: L::load(&self.alpha_sq),
+            g1_over_cos_i: L::load(&self.g1_over_cos_i),
+            fresnel_a: self.fresnel_a.each_ref().map(L::load),
+            fresnel_b: self.fresnel_b.each_ref().map(L::load),
+            emitted: self.emitted.each_ref().map(L::load),
+            glossy: L::load_mask(&self.glossy),
+            unmodelled: L::load_mask(&self.unmodelled),
+            xi: L::load(&self.xi),
+            delta: L::load(&self.delta),
+        }
+    }
+
     /// The tests of eight VPLs, one per lane.
     pub(crate) fn lanes(of: [&Acceptance<f32>; 8]) -> Self {
         let one = |get: fn(&Acceptance<f32>) -> f32| F8(core::array::from_fn(|k| get(of[k])));
@@ -129,6 +147,24 @@ impl Acceptance<F8> {
 }
 
 impl<R: Real> Acceptance<R> {
+    /// One VPL's test in every lane (the lanes are then receivers).
+    #[inline(always)]
+    pub(crate) fn splat(of: &Acceptance<f32>) -> Self {
+        Self {
+            omega_i: of.omega_i.map(R::splat),
+            alpha: R::splat(of.alpha),
+            alpha_sq: R::splat(of.alpha_sq),
+            g1_over_cos_i: R::splat(of.g1_over_cos_i),
+            fresnel_a: of.fresnel_a.map(R::splat),
+            fresnel_b: of.fresnel_b.map(R::splat),
+            emitted: of.emitted.map(R::splat),
+            glossy: R::flag(of.glossy),
+            unmodelled: R::flag(of.unmodelled),
+            xi: R::splat(of.xi),
+            delta: R::splat(of.delta),
+        }
+    }
+
     /// Whether the roulette of eq. (3) may accept the VPL with unit normal `normal` at the
     /// offset `d = x − q` (formed as the shader forms it): false only where the shader finds
     /// p(ωo, l) <= ξ, or I(ωo) = 0.

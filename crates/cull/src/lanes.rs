@@ -1,7 +1,8 @@
 //! The arithmetic of the early exits written once for one `f32` and for eight lanes
 //! ([`F8`]): every lane performs the same IEEE operations in the same order as the scalar
-//! code, so the two agree bit for bit. [`F8`] is a plain array whose element-wise loops the
-//! compiler turns into 256-bit instructions where AVX is enabled (see `reach_chunks`); no
+//! code, so the two agree bit for bit. [`F8`] is a plain array (the layout chunks are stored
+//! in, and the lanes of CPUs without AVX2); the AVX2 kernels compute in `lanes_avx::A8`, one
+//! 256-bit instruction per operation, loaded from that layout through [`Lanes8`]. No
 //! operation is fused (Rust never contracts `a * b + c` into an FMA), so the lanes round
 //! exactly as the scalar shader does.
 use core::fmt::Debug;
@@ -24,6 +25,8 @@ pub trait Real:
         + BitOr<Output = Self::Mask>
         + Not<Output = Self::Mask>;
     fn splat(v: f32) -> Self;
+    /// `set` in every lane.
+    fn flag(set: bool) -> Self::Mask;
     fn gt(self, other: Self) -> Self::Mask;
     fn le(self, other: Self) -> Self::Mask;
     /// The IEEE square root (correctly rounded, as `f32::sqrt`).
@@ -51,6 +54,10 @@ impl Real for f32 {
     #[inline(always)]
     fn splat(v: f32) -> Self {
         v
+    }
+    #[inline(always)]
+    fn flag(set: bool) -> bool {
+        set
     }
     #[inline(always)]
     fn gt(self, other: Self) -> bool {
@@ -183,6 +190,10 @@ impl Real for F8 {
         F8([v; 8])
     }
     #[inline(always)]
+    fn flag(set: bool) -> M8 {
+        M8([u32::from(set).wrapping_neg(); 8])
+    }
+    #[inline(always)]
     fn gt(self, other: Self) -> M8 {
         flags(self, other, |a, b| a > b)
     }
@@ -203,6 +214,31 @@ impl Real for F8 {
                 b.0[k]
             }
         }))
+    }
+}
+
+/// Eight lanes of [`Real`] that load from the memory layout [`F8`] / [`M8`] (chunks are
+/// stored as plain arrays) and give their flags as a bit pattern: [`F8`] itself, or
+/// `lanes_avx::A8` in AVX registers inside the AVX2 kernels.
+pub trait Lanes8: Real {
+    fn load(v: &F8) -> Self;
+    fn load_mask(m: &M8) -> Self::Mask;
+    /// Bit k set where lane k of `m` is set.
+    fn bits(m: Self::Mask) -> u8;
+}
+
+impl Lanes8 for F8 {
+    #[inline(always)]
+    fn load(v: &F8) -> Self {
+        *v
+    }
+    #[inline(always)]
+    fn load_mask(m: &M8) -> M8 {
+        *m
+    }
+    #[inline(always)]
+    fn bits(m: M8) -> u8 {
+        m.bits()
     }
 }
 

@@ -6,7 +6,7 @@
 //! rejects a pair that the full evaluation accepts: the estimate stays bit for bit the same,
 //! only cheaper.
 use crate::acceptance::Acceptance;
-use crate::lanes::{dot, Real};
+use crate::lanes::{dot, Lanes8, Real, F8};
 use crate::vpl_bounds::{GlossyBound, LocalBound};
 use glam::{DMat3, DVec3, Vec3};
 use slc_bounds::StochasticParams;
@@ -33,6 +33,17 @@ pub(crate) struct Reach<R> {
 }
 
 impl<R: Real> Reach<R> {
+    /// One VPL's exits in every lane (the lanes are then receivers).
+    #[inline(always)]
+    pub(crate) fn splat(of: &Reach<f32>) -> Self {
+        Self {
+            normal: of.normal.map(R::splat),
+            stretch: of.stretch.map(R::splat),
+            center: of.center.map(R::splat),
+            limit: R::splat(of.limit),
+        }
+    }
+
     /// Whether the pair at offset `d = x − q` passes the bound and the sign at the VPL: not
     /// behind the VPL (beyond the margin) and inside its bound ([`VplReach::may_accept`] adds
     /// the roulette).
@@ -54,6 +65,19 @@ impl<R: Real> Reach<R> {
     pub(crate) fn may_contribute(&self, d: [R; 3], receiver: [R; 3]) -> R::Mask {
         let margin_sq = R::splat(SIGN_MARGIN * SIGN_MARGIN) * dot(d, d);
         !behind(dot(receiver, d), margin_sq) & self.may_accept(d)
+    }
+}
+
+impl Reach<F8> {
+    /// The eight lanes as `L` ([`Lanes8::load`]).
+    #[inline(always)]
+    pub(crate) fn load<L: Lanes8>(&self) -> Reach<L> {
+        Reach {
+            normal: self.normal.each_ref().map(L::load),
+            stretch: self.stretch.each_ref().map(L::load),
+            center: self.center.each_ref().map(L::load),
+            limit: L::load(&self.limit),
+        }
     }
 }
 

@@ -5,7 +5,7 @@
 //! (p > ξ, [`crate::acceptance`]) is evaluated for a chunk only when one of its lanes
 //! passes the bound and sign tests.
 use crate::acceptance::Acceptance;
-use crate::lanes::{Real, F8};
+use crate::lanes::{Lanes8, Real, F8};
 use crate::reach::{Reach, VplReach};
 use glam::Vec3;
 use slc_core::Vpl;
@@ -125,7 +125,8 @@ fn chunk(vpls: &[Vpl], reach: &[VplReach], indices: &[u32]) -> Chunk {
     c
 }
 
-/// The lanes of `c` that pass at `x` (bit k for lane k), with AVX2 where the CPU has it.
+/// The lanes of `c` that pass at `x` (bit k for lane k), in AVX registers where the CPU has
+/// AVX2.
 #[inline]
 fn passing(c: &Chunk, x: Vec3, normal: Option<Vec3>) -> u8 {
     #[cfg(target_arch = "x86_64")]
@@ -133,33 +134,31 @@ fn passing(c: &Chunk, x: Vec3, normal: Option<Vec3>) -> u8 {
         // SAFETY: the CPU supports AVX2, checked just above.
         return unsafe { passing_avx2(c, x, normal) };
     }
-    passing_lanes(c, x, normal)
+    passing_lanes::<F8>(c, x, normal)
 }
 
-/// [`passing_lanes`] compiled for AVX2 (the same IEEE operations, in 256-bit registers).
+/// [`passing_lanes`] in AVX registers (the same IEEE operations).
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2")]
 fn passing_avx2(c: &Chunk, x: Vec3, normal: Option<Vec3>) -> u8 {
-    passing_lanes(c, x, normal)
+    passing_lanes::<crate::lanes_avx::A8>(c, x, normal)
 }
 
 #[inline(always)]
-fn passing_lanes(c: &Chunk, x: Vec3, normal: Option<Vec3>) -> u8 {
+fn passing_lanes<L: Lanes8>(c: &Chunk, x: Vec3, normal: Option<Vec3>) -> u8 {
+    let reach = c.reach.load::<L>();
     // d = x − q, each lane exactly as the shader forms `g.position − vpl.position`.
     let d = [
-        F8::splat(x.x) - c.position[0],
-        F8::splat(x.y) - c.position[1],
-        F8::splat(x.z) - c.position[2],
+        L::splat(x.x) - L::load(&c.position[0]),
+        L::splat(x.y) - L::load(&c.position[1]),
+        L::splat(x.z) - L::load(&c.position[2]),
     ];
-    let bits = match normal {
-        Some(n) => c
-            .reach
-            .may_contribute(d, [F8::splat(n.x), F8::splat(n.y), F8::splat(n.z)]),
-        None => c.reach.may_accept(d),
-    }
-    .bits();
+    let bits = L::bits(match normal {
+        Some(n) => reach.may_contribute(d, [L::splat(n.x), L::splat(n.y), L::splat(n.z)]),
+        None => reach.may_accept(d),
+    });
     if bits == 0 {
         return 0;
     }
-    bits & c.acceptance.may_accept(c.reach.normal, d).bits()
+    bits & L::bits(c.acceptance.load::<L>().may_accept(reach.normal, d))
 }
