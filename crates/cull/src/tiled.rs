@@ -5,13 +5,14 @@ use crate::depth::{depth_range, DepthSplit, Sample, MAX_CLUSTERS};
 use crate::frusta::TileFrusta;
 use crate::lists::{assemble, pixel_count, ListChunk};
 use crate::partition::Partition;
+use crate::points::positions;
 use crate::refine::{block_of, Place, Refiner, Scratch, BLOCKS};
 use crate::tiles::{tiles, Tile};
 use crate::view::CullView;
 use crate::vpl_bounds::{subregion_bounds, GlossyBound, SubregionBounds};
-use glam::DVec2;
+use glam::{DVec2, Vec3};
 use rayon::prelude::*;
-use slc_core::{CullError, CullInput, GBuffer, LightLists, NO_LIST};
+use slc_core::{CullError, CullInput, LightLists, NO_LIST};
 
 /// How a tile is divided in depth.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -23,8 +24,10 @@ pub(crate) enum Clustering {
 }
 
 /// What every tile reads.
-struct Frame<'a> {
-    gbuffer: &'a GBuffer,
+struct Frame {
+    width: u32,
+    /// The G-buffer's positions, packed ([`positions`]).
+    positions: Vec<Option<Vec3>>,
     view: CullView,
     bounds: Vec<SubregionBounds>,
     split: DepthSplit,
@@ -59,21 +62,21 @@ pub(crate) fn cull(
         )?),
         _ => None,
     };
+    let positions = positions(input.gbuffer);
     let split = match clustering {
         Clustering::HalfZ => DepthSplit::HalfZ,
         Clustering::ExponentialSlices => {
-            let depths = input
-                .gbuffer
-                .samples
+            let depths = positions
                 .par_iter()
                 .flatten()
-                .map(|g| view.to_view(g.position).z)
+                .map(|position| view.to_view(*position).z)
                 .filter(|&z| z > 0.0 && z.is_finite());
             depth_range(depths).map_or(DepthSplit::HalfZ, |(lo, hi)| DepthSplit::slices(lo, hi))
         }
     };
     let frame = Frame {
-        gbuffer: input.gbuffer,
+        width,
+        positions,
         view,
         bounds,
         split,
@@ -200,14 +203,14 @@ impl Worker {
         let (mut lo, mut hi) = frame.view.image_rect(x0, y0, x1, y1);
         self.samples.clear();
         self.places.clear();
-        let width = frame.gbuffer.width;
+        let width = frame.width;
         let columns = tile.columns();
         for (i, [x, y]) in tile.pixels(frame.k).enumerate() {
             let pixel = y * width + x;
-            let Some(g) = &frame.gbuffer.samples[pixel as usize] else {
+            let Some(position) = frame.positions[pixel as usize] else {
                 continue;
             };
-            let p = frame.view.to_view(g.position);
+            let p = frame.view.to_view(position);
             if !(p.z > 0.0 && p.is_finite()) {
                 return Err(CullError::Input(format!(
                     "G-buffer sample of pixel ({x}, {y}) is not in front of the camera \
@@ -227,7 +230,7 @@ impl Worker {
                 let i = i as u32;
                 self.places.push(Place {
                     view: p,
-                    extent: g.position.abs().max_element(),
+                    extent: position.abs().max_element(),
                     block: block_of(i % columns, i / columns),
                 });
             }
