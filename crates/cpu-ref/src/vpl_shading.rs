@@ -183,12 +183,18 @@ struct ListShading<'a> {
     visibility: bool,
 }
 
-/// Scratch reused from tile to tile: the tile's (list, slot, pixel) triples of its pixels
-/// with a list, the chunks of the list being shaded (VPLs in lanes), and the receivers of a
-/// run shaded VPL by VPL (pixels in lanes) with their samples, sums and passing bits.
+/// Scratch reused from tile to tile: the tile's distinct lists, the (rank of the list, slot,
+/// pixel) triples of its pixels with a list, those grouped by list, where each group starts
+/// and the next free place while grouping, the chunks of the list being shaded (VPLs in
+/// lanes), and the receivers of a run shaded VPL by VPL (pixels in lanes) with their
+/// samples, sums and passing bits.
 #[derive(Default)]
 struct TileScratch<'a> {
+    lists: Vec<u32>,
     pixels: Vec<(u32, u32, u32)>,
+    grouped: Vec<(u32, u32, u32)>,
+    starts: Vec<usize>,
+    next: Vec<usize>,
     chunks: ReachChunks,
     receivers: ReceiverChunks,
     samples: Vec<(u32, &'a GSample)>,
@@ -200,18 +206,48 @@ impl<'a> ListShading<'a> {
     /// Shades the pixels of `tile` into `out` (its run in tile order), list by list.
     fn tile(&self, tile: &Tile, k: u32, out: &mut [Vec3], scratch: &mut TileScratch<'a>) {
         let width = self.gbuffer.width;
+        // The tile's pixels with a list as (rank of the list among the tile's lists, slot,
+        // pixel), then grouped by rank with a counting sort, each group in slot order.
+        scratch.lists.clear();
         scratch.pixels.clear();
         for (slot, [x, y]) in tile.pixels(k).enumerate() {
             let p = y * width + x;
             let l = self.lists.pixel_list[p as usize];
-            if l != NO_LIST {
-                scratch.pixels.push((l, slot as u32, p));
+            if l == NO_LIST {
+                continue;
             }
+            let rank = match scratch.lists.iter().rposition(|&m| m == l) {
+                Some(rank) => rank,
+                None => {
+                    scratch.lists.push(l);
+                    scratch.lists.len() - 1
+                }
+            };
+            scratch.pixels.push((rank as u32, slot as u32, p));
         }
-        scratch.pixels.sort_unstable();
-        let pixels = core::mem::take(&mut scratch.pixels);
-        for run in pixels.chunk_by(|a, b| a.0 == b.0) {
-            let l = run[0].0 as usize;
+        let ranks = scratch.lists.len();
+        scratch.starts.clear();
+        scratch.starts.resize(ranks + 1, 0);
+        for &(rank, _, _) in &scratch.pixels {
+            scratch.starts[rank as usize + 1] += 1;
+        }
+        for r in 0..ranks {
+            scratch.starts[r + 1] += scratch.starts[r];
+        }
+        let mut grouped = core::mem::take(&mut scratch.grouped);
+        grouped.clear();
+        grouped.resize(scratch.pixels.len(), (0, 0, 0));
+        scratch.next.clear();
+        scratch.next.extend_from_slice(&scratch.starts[..ranks]);
+        for &pixel in &scratch.pixels {
+            let at = &mut scratch.next[pixel.0 as usize];
+            grouped[*at] = pixel;
+            *at += 1;
+        }
+        let lists = core::mem::take(&mut scratch.lists);
+        for (r, &l) in lists.iter().enumerate() {
+            let run = &grouped[scratch.starts[r]..scratch.starts[r + 1]];
+            let l = l as usize;
             let list = &self.lists.indices
                 [self.lists.offsets[l] as usize..self.lists.offsets[l + 1] as usize];
             if run.len() >= RECEIVER_LANES_MIN_PIXELS {
@@ -228,7 +264,8 @@ impl<'a> ListShading<'a> {
                 }
             }
         }
-        scratch.pixels = pixels;
+        scratch.grouped = grouped;
+        scratch.lists = lists;
     }
 
     /// Shades the pixels `run` (list, slot, pixel) that share `list`, VPL by VPL in the list's
