@@ -292,7 +292,7 @@ impl<'a> ListShading<'a> {
         for &k in list {
             let vpl = &self.vpls[k as usize];
             let reach = &self.reach[k as usize];
-            if !reach.receivers_passing(vpl.position, &scratch.receivers, &mut scratch.bits) {
+            if !reach.receivers_passing(vpl.position, &scratch.receivers, true, &mut scratch.bits) {
                 continue;
             }
             for (c, &bits) in scratch.bits.iter().enumerate() {

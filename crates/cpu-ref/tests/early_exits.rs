@@ -254,15 +254,23 @@ fn no_early_exit_drops_an_accepted_or_contributing_pair() {
             receivers.remove(0);
         }
         receiver_lanes.refill(receivers.iter().copied());
-        let any = reach.receivers_passing(vpl.position, &receiver_lanes, &mut bits);
-        let lanes: Vec<usize> = (0..receivers.len())
-            .filter(|&i| bits[i / 8] & (1 << (i % 8)) != 0)
-            .collect();
-        let scalar: Vec<usize> = (0..receivers.len())
-            .filter(|&i| reach.may_contribute(receivers[i].0 - vpl.position, receivers[i].1))
-            .collect();
-        assert_eq!(lanes, scalar, "case {case}: receivers in lanes");
-        assert_eq!(any, !scalar.is_empty(), "case {case}");
+        for normals in [false, true] {
+            let any = reach.receivers_passing(vpl.position, &receiver_lanes, normals, &mut bits);
+            let lanes: Vec<usize> = (0..receivers.len())
+                .filter(|&i| bits[i / 8] & (1 << (i % 8)) != 0)
+                .collect();
+            let scalar: Vec<usize> = (0..receivers.len())
+                .filter(|&i| {
+                    let (x, n) = receivers[i];
+                    match normals {
+                        true => reach.may_contribute(x - vpl.position, n),
+                        false => reach.may_accept(x - vpl.position),
+                    }
+                })
+                .collect();
+            assert_eq!(lanes, scalar, "case {case}: receivers in lanes");
+            assert_eq!(any, !scalar.is_empty(), "case {case}");
+        }
         accepted += u32::from(accepts);
         contributing += u32::from(contribution != Vec3::ZERO);
         edge += u32::from(accepts && (p - params.xi()) < 1e-3 * params.xi());

@@ -7,14 +7,16 @@
 //! ωo the unit direction from the VPL to the pixel's G-buffer position and l² its squared
 //! distance, computed exactly as the shader does. A pair at distance 0 has no direction and
 //! contributes nothing. Pairs outside the VPL's own bound (the spheroid or section-6 sphere,
-//! [`crate::reach`], tested eight VPLs at a time by [`ReachChunks`]) are skipped without
-//! evaluating p: there p <= ξ, which the property test
+//! [`crate::reach`], tested against a tile's samples eight at a time by [`ReceiverChunks`])
+//! and those whose roulette the lanes reject are skipped without evaluating p exactly as the
+//! shader: there p <= ξ, which the property test
 //! of slc-cpu-ref (`tests/early_exits.rs`) checks at the bounds' edges and the guarantee tests
 //! check against every pair's p on their scenes.
 use crate::lists::pixel_count;
 use crate::partition::Partition;
 use crate::reach::VplReach;
-use crate::reach_chunks::ReachChunks;
+use crate::receiver_chunks::ReceiverChunks;
+use crate::tiles::{Tile, TileOrder};
 use glam::Vec3;
 use rayon::prelude::*;
 use slc_bounds::{scalar_intensity, StochasticParams};
@@ -49,42 +51,127 @@ pub fn measure_all(
         .zip(&roulette)
         .map(|(v, r)| VplReach::new(v, r))
         .collect::<Result<Vec<_>, _>>()?;
-    let chunks = ReachChunks::new(
-        input.vpls,
-        &reach,
-        (0..partition.subregions() as u32).map(|s| partition.of(s)),
-    );
     let m = lists.len();
-    let width = input.gbuffer.width as usize;
-    // Per pixel and list set: [listed, true positives, missed].
-    let mut stats = vec![[0u32; 3]; pixels * m];
-    if pixels > 0 && m > 0 {
-        stats.par_chunks_mut(width * m).enumerate().for_each_init(
-            || (Vec::new(), Vec::new()),
-            |(truth, sorted), (y, row)| {
-                for x in 0..width {
-                    let p = y * width + x;
-                    truth.clear();
-                    if let Some(g) = &input.gbuffer.samples[p] {
-                        let s = input.interleaving.pixel_subregion(x as u32, y as u32);
-                        chunks.for_each_passing(s as usize, g.position, None, |i| {
-                            if accepts(&roulette[i as usize], g, &input.vpls[i as usize]) {
-                                truth.push(i);
-                            }
-                        });
-                    }
-                    for (k, l) in lists.iter().enumerate() {
-                        let listed = l.for_pixel(p);
-                        let tp = matches(listed, truth, sorted);
-                        row[x * m + k] = [listed.len() as u32, tp, truth.len() as u32 - tp];
-                    }
+    let (w, h, k) = (
+        input.gbuffer.width,
+        input.gbuffer.height,
+        input.interleaving.k,
+    );
+    let order = TileOrder::new(w, h, k)?;
+    // Per pixel (in tile order) and list set: [listed, true positives, missed].
+    let mut in_tiles = vec![[0u32; 3]; pixels * m];
+    let mut runs = Vec::with_capacity(order.tiles().len());
+    let mut rest = in_tiles.as_mut_slice();
+    for len in order.run_lengths() {
+        let (mine, tail) = rest.split_at_mut(len * m);
+        runs.push(mine);
+        rest = tail;
+    }
+    order.tiles().par_iter().zip(runs).for_each_init(
+        TruthScratch::default,
+        |scratch, (tile, out)| {
+            scratch.truth(
+                input,
+                tile,
+                partition.of(tile.subregion(k)),
+                &reach,
+                &roulette,
+            );
+            for (slot, [x, y]) in tile.pixels(k).enumerate() {
+                let p = (y * w + x) as usize;
+                let truth = &scratch.truth[slot];
+                for (set, l) in lists.iter().enumerate() {
+                    let listed = l.for_pixel(p);
+                    let tp = matches(listed, truth, &mut scratch.sorted);
+                    out[slot * m + set] = [listed.len() as u32, tp, truth.len() as u32 - tp];
                 }
-            },
-        );
+            }
+        },
+    );
+    // Back to image order.
+    let width = w as usize;
+    let mut stats = vec![[0u32; 3]; pixels * m];
+    if m > 0 {
+        stats
+            .par_chunks_mut(width.max(1) * m)
+            .enumerate()
+            .for_each(|(y, row)| {
+                for (x, px) in row.chunks_mut(m).enumerate() {
+                    let slot = order.slot(x as u32, y as u32);
+                    px.copy_from_slice(&in_tiles[slot * m..(slot + 1) * m]);
+                }
+            });
     }
     Ok((0..m)
         .map(|k| summarize(stats.iter().skip(k).step_by(m.max(1)), pixels))
         .collect())
+}
+
+/// Scratch of one thread: per pixel of a tile the VPLs the roulette accepts there, the
+/// tile's receivers in lanes and the passing bits of one VPL, and a sorted copy of a list.
+#[derive(Default)]
+struct TruthScratch {
+    truth: Vec<Vec<u32>>,
+    slots: Vec<usize>,
+    receivers: ReceiverChunks,
+    bits: Vec<u8>,
+    sorted: Vec<u32>,
+}
+
+impl TruthScratch {
+    /// Fills `self.truth[slot]` for every pixel of `tile` with the VPLs of `subregion`
+    /// (ascending) that the roulette accepts there: each VPL tested against eight of the
+    /// tile's samples at a time ([`ReceiverChunks`], normals ignored), the pairs that pass
+    /// checked by [`accepts`].
+    fn truth(
+        &mut self,
+        input: &CullInput,
+        tile: &Tile,
+        subregion: &[u32],
+        reach: &[VplReach],
+        roulette: &[StochasticParams],
+    ) {
+        let (width, k) = (input.gbuffer.width, input.interleaving.k);
+        self.slots.clear();
+        let pixels = tile.pixel_count();
+        let samples = &input.gbuffer.samples;
+        let receivers = tile.pixels(k).enumerate().filter_map(|(slot, [x, y])| {
+            let g = samples[(y * width + x) as usize].as_ref()?;
+            self.slots.push(slot);
+            Some((g.position, g.normal))
+        });
+        self.receivers.refill(receivers);
+        self.truth
+            .resize_with(self.truth.len().max(pixels), Vec::new);
+        for t in &mut self.truth[..pixels] {
+            t.clear();
+        }
+        for &i in subregion {
+            let vpl = &input.vpls[i as usize];
+            if !reach[i as usize].receivers_passing(
+                vpl.position,
+                &self.receivers,
+                false,
+                &mut self.bits,
+            ) {
+                continue;
+            }
+            for (c, &bits) in self.bits.iter().enumerate() {
+                let mut bits = bits;
+                while bits != 0 {
+                    let slot = self.slots[c * 8 + bits.trailing_zeros() as usize];
+                    bits &= bits - 1;
+                    let [x, y] = tile.pixel(k, slot);
+                    let g = samples[(y * width + x) as usize]
+                        .as_ref()
+                        .expect("a receiver has a sample");
+                    if accepts(&roulette[i as usize], g, vpl) {
+                        self.truth[slot].push(i);
+                    }
+                }
+            }
+        }
+    }
 }
 
 /// Totals and per-pixel arrays of one list set from its per-pixel [listed, TP, missed].

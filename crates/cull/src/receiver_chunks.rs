@@ -54,12 +54,14 @@ impl ReceiverChunks {
 impl VplReach {
     /// For the VPL at `q` with these exits, writes to `bits` one byte per chunk of
     /// `receivers`: bit k set where receiver k of the chunk passes
-    /// [`VplReach::may_contribute`] (the bound, the signs at both ends and the roulette).
+    /// [`VplReach::may_contribute`] (the bound, the signs at both ends and the roulette), or
+    /// with `normals` false [`VplReach::may_accept`] (the receivers' normals ignored).
     /// Returns whether any receiver passes.
     pub fn receivers_passing(
         &self,
         q: Vec3,
         receivers: &ReceiverChunks,
+        normals: bool,
         bits: &mut Vec<u8>,
     ) -> bool {
         bits.clear();
@@ -67,17 +69,23 @@ impl VplReach {
         #[cfg(target_arch = "x86_64")]
         if std::arch::is_x86_feature_detected!("avx2") {
             // SAFETY: the CPU supports AVX2, checked just above.
-            return unsafe { passing_avx2(self, q, &receivers.chunks, bits) };
+            return unsafe { passing_avx2(self, q, &receivers.chunks, normals, bits) };
         }
-        passing_lanes::<F8>(self, q, &receivers.chunks, bits)
+        passing_lanes::<F8>(self, q, &receivers.chunks, normals, bits)
     }
 }
 
 /// [`passing_lanes`] in AVX registers (the same IEEE operations).
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2")]
-fn passing_avx2(reach: &VplReach, q: Vec3, chunks: &[Receivers], bits: &mut [u8]) -> bool {
-    passing_lanes::<crate::lanes_avx::A8>(reach, q, chunks, bits)
+fn passing_avx2(
+    reach: &VplReach,
+    q: Vec3,
+    chunks: &[Receivers],
+    normals: bool,
+    bits: &mut [u8],
+) -> bool {
+    passing_lanes::<crate::lanes_avx::A8>(reach, q, chunks, normals, bits)
 }
 
 #[inline(always)]
@@ -85,6 +93,7 @@ fn passing_lanes<L: Lanes8>(
     reach: &VplReach,
     q: Vec3,
     chunks: &[Receivers],
+    normals: bool,
     bits: &mut [u8],
 ) -> bool {
     let lanes = Reach::<L>::splat(&reach.reach);
@@ -98,12 +107,13 @@ fn passing_lanes<L: Lanes8>(
             L::load(&c.position[1]) - q[1],
             L::load(&c.position[2]) - q[2],
         ];
-        let normal = [
-            L::load(&c.normal[0]),
-            L::load(&c.normal[1]),
-            L::load(&c.normal[2]),
-        ];
-        let b = L::bits(lanes.may_contribute(d, normal)) & c.valid;
+        let passes = if normals {
+            let normal = c.normal.each_ref().map(L::load);
+            lanes.may_contribute(d, normal)
+        } else {
+            lanes.may_accept(d)
+        };
+        let b = L::bits(passes) & c.valid;
         if b != 0 {
             *out = b & L::bits(acceptance.may_accept(lanes.normal, d));
             any |= *out;

@@ -64,7 +64,7 @@ impl Tile {
 
     /// The number of pixels of the tile.
     #[inline]
-    fn pixel_count(&self) -> usize {
+    pub(crate) fn pixel_count(&self) -> usize {
         (self.count[0] * self.count[1]) as usize
     }
 
@@ -77,6 +77,14 @@ impl Tile {
     /// The tile's screen pixels (x, y), row by row.
     pub fn pixels(&self, k: u32) -> impl Iterator<Item = [u32; 2]> + '_ {
         (0..self.count[1]).flat_map(move |b| (0..self.count[0]).map(move |a| self.screen(k, a, b)))
+    }
+
+    /// The screen pixel (x, y) of the tile's pixel number `slot` (in the order of
+    /// [`Self::pixels`]).
+    #[inline]
+    pub(crate) fn pixel(&self, k: u32, slot: usize) -> [u32; 2] {
+        let slot = slot as u32;
+        self.screen(k, slot % self.count[0], slot / self.count[0])
     }
 
     /// Screen coordinates of the tile's pixel (a, b).
