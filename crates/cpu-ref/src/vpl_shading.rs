@@ -6,6 +6,7 @@ use rayon::prelude::*;
 use slc_bounds::stochastic::{scalar_intensity, StochasticParams};
 use slc_bounds::BoundsError;
 use slc_core::{CullError, CullInput, GBuffer, GSample, Image, LightLists, Vpl, NO_LIST};
+use slc_cull::receiver_chunks::Passing;
 use slc_cull::tiles::{Tile, TileOrder};
 use slc_cull::{ReachChunks, ReceiverChunks, VplReach};
 
@@ -30,11 +31,25 @@ pub fn vpl_contribution(g: &GSample, vpl: &Vpl, roulette: Option<&StochasticPara
         return Vec3::ZERO;
     }
     let omega = d / l2.sqrt(); // from the VPL to x
+    received(g, omega, l2, || vpl.intensity(omega), roulette)
+}
+
+/// The tail of [`vpl_contribution`] from the unit direction `omega` from the VPL to `g`, the
+/// squared distance `l2` and the VPL's intensity towards `g` (called only where cos θx > 0):
+/// what `vpl_contribution` returns when those are its own values.
+#[inline]
+pub fn received(
+    g: &GSample,
+    omega: Vec3,
+    l2: f32,
+    intensity: impl FnOnce() -> Vec3,
+    roulette: Option<&StochasticParams>,
+) -> Vec3 {
     let cos_x = -g.normal.dot(omega);
     if cos_x <= 0.0 {
         return Vec3::ZERO;
     }
-    let intensity = vpl.intensity(omega);
+    let intensity = intensity();
     let weight = match roulette {
         None => 1.0,
         Some(r) => r.estimator_weight(r.probability(scalar_intensity(intensity), l2)),
@@ -187,7 +202,7 @@ struct ListShading<'a> {
 /// pixel) triples of its pixels with a list, those grouped by list, where each group starts
 /// and the next free place while grouping, the chunks of the list being shaded (VPLs in
 /// lanes), and the receivers of a run shaded VPL by VPL (pixels in lanes) with their
-/// samples, sums and passing bits.
+/// samples, sums and the chunks where one VPL passes.
 #[derive(Default)]
 struct TileScratch<'a> {
     lists: Vec<u32>,
@@ -199,7 +214,7 @@ struct TileScratch<'a> {
     receivers: ReceiverChunks,
     samples: Vec<(u32, &'a GSample)>,
     sums: Vec<Vec3>,
-    bits: Vec<u8>,
+    passing: Vec<Passing>,
 }
 
 impl<'a> ListShading<'a> {
@@ -291,16 +306,27 @@ impl<'a> ListShading<'a> {
         scratch.sums.resize(samples.len(), Vec3::ZERO);
         for &k in list {
             let vpl = &self.vpls[k as usize];
-            let reach = &self.reach[k as usize];
-            if !reach.receivers_passing(vpl.position, &scratch.receivers, true, &mut scratch.bits) {
-                continue;
-            }
-            for (c, &bits) in scratch.bits.iter().enumerate() {
-                let mut bits = bits;
+            self.reach[k as usize].receivers_passing(
+                vpl.position,
+                &scratch.receivers,
+                true,
+                &mut scratch.passing,
+            );
+            for chunk in &scratch.passing {
+                let mut bits = chunk.bits;
                 while bits != 0 {
-                    let i = c * 8 + bits.trailing_zeros() as usize;
+                    let lane = bits.trailing_zeros() as usize;
                     bits &= bits - 1;
-                    if let Some(v) = self.contribution(samples[i].1, k) {
+                    let i = chunk.chunk * 8 + lane;
+                    let g = samples[i].1;
+                    let c = match chunk.exact(lane) {
+                        // The lanes' own ωo, l² and I(ωo) are the shader's, bit for bit.
+                        Some((omega, l2, intensity)) => {
+                            received(g, omega, l2, || intensity, Some(&self.roulette[k as usize]))
+                        }
+                        None => vpl_contribution(g, vpl, Some(&self.roulette[k as usize])),
+                    };
+                    if let Some(v) = self.visible(g, vpl, c) {
                         scratch.sums[i] += v;
                     }
                 }
@@ -317,6 +343,13 @@ impl<'a> ListShading<'a> {
     fn contribution(&self, g: &GSample, k: u32) -> Option<Vec3> {
         let vpl = &self.vpls[k as usize];
         let c = vpl_contribution(g, vpl, Some(&self.roulette[k as usize]));
+        self.visible(g, vpl, c)
+    }
+
+    /// The contribution `c` of `vpl` at `g` times K², `None` where it is 0 or, with
+    /// visibility, occluded.
+    #[inline]
+    fn visible(&self, g: &GSample, vpl: &Vpl, c: Vec3) -> Option<Vec3> {
         let visible = c != Vec3::ZERO
             && (!self.visibility
                 || self.tracer.unoccluded(

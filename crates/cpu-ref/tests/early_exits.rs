@@ -181,7 +181,8 @@ fn no_early_exit_drops_an_accepted_or_contributing_pair() {
     let mut recent = Vec::new();
     let mut receivers = Vec::new();
     let mut receiver_lanes = ReceiverChunks::default();
-    let mut bits = Vec::new();
+    let mut passing = Vec::new();
+    let mut handed_on = 0u32;
     for case in 0..cases {
         let vpl = random_vpl(&mut rng);
         let params = StochasticParams::new(rng.log(-9.0, 3.0), vpl.xi).unwrap();
@@ -255,10 +256,38 @@ fn no_early_exit_drops_an_accepted_or_contributing_pair() {
         }
         receiver_lanes.refill(receivers.iter().copied());
         for normals in [false, true] {
-            let any = reach.receivers_passing(vpl.position, &receiver_lanes, normals, &mut bits);
-            let lanes: Vec<usize> = (0..receivers.len())
-                .filter(|&i| bits[i / 8] & (1 << (i % 8)) != 0)
-                .collect();
+            reach.receivers_passing(vpl.position, &receiver_lanes, normals, &mut passing);
+            let mut lanes = Vec::new();
+            for chunk in &passing {
+                for lane in (0..8).filter(|&k| chunk.bits & (1 << k) != 0) {
+                    let i = chunk.chunk * 8 + lane;
+                    lanes.push(i);
+                    // Where the lanes hand their values on, they are the shader's, bit for
+                    // bit, and the shader accepts the pair.
+                    if let Some((omega, l2, intensity)) = chunk.exact(lane) {
+                        let d = receivers[i].0 - vpl.position;
+                        let l2_shader = d.length_squared();
+                        let omega_shader = d / l2_shader.sqrt();
+                        let intensity_shader = vpl.intensity(omega_shader);
+                        assert_eq!(
+                            (omega.to_array().map(f32::to_bits), l2.to_bits()),
+                            (
+                                omega_shader.to_array().map(f32::to_bits),
+                                l2_shader.to_bits()
+                            ),
+                            "case {case}"
+                        );
+                        assert_eq!(
+                            intensity.to_array().map(f32::to_bits),
+                            intensity_shader.to_array().map(f32::to_bits),
+                            "case {case}: {vpl:?}"
+                        );
+                        let p = params.probability(scalar_intensity(intensity_shader), l2_shader);
+                        assert!(p > params.xi(), "case {case}");
+                        handed_on += 1;
+                    }
+                }
+            }
             let scalar: Vec<usize> = (0..receivers.len())
                 .filter(|&i| {
                     let (x, n) = receivers[i];
@@ -269,7 +298,6 @@ fn no_early_exit_drops_an_accepted_or_contributing_pair() {
                 })
                 .collect();
             assert_eq!(lanes, scalar, "case {case}: receivers in lanes");
-            assert_eq!(any, !scalar.is_empty(), "case {case}");
         }
         accepted += u32::from(accepts);
         contributing += u32::from(contribution != Vec3::ZERO);
@@ -283,6 +311,10 @@ fn no_early_exit_drops_an_accepted_or_contributing_pair() {
     assert!(edge > cases / 100, "{edge} accepted within 1e-3 of ξ");
     assert!(rejected > cases / 4, "{rejected} rejected");
     assert!(exact > cases / 2, "{exact} decided exactly");
+    assert!(
+        handed_on > cases / 20,
+        "{handed_on} pairs' values handed on"
+    );
 }
 
 /// Whether the shader forms the VPL's intensity towards `omega` entirely in f32 with a

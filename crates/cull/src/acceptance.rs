@@ -44,6 +44,9 @@ pub(crate) struct Acceptance<R: Real> {
     /// Set for a VPL whose intensity the lanes do not form (a tilted shading normal, an
     /// anisotropic lobe): it passes wherever ωo·n > 0.
     unmodelled: R::Mask,
+    /// Set where the lanes form the shader's own intensity (not unmodelled, and diffuse or
+    /// with Schlick's Fresnel): then, with a well-conditioned half vector, bit for bit.
+    exact: R::Mask,
     xi: R,
     delta: R,
 }
@@ -70,6 +73,7 @@ impl Acceptance<f32> {
             )
         };
         let emitted = if dark { glam::Vec3::ZERO } else { emitted };
+        let unmodelled = vpl.is_tilted() || brdf.anisotropy.is_some();
         Self {
             omega_i: vpl.omega_i.to_array(),
             alpha: brdf.alpha,
@@ -79,7 +83,8 @@ impl Acceptance<f32> {
             fresnel_b: fresnel_b.to_array(),
             emitted: emitted.to_array(),
             glossy,
-            unmodelled: vpl.is_tilted() || brdf.anisotropy.is_some(),
+            unmodelled,
+            exact: !unmodelled && !(glossy && matches!(brdf.fresnel, Fresnel::Dielectric(_))),
             xi: params.xi(),
             delta: params.delta(),
         }
@@ -96,6 +101,7 @@ impl Acceptance<f32> {
         emitted: [0.0; 3],
         glossy: false,
         unmodelled: false,
+        exact: false,
         xi: 0.5,
         delta: 1.0,
     };
@@ -115,6 +121,7 @@ impl Acceptance<F8> {
             emitted: self.emitted.each_ref().map(L::load),
             glossy: L::load_mask(&self.glossy),
             unmodelled: L::load_mask(&self.unmodelled),
+            exact: L::load_mask(&self.exact),
             xi: L::load(&self.xi),
             delta: L::load(&self.delta),
         }
@@ -140,6 +147,9 @@ impl Acceptance<F8> {
             unmodelled: M8(core::array::from_fn(|k| {
                 u32::from(of[k].unmodelled).wrapping_neg()
             })),
+            exact: M8(core::array::from_fn(|k| {
+                u32::from(of[k].exact).wrapping_neg()
+            })),
             xi: one(|a| a.xi),
             delta: one(|a| a.delta),
         }
@@ -160,6 +170,7 @@ impl<R: Real> Acceptance<R> {
             emitted: of.emitted.map(R::splat),
             glossy: R::flag(of.glossy),
             unmodelled: R::flag(of.unmodelled),
+            exact: R::flag(of.exact),
             xi: R::splat(of.xi),
             delta: R::splat(of.delta),
         }
@@ -170,6 +181,12 @@ impl<R: Real> Acceptance<R> {
     /// p(ωo, l) <= ξ, or I(ωo) = 0.
     #[inline(always)]
     pub(crate) fn may_accept(&self, normal: [R; 3], d: [R; 3]) -> R::Mask {
+        self.evaluate(normal, d).may_accept
+    }
+
+    /// [`Self::may_accept`], with the values it was decided on.
+    #[inline(always)]
+    pub(crate) fn evaluate(&self, normal: [R; 3], d: [R; 3]) -> Roulette<R> {
         let zero = R::splat(0.0);
         // vpl_contribution: ωo = d / |d|.
         let l2 = dot(d, d);
@@ -202,10 +219,34 @@ impl<R: Real> Acceptance<R> {
             let f = (self.fresnel_a[c] + self.fresnel_b[c] * m) * k;
             self.emitted[c] * f * cos_o
         };
+        let channels = [channel(0), channel(1), channel(2)];
         // scalar_intensity (the largest channel), then eq. (2)-(3).
-        let intensity = max(channel(0), max(channel(1), channel(2)));
+        let intensity = max(channels[0], max(channels[1], channels[2]));
         let p = intensity / (self.delta * l2);
         let accepted = cos_o.gt(zero) & intensity.gt(zero) & !p.le(self.xi);
-        accepted | ((self.unmodelled | (self.glossy & !well_conditioned)) & cos_o.gt(zero))
+        let ill_conditioned = self.glossy & !well_conditioned;
+        Roulette {
+            may_accept: accepted | ((self.unmodelled | ill_conditioned) & cos_o.gt(zero)),
+            exact: accepted & self.exact & !ill_conditioned,
+            l2,
+            omega,
+            intensity: channels,
+        }
     }
+}
+
+/// The roulette of one pair (or eight) and what it was decided on: l² = |d|², ωo = d/|d| and
+/// the VPL's intensity I(ωo) per channel (eq. 4), each formed with the shader's operations
+/// (`vpl_contribution`, `Vpl::intensity`).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Roulette<R: Real> {
+    /// [`Acceptance::may_accept`].
+    pub may_accept: R::Mask,
+    /// Where the shader accepts the pair and `l2`, `omega` and `intensity` are the shader's
+    /// own values bit for bit: a diffuse VPL, or a glossy one with Schlick's Fresnel and a
+    /// half vector the shader forms in f32, neither tilted nor anisotropic.
+    pub exact: R::Mask,
+    pub l2: R,
+    pub omega: [R; 3],
+    pub intensity: [R; 3],
 }

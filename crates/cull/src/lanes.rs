@@ -222,6 +222,7 @@ impl Real for F8 {
 /// `lanes_avx::A8` in AVX registers inside the AVX2 kernels.
 pub trait Lanes8: Real {
     fn load(v: &F8) -> Self;
+    fn store(self) -> F8;
     fn load_mask(m: &M8) -> Self::Mask;
     /// Bit k set where lane k of `m` is set.
     fn bits(m: Self::Mask) -> u8;
@@ -231,6 +232,10 @@ impl Lanes8 for F8 {
     #[inline(always)]
     fn load(v: &F8) -> Self {
         *v
+    }
+    #[inline(always)]
+    fn store(self) -> F8 {
+        self
     }
     #[inline(always)]
     fn load_mask(m: &M8) -> M8 {

@@ -12,8 +12,8 @@ use crate::lanes::{Lanes8, Real, F8, M8};
 use core::arch::x86_64::{
     __m256, _mm256_add_ps, _mm256_and_ps, _mm256_blendv_ps, _mm256_castsi256_ps, _mm256_cmp_ps,
     _mm256_div_ps, _mm256_load_ps, _mm256_movemask_ps, _mm256_mul_ps, _mm256_or_ps,
-    _mm256_set1_epi32, _mm256_set1_ps, _mm256_sqrt_ps, _mm256_sub_ps, _mm256_xor_ps, _CMP_GT_OQ,
-    _CMP_LE_OQ,
+    _mm256_set1_epi32, _mm256_set1_ps, _mm256_sqrt_ps, _mm256_store_ps, _mm256_sub_ps,
+    _mm256_xor_ps, _CMP_GT_OQ, _CMP_LE_OQ,
 };
 use core::fmt::{self, Debug};
 use core::ops::{Add, BitAnd, BitOr, Div, Mul, Neg, Not, Sub};
@@ -118,6 +118,13 @@ impl Lanes8 for A8 {
         A8(unsafe { _mm256_load_ps(v.0.as_ptr()) })
     }
     #[inline(always)]
+    fn store(self) -> F8 {
+        let mut out = F8([0.0; 8]);
+        // F8 is 32-byte aligned.
+        unsafe { _mm256_store_ps(out.0.as_mut_ptr(), self.0) };
+        out
+    }
+    #[inline(always)]
     fn load_mask(m: &M8) -> AM8 {
         AM8(unsafe { _mm256_load_ps(m.0.as_ptr().cast()) })
     }
@@ -130,14 +137,6 @@ impl Lanes8 for A8 {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use core::arch::x86_64::_mm256_store_ps;
-
-    fn store(v: A8) -> F8 {
-        let mut out = F8([0.0; 8]);
-        // SAFETY: called only where AVX2 was detected; F8 is 32-byte aligned.
-        unsafe { _mm256_store_ps(out.0.as_mut_ptr(), v.0) };
-        out
-    }
 
     /// Every operation of both lane types on `a` and `b`, as bit patterns.
     fn each<L: Lanes8>(a: F8, b: F8, out: impl Fn(L) -> F8) -> Vec<u32> {
@@ -157,7 +156,7 @@ mod tests {
 
     #[target_feature(enable = "avx2")]
     fn avx(a: F8, b: F8) -> Vec<u32> {
-        each::<A8>(a, b, store)
+        each::<A8>(a, b, A8::store)
     }
 
     #[test]

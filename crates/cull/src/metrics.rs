@@ -15,7 +15,7 @@
 use crate::lists::pixel_count;
 use crate::partition::Partition;
 use crate::reach::VplReach;
-use crate::receiver_chunks::ReceiverChunks;
+use crate::receiver_chunks::{Passing, ReceiverChunks};
 use crate::tiles::{Tile, TileOrder};
 use glam::Vec3;
 use rayon::prelude::*;
@@ -108,13 +108,14 @@ pub fn measure_all(
 }
 
 /// Scratch of one thread: per pixel of a tile the VPLs the roulette accepts there, the
-/// tile's receivers in lanes and the passing bits of one VPL, and a sorted copy of a list.
+/// tile's receivers in lanes and the chunks where one VPL passes, and a sorted copy of a
+/// list.
 #[derive(Default)]
 struct TruthScratch {
     truth: Vec<Vec<u32>>,
     slots: Vec<usize>,
     receivers: ReceiverChunks,
-    bits: Vec<u8>,
+    passing: Vec<Passing>,
     sorted: Vec<u32>,
 }
 
@@ -148,24 +149,27 @@ impl TruthScratch {
         }
         for &i in subregion {
             let vpl = &input.vpls[i as usize];
-            if !reach[i as usize].receivers_passing(
+            reach[i as usize].receivers_passing(
                 vpl.position,
                 &self.receivers,
                 false,
-                &mut self.bits,
-            ) {
-                continue;
-            }
-            for (c, &bits) in self.bits.iter().enumerate() {
-                let mut bits = bits;
+                &mut self.passing,
+            );
+            for chunk in &self.passing {
+                let mut bits = chunk.bits;
                 while bits != 0 {
-                    let slot = self.slots[c * 8 + bits.trailing_zeros() as usize];
+                    let lane = bits.trailing_zeros() as usize;
                     bits &= bits - 1;
-                    let [x, y] = tile.pixel(k, slot);
-                    let g = samples[(y * width + x) as usize]
-                        .as_ref()
-                        .expect("a receiver has a sample");
-                    if accepts(&roulette[i as usize], g, vpl) {
+                    let slot = self.slots[chunk.chunk * 8 + lane];
+                    // Where the lanes decided with the shader's own values, they accepted.
+                    let accepted = chunk.exact(lane).is_some() || {
+                        let [x, y] = tile.pixel(k, slot);
+                        let g = samples[(y * width + x) as usize]
+                            .as_ref()
+                            .expect("a receiver has a sample");
+                        accepts(&roulette[i as usize], g, vpl)
+                    };
+                    if accepted {
                         self.truth[slot].push(i);
                     }
                 }

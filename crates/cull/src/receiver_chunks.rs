@@ -51,27 +51,56 @@ impl ReceiverChunks {
     }
 }
 
+/// A chunk of receivers where pairs with one VPL pass, with the roulette's values there.
+#[derive(Clone, Copy, Debug)]
+pub struct Passing {
+    /// Which chunk of the receivers: receiver i is lane i mod 8 of chunk i / 8.
+    pub chunk: usize,
+    /// Bit k set where receiver k of the chunk passes.
+    pub bits: u8,
+    /// Bit k set where lane k's values are the shader's own (see [`Self::exact`]).
+    exact: u8,
+    l2: F8,
+    omega: [F8; 3],
+    intensity: [F8; 3],
+}
+
+impl Passing {
+    /// For a passing receiver k of the chunk: the unit direction ωo from the VPL to it, the
+    /// squared distance l² and the VPL's intensity I(ωo) per channel (eq. 4), exactly as the
+    /// shader's `vpl_contribution` and `Vpl::intensity` form them (the same IEEE operations
+    /// in the same order), where the roulette accepted the pair with those values: a diffuse
+    /// VPL, or a glossy one with Schlick's Fresnel and a half vector formed in f32, neither on
+    /// a tilted shading normal nor anisotropic. `None` elsewhere: the shader forms them
+    /// itself.
+    #[inline]
+    pub fn exact(&self, k: usize) -> Option<(Vec3, f32, Vec3)> {
+        (self.exact & (1 << k) != 0).then(|| {
+            let lane = |v: &[F8; 3]| Vec3::new(v[0].0[k], v[1].0[k], v[2].0[k]);
+            (lane(&self.omega), self.l2.0[k], lane(&self.intensity))
+        })
+    }
+}
+
 impl VplReach {
-    /// For the VPL at `q` with these exits, writes to `bits` one byte per chunk of
-    /// `receivers`: bit k set where receiver k of the chunk passes
-    /// [`VplReach::may_contribute`] (the bound, the signs at both ends and the roulette), or
-    /// with `normals` false [`VplReach::may_accept`] (the receivers' normals ignored).
-    /// Returns whether any receiver passes.
+    /// For the VPL at `q` with these exits, appends to `passing` (cleared first) every chunk
+    /// of `receivers` where a receiver passes [`VplReach::may_contribute`] (the bound, the
+    /// signs at both ends and the roulette), or with `normals` false [`VplReach::may_accept`]
+    /// (the receivers' normals ignored).
     pub fn receivers_passing(
         &self,
         q: Vec3,
         receivers: &ReceiverChunks,
         normals: bool,
-        bits: &mut Vec<u8>,
-    ) -> bool {
-        bits.clear();
-        bits.resize(receivers.chunks.len(), 0);
+        passing: &mut Vec<Passing>,
+    ) {
+        passing.clear();
         #[cfg(target_arch = "x86_64")]
         if std::arch::is_x86_feature_detected!("avx2") {
             // SAFETY: the CPU supports AVX2, checked just above.
-            return unsafe { passing_avx2(self, q, &receivers.chunks, normals, bits) };
+            return unsafe { passing_avx2(self, q, &receivers.chunks, normals, passing) };
         }
-        passing_lanes::<F8>(self, q, &receivers.chunks, normals, bits)
+        passing_lanes::<F8>(self, q, &receivers.chunks, normals, passing)
     }
 }
 
@@ -83,9 +112,9 @@ fn passing_avx2(
     q: Vec3,
     chunks: &[Receivers],
     normals: bool,
-    bits: &mut [u8],
-) -> bool {
-    passing_lanes::<crate::lanes_avx::A8>(reach, q, chunks, normals, bits)
+    passing: &mut Vec<Passing>,
+) {
+    passing_lanes::<crate::lanes_avx::A8>(reach, q, chunks, normals, passing)
 }
 
 #[inline(always)]
@@ -94,13 +123,12 @@ fn passing_lanes<L: Lanes8>(
     q: Vec3,
     chunks: &[Receivers],
     normals: bool,
-    bits: &mut [u8],
-) -> bool {
+    passing: &mut Vec<Passing>,
+) {
     let lanes = Reach::<L>::splat(&reach.reach);
     let acceptance = Acceptance::<L>::splat(&reach.acceptance);
     let q = [L::splat(q.x), L::splat(q.y), L::splat(q.z)];
-    let mut any = 0;
-    for (c, out) in chunks.iter().zip(bits) {
+    for (chunk, c) in chunks.iter().enumerate() {
         // d = x − q, each lane exactly as the shader forms `g.position − vpl.position`.
         let d = [
             L::load(&c.position[0]) - q[0],
@@ -114,10 +142,20 @@ fn passing_lanes<L: Lanes8>(
             lanes.may_accept(d)
         };
         let b = L::bits(passes) & c.valid;
-        if b != 0 {
-            *out = b & L::bits(acceptance.may_accept(lanes.normal, d));
-            any |= *out;
+        if b == 0 {
+            continue;
+        }
+        let roulette = acceptance.evaluate(lanes.normal, d);
+        let bits = b & L::bits(roulette.may_accept);
+        if bits != 0 {
+            passing.push(Passing {
+                chunk,
+                bits,
+                exact: bits & L::bits(roulette.exact),
+                l2: roulette.l2.store(),
+                omega: roulette.omega.map(L::store),
+                intensity: roulette.intensity.map(L::store),
+            });
         }
     }
-    any != 0
 }
