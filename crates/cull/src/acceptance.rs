@@ -74,6 +74,7 @@ impl Acceptance<f32> {
         };
         let emitted = if dark { glam::Vec3::ZERO } else { emitted };
         let unmodelled = vpl.is_tilted() || brdf.anisotropy.is_some();
+        let dielectric = glossy && matches!(brdf.fresnel, Fresnel::Dielectric(_));
         Self {
             omega_i: vpl.omega_i.to_array(),
             alpha: brdf.alpha,
@@ -84,7 +85,7 @@ impl Acceptance<f32> {
             emitted: emitted.to_array(),
             glossy,
             unmodelled,
-            exact: !unmodelled && !(glossy && matches!(brdf.fresnel, Fresnel::Dielectric(_))),
+            exact: !(unmodelled || dielectric),
             xi: params.xi(),
             delta: params.delta(),
         }
