@@ -8,7 +8,7 @@ use slc_bounds::BoundsError;
 use slc_core::{CullError, CullInput, GBuffer, GSample, Image, LightLists, Vpl, NO_LIST};
 use slc_cull::receiver_chunks::Passing;
 use slc_cull::tiles::{Tile, TileOrder};
-use slc_cull::{ReachChunks, ReceiverChunks, VplReach};
+use slc_cull::{ReceiverChunks, VplReach};
 
 /// How each VPL's contribution is weighted.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -110,15 +110,14 @@ pub fn shade_vpls(
 /// miss no VPL with p > ξ at the pixel. Fails when δ, a ξ, K or a VPL is out of the domain
 /// of slc-bounds and slc-cull, or when the lists, the G-buffer and its size disagree (or the
 /// image has 2³² pixels or more). Pairs that [`VplReach`] rejects (outside the VPL's own
-/// bound, facing away at either end, or not accepted by the roulette; tested eight VPLs of a
-/// list at a time by [`ReachChunks`]) are skipped before the receiver's BRDF: their
-/// contribution is exactly 0, so the image is the same bit for bit. The pixels are shaded tile
-/// by tile in the deinterleaved order of [`TileOrder`] (the culling's tiles), each tile's
-/// pixels grouped by list. A list that shades at least [`RECEIVER_LANES_MIN_PIXELS`] pixels
-/// of the tile is shaded VPL by VPL, eight of its pixels per test ([`ReceiverChunks`]); a
-/// shorter run pixel by pixel, its VPLs packed into chunks of eight ([`ReachChunks`]), or
-/// tested one by one where it has fewer than [`PACK_MIN_PIXELS`] pixels. Every pixel sums
-/// its VPLs in the list's order in all three.
+/// bound, facing away at either end, or not accepted by the roulette) are skipped before the
+/// receiver's BRDF: their contribution is exactly 0, so the image is the same bit for bit.
+/// The pixels are shaded tile by tile in the deinterleaved order of [`TileOrder`] (the
+/// culling's tiles), each tile's pixels grouped by list. The pixels of a list are shaded VPL
+/// by VPL, each VPL tested against eight of them at a time ([`ReceiverChunks`]), and where
+/// those lanes accepted a pair with the shader's own operations their ωo, l² and I(ωo) are
+/// used as they are ([`received`]); a list of a single pixel is shaded with the scalar tests.
+/// Every pixel sums its VPLs in the list's order either way.
 pub fn shade_lists(
     tracer: &Tracer,
     input: &CullInput,
@@ -200,9 +199,8 @@ struct ListShading<'a> {
 
 /// Scratch reused from tile to tile: the tile's distinct lists, the (rank of the list, slot,
 /// pixel) triples of its pixels with a list, those grouped by list, where each group starts
-/// and the next free place while grouping, the chunks of the list being shaded (VPLs in
-/// lanes), and the receivers of a run shaded VPL by VPL (pixels in lanes) with their
-/// samples, sums and the chunks where one VPL passes.
+/// and the next free place while grouping, and the receivers of a list shaded VPL by VPL
+/// (pixels in lanes) with their samples, sums and the chunks where one VPL passes.
 #[derive(Default)]
 struct TileScratch<'a> {
     lists: Vec<u32>,
@@ -210,7 +208,6 @@ struct TileScratch<'a> {
     grouped: Vec<(u32, u32, u32)>,
     starts: Vec<usize>,
     next: Vec<usize>,
-    chunks: ReachChunks,
     receivers: ReceiverChunks,
     samples: Vec<(u32, &'a GSample)>,
     sums: Vec<Vec3>,
@@ -269,13 +266,9 @@ impl<'a> ListShading<'a> {
                 self.run_by_vpl(list, run, out, scratch);
                 continue;
             }
-            let packed = run.len() >= PACK_MIN_PIXELS;
-            if packed {
-                scratch.chunks.refill(self.vpls, self.reach, [list]);
-            }
             for &(_, slot, p) in run {
                 if let Some(g) = &self.gbuffer.samples[p as usize] {
-                    out[slot as usize] = self.pixel(g, list, packed.then_some(&scratch.chunks));
+                    out[slot as usize] = self.pixel(g, list);
                 }
             }
         }
@@ -359,23 +352,16 @@ impl<'a> ListShading<'a> {
         visible.then(|| c * self.scale)
     }
 
-    /// The estimate at `g` from the VPLs of `list` (packed in `chunks` when given) that pass
-    /// the early exits, in the list's order.
-    fn pixel(&self, g: &GSample, list: &[u32], chunks: Option<&ReachChunks>) -> Vec3 {
+    /// The estimate at `g` from the VPLs of `list` that pass the scalar bound and sign tests
+    /// ([`VplReach::may_reach`]; `vpl_contribution` forms the roulette itself), in the list's
+    /// order.
+    fn pixel(&self, g: &GSample, list: &[u32]) -> Vec3 {
         let mut o = Vec3::ZERO;
-        let mut shade = |k: u32| {
-            if let Some(v) = self.contribution(g, k) {
-                o += v;
-            }
-        };
-        match chunks {
-            Some(chunks) => chunks.for_each_passing(0, g.position, Some(g.normal), &mut shade),
-            None => {
-                for &k in list {
-                    let d = g.position - self.vpls[k as usize].position;
-                    if self.reach[k as usize].may_reach(d, g.normal) {
-                        shade(k);
-                    }
+        for &k in list {
+            let d = g.position - self.vpls[k as usize].position;
+            if self.reach[k as usize].may_reach(d, g.normal) {
+                if let Some(v) = self.contribution(g, k) {
+                    o += v;
                 }
             }
         }
@@ -384,10 +370,5 @@ impl<'a> ListShading<'a> {
 }
 
 /// When a list shades at least this many pixels of a tile, they are shaded VPL by VPL with the
-/// pixels in lanes ([`ReceiverChunks`]): a VPL's passing pixels then fill whole chunks.
-pub const RECEIVER_LANES_MIN_PIXELS: usize = 8;
-
-/// When a list shades fewer pixels of a tile than this, packing its VPLs into chunks of eight
-/// costs more than it saves: its pixels are shaded with the scalar bound and sign tests
-/// ([`VplReach::may_reach`]) and `vpl_contribution`'s own roulette, which pass the same pairs.
-pub const PACK_MIN_PIXELS: usize = 4;
+/// pixels in lanes ([`ReceiverChunks`]); a single pixel is shaded with the scalar tests.
+pub const RECEIVER_LANES_MIN_PIXELS: usize = 2;
