@@ -2,17 +2,19 @@
 //! light lists (listed pairs per second) on the built-in default scene: every listed pair
 //! evaluated in full (no early exit); with the scalar early exits (`VplReach::may_reach`:
 //! bound and signs, one pair at a time, then the shader's own roulette); with the eight-lane
-//! early exits (`ReachChunks`: bound, signs and the roulette, eight pairs at a time); and the
-//! whole `shade_lists` (tile order, every thread).
+//! early exits (`ReachChunks`: bound, signs and the roulette, eight VPLs at a time); with
+//! the receivers in lanes (`ReceiverChunks`: each list's pixels, eight at a time, VPL by VPL,
+//! the accepted pairs' ωo, l² and I(ωo) handed to the contribution where they are the
+//! shader's); and the whole `shade_lists` (tile order, every thread).
 mod common;
 
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
 use glam::Vec3;
 use slc_bounds::StochasticParams;
-use slc_core::{CullInput, Interleaving, Strategy, NO_LIST};
+use slc_core::{CullInput, GSample, Interleaving, Strategy, NO_LIST};
 use slc_cpu_ref::gbuffer::{trace_gbuffer, PixelSample};
-use slc_cpu_ref::vpl_shading::{shade_lists, vpl_contribution};
-use slc_cull::{culler, ReachChunks, VplReach};
+use slc_cpu_ref::vpl_shading::{received, shade_lists, vpl_contribution};
+use slc_cull::{culler, ReachChunks, ReceiverChunks, VplReach};
 use std::hint::black_box;
 
 fn culled_shading(c: &mut Criterion) {
@@ -103,6 +105,41 @@ fn culled_shading(c: &mut Criterion) {
                 chunks.for_each_passing(l as usize, s.position, Some(s.normal), |k| {
                     sum += vpl_contribution(s, &vpls[k as usize], Some(&roulette[k as usize]));
                 });
+            }
+            black_box(sum)
+        })
+    });
+    // Each list's pixels as one group of receivers.
+    let mut by_list: Vec<Vec<&GSample>> = vec![Vec::new(); lists.len()];
+    for (s, l) in pixels() {
+        by_list[l as usize].push(s);
+    }
+    let receivers: Vec<ReceiverChunks> = by_list
+        .iter()
+        .map(|px| {
+            let mut r = ReceiverChunks::default();
+            r.refill(px.iter().map(|s| (s.position, s.normal)));
+            r
+        })
+        .collect();
+    g.bench_function("receiver_lanes", |b| {
+        let mut passing = Vec::new();
+        b.iter(|| {
+            let mut sum = Vec3::ZERO;
+            for (l, (px, r)) in by_list.iter().zip(&receivers).enumerate() {
+                for &k in listed(l as u32) {
+                    let (v, roulette) = (&vpls[k as usize], Some(&roulette[k as usize]));
+                    reach[k as usize].receivers_passing(v.position, r, true, &mut passing);
+                    for chunk in &passing {
+                        for lane in (0..8).filter(|&lane| chunk.bits & (1 << lane) != 0) {
+                            let s = px[chunk.chunk * 8 + lane];
+                            sum += match chunk.exact(lane) {
+                                Some((omega, l2, i)) => received(s, omega, l2, || i, roulette),
+                                None => vpl_contribution(s, v, roulette),
+                            };
+                        }
+                    }
+                }
             }
             black_box(sum)
         })
