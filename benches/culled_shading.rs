@@ -127,17 +127,16 @@ fn culled_shading(c: &mut Criterion) {
         b.iter(|| {
             let mut sum = Vec3::ZERO;
             for (l, (px, r)) in by_list.iter().zip(&receivers).enumerate() {
-                for &k in listed(l as u32) {
-                    let (v, roulette) = (&vpls[k as usize], Some(&roulette[k as usize]));
-                    reach[k as usize].receivers_passing(v.position, r, true, &mut passing);
-                    for chunk in &passing {
-                        for lane in (0..8).filter(|&lane| chunk.bits & (1 << lane) != 0) {
-                            let s = px[chunk.chunk * 8 + lane];
-                            sum += match chunk.exact(lane) {
-                                Some((omega, l2, i)) => received(s, omega, l2, || i, roulette),
-                                None => vpl_contribution(s, v, roulette),
-                            };
-                        }
+                r.passing(&vpls, &reach, listed(l as u32), true, &mut passing);
+                for chunk in &passing {
+                    let k = chunk.vpl as usize;
+                    let (v, roulette) = (&vpls[k], Some(&roulette[k]));
+                    for lane in (0..8).filter(|&lane| chunk.bits & (1 << lane) != 0) {
+                        let s = px[chunk.chunk * 8 + lane];
+                        sum += match chunk.exact(lane) {
+                            Some((omega, l2, i)) => received(s, omega, l2, || i, roulette),
+                            None => vpl_contribution(s, v, roulette),
+                        };
                     }
                 }
             }

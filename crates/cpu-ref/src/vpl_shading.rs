@@ -297,31 +297,25 @@ impl<'a> ListShading<'a> {
             .refill(samples.iter().map(|(_, g)| (g.position, g.normal)));
         scratch.sums.clear();
         scratch.sums.resize(samples.len(), Vec3::ZERO);
-        for &k in list {
-            let vpl = &self.vpls[k as usize];
-            self.reach[k as usize].receivers_passing(
-                vpl.position,
-                &scratch.receivers,
-                true,
-                &mut scratch.passing,
-            );
-            for chunk in &scratch.passing {
-                let mut bits = chunk.bits;
-                while bits != 0 {
-                    let lane = bits.trailing_zeros() as usize;
-                    bits &= bits - 1;
-                    let i = chunk.chunk * 8 + lane;
-                    let g = samples[i].1;
-                    let c = match chunk.exact(lane) {
-                        // The lanes' own ωo, l² and I(ωo) are the shader's, bit for bit.
-                        Some((omega, l2, intensity)) => {
-                            received(g, omega, l2, || intensity, Some(&self.roulette[k as usize]))
-                        }
-                        None => vpl_contribution(g, vpl, Some(&self.roulette[k as usize])),
-                    };
-                    if let Some(v) = self.visible(g, vpl, c) {
-                        scratch.sums[i] += v;
-                    }
+        scratch
+            .receivers
+            .passing(self.vpls, self.reach, list, true, &mut scratch.passing);
+        for chunk in &scratch.passing {
+            let k = chunk.vpl as usize;
+            let (vpl, roulette) = (&self.vpls[k], Some(&self.roulette[k]));
+            let mut bits = chunk.bits;
+            while bits != 0 {
+                let lane = bits.trailing_zeros() as usize;
+                bits &= bits - 1;
+                let i = chunk.chunk * 8 + lane;
+                let g = samples[i].1;
+                let c = match chunk.exact(lane) {
+                    // The lanes' own ωo, l² and I(ωo) are the shader's, bit for bit.
+                    Some((omega, l2, intensity)) => received(g, omega, l2, || intensity, roulette),
+                    None => vpl_contribution(g, vpl, roulette),
+                };
+                if let Some(v) = self.visible(g, vpl, c) {
+                    scratch.sums[i] += v;
                 }
             }
         }

@@ -147,31 +147,25 @@ impl TruthScratch {
         for t in &mut self.truth[..pixels] {
             t.clear();
         }
-        for &i in subregion {
-            let vpl = &input.vpls[i as usize];
-            reach[i as usize].receivers_passing(
-                vpl.position,
-                &self.receivers,
-                false,
-                &mut self.passing,
-            );
-            for chunk in &self.passing {
-                let mut bits = chunk.bits;
-                while bits != 0 {
-                    let lane = bits.trailing_zeros() as usize;
-                    bits &= bits - 1;
-                    let slot = self.slots[chunk.chunk * 8 + lane];
-                    // Where the lanes decided with the shader's own values, they accepted.
-                    let accepted = chunk.exact(lane).is_some() || {
-                        let [x, y] = tile.pixel(k, slot);
-                        let g = samples[(y * width + x) as usize]
-                            .as_ref()
-                            .expect("a receiver has a sample");
-                        accepts(&roulette[i as usize], g, vpl)
-                    };
-                    if accepted {
-                        self.truth[slot].push(i);
-                    }
+        self.receivers
+            .passing(input.vpls, reach, subregion, false, &mut self.passing);
+        for chunk in &self.passing {
+            let i = chunk.vpl;
+            let mut bits = chunk.bits;
+            while bits != 0 {
+                let lane = bits.trailing_zeros() as usize;
+                bits &= bits - 1;
+                let slot = self.slots[chunk.chunk * 8 + lane];
+                // Where the lanes decided with the shader's own values, they accepted.
+                let accepted = chunk.exact(lane).is_some() || {
+                    let [x, y] = tile.pixel(k, slot);
+                    let g = samples[(y * width + x) as usize]
+                        .as_ref()
+                        .expect("a receiver has a sample");
+                    accepts(&roulette[i as usize], g, &input.vpls[i as usize])
+                };
+                if accepted {
+                    self.truth[slot].push(i);
                 }
             }
         }

@@ -8,6 +8,7 @@ use crate::acceptance::Acceptance;
 use crate::lanes::{Lanes8, Real, F8};
 use crate::reach::{Reach, VplReach};
 use glam::Vec3;
+use slc_core::Vpl;
 
 /// Eight receivers: their positions x and unit normals, and which lanes hold one.
 #[derive(Clone, Copy, Debug)]
@@ -51,9 +52,11 @@ impl ReceiverChunks {
     }
 }
 
-/// A chunk of receivers where pairs with one VPL pass, with the roulette's values there.
+/// A chunk of receivers where pairs with a VPL pass, with the roulette's values there.
 #[derive(Clone, Copy, Debug)]
 pub struct Passing {
+    /// The VPL's index.
+    pub vpl: u32,
     /// Which chunk of the receivers: receiver i is lane i mod 8 of chunk i / 8.
     pub chunk: usize,
     /// Bit k set where receiver k of the chunk passes.
@@ -82,15 +85,17 @@ impl Passing {
     }
 }
 
-impl VplReach {
-    /// For the VPL at `q` with these exits, appends to `passing` (cleared first) every chunk
-    /// of `receivers` where a receiver passes [`VplReach::may_contribute`] (the bound, the
-    /// signs at both ends and the roulette), or with `normals` false [`VplReach::may_accept`]
-    /// (the receivers' normals ignored).
-    pub fn receivers_passing(
+impl ReceiverChunks {
+    /// For every VPL of `group` in turn (indices into `vpls` and `reach`, one [`VplReach`] per
+    /// VPL), appends to `passing` (cleared first) every chunk of these receivers where a
+    /// receiver passes [`VplReach::may_contribute`] with it (the bound, the signs at both ends
+    /// and the roulette), or with `normals` false [`VplReach::may_accept`] (the receivers'
+    /// normals ignored): VPL by VPL in the group's order, chunk by chunk.
+    pub fn passing(
         &self,
-        q: Vec3,
-        receivers: &ReceiverChunks,
+        vpls: &[Vpl],
+        reach: &[VplReach],
+        group: &[u32],
         normals: bool,
         passing: &mut Vec<Passing>,
     ) {
@@ -98,29 +103,39 @@ impl VplReach {
         #[cfg(target_arch = "x86_64")]
         if std::arch::is_x86_feature_detected!("avx2") {
             // SAFETY: the CPU supports AVX2, checked just above.
-            return unsafe { passing_avx2(self, q, &receivers.chunks, normals, passing) };
+            return unsafe { passing_avx2(self, vpls, reach, group, normals, passing) };
         }
-        passing_lanes::<F8>(self, q, &receivers.chunks, normals, passing)
+        for &i in group {
+            let q = vpls[i as usize].position;
+            passing_lanes::<F8>(&reach[i as usize], q, i, &self.chunks, normals, passing);
+        }
     }
 }
 
-/// [`passing_lanes`] in AVX registers (the same IEEE operations).
+/// [`ReceiverChunks::passing`] in AVX registers (the same IEEE operations).
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2")]
 fn passing_avx2(
-    reach: &VplReach,
-    q: Vec3,
-    chunks: &[Receivers],
+    receivers: &ReceiverChunks,
+    vpls: &[Vpl],
+    reach: &[VplReach],
+    group: &[u32],
     normals: bool,
     passing: &mut Vec<Passing>,
 ) {
-    passing_lanes::<crate::lanes_avx::A8>(reach, q, chunks, normals, passing)
+    for &i in group {
+        let q = vpls[i as usize].position;
+        let chunks = &receivers.chunks;
+        passing_lanes::<crate::lanes_avx::A8>(&reach[i as usize], q, i, chunks, normals, passing);
+    }
 }
 
+/// The chunks of `chunks` where a receiver passes with VPL `vpl` at `q`, appended to `passing`.
 #[inline(always)]
 fn passing_lanes<L: Lanes8>(
     reach: &VplReach,
     q: Vec3,
+    vpl: u32,
     chunks: &[Receivers],
     normals: bool,
     passing: &mut Vec<Passing>,
@@ -149,6 +164,7 @@ fn passing_lanes<L: Lanes8>(
         let bits = b & L::bits(roulette.may_accept);
         if bits != 0 {
             passing.push(Passing {
+                vpl,
                 chunk,
                 bits,
                 exact: bits & L::bits(roulette.exact),
