@@ -250,9 +250,22 @@ fn no_early_exit_drops_an_accepted_or_contributing_pair() {
         // The receivers-in-lanes test (`ReceiverChunks`) passes exactly the receivers the
         // scalar one passes: this VPL against the last 11 receivers (a full chunk and a
         // partial one).
-        receivers.push((g.position, g.normal));
-        if receivers.len() > 11 {
-            receivers.remove(0);
+        // Every other case the receivers are this one and ten more within a small box
+        // around it (1e-7 … 1e-2 of its distance), so that the box test of
+        // `ReceiverChunks::passing` is tried at the bound's edge.
+        if case % 2 == 0 {
+            receivers.push((g.position, g.normal));
+            if receivers.len() > 11 {
+                receivers.remove(0);
+            }
+        } else {
+            let spread = distance * rng.log(-7.0, -2.0);
+            receivers.clear();
+            receivers.push((g.position, g.normal));
+            for _ in 0..10 {
+                let jitter = Vec3::new(rng.f32(), rng.f32(), rng.f32()) * 2.0 - Vec3::ONE;
+                receivers.push((g.position + jitter * spread, g.normal));
+            }
         }
         receiver_lanes.refill(receivers.iter().copied());
         for normals in [false, true] {

@@ -68,6 +68,41 @@ impl<R: Real> Reach<R> {
     }
 }
 
+impl Reach<f32> {
+    /// Whether any receiver in the box `[lo, hi]` may pass [`Self::may_accept`] for the VPL at
+    /// `q`: false only where every point of the box is outside the bound or behind the VPL by
+    /// twice the margins of the per-pair test, so a receiver the f32 test passes is never
+    /// rejected. In f64: the box maps under S to the box `S·(b − q) − S·(c − q) ± |S| h`
+    /// (b its centre, h its half size), whose nearest point to the origin must be within
+    /// 2·limit − 1 (twice the limit's rounding margin above 1), grown by 1e-3; and the
+    /// largest n·d over the box, n·(b − q) + |n|·h, must reach −2·[`SIGN_MARGIN`] times the
+    /// largest |d|.
+    pub(crate) fn box_may_reach(&self, q: Vec3, lo: Vec3, hi: Vec3) -> bool {
+        let (q, lo, hi) = (q.as_dvec3(), lo.as_dvec3(), hi.as_dvec3());
+        let (b, h) = ((lo + hi) * 0.5 - q, (hi - lo) * 0.5);
+        let n = DVec3::from(self.normal.map(f64::from));
+        let reach = (lo - q).abs().max((hi - q).abs()).length();
+        if n.dot(b) + n.abs().dot(h) < -2.0 * f64::from(SIGN_MARGIN) * reach {
+            return false;
+        }
+        let s = self.stretch.map(f64::from);
+        let rows = [
+            DVec3::new(s[0], s[1], s[2]),
+            DVec3::new(s[3], s[4], s[5]),
+            DVec3::new(s[6], s[7], s[8]),
+        ];
+        let gap_sq: f64 = rows
+            .iter()
+            .zip(self.center)
+            .map(|(row, c)| {
+                let gap = (row.dot(b) - f64::from(c)).abs() - row.abs().dot(h);
+                gap.max(0.0).powi(2)
+            })
+            .sum();
+        gap_sq <= (2.0 * f64::from(self.limit) - 1.0) * (1.0 + 1e-3)
+    }
+}
+
 impl Reach<F8> {
     /// The eight lanes as `L` ([`Lanes8::load`]).
     #[inline(always)]

@@ -23,14 +23,19 @@ struct Receivers {
 #[derive(Clone, Debug, Default)]
 pub struct ReceiverChunks {
     chunks: Vec<Receivers>,
+    /// The box of the receivers' positions.
+    lo: Vec3,
+    hi: Vec3,
 }
 
 impl ReceiverChunks {
     /// Replaces the receivers by `receivers` (position x, unit normal), keeping the allocation.
     pub fn refill(&mut self, receivers: impl IntoIterator<Item = (Vec3, Vec3)>) {
         self.chunks.clear();
+        (self.lo, self.hi) = (Vec3::INFINITY, Vec3::NEG_INFINITY);
         let mut lane = 8;
         for (x, n) in receivers {
+            (self.lo, self.hi) = (self.lo.min(x), self.hi.max(x));
             if lane == 8 {
                 // Lanes past the end repeat the chunk's first receiver (finite arithmetic),
                 // and `valid` masks them out.
@@ -90,7 +95,9 @@ impl ReceiverChunks {
     /// VPL), appends to `passing` (cleared first) every chunk of these receivers where a
     /// receiver passes [`VplReach::may_contribute`] with it (the bound, the signs at both ends
     /// and the roulette), or with `normals` false [`VplReach::may_accept`] (the receivers'
-    /// normals ignored): VPL by VPL in the group's order, chunk by chunk.
+    /// normals ignored): VPL by VPL in the group's order, chunk by chunk. A VPL whose bound
+    /// or tangent plane leaves out the box of the receivers (`Reach::box_may_reach`) is
+    /// passed over after that one test.
     pub fn passing(
         &self,
         vpls: &[Vpl],
@@ -107,7 +114,9 @@ impl ReceiverChunks {
         }
         for &i in group {
             let q = vpls[i as usize].position;
-            passing_lanes::<F8>(&reach[i as usize], q, i, &self.chunks, normals, passing);
+            if reach[i as usize].reach.box_may_reach(q, self.lo, self.hi) {
+                passing_lanes::<F8>(&reach[i as usize], q, i, &self.chunks, normals, passing);
+            }
         }
     }
 }
@@ -125,6 +134,12 @@ fn passing_avx2(
 ) {
     for &i in group {
         let q = vpls[i as usize].position;
+        if !reach[i as usize]
+            .reach
+            .box_may_reach(q, receivers.lo, receivers.hi)
+        {
+            continue;
+        }
         let chunks = &receivers.chunks;
         passing_lanes::<crate::lanes_avx::A8>(&reach[i as usize], q, i, chunks, normals, passing);
     }
