@@ -276,7 +276,7 @@ impl<'a> ListShading<'a> {
         scratch.lists = lists;
     }
 
-    /// Shades the pixels `run` (list, slot, pixel) that share `list`, VPL by VPL in the list's
+    /// Shades the pixels `run` (rank, slot, pixel) that share `list`, VPL by VPL in the list's
     /// order, each VPL tested against eight of the pixels at a time ([`ReceiverChunks`]).
     /// Every pixel still sums its VPLs in the list's order, so its estimate is the same bit
     /// for bit as [`Self::pixel`]'s.
