@@ -81,7 +81,7 @@ mod lanes_avx;
 mod lists;
 pub mod metrics;
 mod partition;
-mod points;
+mod positions;
 pub mod reach;
 pub mod reach_chunks;
 pub mod receiver_chunks;

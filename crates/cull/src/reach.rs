@@ -198,7 +198,7 @@ impl VplReach {
     /// [`Self::may_contribute`] without the roulette: the bound and sign tests alone. A
     /// scalar caller that goes on to the shader's `vpl_contribution` uses this, since that
     /// forms the roulette first and stops there when it rejects: testing it here as well
-    /// would only repeat it (the roulette pays off eight lanes at a time, in `ReachChunks`).
+    /// would only repeat it (the roulette pays off eight pairs at a time, in `ReceiverChunks`).
     #[inline]
     pub fn may_reach(&self, d: Vec3, receiver_normal: Vec3) -> bool {
         self.reach

@@ -1,5 +1,6 @@
-//! The early exits of whole groups of VPLs (a light list, a subregion's VPLs) as
-//! structure-of-arrays chunks of eight, tested against one pixel at a time: eight pairs per
+//! The early exits of whole groups of VPLs as structure-of-arrays chunks of eight, tested
+//! against one pixel at a time (the yardstick of `slc bench`'s ceiling; the shading and the
+//! metrics test one VPL against eight pixels instead, [`crate::ReceiverChunks`]): eight pairs per
 //! test in 256-bit lanes where the CPU has AVX2, the same arithmetic as [`VplReach`] lane for
 //! lane (so the same pairs pass), and only the VPLs that pass are handed on. The roulette
 //! (p > ξ, [`crate::acceptance`]) is evaluated for a chunk only when one of its lanes

@@ -1,5 +1,5 @@
 //! The early exits of one VPL against a group of receivers (the pixels of a tile that share a
-//! light list), eight receivers per test: the transpose of [`crate::ReachChunks`]. The VPL's
+//! light list in the shading, every pixel of a tile in the metrics), eight receivers per test: the transpose of [`crate::ReachChunks`]. The VPL's
 //! constants are broadcast to every lane once and each lane is a pixel, so a VPL whose bound
 //! covers a patch of the tile fills whole chunks with passing receivers, and the roulette
 //! ([`crate::acceptance`]) runs on far fewer chunks than when the lanes are VPLs. Each lane

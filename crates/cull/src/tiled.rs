@@ -5,7 +5,7 @@ use crate::depth::{depth_range, DepthSplit, Sample, MAX_CLUSTERS};
 use crate::frusta::TileFrusta;
 use crate::lists::{assemble, pixel_count, ListChunk};
 use crate::partition::Partition;
-use crate::points::positions;
+use crate::positions::positions;
 use crate::refine::{block_of, Place, Refiner, Scratch, BLOCKS};
 use crate::tiles::{tiles, Tile};
 use crate::view::CullView;
