@@ -158,7 +158,8 @@ def test_bad_input_raises_clear_exceptions(scene):
 def test_work_releases_the_gil(scene):
     done = threading.Event()
     worker = threading.Thread(
-        target=lambda: (scene.render(width=160, height=120, rsm=32), done.set())
+        # Large enough to last well over the 20 ms asserted below on a fast CPU path.
+        target=lambda: (scene.render(width=480, height=360, rsm=64), done.set())
     )
     ticks = 0
     start = time.perf_counter()
