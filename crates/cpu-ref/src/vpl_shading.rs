@@ -299,7 +299,7 @@ impl<'a> ListShading<'a> {
         scratch.sums.resize(samples.len(), Vec3::ZERO);
         scratch
             .receivers
-            .passing(self.vpls, self.reach, list, true, &mut scratch.passing);
+            .passing(self.reach, list, true, &mut scratch.passing);
         for chunk in &scratch.passing {
             let k = chunk.vpl as usize;
             let (vpl, roulette) = (&self.vpls[k], Some(&self.roulette[k]));

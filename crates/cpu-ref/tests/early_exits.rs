@@ -269,7 +269,7 @@ fn no_early_exit_drops_an_accepted_or_contributing_pair() {
         }
         receiver_lanes.refill(receivers.iter().copied());
         for normals in [false, true] {
-            receiver_lanes.passing(&[vpl], &[reach], &[0], normals, &mut passing);
+            receiver_lanes.passing(&[reach], &[0], normals, &mut passing);
             let mut lanes = Vec::new();
             for chunk in &passing {
                 for lane in (0..8).filter(|&k| chunk.bits & (1 << k) != 0) {

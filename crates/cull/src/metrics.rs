@@ -148,7 +148,7 @@ impl TruthScratch {
             t.clear();
         }
         self.receivers
-            .passing(input.vpls, reach, subregion, false, &mut self.passing);
+            .passing(reach, subregion, false, &mut self.passing);
         for chunk in &self.passing {
             let i = chunk.vpl;
             let mut bits = chunk.bits;

@@ -128,6 +128,8 @@ fn behind<R: Real>(t: R, margin_sq: R) -> R::Mask {
 /// pair with p > ξ), its normal, and its roulette ([`Acceptance`]).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct VplReach {
+    /// The VPL's position q: the receivers' offsets d = x − q are formed from it.
+    pub(crate) position: Vec3,
     pub(crate) reach: Reach<f32>,
     pub(crate) acceptance: Acceptance<f32>,
 }
@@ -164,6 +166,7 @@ impl VplReach {
         };
         let rows = stretch.transpose().to_cols_array().map(|v| v as f32);
         Ok(Self {
+            position: vpl.position,
             reach: Reach {
                 normal: vpl.normal.to_array(),
                 stretch: rows,

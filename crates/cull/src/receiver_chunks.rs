@@ -8,7 +8,6 @@ use crate::acceptance::Acceptance;
 use crate::lanes::{Lanes8, Real, F8};
 use crate::reach::{Reach, VplReach};
 use glam::Vec3;
-use slc_core::Vpl;
 
 /// Eight receivers: their positions x and unit normals, and which lanes hold one.
 #[derive(Clone, Copy, Debug)]
@@ -91,7 +90,7 @@ impl Passing {
 }
 
 impl ReceiverChunks {
-    /// For every VPL of `group` in turn (indices into `vpls` and `reach`, one [`VplReach`] per
+    /// For every VPL of `group` in turn (indices into `reach`, one [`VplReach`] per
     /// VPL), appends to `passing` (cleared first) every chunk of these receivers where a
     /// receiver passes [`VplReach::may_contribute`] with it (the bound, the signs at both ends
     /// and the roulette), or with `normals` false [`VplReach::may_accept`] (the receivers'
@@ -100,7 +99,6 @@ impl ReceiverChunks {
     /// passed over after that one test.
     pub fn passing(
         &self,
-        vpls: &[Vpl],
         reach: &[VplReach],
         group: &[u32],
         normals: bool,
@@ -110,12 +108,12 @@ impl ReceiverChunks {
         #[cfg(target_arch = "x86_64")]
         if std::arch::is_x86_feature_detected!("avx2") {
             // SAFETY: the CPU supports AVX2, checked just above.
-            return unsafe { passing_avx2(self, vpls, reach, group, normals, passing) };
+            return unsafe { passing_avx2(self, reach, group, normals, passing) };
         }
         for &i in group {
-            let q = vpls[i as usize].position;
-            if reach[i as usize].reach.box_may_reach(q, self.lo, self.hi) {
-                passing_lanes::<F8>(&reach[i as usize], q, i, &self.chunks, normals, passing);
+            let r = &reach[i as usize];
+            if r.reach.box_may_reach(r.position, self.lo, self.hi) {
+                passing_lanes::<F8>(r, i, &self.chunks, normals, passing);
             }
         }
     }
@@ -126,30 +124,25 @@ impl ReceiverChunks {
 #[target_feature(enable = "avx2")]
 fn passing_avx2(
     receivers: &ReceiverChunks,
-    vpls: &[Vpl],
     reach: &[VplReach],
     group: &[u32],
     normals: bool,
     passing: &mut Vec<Passing>,
 ) {
     for &i in group {
-        let q = vpls[i as usize].position;
-        if !reach[i as usize]
-            .reach
-            .box_may_reach(q, receivers.lo, receivers.hi)
+        let r = &reach[i as usize];
+        if r.reach
+            .box_may_reach(r.position, receivers.lo, receivers.hi)
         {
-            continue;
+            passing_lanes::<crate::lanes_avx::A8>(r, i, &receivers.chunks, normals, passing);
         }
-        let chunks = &receivers.chunks;
-        passing_lanes::<crate::lanes_avx::A8>(&reach[i as usize], q, i, chunks, normals, passing);
     }
 }
 
-/// The chunks of `chunks` where a receiver passes with VPL `vpl` at `q`, appended to `passing`.
+/// The chunks of `chunks` where a receiver passes with VPL `vpl`, appended to `passing`.
 #[inline(always)]
 fn passing_lanes<L: Lanes8>(
     reach: &VplReach,
-    q: Vec3,
     vpl: u32,
     chunks: &[Receivers],
     normals: bool,
@@ -157,7 +150,7 @@ fn passing_lanes<L: Lanes8>(
 ) {
     let lanes = Reach::<L>::splat(&reach.reach);
     let acceptance = Acceptance::<L>::splat(&reach.acceptance);
-    let q = [L::splat(q.x), L::splat(q.y), L::splat(q.z)];
+    let q = reach.position.to_array().map(L::splat);
     for (chunk, c) in chunks.iter().enumerate() {
         // d = x − q, each lane exactly as the shader forms `g.position − vpl.position`.
         let d = [
