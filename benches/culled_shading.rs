@@ -127,7 +127,7 @@ fn culled_shading(c: &mut Criterion) {
         b.iter(|| {
             let mut sum = Vec3::ZERO;
             for (l, (px, r)) in by_list.iter().zip(&receivers).enumerate() {
-                r.passing(&vpls, &reach, listed(l as u32), true, &mut passing);
+                r.passing(&reach, listed(l as u32), true, &mut passing);
                 for chunk in &passing {
                     let k = chunk.vpl as usize;
                     let (v, roulette) = (&vpls[k], Some(&roulette[k]));

@@ -109,6 +109,41 @@ impl LightLists {
     pub fn is_empty(&self) -> bool {
         self.len() == 0
     }
+
+    /// Errors unless these are lists for `pixels` pixels and `vpls` VPLs: one entry per
+    /// pixel, each a list or `NO_LIST`; offsets starting at 0, never decreasing and ending
+    /// at the number of indices; every index below `vpls`.
+    pub fn check(&self, pixels: usize, vpls: usize) -> Result<(), CullError> {
+        let bad = |what: String| Err(CullError::Input(format!("malformed light lists: {what}")));
+        if self.pixel_list.len() != pixels {
+            return bad(format!(
+                "{} list entries for {pixels} pixels",
+                self.pixel_list.len()
+            ));
+        }
+        if self.offsets.first().is_some_and(|&o| o != 0)
+            || self.offsets.windows(2).any(|w| w[0] > w[1])
+            || self.offsets.last().map_or(0, |&o| o as usize) != self.indices.len()
+        {
+            return bad(format!(
+                "{} offsets do not cut {} indices into lists",
+                self.offsets.len(),
+                self.indices.len()
+            ));
+        }
+        if let Some(&i) = self.indices.iter().find(|&&i| i as usize >= vpls) {
+            return bad(format!("VPL index {i} of {vpls} VPLs"));
+        }
+        let lists = self.len();
+        if let Some(&l) = self
+            .pixel_list
+            .iter()
+            .find(|&&l| l != NO_LIST && l as usize >= lists)
+        {
+            return bad(format!("list {l} of {lists} lists"));
+        }
+        Ok(())
+    }
 }
 
 /// Why culling failed.

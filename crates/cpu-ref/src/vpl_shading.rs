@@ -1,12 +1,14 @@
 //! Shading with every VPL (no culling): the exact VPL sum, or the stochastic estimate of
 //! paper eq. (3) where each VPL is kept at a pixel only if p(ωo, l) > ξ.
+use crate::received_lanes::{received_lanes, ReceiverBrdfs};
 use crate::tracer::Tracer;
 use glam::Vec3;
 use rayon::prelude::*;
 use slc_bounds::stochastic::{scalar_intensity, StochasticParams};
 use slc_bounds::BoundsError;
 use slc_core::{CullError, CullInput, GBuffer, GSample, Image, LightLists, Vpl, NO_LIST};
-use slc_cull::receiver_chunks::Passing;
+use slc_cull::lanes::F8;
+use slc_cull::receiver_chunks::{Passing, MAX_SETS};
 use slc_cull::tiles::{Tile, TileOrder};
 use slc_cull::{ReceiverChunks, VplReach};
 
@@ -108,16 +110,18 @@ pub fn shade_vpls(
 /// Indirect radiance from culled light lists (paper eq. 3 with interleaved sampling): each
 /// pixel sums the VPLs of its list with weight K²/p when p > ξ. Unbiased as long as the lists
 /// miss no VPL with p > ξ at the pixel. Fails when δ, a ξ, K or a VPL is out of the domain
-/// of slc-bounds and slc-cull, or when the lists, the G-buffer and its size disagree (or the
-/// image has 2³² pixels or more). Pairs that [`VplReach`] rejects (outside the VPL's own
-/// bound, facing away at either end, or not accepted by the roulette) are skipped before the
-/// receiver's BRDF: their contribution is exactly 0, so the image is the same bit for bit.
-/// The pixels are shaded tile by tile in the deinterleaved order of [`TileOrder`] (the
-/// culling's tiles), each tile's pixels grouped by list. The pixels of a list are shaded VPL
-/// by VPL, each VPL tested against eight of them at a time ([`ReceiverChunks`]), and where
-/// those lanes accepted a pair with the shader's own operations their ωo, l² and I(ωo) are
-/// used as they are ([`received`]); a list of a single pixel is shaded with the scalar tests.
-/// Every pixel sums its VPLs in the list's order either way.
+/// of slc-bounds and slc-cull, when the lists are malformed ([`LightLists::check`]) or do not
+/// fit the G-buffer, or when the image has 2³² pixels or more. Pairs that [`VplReach`]
+/// rejects (outside the VPL's own bound, facing away at either end, or not accepted by the
+/// roulette) are skipped before the receiver's BRDF: their contribution is exactly 0, so the
+/// image is the same bit for bit. The pixels are shaded tile by tile in the deinterleaved
+/// order of [`TileOrder`] (the culling's tiles), each tile's pixels grouped by list in Z
+/// order. The pixels of a list are shaded VPL by VPL, each VPL tested against eight of them
+/// at a time ([`ReceiverChunks`]), the short lists of a tile sharing their chunks
+/// ([`SHARED_WINDOW_PIXELS`]). Where those lanes accepted a pair with the shader's own
+/// operations, their ωo, l² and I(ωo) are used as they are, and the receiver's BRDF is
+/// formed eight receivers at a time as well (`received_lanes`, else [`received`]). Every
+/// pixel sums its VPLs in its list's order either way.
 pub fn shade_lists(
     tracer: &Tracer,
     input: &CullInput,
@@ -128,15 +132,13 @@ pub fn shade_lists(
     let (gbuffer, vpls) = (input.gbuffer, input.vpls);
     let (w, h, k) = (gbuffer.width, gbuffer.height, input.interleaving.k);
     let order = TileOrder::new(w, h, k)?;
-    if lists.pixel_list.len() != gbuffer.samples.len()
-        || gbuffer.samples.len() as u64 != u64::from(w) * u64::from(h)
-    {
+    if gbuffer.samples.len() as u64 != u64::from(w) * u64::from(h) {
         return Err(CullError::Input(format!(
-            "{} list entries for a {w}x{h} G-buffer of {} samples",
-            lists.pixel_list.len(),
+            "{} samples in a {w}x{h} G-buffer",
             gbuffer.samples.len()
         )));
     }
+    lists.check(gbuffer.samples.len(), vpls.len())?;
     let roulette = vpls
         .iter()
         .map(|v| StochasticParams::new(input.delta, v.xi))
@@ -199,8 +201,10 @@ struct ListShading<'a> {
 
 /// Scratch reused from tile to tile: the tile's distinct lists, the (rank of the list, slot,
 /// pixel) triples of its pixels with a list, those grouped by list, where each group starts
-/// and the next free place while grouping, and the receivers of a list shaded VPL by VPL
-/// (pixels in lanes) with their samples, sums and the chunks where one VPL passes.
+/// and the next free place while grouping; for the lists shaded together, their VPLs (each
+/// with the lists that hold it) and per VPL a stamp of those lists while merging; the
+/// receivers in lanes with their BRDFs, samples and sets, sums and the chunks where one VPL
+/// passes.
 #[derive(Default)]
 struct TileScratch<'a> {
     lists: Vec<u32>,
@@ -208,21 +212,27 @@ struct TileScratch<'a> {
     grouped: Vec<(u32, u32, u32)>,
     starts: Vec<usize>,
     next: Vec<usize>,
+    members: Vec<(u32, u32)>,
+    union: Vec<u32>,
+    stamps: Vec<u32>,
     receivers: ReceiverChunks,
-    samples: Vec<(u32, &'a GSample)>,
+    brdfs: Vec<ReceiverBrdfs>,
+    samples: Vec<(u32, &'a GSample, u8)>,
     sums: Vec<Vec3>,
     passing: Vec<Passing>,
 }
 
 impl<'a> ListShading<'a> {
-    /// Shades the pixels of `tile` into `out` (its run in tile order), list by list.
+    /// Shades the pixels of `tile` into `out` (its run in tile order): its pixels grouped by
+    /// list, then up to [`MAX_SETS`] consecutive lists at a time ([`Self::lists_window`]).
     fn tile(&self, tile: &Tile, k: u32, out: &mut [Vec3], scratch: &mut TileScratch<'a>) {
         let width = self.gbuffer.width;
         // The tile's pixels with a list as (rank of the list among the tile's lists, slot,
-        // pixel), then grouped by rank with a counting sort, each group in slot order.
+        // pixel), then grouped by rank with a counting sort, each group in Z order (compact
+        // chunks of eight receivers).
         scratch.lists.clear();
         scratch.pixels.clear();
-        for (slot, [x, y]) in tile.pixels(k).enumerate() {
+        for (slot, [x, y]) in tile.pixels_z_order(k) {
             let p = y * width + x;
             let l = self.lists.pixel_list[p as usize];
             if l == NO_LIST {
@@ -257,80 +267,131 @@ impl<'a> ListShading<'a> {
             *at += 1;
         }
         let lists = core::mem::take(&mut scratch.lists);
-        for (r, &l) in lists.iter().enumerate() {
-            let run = &grouped[scratch.starts[r]..scratch.starts[r + 1]];
-            let l = l as usize;
-            let list = &self.lists.indices
-                [self.lists.offsets[l] as usize..self.lists.offsets[l + 1] as usize];
-            if run.len() >= RECEIVER_LANES_MIN_PIXELS {
-                self.run_by_vpl(list, run, out, scratch);
-                continue;
-            }
-            for &(_, slot, p) in run {
-                if let Some(g) = &self.gbuffer.samples[p as usize] {
-                    out[slot as usize] = self.pixel(g, list);
+        // A list shares its window only when it has few pixels and is strictly ascending
+        // (the union of such lists in ascending order is each one's own order).
+        let starts = core::mem::take(&mut scratch.starts);
+        let shares = |r: usize| {
+            starts[r + 1] - starts[r] < SHARED_WINDOW_PIXELS
+                && self.list(lists[r]).windows(2).all(|w| w[0] < w[1])
+        };
+        let mut first = 0;
+        while first < ranks {
+            let mut end = first + 1;
+            if shares(first) {
+                while end < ranks && end - first < MAX_SETS && shares(end) {
+                    end += 1;
                 }
             }
+            let run = &grouped[starts[first]..starts[end]];
+            self.lists_window(&lists[first..end], first as u32, run, out, scratch);
+            first = end;
         }
         scratch.grouped = grouped;
         scratch.lists = lists;
+        scratch.starts = starts;
     }
 
-    /// Shades the pixels `run` (rank, slot, pixel) that share `list`, VPL by VPL in the list's
-    /// order, each VPL tested against eight of the pixels at a time ([`ReceiverChunks`]).
-    /// Every pixel still sums its VPLs in the list's order, so its estimate is the same bit
-    /// for bit as [`Self::pixel`]'s.
-    fn run_by_vpl(
+    /// The VPL indices of list `l`.
+    #[inline]
+    fn list(&self, l: u32) -> &'a [u32] {
+        let l = l as usize;
+        &self.lists.indices[self.lists.offsets[l] as usize..self.lists.offsets[l + 1] as usize]
+    }
+
+    /// Shades the pixels `run` (rank, slot, pixel) whose lists are `lists` (ranks `first..`,
+    /// at most [`MAX_SETS`], strictly ascending unless there is one), VPL by VPL in ascending
+    /// order (one list alone: in its order), each VPL tested against eight of the pixels at a
+    /// time, only those of the lists that hold it ([`ReceiverChunks::passing_sets`]). Where
+    /// the lanes accepted a pair with the shader's own operations, their ωo, l² and I(ωo) are
+    /// used as they are ([`received`]). Every pixel sums its VPLs in its list's order, so its
+    /// estimate is the same bit for bit as summing its list one VPL at a time.
+    fn lists_window(
         &self,
-        list: &[u32],
+        lists: &[u32],
+        first: u32,
         run: &[(u32, u32, u32)],
         out: &mut [Vec3],
         scratch: &mut TileScratch<'a>,
     ) {
+        self.members(lists, scratch);
         let samples = &mut scratch.samples;
         samples.clear();
-        samples.extend(run.iter().filter_map(|&(_, slot, p)| {
-            self.gbuffer.samples[p as usize].as_ref().map(|g| (slot, g))
+        samples.extend(run.iter().filter_map(|&(rank, slot, p)| {
+            let set = (rank - first) as u8;
+            self.gbuffer.samples[p as usize]
+                .as_ref()
+                .map(|g| (slot, g, set))
         }));
-        scratch
-            .receivers
-            .refill(samples.iter().map(|(_, g)| (g.position, g.normal)));
+        scratch.receivers.refill_sets(
+            samples
+                .iter()
+                .map(|(_, g, set)| (g.position, g.normal, *set)),
+        );
+        ReceiverBrdfs::refill(&mut scratch.brdfs, samples.iter().map(|(_, g, _)| *g));
         scratch.sums.clear();
         scratch.sums.resize(samples.len(), Vec3::ZERO);
         scratch
             .receivers
-            .passing(self.reach, list, true, &mut scratch.passing);
+            .passing_sets(self.reach, &scratch.members, true, &mut scratch.passing);
+        let mut values = [F8([0.0; 8]); 3];
         for chunk in &scratch.passing {
             let k = chunk.vpl as usize;
-            let (vpl, roulette) = (&self.vpls[k], Some(&self.roulette[k]));
+            let (vpl, params) = (&self.vpls[k], &self.roulette[k]);
+            let formed = received_lanes(&scratch.brdfs[chunk.chunk], chunk, params, &mut values);
             let mut bits = chunk.bits;
             while bits != 0 {
                 let lane = bits.trailing_zeros() as usize;
                 bits &= bits - 1;
                 let i = chunk.chunk * 8 + lane;
                 let g = samples[i].1;
-                let c = match chunk.exact(lane) {
-                    // The lanes' own ωo, l² and I(ωo) are the shader's, bit for bit.
-                    Some((omega, l2, intensity)) => received(g, omega, l2, || intensity, roulette),
-                    None => vpl_contribution(g, vpl, roulette),
+                let c = if formed & (1 << lane) != 0 {
+                    Vec3::new(values[0].0[lane], values[1].0[lane], values[2].0[lane])
+                } else {
+                    match chunk.exact(lane) {
+                        // The lanes' own ωo, l² and I(ωo) are the shader's, bit for bit.
+                        Some((omega, l2, intensity)) => {
+                            received(g, omega, l2, || intensity, Some(params))
+                        }
+                        None => vpl_contribution(g, vpl, Some(params)),
+                    }
                 };
                 if let Some(v) = self.visible(g, vpl, c) {
                     scratch.sums[i] += v;
                 }
             }
         }
-        for (&(slot, _), &sum) in samples.iter().zip(&scratch.sums) {
+        for (&(slot, _, _), &sum) in samples.iter().zip(&scratch.sums) {
             out[slot as usize] = sum;
         }
     }
 
-    /// The weighted contribution of VPL `k` at `g` (eq. 3 with the interleaving's K²), `None`
-    /// where it is 0 or, with visibility, occluded.
-    #[inline]
-    fn contribution(&self, g: &GSample, k: u32) -> Option<Vec3> {
-        let vpl = &self.vpls[k as usize];
-        let c = vpl_contribution(g, vpl, Some(&self.roulette[k as usize]));
-        self.visible(g, vpl, c)
+    /// Fills `scratch.members` with the VPLs of `lists` and, per VPL, the lists that hold it
+    /// (bit s: `lists[s]`): one list as it is, several merged in ascending order.
+    fn members(&self, lists: &[u32], scratch: &mut TileScratch<'a>) {
+        scratch.members.clear();
+        if let [l] = *lists {
+            scratch.members.extend(self.list(l).iter().map(|&v| (v, 1)));
+            return;
+        }
+        scratch.stamps.resize(self.vpls.len(), 0);
+        scratch.union.clear();
+        for (s, &l) in lists.iter().enumerate() {
+            for &v in self.list(l) {
+                let stamp = &mut scratch.stamps[v as usize];
+                if *stamp == 0 {
+                    scratch.union.push(v);
+                }
+                *stamp |= 1 << s;
+            }
+        }
+        scratch.union.sort_unstable();
+        let stamps = &mut scratch.stamps;
+        scratch.members.extend(
+            scratch
+                .union
+                .iter()
+                .map(|&v| (v, core::mem::take(&mut stamps[v as usize]))),
+        );
     }
 
     /// The contribution `c` of `vpl` at `g` times K², `None` where it is 0 or, with
@@ -345,24 +406,10 @@ impl<'a> ListShading<'a> {
                 ));
         visible.then(|| c * self.scale)
     }
-
-    /// The estimate at `g` from the VPLs of `list` that pass the scalar bound and sign tests
-    /// ([`VplReach::may_reach`]; `vpl_contribution` forms the roulette itself), in the list's
-    /// order.
-    fn pixel(&self, g: &GSample, list: &[u32]) -> Vec3 {
-        let mut o = Vec3::ZERO;
-        for &k in list {
-            let d = g.position - self.vpls[k as usize].position;
-            if self.reach[k as usize].may_reach(d, g.normal) {
-                if let Some(v) = self.contribution(g, k) {
-                    o += v;
-                }
-            }
-        }
-        o
-    }
 }
 
-/// When a list shades at least this many pixels of a tile, they are shaded VPL by VPL with the
-/// pixels in lanes ([`ReceiverChunks`]); a single pixel is shaded with the scalar tests.
-pub const RECEIVER_LANES_MIN_PIXELS: usize = 2;
+/// A list of a tile with fewer pixels than this shares its chunks of receivers with the
+/// tile's other such lists (up to [`MAX_SETS`]), so that short lists (the depth slices of
+/// clustered shading) still test eight receivers at a time; a longer list fills its own
+/// chunks and is tested against its own receivers' box.
+pub const SHARED_WINDOW_PIXELS: usize = 32;

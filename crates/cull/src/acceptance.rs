@@ -17,8 +17,9 @@
 //!   `slc_bounds::shading_normal` replaces ωo·n) or with an anisotropic lobe
 //!   (`slc_bounds::anisotropy`) always passes where ωo·n > 0; its own bound (`reach`) still
 //!   applies.
-use crate::lanes::{clamp01, cross, dot, max, Lanes8, Real, F8, M8};
-use core::f32::consts::{FRAC_1_PI, PI};
+use crate::ggx_lanes::{g1_over_cos, HalfVector};
+use crate::lanes::{dot, max, Lanes8, Real, F8, M8};
+use core::f32::consts::FRAC_1_PI;
 use slc_bounds::{ggx, Fresnel, StochasticParams};
 use slc_core::{Vpl, VplLobe};
 
@@ -196,28 +197,11 @@ impl<R: Real> Acceptance<R> {
         // Vpl::intensity: cos θo, then the lobe.
         let cos_o = dot(normal, omega);
         // microfacet (eq. 6-8), f32 half vector.
-        let a2 = self.alpha_sq;
-        let g_o = R::splat(2.0) / (cos_o + ((R::splat(1.0) - a2) * cos_o * cos_o + a2).sqrt());
-        let g = self.g1_over_cos_i * g_o;
-        let wi = self.omega_i;
-        let s = [wi[0] + omega[0], wi[1] + omega[1], wi[2] + omega[2]];
-        let s2 = dot(s, s);
-        let well_conditioned = (s2 * self.alpha * self.alpha).gt(R::splat(1e-6));
-        let s_len = s2.sqrt();
-        let h = [s[0] / s_len, s[1] / s_len, s[2] / s_len];
-        // ggx::d_with_sin2 (eq. 7).
-        let cos_m = dot(normal, h);
-        let nh = cross(normal, h);
-        let sin2_m = dot(nh, nh);
-        let denom = a2 * cos_m * cos_m + max(sin2_m, zero);
-        let d_m = R::select(!cos_m.le(zero), a2 / (R::splat(PI) * denom * denom), zero);
-        // Fresnel at ωi·ωh: Schlick's (1 − c)⁵ as `powi(5)` forms it, t (t² t²).
-        let t = R::splat(1.0) - clamp01(dot(wi, h));
-        let t2 = t * t;
-        let m = t * (t2 * t2);
-        let k = R::select(self.glossy, R::splat(0.25) * d_m * g, R::splat(1.0));
+        let g = self.g1_over_cos_i * g1_over_cos(self.alpha_sq, cos_o);
+        let half = HalfVector::new(normal, self.omega_i, omega, self.alpha, self.alpha_sq);
+        let k = R::select(self.glossy, R::splat(0.25) * half.d * g, R::splat(1.0));
         let channel = |c: usize| {
-            let f = (self.fresnel_a[c] + self.fresnel_b[c] * m) * k;
+            let f = (self.fresnel_a[c] + self.fresnel_b[c] * half.schlick) * k;
             self.emitted[c] * f * cos_o
         };
         let channels = [channel(0), channel(1), channel(2)];
@@ -225,7 +209,7 @@ impl<R: Real> Acceptance<R> {
         let intensity = max(channels[0], max(channels[1], channels[2]));
         let p = intensity / (self.delta * l2);
         let accepted = cos_o.gt(zero) & intensity.gt(zero) & !p.le(self.xi);
-        let ill_conditioned = self.glossy & !well_conditioned;
+        let ill_conditioned = self.glossy & !half.well_conditioned;
         Roulette {
             may_accept: accepted | ((self.unmodelled | ill_conditioned) & cos_o.gt(zero)),
             exact: accepted & self.exact & !ill_conditioned,

@@ -75,9 +75,10 @@
 mod acceptance;
 mod depth;
 mod frusta;
-mod lanes;
+pub mod ggx_lanes;
+pub mod lanes;
 #[cfg(target_arch = "x86_64")]
-mod lanes_avx;
+pub mod lanes_avx;
 mod lists;
 pub mod metrics;
 mod partition;

@@ -1,39 +1,96 @@
-//! The early exits of one VPL against a group of receivers (the pixels of a tile that share a
-//! light list in the shading, every pixel of a tile in the metrics), eight receivers per test: the transpose of [`crate::ReachChunks`]. The VPL's
-//! constants are broadcast to every lane once and each lane is a pixel, so a VPL whose bound
-//! covers a patch of the tile fills whole chunks with passing receivers, and the roulette
-//! ([`crate::acceptance`]) runs on far fewer chunks than when the lanes are VPLs. Each lane
-//! performs the same IEEE operations as [`VplReach::may_contribute`], so the same pairs pass.
+//! The early exits of one VPL against a group of receivers (the pixels of a tile that share
+//! light lists in the shading, every pixel of a tile in the metrics), eight receivers per
+//! test: the transpose of [`crate::ReachChunks`]. The VPL's constants are broadcast to every
+//! lane once and each lane is a pixel, so a VPL whose bound covers a patch of the tile fills
+//! whole chunks with passing receivers, and the roulette ([`crate::acceptance`]) runs on far
+//! fewer chunks than when the lanes are VPLs. Each lane performs the same IEEE operations as
+//! [`VplReach::may_contribute`], so the same pairs pass.
+//!
+//! The receivers may belong to up to 32 sets (the light lists of a tile's depth clusters),
+//! each VPL tested only against the sets it is listed for: the lists of a tile share their
+//! chunks, which stay full however short each list is.
 use crate::acceptance::Acceptance;
 use crate::lanes::{Lanes8, Real, F8};
 use crate::reach::{Reach, VplReach};
 use glam::Vec3;
 
-/// Eight receivers: their positions x and unit normals, and which lanes hold one.
+/// Most receiver sets a [`ReceiverChunks`] holds: the bits of a `u32` membership mask.
+pub const MAX_SETS: usize = 32;
+
+/// Eight receivers: their positions x and unit normals, which lanes hold one, each lane's
+/// set and the sets present.
 #[derive(Clone, Copy, Debug)]
 struct Receivers {
     position: [F8; 3],
     normal: [F8; 3],
     valid: u8,
+    set: [u8; 8],
+    sets: u32,
+}
+
+impl Receivers {
+    /// The lanes holding a receiver of one of the sets in `sets` (bit s: set s).
+    #[inline(always)]
+    fn members(&self, sets: u32) -> u8 {
+        if self.sets & !sets == 0 {
+            return self.valid;
+        }
+        (0..8).fold(0, |bits, lane| {
+            bits | (u8::from(sets >> self.set[lane] & 1 == 1) << lane)
+        }) & self.valid
+    }
 }
 
 /// A group of receivers as chunks of eight, in the order given; receiver i is lane i mod 8
 /// of chunk i / 8.
-#[derive(Clone, Debug, Default)]
+#[derive(Clone, Debug)]
 pub struct ReceiverChunks {
     chunks: Vec<Receivers>,
     /// The box of the receivers' positions.
     lo: Vec3,
     hi: Vec3,
+    /// Per set, the chunks `[first, end)` that hold its receivers (empty: `[u32::MAX, 0]`),
+    /// and the sets that have receivers.
+    spans: [[u32; 2]; MAX_SETS],
+    present: u32,
+}
+
+impl Default for ReceiverChunks {
+    fn default() -> Self {
+        Self {
+            chunks: Vec::new(),
+            lo: Vec3::INFINITY,
+            hi: Vec3::NEG_INFINITY,
+            spans: [[u32::MAX, 0]; MAX_SETS],
+            present: 0,
+        }
+    }
 }
 
 impl ReceiverChunks {
-    /// Replaces the receivers by `receivers` (position x, unit normal), keeping the allocation.
+    /// Replaces the receivers by `receivers` (position x, unit normal), all in set 0, keeping
+    /// the allocation.
     pub fn refill(&mut self, receivers: impl IntoIterator<Item = (Vec3, Vec3)>) {
+        self.refill_sets(receivers.into_iter().map(|(x, n)| (x, n, 0)));
+    }
+
+    /// Replaces the receivers by `receivers` (position x, unit normal, set), keeping the
+    /// allocation. A VPL is tested only against the chunks from the first to the last that
+    /// hold one of its sets, so receivers grouped by set keep that range short.
+    ///
+    /// # Panics
+    /// If a set is not below [`MAX_SETS`].
+    pub fn refill_sets(&mut self, receivers: impl IntoIterator<Item = (Vec3, Vec3, u8)>) {
         self.chunks.clear();
         (self.lo, self.hi) = (Vec3::INFINITY, Vec3::NEG_INFINITY);
+        self.spans = [[u32::MAX, 0]; MAX_SETS];
+        self.present = 0;
         let mut lane = 8;
-        for (x, n) in receivers {
+        for (x, n, set) in receivers {
+            assert!(
+                usize::from(set) < MAX_SETS,
+                "receiver set {set} of at most 32"
+            );
             (self.lo, self.hi) = (self.lo.min(x), self.hi.max(x));
             if lane == 8 {
                 // Lanes past the end repeat the chunk's first receiver (finite arithmetic),
@@ -42,17 +99,38 @@ impl ReceiverChunks {
                     position: [x.x, x.y, x.z].map(F8::splat),
                     normal: [n.x, n.y, n.z].map(F8::splat),
                     valid: 0,
+                    set: [set; 8],
+                    sets: 0,
                 });
                 lane = 0;
             }
+            let chunk = self.chunks.len() as u32 - 1;
             let c = self.chunks.last_mut().expect("pushed above");
             for (axis, (p, m)) in [x.x, x.y, x.z].into_iter().zip([n.x, n.y, n.z]).enumerate() {
                 c.position[axis].0[lane] = p;
                 c.normal[axis].0[lane] = m;
             }
             c.valid |= 1 << lane;
+            c.set[lane] = set;
+            c.sets |= 1 << set;
+            self.present |= 1 << set;
+            let span = &mut self.spans[usize::from(set)];
+            *span = [span[0].min(chunk), span[1].max(chunk + 1)];
             lane += 1;
         }
+    }
+
+    /// The chunks `[first, end)` holding the receivers of the sets in `sets`.
+    #[inline(always)]
+    fn span(&self, sets: u32) -> (usize, usize) {
+        let (mut first, mut end) = (u32::MAX, 0);
+        let mut sets = sets & self.present;
+        while sets != 0 {
+            let [a, b] = self.spans[sets.trailing_zeros() as usize];
+            (first, end) = (first.min(a), end.max(b));
+            sets &= sets - 1;
+        }
+        (first as usize, end as usize)
     }
 }
 
@@ -87,16 +165,29 @@ impl Passing {
             (lane(&self.omega), self.l2.0[k], lane(&self.intensity))
         })
     }
+
+    /// Bit k set where [`Self::exact`] gives lane k's values.
+    #[inline]
+    pub fn exact_bits(&self) -> u8 {
+        self.exact
+    }
+
+    /// ωo, l² and I(ωo) of every lane, the lanes of [`Self::exact`] (the shader's own values
+    /// where [`Self::exact_bits`] is set, meaningless elsewhere).
+    #[inline]
+    pub fn lanes(&self) -> (&[F8; 3], &F8, &[F8; 3]) {
+        (&self.omega, &self.l2, &self.intensity)
+    }
 }
 
 impl ReceiverChunks {
-    /// For every VPL of `group` in turn (indices into `reach`, one [`VplReach`] per
-    /// VPL), appends to `passing` (cleared first) every chunk of these receivers where a
-    /// receiver passes [`VplReach::may_contribute`] with it (the bound, the signs at both ends
-    /// and the roulette), or with `normals` false [`VplReach::may_accept`] (the receivers'
-    /// normals ignored): VPL by VPL in the group's order, chunk by chunk. A VPL whose bound
-    /// or tangent plane leaves out the box of the receivers (`Reach::box_may_reach`) is
-    /// passed over after that one test.
+    /// For every VPL of `group` in turn (indices into `reach`, one [`VplReach`] per VPL),
+    /// appends to `passing` (cleared first) every chunk of these receivers where a receiver
+    /// passes [`VplReach::may_contribute`] with it (the bound, the signs at both ends and the
+    /// roulette), or with `normals` false [`VplReach::may_accept`] (the receivers' normals
+    /// ignored): VPL by VPL in the group's order, chunk by chunk. A VPL whose bound or tangent
+    /// plane leaves out the box of the receivers (`Reach::box_may_reach`) is passed over after
+    /// that one test.
     pub fn passing(
         &self,
         reach: &[VplReach],
@@ -104,54 +195,90 @@ impl ReceiverChunks {
         normals: bool,
         passing: &mut Vec<Passing>,
     ) {
+        self.passing_members(
+            reach,
+            group.iter().map(|&i| (i, u32::MAX)),
+            normals,
+            passing,
+        );
+    }
+
+    /// [`Self::passing`] for `members`, each a VPL index with the receiver sets it is tested
+    /// against (bit s: set s of [`Self::refill_sets`]): a receiver passes only with the VPLs
+    /// listed for its set.
+    pub fn passing_sets(
+        &self,
+        reach: &[VplReach],
+        members: &[(u32, u32)],
+        normals: bool,
+        passing: &mut Vec<Passing>,
+    ) {
+        self.passing_members(reach, members.iter().copied(), normals, passing);
+    }
+
+    #[inline(always)]
+    fn passing_members(
+        &self,
+        reach: &[VplReach],
+        members: impl Iterator<Item = (u32, u32)>,
+        normals: bool,
+        passing: &mut Vec<Passing>,
+    ) {
         passing.clear();
         #[cfg(target_arch = "x86_64")]
         if std::arch::is_x86_feature_detected!("avx2") {
             // SAFETY: the CPU supports AVX2, checked just above.
-            return unsafe { passing_avx2(self, reach, group, normals, passing) };
+            return unsafe { passing_avx2(self, reach, members, normals, passing) };
         }
-        for &i in group {
+        for (i, sets) in members {
             let r = &reach[i as usize];
             if r.reach.box_may_reach(r.position, self.lo, self.hi) {
-                passing_lanes::<F8>(r, i, &self.chunks, normals, passing);
+                passing_lanes::<F8>(r, i, sets, self, normals, passing);
             }
         }
     }
 }
 
-/// [`ReceiverChunks::passing`] in AVX registers (the same IEEE operations).
+/// [`ReceiverChunks::passing_members`] in AVX registers (the same IEEE operations).
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2")]
 fn passing_avx2(
     receivers: &ReceiverChunks,
     reach: &[VplReach],
-    group: &[u32],
+    members: impl Iterator<Item = (u32, u32)>,
     normals: bool,
     passing: &mut Vec<Passing>,
 ) {
-    for &i in group {
+    for (i, sets) in members {
         let r = &reach[i as usize];
         if r.reach
             .box_may_reach(r.position, receivers.lo, receivers.hi)
         {
-            passing_lanes::<crate::lanes_avx::A8>(r, i, &receivers.chunks, normals, passing);
+            passing_lanes::<crate::lanes_avx::A8>(r, i, sets, receivers, normals, passing);
         }
     }
 }
 
-/// The chunks of `chunks` where a receiver passes with VPL `vpl`, appended to `passing`.
+/// The chunks of `receivers` where a receiver of one of the sets in `sets` passes with VPL
+/// `vpl`, appended to `passing`.
 #[inline(always)]
 fn passing_lanes<L: Lanes8>(
     reach: &VplReach,
     vpl: u32,
-    chunks: &[Receivers],
+    sets: u32,
+    receivers: &ReceiverChunks,
     normals: bool,
     passing: &mut Vec<Passing>,
 ) {
     let lanes = Reach::<L>::splat(&reach.reach);
     let acceptance = Acceptance::<L>::splat(&reach.acceptance);
     let q = reach.position.to_array().map(L::splat);
-    for (chunk, c) in chunks.iter().enumerate() {
+    let (first, end) = receivers.span(sets);
+    for (chunk, c) in receivers.chunks.iter().enumerate().take(end).skip(first) {
+        let members = c.members(sets);
+        if members == 0 {
+            continue;
+        }
         // d = x − q, each lane exactly as the shader forms `g.position − vpl.position`.
         let d = [
             L::load(&c.position[0]) - q[0],
@@ -164,7 +291,7 @@ fn passing_lanes<L: Lanes8>(
         } else {
             lanes.may_accept(d)
         };
-        let b = L::bits(passes) & c.valid;
+        let b = L::bits(passes) & members;
         if b == 0 {
             continue;
         }

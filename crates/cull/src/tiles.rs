@@ -79,6 +79,18 @@ impl Tile {
         (0..self.count[1]).flat_map(move |b| (0..self.count[0]).map(move |a| self.screen(k, a, b)))
     }
 
+    /// The tile's pixels as (slot, screen pixel), the slot numbering [`Self::pixels`]' order,
+    /// taken in Z order (the Morton order of the pixel's place in the tile): in a full tile
+    /// every 2^(2j) consecutive pixels form a 2^j x 2^j block and every 8 a 4 x 2 block, so
+    /// any part of the tile taken in this order stays compact.
+    pub fn pixels_z_order(&self, k: u32) -> impl Iterator<Item = (usize, [u32; 2])> + '_ {
+        (0..TILE_SIZE * TILE_SIZE).filter_map(move |m| {
+            let (a, b) = (even_bits(m), even_bits(m >> 1));
+            (a < self.count[0] && b < self.count[1])
+                .then(|| ((b * self.count[0] + a) as usize, self.screen(k, a, b)))
+        })
+    }
+
     /// The screen pixel (x, y) of the tile's pixel number `slot` (in the order of
     /// [`Self::pixels`]).
     #[inline]
@@ -95,6 +107,16 @@ impl Tile {
             self.sub[1] + k * (self.first[1] + b),
         ]
     }
+}
+
+/// The even bits of `m` (bits 0, 2, 4, ...) packed: a Morton code's first coordinate.
+#[inline]
+fn even_bits(m: u32) -> u32 {
+    let mut x = m & 0x5555_5555;
+    x = (x | x >> 1) & 0x3333_3333;
+    x = (x | x >> 2) & 0x0f0f_0f0f;
+    x = (x | x >> 4) & 0x00ff_00ff;
+    (x | x >> 8) & 0x0000_ffff
 }
 
 /// The pixels of an image laid out tile by tile: every tile of the culling, in its order
@@ -197,6 +219,36 @@ mod tests {
                     assert!(n > 0 && n <= TILE_SIZE * TILE_SIZE);
                 }
                 assert!(seen.iter().all(|&c| c == 1), "{w}x{h} K {k}");
+            }
+        }
+    }
+
+    #[test]
+    fn z_order_takes_every_pixel_once_in_compact_blocks() {
+        for (w, h) in [(16, 16), (17, 33), (100, 37), (5, 3)] {
+            for k in [1, 3] {
+                for tile in tiles(w, h, k) {
+                    let rows: Vec<[u32; 2]> = tile.pixels(k).collect();
+                    let z: Vec<(usize, [u32; 2])> = tile.pixels_z_order(k).collect();
+                    assert_eq!(z.len(), rows.len());
+                    let mut seen = vec![false; rows.len()];
+                    for &(slot, pixel) in &z {
+                        assert_eq!(rows[slot], pixel);
+                        assert_eq!(tile.pixel(k, slot), pixel);
+                        assert!(!std::mem::replace(&mut seen[slot], true));
+                    }
+                    if tile.pixel_count() == (TILE_SIZE * TILE_SIZE) as usize {
+                        // Every eight consecutive pixels form a 4 x 2 block.
+                        for eight in z.chunks(8) {
+                            let (xs, ys) =
+                                (eight.iter().map(|p| p.1[0]), eight.iter().map(|p| p.1[1]));
+                            let span =
+                                |v: Vec<u32>| v.iter().max().unwrap() - v.iter().min().unwrap();
+                            assert_eq!(span(xs.collect()), 3 * k);
+                            assert_eq!(span(ys.collect()), k);
+                        }
+                    }
+                }
             }
         }
     }
