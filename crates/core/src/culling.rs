@@ -209,6 +209,29 @@ mod tests {
     use super::*;
 
     #[test]
+    fn malformed_lists_are_errors() {
+        let good = LightLists {
+            offsets: vec![0, 2],
+            indices: vec![0, 1],
+            pixel_list: vec![0, NO_LIST],
+        };
+        assert!(good.check(2, 2).is_ok());
+        assert!(good.check(3, 2).is_err());
+        assert!(good.check(2, 1).is_err());
+        let dangling = LightLists {
+            pixel_list: vec![1, 0],
+            ..good.clone()
+        };
+        assert!(dangling.check(2, 2).is_err());
+        let short = LightLists {
+            offsets: vec![0, 3],
+            ..good
+        };
+        assert!(short.check(2, 2).is_err());
+        assert!(LightLists::default().check(0, 0).is_ok());
+    }
+
+    #[test]
     fn listed_pairs_count_each_pixel_with_its_list() {
         // Two lists (3 and 1 VPLs); pixels 0 and 2 share list 0, pixel 1 has none.
         let lists = LightLists {

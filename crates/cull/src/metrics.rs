@@ -21,7 +21,7 @@ use glam::Vec3;
 use rayon::prelude::*;
 use slc_bounds::{scalar_intensity, StochasticParams};
 pub use slc_core::CullMetrics;
-use slc_core::{CullError, CullInput, GSample, LightLists, Vpl, NO_LIST};
+use slc_core::{CullError, CullInput, GSample, LightLists, Vpl};
 
 /// The metrics of `lists` for `input`; see [`measure_all`].
 pub fn measure(input: &CullInput, lists: &LightLists) -> Result<CullMetrics, CullError> {
@@ -38,7 +38,7 @@ pub fn measure_all(
     let pixels = pixel_count(input.gbuffer)?;
     let partition = Partition::new(input.vpls, input.interleaving)?;
     for l in lists {
-        check_lists(l, pixels, input.vpls.len())?;
+        l.check(pixels, input.vpls.len())?;
     }
     let roulette = input
         .vpls
@@ -239,31 +239,6 @@ fn accepts(params: &StochasticParams, g: &GSample, vpl: &Vpl) -> bool {
     params.probability(scalar_intensity(vpl.intensity(omega)), l2) > params.xi()
 }
 
-/// Whether `lists` is well formed for `pixels` pixels and `vpl_count` VPLs.
-fn check_lists(lists: &LightLists, pixels: usize, vpl_count: usize) -> Result<(), CullError> {
-    let bad = |why: &str| Err(CullError::Input(format!("malformed light lists: {why}")));
-    if lists.pixel_list.len() != pixels {
-        return bad("one list number per pixel expected");
-    }
-    let offsets_ok = lists.offsets.windows(2).all(|w| w[0] <= w[1])
-        && lists.offsets.first().is_none_or(|&o| o == 0)
-        && lists.offsets.last().map_or(0, |&o| o as usize) == lists.indices.len();
-    if !offsets_ok {
-        return bad("offsets must ascend from 0 to the number of indices");
-    }
-    if lists
-        .pixel_list
-        .iter()
-        .any(|&l| l != NO_LIST && l as usize >= lists.len())
-    {
-        return bad("a pixel refers to a list that does not exist");
-    }
-    if lists.indices.iter().any(|&i| i as usize >= vpl_count) {
-        return bad("a VPL index is out of range");
-    }
-    Ok(())
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -279,28 +254,5 @@ mod tests {
         );
         assert_eq!(matches(&[], &[1], &mut s), 0);
         assert_eq!(matches(&[1], &[], &mut s), 0);
-    }
-
-    #[test]
-    fn malformed_lists_are_errors() {
-        let good = LightLists {
-            offsets: vec![0, 2],
-            indices: vec![0, 1],
-            pixel_list: vec![0, NO_LIST],
-        };
-        assert!(check_lists(&good, 2, 2).is_ok());
-        assert!(check_lists(&good, 3, 2).is_err());
-        assert!(check_lists(&good, 2, 1).is_err());
-        let dangling = LightLists {
-            pixel_list: vec![1, 0],
-            ..good.clone()
-        };
-        assert!(check_lists(&dangling, 2, 2).is_err());
-        let short = LightLists {
-            offsets: vec![0, 3],
-            ..good
-        };
-        assert!(check_lists(&short, 2, 2).is_err());
-        assert!(check_lists(&LightLists::default(), 0, 0).is_ok());
     }
 }
