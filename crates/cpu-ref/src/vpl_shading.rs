@@ -232,20 +232,25 @@ impl<'a> ListShading<'a> {
         // chunks of eight receivers).
         scratch.lists.clear();
         scratch.pixels.clear();
+        // Neighbours in Z order mostly share a list: the last one found is tried first.
+        let mut last = (NO_LIST, 0);
         for (slot, [x, y]) in tile.pixels_z_order(k) {
             let p = y * width + x;
             let l = self.lists.pixel_list[p as usize];
             if l == NO_LIST {
                 continue;
             }
-            let rank = match scratch.lists.iter().rposition(|&m| m == l) {
-                Some(rank) => rank,
-                None => {
-                    scratch.lists.push(l);
-                    scratch.lists.len() - 1
-                }
-            };
-            scratch.pixels.push((rank as u32, slot as u32, p));
+            if l != last.0 {
+                let rank = match scratch.lists.iter().position(|&m| m == l) {
+                    Some(rank) => rank,
+                    None => {
+                        scratch.lists.push(l);
+                        scratch.lists.len() - 1
+                    }
+                };
+                last = (l, rank as u32);
+            }
+            scratch.pixels.push((last.1, slot as u32, p));
         }
         let ranks = scratch.lists.len();
         scratch.starts.clear();
