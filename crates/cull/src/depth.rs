@@ -20,12 +20,21 @@ pub(crate) enum DepthSplit {
     /// cluster [z_min, max z < half_z], the others the far cluster [min z >= half_z, z_max].
     HalfZ,
     /// [`MAX_CLUSTERS`] slices growing exponentially from `near` (slice k holds depths in
-    /// near · ratio^(k/32) .. near · ratio^((k+1)/32)); `scale` = 32 / ln(ratio).
-    Slices { near: f64, scale: f64 },
+    /// near · ratio^(k/32) .. near · ratio^((k+1)/32)); `scale` = 32 / ln(ratio). The slice
+    /// of a depth z is floor(ln(z / near) · scale), clamped to 0..=31; `starts[k]` is the
+    /// smallest z / near of slice k (`starts[0]` = 0, +∞ for a slice no depth reaches), so
+    /// that the slice is found by comparisons instead of a logarithm ([`Self::key`]).
+    Slices {
+        near: f64,
+        scale: f64,
+        starts: [f64; MAX_CLUSTERS],
+    },
 }
 
 impl DepthSplit {
     /// Exponential slices spanning `[near, far]`, the depth range of the samples to split.
+    /// Each slice's start is found by bisection over the f64 values with the slice formula
+    /// itself ([`slice_of`]), so the comparisons of [`Self::key`] give the formula's slice.
     pub(crate) fn slices(near: f64, far: f64) -> Self {
         let log_ratio = (far / near).ln();
         let scale = if log_ratio > 0.0 {
@@ -33,7 +42,29 @@ impl DepthSplit {
         } else {
             0.0
         };
-        Self::Slices { near, scale }
+        let mut starts = [0.0; MAX_CLUSTERS];
+        for (k, start) in starts.iter_mut().enumerate().skip(1) {
+            *start = if slice_of(f64::MAX, scale) < k {
+                f64::INFINITY
+            } else {
+                // The smallest x >= 0 with slice_of(x) >= k: positive f64 ascend as their bits.
+                let (mut lo, mut hi) = (0u64, f64::MAX.to_bits());
+                while hi - lo > 1 {
+                    let mid = lo + (hi - lo) / 2;
+                    if slice_of(f64::from_bits(mid), scale) >= k {
+                        hi = mid;
+                    } else {
+                        lo = mid;
+                    }
+                }
+                f64::from_bits(hi)
+            };
+        }
+        Self::Slices {
+            near,
+            scale,
+            starts,
+        }
     }
 
     /// Assigns each sample its cluster and returns each cluster's depth range [lo, hi] (the
@@ -65,18 +96,43 @@ impl DepthSplit {
         }
     }
 
-    /// The slot of depth `z` in a tile whose samples span [lo, hi].
+    /// The slot of depth `z` in a tile whose samples span [lo, hi]. For slices, the last
+    /// start not above x = z / near, found by five branch-free comparisons; within 1e-12 of
+    /// a start (relative), where a logarithm rounded to within an ulp could still fall on
+    /// either side, and for an x that is not finite, the formula itself ([`slice_of`]).
     #[inline]
     fn key(&self, z: f64, lo: f64, hi: f64) -> usize {
         match *self {
             Self::HalfZ => usize::from(z >= 0.5 * (lo + hi)),
-            Self::Slices { near, scale } => {
-                let k = ((z / near).ln() * scale).floor();
-                // Depths below `near` (only by rounding) go to slice 0, beyond `far` to 31.
-                k.clamp(0.0, (MAX_CLUSTERS - 1) as f64) as usize
+            Self::Slices {
+                near,
+                scale,
+                ref starts,
+            } => {
+                let x = z / near;
+                let mut k = 0;
+                for step in [16, 8, 4, 2, 1] {
+                    k += usize::from(starts[k + step] <= x) * step;
+                }
+                let next = starts.get(k + 1).copied().unwrap_or(f64::INFINITY);
+                let edge = x <= starts[k] * (1.0 + 1e-12) || x >= next * (1.0 - 1e-12);
+                if edge || !x.is_finite() {
+                    slice_of(x, scale)
+                } else {
+                    k
+                }
             }
         }
     }
+}
+
+/// The exponential slice of x = z / near: floor(ln(x) · scale), clamped to 0..=31 (depths
+/// below `near` only by rounding go to slice 0, beyond `far` to 31).
+#[inline]
+fn slice_of(x: f64, scale: f64) -> usize {
+    (x.ln() * scale)
+        .floor()
+        .clamp(0.0, (MAX_CLUSTERS - 1) as f64) as usize
 }
 
 /// The smallest and largest of the given depths, in parallel; `None` if there are none.
@@ -146,5 +202,56 @@ mod tests {
         let mut one = samples(&[2.0, 2.0]);
         flat.split(&mut one, &mut ranges);
         assert_eq!(ranges, vec![[2.0, 2.0]]);
+    }
+
+    /// The comparisons give the logarithm's slice for every depth: random depths over
+    /// ranges from flat to 1e300 wide, and the depths at and around every slice start.
+    #[test]
+    fn slice_keys_by_comparison_equal_the_formula() {
+        let mut state = 0x2545_f491_4f6c_dd1du64;
+        let mut unit = move || {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            (state >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let mut checked = 0;
+        for (near, far) in [
+            (1.0, 1.0),
+            (0.5, 0.5 + 1e-12),
+            (0.1, 1.0),
+            (0.5, 500.0),
+            (1e-3, 1e6),
+            (1e-300, 1e300),
+            (3.7, 3.7 * (1.0 + 1e-9)),
+        ] {
+            let split = DepthSplit::slices(near, far);
+            let DepthSplit::Slices { scale, starts, .. } = split else {
+                unreachable!()
+            };
+            let mut depths: Vec<f64> = (0..20_000)
+                .map(|_| near * (far / near).powf(unit()))
+                .collect();
+            for &start in starts.iter().filter(|s| s.is_finite() && **s > 0.0) {
+                let mut z = start * near;
+                for _ in 0..4 {
+                    z = z.next_down();
+                }
+                for _ in 0..9 {
+                    depths.push(z);
+                    z = z.next_up();
+                }
+            }
+            depths.extend([near, far, near.next_down(), far.next_up()]);
+            for z in depths {
+                assert_eq!(
+                    split.key(z, near, far),
+                    slice_of(z / near, scale),
+                    "z {z} in [{near}, {far}]"
+                );
+                checked += 1;
+            }
+        }
+        assert!(checked > 140_000);
     }
 }
