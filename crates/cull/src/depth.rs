@@ -13,8 +13,10 @@ pub(crate) struct Sample {
     pub cluster: u8,
 }
 
-/// How a tile's samples are split by depth.
+/// How a tile's samples are split by depth. One per cull, read in place by every tile, so
+/// the slices' starts are kept inline rather than boxed.
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[allow(clippy::large_enum_variant)]
 pub(crate) enum DepthSplit {
     /// Modified HalfZ: half_z = (z_min + z_max) / 2; samples with z < half_z form the near
     /// cluster [z_min, max z < half_z], the others the far cluster [min z >= half_z, z_max].
