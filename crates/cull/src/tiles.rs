@@ -84,8 +84,8 @@ impl Tile {
     /// every 2^(2j) consecutive pixels form a 2^j x 2^j block and every 8 a 4 x 2 block, so
     /// any part of the tile taken in this order stays compact.
     pub fn pixels_z_order(&self, k: u32) -> impl Iterator<Item = (usize, [u32; 2])> + '_ {
-        (0..TILE_SIZE * TILE_SIZE).filter_map(move |m| {
-            let (a, b) = (even_bits(m), even_bits(m >> 1));
+        Z_ORDER.iter().filter_map(move |&[a, b]| {
+            let (a, b) = (u32::from(a), u32::from(b));
             (a < self.count[0] && b < self.count[1])
                 .then(|| ((b * self.count[0] + a) as usize, self.screen(k, a, b)))
         })
@@ -109,9 +109,20 @@ impl Tile {
     }
 }
 
+/// The places (a, b) in a full tile in Z order: entry m is the pixel whose Morton code is m
+/// (a from its even bits, b from its odd bits).
+const Z_ORDER: [[u8; 2]; (TILE_SIZE * TILE_SIZE) as usize] = {
+    let mut order = [[0u8; 2]; (TILE_SIZE * TILE_SIZE) as usize];
+    let mut m = 0;
+    while m < order.len() {
+        order[m] = [even_bits(m as u32) as u8, even_bits(m as u32 >> 1) as u8];
+        m += 1;
+    }
+    order
+};
+
 /// The even bits of `m` (bits 0, 2, 4, ...) packed: a Morton code's first coordinate.
-#[inline]
-fn even_bits(m: u32) -> u32 {
+const fn even_bits(m: u32) -> u32 {
     let mut x = m & 0x5555_5555;
     x = (x | x >> 1) & 0x3333_3333;
     x = (x | x >> 2) & 0x0f0f_0f0f;
