@@ -47,7 +47,7 @@ pub mod direct;
 pub mod gbuffer;
 pub mod path;
 pub mod prepare;
-mod received_lanes;
+pub mod received_lanes;
 pub mod renderer;
 pub mod rsm;
 pub mod sampled_lights;

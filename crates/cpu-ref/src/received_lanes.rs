@@ -16,7 +16,7 @@ use slc_cull::receiver_chunks::Passing;
 /// `slc_cull::ReceiverChunks`); what the shader derives from them per pair (kd/π, 1 − F0,
 /// α², n·ωo, G1(ωo)) the lanes derive with the same operations.
 #[derive(Clone, Copy, Debug)]
-pub(crate) struct ReceiverBrdfs {
+pub struct ReceiverBrdfs {
     normal: [F8; 3],
     omega_o: [F8; 3],
     kd: [F8; 3],
@@ -29,7 +29,7 @@ pub(crate) struct ReceiverBrdfs {
 
 impl ReceiverBrdfs {
     /// Replaces `chunks` by the BRDF inputs of `receivers` in chunks of eight, in order.
-    pub(crate) fn refill<'g>(chunks: &mut Vec<Self>, receivers: impl Iterator<Item = &'g GSample>) {
+    pub fn refill<'g>(chunks: &mut Vec<Self>, receivers: impl Iterator<Item = &'g GSample>) {
         chunks.clear();
         for (i, g) in receivers.enumerate() {
             let lane = i % 8;
@@ -78,11 +78,27 @@ pub(crate) fn received_lanes(
     if candidates == 0 {
         return 0;
     }
+    let (omega, l2, intensity) = passing.lanes();
+    candidates & received_pairs(brdfs, omega, l2, intensity, params, out)
+}
+
+/// For eight pairs, lane k the receiver k of `brdfs` and a VPL with roulette `params` seen
+/// in the unit direction `omega` at squared distance `l2` with intensity `intensity` (per
+/// channel), `vpl_shading::received` per channel into `out`; returns the lanes whose value
+/// is the shader's bit for bit: every modelled receiver where the shader returns 0 or forms
+/// the half vector in f32. Without AVX2 it models no lane.
+pub fn received_pairs(
+    brdfs: &ReceiverBrdfs,
+    omega: &[F8; 3],
+    l2: &F8,
+    intensity: &[F8; 3],
+    params: &StochasticParams,
+    out: &mut [F8; 3],
+) -> u8 {
     #[cfg(target_arch = "x86_64")]
     if std::arch::is_x86_feature_detected!("avx2") {
-        let (omega, l2, intensity) = passing.lanes();
         // SAFETY: the CPU supports AVX2, checked just above.
-        return candidates & unsafe { received_avx2(brdfs, omega, l2, intensity, params, out) };
+        return brdfs.modelled & unsafe { received_avx2(brdfs, omega, l2, intensity, params, out) };
     }
     0
 }
@@ -109,7 +125,7 @@ fn received_avx2(
 /// intensity per channel: the contribution per channel, and where it is the shader's own
 /// (everywhere the shader returns 0 or forms the half vector in f32).
 #[inline(always)]
-pub(crate) fn received<L: Lanes8>(
+fn received<L: Lanes8>(
     brdfs: &ReceiverBrdfs,
     omega: [L; 3],
     l2: L,
@@ -155,164 +171,4 @@ pub(crate) fn received<L: Lanes8>(
 #[inline(always)]
 fn load3<L: Lanes8>(v: &[F8; 3]) -> [L; 3] {
     [L::load(&v[0]), L::load(&v[1]), L::load(&v[2])]
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::vpl_shading::received;
-    use glam::Vec3;
-    use slc_bounds::{Anisotropy, Brdf};
-
-    /// A small deterministic generator (xorshift64*).
-    struct Rng(u64);
-    impl Rng {
-        fn f32(&mut self) -> f32 {
-            self.0 ^= self.0 >> 12;
-            self.0 ^= self.0 << 25;
-            self.0 ^= self.0 >> 27;
-            ((self.0.wrapping_mul(0x2545_F491_4F6C_DD1D) >> 40) as f32) / (1u64 << 24) as f32
-        }
-        fn range(&mut self, a: f32, b: f32) -> f32 {
-            a + (b - a) * self.f32()
-        }
-        fn log(&mut self, lo: f32, hi: f32) -> f32 {
-            10f32.powf(self.range(lo, hi))
-        }
-        fn unit(&mut self) -> Vec3 {
-            loop {
-                let v = Vec3::new(
-                    self.range(-1.0, 1.0),
-                    self.range(-1.0, 1.0),
-                    self.range(-1.0, 1.0),
-                );
-                if let Some(u) = v.try_normalize() {
-                    return u;
-                }
-            }
-        }
-    }
-
-    /// A receiver at the extremes: α from 1e-4 to 1, grazing views, dielectric and
-    /// anisotropic lobes (not modelled here) among them.
-    fn receiver(rng: &mut Rng) -> GSample {
-        let normal = rng.unit();
-        let omega_o = match rng.f32() {
-            u if u < 0.2 => (normal * rng.log(-7.0, -2.0) + rng.unit().cross(normal)).normalize(),
-            u if u < 0.3 => -normal,
-            _ => rng.unit(),
-        };
-        let alpha = if rng.f32() < 0.1 {
-            1.0
-        } else {
-            rng.log(-4.0, 0.0)
-        };
-        let fresnel = if rng.f32() < 0.1 {
-            Fresnel::Dielectric(rng.range(0.5, 2.0))
-        } else {
-            Fresnel::Schlick(Vec3::new(rng.f32(), rng.f32(), rng.f32()))
-        };
-        let anisotropy = (rng.f32() < 0.1).then(|| Anisotropy {
-            tangent: rng.unit().cross(normal).normalize(),
-            alpha_t: rng.log(-3.0, 0.0),
-        });
-        GSample {
-            position: Vec3::ZERO,
-            normal,
-            geometric_normal: normal,
-            omega_o,
-            depth: 1.0,
-            brdf: Brdf {
-                kd: Vec3::new(rng.f32(), rng.f32(), 0.0),
-                fresnel,
-                alpha,
-                anisotropy,
-            },
-        }
-    }
-
-    /// Every lane the lanes say they formed equals the scalar `received` bit for bit, over
-    /// 200,000 random pairs: directions near the mirror one (the half vector formed in f64
-    /// there), grazing at both ends, δ from 1e-9 to 1e3, ξ near 0 and 1, intensities from 0
-    /// to 1e30 and l² from 1e-12 to 1e12.
-    #[test]
-    fn formed_lanes_equal_the_scalar_shader() {
-        if !std::arch::is_x86_feature_detected!("avx2") {
-            return;
-        }
-        let mut rng = Rng(0xbeef);
-        let (mut formed_nonzero, mut left) = (0, 0);
-        let mut brdfs = Vec::new();
-        for _ in 0..25_000 {
-            let receivers: Vec<GSample> = (0..8).map(|_| receiver(&mut rng)).collect();
-            ReceiverBrdfs::refill(&mut brdfs, receivers.iter());
-            let xi = match rng.f32() {
-                u if u < 0.2 => rng.log(-7.0, -3.0),
-                u if u < 0.4 => 1.0 - rng.log(-7.0, -3.0),
-                _ => rng.range(1e-6, 0.999_999),
-            };
-            let params = StochasticParams::new(rng.log(-9.0, 3.0), xi).unwrap();
-            let lane_omega: Vec<Vec3> = receivers
-                .iter()
-                .map(|g| match rng.f32() {
-                    // Near the mirror of ωo (ωi ≈ reflect(ωo), so ωi + ωo is tiny only
-                    // at grazing), exactly opposite ωo (s = 0), or anywhere.
-                    u if u < 0.2 => -(g.normal * 2.0 * g.normal.dot(g.omega_o) - g.omega_o
-                        + rng.unit() * rng.log(-7.0, -1.0))
-                    .normalize(),
-                    u if u < 0.3 => g.omega_o,
-                    u if u < 0.4 => (-g.normal * rng.log(-7.0, -2.0) + rng.unit()).normalize(),
-                    _ => rng.unit(),
-                })
-                .collect();
-            let l2: Vec<f32> = (0..8).map(|_| rng.log(-12.0, 12.0)).collect();
-            let intensity: Vec<Vec3> = (0..8)
-                .map(|_| {
-                    let scale = if rng.f32() < 0.05 {
-                        0.0
-                    } else {
-                        rng.log(-6.0, 30.0)
-                    };
-                    Vec3::new(rng.f32(), rng.f32(), rng.f32()) * scale
-                })
-                .collect();
-            let lanes3 = |v: &[Vec3]| [0, 1, 2].map(|c| F8(core::array::from_fn(|k| v[k][c])));
-            let mut out = [F8([0.0; 8]); 3];
-            // SAFETY: AVX2 is present (checked above).
-            let formed = unsafe {
-                received_avx2(
-                    &brdfs[0],
-                    &lanes3(&lane_omega),
-                    &F8(core::array::from_fn(|k| l2[k])),
-                    &lanes3(&intensity),
-                    &params,
-                    &mut out,
-                )
-            } & brdfs[0].modelled;
-            for (k, g) in receivers.iter().enumerate() {
-                let want = received(g, lane_omega[k], l2[k], || intensity[k], Some(&params));
-                if formed & (1 << k) == 0 {
-                    left += 1;
-                    continue;
-                }
-                let got = Vec3::new(out[0].0[k], out[1].0[k], out[2].0[k]);
-                assert_eq!(
-                    got.to_array().map(f32::to_bits),
-                    want.to_array().map(f32::to_bits),
-                    "lane {k}: {g:?} ω {} l² {} I {} {params:?}",
-                    lane_omega[k],
-                    l2[k],
-                    intensity[k]
-                );
-                formed_nonzero += usize::from(got != Vec3::ZERO);
-            }
-        }
-        // Most pairs are formed by the lanes, thousands of them non-zero; the unmodelled
-        // receivers and ill-conditioned half vectors are left to the scalar shader.
-        assert!(formed_nonzero > 5_000, "{formed_nonzero} non-zero formed");
-        assert!(
-            left > 10_000 && left < 100_000,
-            "{left} left to the scalar shader"
-        );
-    }
 }

@@ -46,6 +46,26 @@ fn plain(input: &CullInput, lists: &slc_core::LightLists) -> Image {
     image
 }
 
+/// `shade_lists` and the plain sum of `lists`.
+fn shaded_and_plain(
+    p: &slc_cpu_ref::CpuPrepared,
+    input: &CullInput,
+    lists: &LightLists,
+) -> (Image, Image) {
+    let got = shade_lists(&p.tracer, input, lists, false, &|_| {}).unwrap();
+    (got, plain(input, lists))
+}
+
+/// The pixels of `a` and `b` that differ in any bit.
+fn differing(a: &Image, b: &Image) -> usize {
+    let bits = |v: &Vec3| v.to_array().map(f32::to_bits);
+    a.pixels
+        .iter()
+        .zip(&b.pixels)
+        .filter(|(x, y)| bits(x) != bits(y))
+        .count()
+}
+
 #[test]
 fn shade_lists_equals_the_plain_sum_bit_for_bit() {
     for name in ["default", "dielectric", "anisotropic"] {
@@ -86,17 +106,8 @@ fn shade_lists_equals_the_plain_sum_bit_for_bit() {
                     interleaving: Interleaving { k, seed: 3 },
                 };
                 let lists = slc_cull::culler(strategy).cull(&input).unwrap();
-                let got = shade_lists(&p.tracer, &input, &lists, false, &|_| {}).unwrap();
-                let want = plain(&input, &lists);
-                let differ = got
-                    .pixels
-                    .iter()
-                    .zip(&want.pixels)
-                    .filter(|(a, b)| {
-                        a.to_array().map(f32::to_bits) != b.to_array().map(f32::to_bits)
-                    })
-                    .count();
-                assert_eq!(differ, 0, "{name} K {k} {strategy:?}");
+                let (got, want) = shaded_and_plain(&p, &input, &lists);
+                assert_eq!(differing(&got, &want), 0, "{name} K {k} {strategy:?}");
                 assert!(want.pixels.iter().any(|o| *o != Vec3::ZERO), "{name}: lit");
             }
         }
@@ -182,17 +193,8 @@ fn shade_lists_equals_the_plain_sum_for_lists_of_any_order() {
             delta: 1e-4,
             interleaving: Interleaving { k, seed: 5 },
         };
-        let got = shade_lists(&p.tracer, &input, &lists, false, &|_| {}).unwrap();
-        let want = plain(&input, &lists);
-        let same =
-            |a: &Vec3, b: &Vec3| a.to_array().map(f32::to_bits) == b.to_array().map(f32::to_bits);
-        let differ = got
-            .pixels
-            .iter()
-            .zip(&want.pixels)
-            .filter(|(a, b)| !same(a, b))
-            .count();
-        assert_eq!(differ, 0, "K {k}");
+        let (got, want) = shaded_and_plain(&p, &input, &lists);
+        assert_eq!(differing(&got, &want), 0, "K {k}");
         let lit = want.pixels.iter().filter(|o| **o != Vec3::ZERO).count();
         assert!(lit > pixels / 4, "{lit} of {pixels} lit");
     }
