@@ -308,8 +308,9 @@ impl<'a> ListShading<'a> {
     /// order (one list alone: in its order), each VPL tested against eight of the pixels at a
     /// time, only those of the lists that hold it ([`ReceiverChunks::passing_sets`]). Where
     /// the lanes accepted a pair with the shader's own operations, their ωo, l² and I(ωo) are
-    /// used as they are ([`received`]). Every pixel sums its VPLs in its list's order, so its
-    /// estimate is the same bit for bit as summing its list one VPL at a time.
+    /// used as they are, with the receivers' BRDF formed eight at a time where the lanes model
+    /// it ([`received_lanes`]), else by [`received`]. Every pixel sums its VPLs in its list's
+    /// order, so its estimate is the same bit for bit as summing its list one VPL at a time.
     fn lists_window(
         &self,
         lists: &[u32],
