@@ -230,19 +230,27 @@ impl ReceiverChunks {
             // SAFETY: the CPU supports AVX2, checked just above.
             return unsafe { passing_avx2(self, reach, members, normals, passing) };
         }
-        for (i, sets) in members {
-            let r = &reach[i as usize];
-            if r.reach.box_may_reach(r.position, self.lo, self.hi) {
-                passing_lanes::<F8>(r, i, sets, self, normals, passing);
-            }
-        }
+        passing_in::<F8>(self, reach, members, normals, passing);
     }
 }
 
-/// [`ReceiverChunks::passing_members`] in AVX registers (the same IEEE operations).
+/// [`passing_in`] in AVX registers (the same IEEE operations).
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2")]
 fn passing_avx2(
+    receivers: &ReceiverChunks,
+    reach: &[VplReach],
+    members: impl Iterator<Item = (u32, u32)>,
+    normals: bool,
+    passing: &mut Vec<Passing>,
+) {
+    passing_in::<crate::lanes_avx::A8>(receivers, reach, members, normals, passing);
+}
+
+/// [`ReceiverChunks::passing_sets`] in lanes of `L`: each VPL first against the box of the
+/// receivers, then chunk by chunk.
+#[inline(always)]
+fn passing_in<L: Lanes8>(
     receivers: &ReceiverChunks,
     reach: &[VplReach],
     members: impl Iterator<Item = (u32, u32)>,
@@ -254,7 +262,7 @@ fn passing_avx2(
         if r.reach
             .box_may_reach(r.position, receivers.lo, receivers.hi)
         {
-            passing_lanes::<crate::lanes_avx::A8>(r, i, sets, receivers, normals, passing);
+            passing_lanes::<L>(r, i, sets, receivers, normals, passing);
         }
     }
 }
