@@ -97,6 +97,16 @@ impl TileFrusta {
         );
     }
 
+    /// The whole tile as the exact tests see it: the grown image-plane rectangle `[lo, hi]`,
+    /// the depth range of all its clusters, and the view-space box of that frustum.
+    pub(crate) fn whole(&self) -> ([DVec2; 2], [f64; 2], (DVec3, DVec3)) {
+        (
+            self.rect,
+            self.whole,
+            (self.whole_box.min, self.whole_box.max),
+        )
+    }
+
     /// The clusters a view-space sphere may touch, as a bit mask (bit i: cluster i): the
     /// sphere-vs-frustum-box test of Modified HalfZ, first against the whole tile.
     #[inline]

@@ -41,6 +41,12 @@ pub fn max<R: Real>(a: R, b: R) -> R {
     R::select(a.gt(b), a, b)
 }
 
+/// The smaller of `a` and `b`: `a` if `a < b`, else `b`.
+#[inline(always)]
+pub fn min<R: Real>(a: R, b: R) -> R {
+    R::select(b.gt(a), a, b)
+}
+
 /// `v` clamped to [0, 1] as `f32::clamp(0.0, 1.0)` does it (NaN stays NaN).
 #[inline(always)]
 pub fn clamp01<R: Real>(v: R) -> R {

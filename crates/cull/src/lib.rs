@@ -73,6 +73,7 @@
 //! # Ok::<(), slc_core::CullError>(())
 //! ```
 mod acceptance;
+mod bound_lanes;
 mod depth;
 mod frusta;
 pub mod ggx_lanes;

@@ -1,6 +1,9 @@
 //! The culling loop every bound-based strategy shares: per tile of each interleaved
 //! subregion, the depth clusters of its G-buffer samples, then every bound of the subregion's
-//! VPLs tested against every cluster; tiles run in parallel.
+//! VPLs tested against every cluster (after an f32 pre-test of eight bounds at a time against
+//! the whole tile, `bound_lanes`, that never rejects a bound the exact test keeps); tiles run
+//! in parallel.
+use crate::bound_lanes::{for_each_candidate, TileLanes};
 use crate::depth::{depth_range, DepthSplit, Sample, MAX_CLUSTERS};
 use crate::frusta::TileFrusta;
 use crate::lists::{assemble, pixel_count, ListChunk};
@@ -66,11 +69,13 @@ pub(crate) fn cull(
     let split = match clustering {
         Clustering::HalfZ => DepthSplit::HalfZ,
         Clustering::ExponentialSlices => {
-            let depths = positions
-                .par_iter()
-                .flatten()
-                .map(|position| view.to_view(*position).z)
-                .filter(|&z| z > 0.0 && z.is_finite());
+            let depths = positions.par_chunks(1 << 12).flat_map_iter(|chunk| {
+                chunk
+                    .iter()
+                    .flatten()
+                    .map(|position| view.to_view(*position).z)
+                    .filter(|&z| z > 0.0 && z.is_finite())
+            });
             depth_range(depths).map_or(DepthSplit::HalfZ, |(lo, hi)| DepthSplit::slices(lo, hi))
         }
     };
@@ -109,6 +114,8 @@ struct Worker {
     scratch: Scratch,
     ranges: Vec<[f64; 2]>,
     frusta: TileFrusta,
+    /// Per chunk of eight bounds, those the f32 pre-test leaves to the exact test.
+    candidates: Vec<u8>,
     /// Per cluster, the spheres and the ellipsoids that touch it (ascending VPL indices).
     sphere_hits: [Vec<u32>; MAX_CLUSTERS],
     ellipsoid_hits: [Vec<u32>; MAX_CLUSTERS],
@@ -129,16 +136,23 @@ impl Worker {
             hits.clear();
         }
         let bounds = &frame.bounds[tile.subregion(frame.k) as usize];
-        for s in &bounds.spheres {
+        let lanes = TileLanes::new(&self.frusta);
+        bounds.sphere_lanes.candidates(&lanes, &mut self.candidates);
+        for_each_candidate(&self.candidates, |k| {
+            let s = &bounds.spheres[k];
             scatter(self.frusta.sphere_hits(s), s.index, &mut self.sphere_hits);
-        }
-        for e in &bounds.ellipsoids {
+        });
+        bounds
+            .ellipsoid_lanes
+            .candidates(&lanes, &mut self.candidates);
+        for_each_candidate(&self.candidates, |k| {
+            let e = &bounds.ellipsoids[k];
             scatter(
                 self.frusta.ellipsoid_hits(e),
                 e.index,
                 &mut self.ellipsoid_hits,
             );
-        }
+        });
         if let Some(refiner) = &frame.refiner {
             self.refine(refiner, clusters);
             return Ok(());

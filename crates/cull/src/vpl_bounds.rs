@@ -2,6 +2,7 @@
 //! the section-6 sphere for diffuse VPLs, and for glossy VPLs the sphere r/α around q, the
 //! sphere r_u around c (section 7) or the GGX spheroid (eq. 12-15) as its stretched and
 //! rotated test space BS, BS·c (eq. 16-17, section 5.2).
+use crate::bound_lanes::{EllipsoidLanes, SphereLanes};
 use crate::partition::Partition;
 use crate::view::CullView;
 use glam::{DVec3, Mat3, Vec3};
@@ -189,6 +190,9 @@ impl VplBound {
 pub(crate) struct SubregionBounds {
     pub spheres: Vec<ViewSphere>,
     pub ellipsoids: Vec<ViewEllipsoid>,
+    /// The same bounds in f32 lanes, for the tiles' pre-test.
+    pub sphere_lanes: SphereLanes,
+    pub ellipsoid_lanes: EllipsoidLanes,
 }
 
 /// Every VPL's bound (in parallel), grouped by interleaved subregion.
@@ -205,6 +209,7 @@ pub(crate) fn subregion_bounds(
         .map(|(i, vpl)| VplBound::new(vpl, i as u32, delta, view, glossy))
         .collect::<Result<Vec<_>, _>>()?;
     Ok((0..partition.subregions() as u32)
+        .into_par_iter()
         .map(|s| {
             let mut out = SubregionBounds::default();
             for &i in partition.of(s) {
@@ -214,6 +219,8 @@ pub(crate) fn subregion_bounds(
                     VplBound::Ellipsoid(b) => out.ellipsoids.push(b),
                 }
             }
+            out.sphere_lanes = SphereLanes::new(&out.spheres);
+            out.ellipsoid_lanes = EllipsoidLanes::new(&out.ellipsoids);
             out
         })
         .collect())

@@ -1,0 +1,529 @@
+//! A pre-test of eight bounds at a time against a tile, in `f32` lanes, that never rejects a
+//! bound the tile's exact test (`frusta`, f64) keeps: a tile only runs the exact test on the
+//! bounds this one leaves, so its lists are exactly those of the exact test alone.
+//!
+//! The bounds of a subregion are stored as structures of arrays ([`EllipsoidLanes`],
+//! [`SphereLanes`]), eight per chunk. A lane repeats the whole-tile test of
+//! `TileFrusta::ellipsoid_hits` (the unit ball at BS·c against the box of the tile frustum's
+//! image under BS, section 5.2, supplemental Listing 2) or `TileFrusta::sphere_hits` (the
+//! sphere against the frustum's view-space box), with every per-axis gap shrunk by an error
+//! bound before it is squared:
+//!
+//! - every quantity of a lane's arithmetic is at most `size` = m T + |BS·c|∞ (an ellipsoid:
+//!   m the largest |entry| of BS, T the tile's reach (1 + max|u| + max|v|) max(1, z1)) or
+//!   |box|∞ + |c|∞ (a sphere), and about ten f32 roundings (2⁻²⁴ relative to `size` each,
+//!   inputs included) separate a gap in f32 from the same gap in f64; each gap is lowered by
+//!   [`MARGIN`] · size, and the sum of squares must exceed the radius² by the relative
+//!   [`SUM_SLACK`] to reject. (Where the lane's numbers leave f32's normal range, its gaps are
+//!   below 2⁻¹²⁶ and square to 0, which rejects nothing.)
+//! - a lane whose `size` is not below [`LIMIT`] (or NaN, or infinite, say from a bound too
+//!   large for f32) is always left to the exact test, so no product overflows; any NaN met on
+//!   the way turns a gap into 0, which keeps the lane.
+use crate::frusta::TileFrusta;
+use crate::lanes::{max, min, Lanes8, F8};
+use crate::vpl_bounds::{ViewEllipsoid, ViewSphere};
+use glam::DVec3;
+
+/// How far a gap is lowered, relative to the largest magnitude in its lane: 64 ε (2⁻¹⁷),
+/// about 13 times the rounding a gap can accumulate.
+const MARGIN: f32 = 64.0 * f32::EPSILON;
+/// Lanes with a magnitude at or above this are left to the exact test: every number of such
+/// a lane stays below f32::MAX even after its roundings.
+const LIMIT: f32 = 1e37;
+/// The sum of squared gaps must exceed the radius² by this much (relative) to reject: it
+/// covers the rounding of the sum, of the radius² to f32 and of the product itself.
+const SUM_SLACK: f32 = 1e-5;
+
+/// `x` rounded to an f32 not below it (NaN stays NaN, beyond f32's range infinity).
+fn up(x: f64) -> f32 {
+    let f = x as f32;
+    if f64::from(f) < x {
+        f.next_up()
+    } else {
+        f
+    }
+}
+
+/// The largest |coordinate| of `v` in f32, rounded up.
+fn magnitude(v: DVec3) -> f32 {
+    up(v.abs().max_element())
+}
+
+/// `f` of each of up to eight items, in lanes (0 past the last item).
+fn chunk_of<T>(items: &[T], f: impl Fn(&T) -> f32) -> F8 {
+    F8(core::array::from_fn(|k| items.get(k).map_or(0.0, &f)))
+}
+
+/// The bits of the first `len` lanes (at most eight).
+fn valid_bits(len: usize) -> u8 {
+    (((1u16 << len.min(8)) - 1) & 0xff) as u8
+}
+
+/// What a tile's lanes read, in f32: its image-plane rectangle and whole depth range (as the
+/// exact test has them, grown), the reach T and the view-space box with its magnitude.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct TileLanes {
+    rect: [f32; 4],
+    depth: [f32; 2],
+    reach: f32,
+    box_min: [f32; 3],
+    box_max: [f32; 3],
+    box_size: f32,
+}
+
+impl TileLanes {
+    pub(crate) fn new(frusta: &TileFrusta) -> Self {
+        let ([lo, hi], [z0, z1], (box_min, box_max)) = frusta.whole();
+        let reach = (1.0 + lo.x.abs().max(hi.x.abs()) + lo.y.abs().max(hi.y.abs())) * z1.max(1.0);
+        Self {
+            rect: [lo.x as f32, hi.x as f32, lo.y as f32, hi.y as f32],
+            depth: [z0 as f32, z1 as f32],
+            reach: up(reach),
+            box_min: box_min.as_vec3().to_array(),
+            box_max: box_max.as_vec3().to_array(),
+            box_size: magnitude(box_min).max(magnitude(box_max)),
+        }
+    }
+}
+
+/// Eight ellipsoids' test spaces: BS by column and coordinate, BS·c, and per lane the
+/// largest |entry| of BS (`scale`) and of BS·c (`offset`).
+#[derive(Clone, Debug, PartialEq)]
+struct EllipsoidChunk {
+    columns: [[F8; 3]; 3],
+    center: [F8; 3],
+    scale: F8,
+    offset: F8,
+    valid: u8,
+}
+
+/// A subregion's ellipsoids in chunks of eight, in the order given.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub(crate) struct EllipsoidLanes(Vec<EllipsoidChunk>);
+
+impl EllipsoidLanes {
+    pub(crate) fn new(ellipsoids: &[ViewEllipsoid]) -> Self {
+        Self(
+            ellipsoids
+                .chunks(8)
+                .map(|e| EllipsoidChunk {
+                    columns: core::array::from_fn(|j| {
+                        core::array::from_fn(|i| chunk_of(e, |e| e.columns[j][i] as f32))
+                    }),
+                    center: core::array::from_fn(|i| chunk_of(e, |e| e.center[i] as f32)),
+                    scale: chunk_of(e, |e| {
+                        e.columns.iter().map(|&c| magnitude(c)).fold(0.0, f32::max)
+                    }),
+                    offset: chunk_of(e, |e| magnitude(e.center)),
+                    valid: valid_bits(e.len()),
+                })
+                .collect(),
+        )
+    }
+
+    /// Per chunk, the bits of the ellipsoids the tile's exact test may keep (pushed to
+    /// `out`, which is cleared first).
+    pub(crate) fn candidates(&self, tile: &TileLanes, out: &mut Vec<u8>) {
+        out.clear();
+        #[cfg(target_arch = "x86_64")]
+        if std::arch::is_x86_feature_detected!("avx2") {
+            // SAFETY: the CPU supports AVX2, checked just above.
+            return unsafe { ellipsoids_avx2(&self.0, tile, out) };
+        }
+        ellipsoids_in::<F8>(&self.0, tile, out);
+    }
+}
+
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+fn ellipsoids_avx2(chunks: &[EllipsoidChunk], tile: &TileLanes, out: &mut Vec<u8>) {
+    ellipsoids_in::<crate::lanes_avx::A8>(chunks, tile, out);
+}
+
+/// The lowered gap of one axis: the distance from `c` to [lo, hi], less `e`, at least 0.
+#[inline(always)]
+fn lowered_gap<L: Lanes8>(lo: L, hi: L, c: L, e: L) -> L {
+    let zero = L::splat(0.0);
+    max(max(max(lo - c, c - hi), zero) - e, zero)
+}
+
+#[inline(always)]
+fn ellipsoids_in<L: Lanes8>(chunks: &[EllipsoidChunk], tile: &TileLanes, out: &mut Vec<u8>) {
+    let [lx, hx, ly, hy] = [0, 1, 2, 3].map(|k| L::splat(tile.rect[k]));
+    let [z0, z1] = [L::splat(tile.depth[0]), L::splat(tile.depth[1])];
+    let reach = L::splat(tile.reach);
+    let limit = L::splat(LIMIT);
+    let threshold = L::splat(1.0 + SUM_SLACK);
+    for chunk in chunks {
+        let size = L::load(&chunk.scale) * reach + L::load(&chunk.offset);
+        let e = size * L::splat(MARGIN);
+        let mut sum = L::splat(0.0);
+        for i in 0..3 {
+            let cu = L::load(&chunk.columns[0][i]);
+            let cv = L::load(&chunk.columns[1][i]);
+            let cz = L::load(&chunk.columns[2][i]);
+            let (u0, u1, v0, v1) = (cu * lx, cu * hx, cv * ly, cv * hy);
+            let image_lo = cz + min(u0, u1) + min(v0, v1);
+            let image_hi = cz + max(u0, u1) + max(v0, v1);
+            let g = lowered_gap(
+                min(image_lo * z0, image_lo * z1),
+                max(image_hi * z0, image_hi * z1),
+                L::load(&chunk.center[i]),
+                e,
+            );
+            sum = sum + g * g;
+        }
+        let rejected = L::bits(size.le(limit) & sum.gt(threshold));
+        out.push(!rejected & chunk.valid);
+    }
+}
+
+/// Eight spheres: centres, radii² (f32, nearest) and the largest |coordinate| of each centre.
+#[derive(Clone, Debug, PartialEq)]
+struct SphereChunk {
+    center: [F8; 3],
+    radius_sq: F8,
+    offset: F8,
+    valid: u8,
+}
+
+/// A subregion's spheres in chunks of eight, in the order given.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub(crate) struct SphereLanes(Vec<SphereChunk>);
+
+impl SphereLanes {
+    pub(crate) fn new(spheres: &[ViewSphere]) -> Self {
+        Self(
+            spheres
+                .chunks(8)
+                .map(|s| SphereChunk {
+                    center: core::array::from_fn(|i| chunk_of(s, |s| s.center[i] as f32)),
+                    radius_sq: chunk_of(s, |s| s.radius_sq as f32),
+                    offset: chunk_of(s, |s| magnitude(s.center)),
+                    valid: valid_bits(s.len()),
+                })
+                .collect(),
+        )
+    }
+
+    /// Per chunk, the bits of the spheres the tile's exact test may keep (pushed to `out`,
+    /// which is cleared first).
+    pub(crate) fn candidates(&self, tile: &TileLanes, out: &mut Vec<u8>) {
+        out.clear();
+        #[cfg(target_arch = "x86_64")]
+        if std::arch::is_x86_feature_detected!("avx2") {
+            // SAFETY: the CPU supports AVX2, checked just above.
+            return unsafe { spheres_avx2(&self.0, tile, out) };
+        }
+        spheres_in::<F8>(&self.0, tile, out);
+    }
+}
+
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+fn spheres_avx2(chunks: &[SphereChunk], tile: &TileLanes, out: &mut Vec<u8>) {
+    spheres_in::<crate::lanes_avx::A8>(chunks, tile, out);
+}
+
+#[inline(always)]
+fn spheres_in<L: Lanes8>(chunks: &[SphereChunk], tile: &TileLanes, out: &mut Vec<u8>) {
+    let box_min = [0, 1, 2].map(|i| L::splat(tile.box_min[i]));
+    let box_max = [0, 1, 2].map(|i| L::splat(tile.box_max[i]));
+    let box_size = L::splat(tile.box_size);
+    let limit = L::splat(LIMIT);
+    let slack = L::splat(1.0 + SUM_SLACK);
+    for chunk in chunks {
+        let size = box_size + L::load(&chunk.offset);
+        let e = size * L::splat(MARGIN);
+        let mut sum = L::splat(0.0);
+        for i in 0..3 {
+            let g = lowered_gap(box_min[i], box_max[i], L::load(&chunk.center[i]), e);
+            sum = sum + g * g;
+        }
+        let threshold = L::load(&chunk.radius_sq) * slack;
+        let rejected = L::bits(size.le(limit) & sum.gt(threshold));
+        out.push(!rejected & chunk.valid);
+    }
+}
+
+/// Calls `f` with the index of every candidate in `bits` (one byte per chunk of eight), in
+/// ascending order.
+#[inline]
+pub(crate) fn for_each_candidate(bits: &[u8], mut f: impl FnMut(usize)) {
+    for (chunk, &b) in bits.iter().enumerate() {
+        let mut b = b;
+        while b != 0 {
+            f(chunk * 8 + b.trailing_zeros() as usize);
+            b &= b - 1;
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use glam::DVec2;
+
+    /// A small deterministic generator (xorshift64*).
+    struct Rng(u64);
+    impl Rng {
+        fn unit(&mut self) -> f64 {
+            self.0 ^= self.0 >> 12;
+            self.0 ^= self.0 << 25;
+            self.0 ^= self.0 >> 27;
+            (self.0.wrapping_mul(0x2545_F491_4F6C_DD1D) >> 11) as f64 / (1u64 << 53) as f64
+        }
+        fn range(&mut self, a: f64, b: f64) -> f64 {
+            a + (b - a) * self.unit()
+        }
+        /// 10^x for x uniform in [lo, hi].
+        fn scale(&mut self, lo: f64, hi: f64) -> f64 {
+            10f64.powf(self.range(lo, hi))
+        }
+        fn vector(&mut self, magnitude: f64) -> DVec3 {
+            DVec3::new(
+                self.range(-1.0, 1.0),
+                self.range(-1.0, 1.0),
+                self.range(-1.0, 1.0),
+            ) * magnitude
+        }
+        fn below(&mut self, n: usize) -> usize {
+            (self.unit() * n as f64) as usize % n
+        }
+    }
+
+    /// A tile: a rectangle in [-3, 3]², a depth range from 1e-4 to 1e6 (or below f32's
+    /// normal range) split into 1 to 5 clusters.
+    fn tile(rng: &mut Rng) -> TileFrusta {
+        let (a, b) = (
+            DVec2::new(rng.range(-3.0, 3.0), rng.range(-3.0, 3.0)),
+            DVec2::new(rng.range(-3.0, 3.0), rng.range(-3.0, 3.0)),
+        );
+        let z0 = if rng.below(8) == 0 {
+            rng.scale(-42.0, -36.0)
+        } else {
+            rng.scale(-4.0, 4.0)
+        };
+        let z1 = z0 * (1.0 + rng.scale(-6.0, 2.0));
+        let n = 1 + rng.below(5);
+        let cuts: Vec<f64> = (0..=n)
+            .map(|k| z0 + (z1 - z0) * k as f64 / n as f64)
+            .collect();
+        let ranges: Vec<[f64; 2]> = cuts.windows(2).map(|w| [w[0], w[1]]).collect();
+        let mut f = TileFrusta::default();
+        f.set(a.min(b), a.max(b), &ranges);
+        f
+    }
+
+    /// The whole tile's box under the test space `columns` (as `TileFrusta::ellipsoid_hits`
+    /// forms it).
+    fn image_box(f: &TileFrusta, columns: [DVec3; 3]) -> (DVec3, DVec3) {
+        let ([lo, hi], [z0, z1], _) = f.whole();
+        let [cu, cv, cz] = columns;
+        let (u0, u1) = (cu * lo.x, cu * hi.x);
+        let (v0, v1) = (cv * lo.y, cv * hi.y);
+        let image_lo = cz + u0.min(u1) + v0.min(v1);
+        let image_hi = cz + u0.max(u1) + v0.max(v1);
+        (
+            (image_lo * z0).min(image_lo * z1),
+            (image_hi * z0).max(image_hi * z1),
+        )
+    }
+
+    /// A point at distance about `d` from the box `[lo, hi]`: outside one face, an edge or a
+    /// corner, or inside (d = 0).
+    fn near_box(rng: &mut Rng, (lo, hi): (DVec3, DVec3), d: f64) -> DVec3 {
+        let inside = DVec3::new(
+            rng.range(lo.x, hi.x),
+            rng.range(lo.y, hi.y),
+            rng.range(lo.z, hi.z),
+        );
+        let axes = 1 + rng.below(3);
+        let mut p = inside;
+        for _ in 0..axes {
+            let i = rng.below(3);
+            let out = d / (axes as f64).sqrt();
+            p[i] = if rng.unit() < 0.5 {
+                lo[i] - out
+            } else {
+                hi[i] + out
+            };
+        }
+        p
+    }
+
+    /// A distance to put a bound at: mostly within a millionth of tangent, else anywhere.
+    fn distance(rng: &mut Rng, radius: f64) -> f64 {
+        match rng.below(4) {
+            0 => 0.0,
+            1 => rng.range(0.0, 4.0 * radius),
+            _ => radius * (1.0 + rng.range(-1e-6, 1e-6)),
+        }
+    }
+
+    /// Magnitudes from tiny (below f32's normal range) to beyond f32's range.
+    fn magnitude_scale(rng: &mut Rng) -> f64 {
+        match rng.below(8) {
+            0 => rng.scale(-45.0, -30.0),
+            1 => rng.scale(30.0, 45.0),
+            _ => rng.scale(-4.0, 8.0),
+        }
+    }
+
+    fn plain_and_wide<T>(
+        chunks: &T,
+        tile: &TileLanes,
+        plain: impl Fn(&T, &TileLanes, &mut Vec<u8>),
+        public: impl Fn(&T, &TileLanes, &mut Vec<u8>),
+    ) -> Vec<u8> {
+        let (mut a, mut b) = (Vec::new(), Vec::new());
+        plain(chunks, tile, &mut a);
+        public(chunks, tile, &mut b);
+        assert_eq!(a, b, "the AVX lanes differ from the plain ones");
+        a
+    }
+
+    /// No ellipsoid that the exact test keeps (for any cluster) is rejected, over tiles and
+    /// test spaces whose magnitudes run from 1e-45 to 1e45, most of them within a millionth
+    /// of tangent; and the pre-test does reject most of the bounds clearly outside.
+    #[test]
+    fn ellipsoids_the_exact_test_keeps_are_candidates() {
+        let mut rng = Rng(0x5eed_1234_abcd_9876);
+        let (mut kept, mut rejected, mut far) = (0, 0, 0);
+        for _ in 0..3000 {
+            let f = tile(&mut rng);
+            let scale = magnitude_scale(&mut rng);
+            let ellipsoids: Vec<ViewEllipsoid> = (0..1 + rng.below(20))
+                .map(|index| {
+                    let columns = [0; 3].map(|_| {
+                        let m = scale * rng.scale(-2.0, 0.0);
+                        rng.vector(m)
+                    });
+                    let d = distance(&mut rng, 1.0);
+                    ViewEllipsoid {
+                        columns,
+                        center: near_box(&mut rng, image_box(&f, columns), d),
+                        index: index as u32,
+                    }
+                })
+                .collect();
+            let lanes = EllipsoidLanes::new(&ellipsoids);
+            let t = TileLanes::new(&f);
+            let bits = plain_and_wide(
+                &lanes,
+                &t,
+                |l, t, out| {
+                    out.clear();
+                    ellipsoids_in::<F8>(&l.0, t, out)
+                },
+                EllipsoidLanes::candidates,
+            );
+            for (k, e) in ellipsoids.iter().enumerate() {
+                let candidate = bits[k / 8] & (1 << (k % 8)) != 0;
+                if f.ellipsoid_hits(e) != 0 {
+                    assert!(candidate, "kept by the exact test, rejected: {e:?} {f:?}");
+                    kept += 1;
+                } else if !candidate {
+                    rejected += 1;
+                }
+                // Clearly outside: beyond the radius by more than the margin can grow it.
+                let ([lo, hi], [_, z1], _) = f.whole();
+                let reach =
+                    (1.0 + lo.x.abs().max(hi.x.abs()) + lo.y.abs().max(hi.y.abs())) * z1.max(1.0);
+                let m = e
+                    .columns
+                    .iter()
+                    .map(|c| c.abs().max_element())
+                    .fold(0.0, f64::max);
+                let size = m * reach + e.center.abs().max_element();
+                let (lo, hi) = image_box(&f, e.columns);
+                let gap = (lo - e.center).max(e.center - hi).max(DVec3::ZERO);
+                if gap.length() > 1.0 + 1e-4 * size && size < 1e30 && size > 1e-30 {
+                    far += 1;
+                    assert!(!candidate, "clearly outside, kept: {e:?} {f:?}");
+                }
+            }
+        }
+        assert!(
+            kept > 5_000 && rejected > 2_000 && far > 2_000,
+            "{kept} {rejected} {far}"
+        );
+    }
+
+    /// The same for spheres against the tile's view-space box.
+    #[test]
+    fn spheres_the_exact_test_keeps_are_candidates() {
+        let mut rng = Rng(0x0dd_ba11_cafe_f00d);
+        let (mut kept, mut rejected, mut far) = (0, 0, 0);
+        for _ in 0..3000 {
+            let f = tile(&mut rng);
+            let (_, _, whole_box) = f.whole();
+            let scale = magnitude_scale(&mut rng);
+            let spheres: Vec<ViewSphere> = (0..1 + rng.below(20))
+                .map(|index| {
+                    let radius = scale * rng.scale(-3.0, 0.0);
+                    let d = distance(&mut rng, radius);
+                    ViewSphere {
+                        center: near_box(&mut rng, whole_box, d),
+                        radius_sq: radius * radius,
+                        index: index as u32,
+                    }
+                })
+                .collect();
+            let lanes = SphereLanes::new(&spheres);
+            let bits = plain_and_wide(
+                &lanes,
+                &TileLanes::new(&f),
+                |l, t, out| {
+                    out.clear();
+                    spheres_in::<F8>(&l.0, t, out)
+                },
+                SphereLanes::candidates,
+            );
+            for (k, s) in spheres.iter().enumerate() {
+                let candidate = bits[k / 8] & (1 << (k % 8)) != 0;
+                if f.sphere_hits(s) != 0 {
+                    assert!(candidate, "kept by the exact test, rejected: {s:?} {f:?}");
+                    kept += 1;
+                } else if !candidate {
+                    rejected += 1;
+                }
+                let (lo, hi) = whole_box;
+                let size = lo.abs().max(hi.abs()).max_element() + s.center.abs().max_element();
+                let gap = (lo - s.center).max(s.center - hi).max(DVec3::ZERO);
+                if gap.length() > s.radius_sq.sqrt() + 1e-4 * size
+                    && size < 1e30
+                    && size > 1e-30
+                    && s.radius_sq < 1e37
+                {
+                    far += 1;
+                    assert!(!candidate, "clearly outside, kept: {s:?} {f:?}");
+                }
+            }
+        }
+        assert!(
+            kept > 5_000 && rejected > 2_000 && far > 2_000,
+            "{kept} {rejected} {far}"
+        );
+    }
+
+    /// Lanes past the last bound are never candidates, and the indices come out ascending.
+    #[test]
+    fn only_real_bounds_are_candidates_in_order() {
+        let far = ViewSphere {
+            center: DVec3::ZERO,
+            radius_sq: f64::INFINITY,
+            index: 0,
+        };
+        let mut f = TileFrusta::default();
+        f.set(DVec2::splat(-1.0), DVec2::ONE, &[[1.0, 2.0]]);
+        for n in [1, 7, 8, 9, 17] {
+            let lanes = SphereLanes::new(&vec![far; n]);
+            let mut bits = Vec::new();
+            lanes.candidates(&TileLanes::new(&f), &mut bits);
+            let mut seen = Vec::new();
+            for_each_candidate(&bits, |k| seen.push(k));
+            assert_eq!(seen, (0..n).collect::<Vec<_>>());
+        }
+    }
+}
