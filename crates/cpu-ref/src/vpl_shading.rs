@@ -8,6 +8,7 @@ use slc_bounds::stochastic::{scalar_intensity, StochasticParams};
 use slc_bounds::BoundsError;
 use slc_core::{CullError, CullInput, GBuffer, GSample, Image, LightLists, Vpl, NO_LIST};
 use slc_cull::lanes::F8;
+use slc_cull::prefetch::prefetch;
 use slc_cull::receiver_chunks::{Passing, MAX_SETS};
 use slc_cull::tiles::{Tile, TileOrder};
 use slc_cull::{ReceiverChunks, VplReach};
@@ -180,9 +181,7 @@ pub fn shade_lists(
         .par_chunks_mut(w.max(1) as usize)
         .enumerate()
         .for_each(|(y, row)| {
-            for (x, o) in row.iter_mut().enumerate() {
-                *o = shaded[order.slot(x as u32, y as u32)];
-            }
+            order.for_each_in_row(y as u32, w, |x, slot| row[x as usize] = shaded[slot]);
         });
     Ok(image)
 }
@@ -236,6 +235,8 @@ impl<'a> ListShading<'a> {
         let mut last = (NO_LIST, 0);
         for (slot, [x, y]) in tile.pixels_z_order(k) {
             let p = y * width + x;
+            // Read below, once the tile's pixels are grouped.
+            prefetch(&self.gbuffer.samples[p as usize]);
             let l = self.lists.pixel_list[p as usize];
             if l == NO_LIST {
                 continue;

@@ -84,6 +84,7 @@ mod lists;
 pub mod metrics;
 mod partition;
 mod positions;
+pub mod prefetch;
 pub mod reach;
 pub mod reach_chunks;
 pub mod receiver_chunks;

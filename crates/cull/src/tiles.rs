@@ -203,6 +203,29 @@ impl TileOrder {
         let tile = &self.tiles[t as usize];
         self.starts[t as usize] + ((b % TILE_SIZE) * tile.count[0] + a % TILE_SIZE) as usize
     }
+
+    /// Calls `f(x, slot(x, y))` for every pixel of row `y` of an image `width` wide, x
+    /// running over each residue x mod K in turn: the slots of one residue are consecutive
+    /// within a tile, so [`Self::slot`] (four divisions) is formed only at tile edges.
+    pub fn for_each_in_row(&self, y: u32, width: u32, mut f: impl FnMut(u32, usize)) {
+        for r in 0..self.k.min(width) {
+            let mut slot = self.slot(r, y);
+            let (mut x, mut column) = (r, 0);
+            loop {
+                f(x, slot);
+                x += self.k;
+                if x >= width {
+                    break;
+                }
+                column += 1;
+                slot = if column % TILE_SIZE == 0 {
+                    self.slot(x, y)
+                } else {
+                    slot + 1
+                };
+            }
+        }
+    }
 }
 
 #[cfg(test)]
@@ -286,6 +309,14 @@ mod tests {
                 }
                 assert_eq!(next, (w * h) as usize);
                 assert_eq!(order.run_lengths().sum::<usize>(), next);
+                for y in 0..h {
+                    let mut seen = vec![false; w as usize];
+                    order.for_each_in_row(y, w, |x, slot| {
+                        assert_eq!(slot, order.slot(x, y), "{w}x{h} K {k}: ({x}, {y})");
+                        assert!(!std::mem::replace(&mut seen[x as usize], true));
+                    });
+                    assert!(seen.iter().all(|&s| s), "{w}x{h} K {k}: row {y}");
+                }
             }
         }
     }
