@@ -321,6 +321,10 @@ impl<'a> ListShading<'a> {
         scratch: &mut TileScratch<'a>,
     ) {
         self.members(lists, scratch);
+        // Each VPL's exits are read after the receivers are gathered.
+        for &(v, _) in &scratch.members {
+            prefetch(&self.reach[v as usize]);
+        }
         let samples = &mut scratch.samples;
         samples.clear();
         samples.extend(run.iter().filter_map(|&(rank, slot, p)| {
