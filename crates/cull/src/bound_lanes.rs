@@ -124,20 +124,44 @@ impl EllipsoidLanes {
     /// Per chunk, the bits of the ellipsoids the tile's exact test may keep (pushed to
     /// `out`, which is cleared first).
     pub(crate) fn candidates(&self, tile: &TileLanes, out: &mut Vec<u8>) {
-        out.clear();
-        #[cfg(target_arch = "x86_64")]
-        if std::arch::is_x86_feature_detected!("avx2") {
-            // SAFETY: the CPU supports AVX2, checked just above.
-            return unsafe { ellipsoids_avx2(&self.0, tile, out) };
-        }
-        ellipsoids_in::<F8>(&self.0, tile, out);
+        candidates(self.0.as_slice(), tile, out);
     }
+}
+
+/// Chunks of bounds tested against a tile in lanes of any [`Lanes8`].
+trait Chunks {
+    fn test<L: Lanes8>(&self, tile: &TileLanes, out: &mut Vec<u8>);
+}
+
+impl Chunks for [EllipsoidChunk] {
+    #[inline(always)]
+    fn test<L: Lanes8>(&self, tile: &TileLanes, out: &mut Vec<u8>) {
+        ellipsoids_in::<L>(self, tile, out);
+    }
+}
+
+impl Chunks for [SphereChunk] {
+    #[inline(always)]
+    fn test<L: Lanes8>(&self, tile: &TileLanes, out: &mut Vec<u8>) {
+        spheres_in::<L>(self, tile, out);
+    }
+}
+
+/// `chunks` tested in AVX registers where the CPU has AVX2, else in plain lanes.
+fn candidates<C: Chunks + ?Sized>(chunks: &C, tile: &TileLanes, out: &mut Vec<u8>) {
+    out.clear();
+    #[cfg(target_arch = "x86_64")]
+    if std::arch::is_x86_feature_detected!("avx2") {
+        // SAFETY: the CPU supports AVX2, checked just above.
+        return unsafe { candidates_avx2(chunks, tile, out) };
+    }
+    chunks.test::<F8>(tile, out);
 }
 
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2")]
-fn ellipsoids_avx2(chunks: &[EllipsoidChunk], tile: &TileLanes, out: &mut Vec<u8>) {
-    ellipsoids_in::<crate::lanes_avx::A8>(chunks, tile, out);
+fn candidates_avx2<C: Chunks + ?Sized>(chunks: &C, tile: &TileLanes, out: &mut Vec<u8>) {
+    chunks.test::<crate::lanes_avx::A8>(tile, out);
 }
 
 /// The lowered gap of one axis: the distance from `c` to [lo, hi], less `e`, at least 0.
@@ -209,20 +233,8 @@ impl SphereLanes {
     /// Per chunk, the bits of the spheres the tile's exact test may keep (pushed to `out`,
     /// which is cleared first).
     pub(crate) fn candidates(&self, tile: &TileLanes, out: &mut Vec<u8>) {
-        out.clear();
-        #[cfg(target_arch = "x86_64")]
-        if std::arch::is_x86_feature_detected!("avx2") {
-            // SAFETY: the CPU supports AVX2, checked just above.
-            return unsafe { spheres_avx2(&self.0, tile, out) };
-        }
-        spheres_in::<F8>(&self.0, tile, out);
+        candidates(self.0.as_slice(), tile, out);
     }
-}
-
-#[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx2")]
-fn spheres_avx2(chunks: &[SphereChunk], tile: &TileLanes, out: &mut Vec<u8>) {
-    spheres_in::<crate::lanes_avx::A8>(chunks, tile, out);
 }
 
 #[inline(always)]
@@ -262,50 +274,40 @@ pub(crate) fn for_each_candidate(bits: &[u8], mut f: impl FnMut(usize)) {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::test_rng::Rng;
     use glam::DVec2;
 
-    /// A small deterministic generator (xorshift64*).
-    struct Rng(u64);
-    impl Rng {
-        fn unit(&mut self) -> f64 {
-            self.0 ^= self.0 >> 12;
-            self.0 ^= self.0 << 25;
-            self.0 ^= self.0 >> 27;
-            (self.0.wrapping_mul(0x2545_F491_4F6C_DD1D) >> 11) as f64 / (1u64 << 53) as f64
-        }
-        fn range(&mut self, a: f64, b: f64) -> f64 {
-            a + (b - a) * self.unit()
-        }
-        /// 10^x for x uniform in [lo, hi].
-        fn scale(&mut self, lo: f64, hi: f64) -> f64 {
-            10f64.powf(self.range(lo, hi))
-        }
-        fn vector(&mut self, magnitude: f64) -> DVec3 {
-            DVec3::new(
-                self.range(-1.0, 1.0),
-                self.range(-1.0, 1.0),
-                self.range(-1.0, 1.0),
-            ) * magnitude
-        }
-        fn below(&mut self, n: usize) -> usize {
-            (self.unit() * n as f64) as usize % n
-        }
+    /// 10^x for x uniform in [lo, hi].
+    fn log_uniform(rng: &mut Rng, lo: f64, hi: f64) -> f64 {
+        10f64.powf(rng.range64(lo, hi))
+    }
+
+    fn vector(rng: &mut Rng, magnitude: f64) -> DVec3 {
+        DVec3::new(
+            rng.range64(-1.0, 1.0),
+            rng.range64(-1.0, 1.0),
+            rng.range64(-1.0, 1.0),
+        ) * magnitude
+    }
+
+    fn below(rng: &mut Rng, n: usize) -> usize {
+        (rng.f64() * n as f64) as usize % n
     }
 
     /// A tile: a rectangle in [-3, 3]², a depth range from 1e-4 to 1e6 (or below f32's
     /// normal range) split into 1 to 5 clusters.
     fn tile(rng: &mut Rng) -> TileFrusta {
         let (a, b) = (
-            DVec2::new(rng.range(-3.0, 3.0), rng.range(-3.0, 3.0)),
-            DVec2::new(rng.range(-3.0, 3.0), rng.range(-3.0, 3.0)),
+            DVec2::new(rng.range64(-3.0, 3.0), rng.range64(-3.0, 3.0)),
+            DVec2::new(rng.range64(-3.0, 3.0), rng.range64(-3.0, 3.0)),
         );
-        let z0 = if rng.below(8) == 0 {
-            rng.scale(-42.0, -36.0)
+        let z0 = if below(rng, 8) == 0 {
+            log_uniform(rng, -42.0, -36.0)
         } else {
-            rng.scale(-4.0, 4.0)
+            log_uniform(rng, -4.0, 4.0)
         };
-        let z1 = z0 * (1.0 + rng.scale(-6.0, 2.0));
-        let n = 1 + rng.below(5);
+        let z1 = z0 * (1.0 + log_uniform(rng, -6.0, 2.0));
+        let n = 1 + below(rng, 5);
         let cuts: Vec<f64> = (0..=n)
             .map(|k| z0 + (z1 - z0) * k as f64 / n as f64)
             .collect();
@@ -334,16 +336,16 @@ mod tests {
     /// corner, or inside (d = 0).
     fn near_box(rng: &mut Rng, (lo, hi): (DVec3, DVec3), d: f64) -> DVec3 {
         let inside = DVec3::new(
-            rng.range(lo.x, hi.x),
-            rng.range(lo.y, hi.y),
-            rng.range(lo.z, hi.z),
+            rng.range64(lo.x, hi.x),
+            rng.range64(lo.y, hi.y),
+            rng.range64(lo.z, hi.z),
         );
-        let axes = 1 + rng.below(3);
+        let axes = 1 + below(rng, 3);
         let mut p = inside;
         for _ in 0..axes {
-            let i = rng.below(3);
+            let i = below(rng, 3);
             let out = d / (axes as f64).sqrt();
-            p[i] = if rng.unit() < 0.5 {
+            p[i] = if rng.f64() < 0.5 {
                 lo[i] - out
             } else {
                 hi[i] + out
@@ -354,19 +356,19 @@ mod tests {
 
     /// A distance to put a bound at: mostly within a millionth of tangent, else anywhere.
     fn distance(rng: &mut Rng, radius: f64) -> f64 {
-        match rng.below(4) {
+        match below(rng, 4) {
             0 => 0.0,
-            1 => rng.range(0.0, 4.0 * radius),
-            _ => radius * (1.0 + rng.range(-1e-6, 1e-6)),
+            1 => rng.range64(0.0, 4.0 * radius),
+            _ => radius * (1.0 + rng.range64(-1e-6, 1e-6)),
         }
     }
 
     /// Magnitudes from tiny (below f32's normal range) to beyond f32's range.
     fn magnitude_scale(rng: &mut Rng) -> f64 {
-        match rng.below(8) {
-            0 => rng.scale(-45.0, -30.0),
-            1 => rng.scale(30.0, 45.0),
-            _ => rng.scale(-4.0, 8.0),
+        match below(rng, 8) {
+            0 => log_uniform(rng, -45.0, -30.0),
+            1 => log_uniform(rng, 30.0, 45.0),
+            _ => log_uniform(rng, -4.0, 8.0),
         }
     }
 
@@ -393,11 +395,11 @@ mod tests {
         for _ in 0..3000 {
             let f = tile(&mut rng);
             let scale = magnitude_scale(&mut rng);
-            let ellipsoids: Vec<ViewEllipsoid> = (0..1 + rng.below(20))
+            let ellipsoids: Vec<ViewEllipsoid> = (0..1 + below(&mut rng, 20))
                 .map(|index| {
                     let columns = [0; 3].map(|_| {
-                        let m = scale * rng.scale(-2.0, 0.0);
-                        rng.vector(m)
+                        let m = scale * log_uniform(&mut rng, -2.0, 0.0);
+                        vector(&mut rng, m)
                     });
                     let d = distance(&mut rng, 1.0);
                     ViewEllipsoid {
@@ -459,9 +461,9 @@ mod tests {
             let f = tile(&mut rng);
             let (_, _, whole_box) = f.whole();
             let scale = magnitude_scale(&mut rng);
-            let spheres: Vec<ViewSphere> = (0..1 + rng.below(20))
+            let spheres: Vec<ViewSphere> = (0..1 + below(&mut rng, 20))
                 .map(|index| {
-                    let radius = scale * rng.scale(-3.0, 0.0);
+                    let radius = scale * log_uniform(&mut rng, -3.0, 0.0);
                     let d = distance(&mut rng, radius);
                     ViewSphere {
                         center: near_box(&mut rng, whole_box, d),

@@ -153,22 +153,9 @@ impl TileFrusta {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::test_rng::Rng;
     use glam::{DMat3, Mat3, Quat, Vec2, Vec3};
     use slc_bounds::{TestSpace, TileFrustum};
-
-    /// A small deterministic generator (xorshift64*).
-    struct Rng(u64);
-    impl Rng {
-        fn f32(&mut self) -> f32 {
-            self.0 ^= self.0 >> 12;
-            self.0 ^= self.0 << 25;
-            self.0 ^= self.0 >> 27;
-            ((self.0.wrapping_mul(0x2545_F491_4F6C_DD1D) >> 40) as f32) / (1u64 << 24) as f32
-        }
-        fn range(&mut self, a: f32, b: f32) -> f32 {
-            a + (b - a) * self.f32()
-        }
-    }
 
     fn ellipsoid(space: &TestSpace, center: Vec3) -> ViewEllipsoid {
         let m = space.matrix().as_dmat3();

@@ -90,6 +90,8 @@ pub mod reach_chunks;
 pub mod receiver_chunks;
 mod refine;
 pub mod strategies;
+#[cfg(test)]
+mod test_rng;
 mod tiled;
 pub mod tiles;
 pub mod view;
