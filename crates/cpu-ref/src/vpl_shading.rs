@@ -181,7 +181,7 @@ pub fn shade_lists(
         .par_chunks_mut(w.max(1) as usize)
         .enumerate()
         .for_each(|(y, row)| {
-            order.for_each_in_row(y as u32, w, |x, slot| row[x as usize] = shaded[slot]);
+            order.for_each_in_row(y as u32, |x, slot| row[x as usize] = shaded[slot]);
         });
     Ok(image)
 }

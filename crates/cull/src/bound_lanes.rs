@@ -14,11 +14,12 @@
 //!   |box|∞ + |c|∞ (a sphere), and about ten f32 roundings (2⁻²⁴ relative to `size` each,
 //!   inputs included) separate a gap in f32 from the same gap in f64; each gap is lowered by
 //!   [`MARGIN`] · size, and the sum of squares must exceed the radius² by the relative
-//!   [`SUM_SLACK`] to reject. (Where the lane's numbers leave f32's normal range, its gaps are
-//!   below 2⁻¹²⁶ and square to 0, which rejects nothing.)
+//!   [`SUM_SLACK`] to reject, and at least [`SUM_FLOOR`] (below f32's normal range the
+//!   rounding of squares and radii is absolute, up to 2⁻¹⁵⁰, which no relative slack covers);
 //! - a lane whose `size` is not below [`LIMIT`] (or NaN, or infinite, say from a bound too
-//!   large for f32) is always left to the exact test, so no product overflows; any NaN met on
-//!   the way turns a gap into 0, which keeps the lane.
+//!   large for f32) is always left to the exact test, so no gap overflows (a square may, to
+//!   infinity, and then rejects a gap the exact test rejects too); any NaN met on the way
+//!   turns a gap into 0, which keeps the lane.
 use crate::frusta::TileFrusta;
 use crate::lanes::{max, min, Lanes8, F8};
 use crate::vpl_bounds::{ViewEllipsoid, ViewSphere};
@@ -33,6 +34,9 @@ const LIMIT: f32 = 1e37;
 /// The sum of squared gaps must exceed the radius² by this much (relative) to reject: it
 /// covers the rounding of the sum, of the radius² to f32 and of the product itself.
 const SUM_SLACK: f32 = 1e-5;
+/// ... and exceed this (2⁻¹⁰⁰), so that every square that can decide a rejection is far
+/// inside f32's normal range, where rounding is relative.
+const SUM_FLOOR: f32 = 7.888_609e-31;
 
 /// `x` rounded to an f32 not below it (NaN stays NaN, beyond f32's range infinity).
 fn up(x: f64) -> f32 {
@@ -244,6 +248,7 @@ fn spheres_in<L: Lanes8>(chunks: &[SphereChunk], tile: &TileLanes, out: &mut Vec
     let box_size = L::splat(tile.box_size);
     let limit = L::splat(LIMIT);
     let slack = L::splat(1.0 + SUM_SLACK);
+    let floor = L::splat(SUM_FLOOR);
     for chunk in chunks {
         let size = box_size + L::load(&chunk.offset);
         let e = size * L::splat(MARGIN);
@@ -252,7 +257,7 @@ fn spheres_in<L: Lanes8>(chunks: &[SphereChunk], tile: &TileLanes, out: &mut Vec
             let g = lowered_gap(box_min[i], box_max[i], L::load(&chunk.center[i]), e);
             sum = sum + g * g;
         }
-        let threshold = L::load(&chunk.radius_sq) * slack;
+        let threshold = max(L::load(&chunk.radius_sq) * slack, floor);
         let rejected = L::bits(size.le(limit) & sum.gt(threshold));
         out.push(!rejected & chunk.valid);
     }
@@ -294,17 +299,17 @@ mod tests {
         (rng.f64() * n as f64) as usize % n
     }
 
-    /// A tile: a rectangle in [-3, 3]², a depth range from 1e-4 to 1e6 (or below f32's
-    /// normal range) split into 1 to 5 clusters.
+    /// A tile: a rectangle in [-3, 3]², a depth range from 1e-4 to 1e6 (or around 1e-20,
+    /// where squares leave f32's normal range, or below it) split into 1 to 5 clusters.
     fn tile(rng: &mut Rng) -> TileFrusta {
         let (a, b) = (
             DVec2::new(rng.range64(-3.0, 3.0), rng.range64(-3.0, 3.0)),
             DVec2::new(rng.range64(-3.0, 3.0), rng.range64(-3.0, 3.0)),
         );
-        let z0 = if below(rng, 8) == 0 {
-            log_uniform(rng, -42.0, -36.0)
-        } else {
-            log_uniform(rng, -4.0, 4.0)
+        let z0 = match below(rng, 8) {
+            0 => log_uniform(rng, -42.0, -36.0),
+            1 => log_uniform(rng, -22.0, -18.0),
+            _ => log_uniform(rng, -4.0, 4.0),
         };
         let z1 = z0 * (1.0 + log_uniform(rng, -6.0, 2.0));
         let n = 1 + below(rng, 5);
@@ -368,6 +373,7 @@ mod tests {
         match below(rng, 8) {
             0 => log_uniform(rng, -45.0, -30.0),
             1 => log_uniform(rng, 30.0, 45.0),
+            2 => log_uniform(rng, -22.0, -18.0),
             _ => log_uniform(rng, -4.0, 8.0),
         }
     }
@@ -493,9 +499,10 @@ mod tests {
                 let (lo, hi) = whole_box;
                 let size = lo.abs().max(hi.abs()).max_element() + s.center.abs().max_element();
                 let gap = (lo - s.center).max(s.center - hi).max(DVec3::ZERO);
+                // (Squared gaps near the floor are left to the exact test.)
                 if gap.length() > s.radius_sq.sqrt() + 1e-4 * size
+                    && gap.length_squared() > 1e-28
                     && size < 1e30
-                    && size > 1e-30
                     && s.radius_sq < 1e37
                 {
                     far += 1;
@@ -507,6 +514,29 @@ mod tests {
             kept > 5_000 && rejected > 2_000 && far > 2_000,
             "{kept} {rejected} {far}"
         );
+    }
+
+    /// A sphere and a tile far below f32's normal range: the squared gaps and the radius²
+    /// round to multiples of 2⁻¹⁴⁹, where a relative slack covers nothing (the floor does).
+    #[test]
+    fn spheres_below_the_normal_range_are_kept() {
+        let mut f = TileFrusta::default();
+        f.set(
+            DVec2::splat(-1.0),
+            DVec2::ONE,
+            &[[2f64.powi(-70), 2f64.powi(-69)]],
+        );
+        let (_, _, (_, box_max)) = f.whole();
+        let d = 1.15 * 2f64.powi(-75);
+        let sphere = ViewSphere {
+            center: DVec3::new(box_max.x + d, 0.0, box_max.z + d),
+            radius_sq: 1.4 * 2f64.powi(-149),
+            index: 0,
+        };
+        assert_ne!(f.sphere_hits(&sphere), 0, "the exact test keeps it");
+        let mut bits = Vec::new();
+        SphereLanes::new(&[sphere]).candidates(&TileLanes::new(&f), &mut bits);
+        assert_eq!(bits, [1]);
     }
 
     /// Lanes past the last bound are never candidates, and the indices come out ascending.

@@ -147,6 +147,7 @@ pub struct TileOrder {
     tiles_per_row: Vec<u32>,
     k: u32,
     grid_width: u32,
+    width: u32,
 }
 
 impl TileOrder {
@@ -178,6 +179,7 @@ impl TileOrder {
             tiles_per_row,
             k,
             grid_width: k.min(width),
+            width,
         })
     }
 
@@ -204,19 +206,19 @@ impl TileOrder {
         self.starts[t as usize] + ((b % TILE_SIZE) * tile.count[0] + a % TILE_SIZE) as usize
     }
 
-    /// Calls `f(x, slot(x, y))` for every pixel of row `y` of an image `width` wide, x
-    /// running over each residue x mod K in turn: the slots of one residue are consecutive
-    /// within a tile, so [`Self::slot`] (four divisions) is formed only at tile edges.
-    pub fn for_each_in_row(&self, y: u32, width: u32, mut f: impl FnMut(u32, usize)) {
-        for r in 0..self.k.min(width) {
+    /// Calls `f(x, slot(x, y))` for every pixel of row `y`, x running over each residue
+    /// x mod K in turn: the slots of one residue are consecutive within a tile, so
+    /// [`Self::slot`] (four divisions) is formed only at tile edges.
+    pub fn for_each_in_row(&self, y: u32, mut f: impl FnMut(u32, usize)) {
+        for r in 0..self.grid_width {
             let mut slot = self.slot(r, y);
             let (mut x, mut column) = (r, 0);
             loop {
                 f(x, slot);
-                x += self.k;
-                if x >= width {
-                    break;
-                }
+                x = match x.checked_add(self.k) {
+                    Some(next) if next < self.width => next,
+                    _ => break,
+                };
                 column += 1;
                 slot = if column % TILE_SIZE == 0 {
                     self.slot(x, y)
@@ -311,7 +313,7 @@ mod tests {
                 assert_eq!(order.run_lengths().sum::<usize>(), next);
                 for y in 0..h {
                     let mut seen = vec![false; w as usize];
-                    order.for_each_in_row(y, w, |x, slot| {
+                    order.for_each_in_row(y, |x, slot| {
                         assert_eq!(slot, order.slot(x, y), "{w}x{h} K {k}: ({x}, {y})");
                         assert!(!std::mem::replace(&mut seen[x as usize], true));
                     });
