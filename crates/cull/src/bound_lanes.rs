@@ -34,9 +34,9 @@ const LIMIT: f32 = 1e37;
 /// The sum of squared gaps must exceed the radius² by this much (relative) to reject: it
 /// covers the rounding of the sum, of the radius² to f32 and of the product itself.
 const SUM_SLACK: f32 = 1e-5;
-/// ... and exceed this (2⁻¹⁰⁰), so that every square that can decide a rejection is far
+/// ... and exceed this (2⁻¹⁰⁰: biased exponent 27), so that every square that can decide a rejection is far
 /// inside f32's normal range, where rounding is relative.
-const SUM_FLOOR: f32 = 7.888_609e-31;
+const SUM_FLOOR: f32 = f32::from_bits(27 << 23);
 
 /// `x` rounded to an f32 not below it (NaN stays NaN, beyond f32's range infinity).
 fn up(x: f64) -> f32 {

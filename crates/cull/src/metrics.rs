@@ -96,10 +96,10 @@ pub fn measure_all(
             .par_chunks_mut(width.max(1) * m)
             .enumerate()
             .for_each(|(y, row)| {
-                for (x, px) in row.chunks_mut(m).enumerate() {
-                    let slot = order.slot(x as u32, y as u32);
-                    px.copy_from_slice(&in_tiles[slot * m..(slot + 1) * m]);
-                }
+                order.for_each_in_row(y as u32, |x, slot| {
+                    let x = x as usize;
+                    row[x * m..(x + 1) * m].copy_from_slice(&in_tiles[slot * m..(slot + 1) * m]);
+                });
             });
     }
     Ok((0..m)

@@ -146,7 +146,6 @@ pub struct TileOrder {
     first_tile: Vec<u32>,
     tiles_per_row: Vec<u32>,
     k: u32,
-    grid_width: u32,
     width: u32,
 }
 
@@ -178,7 +177,6 @@ impl TileOrder {
             first_tile,
             tiles_per_row,
             k,
-            grid_width: k.min(width),
             width,
         })
     }
@@ -197,7 +195,7 @@ impl TileOrder {
     #[inline]
     pub fn slot(&self, x: u32, y: u32) -> usize {
         let k = self.k;
-        let sub = (y % k) * self.grid_width + x % k;
+        let sub = (y % k) * k.min(self.width) + x % k;
         let (a, b) = (x / k, y / k);
         let t = self.first_tile[sub as usize]
             + (b / TILE_SIZE) * self.tiles_per_row[sub as usize]
@@ -210,7 +208,7 @@ impl TileOrder {
     /// x mod K in turn: the slots of one residue are consecutive within a tile, so
     /// [`Self::slot`] (four divisions) is formed only at tile edges.
     pub fn for_each_in_row(&self, y: u32, mut f: impl FnMut(u32, usize)) {
-        for r in 0..self.grid_width {
+        for r in 0..self.k.min(self.width) {
             let mut slot = self.slot(r, y);
             let (mut x, mut column) = (r, 0);
             loop {
