@@ -140,15 +140,12 @@ pub fn shade_lists(
         )));
     }
     lists.check(gbuffer.samples.len(), vpls.len())?;
-    let roulette = vpls
-        .iter()
-        .map(|v| StochasticParams::new(input.delta, v.xi))
-        .collect::<Result<Vec<_>, _>>()?;
-    let reach = vpls
-        .par_iter()
-        .zip(&roulette)
-        .map(|(v, r)| VplReach::new(v, r))
-        .collect::<Result<Vec<_>, _>>()?;
+    // Only the listed VPLs' exits are read.
+    let mut listed = vec![false; vpls.len()];
+    for &v in &lists.indices {
+        listed[v as usize] = true;
+    }
+    let (roulette, reach) = VplReach::of_frame(vpls, input.delta, Some(&listed))?;
     let shading = ListShading {
         tracer,
         gbuffer,

@@ -82,6 +82,7 @@ pub mod lanes;
 pub mod lanes_avx;
 mod lists;
 pub mod metrics;
+mod par;
 mod partition;
 mod positions;
 pub mod prefetch;

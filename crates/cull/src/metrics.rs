@@ -40,17 +40,7 @@ pub fn measure_all(
     for l in lists {
         l.check(pixels, input.vpls.len())?;
     }
-    let roulette = input
-        .vpls
-        .iter()
-        .map(|v| StochasticParams::new(input.delta, v.xi))
-        .collect::<Result<Vec<_>, _>>()?;
-    let reach = input
-        .vpls
-        .par_iter()
-        .zip(&roulette)
-        .map(|(v, r)| VplReach::new(v, r))
-        .collect::<Result<Vec<_>, _>>()?;
+    let (roulette, reach) = VplReach::of_frame(input.vpls, input.delta, None)?;
     let m = lists.len();
     let (w, h, k) = (
         input.gbuffer.width,

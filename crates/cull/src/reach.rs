@@ -177,6 +177,47 @@ impl VplReach {
         })
     }
 
+    /// Exits that reject every pair (the limit of the bound is −1).
+    const NONE: Self = Self {
+        position: Vec3::ZERO,
+        reach: Reach {
+            normal: [0.0; 3],
+            stretch: [0.0; 9],
+            center: [0.0; 3],
+            limit: -1.0,
+        },
+        acceptance: Acceptance::NEVER,
+    };
+
+    /// Every VPL's roulette (δ and its ξ) and, in parallel, its early exits: those of the
+    /// VPLs `listed` marks (all with `None`), and for the others exits that reject every pair
+    /// (for a caller that tests only listed pairs). Errors as [`Self::new`] and
+    /// `StochasticParams::new`, or when `listed` is not one flag per VPL.
+    pub fn of_frame(
+        vpls: &[Vpl],
+        delta: f32,
+        listed: Option<&[bool]>,
+    ) -> Result<(Vec<StochasticParams>, Vec<Self>), CullError> {
+        if listed.is_some_and(|l| l.len() != vpls.len()) {
+            return Err(CullError::Input(format!(
+                "{} listed flags for {} VPLs",
+                listed.map_or(0, <[bool]>::len),
+                vpls.len()
+            )));
+        }
+        let roulette = vpls
+            .iter()
+            .map(|v| StochasticParams::new(delta, v.xi))
+            .collect::<Result<Vec<_>, _>>()?;
+        let reach = crate::par::try_map(vpls, Self::NONE, |i, v| {
+            if listed.is_some_and(|l| !l[i]) {
+                return Ok(Self::NONE);
+            }
+            Self::new(v, &roulette[i])
+        })?;
+        Ok((roulette, reach))
+    }
+
     /// Whether the roulette of eq. (3) may accept this VPL at the offset `d = x − q` (formed
     /// in f32 as the shader forms it). False only where p(ωo, l) <= ξ for sure: outside the
     /// VPL's own bound (beyond a margin for the f32 rounding of the test), behind the VPL

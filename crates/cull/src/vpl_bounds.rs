@@ -203,11 +203,9 @@ pub(crate) fn subregion_bounds(
     view: &CullView,
     glossy: GlossyBound,
 ) -> Result<Vec<SubregionBounds>, CullError> {
-    let bounds = vpls
-        .par_iter()
-        .enumerate()
-        .map(|(i, vpl)| VplBound::new(vpl, i as u32, delta, view, glossy))
-        .collect::<Result<Vec<_>, _>>()?;
+    let bounds = crate::par::try_map(vpls, VplBound::Empty, |i, vpl| {
+        VplBound::new(vpl, i as u32, delta, view, glossy)
+    })?;
     Ok((0..partition.subregions() as u32)
         .into_par_iter()
         .map(|s| {
