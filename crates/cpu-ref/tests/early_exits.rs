@@ -466,3 +466,30 @@ fn formed_lanes_equal_the_scalar_shader() {
         "{left} left to the scalar shader"
     );
 }
+
+/// `VplReach::of_frame` gives the listed VPLs their own exits, the others exits that pass no
+/// pair, and a listing of the wrong length is an error.
+#[test]
+fn frame_exits_cover_the_listed_vpls() {
+    let mut rng = Rng(0x0F_F2A3);
+    let vpls: Vec<Vpl> = (0..300).map(|_| random_vpl(&mut rng)).collect();
+    let delta = 1e-3;
+    let listed: Vec<bool> = (0..vpls.len()).map(|i| i % 3 != 0).collect();
+    let (roulette, reach) = VplReach::of_frame(&vpls, delta, Some(&listed)).unwrap();
+    let (_, all) = VplReach::of_frame(&vpls, delta, None).unwrap();
+    for (i, vpl) in vpls.iter().enumerate() {
+        let params = StochasticParams::new(delta, vpl.xi).unwrap();
+        assert_eq!(roulette[i], params);
+        let own = VplReach::new(vpl, &params).unwrap();
+        assert_eq!(all[i], own);
+        if listed[i] {
+            assert_eq!(reach[i], own);
+        } else {
+            for _ in 0..50 {
+                let d = rng.unit() * rng.log(-6.0, 6.0);
+                assert!(!reach[i].may_contribute(d, rng.unit()), "unlisted VPL {i}");
+            }
+        }
+    }
+    assert!(VplReach::of_frame(&vpls, delta, Some(&listed[1..])).is_err());
+}
