@@ -68,16 +68,8 @@ pub(crate) fn cull(
     let positions = positions(input.gbuffer);
     let split = match clustering {
         Clustering::HalfZ => DepthSplit::HalfZ,
-        Clustering::ExponentialSlices => {
-            let depths = positions.par_chunks(1 << 12).flat_map_iter(|chunk| {
-                chunk
-                    .iter()
-                    .flatten()
-                    .map(|position| view.to_view(*position).z)
-                    .filter(|&z| z > 0.0 && z.is_finite())
-            });
-            depth_range(depths).map_or(DepthSplit::HalfZ, |(lo, hi)| DepthSplit::slices(lo, hi))
-        }
+        Clustering::ExponentialSlices => depth_range(&positions, &view)
+            .map_or(DepthSplit::HalfZ, |(lo, hi)| DepthSplit::slices(lo, hi)),
     };
     let frame = Frame {
         width,
