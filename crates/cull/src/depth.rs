@@ -198,7 +198,7 @@ mod tests {
         assert_eq!(depth_range(&positions, &view), Some((lo, hi)));
         let behind: Vec<Option<Vec3>> = positions
             .iter()
-            .map(|p| p.filter(|p| !(view.to_view(*p).z > 0.0)))
+            .map(|p| p.filter(|p| view.to_view(*p).z <= 0.0))
             .collect();
         assert_eq!(depth_range(&behind, &view), None);
         assert_eq!(depth_range(&[], &view), None);
