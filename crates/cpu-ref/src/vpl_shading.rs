@@ -110,9 +110,9 @@ pub fn shade_vpls(
 
 /// Indirect radiance from culled light lists (paper eq. 3 with interleaved sampling): each
 /// pixel sums the VPLs of its list with weight K²/p when p > ξ. Unbiased as long as the lists
-/// miss no VPL with p > ξ at the pixel. Fails when δ, a ξ, K or a VPL is out of the domain
-/// of slc-bounds and slc-cull, when the lists are malformed ([`LightLists::check`]) or do not
-/// fit the G-buffer, or when the image has 2³² pixels or more. Pairs that [`VplReach`]
+/// miss no VPL with p > ξ at the pixel. Fails when δ, a ξ, K or a listed VPL is out of the
+/// domain of slc-bounds and slc-cull, when the lists are malformed ([`LightLists::check`])
+/// or do not fit the G-buffer, or when the image has 2³² pixels or more. Pairs that [`VplReach`]
 /// rejects (outside the VPL's own bound, facing away at either end, or not accepted by the
 /// roulette) are skipped before the receiver's BRDF: their contribution is exactly 0, so the
 /// image is the same bit for bit. The pixels are shaded tile by tile in the deinterleaved
