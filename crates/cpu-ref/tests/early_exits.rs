@@ -491,5 +491,31 @@ fn frame_exits_cover_the_listed_vpls() {
             }
         }
     }
+    // Through the eight-lane receiver chunks the shading uses (the box test included):
+    // receivers around each unlisted VPL, one at its very position, pass with its own exits
+    // and never with the frame's.
+    let unlisted: Vec<(u32, u32)> = (0..vpls.len() as u32)
+        .filter(|&i| !listed[i as usize])
+        .map(|i| (i, 1))
+        .collect();
+    let (mut receivers, mut passing) = (ReceiverChunks::default(), Vec::new());
+    let (mut own, mut frame) = (0, 0);
+    for &(i, _) in &unlisted {
+        let q = vpls[i as usize].position;
+        receivers.refill((0..64).map(|j| {
+            let d = if j == 0 {
+                Vec3::ZERO
+            } else {
+                rng.unit() * rng.log(-6.0, 2.0)
+            };
+            (q + d, rng.unit())
+        }));
+        receivers.passing_sets(&all, &[(i, 1)], true, &mut passing);
+        own += passing.len();
+        receivers.passing_sets(&reach, &[(i, 1)], true, &mut passing);
+        frame += passing.len();
+    }
+    assert!(own > 0, "the receivers reach no VPL with its own exits");
+    assert_eq!(frame, 0);
     assert!(VplReach::of_frame(&vpls, delta, Some(&listed[1..])).is_err());
 }

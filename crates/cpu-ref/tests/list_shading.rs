@@ -192,3 +192,40 @@ fn shade_lists_equals_the_plain_sum_for_lists_of_any_order() {
         assert!(lit > pixels / 4, "{lit} of {pixels} lit");
     }
 }
+
+/// `shade_lists` builds the early exits of the listed VPLs only: a VPL outside slc-bounds'
+/// domain (a glossy VPL with α = 0) that no list holds is never read,
+/// and the image is that of the valid VPLs; the same VPL listed is an error.
+#[test]
+fn shade_lists_checks_the_listed_vpls() {
+    let p = prepared(8, 8, 8);
+    let input = input(&p, 1e-3, Interleaving { k: 2, seed: 0 });
+    let spoilt = |v: &slc_core::Vpl| {
+        let mut v = *v;
+        v.brdf.alpha = 0.0;
+        v
+    };
+    let bad = (0..p.vpls.len())
+        .find(|&i| {
+            let params = StochasticParams::new(input.delta, p.vpls[i].xi).unwrap();
+            slc_cull::VplReach::new(&spoilt(&p.vpls[i]), &params).is_err()
+        })
+        .expect("a VPL whose exits check its roughness");
+    let lists = |listed: u32| LightLists {
+        offsets: vec![0, 1],
+        indices: vec![listed],
+        pixel_list: vec![0; p.gbuffer.samples.len()],
+    };
+    let other = u32::from(bad == 0);
+    let shaded = shade_lists(&p.tracer, &input, &lists(other), false, &|_| {}).unwrap();
+    let mut vpls = p.vpls.clone();
+    vpls[bad] = spoilt(&vpls[bad]);
+    let spoilt_input = CullInput {
+        vpls: &vpls,
+        ..input
+    };
+    let unlisted = shade_lists(&p.tracer, &spoilt_input, &lists(other), false, &|_| {}).unwrap();
+    assert_eq!(unlisted.pixels, shaded.pixels);
+    let listed = shade_lists(&p.tracer, &spoilt_input, &lists(bad as u32), false, &|_| {});
+    assert!(listed.is_err());
+}

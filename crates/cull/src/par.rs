@@ -5,8 +5,10 @@
 use rayon::prelude::*;
 use std::sync::{Mutex, PoisonError};
 
-/// `f(i, item)` for every item, in parallel and in order, or an error one of them returned.
-/// `placeholder` fills the slot of an item that failed until the error is returned.
+/// `f(i, item)` for every item, in parallel, collected in the items' order; or, if any call
+/// fails, one of the errors (which one when several fail depends on the threads, as with
+/// rayon's collect). Unlike rayon's collect it does not stop early: the other items are
+/// still mapped, and `placeholder` fills the slots of those that failed.
 pub(crate) fn try_map<T, U, E>(
     items: &[T],
     placeholder: U,

@@ -198,10 +198,10 @@ impl VplReach {
         delta: f32,
         listed: Option<&[bool]>,
     ) -> Result<(Vec<StochasticParams>, Vec<Self>), CullError> {
-        if listed.is_some_and(|l| l.len() != vpls.len()) {
+        if let Some(l) = listed.filter(|l| l.len() != vpls.len()) {
             return Err(CullError::Input(format!(
                 "{} listed flags for {} VPLs",
-                listed.map_or(0, <[bool]>::len),
+                l.len(),
                 vpls.len()
             )));
         }
