@@ -9,7 +9,7 @@ use crate::tracer::Tracer;
 use crate::vpls::generate_vpls;
 use slc_core::frame::{RenderError, RenderSettings, Timings};
 use slc_core::render::pass_seed;
-use slc_core::{Camera, GBuffer, Image, PreparedFrame, Scene, Vpl};
+use slc_core::{Camera, CullInput, GBuffer, Image, Interleaving, PreparedFrame, Scene, Vpl};
 use std::sync::Arc;
 
 /// A CPU frame up to its VPLs and direct light.
@@ -24,6 +24,20 @@ pub struct CpuPrepared {
     pub vpls: Vec<Vpl>,
     pub direct: Image,
     pub timings: Timings,
+}
+
+impl CpuPrepared {
+    /// What culling and shading read of this frame: its G-buffer, camera and VPLs with the
+    /// roulette's δ and the interleaving.
+    pub fn cull_input(&self, delta: f32, interleaving: Interleaving) -> CullInput<'_> {
+        CullInput {
+            gbuffer: &self.gbuffer,
+            camera: &self.camera,
+            vpls: &self.vpls,
+            delta,
+            interleaving,
+        }
+    }
 }
 
 impl PreparedFrame for CpuPrepared {

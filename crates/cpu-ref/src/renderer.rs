@@ -12,8 +12,8 @@ use rayon::prelude::*;
 use slc_core::frame::{LightSampling, RenderError, RenderSettings, RenderedFrame, Shaded};
 use slc_core::shader::SampledLights;
 use slc_core::{
-    BackendInfo, Capabilities, CullInput, CullMetrics, Image, Interleaving, LightLists, Progress,
-    Renderer, Scene, Strategy,
+    BackendInfo, Capabilities, CullMetrics, Image, Interleaving, LightLists, Progress, Renderer,
+    Scene, Strategy,
 };
 use std::borrow::Cow;
 use std::sync::Arc;
@@ -21,16 +21,6 @@ use std::sync::Arc;
 /// The CPU reference renderer on rayon's threads.
 #[derive(Clone, Copy, Debug, Default)]
 pub struct CpuRenderer;
-
-fn cull_input<'a>(p: &'a CpuPrepared, delta: f32, interleaving: Interleaving) -> CullInput<'a> {
-    CullInput {
-        gbuffer: &p.gbuffer,
-        camera: &p.camera,
-        vpls: &p.vpls,
-        delta,
-        interleaving,
-    }
-}
 
 impl Renderer for CpuRenderer {
     type Scene = Arc<Tracer>;
@@ -82,7 +72,7 @@ impl Renderer for CpuRenderer {
         delta: f32,
         interleaving: Interleaving,
     ) -> Result<LightLists, RenderError> {
-        Ok(slc_cull::culler(strategy).cull(&cull_input(p, delta, interleaving))?)
+        Ok(slc_cull::culler(strategy).cull(&p.cull_input(delta, interleaving))?)
     }
 
     fn shade_lists(
@@ -95,7 +85,7 @@ impl Renderer for CpuRenderer {
         visibility: bool,
         progress: Progress,
     ) -> Result<Image, RenderError> {
-        let input = cull_input(p, delta, interleaving);
+        let input = p.cull_input(delta, interleaving);
         Ok(shade_lists(&p.tracer, &input, lists, visibility, progress)?)
     }
 
@@ -123,7 +113,7 @@ impl Renderer for CpuRenderer {
         interleaving: Interleaving,
     ) -> Result<CullMetrics, RenderError> {
         Ok(slc_cull::metrics::measure(
-            &cull_input(p, delta, interleaving),
+            &p.cull_input(delta, interleaving),
             lists,
         )?)
     }

@@ -27,17 +27,6 @@ fn prepared(width: u32, height: u32, rsm: u32) -> slc_cpu_ref::CpuPrepared {
     prepare(&scene, &settings, Tracer::new(&scene), None)
 }
 
-/// The culling and shading input of `p`'s frame.
-fn input(p: &slc_cpu_ref::CpuPrepared, delta: f32, interleaving: Interleaving) -> CullInput<'_> {
-    CullInput {
-        gbuffer: &p.gbuffer,
-        camera: &p.camera,
-        vpls: &p.vpls,
-        delta,
-        interleaving,
-    }
-}
-
 fn plain(input: &CullInput, lists: &slc_core::LightLists) -> Image {
     let mut image = Image::new(input.gbuffer.width, input.gbuffer.height);
     let scale = input.interleaving.scale();
@@ -109,7 +98,7 @@ fn shade_lists_equals_the_plain_sum_bit_for_bit() {
         }
         for k in [1, 3, 4] {
             for strategy in [Strategy::None, Strategy::Ellipsoid, Strategy::Clustered] {
-                let input = input(&p, 1e-3, Interleaving { k, seed: 3 });
+                let input = p.cull_input(1e-3, Interleaving { k, seed: 3 });
                 let lists = slc_cull::culler(strategy).cull(&input).unwrap();
                 let (got, want) = shaded_and_plain(&p, &input, &lists);
                 assert_eq!(differing(&got, &want), 0, "{name} K {k} {strategy:?}");
@@ -122,7 +111,7 @@ fn shade_lists_equals_the_plain_sum_bit_for_bit() {
 #[test]
 fn shade_lists_refuses_lists_of_another_size() {
     let p = prepared(8, 8, 8);
-    let input = input(&p, 1e-3, Interleaving { k: 2, seed: 0 });
+    let input = p.cull_input(1e-3, Interleaving { k: 2, seed: 0 });
     let lists = slc_cull::culler(Strategy::Ellipsoid).cull(&input).unwrap();
     let malformed: [fn(&mut LightLists); 4] = [
         |l| l.pixel_list.truncate(l.pixel_list.len() - 1),
@@ -185,7 +174,7 @@ fn shade_lists_equals_the_plain_sum_for_lists_of_any_order() {
         })
         .collect();
     for k in [1, 2, 4] {
-        let input = input(&p, 1e-4, Interleaving { k, seed: 5 });
+        let input = p.cull_input(1e-4, Interleaving { k, seed: 5 });
         let (got, want) = shaded_and_plain(&p, &input, &lists);
         assert_eq!(differing(&got, &want), 0, "K {k}");
         let lit = want.pixels.iter().filter(|o| **o != Vec3::ZERO).count();
@@ -199,7 +188,7 @@ fn shade_lists_equals_the_plain_sum_for_lists_of_any_order() {
 #[test]
 fn shade_lists_checks_the_listed_vpls() {
     let p = prepared(8, 8, 8);
-    let input = input(&p, 1e-3, Interleaving { k: 2, seed: 0 });
+    let input = p.cull_input(1e-3, Interleaving { k: 2, seed: 0 });
     let spoilt = |v: &slc_core::Vpl| {
         let mut v = *v;
         v.brdf.alpha = 0.0;

@@ -280,6 +280,7 @@ pub(crate) fn for_each_candidate(bits: &[u8], mut f: impl FnMut(usize)) {
 mod tests {
     use super::*;
     use crate::test_rng::Rng;
+    use core::fmt::Debug;
     use glam::DVec2;
 
     /// 10^x for x uniform in [lo, hi].
@@ -391,13 +392,52 @@ mod tests {
         a
     }
 
+    /// What the property tests of the pre-test count: bounds the exact test keeps (each must
+    /// be a candidate), bounds the pre-test rejects, and bounds clearly outside (each must be
+    /// rejected); enough of each, or the random cases missed the regime.
+    #[derive(Default)]
+    struct Tally {
+        kept: u32,
+        rejected: u32,
+        far: u32,
+    }
+
+    impl Tally {
+        /// Bound `k` of the candidate bits `bits`, kept by the exact test where `hit`.
+        fn record(&mut self, bits: &[u8], k: usize, hit: bool, outside: bool, what: &dyn Debug) {
+            let candidate = bits[k / 8] & (1 << (k % 8)) != 0;
+            if hit {
+                assert!(candidate, "kept by the exact test, rejected: {what:?}");
+                self.kept += 1;
+            } else if !candidate {
+                self.rejected += 1;
+            }
+            if outside {
+                self.far += 1;
+                assert!(!candidate, "clearly outside, kept: {what:?}");
+            }
+        }
+
+        fn check(&self) {
+            let Self {
+                kept,
+                rejected,
+                far,
+            } = self;
+            assert!(
+                *kept > 5_000 && *rejected > 2_000 && *far > 2_000,
+                "{kept} {rejected} {far}"
+            );
+        }
+    }
+
     /// No ellipsoid that the exact test keeps (for any cluster) is rejected, over tiles and
     /// test spaces whose magnitudes run from 1e-45 to 1e45, most of them within a millionth
     /// of tangent; and the pre-test does reject most of the bounds clearly outside.
     #[test]
     fn ellipsoids_the_exact_test_keeps_are_candidates() {
         let mut rng = Rng(0x5eed_1234_abcd_9876);
-        let (mut kept, mut rejected, mut far) = (0, 0, 0);
+        let mut tally = Tally::default();
         for _ in 0..3000 {
             let f = tile(&mut rng);
             let scale = magnitude_scale(&mut rng);
@@ -427,13 +467,6 @@ mod tests {
                 EllipsoidLanes::candidates,
             );
             for (k, e) in ellipsoids.iter().enumerate() {
-                let candidate = bits[k / 8] & (1 << (k % 8)) != 0;
-                if f.ellipsoid_hits(e) != 0 {
-                    assert!(candidate, "kept by the exact test, rejected: {e:?} {f:?}");
-                    kept += 1;
-                } else if !candidate {
-                    rejected += 1;
-                }
                 // Clearly outside: beyond the radius by more than the margin can grow it.
                 let ([lo, hi], [_, z1], _) = f.whole();
                 let reach =
@@ -446,23 +479,18 @@ mod tests {
                 let size = m * reach + e.center.abs().max_element();
                 let (lo, hi) = image_box(&f, e.columns);
                 let gap = (lo - e.center).max(e.center - hi).max(DVec3::ZERO);
-                if gap.length() > 1.0 + 1e-4 * size && size < 1e30 && size > 1e-30 {
-                    far += 1;
-                    assert!(!candidate, "clearly outside, kept: {e:?} {f:?}");
-                }
+                let outside = gap.length() > 1.0 + 1e-4 * size && size < 1e30 && size > 1e-30;
+                tally.record(&bits, k, f.ellipsoid_hits(e) != 0, outside, &(e, &f));
             }
         }
-        assert!(
-            kept > 5_000 && rejected > 2_000 && far > 2_000,
-            "{kept} {rejected} {far}"
-        );
+        tally.check();
     }
 
     /// The same for spheres against the tile's view-space box.
     #[test]
     fn spheres_the_exact_test_keeps_are_candidates() {
         let mut rng = Rng(0x0dd_ba11_cafe_f00d);
-        let (mut kept, mut rejected, mut far) = (0, 0, 0);
+        let mut tally = Tally::default();
         for _ in 0..3000 {
             let f = tile(&mut rng);
             let (_, _, whole_box) = f.whole();
@@ -489,31 +517,18 @@ mod tests {
                 SphereLanes::candidates,
             );
             for (k, s) in spheres.iter().enumerate() {
-                let candidate = bits[k / 8] & (1 << (k % 8)) != 0;
-                if f.sphere_hits(s) != 0 {
-                    assert!(candidate, "kept by the exact test, rejected: {s:?} {f:?}");
-                    kept += 1;
-                } else if !candidate {
-                    rejected += 1;
-                }
                 let (lo, hi) = whole_box;
                 let size = lo.abs().max(hi.abs()).max_element() + s.center.abs().max_element();
                 let gap = (lo - s.center).max(s.center - hi).max(DVec3::ZERO);
                 // (Squared gaps near the floor are left to the exact test.)
-                if gap.length() > s.radius_sq.sqrt() + 1e-4 * size
+                let outside = gap.length() > s.radius_sq.sqrt() + 1e-4 * size
                     && gap.length_squared() > 1e-28
                     && size < 1e30
-                    && s.radius_sq < 1e37
-                {
-                    far += 1;
-                    assert!(!candidate, "clearly outside, kept: {s:?} {f:?}");
-                }
+                    && s.radius_sq < 1e37;
+                tally.record(&bits, k, f.sphere_hits(s) != 0, outside, &(s, &f));
             }
         }
-        assert!(
-            kept > 5_000 && rejected > 2_000 && far > 2_000,
-            "{kept} {rejected} {far}"
-        );
+        tally.check();
     }
 
     /// A sphere and a tile far below f32's normal range: the squared gaps and the radius²
