@@ -7,8 +7,8 @@
 // (pinhole), or the directional light's irradiance times the texel's area (orthographic,
 // passed in precomputed). A texel holds a photon where the flux is positive and the ray hits
 // the front of a surface. Whatever the ray hits first, front or back, is also written to the
-// shadow map (the RSM depth kept for direct light, direct.wgsl). scene_types.wgsl and
-// scene.wgsl are prepended; structs mirror src/raster_types.rs.
+// shadow map (the RSM depth kept for direct light, direct.wgsl). scene_types.wgsl,
+// scene.wgsl, rsm_texel.wgsl and solid_angle.wgsl are prepended; structs mirror src/raster_types.rs.
 
 struct RsmParams {
     // light position or orthographic origin (xyz), face extent e (w)
@@ -39,31 +39,6 @@ struct ShadowTexel {
 
 const RSM_SPOT: u32 = 1u;
 const RSM_DIRECTIONAL: u32 = 2u;
-
-// dw / dA on the face plane at unit distance: (1 + x^2 + y^2)^(-3/2).
-fn solid_angle_density(x: f32, y: f32) -> f32 {
-    let r2 = 1.0 + x * x + y * y;
-    return 1.0 / (r2 * sqrt(r2));
-}
-
-// The solid angle of the texel square centred at (x, y) with side h on the plane at unit
-// distance, by 3 x 3 Gauss-Legendre quadrature of the density. rsm.rs evaluates the closed
-// form F(x1,y1) - F(x0,y1) - F(x1,y0) + F(x0,y0), F = atan2(xy, sqrt(x^2 + y^2 + 1)), in f64;
-// in f32 its four O(1) terms would cancel to a few digits for small texels, while the
-// quadrature of the smooth density is exact to ~h^6 relative (below f32 rounding for any
-// n >= 4 on a cube face).
-fn texel_solid_angle(x: f32, y: f32, h: f32) -> f32 {
-    let node = 0.5 * h * 0.7745966692414834;
-    let offsets = array<f32, 3>(-node, 0.0, node);
-    let weights = array<f32, 3>(5.0 / 18.0, 8.0 / 18.0, 5.0 / 18.0);
-    var sum = 0.0;
-    for (var a = 0; a < 3; a++) {
-        for (var b = 0; b < 3; b++) {
-            sum += weights[a] * weights[b] * solid_angle_density(x + offsets[a], y + offsets[b]);
-        }
-    }
-    return sum * h * h;
-}
 
 // Light::spot_falloff: clamp((cos - cos_outer) / max(cos_inner - cos_outer, 1e-3), 0, 1)^2.
 fn spot_falloff(cos_axis: f32) -> f32 {

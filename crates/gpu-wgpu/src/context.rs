@@ -285,7 +285,22 @@ impl GpuContext {
         buffers: &[&wgpu::Buffer],
         grid: Grid,
     ) {
-        let bind = self.bind_group(label, pipeline, buffers);
+        let numbered: Vec<_> = (0u32..).zip(buffers.iter().copied()).collect();
+        self.encode_dispatch_at(encoder, label, pipeline, &numbered, grid);
+    }
+
+    /// [`GpuContext::encode_dispatch`] with each buffer at the binding number given: for an
+    /// entry point that uses some of a module's bindings (the layout naga derives holds only
+    /// those).
+    pub fn encode_dispatch_at(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+        label: &'static str,
+        pipeline: &wgpu::ComputePipeline,
+        buffers: &[(u32, &wgpu::Buffer)],
+        grid: Grid,
+    ) {
+        let bind = self.bind_group_at(label, pipeline, buffers);
         let timed = self.compute_timestamps(label);
         let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
             label: Some(label),
@@ -335,11 +350,21 @@ impl GpuContext {
         pipeline: &wgpu::ComputePipeline,
         buffers: &[&wgpu::Buffer],
     ) -> wgpu::BindGroup {
+        let numbered: Vec<_> = (0u32..).zip(buffers.iter().copied()).collect();
+        self.bind_group_at(label, pipeline, &numbered)
+    }
+
+    /// A bind group for group 0 of `pipeline` with each buffer at the binding number given.
+    pub fn bind_group_at(
+        &self,
+        label: &'static str,
+        pipeline: &wgpu::ComputePipeline,
+        buffers: &[(u32, &wgpu::Buffer)],
+    ) -> wgpu::BindGroup {
         let entries: Vec<_> = buffers
             .iter()
-            .enumerate()
-            .map(|(i, b)| wgpu::BindGroupEntry {
-                binding: i as u32,
+            .map(|&(binding, b)| wgpu::BindGroupEntry {
+                binding,
                 resource: b.as_entire_binding(),
             })
             .collect();

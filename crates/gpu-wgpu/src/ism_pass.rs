@@ -260,6 +260,23 @@ impl IsmPass {
         centres: &[Vec3],
         settings: &IsmSettings,
     ) -> Result<ImperfectShadowMaps, GpuError> {
+        let maps = u32::try_from(centres.len())
+            .map_err(|_| GpuError::Input(format!("{} ISMs exceed u32", centres.len())))?;
+        let centres: Vec<[f32; 4]> = centres.iter().map(|c| c.extend(1.0).to_array()).collect();
+        let centres = upload(ctx, "ism centres", &centres)?;
+        self.render_at(ctx, casters, &centres, maps, settings)
+    }
+
+    /// [`Self::render`] for `maps` centres already on the GPU (`[μ_v, ·]` per map, e.g.
+    /// [`crate::vsgl_shade_pass::GpuVsgls::centres`]).
+    pub fn render_at(
+        &self,
+        ctx: &GpuContext,
+        casters: &[GpuCaster],
+        centres: &wgpu::Buffer,
+        maps: u32,
+        settings: &IsmSettings,
+    ) -> Result<ImperfectShadowMaps, GpuError> {
         if !(1..=4096).contains(&settings.resolution) {
             return Err(GpuError::Input(format!(
                 "ISM resolution {} outside 1..=4096",
@@ -283,9 +300,8 @@ impl IsmPass {
                 "ISM settings {settings:?} not finite"
             )));
         }
-        let too_many = || GpuError::Input(format!("{} ISMs exceed u32", centres.len()));
-        let maps = u32::try_from(centres.len()).map_err(|_| too_many())?;
-        let points = u32::try_from(casters.len()).map_err(|_| too_many())?;
+        let points = u32::try_from(casters.len())
+            .map_err(|_| GpuError::Input(format!("{} caster points exceed u32", casters.len())))?;
         let texels = u64::from(maps) * u64::from(settings.resolution).pow(2);
         let items = u64::from(maps) * u64::from(settings.points_per_map.min(points));
         if texels > u64::from(u32::MAX) || items > u64::from(u32::MAX) {
@@ -300,8 +316,6 @@ impl IsmPass {
         if texels == 0 {
             return Ok(out);
         }
-        let centres: Vec<[f32; 4]> = centres.iter().map(|c| [c.x, c.y, c.z, 0.0]).collect();
-        let centre_buf = upload(ctx, "ism centres", &centres)?;
         let caster_buf = upload(ctx, "ism casters", casters)?;
         let params_buf = out.params_buffer(ctx);
         let clear_grid = Grid::for_items(ctx, texels, WORKGROUP)?;
@@ -321,7 +335,7 @@ impl IsmPass {
                     &mut encoder,
                     "ism_splat",
                     &self.splat,
-                    &[&params_buf, &out.depth, &caster_buf, &centre_buf],
+                    &[&params_buf, &out.depth, &caster_buf, centres],
                     Grid::for_items(ctx, items, WORKGROUP)?,
                 );
                 self.pull_push(ctx, &mut encoder, &out, &params_buf)?;

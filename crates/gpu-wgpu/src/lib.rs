@@ -51,14 +51,18 @@
 //! - [`denoise_pass`]: the cross bilateral filter guided by depth and normal (section 6),
 //!   the twin of `slc_cpu_ref::denoise::cross_bilateral`, on GPU buffers or uploaded images
 //!   (struct in [`denoise_types`]);
-//! - [`vsgl_shade_pass`]: shading by virtual spherical Gaussian lights (Tokuyoshi 2015,
-//!   section 3.2, eq. 2-5; `shaders/sg.wgsl`, `shaders/vsgl_shade.wgsl`), the twin of
-//!   `slc_cpu_ref::vsgl::shade_vsgls` without visibility (structs in [`vsgl_types`]).
+//! - [`vsgl_build_pass`]: virtual spherical Gaussian lights built from the RSMs where they
+//!   lie (Tokuyoshi 2015, sections 4.1-4.3: mipmaps, flux or bidirectional importance,
+//!   filtered importance sampling), the twin of `slc_cpu_ref::sampled_lights::sample_vsgls`
+//!   (structs in [`vsgl_build_types`]);
+//! - [`vsgl_shade_pass`]: shading by those lights (section 3.2, eq. 2-5;
+//!   `shaders/sg.wgsl`, `shaders/vsgl_shade.wgsl`), the twin of
+//!   `slc_cpu_ref::vsgl::shade_vsgls` (structs in [`vsgl_types`]).
 //!
 //! [`renderer::GpuRenderer`] composes them into the backend of the renderer API
 //! (`slc_core::Renderer`), on a device it opens or one the host owns
-//! ([`GpuContext::from_device`]); [`vsgl_readback`] brings RSMs to the CPU's VSGL code and
-//! VSGLs back.
+//! ([`GpuContext::from_device`]); [`vsgl_readback`] brings RSMs to the CPU (for the CPU's
+//! reference passes) and CPU VSGLs to the shading pass.
 //!
 //! Per-pass GPU times come from timestamp queries where the adapter has them
 //! ([`profiler`]: `start_profiling`, `set_stage`, `finish_profiling`).
@@ -102,6 +106,8 @@ pub mod tiled_cull_pass;
 pub mod tiled_shade_pass;
 pub mod visibility_pass;
 pub mod vpl_gen_pass;
+pub mod vsgl_build_pass;
+pub mod vsgl_build_types;
 pub mod vsgl_readback;
 pub mod vsgl_shade_pass;
 pub mod vsgl_types;

@@ -6,10 +6,9 @@
 //! ([`GpuRenderer::new`]) or one the host owns ([`GpuRenderer::from_context`] with
 //! [`GpuContext::from_device`]). What comes back to the CPU: the images, 16-byte status records,
 //! and the G-buffer, VPLs and lists where the brute-force metrics or a CPU reference need
-//! them ([`CpuFrames`]). VSGLs: the
-//! RSMs are read back, the VSGLs built and sampled on the CPU (`slc_cpu_ref::vsgl`) and shaded
-//! on the GPU ([`crate::vsgl_shade_pass`]), with visibility from imperfect shadow maps to each
-//! VSGL's `μ_v` ([`crate::ism_pass`]).
+//! them ([`CpuFrames`]). VSGLs are built from the RSMs where they lie
+//! ([`crate::vsgl_build_pass`]) and shaded there ([`crate::vsgl_shade_pass`]), with visibility
+//! from imperfect shadow maps to each VSGL's `μ_v` ([`crate::ism_pass`]).
 //!
 //! Pass times are wall clock around each step, its uploads, readbacks and the wait for
 //! completion included; where the adapter has trustworthy timestamp queries the GPU's
@@ -30,9 +29,9 @@ use crate::scene_upload::GpuScene;
 use crate::shade_pass::{read_image, ShadePass};
 use crate::tiled_shade_pass::TiledShadePass;
 use crate::vpl_gen_pass::{GpuVpls, VplGenPass, VplLobes};
-use crate::vsgl_readback::{cpu_rsm, vsgl_input};
-use crate::vsgl_shade_pass::{GpuVsgls, VsglShadePass};
-use slc_bounds::sg::MeanMap;
+use crate::vsgl_build_pass::{VsglBuildPass, VsglSampling};
+use crate::vsgl_readback::cpu_rsm;
+use crate::vsgl_shade_pass::VsglShadePass;
 use slc_core::frame::{
     Importance, LightSampling, LobeSelection, Method, RenderError, RenderSettings, Shaded, Timings,
 };
@@ -43,8 +42,6 @@ use slc_core::{
     BackendInfo, Camera, Capabilities, CullInput, CullMetrics, GBuffer, Image, Interleaving,
     PreparedFrame, Progress, Renderer, Scene, Strategy, Vpl,
 };
-use slc_cpu_ref::sampled_lights::sample_vsgls;
-use slc_cpu_ref::vsgl::{bidirectional_importance, ImportanceMap, MipRsm};
 use slc_cpu_ref::{CpuFrames, CpuPrepared, Tracer};
 use std::borrow::Cow;
 use std::cell::OnceCell;
@@ -127,6 +124,7 @@ pub struct GpuRenderer {
     culler: GpuCuller,
     shader: ShadePass,
     tiled_shader: TiledShadePass,
+    vsgl_build: VsglBuildPass,
     vsgl_shader: VsglShadePass,
     ism: IsmPass,
     denoiser: DenoisePass,
@@ -152,6 +150,7 @@ impl GpuRenderer {
             culler: GpuCuller::new(&ctx)?,
             shader: ShadePass::new(&ctx)?,
             tiled_shader: TiledShadePass::new(&ctx),
+            vsgl_build: VsglBuildPass::new(&ctx)?,
             vsgl_shader: VsglShadePass::new(&ctx)?,
             ism: IsmPass::new(&ctx)?,
             denoiser: DenoisePass::new(&ctx)?,
@@ -437,14 +436,15 @@ impl Renderer for GpuRenderer {
     }
 
     /// VSGLs as `slc_cpu_ref::sampled_lights::shade_vsgl` computes them (sampled VPLs are
-    /// CPU-only): the RSMs read back
-    /// (`rsm_readback`), the Toksvig mipmaps (`vsgl_mip`), the flux or bidirectional
-    /// importance (`importance_map`; the latter reads the G-buffer back) and the filtered
-    /// importance sampling of clusters (`light_sampling`) on the CPU, `σ_v²` floored at the
-    /// square of the scene's ray offset as the CPU's `sigma2_floor` does; then the analytic
-    /// shading of eq. (2)-(5) on the GPU (`light_shading`, VSGL upload included). With
-    /// `visibility` an imperfect shadow map per VSGL is rendered (`shadow_maps`) and the
-    /// shading weighted by its visibility, where the CPU traces shadow rays.
+    /// CPU-only), built where the RSMs lie ([`crate::vsgl_build_pass`]): the Toksvig mipmaps
+    /// (`vsgl_mip`), the bidirectional importance (`importance_map`; the flux importance is
+    /// the mipmaps' own weight) and the filtered importance sampling of clusters
+    /// (`light_sampling`), `σ_v²` floored at the square of the scene's ray offset as the CPU's
+    /// `sigma2_floor` does; then the analytic shading of eq. (2)-(5) (`light_shading`). With
+    /// `visibility` an imperfect shadow map per VSGL is rendered from the VSGLs' centres
+    /// (`shadow_maps`) and the shading weighted by its visibility, where the CPU traces shadow
+    /// rays. What comes back: the image and the frame's 32-byte fault record (which also
+    /// counts the lights).
     fn shade_sampled(
         &self,
         scene: &Scene,
@@ -460,49 +460,28 @@ impl Renderer for GpuRenderer {
             return Err(self.unsupported("sampled VPLs"));
         }
         let ctx = &self.ctx;
+        let build = &self.vsgl_build;
         let mut timings = Timings::default();
-        let floor = loaded.epsilon * loaded.epsilon;
-        let maps = timings.time("rsm_readback", || {
-            self.step("rsm_readback", || {
-                p.maps
-                    .iter()
-                    .map(|m| cpu_rsm(ctx, m))
-                    .collect::<Result<Vec<_>, _>>()
+        let sampling = VsglSampling {
+            count: s.count,
+            seed,
+            sigma2_floor: loaded.epsilon * loaded.epsilon,
+            diffuse: s.diffuse,
+        };
+        let mut mip = timings.time("vsgl_mip", || {
+            self.step("vsgl_mip", || build.mip(ctx, &p.maps))
+        })?;
+        timings.time("importance_map", || {
+            self.step("importance_map", || match s.importance {
+                Importance::Flux => Ok(()),
+                Importance::Bidirectional { camera_vsgls } => {
+                    build.bidirectional(ctx, &mut mip, &p.maps, &p.gbuffer, camera_vsgls, &sampling)
+                }
             })
         })?;
-        let mips = timings
-            .time("vsgl_mip", || {
-                maps.iter()
-                    .map(|rsm| MipRsm::build(rsm, MeanMap::Toksvig))
-                    .collect::<Result<Vec<_>, _>>()
-            })
-            .map_err(RenderError::backend)?;
-        let importance = match s.importance {
-            Importance::Flux => timings.time("importance_map", || {
-                mips.iter().map(ImportanceMap::from_mip).collect::<Vec<_>>()
-            }),
-            Importance::Bidirectional { camera_vsgls } => {
-                let gbuffer = self.cpu_gbuffer(p)?;
-                timings
-                    .time("importance_map", || {
-                        bidirectional_importance(
-                            gbuffer,
-                            &p.camera,
-                            &maps,
-                            camera_vsgls,
-                            seed,
-                            floor,
-                            s.diffuse,
-                        )
-                    })
-                    .map_err(RenderError::backend)?
-            }
-        };
-        let vsgls = timings
-            .time("light_sampling", || {
-                sample_vsgls(&mips, &importance, s.count, seed, floor)
-            })
-            .map_err(RenderError::backend)?;
+        let vsgls = timings.time("light_sampling", || {
+            self.step("light_sampling", || build.sample(ctx, mip, &sampling))
+        })?;
         let g = &p.gbuffer;
         let shadow_maps = if visibility {
             // Sampled once per scene; the first frame's `ism_points` carries the cost.
@@ -512,31 +491,25 @@ impl Renderer for GpuRenderer {
                     (caster_points(scene, &settings), settings)
                 })
             });
-            let centres: Vec<_> = vsgls.iter().map(|v| v.mu).collect();
             Some(timings.time("shadow_maps", || {
                 self.step("shadow_maps", || {
-                    self.ism.render(ctx, casters, &centres, settings)
+                    self.ism
+                        .render_at(ctx, casters, &vsgls.centres, vsgls.count, settings)
                 })
             })?)
         } else {
             None
         };
-        let rgb = timings.time("light_shading", || {
+        let (rgb, lights) = timings.time("light_shading", || {
             self.step("light_shading", || {
-                let inputs: Vec<_> = vsgls.iter().map(|v| vsgl_input(v, s.diffuse)).collect();
-                let uploaded = GpuVsgls::upload(ctx, &inputs)?;
-                match &shadow_maps {
-                    Some(maps) => self
-                        .vsgl_shader
-                        .shade_gpu_gbuffer_visible_on_gpu(ctx, g, &uploaded, maps),
-                    None => self.vsgl_shader.shade_gpu_gbuffer_on_gpu(ctx, g, &uploaded),
-                }
+                self.vsgl_shader
+                    .shade_gpu_gbuffer_on_gpu(ctx, g, &vsgls, shadow_maps.as_ref())
             })
         })?;
         let indirect = read_image(ctx, &rgb, g.width, g.height).map_err(gpu)?;
         progress(u64::from(g.width) * u64::from(g.height));
         Ok(Shaded {
-            sampled_lights: Some(vsgls.len()),
+            sampled_lights: Some(lights as usize),
             listed_pairs: None,
             ..Shaded::new(indirect, timings)
         })

@@ -64,8 +64,8 @@ pub const METRICS_NOTE: &str = "metrics were measured by brute force on the CPU 
 /// The note of a GPU VSGL frame: what ran where, and with `visibility` what the GPU used
 /// for it.
 pub fn vsgl_note(visibility: bool) -> String {
-    let head = "--shader vsgl: the RSMs were read back, the VSGLs built and sampled on the CPU \
-                (vsgl_mip, importance_map, light_sampling) and shaded on the GPU \
+    let head = "--shader vsgl: the VSGLs were built and sampled from the RSMs on the GPU \
+                (vsgl_mip, importance_map, light_sampling; no RSM read back) and shaded there \
                 (light_shading) instead of culling and VPL shading";
     if !visibility {
         return format!("{head}; without --visibility GPU VSGL shading has no visibility term");

@@ -8,7 +8,7 @@
 //! `shaders/rsm.wgsl` intersects the texel-centre ray with it.
 //!
 //! Each texel's solid angle is a 3 x 3 Gauss-Legendre quadrature in f32 of the exact
-//! integral the CPU evaluates in closed form in f64 (see `shaders/rsm.wgsl`). The map's
+//! integral the CPU evaluates in closed form in f64 (see `shaders/solid_angle.wgsl`). The map's
 //! depth (the first surface of every texel's ray, either side) is kept as a shadow map for
 //! `direct_pass`.
 use crate::buffers::{output, read_back, uniform};
@@ -26,6 +26,7 @@ pub(crate) const SOURCE: &str = concat!(
     include_str!("../shaders/scene_types.wgsl"),
     include_str!("../shaders/scene.wgsl"),
     include_str!("../shaders/rsm_texel.wgsl"),
+    include_str!("../shaders/solid_angle.wgsl"),
     include_str!("../shaders/rsm.wgsl")
 );
 

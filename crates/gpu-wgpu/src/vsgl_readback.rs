@@ -1,6 +1,7 @@
 //! What the GPU frame brings to the CPU and back: a rasterized RSM ([`GpuRsm`]) read back as
-//! the CPU's [`Rsm`], which the VSGL mipmap and sampling code (`slc_cpu_ref::vsgl::MipRsm`)
-//! and the CPU's reference passes take, and CPU VSGLs in the GPU shading pass's input form.
+//! the CPU's [`Rsm`], which the CPU's passes take (`CpuFrames`, and the conformance tests of
+//! the GPU's own VSGL construction, `crate::vsgl_build_pass`), and CPU VSGLs in the GPU
+//! shading pass's input form.
 use glam::Vec3;
 use slc_bounds::{Brdf, Fresnel};
 use slc_core::frame::DiffuseEmission;

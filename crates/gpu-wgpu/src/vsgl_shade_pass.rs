@@ -7,11 +7,13 @@
 //! irradiance for the diffuse term, warped GGX SG inner product for the specular one) of the
 //! incoming radiance of eq. (5), `1/(2πσ_v²) G(ω; −ξ_v, λ_v) G(ω; ξ_μ, |μ_v − x_p|²/σ_v²)`.
 //! Without visibility (entry point `main`: [`VsglShadePass::shade`],
-//! [`VsglShadePass::shade_gpu_gbuffer`]) there is no `V(x_p, μ_v)` of eq. 3. With imperfect
-//! shadow maps ([`crate::ism_pass`], entry point `main_visible`:
-//! [`VsglShadePass::shade_visible`], [`VsglShadePass::shade_gpu_gbuffer_visible`]) each VSGL
-//! that contributes is weighted by the map's binary visibility of `μ_v`, where the CPU traces
-//! a shadow ray (`shade_vsgls(…, visibility = true, …)`).
+//! [`VsglShadePass::shade_gpu_gbuffer_on_gpu`] without maps) there is no `V(x_p, μ_v)` of
+//! eq. 3. With imperfect shadow maps ([`crate::ism_pass`], entry point `main_visible`:
+//! [`VsglShadePass::shade_visible`], [`VsglShadePass::shade_gpu_gbuffer_on_gpu`] with maps)
+//! each VSGL that contributes is weighted by the map's binary visibility of `μ_v`, where the
+//! CPU traces a shadow ray (`shade_vsgls(…, visibility = true, …)`). The VSGLs are uploaded
+//! from the CPU ([`GpuVsgls::upload`]) or built on the GPU ([`crate::vsgl_build_pass`]); empty
+//! slots of the latter shade nothing.
 //!
 //! The SG algebra is in f32 where the CPU uses f64; `shaders/sg.wgsl` uses forms free of the
 //! cancellations f32 would add (series for expm1, the Langevin function and the away-facing
@@ -19,10 +21,12 @@
 //! within 6.2e-7 of each pixel on the default scene and 1.0e-5 in the worst extreme tested
 //! (`tests/gpu/vsgl.rs`).
 //!
-//! Out-of-domain input is an error, never a NaN: VSGLs are validated on the CPU
-//! ([`GpuVsgl::new`]), an uploaded G-buffer by `SgSurface::new` itself; samples of a GPU
-//! G-buffer outside the SG math's domain and a `λ_σ` or SG product beyond `f32` at some pixel
-//! are recorded by the shader and read back as errors after the dispatch.
+//! Out-of-domain input is an error, never a NaN: uploaded VSGLs are validated on the CPU
+//! ([`GpuVsgl::new`]), built ones by the construction's shader with the same checks, an
+//! uploaded G-buffer by `SgSurface::new` itself; samples of a GPU G-buffer outside the SG
+//! math's domain and a `λ_σ` or SG product beyond `f32` at some pixel are recorded by the
+//! shader in the frame's fault record ([`GpuVsglStatus`]), read back after the dispatch with
+//! the construction's faults.
 use crate::buffers::{output, read_back, uniform, upload, Grid};
 use crate::context::{GpuContext, GpuError};
 use crate::gbuffer_pass::GpuGBuffer;
@@ -38,19 +42,29 @@ pub(crate) const SOURCE: &str = concat!(
     include_str!("../shaders/fresnel_ggx.wgsl"),
     include_str!("../shaders/sg.wgsl"),
     include_str!("../shaders/gsample.wgsl"),
+    include_str!("../shaders/sg_surface.wgsl"),
+    include_str!("../shaders/vsgl_light.wgsl"),
     include_str!("../shaders/ism_map.wgsl"),
     include_str!("../shaders/vsgl_shade.wgsl")
 );
 const WORKGROUP: u32 = 64;
 
-/// VSGLs validated and uploaded in the [`GpuVsgl`] layout.
+/// VSGLs on the GPU in the [`GpuVsgl`] layout, one per slot (a slot may be empty: all zero),
+/// with their centres (for the imperfect shadow maps) and the frame's fault record, which the
+/// shading fills in and reads.
 pub struct GpuVsgls {
+    /// [`GpuVsgl`] per slot.
     pub buffer: wgpu::Buffer,
+    /// The number of slots.
     pub count: u32,
+    /// `[μ_v, 1]` per slot (zero for an empty one).
+    pub centres: wgpu::Buffer,
+    /// The [`GpuVsglStatus`] of the frame.
+    pub status: wgpu::Buffer,
 }
 
 impl GpuVsgls {
-    /// Validates (as [`GpuVsgl::new`]) and uploads `vsgls`.
+    /// Validates (as [`GpuVsgl::new`]) and uploads `vsgls`, each a light.
     pub fn upload(ctx: &GpuContext, vsgls: &[VsglInput]) -> Result<Self, GpuError> {
         let count = u32::try_from(vsgls.len())
             .map_err(|_| GpuError::Input(format!("{} VSGLs exceed u32", vsgls.len())))?;
@@ -59,9 +73,12 @@ impl GpuVsgls {
             .enumerate()
             .map(|(i, v)| GpuVsgl::new(v, i))
             .collect::<Result<Vec<_>, _>>()?;
+        let centres: Vec<[f32; 4]> = vsgls.iter().map(|v| v.mu.extend(1.0).to_array()).collect();
         Ok(Self {
             buffer: upload(ctx, "vsgls", &packed)?,
             count,
+            centres: upload(ctx, "vsgl centres", &centres)?,
+            status: upload(ctx, "vsgl status", &[GpuVsglStatus::clear(count)])?,
         })
     }
 }
@@ -166,7 +183,7 @@ impl VsglShadePass {
             }
             None => None,
         };
-        let rgb = self.shade_buffers(
+        let (rgb, _) = self.shade_buffers(
             ctx,
             (&samples, &positions),
             pixels as u32,
@@ -177,15 +194,18 @@ impl VsglShadePass {
     }
 
     /// Shades a G-buffer rendered on the GPU ([`crate::gbuffer_pass::GbufferPass`]) where it
-    /// lies; the image stays on the GPU as RGB, 3 f32 per pixel row-major (what
-    /// `denoise_pass::DenoisePass::filter_on_gpu` reads; see [`read_image`]). Waits for the
-    /// pass to read its fault record.
+    /// lies, with visibility from `maps` (see [`Self::shade_visible`]; read from the
+    /// G-buffer's geometric normals) or without; the image stays on the GPU as RGB, 3 f32 per
+    /// pixel row-major (what `denoise_pass::DenoisePass::filter_on_gpu` reads; see
+    /// [`read_image`]). Waits for the pass to read the frame's fault record, and gives the
+    /// number of lights it counts.
     pub fn shade_gpu_gbuffer_on_gpu(
         &self,
         ctx: &GpuContext,
         gbuffer: &GpuGBuffer,
         vsgls: &GpuVsgls,
-    ) -> Result<wgpu::Buffer, GpuError> {
+        maps: Option<&ImperfectShadowMaps>,
+    ) -> Result<(wgpu::Buffer, u32), GpuError> {
         let pixels = u64::from(gbuffer.width) * u64::from(gbuffer.height);
         let pixels = u32::try_from(pixels)
             .map_err(|_| GpuError::Input(format!("{pixels} pixels exceed u32")))?;
@@ -194,56 +214,12 @@ impl VsglShadePass {
             (&gbuffer.samples, &gbuffer.positions),
             pixels,
             vsgls,
-            None,
+            maps.map(|m| (&gbuffer.geometric_normals, m)),
         )
-    }
-
-    /// [`Self::shade_gpu_gbuffer_on_gpu`] with visibility from `maps` (see
-    /// [`Self::shade_visible`]), read from the G-buffer's geometric normals.
-    pub fn shade_gpu_gbuffer_visible_on_gpu(
-        &self,
-        ctx: &GpuContext,
-        gbuffer: &GpuGBuffer,
-        vsgls: &GpuVsgls,
-        maps: &ImperfectShadowMaps,
-    ) -> Result<wgpu::Buffer, GpuError> {
-        let pixels = u64::from(gbuffer.width) * u64::from(gbuffer.height);
-        let pixels = u32::try_from(pixels)
-            .map_err(|_| GpuError::Input(format!("{pixels} pixels exceed u32")))?;
-        self.shade_buffers(
-            ctx,
-            (&gbuffer.samples, &gbuffer.positions),
-            pixels,
-            vsgls,
-            Some((&gbuffer.geometric_normals, maps)),
-        )
-    }
-
-    /// [`Self::shade_gpu_gbuffer_visible_on_gpu`] read back as an [`Image`].
-    pub fn shade_gpu_gbuffer_visible(
-        &self,
-        ctx: &GpuContext,
-        gbuffer: &GpuGBuffer,
-        vsgls: &GpuVsgls,
-        maps: &ImperfectShadowMaps,
-    ) -> Result<Image, GpuError> {
-        let rgb = self.shade_gpu_gbuffer_visible_on_gpu(ctx, gbuffer, vsgls, maps)?;
-        read_image(ctx, &rgb, gbuffer.width, gbuffer.height)
-    }
-
-    /// [`Self::shade_gpu_gbuffer_on_gpu`] read back as an [`Image`].
-    pub fn shade_gpu_gbuffer(
-        &self,
-        ctx: &GpuContext,
-        gbuffer: &GpuGBuffer,
-        vsgls: &GpuVsgls,
-    ) -> Result<Image, GpuError> {
-        let rgb = self.shade_gpu_gbuffer_on_gpu(ctx, gbuffer, vsgls)?;
-        read_image(ctx, &rgb, gbuffer.width, gbuffer.height)
     }
 
     /// Shades the [`GpuSample`]s and positions (one per pixel) into an RGB buffer, then reads
-    /// the fault record and turns its faults into errors.
+    /// the frame's fault record and turns its faults into errors; gives the number of lights.
     fn shade_buffers(
         &self,
         ctx: &GpuContext,
@@ -251,7 +227,7 @@ impl VsglShadePass {
         pixels: u32,
         vsgls: &GpuVsgls,
         visibility: Option<Visibility>,
-    ) -> Result<wgpu::Buffer, GpuError> {
+    ) -> Result<(wgpu::Buffer, u32), GpuError> {
         if let Some((_, maps)) = visibility {
             if maps.params.map_count != vsgls.count {
                 return Err(GpuError::Input(format!(
@@ -261,47 +237,46 @@ impl VsglShadePass {
             }
         }
         let out = output::<f32>(ctx, "vsgl indirect image", 3 * pixels as usize)?;
-        if pixels == 0 {
-            return Ok(out);
-        }
-        let params = GpuVsglParams {
-            pixel_count: pixels,
-            vsgl_count: vsgls.count,
-            pad: [0; 2],
-        };
-        let status = upload(ctx, "vsgl status", &[GpuVsglStatus::CLEAR])?;
-        let grid = Grid::for_items(ctx, u64::from(pixels), WORKGROUP)?;
-        ctx.scoped("vsgl_shade", || {
-            let params = uniform(ctx, "vsgl params", &params);
-            let mut buffers = vec![&params, samples, positions, &vsgls.buffer, &out, &status];
-            match visibility {
-                None => ctx.dispatch("vsgl_shade", &self.pipeline, &buffers, grid),
-                Some((normals, maps)) => {
-                    let ism = maps.params_buffer(ctx);
-                    buffers.extend([normals, &ism, &maps.depth]);
-                    ctx.dispatch("vsgl_shade_visible", &self.visible, &buffers, grid);
+        // The shading's own faults start clear (the construction's stay with the lights).
+        ctx.queue.write_buffer(
+            &vsgls.status,
+            0,
+            bytemuck::cast_slice(&[u32::MAX, u32::MAX]),
+        );
+        if pixels > 0 {
+            let params = GpuVsglParams {
+                pixel_count: pixels,
+                vsgl_count: vsgls.count,
+                pad: [0; 2],
+            };
+            let grid = Grid::for_items(ctx, u64::from(pixels), WORKGROUP)?;
+            ctx.scoped("vsgl_shade", || {
+                let params = uniform(ctx, "vsgl params", &params);
+                let mut buffers = vec![
+                    &params,
+                    samples,
+                    positions,
+                    &vsgls.buffer,
+                    &out,
+                    &vsgls.status,
+                ];
+                match visibility {
+                    None => ctx.dispatch("vsgl_shade", &self.pipeline, &buffers, grid),
+                    Some((normals, maps)) => {
+                        let ism = maps.params_buffer(ctx);
+                        buffers.extend([normals, &ism, &maps.depth]);
+                        ctx.dispatch("vsgl_shade_visible", &self.visible, &buffers, grid);
+                    }
                 }
-            }
-            Ok(())
-        })?;
-        let [state] = <[GpuVsglStatus; 1]>::try_from(read_back(ctx, "vsgl status", &status, 1)?)
-            .map_err(|_| GpuError::Readback {
-                label: "vsgl status".into(),
-                message: "short read".into(),
+                Ok(())
             })?;
-        if state.bad_pixel != u32::MAX {
-            return Err(GpuError::Input(format!(
-                "G-buffer pixel {}: surface outside the SG shading's domain (normal or view \
-                 not unit, kd negative or not finite, α outside (0, 1], invalid Fresnel)",
-                state.bad_pixel
-            )));
         }
-        if state.overflow_vsgl != u32::MAX {
-            return Err(GpuError::Input(format!(
-                "VSGL {}: λ_σ = |μ_v − x_p|²/σ_v² or its SG product leaves f32 at some pixel",
-                state.overflow_vsgl
-            )));
-        }
-        Ok(out)
+        let [state] =
+            <[GpuVsglStatus; 1]>::try_from(read_back(ctx, "vsgl status", &vsgls.status, 1)?)
+                .map_err(|_| GpuError::Readback {
+                    label: "vsgl status".into(),
+                    message: "short read".into(),
+                })?;
+        Ok((out, state.lights()?))
     }
 }

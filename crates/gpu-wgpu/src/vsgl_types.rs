@@ -138,8 +138,9 @@ impl GpuVsgl {
     }
 }
 
-/// The fault record of the VSGL shading pass. Keep in sync with `VsglStatus` in
-/// `shaders/vsgl_shade.wgsl`.
+/// The fault record of a VSGL frame, written by its construction ([`crate::vsgl_build_pass`])
+/// and its shading and read once, after the shading. Keep in sync with `VsglStatus` in
+/// `shaders/vsgl_light.wgsl`.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Pod, Zeroable)]
 pub struct GpuVsglStatus {
@@ -147,17 +148,70 @@ pub struct GpuVsglStatus {
     pub bad_pixel: u32,
     /// Smallest VSGL whose `λ_σ` or SG product left `f32` at some pixel (`u32::MAX`: none).
     pub overflow_vsgl: u32,
+    /// The distinct clusters the VSGLs stand for (the CPU's number of sampled lights).
+    pub lights: u32,
+    /// Smallest RSM texel (over the maps in order) whose BRDF is outside the SG math's
+    /// domain (`u32::MAX`: none).
+    pub bad_texel: u32,
+    /// Smallest VSGL slot whose parameters left `f32` or the shading's domain (`u32::MAX`:
+    /// none).
+    pub bad_vsgl: u32,
+    /// Smallest RSM texel whose bidirectional importance left `f32` (`u32::MAX`: none).
+    pub bad_view: u32,
     pub pad: [u32; 2],
 }
-const _: () = assert!(std::mem::size_of::<GpuVsglStatus>() == 16);
+const _: () = assert!(std::mem::size_of::<GpuVsglStatus>() == 32);
 
 impl GpuVsglStatus {
-    /// The initial record: no faults.
-    pub const CLEAR: Self = Self {
-        bad_pixel: u32::MAX,
-        overflow_vsgl: u32::MAX,
-        pad: [0; 2],
-    };
+    /// The initial record of `lights` VSGLs: no faults.
+    pub const fn clear(lights: u32) -> Self {
+        Self {
+            bad_pixel: u32::MAX,
+            overflow_vsgl: u32::MAX,
+            lights,
+            bad_texel: u32::MAX,
+            bad_vsgl: u32::MAX,
+            bad_view: u32::MAX,
+            pad: [0; 2],
+        }
+    }
+
+    /// The number of lights, or the first fault as an error.
+    pub fn lights(&self) -> Result<u32, GpuError> {
+        if self.bad_pixel != u32::MAX {
+            return Err(GpuError::Input(format!(
+                "G-buffer pixel {}: surface outside the SG shading's domain (normal or view \
+                 not unit, kd negative or not finite, α outside (0, 1], invalid Fresnel)",
+                self.bad_pixel
+            )));
+        }
+        if self.bad_texel != u32::MAX {
+            return Err(GpuError::Input(format!(
+                "RSM texel {}: surface outside the SG math's domain (normal or light direction \
+                 not unit, kd negative or not finite, α outside (0, 1], invalid Fresnel)",
+                self.bad_texel
+            )));
+        }
+        if self.bad_view != u32::MAX {
+            return Err(GpuError::Input(format!(
+                "RSM texel {}: its bidirectional importance leaves f32",
+                self.bad_view
+            )));
+        }
+        if self.bad_vsgl != u32::MAX {
+            return Err(GpuError::Input(format!(
+                "VSGL {}: a coefficient leaves f32 or σ_v² is not positive (raise the σ² floor)",
+                self.bad_vsgl
+            )));
+        }
+        if self.overflow_vsgl != u32::MAX {
+            return Err(GpuError::Input(format!(
+                "VSGL {}: λ_σ = |μ_v − x_p|²/σ_v² or its SG product leaves f32 at some pixel",
+                self.overflow_vsgl
+            )));
+        }
+        Ok(self.lights)
+    }
 }
 
 #[cfg(test)]
@@ -174,6 +228,9 @@ mod tests {
         assert_eq!(wgsl_size(source, "VsglParams"), size_of::<GpuVsglParams>());
         assert_eq!(wgsl_size(source, "Vsgl"), size_of::<GpuVsgl>());
         assert_eq!(wgsl_size(source, "VsglStatus"), size_of::<GpuVsglStatus>());
+        let build = crate::vsgl_build_pass::SOURCE;
+        assert_eq!(wgsl_size(build, "Vsgl"), size_of::<GpuVsgl>());
+        assert_eq!(wgsl_size(build, "VsglStatus"), size_of::<GpuVsglStatus>());
         assert_eq!(wgsl_size(source, "Sample"), size_of::<GpuSample>());
     }
 

@@ -38,7 +38,7 @@ pub use light::Vsgl;
 pub use mip::MipRsm;
 pub use quadtree::Quadtree;
 pub use sampling::{
-    sample_points, Cluster, FilteredSampler, Footprint, SampleSet, WeightedCluster,
+    point_shift, sample_points, Cluster, FilteredSampler, Footprint, SampleSet, WeightedCluster,
 };
 pub use shading::{shade_vsgls, vsgl_radiance};
 pub use sums::{footprint_variance, ClusterSums};

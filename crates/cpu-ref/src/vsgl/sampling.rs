@@ -62,7 +62,7 @@ pub enum SampleSet {
 /// is uniform on the square, so estimates from them are unbiased, and the set is stratified,
 /// which the hierarchical warp preserves.
 pub fn sample_points(count: u32, seed: u32, set: SampleSet) -> Vec<[f64; 2]> {
-    let shift = [0, 1].map(|c| f64::from(uniform(seed, set as u32, stream::VSGL_POINTS, c)));
+    let shift = point_shift(seed, set).map(f64::from);
     let n = f64::from(count.max(1));
     (0..count)
         .map(|k| {
@@ -73,6 +73,11 @@ pub fn sample_points(count: u32, seed: u32, set: SampleSet) -> Vec<[f64; 2]> {
             ]
         })
         .collect()
+}
+
+/// The random offset of [`sample_points`] (the Cranley-Patterson rotation) for `(seed, set)`.
+pub fn point_shift(seed: u32, set: SampleSet) -> [f32; 2] {
+    [0, 1].map(|c| uniform(seed, set as u32, stream::VSGL_POINTS, c))
 }
 
 /// `x − ⌊x⌋`, at most [`ONE_BELOW`].

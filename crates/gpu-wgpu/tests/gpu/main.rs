@@ -22,4 +22,5 @@ mod tight;
 mod tiled;
 mod tiled_shade;
 mod vsgl;
+mod vsgl_build;
 mod vsgl_visibility;

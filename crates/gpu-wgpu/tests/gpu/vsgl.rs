@@ -29,6 +29,7 @@ use slc_cpu_ref::Tracer;
 use slc_gpu_wgpu::buffers::upload;
 use slc_gpu_wgpu::gbuffer_pass::GpuGBuffer;
 use slc_gpu_wgpu::gpu_types::{gpu_position, GpuSample};
+use slc_gpu_wgpu::shade_pass::read_image;
 use slc_gpu_wgpu::vsgl_shade_pass::{GpuVsgls, VsglShadePass};
 use slc_gpu_wgpu::vsgl_types::VsglInput;
 use slc_gpu_wgpu::{GpuContext, GpuError};
@@ -330,7 +331,11 @@ fn vsgl_shading_refuses_out_of_domain_input() {
         positions: upload(&ctx, "positions", &positions).unwrap(),
         offset: (0.5, 0.5),
     };
-    match pass.shade_gpu_gbuffer(&ctx, &on_gpu, &vsgls) {
+    let shade_on_gpu = |g: &GpuGBuffer| {
+        let (rgb, _) = pass.shade_gpu_gbuffer_on_gpu(&ctx, g, &vsgls, None)?;
+        read_image(&ctx, &rgb, g.width, g.height)
+    };
+    match shade_on_gpu(&on_gpu) {
         Err(GpuError::Input(m)) => assert!(m.starts_with("G-buffer pixel 100:"), "{m}"),
         r => panic!("expected a surface error, got {:?}", r.map(|_| ())),
     }
@@ -344,7 +349,7 @@ fn vsgl_shading_refuses_out_of_domain_input() {
         samples: upload(&ctx, "samples", &samples).unwrap(),
         ..on_gpu
     };
-    let a = pass.shade_gpu_gbuffer(&ctx, &fixed, &vsgls).unwrap();
+    let a = shade_on_gpu(&fixed).unwrap();
     let b = pass.shade(&ctx, &gbuffer, &vsgls).unwrap();
     assert_eq!(a.pixels, b.pixels);
 }

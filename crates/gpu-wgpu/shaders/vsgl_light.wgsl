@@ -1,0 +1,85 @@
+// One VSGL prepared for shading (crates/cpu-ref/src/vsgl/shading.rs Emitter; GpuVsgl in
+// src/vsgl_types.rs) and the radiance it sends a receiver (Emitter::radiance, VSGL eq. 2-5).
+// sg.wgsl and sg_surface.wgsl come first.
+
+// The fault record of a VSGL frame (GpuVsglStatus in src/vsgl_types.rs), written by its
+// construction (src/vsgl_build_pass.rs) and its shading, read once after the shading.
+// u32::MAX: none. bad_pixel: smallest pixel whose surface is outside the SG math's domain;
+// overflow_vsgl: smallest VSGL whose lambda_sigma or SG product left f32 at some pixel;
+// lights: the distinct clusters sampled; bad_texel: smallest RSM texel (over the maps in
+// order) whose BRDF is outside that domain; bad_vsgl: smallest slot whose VSGL left f32;
+// bad_view: smallest texel whose bidirectional importance left f32.
+struct VsglStatus {
+    bad_pixel: atomic<u32>,
+    overflow_vsgl: atomic<u32>,
+    lights: atomic<u32>,
+    bad_texel: atomic<u32>,
+    bad_vsgl: atomic<u32>,
+    bad_view: atomic<u32>,
+    pad0: u32,
+    pad1: u32,
+}
+
+// mu_v and sigma_v^2, and per lobe c_v (rgb, zero for a lobe left out) and the emitted lobe's
+// axis -xi_v with lambda_v. A slot without a light (a sample that landed in a cluster an
+// earlier sample owns, src/vsgl_build_pass.rs) is all zero: its density is 0.
+struct Vsgl {
+    mu_sigma2: vec4<f32>,
+    // c_v of the diffuse lobe (xyz), 1 / (2 pi sigma_v^2) of eq. (1) and (5) (w).
+    diffuse_c_density: vec4<f32>,
+    diffuse_lobe: vec4<f32>,
+    specular_c: vec4<f32>,
+    specular_lobe: vec4<f32>,
+}
+
+// Whether the slot holds a light (every packed VSGL has a positive density).
+fn vsgl_present(e: Vsgl) -> bool {
+    return e.diffuse_c_density.w > 0.0;
+}
+
+// The radiance VSGL e reflects at the receiver at x (xyz); w = 1 when its positional SG
+// (lambda_sigma) or an SG product left f32, where the CPU fails with an overflow.
+fn vsgl_contribution(surface: Surface, x: vec3<f32>, e: Vsgl) -> vec4<f32> {
+    let sigma2 = e.mu_sigma2.w;
+    let density = e.diffuse_c_density.w;
+    // Emitter::radiance: the positional SG of eq. (4); constant at mu_v itself.
+    let d = e.mu_sigma2.xyz - x;
+    let r2 = dot(d, d);
+    var position = Sg(vec3<f32>(0.0, 0.0, 1.0), 0.0, density);
+    if r2 > 0.0 {
+        position = Sg(d / sqrt(r2), r2 / sigma2, density);
+        if !sg_finite(position.sharpness) {
+            return vec4<f32>(0.0, 0.0, 0.0, 1.0);
+        }
+    }
+    var radiance = vec3<f32>(0.0);
+    let lobes = array<vec4<f32>, 2>(e.diffuse_lobe, e.specular_lobe);
+    let colours = array<vec3<f32>, 2>(e.diffuse_c_density.xyz, e.specular_c.xyz);
+    let clamped = e.specular_c.w != 0.0;
+    for (var k = 0u; k < 2u; k++) {
+        let c = colours[k];
+        if all(c == vec3<f32>(0.0)) || (clamped && k == 0u) {
+            continue;
+        }
+        let emitted = Sg(lobes[k].xyz, lobes[k].w, 1.0);
+        let light = sg_product(emitted, position);
+        if !(sg_finite(light.sharpness) && sg_finite(light.amplitude)) {
+            return vec4<f32>(0.0, 0.0, 0.0, 1.0);
+        }
+        radiance += c * surface_radiance(surface, light);
+    }
+    // The clamped-cosine diffuse intensity (DiffuseEmission::ClampedCosine): the
+    // peak times the vMF-convolved clamped cosine towards the receiver (a quarter
+    // at mu_v itself), carried by the positional SG.
+    let peak = e.diffuse_c_density.xyz;
+    if clamped && any(peak != vec3<f32>(0.0)) {
+        var towards = 0.25;
+        if r2 > 0.0 {
+            towards = sg_normalized_irradiance(e.diffuse_lobe.w, -dot(e.diffuse_lobe.xyz, position.axis));
+        }
+        if towards > 0.0 {
+            radiance += peak * towards * surface_radiance(surface, position);
+        }
+    }
+    return vec4<f32>(radiance, 0.0);
+}
