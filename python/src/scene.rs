@@ -81,15 +81,17 @@ impl Job for CompareJob<'_> {
             method,
             ..settings.clone()
         };
-        let frame = |p: &R::Prepared, indirect, (timings, gpu_timings), metrics| RenderedFrame {
-            direct: p.direct().clone(),
-            indirect,
-            vpl_count: p.vpl_count(),
-            timings,
-            gpu_timings,
-            metrics,
-            sampled_lights: None,
-            readback_bytes: None,
+        let frame = |p: &R::Prepared, indirect, (timings, gpu_timings), metrics| {
+            Ok::<_, String>(RenderedFrame {
+                direct: p.direct().clone(),
+                indirect,
+                vpl_count: p.vpl_count().map_err(|e| e.to_string())?,
+                timings,
+                gpu_timings,
+                metrics,
+                sampled_lights: None,
+                readback_bytes: None,
+            })
         };
         let message = |e: slc_core::RenderError| e.to_string();
         let p = r.prepare(scene, loaded, settings, None).map_err(message)?;
@@ -101,7 +103,7 @@ impl Job for CompareJob<'_> {
                 self.options.progress,
             )?;
             let preparation = (p.timings().clone(), p.gpu_timings().cloned());
-            let f = frame(&p, reference, preparation, None);
+            let f = frame(&p, reference, preparation, None)?;
             let s = with(Method::VplReference);
             out.push((
                 "reference_vpl",
@@ -132,7 +134,7 @@ impl Job for CompareJob<'_> {
             let shaded = st.shade(r, input, &|n| bar.inc(n)).map_err(message)?;
             bar.finish_and_clear();
             let timings = frame_timings(&p, &shaded);
-            let f = frame(&p, shaded.indirect, timings, shaded.metrics);
+            let f = frame(&p, shaded.indirect, timings, shaded.metrics)?;
             let s = with(Method::Stochastic(st));
             out.push((strategy.name(), FrameData::new(r, scene, self.spec, &s, f)?));
         }

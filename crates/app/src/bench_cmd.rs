@@ -170,7 +170,7 @@ impl OnBackend for Bench<'_> {
                     .prepare(&scene, &loaded, &settings, None)
                     .map_err(message)?;
                 let input = frame.input(&scene, &loaded, &p);
-                let vpl_count = p.vpl_count();
+                let vpl_count = p.vpl_count().map_err(message)?;
                 for &strategy in &strategies {
                     let s = Stochastic { strategy, ..base };
                     // Every run lists the same pairs (same VPLs, ξ and lists).

@@ -127,7 +127,8 @@ impl OnBackend for Compare<'_> {
         // The CPU's reference and unculled estimate read the backend's frame (back).
         let cpu_p = r.cpu_frame(&scene, &loaded, &p).map_err(message)?;
         let cpu = cpu_input(&scene, &cpu_p, f.seed, f.visibility);
-        eprintln!("{} VPLs", p.vpl_count());
+        let vpl_count = p.vpl_count().map_err(message)?;
+        eprintln!("{vpl_count} VPLs");
         let cpu_device = CpuRenderer.info(&settings);
 
         let reference = (!args.no_reference)
@@ -144,7 +145,7 @@ impl OnBackend for Compare<'_> {
                 settings: &settings,
                 method: Method::VplReference,
                 spp: 1,
-                vpl_count: p.vpl_count(),
+                vpl_count,
                 timings: std::slice::from_ref(p.timings()),
                 gpu_timings: None,
                 metrics: None,
@@ -241,7 +242,7 @@ impl OnBackend for Compare<'_> {
                 settings: &settings,
                 method: Method::Stochastic(s),
                 spp: 1,
-                vpl_count: p.vpl_count(),
+                vpl_count,
                 timings: &frame_runs,
                 gpu_timings: gpu_timings.as_ref(),
                 metrics: Some(m),
@@ -272,17 +273,11 @@ impl OnBackend for Compare<'_> {
         } else {
             String::new()
         };
-        let columns = SettingsColumns::new(
-            &provenance,
-            &scene,
-            &device,
-            f,
-            &args.pipeline,
-            p.vpl_count(),
-        );
+        let columns =
+            SettingsColumns::new(&provenance, &scene, &device, f, &args.pipeline, vpl_count);
         let table_rows: Vec<CompareRow> = rows.iter().map(|r| r.columns(args.delta)).collect();
         let tables = write_table(&mut dir_out, "compare", &provenance, &columns, &table_rows)?;
-        let md = table(args, &device, &scene.name, p.vpl_count(), &rows, &sampled);
+        let md = table(args, &device, &scene.name, vpl_count, &rows, &sampled);
         dir_out.write("report.md", md.as_bytes())?;
         let figure = side_by_side(args, &scene.name, &rows)?;
         dir_out.write("side_by_side.svg", figure.as_bytes())?;

@@ -151,7 +151,7 @@ impl OnBackend for Sweep<'_> {
             &device,
             f,
             &args.pipeline,
-            p.vpl_count(),
+            p.vpl_count().map_err(message)?,
         );
         let table = (provenance, columns);
         write_outputs(args, &mut out, &table, &scene, &strategies, &points)?;

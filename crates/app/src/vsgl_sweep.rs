@@ -138,6 +138,7 @@ impl OnBackend for VsglSweep<'_> {
         progress.finish_and_clear();
         let provenance = Provenance::new(f.scene.as_deref(), &scene);
         let settings = f.settings(Method::VplReference, 1);
+        let vpl_count = p.vpl_count().map_err(message)?;
         let columns = SettingsColumns::new(
             &provenance,
             &scene,
@@ -148,12 +149,12 @@ impl OnBackend for VsglSweep<'_> {
                 interleave: 1,
                 no_denoise: true,
             },
-            p.vpl_count(),
+            vpl_count,
         );
         let facts = SweepFacts {
             scene: &scene.name,
             texels,
-            vpls: p.vpl_count(),
+            vpls: vpl_count,
             reference_ms,
             vsgl_backend: r.name(),
         };

@@ -113,7 +113,7 @@ pub fn render_loaded<R: Renderer>(
         merge_optional(&mut gpu_timings, shaded.gpu_timings.as_ref());
         p.direct().check_finite("direct")?;
         shaded.indirect.check_finite("indirect")?;
-        frame.vpl_count = p.vpl_count();
+        frame.vpl_count = p.vpl_count()?;
         frame.metrics = shaded.metrics;
         frame.sampled_lights = shaded.sampled_lights;
         frame.direct = frame.direct.add(p.direct());

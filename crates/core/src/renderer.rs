@@ -104,8 +104,9 @@ impl Capabilities {
 /// A frame up to its VPLs and direct light, as any backend leaves it.
 pub trait PreparedFrame {
     fn camera(&self) -> &Camera;
-    /// The number of VPLs.
-    fn vpl_count(&self) -> usize;
+    /// The number of VPLs; a backend that keeps them on a device reads their number back
+    /// when first asked, which can fail.
+    fn vpl_count(&self) -> Result<usize, RenderError>;
     /// The VPLs, sorted by id; a backend that keeps them on a device reads them back on
     /// first use, which can fail.
     fn vpls(&self) -> Result<&[Vpl], RenderError>;

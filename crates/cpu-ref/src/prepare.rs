@@ -45,8 +45,8 @@ impl PreparedFrame for CpuPrepared {
         &self.camera
     }
 
-    fn vpl_count(&self) -> usize {
-        self.vpls.len()
+    fn vpl_count(&self) -> Result<usize, RenderError> {
+        Ok(self.vpls.len())
     }
 
     fn vpls(&self) -> Result<&[Vpl], RenderError> {

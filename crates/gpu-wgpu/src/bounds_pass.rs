@@ -6,10 +6,11 @@
 //! `BOUND_SLACK`. The CPU validates the VPLs (as `slc_cull` does) before upload; the GPU
 //! computes in f32 (the CPU in f64 where `slc_bounds` does), which the conformance test
 //! bounds at relative 1e-5.
-use crate::buffers::{output, read_back, uniform, Grid};
+use crate::buffers::{output, read_back};
 use crate::context::{GpuContext, GpuError};
 use crate::cull_frame::FrameVpls;
 use crate::cull_types::{GpuBoundShape, GpuBoxBound};
+use crate::gpu_count::{ArgsPass, VplCount};
 use crate::gpu_types::{GpuBound, GpuView, BOUND_OVERFLOW};
 use slc_core::{Camera, Interleaving, Vpl};
 use slc_cull::GlossyBound;
@@ -52,53 +53,62 @@ pub struct GpuBounds {
     pub shapes: wgpu::Buffer,
     /// The VPLs as uploaded (`GpuVpl`), for the passes that shade them.
     pub vpls: wgpu::Buffer,
-    pub count: usize,
+    /// How many there are (the buffers hold its capacity).
+    pub count: VplCount,
 }
 
 /// The compiled bounds pipeline.
 pub struct BoundsPass {
     pipeline: wgpu::ComputePipeline,
+    args: ArgsPass,
 }
 
 impl BoundsPass {
     pub fn new(ctx: &GpuContext) -> Result<Self, GpuError> {
+        let args = ArgsPass::new(ctx)?;
         ctx.scoped("bounds pipeline", || {
             Ok(Self {
                 pipeline: ctx.compute_pipeline("bounds", SOURCE),
+                args,
             })
         })
     }
 
     /// The bounds of `vpls` (left on the GPU); VPLs on the CPU are validated and uploaded
-    /// first ([`FrameVpls::records`]).
+    /// first ([`FrameVpls::records`]). VPLs generated on the GPU are bounded as many as they
+    /// are, by an indirect dispatch sized there.
     pub fn run(
         &self,
         ctx: &GpuContext,
         vpls: FrameVpls,
         settings: &BoundsSettings,
     ) -> Result<GpuBounds, GpuError> {
-        let count = u32::try_from(vpls.len())
-            .map_err(|_| GpuError::Input(format!("{} VPLs exceed u32 indices", vpls.len())))?;
+        let capacity = vpls.capacity();
+        let count = u32::try_from(capacity)
+            .map_err(|_| GpuError::Input(format!("{capacity} VPLs exceed u32 indices")))?;
         let vpl_buffer = vpls.records(ctx, settings.delta)?;
         let view = GpuView::new(settings, count)?;
-        let bounds = output::<GpuBound>(ctx, "bounds", vpls.len())?;
+        let bounds = output::<GpuBound>(ctx, "bounds", capacity)?;
         // Only the tight strategies' refinement reads the box bounds.
         let box_count = if settings.glossy == GlossyBound::Tight {
-            vpls.len()
+            capacity
         } else {
             1
         };
         let box_bounds = output::<GpuBoxBound>(ctx, "box bounds", box_count)?;
-        let shape_count = if settings.shapes { vpls.len() } else { 1 };
+        let shape_count = if settings.shapes { capacity } else { 1 };
         let shapes = output::<GpuBoundShape>(ctx, "bound shapes", shape_count)?;
-        let grid = Grid::for_items(ctx, u64::from(count), WORKGROUP)?;
-        ctx.scoped("bounds", || {
-            let view_buffer = uniform(ctx, "bounds view", &view);
-            ctx.dispatch(
+        let vpl_count = vpls.count();
+        ctx.submit("bounds", |encoder| {
+            let at = std::mem::offset_of!(GpuView, count);
+            let view_buffer = vpl_count.uniform(ctx, encoder, "bounds view", &view, at);
+            let workgroups = vpl_count.workgroups(ctx, encoder, &self.args, 1, WORKGROUP)?;
+            ctx.encode_dispatch(
+                encoder,
                 "bounds",
                 &self.pipeline,
                 &[&view_buffer, &vpl_buffer, &bounds, &box_bounds, &shapes],
-                grid,
+                workgroups,
             );
             Ok(())
         })?;
@@ -107,7 +117,7 @@ impl BoundsPass {
             box_bounds,
             shapes,
             vpls: vpl_buffer,
-            count: vpls.len(),
+            count: vpl_count,
         })
     }
 
@@ -120,7 +130,7 @@ impl BoundsPass {
         settings: &BoundsSettings,
     ) -> Result<Vec<GpuBound>, GpuError> {
         let gpu = self.run(ctx, FrameVpls::Cpu(vpls), settings)?;
-        let bounds: Vec<GpuBound> = read_back(ctx, "bounds", &gpu.buffer, gpu.count)?;
+        let bounds: Vec<GpuBound> = read_back(ctx, "bounds", &gpu.buffer, vpls.len())?;
         if let Some(b) = bounds.iter().find(|b| b.kind == BOUND_OVERFLOW) {
             return Err(GpuError::Input(format!(
                 "the bound of VPL {} does not fit in f32 (extreme flux, delta or xi)",

@@ -165,6 +165,21 @@ impl Grid {
     }
 }
 
+/// How many workgroups a dispatch runs: a [`Grid`] the host sized, or indirect arguments
+/// `[x, y, z]` (u32) a pass wrote on the GPU (a buffer with `INDIRECT` usage), read at
+/// offset 0 when the dispatch runs.
+#[derive(Clone, Debug)]
+pub enum Workgroups {
+    Grid(Grid),
+    Indirect(wgpu::Buffer),
+}
+
+impl From<Grid> for Workgroups {
+    fn from(grid: Grid) -> Self {
+        Self::Grid(grid)
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

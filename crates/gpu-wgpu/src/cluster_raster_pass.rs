@@ -16,11 +16,12 @@
 //! filled and shaded again with a buffer of that size. Sums follow the lists' order, which
 //! the GPU's scheduling sets: images equal the list shading's up to f32 rounding.
 use crate::bound_mesh::BoundMesh;
-use crate::buffers::{output, read_back, uniform, Grid};
+use crate::buffers::{output, read_back, Grid};
 use crate::clustered_cull_pass::{ClusterFrame, ClusteredCuller};
 use crate::context::{GpuContext, GpuError};
 use crate::cull_frame::{read_status, CullFrame};
 use crate::cull_types::{GpuRasterParams, CLUSTER_SLICES};
+use crate::gpu_count::ArgsPass;
 use crate::gpu_lists::GpuLightLists;
 use crate::gpu_types::GpuShadeParams;
 use crate::node_lists::NodeLists;
@@ -57,6 +58,9 @@ const SHELL_TARGET: wgpu::TextureFormat = wgpu::TextureFormat::R8Unorm;
 /// Node buffer size the first frame tries.
 const FIRST_CAPACITY: u32 = 1 << 20;
 
+/// The byte offset of the VPL count in [`GpuRasterParams`].
+const VPL_COUNT_AT: usize = std::mem::offset_of!(GpuRasterParams, vpl_count);
+
 /// Vertices each mesh triangle is drawn with (its cover: two triangles).
 const COVER_VERTICES: u32 = 6;
 
@@ -70,6 +74,7 @@ pub struct ClusterRasterizer {
     shade: wgpu::ComputePipeline,
     /// The largest node count seen: the next frame's buffer.
     capacity: AtomicU32,
+    args: ArgsPass,
 }
 
 /// A frame's rasterized clusters: the clustered culler's frusta and the lists in their
@@ -85,6 +90,7 @@ pub struct NodeFrame {
 impl ClusterRasterizer {
     pub fn new(ctx: &GpuContext) -> Result<Self, GpuError> {
         let mesh = BoundMesh::icosphere(0);
+        let args = ArgsPass::new(ctx)?;
         ctx.scoped("cluster raster pipelines", || {
             Ok(Self {
                 mesh: mesh.upload(ctx)?,
@@ -105,6 +111,7 @@ impl ClusterRasterizer {
                 fill: ctx.compute_pipeline("cluster fill", FILL_SOURCE),
                 shade: ctx.compute_pipeline("node shade", SHADE_SOURCE),
                 capacity: AtomicU32::new(FIRST_CAPACITY),
+                args,
             })
         })
     }
@@ -137,11 +144,11 @@ impl ClusterRasterizer {
             scale: frame.interleaving.scale(),
             tiles_x: p.tiles_x,
             tiles_y: p.tiles_y,
-            vpl_count: clusters.bounds.count as u32,
+            vpl_count: clusters.bounds.count.capacity(),
             pad: 0,
         };
         let per_sub = u64::from(p.tiles_x) * u64::from(p.tiles_y);
-        let cell_count = per_sub * clusters.bounds.count as u64;
+        let cell_count = per_sub * u64::from(clusters.bounds.count.capacity());
         let cells = output::<u32>(ctx, "cluster cells", cell_count as usize)?;
         let target = atlas(
             ctx,
@@ -149,8 +156,10 @@ impl ClusterRasterizer {
             (k * p.tiles_x, k * p.tiles_y),
             SHELL_TARGET,
         )?;
+        let count = &clusters.bounds.count;
         ctx.submit("cluster shell", |encoder| {
-            let params_buffer = uniform(ctx, "cluster shell params", &params);
+            let params_buffer =
+                count.uniform(ctx, encoder, "cluster shell params", &params, VPL_COUNT_AT);
             let group = bind(
                 ctx,
                 "cluster shell",
@@ -199,10 +208,12 @@ impl ClusterRasterizer {
         // The node count restarts (GpuCullStatus.total); the faults stay.
         ctx.queue
             .write_buffer(&clusters.status, 8, bytemuck::bytes_of(&0u32));
-        let items =
-            u64::from(params.tiles_x) * u64::from(params.tiles_y) * u64::from(params.vpl_count);
-        let params_buffer = uniform(ctx, "cluster fill params", params);
+        let per_sub = params.tiles_x * params.tiles_y;
+        let count = &clusters.bounds.count;
         ctx.submit("cluster fill", |encoder| {
+            let params_buffer =
+                count.uniform(ctx, encoder, "cluster fill params", params, VPL_COUNT_AT);
+            let workgroups = count.workgroups(ctx, encoder, &self.args, per_sub, 64)?;
             ctx.encode_dispatch(
                 encoder,
                 "cluster fill",
@@ -217,7 +228,7 @@ impl ClusterRasterizer {
                     &lists.nodes,
                     &clusters.status,
                 ],
-                Grid::for_items(ctx, items, 64)?,
+                workgroups,
             );
             Ok(())
         })?;
@@ -237,26 +248,30 @@ impl ClusterRasterizer {
     ) -> Result<wgpu::Buffer, GpuError> {
         let clusters = &nodes.clusters;
         let image = output::<f32>(ctx, "indirect image", 3 * clusters.pixels as usize)?;
-        let params = uniform(
-            ctx,
-            "node shade params",
-            &GpuShadeParams {
-                width: frame.width,
-                height: frame.height,
-                pixel_count: clusters.pixels,
-                vpl_count: nodes.params.vpl_count,
-                list_count: CLUSTER_SLICES * clusters.params.tile_count,
-                delta: frame.delta,
-                scale: frame.interleaving.scale(),
-                pad: 0,
-            },
-        );
+        let params = GpuShadeParams {
+            width: frame.width,
+            height: frame.height,
+            pixel_count: clusters.pixels,
+            vpl_count: nodes.params.vpl_count,
+            list_count: CLUSTER_SLICES * clusters.params.tile_count,
+            delta: frame.delta,
+            scale: frame.interleaving.scale(),
+            pad: 0,
+        };
         let grid = Grid::for_items(ctx, u64::from(clusters.pixels), 64)?;
         loop {
             {
                 let lists = nodes.lists.borrow();
-                ctx.scoped("node shade", || {
-                    ctx.dispatch(
+                ctx.submit("node shade", |encoder| {
+                    let params = clusters.bounds.count.uniform(
+                        ctx,
+                        encoder,
+                        "node shade params",
+                        &params,
+                        std::mem::offset_of!(GpuShadeParams, vpl_count),
+                    );
+                    ctx.encode_dispatch(
+                        encoder,
                         "node shade",
                         &self.shade,
                         &[
@@ -305,7 +320,8 @@ impl ClusterRasterizer {
             clusters.pixels as usize,
         )?;
         let lists = nodes.lists.borrow().read(ctx, count, &pixel_list)?;
-        GpuLightLists::upload(ctx, &lists, clusters.pixels as usize, clusters.bounds.count)
+        let vpls = clusters.bounds.count.capacity() as usize;
+        GpuLightLists::upload(ctx, &lists, clusters.pixels as usize, vpls)
     }
 
     /// The fill pass again into a node buffer of `count` nodes (the count it needed).

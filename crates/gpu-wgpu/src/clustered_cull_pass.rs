@@ -16,7 +16,7 @@
 //! The GPU decides in f32 what the CPU decides in f64 (view depths, slice boundaries, box
 //! tests): a sample within rounding of a slice boundary may fall in the neighbouring slice.
 use crate::bounds_pass::{BoundsPass, BoundsSettings, GpuBounds};
-use crate::buffers::{output, uniform, upload, Grid};
+use crate::buffers::{output, upload, Grid};
 use crate::context::{GpuContext, GpuError};
 use crate::cull_frame::{check_input, cull_params, read_status, tile_grid, CullFrame, CullSizes};
 use crate::cull_types::{GpuClusterFrusta, CLUSTER_SLICES, DEPTH_RANGE, DEPTH_SPLIT};
@@ -28,6 +28,7 @@ use crate::scan_pass::ScanPass;
 use crate::tight_cull_pass::{BaseLayout, TightRefiner};
 use slc_core::{CullInput, LightLists};
 use slc_cull::{CullView, GlossyBound};
+use std::mem::offset_of;
 
 /// `shaders/tiles.wgsl` and `shaders/clusters.wgsl` followed by the depth-slice kernel.
 pub(crate) const DEPTH_SOURCE: &str = concat!(
@@ -122,11 +123,7 @@ impl ClusteredCuller {
         glossy: GlossyBound,
         shapes: bool,
     ) -> Result<Option<ClusterFrame>, GpuError> {
-        let CullSizes {
-            pixels,
-            k,
-            vpl_count,
-        } = check_input(frame)?;
+        let CullSizes { pixels, k, .. } = check_input(frame)?;
         if pixels == 0 {
             return Ok(None);
         }
@@ -163,7 +160,7 @@ impl ClusteredCuller {
                 encoder,
                 &self.scan,
                 &bounds.buffer,
-                vpl_count,
+                &bounds.count,
                 k * k,
                 &status,
             )?;
@@ -171,7 +168,13 @@ impl ClusteredCuller {
                 ("cluster depth range", DEPTH_RANGE),
                 ("cluster depth split", DEPTH_SPLIT),
             ] {
-                let params = uniform(ctx, label, &GpuCullParams { mode, ..params });
+                let params = bounds.count.uniform(
+                    ctx,
+                    encoder,
+                    label,
+                    &GpuCullParams { mode, ..params },
+                    offset_of!(GpuCullParams, vpl_count),
+                );
                 ctx.encode_dispatch(
                     encoder,
                     label,
@@ -216,15 +219,17 @@ impl ClusteredCuller {
         // Counting writes no list entry: a placeholder fills the binding.
         let no_entries = output::<u32>(ctx, "no lists", 1)?;
         let run = |label: &'static str, mode: u32, entries: &wgpu::Buffer| {
-            let params = uniform(
-                ctx,
-                label,
-                &GpuCullParams {
-                    mode,
-                    ..clusters.params
-                },
-            );
             ctx.submit(label, |encoder| {
+                let params = clusters.bounds.count.uniform(
+                    ctx,
+                    encoder,
+                    label,
+                    &GpuCullParams {
+                        mode,
+                        ..clusters.params
+                    },
+                    offset_of!(GpuCullParams, vpl_count),
+                );
                 ctx.encode_dispatch(
                     encoder,
                     "clustered cull",

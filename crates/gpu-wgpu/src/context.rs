@@ -11,7 +11,7 @@
 //!   before allocation ([`GpuError::BufferTooLarge`], see `buffers.rs`);
 //! - more workgroups than one dispatch dimension allows are split into 2-D grids
 //!   (`buffers::Grid`), and beyond 65535² workgroups refused ([`GpuError::TooManyWorkgroups`]).
-use crate::buffers::Grid;
+use crate::buffers::{Grid, Workgroups};
 use crate::profiler::Profiler;
 use std::collections::BTreeMap;
 use std::sync::{Arc, Mutex};
@@ -275,18 +275,19 @@ impl GpuContext {
             })
     }
 
-    /// Records one compute pass of `pipeline` over `grid`, with `buffers` bound at 0, 1, ... of
-    /// group 0 (see [`GpuContext::bind_group`]); timed while profiling (`profiler.rs`).
+    /// Records one compute pass of `pipeline` over `workgroups` (a [`Grid`], or indirect
+    /// arguments written on the GPU), with `buffers` bound at 0, 1, ... of group 0 (see
+    /// [`GpuContext::bind_group`]); timed while profiling (`profiler.rs`).
     pub fn encode_dispatch(
         &self,
         encoder: &mut wgpu::CommandEncoder,
         label: &'static str,
         pipeline: &wgpu::ComputePipeline,
         buffers: &[&wgpu::Buffer],
-        grid: Grid,
+        workgroups: impl Into<Workgroups>,
     ) {
         let numbered: Vec<_> = (0u32..).zip(buffers.iter().copied()).collect();
-        self.encode_dispatch_at(encoder, label, pipeline, &numbered, grid);
+        self.encode_dispatch_at(encoder, label, pipeline, &numbered, workgroups);
     }
 
     /// [`GpuContext::encode_dispatch`] with each buffer at the binding number given: for an
@@ -298,7 +299,7 @@ impl GpuContext {
         label: &'static str,
         pipeline: &wgpu::ComputePipeline,
         buffers: &[(u32, &wgpu::Buffer)],
-        grid: Grid,
+        workgroups: impl Into<Workgroups>,
     ) {
         let bind = self.bind_group_at(label, pipeline, buffers);
         let timed = self.compute_timestamps(label);
@@ -308,7 +309,10 @@ impl GpuContext {
         });
         pass.set_pipeline(pipeline);
         pass.set_bind_group(0, &bind, &[]);
-        grid.dispatch(&mut pass);
+        match workgroups.into() {
+            Workgroups::Grid(grid) => grid.dispatch(&mut pass),
+            Workgroups::Indirect(args) => pass.dispatch_workgroups_indirect(&args, 0),
+        }
     }
 
     /// The passes `f` records in one command buffer, submitted at once, checked as the pass
@@ -363,16 +367,9 @@ impl GpuContext {
     ) -> wgpu::BindGroup {
         let entries: Vec<_> = buffers
             .iter()
-            .map(|&(binding, b)| wgpu::BindGroupEntry {
-                binding,
-                resource: b.as_entire_binding(),
-            })
+            .map(|&(binding, b)| (binding, b.as_entire_binding()))
             .collect();
-        self.device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some(label),
-            layout: &pipeline.get_bind_group_layout(0),
-            entries: &entries,
-        })
+        crate::raster_draw::bind(self, label, &pipeline.get_bind_group_layout(0), &entries)
     }
 }
 

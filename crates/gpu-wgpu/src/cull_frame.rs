@@ -6,6 +6,7 @@
 use crate::buffers::{read_back, upload};
 use crate::context::{GpuContext, GpuError};
 use crate::gbuffer_pass::GpuGBuffer;
+use crate::gpu_count::VplCount;
 use crate::gpu_types::{GpuCullParams, GpuCullStatus, GpuVpl, FRUSTUM_SLACK, MAX_K};
 use crate::vpl_gen_pass::GpuVpls;
 use slc_bounds::StochasticParams;
@@ -87,7 +88,9 @@ impl<'a> CullFrame<'a> {
 
 /// The VPLs a frame is culled and shaded with: on the CPU (validated and packed as
 /// [`GpuVpl`]s by [`FrameVpls::records`]) or generated on the GPU
-/// (`vpl_gen_pass::VplGenPass`, complete records that never leave the device).
+/// (`vpl_gen_pass::VplGenPass`, complete records that never leave the device, counted there:
+/// the passes size their buffers by [`FrameVpls::capacity`] and take the count into their
+/// uniforms and dispatches with [`FrameVpls::count`], so nothing is read back).
 #[derive(Clone, Copy)]
 pub enum FrameVpls<'a> {
     Cpu(&'a [Vpl]),
@@ -95,15 +98,26 @@ pub enum FrameVpls<'a> {
 }
 
 impl FrameVpls<'_> {
-    pub fn len(&self) -> usize {
+    /// The most VPLs there can be: the number of CPU VPLs, or the capacity of the GPU's
+    /// count (what buffers with a record per VPL hold).
+    pub fn capacity(&self) -> usize {
         match self {
             Self::Cpu(v) => v.len(),
-            Self::Gpu(v) => v.count as usize,
+            Self::Gpu(v) => v.count.capacity as usize,
         }
     }
 
+    /// Whether there can be no VPL.
     pub fn is_empty(&self) -> bool {
-        self.len() == 0
+        self.capacity() == 0
+    }
+
+    /// The number of VPLs: the host's, or the count on the GPU.
+    pub fn count(&self) -> VplCount {
+        match self {
+            Self::Cpu(v) => VplCount::Host(v.len() as u32),
+            Self::Gpu(v) => VplCount::Gpu(v.count.clone()),
+        }
     }
 
     /// The [`GpuVpl`] records on the GPU: the CPU's validated for δ = `delta` exactly as the
@@ -169,8 +183,8 @@ pub(crate) fn check_input(frame: &CullFrame) -> Result<CullSizes, GpuError> {
             "interleaving factor K = {k} must lie in 1..={MAX_K}"
         )));
     }
-    let vpl_count = u32::try_from(frame.vpls.len())
-        .map_err(|_| GpuError::Input(format!("{} VPLs exceed u32", frame.vpls.len())))?;
+    let vpl_count = u32::try_from(frame.vpls.capacity())
+        .map_err(|_| GpuError::Input(format!("{} VPLs exceed u32", frame.vpls.capacity())))?;
     Ok(CullSizes {
         pixels,
         k,
@@ -227,7 +241,7 @@ pub(crate) fn cull_params(
         tiles_x,
         tiles_y,
         tile_count,
-        vpl_count: frame.vpls.len() as u32,
+        vpl_count: frame.vpls.capacity() as u32,
         frustum_slack: FRUSTUM_SLACK,
         mode,
         pad: [0; 3],

@@ -14,7 +14,7 @@ pub struct GpuLightLists {
     pub pixel_list: wgpu::Buffer,
     /// Number of lists (`offsets` holds one more entry).
     pub list_count: u32,
-    /// Number of list entries.
+    /// Number of list entries the indices buffer holds (at least the last offset).
     pub entries: u32,
     /// Number of pixels (`pixel_list` entries).
     pub pixels: u32,
@@ -104,7 +104,9 @@ pub fn read_lists(ctx: &GpuContext, gpu: &GpuLightLists) -> Result<LightLists, G
         &gpu.offsets,
         gpu.list_count as usize + 1,
     )?;
-    let indices: Vec<u32> = read_back(ctx, "light lists", &gpu.indices, gpu.entries as usize)?;
+    // The entries may be fewer than the buffer holds (a count's capacity, `gpu_count`).
+    let entries = offsets.last().map_or(0, |&e| e.min(gpu.entries));
+    let indices: Vec<u32> = read_back(ctx, "light lists", &gpu.indices, entries as usize)?;
     let pixel_list: Vec<u32> = read_back(ctx, "pixel lists", &gpu.pixel_list, gpu.pixels as usize)?;
     Ok(compact(&offsets, indices, &pixel_list))
 }

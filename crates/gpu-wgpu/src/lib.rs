@@ -83,6 +83,7 @@ pub mod denoise_pass;
 pub mod denoise_types;
 pub mod direct_pass;
 pub mod gbuffer_pass;
+pub mod gpu_count;
 pub mod gpu_lists;
 pub mod gpu_types;
 pub mod ism_pass;

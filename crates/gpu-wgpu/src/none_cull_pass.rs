@@ -7,7 +7,7 @@
 //! segments are the lists, one per subregion, and each pixel points to its subregion's.
 //! VPLs from the CPU are validated as for every GPU pass (`FrameVpls::records`, as the
 //! shading pass would), where the CPU's unculled strategy does not look at them.
-use crate::buffers::{output, uniform, upload, Grid};
+use crate::buffers::{output, upload, Grid};
 use crate::context::{GpuContext, GpuError};
 use crate::cull_frame::{check_input, CullFrame, CullSizes};
 use crate::cull_types::GpuNoneParams;
@@ -85,43 +85,36 @@ impl NoneCuller {
             pad: [0; 3],
         };
         let vpls = frame.vpls.records(ctx, frame.delta)?;
+        let count = frame.vpls.count();
         let bounds = output::<GpuBound>(ctx, "unculled bounds", vpl_count as usize)?;
         let pixel_list = output::<u32>(ctx, "pixel lists", pixels as usize)?;
         // The partition's scan records its total here; nothing can overflow.
         let status = upload(ctx, "cull status", &[GpuCullStatus::CLEAR])?;
         let grid = Grid::for_items(ctx, u64::from(vpl_count.max(pixels)), WORKGROUP)?;
-        let partition = ctx.scoped("no culling", || {
-            let params = uniform(ctx, "no-culling params", &params);
-            let mut encoder = ctx
-                .device
-                .create_command_encoder(&wgpu::CommandEncoderDescriptor {
-                    label: Some("no culling"),
-                });
+        let partition = ctx.submit("no culling", |encoder| {
+            let params = count.uniform(
+                ctx,
+                encoder,
+                "no-culling params",
+                &params,
+                std::mem::offset_of!(GpuNoneParams, vpl_count),
+            );
             ctx.encode_dispatch(
-                &mut encoder,
+                encoder,
                 "no culling",
                 &self.pipeline,
                 &[&params, &vpls, &frame.positions, &bounds, &pixel_list],
                 grid,
             );
-            let partition = self.partition.encode(
-                ctx,
-                &mut encoder,
-                &self.scan,
-                &bounds,
-                vpl_count,
-                k * k,
-                &status,
-            )?;
-            ctx.queue.submit([encoder.finish()]);
-            Ok(partition)
+            self.partition
+                .encode(ctx, encoder, &self.scan, &bounds, &count, k * k, &status)
         })?;
         Ok(GpuLightLists {
             offsets: partition.sub_offsets,
             indices: partition.order,
             pixel_list,
             list_count: k * k,
-            // Every VPL is in exactly one list.
+            // Every VPL is in exactly one list (GPU VPLs: at most the count's capacity).
             entries: vpl_count,
             pixels,
         })

@@ -2,8 +2,9 @@
 //! section 6): a stable counting sort of the non-empty bounds by subregion, so each tile
 //! reads only its subregion's bounds, in ascending VPL order. Count, scan (`scan_pass`),
 //! write.
-use crate::buffers::{output, uniform, Grid};
+use crate::buffers::{output, Grid};
 use crate::context::{GpuContext, GpuError};
+use crate::gpu_count::VplCount;
 use crate::gpu_types::{GpuPartitionParams, CULL_COUNT, CULL_WRITE};
 use crate::scan_pass::ScanPass;
 
@@ -32,7 +33,8 @@ impl PartitionPass {
         }
     }
 
-    /// Records count, scan and write for `vpl_count` bounds in `subregions` subregions.
+    /// Records count, scan and write for the `count` bounds of `bounds` in `subregions`
+    /// subregions.
     /// Overflowed bounds are recorded in `status` (`GpuCullStatus::overflow_vpl`); the scan
     /// also stores its total there, which a later scan overwrites.
     #[allow(clippy::too_many_arguments)]
@@ -42,7 +44,7 @@ impl PartitionPass {
         encoder: &mut wgpu::CommandEncoder,
         scan: &ScanPass,
         bounds: &wgpu::Buffer,
-        vpl_count: u32,
+        count: &VplCount,
         subregions: u32,
         status: &wgpu::Buffer,
     ) -> Result<GpuPartition, GpuError> {
@@ -51,17 +53,19 @@ impl PartitionPass {
             ctx.limits.max_compute_workgroups_per_dimension,
         )?;
         let sub_offsets = output::<u32>(ctx, "subregion offsets", subregions as usize + 1)?;
-        let order = output::<u32>(ctx, "subregion order", vpl_count as usize)?;
+        let order = output::<u32>(ctx, "subregion order", count.capacity() as usize)?;
         for mode in [CULL_COUNT, CULL_WRITE] {
-            let params = uniform(
+            let params = count.uniform(
                 ctx,
+                encoder,
                 "partition params",
                 &GpuPartitionParams {
-                    vpl_count,
+                    vpl_count: count.capacity(),
                     subregions,
                     mode,
                     pad: 0,
                 },
+                std::mem::offset_of!(GpuPartitionParams, vpl_count),
             );
             ctx.encode_dispatch(
                 encoder,

@@ -4,9 +4,10 @@
 //! in one pass, [`crate::tiled_shade_pass`]; the others with light lists that stay on the
 //! GPU), shading and the cross bilateral filter — on a device it opens
 //! ([`GpuRenderer::new`]) or one the host owns ([`GpuRenderer::from_context`] with
-//! [`GpuContext::from_device`]). What comes back to the CPU: the images, 16-byte status records,
-//! and the G-buffer, VPLs and lists where the brute-force metrics or a CPU reference need
-//! them ([`CpuFrames`]). VSGLs are built from the RSMs where they lie
+//! [`GpuContext::from_device`]). What comes back to the CPU: the images, the fault record of
+//! the culling or VSGL passes after the shading, the VPL count when asked (after the frame,
+//! for its report), and the G-buffer, VPLs and lists where the brute-force metrics or a CPU
+//! reference need them ([`CpuFrames`]). VSGLs are built from the RSMs where they lie
 //! ([`crate::vsgl_build_pass`]) and shaded there ([`crate::vsgl_shade_pass`]), with visibility
 //! from imperfect shadow maps to each VSGL's `μ_v` ([`crate::ism_pass`]).
 //!
@@ -81,6 +82,8 @@ pub struct GpuPrepared {
     cpu_gbuffer: OnceCell<GBuffer>,
     /// The VPLs read back, once something on the CPU needs them.
     cpu_vpls: OnceCell<Vec<Vpl>>,
+    /// Their number read back (after the frame, for its report), once asked for.
+    vpl_count: OnceCell<usize>,
     ctx: Arc<GpuContext>,
 }
 
@@ -89,8 +92,15 @@ impl PreparedFrame for GpuPrepared {
         &self.camera
     }
 
-    fn vpl_count(&self) -> usize {
-        self.vpls.count as usize
+    fn vpl_count(&self) -> Result<usize, RenderError> {
+        if let Some(v) = self.cpu_vpls.get() {
+            return Ok(v.len());
+        }
+        if let Some(&n) = self.vpl_count.get() {
+            return Ok(n);
+        }
+        let n = self.vpls.read_count(&self.ctx).map_err(gpu)? as usize;
+        Ok(*self.vpl_count.get_or_init(|| n))
     }
 
     fn vpls(&self) -> Result<&[Vpl], RenderError> {
@@ -332,6 +342,7 @@ impl Renderer for GpuRenderer {
             gpu_timings,
             cpu_gbuffer: OnceCell::new(),
             cpu_vpls: OnceCell::new(),
+            vpl_count: OnceCell::new(),
             ctx: Arc::clone(&self.ctx),
         })
     }

@@ -12,9 +12,11 @@ pub fn frame_notes(ctx: &GpuContext) -> Vec<String> {
              or none at all in a one-pass frame) and the cross bilateral filter",
             ctx.adapter_name
         ),
-        "the VPLs stay on the GPU from their generation to the shading; the images are read \
-         back at the end of the frame, and 16-byte status records on the way (the VPL count; \
-         each culling pass's faults and list total)"
+        "the VPLs and their count stay on the GPU from their generation to the shading (the \
+         passes after it are sized there: indirect dispatches, the count copied into their \
+         parameters); what is read back is the images, the culling's 16-byte fault record \
+         after the shading (the compute clustered and tight strategies also read their list \
+         totals before writing the lists) and the VPL count for the report after the frame"
             .to_string(),
         if ctx.timestamps_trusted {
             "timings_ms of GPU passes are wall clock around the GPU work (uploads, readbacks \

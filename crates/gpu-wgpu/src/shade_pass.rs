@@ -15,7 +15,7 @@
 //! f32 throughout, with the CPU's operation order, so results agree to a few ulps (bit for
 //! bit on lavapipe); the one place the CPU uses f64 (the half vector of a smooth lobe near
 //! grazing opposition) is emulated with compensated f32 arithmetic, see `shaders/brdf.wgsl`.
-use crate::buffers::{output, read_back, uniform, upload, Grid};
+use crate::buffers::{output, read_back, upload, Grid};
 use crate::context::{GpuContext, GpuError};
 use crate::cull_frame::FrameVpls;
 use crate::gbuffer_pass::GpuGBuffer;
@@ -196,8 +196,9 @@ impl ShadePass {
                 "interleaving factor K = {k} must lie in 1..={MAX_K}"
             )));
         }
-        let vpl_count = u32::try_from(input.vpls.len())
-            .map_err(|_| GpuError::Input(format!("{} VPLs exceed u32", input.vpls.len())))?;
+        let capacity = input.vpls.capacity();
+        let vpl_count = u32::try_from(capacity)
+            .map_err(|_| GpuError::Input(format!("{capacity} VPLs exceed u32")))?;
         if pixels == 0 {
             return output::<f32>(ctx, "indirect image", 0);
         }
@@ -215,9 +216,12 @@ impl ShadePass {
         };
         let out = output::<f32>(ctx, "indirect image", 3 * pixels as usize)?;
         let grid = Grid::for_items(ctx, pixels, WORKGROUP)?;
-        ctx.scoped("shade", || {
-            let params = uniform(ctx, "shade params", &params);
-            ctx.dispatch(
+        let count = input.vpls.count();
+        ctx.submit("shade", |encoder| {
+            let at = std::mem::offset_of!(GpuShadeParams, vpl_count);
+            let params = count.uniform(ctx, encoder, "shade params", &params, at);
+            ctx.encode_dispatch(
+                encoder,
                 "shade",
                 &self.pipeline,
                 &[

@@ -13,7 +13,7 @@
 //! equal the list shading's up to f32 rounding. For the metrics, the same draws append each
 //! covered pixel's VPL to a per-pixel list in a node buffer (`node_lists`).
 use crate::bound_mesh::BoundMesh;
-use crate::buffers::{output, uniform, upload};
+use crate::buffers::{output, upload};
 use crate::context::{GpuContext, GpuError};
 use crate::cull_frame::{read_status, CullFrame};
 use crate::cull_types::GpuRasterParams;
@@ -24,6 +24,7 @@ use crate::raster_draw::{atlas, bind, render_pipeline, SubregionDraws};
 use crate::shade_pass::vpl_eval_source;
 use crate::tiled_cull_pass::TiledFrame;
 use slc_core::Interleaving;
+use std::mem::offset_of;
 use std::sync::atomic::{AtomicU32, Ordering};
 
 /// The mesh mapping and one VPL's contribution, then the splatting shaders.
@@ -129,7 +130,7 @@ impl Splatter {
             scale: frame.interleaving.scale(),
             tiles_x: tiles.params.tiles_x,
             tiles_y: tiles.params.tiles_y,
-            vpl_count: tiles.bounds.count as u32,
+            vpl_count: tiles.bounds.count.capacity(),
             pad: 0,
         }
     }
@@ -186,7 +187,13 @@ impl Splatter {
         let params = self.params(frame, tiles, 0);
         let image = output::<f32>(ctx, "indirect image", 3 * tiles.pixels as usize)?;
         ctx.submit("splat", |encoder| {
-            let params_buffer = uniform(ctx, "splat params", &params);
+            let params_buffer = tiles.bounds.count.uniform(
+                ctx,
+                encoder,
+                "splat params",
+                &params,
+                offset_of!(GpuRasterParams, vpl_count),
+            );
             let group = bind(
                 ctx,
                 "splat",
@@ -244,7 +251,13 @@ impl Splatter {
             let nodes = NodeLists::new(ctx, tiles.pixels, capacity)?;
             let status = upload(ctx, "splat list status", &[GpuCullStatus::CLEAR])?;
             ctx.submit("splat lists", |encoder| {
-                let params_buffer = uniform(ctx, "splat params", &params);
+                let params_buffer = tiles.bounds.count.uniform(
+                    ctx,
+                    encoder,
+                    "splat params",
+                    &params,
+                    offset_of!(GpuRasterParams, vpl_count),
+                );
                 let group = bind(
                     ctx,
                     "splat lists",
@@ -271,7 +284,8 @@ impl Splatter {
             }
             let pixel_list: Vec<u32> = (0..tiles.pixels).collect();
             let lists = nodes.read(ctx, count, &pixel_list)?;
-            return GpuLightLists::upload(ctx, &lists, tiles.pixels as usize, tiles.bounds.count);
+            let vpls = tiles.bounds.count.capacity() as usize;
+            return GpuLightLists::upload(ctx, &lists, tiles.pixels as usize, vpls);
         }
     }
 }

@@ -14,7 +14,7 @@
 //! `tiled_shade_pass`, and [`TiledCuller::lists`] builds them from there. With
 //! [`GlossyBound::Tight`] the lists are refined per block (`tight_cull_pass`).
 use crate::bounds_pass::{BoundsPass, BoundsSettings, GpuBounds};
-use crate::buffers::{output, uniform, upload, Grid};
+use crate::buffers::{output, upload, Grid};
 use crate::context::{GpuContext, GpuError};
 use crate::cull_frame::{check_input, cull_params, read_status, tile_grid, CullFrame, CullSizes};
 use crate::gpu_lists::GpuLightLists;
@@ -26,6 +26,7 @@ use crate::tight_cull_pass::{BaseLayout, TightRefiner};
 use crate::tile_depth_pass::{TileDepthBuffers, TileDepthPass};
 use slc_core::{CullInput, LightLists};
 use slc_cull::{CullView, GlossyBound};
+use std::mem::offset_of;
 
 /// `shaders/tiles.wgsl`, `shaders/bound.wgsl` and `shaders/frustum_tests.wgsl` followed by
 /// the culling kernel.
@@ -114,9 +115,7 @@ impl TiledCuller {
         glossy: GlossyBound,
         shapes: bool,
     ) -> Result<Option<TiledFrame>, GpuError> {
-        let CullSizes {
-            pixels, vpl_count, ..
-        } = check_input(frame)?;
+        let CullSizes { pixels, .. } = check_input(frame)?;
         if pixels == 0 {
             return Ok(None);
         }
@@ -152,15 +151,22 @@ impl TiledCuller {
                 encoder,
                 &self.scan,
                 &bounds.buffer,
-                vpl_count,
+                &bounds.count,
                 k * k,
                 &status,
             )?;
+            let depth_params = bounds.count.uniform(
+                ctx,
+                encoder,
+                "cull params (depth)",
+                &params,
+                offset_of!(GpuCullParams, vpl_count),
+            );
             self.depth.encode(
                 ctx,
                 encoder,
                 &TileDepthBuffers {
-                    params: &uniform(ctx, "cull params (depth)", &params),
+                    params: &depth_params,
                     positions: &frame.positions,
                     frusta: &frusta,
                     pixel_list: &pixel_list,
@@ -204,15 +210,17 @@ impl TiledCuller {
             } else {
                 "tiled cull (write)"
             };
-            let params = uniform(
-                ctx,
-                label,
-                &GpuCullParams {
-                    mode,
-                    ..tiles.params
-                },
-            );
             ctx.submit(label, |encoder| {
+                let params = tiles.bounds.count.uniform(
+                    ctx,
+                    encoder,
+                    label,
+                    &GpuCullParams {
+                        mode,
+                        ..tiles.params
+                    },
+                    offset_of!(GpuCullParams, vpl_count),
+                );
                 ctx.encode_dispatch(
                     encoder,
                     "tiled cull",

@@ -9,12 +9,13 @@
 //! This is the tiled strategies' frame path. The list passes stay where lists are needed:
 //! the brute-force metrics, the clustered layout (32 slices per tile) and the tight
 //! strategies' per-block refinement.
-use crate::buffers::{output, uniform};
+use crate::buffers::output;
 use crate::context::{GpuContext, GpuError};
 use crate::cull_frame::{read_status, CullFrame};
-use crate::gpu_types::GpuShadeParams;
+use crate::gpu_types::{GpuCullParams, GpuShadeParams};
 use crate::shade_pass::vpl_eval_source;
 use crate::tiled_cull_pass::TiledFrame;
+use std::mem::offset_of;
 
 /// The tile grid, the frusta tests, the BRDF and one VPL's contribution, then the kernel.
 pub(crate) const SOURCE: &str = concat!(
@@ -49,20 +50,34 @@ impl TiledShadePass {
         tiles: &TiledFrame,
     ) -> Result<wgpu::Buffer, GpuError> {
         let image = output::<f32>(ctx, "indirect image", 3 * tiles.pixels as usize)?;
+        let count = &tiles.bounds.count;
         let params = GpuShadeParams {
             width: frame.width,
             height: frame.height,
             pixel_count: tiles.pixels,
-            vpl_count: tiles.bounds.count as u32,
+            vpl_count: count.capacity(),
             list_count: 0,
             delta: frame.delta,
             scale: frame.interleaving.scale(),
             pad: 0,
         };
-        ctx.scoped("tiled shade", || {
-            let cull = uniform(ctx, "tiled shade cull params", &tiles.params);
-            let shade = uniform(ctx, "tiled shade params", &params);
-            ctx.dispatch(
+        ctx.submit("tiled shade", |encoder| {
+            let cull = count.uniform(
+                ctx,
+                encoder,
+                "tiled shade cull params",
+                &tiles.params,
+                offset_of!(GpuCullParams, vpl_count),
+            );
+            let shade = count.uniform(
+                ctx,
+                encoder,
+                "tiled shade params",
+                &params,
+                offset_of!(GpuShadeParams, vpl_count),
+            );
+            ctx.encode_dispatch(
+                encoder,
                 "tiled shade",
                 &self.pipeline,
                 &[

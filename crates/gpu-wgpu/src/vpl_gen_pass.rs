@@ -2,10 +2,13 @@
 //! `slc_cpu_ref::vpls::generate_vpls`: one diffuse VPL (id 2k, where kd > 0) and one glossy
 //! VPL (id 2k + 1, where the specular layer reflects) per lit texel k of the concatenated
 //! maps, ξ = `rng::vpl_xi(seed, id)` (paper eq. 3) from `shaders/rng.wgsl`, compacted in the
-//! CPU's order by a count pass, an exclusive scan (`scan_pass`) and a write pass. The one
-//! count read back in between sizes the VPL buffer exactly.
+//! CPU's order by a count pass, an exclusive scan (`scan_pass`) and a write pass, in one
+//! submission. Nothing is read back: the count stays on the GPU ([`GpuCount`], the scan's
+//! total), the VPL buffer holds the most VPLs the maps can make (two per texel), and the
+//! passes after it take the count from there (`gpu_count`).
 use crate::buffers::{output, read_back, uniform, upload, Grid};
 use crate::context::{GpuContext, GpuError};
+use crate::gpu_count::GpuCount;
 use crate::gpu_types::{
     anisotropy_from_gpu, GpuCullStatus, GpuVpl, CULL_COUNT, CULL_WRITE, FRESNEL_DIELECTRIC,
     LOBE_DIFFUSE,
@@ -47,17 +50,26 @@ impl VplLobes {
 
 /// VPLs on the GPU in the [`GpuVpl`] layout the bounds and shading passes read, complete:
 /// the bound factor `geometric_tilt.w` is formed in f32 (`vpl_bound_factor` in
-/// `shaders/vpl_gen.wgsl`), never below [`GpuVpl::new`]'s. They stay on the GPU for a frame;
-/// [`GpuVpls::read_back`] brings them to the CPU where something there needs them.
+/// `shaders/vpl_gen.wgsl`), never below [`GpuVpl::new`]'s. They stay on the GPU for a frame,
+/// and so does their number; [`GpuVpls::read_count`] and [`GpuVpls::read_back`] bring them to
+/// the CPU where something there needs them.
 pub struct GpuVpls {
+    /// The VPLs in the CPU's order, then unused records up to the count's capacity.
     pub buffer: wgpu::Buffer,
-    pub count: u32,
+    /// The number of VPLs (`GpuCullStatus::total` of the generation's scan).
+    pub count: GpuCount,
 }
 
 impl GpuVpls {
+    /// The number of VPLs, read back (16 bytes, `vpl count`).
+    pub fn read_count(&self, ctx: &GpuContext) -> Result<u32, GpuError> {
+        self.count.read(ctx, "vpl count")
+    }
+
     /// The VPLs as `slc_core::Vpl`s, in the CPU's order.
     pub fn read_back(&self, ctx: &GpuContext) -> Result<Vec<Vpl>, GpuError> {
-        let raw: Vec<GpuVpl> = read_back(ctx, "vpls", &self.buffer, self.count as usize)?;
+        let count = self.read_count(ctx)?;
+        let raw: Vec<GpuVpl> = read_back(ctx, "vpls", &self.buffer, count as usize)?;
         Ok(raw.iter().map(unpack).collect())
     }
 }
@@ -90,6 +102,9 @@ fn unpack(v: &GpuVpl) -> Vpl {
         xi: v.position_xi[3],
     }
 }
+
+/// The byte offset of `GpuCullStatus::total`, where the scan leaves the VPL count.
+const STATUS_TOTAL: u64 = std::mem::offset_of!(GpuCullStatus, total) as u64;
 
 /// The compiled generation and scan pipelines.
 pub struct VplGenPass {
@@ -145,57 +160,39 @@ impl VplGenPass {
             Ok(out)
         };
         let count_passes = passes(CULL_COUNT)?;
+        let write_passes = passes(CULL_WRITE)?;
+        let capacity = 2 * total;
+        let vpls = output::<GpuVpl>(ctx, "vpls", capacity as usize)?;
         let no_vpls = output::<GpuVpl>(ctx, "no vpls", 1)?;
-        ctx.scoped("vpl generation (count)", || {
-            let mut encoder = ctx
-                .device
-                .create_command_encoder(&wgpu::CommandEncoderDescriptor {
-                    label: Some("vpl generation (count)"),
-                });
+        ctx.submit("vpl generation", |encoder| {
             for (params, grid, map) in &count_passes {
                 ctx.encode_dispatch(
-                    &mut encoder,
+                    encoder,
                     "vpl count",
                     &self.pipeline,
                     &[params, &map.texels, &counts, &no_vpls],
                     *grid,
                 );
             }
-            self.scan.encode(ctx, &mut encoder, &counts, total, &status);
-            ctx.queue.submit([encoder.finish()]);
-            Ok(())
-        })?;
-        let [state] = <[GpuCullStatus; 1]>::try_from(read_back(ctx, "vpl status", &status, 1)?)
-            .map_err(|_| GpuError::Readback {
-                label: "vpl status".into(),
-                message: "short read".into(),
-            })?;
-        if state.total_overflow != 0 {
-            return Err(GpuError::Input("VPL count exceeds u32".into()));
-        }
-        let vpls = output::<GpuVpl>(ctx, "vpls", state.total as usize)?;
-        let write_passes = passes(CULL_WRITE)?;
-        ctx.scoped("vpl generation (write)", || {
-            let mut encoder = ctx
-                .device
-                .create_command_encoder(&wgpu::CommandEncoderDescriptor {
-                    label: Some("vpl generation (write)"),
-                });
+            self.scan.encode(ctx, encoder, &counts, total, &status);
             for (params, grid, map) in &write_passes {
                 ctx.encode_dispatch(
-                    &mut encoder,
+                    encoder,
                     "vpl write",
                     &self.pipeline,
                     &[params, &map.texels, &counts, &vpls],
                     *grid,
                 );
             }
-            ctx.queue.submit([encoder.finish()]);
             Ok(())
         })?;
         Ok(GpuVpls {
             buffer: vpls,
-            count: state.total,
+            count: GpuCount {
+                buffer: status,
+                offset: STATUS_TOTAL,
+                capacity,
+            },
         })
     }
 }

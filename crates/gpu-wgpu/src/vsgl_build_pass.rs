@@ -103,12 +103,10 @@ pub struct VsglBuildPass {
     emit: wgpu::ComputePipeline,
 }
 
-/// One step's commands: the dispatches and the buffers only they use (uniforms, scratch),
-/// kept alive until the commands are submitted.
+/// One step's commands (wgpu keeps the buffers they use alive until they ran).
 struct Commands<'a> {
     ctx: &'a GpuContext,
     encoder: &'a mut wgpu::CommandEncoder,
-    keep: Vec<wgpu::Buffer>,
 }
 
 impl Commands<'_> {
@@ -127,8 +125,6 @@ impl Commands<'_> {
         bound.extend_from_slice(buffers);
         self.ctx
             .encode_dispatch_at(self.encoder, label, pipeline, &bound, grid);
-        drop(bound);
-        self.keep.push(p);
         Ok(())
     }
 }
@@ -156,21 +152,7 @@ impl VsglBuildPass {
         label: &'static str,
         f: impl FnOnce(&mut Commands) -> Result<T, GpuError>,
     ) -> Result<T, GpuError> {
-        ctx.scoped(label, || {
-            let mut encoder = ctx
-                .device
-                .create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some(label) });
-            let mut commands = Commands {
-                ctx,
-                encoder: &mut encoder,
-                keep: Vec::new(),
-            };
-            let out = f(&mut commands)?;
-            let Commands { keep, .. } = commands;
-            ctx.queue.submit([encoder.finish()]);
-            drop(keep);
-            Ok(out)
-        })
+        ctx.submit(label, |encoder| f(&mut Commands { ctx, encoder }))
     }
 
     /// Step 1, the mipmapped RSMs (`MipRsm::build` of every map, Toksvig's mean map): level 0
@@ -277,7 +259,7 @@ impl VsglBuildPass {
                 view: None,
                 status,
             };
-            let (camera_lights, centres) = self.encode_sampling(
+            let (camera_lights, _) = self.encode_sampling(
                 c,
                 &pyramid,
                 &camera_sampling,
@@ -285,7 +267,6 @@ impl VsglBuildPass {
                 0,
                 &no_view,
             )?;
-            c.keep.push(centres);
             for (m, first_face, first_texel) in map_offsets(maps) {
                 let params = GpuBuildParams {
                     count: camera_vsgls,
@@ -299,9 +280,7 @@ impl VsglBuildPass {
                 ];
                 c.dispatch("vsgl_view", &self.view, params, &buffers)?;
             }
-            self.reduce(c, tree, &self.reduce_view, (VIEW, &view))?;
-            c.keep.push(camera_lights);
-            Ok(())
+            self.reduce(c, tree, &self.reduce_view, (VIEW, &view))
         })?;
         mip.view = Some(view);
         Ok(())
@@ -393,7 +372,6 @@ impl VsglBuildPass {
             (CENTRES, &centres),
         ];
         c.dispatch("vsgl_emit", &self.emit, params, &emit)?;
-        c.keep.extend([marks, hit_node]);
         Ok((vsgls, centres))
     }
 }

@@ -16,6 +16,7 @@ mod raster_common;
 mod raster_frame;
 mod raster_gbuffer;
 mod raster_rsm;
+mod readback;
 mod rng;
 mod shade;
 mod tight;

@@ -248,7 +248,7 @@ fn frame_matches(
          error {mean:.2e}, 99th percentile {p99:.2e}, {:.2}% above 1e-3 (indirect alone \
          {ind_mean:.2e}, {ind_p99:.2e}); means {} vs {}",
         prepared.vpls.len(),
-        vpls.count,
+        vpls.read_count(ctx).unwrap(),
         100.0 * edges.iter().filter(|&&e| e).count() as f64 / edges.len() as f64,
         100.0 * above,
         frame.mean(),

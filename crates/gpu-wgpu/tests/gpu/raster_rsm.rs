@@ -397,8 +397,13 @@ fn gpu_vpl_bound_factors_cover_the_cpus() {
             .unwrap()
             .generate(&ctx, &maps, SEED, VplLobes::Both)
             .unwrap();
-        let raw: Vec<GpuVpl> =
-            read_back(&ctx, "vpls", &generated.buffer, generated.count as usize).unwrap();
+        let raw: Vec<GpuVpl> = read_back(
+            &ctx,
+            "vpls",
+            &generated.buffer,
+            generated.read_count(&ctx).unwrap() as usize,
+        )
+        .unwrap();
         let vpls = generated.read_back(&ctx).unwrap();
         let mut not_one = 0;
         for (i, (v, g)) in vpls.iter().zip(&raw).enumerate() {
