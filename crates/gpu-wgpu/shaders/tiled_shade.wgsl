@@ -3,7 +3,8 @@
 // the bounds, partition and tile-depth passes. The tile's subregion's VPLs are taken 256 at
 // a time (in the partition's order, ascending in the VPL index): each thread tests one
 // against the tile's Modified HalfZ frusta (frustum_tests.wgsl tile_hits, as tiled_cull.wgsl) and
-// sets its bit in the near and far masks in workgroup memory; then each pixel shades the
+// sets its bit in the near and far masks in workgroup memory (mark_hits: hits_subgroup.wgsl
+// with subgroup operations, hits_atomic.wgsl without, appended); then each pixel shades the
 // VPLs of its cluster's mask in order (vpl_eval.wgsl). The light lists live only in those
 // masks, so nothing is counted, scanned or stored, and each pixel sums the same VPLs in the
 // same order as shade.wgsl over tiled_cull.wgsl's lists. tiles.wgsl, bound.wgsl,
@@ -79,18 +80,13 @@ fn main(
             }
             workgroupBarrier();
             let j = base + lid;
+            var hit = vec2<u32>(0u);
             if j < range.y {
                 let i = order[j];
                 batch[lid] = i;
-                let hit = tile_hits(bounds[i], f, mask);
-                let bit = 1u << (lid % 32u);
-                if hit.x != 0u {
-                    atomicOr(&near_bits[lid / 32u], bit);
-                }
-                if hit.y != 0u {
-                    atomicOr(&far_bits[lid / 32u], bit);
-                }
+                hit = tile_hits(bounds[i], f, mask);
             }
+            mark_hits(lid, hit);
             workgroupBarrier();
             if cluster < 2u {
                 for (var w = 0u; w < WORDS; w++) {

@@ -65,6 +65,9 @@ pub struct GpuContext {
     pub adapter_name: String,
     /// Whether the device was created with timestamp queries (for per-pass timings).
     pub timestamps: bool,
+    /// Whether the device has subgroup operations (`Features::SUBGROUP`; the one-pass tiled
+    /// kernel combines a subgroup's hits with them, `tiled_shade_pass`).
+    pub subgroups: bool,
     /// Whether those timestamps measure execution: false on CPU adapters, where lavapipe's
     /// stop bracketing the work of compute passes once a render pass has run (measured: 0.09
     /// ms of timestamp time for 1.1 s of compute, `tests/gpu/profile.rs`). Callers report
@@ -127,9 +130,12 @@ impl GpuContext {
         let adapter_name = adapter_label(&info);
         let timestamps = adapter.features().contains(wgpu::Features::TIMESTAMP_QUERY);
         let timestamps_trusted = timestamps && info.device_type != wgpu::DeviceType::Cpu;
-        // Timestamps for the profiles; f32 blending for splatting's sums (`splat_pass`).
+        // Timestamps for the profiles; f32 blending for splatting's sums (`splat_pass`);
+        // subgroup operations for the one-pass tiled kernel (`tiled_shade_pass`).
         let required_features = adapter.features()
-            & (wgpu::Features::TIMESTAMP_QUERY | wgpu::Features::FLOAT32_BLENDABLE);
+            & (wgpu::Features::TIMESTAMP_QUERY
+                | wgpu::Features::FLOAT32_BLENDABLE
+                | wgpu::Features::SUBGROUP);
         let limits = adapter.limits();
         let (device, queue) = adapter
             .request_device(&wgpu::DeviceDescriptor {
@@ -151,6 +157,7 @@ impl GpuContext {
             }
         });
         Ok(Self {
+            subgroups: device.features().contains(wgpu::Features::SUBGROUP),
             device,
             queue,
             adapter_name,
@@ -168,12 +175,14 @@ impl GpuContext {
     /// adapter `info` it was made on. The device must have the limits the passes need (the
     /// adapter's own limits, `adapter.limits()`, always do; too small a limit is reported as
     /// [`GpuError::Wgpu`] when the passes are built) and, for per-pass GPU times,
-    /// `Features::TIMESTAMP_QUERY`. The host keeps its device-lost callback: a lost device
+    /// `Features::TIMESTAMP_QUERY`, for the one-pass tiled kernel's subgroup operations
+    /// `Features::SUBGROUP`. The host keeps its device-lost callback: a lost device
     /// shows here as errors of the passes and waits, not through [`GpuError::DeviceLost`].
     pub fn from_device(device: wgpu::Device, queue: wgpu::Queue, info: &wgpu::AdapterInfo) -> Self {
         let timestamps = device.features().contains(wgpu::Features::TIMESTAMP_QUERY);
         Self {
             limits: device.limits(),
+            subgroups: device.features().contains(wgpu::Features::SUBGROUP),
             device,
             queue,
             adapter_name: adapter_label(info),

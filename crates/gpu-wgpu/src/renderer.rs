@@ -23,7 +23,7 @@ use crate::gbuffer_pass::{GbufferPass, GpuGBuffer};
 use crate::gpu_lists::read_lists;
 use crate::ism_pass::{caster_points, GpuCaster, IsmPass, IsmSettings};
 use crate::renderer_notes::{
-    frame_notes, vsgl_note, CLUSTER_RASTER_NOTE, METRICS_NOTE, ONE_PASS_NOTE, SPLAT_NOTE,
+    frame_notes, one_pass_note, vsgl_note, CLUSTER_RASTER_NOTE, METRICS_NOTE, SPLAT_NOTE,
 };
 use crate::rsm_pass::{GpuRsm, RsmPass};
 use crate::scene_upload::GpuScene;
@@ -244,7 +244,7 @@ impl Renderer for GpuRenderer {
         let mut notes = frame_notes(&self.ctx);
         if let Method::Stochastic(s) = settings.method {
             if self.one_pass && GpuCuller::one_pass(s.strategy) {
-                notes.push(ONE_PASS_NOTE.into());
+                notes.push(one_pass_note(self.tiled_shader.subgroups()));
             }
             match s.strategy {
                 Strategy::Splatting => notes.push(SPLAT_NOTE.into()),

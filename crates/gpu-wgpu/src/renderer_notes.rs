@@ -39,10 +39,19 @@ pub fn frame_notes(ctx: &GpuContext) -> Vec<String> {
 }
 
 /// The note of frames of a tiled strategy (but `tight`), culled and shaded in one pass.
-pub const ONE_PASS_NOTE: &str = "tiled culling and shading in one pass (the paper's Fig. 2, \
-     tiled_shade): 'culling' times the bounds, partition and tile-depth passes, 'shading' the \
-     one pass that tests each tile's VPLs and shades its pixels from the hits in workgroup \
-     memory; no light list is stored or read back";
+pub fn one_pass_note(subgroups: bool) -> String {
+    let marks = if subgroups {
+        "a subgroup's hits combined by subgroup operations before they reach workgroup memory"
+    } else {
+        "one workgroup atomic per hit (the device has no subgroup operations)"
+    };
+    format!(
+        "tiled culling and shading in one pass (the paper's Fig. 2, tiled_shade): 'culling' \
+         times the bounds, partition and tile-depth passes, 'shading' the one pass that tests \
+         each tile's VPLs and shades its pixels from the hits in workgroup memory ({marks}); \
+         no light list is stored or read back"
+    )
+}
 
 /// The note of frames splatted (`splat_pass`).
 pub const SPLAT_NOTE: &str = "splatting [DS06]: 'culling' times the bounds, partition and \

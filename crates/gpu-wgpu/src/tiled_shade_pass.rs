@@ -17,25 +17,53 @@ use crate::shade_pass::vpl_eval_source;
 use crate::tiled_cull_pass::TiledFrame;
 use std::mem::offset_of;
 
-/// The tile grid, the frusta tests, the BRDF and one VPL's contribution, then the kernel.
-pub(crate) const SOURCE: &str = concat!(
-    include_str!("../shaders/tiles.wgsl"),
-    include_str!("../shaders/bound.wgsl"),
-    include_str!("../shaders/frustum_tests.wgsl"),
-    vpl_eval_source!(),
-    include_str!("../shaders/tiled_shade.wgsl")
-);
+/// The kernel's source with `marks` (how an entry's hits reach the masks): the tile grid,
+/// the frusta tests, the BRDF and one VPL's contribution, the kernel.
+macro_rules! tiled_shade_source {
+    ($marks:expr) => {
+        concat!(
+            include_str!("../shaders/tiles.wgsl"),
+            include_str!("../shaders/bound.wgsl"),
+            include_str!("../shaders/frustum_tests.wgsl"),
+            vpl_eval_source!(),
+            include_str!("../shaders/tiled_shade.wgsl"),
+            include_str!($marks)
+        )
+    };
+}
+
+/// The kernel with one atomic per hit.
+pub(crate) const SOURCE: &str = tiled_shade_source!("../shaders/hits_atomic.wgsl");
+
+/// The kernel with the hits of a subgroup combined first (`Features::SUBGROUP`; naga takes
+/// the subgroup built-ins without WGSL's `enable subgroups;`, which it does not parse yet).
+pub(crate) const SUBGROUP_SOURCE: &str = tiled_shade_source!("../shaders/hits_subgroup.wgsl");
 
 /// The compiled one-pass pipeline.
 pub struct TiledShadePass {
     pipeline: wgpu::ComputePipeline,
+    subgroups: bool,
 }
 
 impl TiledShadePass {
+    /// The kernel with subgroup operations where the device has them
+    /// ([`GpuContext::subgroups`]), else with one atomic per hit: the same image.
     pub fn new(ctx: &GpuContext) -> Self {
+        Self::with_subgroups(ctx, ctx.subgroups)
+    }
+
+    /// The kernel with (`true`, on a device that has them) or without subgroup operations.
+    pub fn with_subgroups(ctx: &GpuContext, subgroups: bool) -> Self {
+        let source = if subgroups { SUBGROUP_SOURCE } else { SOURCE };
         Self {
-            pipeline: ctx.compute_pipeline("tiled shade", SOURCE),
+            pipeline: ctx.compute_pipeline("tiled shade", source),
+            subgroups,
         }
+    }
+
+    /// Whether the kernel uses subgroup operations.
+    pub fn subgroups(&self) -> bool {
+        self.subgroups
     }
 
     /// The indirect image of `frame` (its `GpuSample`s in `samples`), culled as `tiles` and

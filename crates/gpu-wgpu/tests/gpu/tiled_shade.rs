@@ -14,7 +14,9 @@ use slc_gpu_wgpu::tiled_cull_pass::TiledCuller;
 use slc_gpu_wgpu::tiled_shade_pass::TiledShadePass;
 use slc_gpu_wgpu::{GpuContext, GpuRenderer};
 
-/// The one-pass image of `input` with `glossy` bounds, and the image of its lists.
+/// The one-pass image of `input` with `glossy` bounds, and the image of its lists; where the
+/// device has subgroup operations, the kernel with them and the kernel without must give the
+/// same image.
 fn both(
     ctx: &GpuContext,
     input: &CullInput,
@@ -30,10 +32,23 @@ fn both(
         .collect();
     let samples = upload(ctx, "samples", &samples).unwrap();
     let tiles = culler.prepare(ctx, &frame, glossy, false).unwrap().unwrap();
-    let one = TiledShadePass::new(ctx)
-        .shade(ctx, &frame, &samples, &tiles)
-        .unwrap();
-    let one = read_image(ctx, &one, frame.width, frame.height).unwrap();
+    let kernels = if ctx.subgroups {
+        vec![true, false]
+    } else {
+        vec![false]
+    };
+    let images: Vec<_> = kernels
+        .into_iter()
+        .map(|subgroups| {
+            let pass = TiledShadePass::with_subgroups(ctx, subgroups);
+            let one = pass.shade(ctx, &frame, &samples, &tiles).unwrap();
+            read_image(ctx, &one, frame.width, frame.height).unwrap()
+        })
+        .collect();
+    for other in &images[1..] {
+        assert_eq!(other.pixels, images[0].pixels, "with and without subgroups");
+    }
+    let one = images[0].clone();
     let lists = culler.cull_frame(ctx, &frame, glossy).unwrap();
     let want = ShadePass::new(ctx)
         .unwrap()
