@@ -1,5 +1,5 @@
 // The solid angle of an RSM texel seen from a pinhole light (the RSM resolve, rsm.wgsl, and
-// the VSGL construction's texel footprint, vsgl_texels.wgsl).
+// the texel footprints of the VSGL construction, vsgl_build.wgsl).
 
 // dw / dA on the face plane at unit distance: (1 + x^2 + y^2)^(-3/2).
 fn solid_angle_density(x: f32, y: f32) -> f32 {

@@ -3,8 +3,8 @@
 // from_mip or bidirectional_importance: the mipmapped RSMs of VSGL section 4.1 as pyramids of
 // cluster sums (texels, camera_texels, reduce_sums), the importance of section 4.2 or 4.3
 // (view, reduce_view), and filtered importance sampling of clusters by hierarchical sample
-// warping (sample), each sampled cluster's VSGL scaled by m / (N P(C)) (emit). Nothing is read
-// back. Entry points take the bindings they use, by number (GpuContext::encode_dispatch_at);
+// warping (sample), each sampled cluster's VSGL scaled by m / (N P(C)) (own, a scan, emit).
+// Nothing is read back. Entry points take the bindings they use, by number (GpuContext::encode_dispatch_at);
 // structs mirror src/vsgl_build_types.rs. One invocation per item, linear workgroup index
 // wid.y * num_workgroups.x + wid.x (buffers::Grid). fresnel_ggx.wgsl, sg.wgsl, gsample.wgsl,
 // sg_surface.wgsl, vsgl_light.wgsl, rsm_texel.wgsl, solid_angle.wgsl, vsgl_tree.wgsl,
@@ -42,22 +42,48 @@ struct BuildParams {
 
 @group(0) @binding(0) var<uniform> params: BuildParams;
 @group(0) @binding(1) var<storage, read_write> status: VsglStatus;
-// The pyramid of cluster sums.
-@group(0) @binding(2) var<storage, read_write> sums: array<Sums>;
+// The pyramid of cluster sums, one array per field of Sums (vsgl_sums.wgsl), so that each
+// binding stays a fifth of the pyramid (a storage binding is limited, 128 MiB on lavapipe).
+@group(0) @binding(2) var<storage, read_write> sums_diffuse_m2: array<vec4<f32>>;
+@group(0) @binding(3) var<storage, read_write> sums_specular_w: array<vec4<f32>>;
+@group(0) @binding(4) var<storage, read_write> sums_diffuse_mean: array<vec4<f32>>;
+@group(0) @binding(5) var<storage, read_write> sums_specular_mean: array<vec4<f32>>;
+@group(0) @binding(6) var<storage, read_write> sums_mu: array<vec4<f32>>;
 // The pyramid of view masses (bidirectional importance; unused otherwise).
-@group(0) @binding(3) var<storage, read_write> view_mass: array<f32>;
+@group(0) @binding(7) var<storage, read_write> view_mass: array<f32>;
 // Per tree texel: samples that reached it (2i) and N - the first of them (2i + 1; 0: none).
-@group(0) @binding(4) var<storage, read_write> marks: array<atomic<u32>>;
+@group(0) @binding(8) var<storage, read_write> marks: array<atomic<u32>>;
 // Per sample: the tree texel it reached (NO_NODE: nothing to sample).
-@group(0) @binding(5) var<storage, read_write> hit_node: array<u32>;
-// Per sample: its VSGL (emit), and its centre mu_v with w = 1 (0 for an empty slot).
-@group(0) @binding(6) var<storage, read_write> vsgls_out: array<Vsgl>;
-@group(0) @binding(7) var<storage, read_write> centres: array<vec4<f32>>;
-@group(0) @binding(8) var<storage, read> rsm_texels: array<RsmTexel>;
-@group(0) @binding(9) var<storage, read> samples: array<Sample>;
-@group(0) @binding(10) var<storage, read> positions: array<vec4<f32>>;
-@group(0) @binding(11) var<storage, read> geometric_normals: array<vec4<f32>>;
-@group(0) @binding(12) var<storage, read> camera_vsgls: array<Vsgl>;
+@group(0) @binding(9) var<storage, read_write> hit_node: array<u32>;
+// Per light: its VSGL (emit), and its centre mu_v with w = 1.
+@group(0) @binding(10) var<storage, read_write> vsgls_out: array<Vsgl>;
+@group(0) @binding(11) var<storage, read_write> centres: array<vec4<f32>>;
+@group(0) @binding(12) var<storage, read> rsm_texels: array<RsmTexel>;
+@group(0) @binding(13) var<storage, read> samples: array<Sample>;
+@group(0) @binding(14) var<storage, read> positions: array<vec4<f32>>;
+@group(0) @binding(15) var<storage, read> geometric_normals: array<vec4<f32>>;
+@group(0) @binding(16) var<storage, read> camera_vsgls: array<Vsgl>;
+// Per sample: 1 where it is the first to reach its cluster, 0 elsewhere (own); scanned into
+// each such sample's light index, with the number of lights at [N] (scan.wgsl).
+@group(0) @binding(17) var<storage, read_write> slots: array<u32>;
+
+fn load_sums(i: u32) -> Sums {
+    return Sums(sums_diffuse_m2[i], sums_specular_w[i], sums_diffuse_mean[i], sums_specular_mean[i],
+                sums_mu[i]);
+}
+
+fn store_sums(i: u32, s: Sums) {
+    sums_diffuse_m2[i] = s.diffuse_m2;
+    sums_specular_w[i] = s.specular_w;
+    sums_diffuse_mean[i] = s.diffuse_mean;
+    sums_specular_mean[i] = s.specular_mean;
+    sums_mu[i] = s.mu;
+}
+
+// The positional weight Σ w of tree texel i: its flux importance.
+fn flux_mass(i: u32) -> f32 {
+    return sums_specular_w[i].w;
+}
 
 const WORKGROUP: u32 = 64u;
 const NO_NODE: u32 = 0xffffffffu;
@@ -123,7 +149,7 @@ fn texels(@builtin(workgroup_id) wid: vec3<u32>, @builtin(num_workgroups) groups
             atomicMin(&status.bad_texel, params.first_texel + i);
         }
     }
-    sums[node] = s;
+    store_sums(node, s);
 }
 
 // Level 0 of the camera's map from the G-buffer (bidirectional.rs camera_rsm): pixel (x, y) is
@@ -151,7 +177,7 @@ fn camera_texels(@builtin(workgroup_id) wid: vec3<u32>, @builtin(num_workgroups)
             atomicMin(&status.bad_pixel, p);
         }
     }
-    sums[tree_index(params.tree, 0u, 0u, x, y)] = out;
+    store_sums(tree_index(params.tree, 0u, 0u, x, y), out);
 }
 
 // The face, column and row of texel i of `level` (every face of the tree).
@@ -177,10 +203,10 @@ fn reduce_sums(@builtin(workgroup_id) wid: vec3<u32>, @builtin(num_workgroups) g
         let cx = 2u * t.y + (c & 1u);
         let cy = 2u * t.z + (c >> 1u);
         if cx < child_size && cy < child_size {
-            s = sums_merge(s, sums[tree_index(params.tree, t.x, level - 1u, cx, cy)]);
+            s = sums_merge(s, load_sums(tree_index(params.tree, t.x, level - 1u, cx, cy)));
         }
     }
-    sums[tree_index(params.tree, t.x, level, t.y, t.z)] = s;
+    store_sums(tree_index(params.tree, t.x, level, t.y, t.z), s);
 }
 
 // The same for the view masses.
@@ -228,11 +254,7 @@ fn view(@builtin(workgroup_id) wid: vec3<u32>, @builtin(num_workgroups) groups: 
             let surface = make_surface(input.surface);
             var radiance = vec3<f32>(0.0);
             for (var v = 0u; v < params.count; v++) {
-                let e = camera_vsgls[v];
-                if !vsgl_present(e) {
-                    continue;
-                }
-                let r = vsgl_contribution(surface, input.position, e);
+                let r = vsgl_contribution(surface, input.position, camera_vsgls[v]);
                 if r.w != 0.0 {
                     atomicMin(&status.bad_view, params.first_texel + i);
                     break;
@@ -261,7 +283,7 @@ struct Importance {
 }
 
 fn mass(m: Importance, node: u32) -> f32 {
-    var value = m.flux_scale * sums[node].specular_w.w;
+    var value = m.flux_scale * flux_mass(node);
     if m.view_scale > 0.0 {
         value += m.view_scale * view_mass[node];
     }
@@ -279,7 +301,7 @@ fn importance() -> Importance {
         var flux_total = 0.0;
         for (var f = 0u; f < params.tree.faces; f++) {
             view_total += view_mass[face_top(f)];
-            flux_total += sums[face_top(f)].specular_w.w;
+            flux_total += flux_mass(face_top(f));
         }
         var share = 1.0;
         if view_total > 0.0 {
@@ -313,8 +335,15 @@ fn split(u: f32, a: f32, b: f32) -> vec2<f32> {
     return vec2<f32>(1.0, clamp((u - p) / (1.0 - p), 0.0, ONE_BELOW));
 }
 
-fn fract_below_one(x: f32) -> f32 {
-    return min(x - floor(x), ONE_BELOW);
+// (v + shift) mod 1 for v and shift in [0, 1], formed below 1 (a sum in [1, 2) would keep
+// one bit less), at most ONE_BELOW: the point to f32's 2^-24, where the CPU forms it in f64.
+// From about 2^23 samples on, neighbouring points can round to one value.
+fn shifted(v: f32, shift: f32) -> f32 {
+    let room = 1.0 - shift;
+    if v >= room {
+        return min(v - room, ONE_BELOW);
+    }
+    return min(v + shift, ONE_BELOW);
 }
 
 // Sample k of N (sampling.rs sample_points and FilteredSampler::warp with Footprint::
@@ -335,8 +364,8 @@ fn sample(@builtin(workgroup_id) wid: vec3<u32>, @builtin(num_workgroups) groups
         hit_node[k] = NO_NODE;
         return;
     }
-    let u0 = fract_below_one(f32(2u * k + 1u) / f32(2u * count) + params.shift.x);
-    var uy = fract_below_one(f32(reverseBits(k)) * 2.3283064365386963e-10 + params.shift.y);
+    let u0 = shifted(f32(2u * k + 1u) / f32(2u * count), params.shift.x);
+    var uy = shifted(f32(reverseBits(k)) * 2.3283064365386963e-10, params.shift.y);
     // choose_face: the face whose interval of the cumulative masses holds u0 * total (the
     // last face with mass where rounding leaves the target at the end).
     let target_mass = u0 * m.total;
@@ -399,37 +428,51 @@ fn sample(@builtin(workgroup_id) wid: vec3<u32>, @builtin(num_workgroups) groups
     atomicMax(&marks[2u * node + 1u], count - k);
 }
 
-// Slot k's VSGL (sampled_lights.rs sample_vsgls): the first sample to reach a cluster owns it
-// and writes the cluster's VSGL scaled by m / (N P(C)) for the m samples that reached it;
-// every other slot is empty (zero). The clusters are the CPU's; the order is the samples'.
+// Whether sample k is the first to reach its cluster (the atomics of `sample`), which then
+// becomes one light.
+fn owns(k: u32) -> bool {
+    let node = hit_node[k];
+    return node != NO_NODE && params.count - atomicLoad(&marks[2u * node + 1u]) == k;
+}
+
+@compute @workgroup_size(64)
+fn own(@builtin(workgroup_id) wid: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>,
+       @builtin(local_invocation_index) lid: u32) {
+    let k = item(wid, groups, lid);
+    if k < params.count {
+        slots[k] = select(0u, 1u, owns(k));
+    }
+}
+
+// The lights (sampled_lights.rs sample_vsgls): the first sample to reach a cluster writes the
+// cluster's VSGL, scaled by m / (N P(C)) for the m samples that reached it, at its light
+// index (the scan of `own`'s flags), so the lights are packed in the order of their first
+// samples; the clusters are the CPU's, which sorts them by cluster instead.
 @compute @workgroup_size(64)
 fn emit(@builtin(workgroup_id) wid: vec3<u32>, @builtin(num_workgroups) groups: vec3<u32>,
         @builtin(local_invocation_index) lid: u32) {
     let k = item(wid, groups, lid);
     let count = params.count;
-    if k >= count {
+    if k >= count || !owns(k) {
         return;
     }
-    let empty = vec4<f32>(0.0);
-    var out = Vsgl(empty, empty, empty, empty, empty);
-    var centre = empty;
     let node = hit_node[k];
-    if node != NO_NODE && count - atomicLoad(&marks[2u * node + 1u]) == k {
-        let hits = atomicLoad(&marks[2u * node]);
-        let m = importance();
-        // m / (N P(C)), P(C) = mass / total.
-        let weight = f32(hits) * (m.total / (f32(count) * mass(m, node)));
-        let packed = vsgl_pack(sums[node], weight, params.sigma2_floor, (params.flags & CLAMPED_DIFFUSE) != 0u);
-        if packed.ok && sg_finite(weight) {
-            out = packed.vsgl;
-            centre = vec4<f32>(out.mu_sigma2.xyz, 1.0);
-        } else {
-            atomicMin(&status.bad_vsgl, k);
-        }
-        if (params.flags & COUNT_LIGHTS) != 0u {
-            atomicAdd(&status.lights, 1u);
-        }
+    let light = slots[k];
+    let hits = atomicLoad(&marks[2u * node]);
+    let m = importance();
+    // m / (N P(C)), P(C) = mass / total.
+    let weight = f32(hits) * (m.total / (f32(count) * mass(m, node)));
+    let packed = vsgl_pack(load_sums(node), weight, params.sigma2_floor, (params.flags & CLAMPED_DIFFUSE) != 0u);
+    let lights = (params.flags & COUNT_LIGHTS) != 0u;
+    if packed.ok && sg_finite(weight) {
+        vsgls_out[light] = packed.vsgl;
+        centres[light] = vec4<f32>(packed.vsgl.mu_sigma2.xyz, 1.0);
+    } else if lights {
+        atomicMin(&status.bad_vsgl, light);
+    } else {
+        atomicMin(&status.bad_camera_vsgl, light);
     }
-    vsgls_out[k] = out;
-    centres[k] = centre;
+    if lights {
+        atomicAdd(&status.lights, 1u);
+    }
 }

@@ -7,8 +7,9 @@
 // u32::MAX: none. bad_pixel: smallest pixel whose surface is outside the SG math's domain;
 // overflow_vsgl: smallest VSGL whose lambda_sigma or SG product left f32 at some pixel;
 // lights: the distinct clusters sampled; bad_texel: smallest RSM texel (over the maps in
-// order) whose BRDF is outside that domain; bad_vsgl: smallest slot whose VSGL left f32;
-// bad_view: smallest texel whose bidirectional importance left f32.
+// order) whose BRDF is outside that domain; bad_vsgl: smallest light whose VSGL left f32;
+// bad_view: smallest texel whose bidirectional importance left f32; bad_camera_vsgl: the
+// same as bad_vsgl for the camera-side VSGLs of the bidirectional importance.
 struct VsglStatus {
     bad_pixel: atomic<u32>,
     overflow_vsgl: atomic<u32>,
@@ -16,13 +17,12 @@ struct VsglStatus {
     bad_texel: atomic<u32>,
     bad_vsgl: atomic<u32>,
     bad_view: atomic<u32>,
-    pad0: u32,
-    pad1: u32,
+    bad_camera_vsgl: atomic<u32>,
+    pad: u32,
 }
 
 // mu_v and sigma_v^2, and per lobe c_v (rgb, zero for a lobe left out) and the emitted lobe's
-// axis -xi_v with lambda_v. A slot without a light (a sample that landed in a cluster an
-// earlier sample owns, src/vsgl_build_pass.rs) is all zero: its density is 0.
+// axis -xi_v with lambda_v.
 struct Vsgl {
     mu_sigma2: vec4<f32>,
     // c_v of the diffuse lobe (xyz), 1 / (2 pi sigma_v^2) of eq. (1) and (5) (w).
@@ -30,11 +30,6 @@ struct Vsgl {
     diffuse_lobe: vec4<f32>,
     specular_c: vec4<f32>,
     specular_lobe: vec4<f32>,
-}
-
-// Whether the slot holds a light (every packed VSGL has a positive density).
-fn vsgl_present(e: Vsgl) -> bool {
-    return e.diffuse_c_density.w > 0.0;
 }
 
 // The radiance VSGL e reflects at the receiver at x (xyz); w = 1 when its positional SG

@@ -29,13 +29,9 @@ struct VsglParams {
 const WORKGROUP: u32 = 64u;
 
 // VSGL v at the receiver (vsgl_light.wgsl), its overflow recorded; w != 0 stops the pixel's
-// sum (the frame is an error then). Empty slots give nothing.
+// sum (the frame is an error then).
 fn contribution(surface: Surface, x: vec3<f32>, v: u32) -> vec4<f32> {
-    let e = vsgls[v];
-    if !vsgl_present(e) {
-        return vec4<f32>(0.0);
-    }
-    let r = vsgl_contribution(surface, x, e);
+    let r = vsgl_contribution(surface, x, vsgls[v]);
     if r.w != 0.0 {
         atomicMin(&status.overflow_vsgl, v);
     }

@@ -10,7 +10,7 @@ use crate::buffers::{output, read_back};
 use crate::context::{GpuContext, GpuError};
 use crate::cull_frame::FrameVpls;
 use crate::cull_types::{GpuBoundShape, GpuBoxBound};
-use crate::gpu_count::{ArgsPass, VplCount};
+use crate::gpu_count::{ArgsPass, Count};
 use crate::gpu_types::{GpuBound, GpuView, BOUND_OVERFLOW};
 use slc_core::{Camera, Interleaving, Vpl};
 use slc_cull::GlossyBound;
@@ -54,7 +54,7 @@ pub struct GpuBounds {
     /// The VPLs as uploaded (`GpuVpl`), for the passes that shade them.
     pub vpls: wgpu::Buffer,
     /// How many there are (the buffers hold its capacity).
-    pub count: VplCount,
+    pub count: Count,
 }
 
 /// The compiled bounds pipeline.

@@ -179,7 +179,7 @@ impl ClusterRasterizer {
                 ctx,
                 encoder,
                 "cluster shell",
-                &params,
+                (&params, &params_buffer),
                 &clusters.partition.sub_offsets,
                 (&self.shell, &group),
                 &target,

@@ -6,7 +6,7 @@
 use crate::buffers::{read_back, upload};
 use crate::context::{GpuContext, GpuError};
 use crate::gbuffer_pass::GpuGBuffer;
-use crate::gpu_count::VplCount;
+use crate::gpu_count::Count;
 use crate::gpu_types::{GpuCullParams, GpuCullStatus, GpuVpl, FRUSTUM_SLACK, MAX_K};
 use crate::vpl_gen_pass::GpuVpls;
 use slc_bounds::StochasticParams;
@@ -113,10 +113,10 @@ impl FrameVpls<'_> {
     }
 
     /// The number of VPLs: the host's, or the count on the GPU.
-    pub fn count(&self) -> VplCount {
+    pub fn count(&self) -> Count {
         match self {
-            Self::Cpu(v) => VplCount::Host(v.len() as u32),
-            Self::Gpu(v) => VplCount::Gpu(v.count.clone()),
+            Self::Cpu(v) => Count::Host(v.len() as u32),
+            Self::Gpu(v) => Count::Gpu(v.count.clone()),
         }
     }
 
@@ -169,7 +169,8 @@ pub(crate) struct CullSizes {
 }
 
 /// The checks every CPU culler makes first (the sample count was checked when the frame was
-/// made): pixel indices in u32, 1 <= K <= [`MAX_K`], a VPL count in u32.
+/// made): pixel indices in u32, 1 <= K <= [`MAX_K`], a VPL capacity (`FrameVpls::capacity`)
+/// in u32.
 pub(crate) fn check_input(frame: &CullFrame) -> Result<CullSizes, GpuError> {
     let pixels = u32::try_from(u64::from(frame.width) * u64::from(frame.height)).map_err(|_| {
         GpuError::Input(format!(

@@ -1,8 +1,8 @@
-//! Counts a pass leaves on the GPU (the VPL total of `vpl_gen_pass`'s scan) and what the
-//! later passes of a frame make of them without a readback: the count copied into their
-//! uniforms (where the host would have written it) and indirect dispatch arguments sized by
-//! it (`shaders/dispatch_args.wgsl`). Buffers are sized by the count's capacity, the largest
-//! value it can take.
+//! Counts a pass leaves on the GPU (the VPL total of `vpl_gen_pass`'s scan, the VSGLs of
+//! `vsgl_build_pass`) and what the later passes of a frame make of them without a readback:
+//! the count copied into their uniforms (where the host would have written it) and indirect
+//! dispatch arguments sized by it (`shaders/dispatch_args.wgsl`). Buffers are sized by the
+//! count's capacity, the largest value it can take.
 use crate::buffers::{read_back, uniform, Grid, Workgroups};
 use crate::context::{GpuContext, GpuError};
 use bytemuck::{Pod, Zeroable};
@@ -37,16 +37,16 @@ impl GpuCount {
     }
 }
 
-/// The number of VPLs a frame's passes work on: known to the host (VPLs from the CPU) or
-/// left on the GPU by their generation.
+/// A number of items a frame's passes work on (VPLs, VSGLs): known to the host (items from
+/// the CPU) or left on the GPU by the pass that made them.
 #[derive(Clone, Debug)]
-pub enum VplCount {
+pub enum Count {
     Host(u32),
     Gpu(GpuCount),
 }
 
-impl VplCount {
-    /// The most VPLs there can be: what buffers with a record per VPL hold.
+impl Count {
+    /// The most items there can be: what buffers with a record per item hold.
     pub fn capacity(&self) -> u32 {
         match self {
             Self::Host(n) => *n,
@@ -54,7 +54,7 @@ impl VplCount {
         }
     }
 
-    /// A uniform holding `value`, whose u32 at byte `count_at` is the VPL count: as written
+    /// A uniform holding `value`, whose u32 at byte `count_at` is the count: as written
     /// (`value` has the host's count), or for a count on the GPU copied there by `encoder`,
     /// before the passes it records next read it.
     pub fn uniform<T: Pod>(
@@ -70,6 +70,14 @@ impl VplCount {
             c.encode_copy(encoder, &buffer, count_at as u64);
         }
         buffer
+    }
+
+    /// The count, read back where it lies on the GPU.
+    pub fn read(&self, ctx: &GpuContext, label: &str) -> Result<u32, GpuError> {
+        match self {
+            Self::Host(n) => Ok(*n),
+            Self::Gpu(c) => c.read(ctx, label),
+        }
     }
 
     /// The workgroups of `count × per_item` invocations in groups of `workgroup`: a grid the

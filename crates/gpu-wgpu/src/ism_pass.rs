@@ -36,6 +36,7 @@
 //! measures the difference on the built-in scene.
 use crate::buffers::{output, uniform, upload, Grid};
 use crate::context::{GpuContext, GpuError};
+use crate::gpu_count::{ArgsPass, Count};
 use bytemuck::{Pod, Zeroable};
 use core::f32::consts::PI;
 use glam::Vec3;
@@ -238,16 +239,19 @@ pub struct IsmPass {
     splat: wgpu::ComputePipeline,
     pull: wgpu::ComputePipeline,
     fill: wgpu::ComputePipeline,
+    args: ArgsPass,
 }
 
 impl IsmPass {
     pub fn new(ctx: &GpuContext) -> Result<Self, GpuError> {
+        let args = ArgsPass::new(ctx)?;
         ctx.scoped("ism pipelines", || {
             Ok(Self {
                 clear: ctx.compute_pipeline_entry("ism_clear", SOURCE, "clear"),
                 splat: ctx.compute_pipeline("ism_splat", SOURCE),
                 pull: ctx.compute_pipeline_entry("ism_pull", FILL_SOURCE, "pull"),
                 fill: ctx.compute_pipeline_entry("ism_fill", FILL_SOURCE, "fill"),
+                args,
             })
         })
     }
@@ -264,17 +268,18 @@ impl IsmPass {
             .map_err(|_| GpuError::Input(format!("{} ISMs exceed u32", centres.len())))?;
         let centres: Vec<[f32; 4]> = centres.iter().map(|c| c.extend(1.0).to_array()).collect();
         let centres = upload(ctx, "ism centres", &centres)?;
-        self.render_at(ctx, casters, &centres, maps, settings)
+        self.render_at(ctx, casters, &centres, &Count::Host(maps), settings)
     }
 
     /// [`Self::render`] for `maps` centres already on the GPU (`[μ_v, ·]` per map, e.g.
-    /// [`crate::vsgl_shade_pass::GpuVsgls::centres`]).
+    /// [`crate::vsgl_shade_pass::GpuVsgls::centres`]), their number possibly left there too:
+    /// the maps are allocated for its capacity and drawn for the count.
     pub fn render_at(
         &self,
         ctx: &GpuContext,
         casters: &[GpuCaster],
         centres: &wgpu::Buffer,
-        maps: u32,
+        maps: &Count,
         settings: &IsmSettings,
     ) -> Result<ImperfectShadowMaps, GpuError> {
         if !(1..=4096).contains(&settings.resolution) {
@@ -302,45 +307,46 @@ impl IsmPass {
         }
         let points = u32::try_from(casters.len())
             .map_err(|_| GpuError::Input(format!("{} caster points exceed u32", casters.len())))?;
-        let texels = u64::from(maps) * u64::from(settings.resolution).pow(2);
-        let items = u64::from(maps) * u64::from(settings.points_per_map.min(points));
+        let capacity = maps.capacity();
+        let per_map = settings.points_per_map.min(points);
+        let texels = u64::from(capacity) * u64::from(settings.resolution).pow(2);
+        let items = u64::from(capacity) * u64::from(per_map);
         if texels > u64::from(u32::MAX) || items > u64::from(u32::MAX) {
             return Err(GpuError::Input(format!(
-                "{maps} ISMs of {}² texels and {points} points exceed u32 indices",
+                "{capacity} ISMs of {}² texels and {points} points exceed u32 indices",
                 settings.resolution
             )));
         }
         let depth = output::<u32>(ctx, "ism depth", texels as usize)?;
-        let params = settings.params(points, maps);
+        let params = settings.params(points, capacity);
         let out = ImperfectShadowMaps { depth, params };
         if texels == 0 {
             return Ok(out);
         }
         let caster_buf = upload(ctx, "ism casters", casters)?;
-        let params_buf = out.params_buffer(ctx);
         let clear_grid = Grid::for_items(ctx, texels, WORKGROUP)?;
-        ctx.scoped("ism", || {
-            let mut encoder = ctx
-                .device
-                .create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("ism") });
+        ctx.submit("ism", |encoder| {
+            // The passes bound their work by the map count, the GPU's where it lies there.
+            let at = std::mem::offset_of!(GpuIsmParams, map_count);
+            let params_buf = maps.uniform(ctx, encoder, "ism params", &params, at);
             ctx.encode_dispatch(
-                &mut encoder,
+                encoder,
                 "ism_clear",
                 &self.clear,
                 &[&params_buf, &out.depth],
                 clear_grid,
             );
             if items > 0 {
+                let splats = maps.workgroups(ctx, encoder, &self.args, per_map, WORKGROUP)?;
                 ctx.encode_dispatch(
-                    &mut encoder,
+                    encoder,
                     "ism_splat",
                     &self.splat,
                     &[&params_buf, &out.depth, &caster_buf, centres],
-                    Grid::for_items(ctx, items, WORKGROUP)?,
+                    splats,
                 );
-                self.pull_push(ctx, &mut encoder, &out, &params_buf)?;
+                self.pull_push(ctx, encoder, &out, &params_buf)?;
             }
-            ctx.queue.submit([encoder.finish()]);
             Ok(())
         })?;
         Ok(out)

@@ -4,7 +4,7 @@
 //! write.
 use crate::buffers::{output, Grid};
 use crate::context::{GpuContext, GpuError};
-use crate::gpu_count::VplCount;
+use crate::gpu_count::Count;
 use crate::gpu_types::{GpuPartitionParams, CULL_COUNT, CULL_WRITE};
 use crate::scan_pass::ScanPass;
 
@@ -44,7 +44,7 @@ impl PartitionPass {
         encoder: &mut wgpu::CommandEncoder,
         scan: &ScanPass,
         bounds: &wgpu::Buffer,
-        count: &VplCount,
+        count: &Count,
         subregions: u32,
         status: &wgpu::Buffer,
     ) -> Result<GpuPartition, GpuError> {

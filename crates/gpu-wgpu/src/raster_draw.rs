@@ -3,7 +3,7 @@
 //! bindings its entry points use), the indirect draw per interleaved subregion sized on the
 //! GPU (`shaders/raster_args.wgsl`) and the pass that draws every subregion's VPLs into its
 //! own viewport of an atlas.
-use crate::buffers::{uniform, Grid};
+use crate::buffers::Grid;
 use crate::context::{GpuContext, GpuError};
 use crate::cull_types::GpuRasterParams;
 
@@ -126,7 +126,8 @@ impl SubregionDraws {
     }
 
     /// Records the draws of `pipeline` (with `bind` at group 0) for every subregion of
-    /// `params` into `target`, cleared first: subregion (i, j)'s VPLs
+    /// `params` (and the uniform holding them, with the frame's VPL count in it) into
+    /// `target`, cleared first: subregion (i, j)'s VPLs
     /// (`order[sub_offsets[s]..sub_offsets[s + 1]]`) as instances of `params.mesh_vertices`
     /// vertices, in the viewport at (i view_w, j view_h) cut to `extent(i, j)` cells. K
     /// beyond [`MAX_RASTER_K`] is an error.
@@ -136,7 +137,7 @@ impl SubregionDraws {
         ctx: &GpuContext,
         encoder: &mut wgpu::CommandEncoder,
         label: &'static str,
-        params: &GpuRasterParams,
+        (params, params_buffer): (&GpuRasterParams, &wgpu::Buffer),
         sub_offsets: &wgpu::Buffer,
         (pipeline, bind): (&wgpu::RenderPipeline, &wgpu::BindGroup),
         target: &wgpu::TextureView,
@@ -155,12 +156,11 @@ impl SubregionDraws {
             usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::INDIRECT,
             mapped_at_creation: false,
         });
-        let params_buffer = uniform(ctx, "raster params", params);
         ctx.encode_dispatch(
             encoder,
             "raster args",
             &self.args,
-            &[&params_buffer, sub_offsets, &args],
+            &[params_buffer, sub_offsets, &args],
             Grid::for_items(ctx, u64::from(subregions), 64)?,
         );
         let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {

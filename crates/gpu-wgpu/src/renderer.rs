@@ -505,7 +505,7 @@ impl Renderer for GpuRenderer {
             Some(timings.time("shadow_maps", || {
                 self.step("shadow_maps", || {
                     self.ism
-                        .render_at(ctx, casters, &vsgls.centres, vsgls.count, settings)
+                        .render_at(ctx, casters, &vsgls.centres, &vsgls.count, settings)
                 })
             })?)
         } else {

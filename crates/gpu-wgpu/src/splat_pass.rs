@@ -140,7 +140,7 @@ impl Splatter {
         &self,
         ctx: &GpuContext,
         encoder: &mut wgpu::CommandEncoder,
-        params: &GpuRasterParams,
+        (params, params_buffer): (&GpuRasterParams, &wgpu::Buffer),
         tiles: &TiledFrame,
         pipeline: &wgpu::RenderPipeline,
         bind: &wgpu::BindGroup,
@@ -158,7 +158,7 @@ impl Splatter {
             ctx,
             encoder,
             "splat",
-            params,
+            (params, params_buffer),
             &tiles.sub_offsets,
             (pipeline, bind),
             &target,
@@ -209,7 +209,8 @@ impl Splatter {
                     (7, frame.positions.as_entire_binding()),
                 ],
             );
-            let target = self.draw(ctx, encoder, &params, tiles, pipeline, &group)?;
+            let drawn = (&params, &params_buffer);
+            let target = self.draw(ctx, encoder, drawn, tiles, pipeline, &group)?;
             let resolve = bind(
                 ctx,
                 "splat resolve",
@@ -274,7 +275,8 @@ impl Splatter {
                         (10, status.as_entire_binding()),
                     ],
                 );
-                self.draw(ctx, encoder, &params, tiles, &self.list, &group)?;
+                let drawn = (&params, &params_buffer);
+                self.draw(ctx, encoder, drawn, tiles, &self.list, &group)?;
                 Ok(())
             })?;
             let count = read_status(ctx, &status, frame.width)?;

@@ -14,7 +14,7 @@ use crate::context::{GpuContext, GpuError};
 use crate::cull_frame::{cull_params, read_status, tile_grid, CullFrame};
 use crate::cull_types::GpuTightParams;
 use crate::gpu_lists::GpuLightLists;
-use crate::gpu_types::{GpuCullStatus, CULL_COUNT, CULL_WRITE};
+use crate::gpu_types::{GpuCullParams, GpuCullStatus, CULL_COUNT, CULL_WRITE};
 use crate::scan_pass::ScanPass;
 use slc_cull::CullView;
 
@@ -99,8 +99,10 @@ impl TightRefiner {
             } else {
                 "tight cull (write)"
             };
-            let params = uniform(ctx, label, &cull_params(frame, &view, tiles, mode));
             ctx.submit(label, |encoder| {
+                let at = std::mem::offset_of!(GpuCullParams, vpl_count);
+                let params = cull_params(frame, &view, tiles, mode);
+                let params = bounds.count.uniform(ctx, encoder, label, &params, at);
                 ctx.encode_dispatch(
                     encoder,
                     "tight cull",

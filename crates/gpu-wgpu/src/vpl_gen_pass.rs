@@ -61,7 +61,7 @@ pub struct GpuVpls {
 }
 
 impl GpuVpls {
-    /// The number of VPLs, read back (16 bytes, `vpl count`).
+    /// The number of VPLs, read back (12 bytes, `vpl count`).
     pub fn read_count(&self, ctx: &GpuContext) -> Result<u32, GpuError> {
         self.count.read(ctx, "vpl count")
     }

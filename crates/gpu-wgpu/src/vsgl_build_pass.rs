@@ -19,16 +19,25 @@
 //! 3. [`VsglBuildPass::sample`] (`light_sampling`): the CPU's stratified points warped down
 //!    the tree of importance masses in parallel, one invocation per sample
 //!    (`FilteredSampler::warp`, stopping where `N P(C) ≤ 1`); each tree texel counts the
-//!    samples that reach it and keeps the first one's index; that sample's slot gets the
-//!    cluster's VSGL (`Vsgl::from_sums`) scaled by `m / (N P(C))`, the other slots are left
-//!    empty. The clusters and weights are the CPU's (up to the warp's f32 rounding at a
-//!    branch's edge); the lights are in the order of their first samples, where the CPU sorts
-//!    them by cluster.
+//!    samples that reach it and keeps the first one's index; the first samples are numbered
+//!    by a scan (`scan_pass`) and each writes its cluster's VSGL (`Vsgl::from_sums`) scaled by
+//!    `m / (N P(C))` at its number. The number of lights stays on the GPU ([`Count::Gpu`]):
+//!    the shading and the imperfect shadow maps take it from there. The clusters and weights
+//!    are the CPU's (up to the warp's f32 rounding at a branch's edge, and f32's points for
+//!    more than about 2²³ samples); the lights are in the order of their first samples, where
+//!    the CPU sorts them by cluster.
+//!
+//! The cluster sums are kept as five arrays of one field each, so that one storage binding
+//! holds a fifth of the pyramid (16 bytes per tree texel): a point light's six faces at RSM
+//! 512 fit lavapipe's 128 MiB per binding.
 use crate::buffers::{output, uniform, upload, Grid};
 use crate::context::{GpuContext, GpuError};
 use crate::gbuffer_pass::GpuGBuffer;
+use crate::gpu_count::{Count, GpuCount};
+use crate::gpu_types::GpuCullStatus;
 use crate::rsm_pass::GpuRsm;
-use crate::vsgl_build_types::{GpuBuildParams, GpuSums, GpuTree, CLAMPED_DIFFUSE, COUNT_LIGHTS};
+use crate::scan_pass::ScanPass;
+use crate::vsgl_build_types::{GpuBuildParams, GpuTree, CLAMPED_DIFFUSE, COUNT_LIGHTS};
 use crate::vsgl_shade_pass::GpuVsgls;
 use crate::vsgl_types::{GpuVsgl, GpuVsglStatus};
 use slc_core::frame::DiffuseEmission;
@@ -55,17 +64,41 @@ const WORKGROUP: u32 = 64;
 /// The binding numbers of `shaders/vsgl_build.wgsl` (each entry point binds those it uses).
 const PARAMS: u32 = 0;
 const STATUS: u32 = 1;
+/// The first of the five arrays of cluster sums (2 to 6).
 const SUMS: u32 = 2;
-const VIEW: u32 = 3;
-const MARKS: u32 = 4;
-const HIT_NODE: u32 = 5;
-const VSGLS: u32 = 6;
-const CENTRES: u32 = 7;
-const RSM_TEXELS: u32 = 8;
-const SAMPLES: u32 = 9;
-const POSITIONS: u32 = 10;
-const NORMALS: u32 = 11;
-const CAMERA_VSGLS: u32 = 12;
+const VIEW: u32 = 7;
+const MARKS: u32 = 8;
+const HIT_NODE: u32 = 9;
+const VSGLS: u32 = 10;
+const CENTRES: u32 = 11;
+const RSM_TEXELS: u32 = 12;
+const SAMPLES: u32 = 13;
+const POSITIONS: u32 = 14;
+const NORMALS: u32 = 15;
+const CAMERA_VSGLS: u32 = 16;
+const SLOTS: u32 = 17;
+
+/// The cluster sums of a tree, one array of `[f32; 4]` per field of
+/// [`crate::vsgl_build_types::GpuSums`] (in its order), one element per tree texel.
+pub type SumsBuffers = [wgpu::Buffer; 5];
+
+/// Zeroed sums for `tree`.
+fn sums_buffers(ctx: &GpuContext, tree: GpuTree) -> Result<SumsBuffers, GpuError> {
+    let one = || output::<[f32; 4]>(ctx, "vsgl sums", tree.len());
+    Ok([one()?, one()?, one()?, one()?, one()?])
+}
+
+/// The sums' bindings.
+fn sums_bindings(sums: &SumsBuffers) -> [(u32, &wgpu::Buffer); 5] {
+    let [a, b, c, d, e] = sums;
+    [
+        (SUMS, a),
+        (SUMS + 1, b),
+        (SUMS + 2, c),
+        (SUMS + 3, d),
+        (SUMS + 4, e),
+    ]
+}
 
 /// The mipmapped RSMs of a frame on the GPU (VSGL section 4.1): the cluster sums of every
 /// texel of one quadtree over the faces of all maps, map by map, and the frame's fault
@@ -73,8 +106,8 @@ const CAMERA_VSGLS: u32 = 12;
 pub struct GpuMipRsm {
     /// The quadtree (the maps' resolution, their faces in order).
     pub tree: GpuTree,
-    /// [`GpuSums`] per tree texel.
-    pub sums: wgpu::Buffer,
+    /// The cluster sums per tree texel.
+    pub sums: SumsBuffers,
     /// The view mass per tree texel (section 4.3), once [`VsglBuildPass::bidirectional`] ran.
     pub view: Option<wgpu::Buffer>,
     /// The frame's [`GpuVsglStatus`].
@@ -100,7 +133,9 @@ pub struct VsglBuildPass {
     reduce_view: wgpu::ComputePipeline,
     view: wgpu::ComputePipeline,
     sample: wgpu::ComputePipeline,
+    own: wgpu::ComputePipeline,
     emit: wgpu::ComputePipeline,
+    scan: ScanPass,
 }
 
 /// One step's commands (wgpu keeps the buffers they use alive until they ran).
@@ -119,8 +154,29 @@ impl Commands<'_> {
         params: GpuBuildParams,
         buffers: &[(u32, &wgpu::Buffer)],
     ) -> Result<(), GpuError> {
+        self.dispatch_counted(label, pipeline, params, buffers, None)
+    }
+
+    /// [`Self::dispatch`] whose `params.count` is `count` (one left on the GPU is copied in).
+    fn dispatch_counted(
+        &mut self,
+        label: &'static str,
+        pipeline: &wgpu::ComputePipeline,
+        params: GpuBuildParams,
+        buffers: &[(u32, &wgpu::Buffer)],
+        count: Option<&Count>,
+    ) -> Result<(), GpuError> {
         let grid = Grid::for_items(self.ctx, u64::from(params.items), WORKGROUP)?;
-        let p = uniform(self.ctx, label, &params);
+        let p = match count {
+            Some(count) => count.uniform(
+                self.ctx,
+                self.encoder,
+                label,
+                &params,
+                std::mem::offset_of!(GpuBuildParams, count),
+            ),
+            None => uniform(self.ctx, label, &params),
+        };
         let mut bound = vec![(PARAMS, &p)];
         bound.extend_from_slice(buffers);
         self.ctx
@@ -140,7 +196,9 @@ impl VsglBuildPass {
                 reduce_view: entry("vsgl_reduce_view", "reduce_view"),
                 view: entry("vsgl_view", "view"),
                 sample: entry("vsgl_sample", "sample"),
+                own: entry("vsgl_own", "own"),
                 emit: entry("vsgl_emit", "emit"),
+                scan: ScanPass::new(ctx),
             })
         })
     }
@@ -168,15 +226,16 @@ impl VsglBuildPass {
         }
         let faces: u32 = maps.iter().map(|m| m.layout.faces.len() as u32).sum();
         let tree = GpuTree::new(n, faces);
-        let sums = output::<GpuSums>(ctx, "vsgl sums", tree.len())?;
+        let sums = sums_buffers(ctx, tree)?;
         let status = upload(ctx, "vsgl status", &[GpuVsglStatus::clear(0)])?;
         self.submit(ctx, "vsgl_mip", |c| {
             for (m, first_face, first_texel) in map_offsets(maps) {
                 let params = map_params(tree, m, first_face, first_texel);
-                let buffers = [(STATUS, &status), (SUMS, &sums), (RSM_TEXELS, &m.texels)];
+                let mut buffers = vec![(STATUS, &status), (RSM_TEXELS, &m.texels)];
+                buffers.extend(sums_bindings(&sums));
                 c.dispatch("vsgl_texels", &self.texels, params, &buffers)?;
             }
-            self.reduce(c, tree, &self.reduce_sums, (SUMS, &sums))
+            self.reduce(c, tree, &self.reduce_sums, &sums_bindings(&sums))
         })?;
         Ok(GpuMipRsm {
             tree,
@@ -192,7 +251,7 @@ impl VsglBuildPass {
         c: &mut Commands,
         tree: GpuTree,
         pipeline: &wgpu::ComputePipeline,
-        pyramid: (u32, &wgpu::Buffer),
+        pyramid: &[(u32, &wgpu::Buffer)],
     ) -> Result<(), GpuError> {
         for level in 1..tree.levels {
             let params = GpuBuildParams {
@@ -201,7 +260,7 @@ impl VsglBuildPass {
                 items: tree.faces * tree.size(level).pow(2),
                 ..Default::default()
             };
-            c.dispatch("vsgl_reduce", pipeline, params, &[pyramid])?;
+            c.dispatch("vsgl_reduce", pipeline, params, pyramid)?;
         }
         Ok(())
     }
@@ -224,7 +283,7 @@ impl VsglBuildPass {
     ) -> Result<(), GpuError> {
         let (w, h) = (gbuffer.width, gbuffer.height);
         let camera_tree = GpuTree::new(w.max(h).max(1), 1);
-        let camera_sums = output::<GpuSums>(ctx, "vsgl camera sums", camera_tree.len())?;
+        let camera_sums = sums_buffers(ctx, camera_tree)?;
         let view = output::<f32>(ctx, "vsgl view masses", mip.tree.len())?;
         let camera = &gbuffer.camera;
         let pixel_side = 2.0 * (0.5 * camera.yfov).tan() / h.max(1) as f32;
@@ -244,22 +303,27 @@ impl VsglBuildPass {
                 width: w,
                 ..Default::default()
             };
-            let buffers = [
+            let mut buffers = vec![
                 (STATUS, status),
-                (SUMS, &camera_sums),
                 (SAMPLES, &gbuffer.samples),
                 (POSITIONS, &gbuffer.positions),
                 (NORMALS, &gbuffer.geometric_normals),
             ];
+            buffers.extend(sums_bindings(&camera_sums));
             c.dispatch("vsgl_camera_texels", &self.camera_texels, params, &buffers)?;
-            self.reduce(c, camera_tree, &self.reduce_sums, (SUMS, &camera_sums))?;
+            self.reduce(
+                c,
+                camera_tree,
+                &self.reduce_sums,
+                &sums_bindings(&camera_sums),
+            )?;
             let pyramid = Pyramid {
                 tree: camera_tree,
                 sums: &camera_sums,
                 view: None,
                 status,
             };
-            let (camera_lights, _) = self.encode_sampling(
+            let (camera_lights, _, camera_count) = self.encode_sampling(
                 c,
                 &pyramid,
                 &camera_sampling,
@@ -278,9 +342,10 @@ impl VsglBuildPass {
                     (RSM_TEXELS, &m.texels),
                     (CAMERA_VSGLS, &camera_lights),
                 ];
-                c.dispatch("vsgl_view", &self.view, params, &buffers)?;
+                let count = Some(&camera_count);
+                c.dispatch_counted("vsgl_view", &self.view, params, &buffers, count)?;
             }
-            self.reduce(c, tree, &self.reduce_view, (VIEW, &view))
+            self.reduce(c, tree, &self.reduce_view, &[(VIEW, &view)])
         })?;
         mip.view = Some(view);
         Ok(())
@@ -288,7 +353,8 @@ impl VsglBuildPass {
 
     /// Step 3, the lights: `sampling.count` samples of [`SampleSet::Lights`] warped down the
     /// importance of `mip` (its view masses mixed in where step 2 ran), each cluster reached
-    /// as a VSGL in its first sample's slot.
+    /// once a VSGL, packed in the order of their first samples; their number stays on the
+    /// GPU.
     pub fn sample(
         &self,
         ctx: &GpuContext,
@@ -296,7 +362,7 @@ impl VsglBuildPass {
         sampling: &VsglSampling,
     ) -> Result<GpuVsgls, GpuError> {
         let no_view = output::<f32>(ctx, "no view masses", 0)?;
-        let (buffer, centres) = self.submit(ctx, "vsgl_sampling", |c| {
+        let (buffer, centres, count) = self.submit(ctx, "vsgl_sampling", |c| {
             let pyramid = Pyramid {
                 tree: mip.tree,
                 sums: &mip.sums,
@@ -314,14 +380,15 @@ impl VsglBuildPass {
         })?;
         Ok(GpuVsgls {
             buffer,
-            count: sampling.count,
+            count,
             centres,
             status: mip.status,
         })
     }
 
-    /// The sample and emit dispatches of `sampling` over `pyramid`: the VSGL slots and their
-    /// centres. `no_view` stands in for the view masses of the flux importance.
+    /// The sample, own, scan and emit dispatches of `sampling` over `pyramid`: the lights, their
+    /// centres and their number. `no_view` stands in for the view masses of the flux
+    /// importance.
     fn encode_sampling(
         &self,
         c: &mut Commands,
@@ -330,16 +397,18 @@ impl VsglBuildPass {
         set: SampleSet,
         flags: u32,
         no_view: &wgpu::Buffer,
-    ) -> Result<(wgpu::Buffer, wgpu::Buffer), GpuError> {
+    ) -> Result<(wgpu::Buffer, wgpu::Buffer, Count), GpuError> {
         let ctx = c.ctx;
         let count = sampling.count as usize;
         let vsgls = output::<GpuVsgl>(ctx, "vsgls", count)?;
         let centres = output::<[f32; 4]>(ctx, "vsgl centres", count)?;
         if count == 0 {
-            return Ok((vsgls, centres));
+            return Ok((vsgls, centres, Count::Host(0)));
         }
         let marks = output::<u32>(ctx, "vsgl sample marks", 2 * pyramid.tree.len())?;
         let hit_node = output::<u32>(ctx, "vsgl sample texels", count)?;
+        let slots = output::<u32>(ctx, "vsgl light slots", count + 1)?;
+        let scanned = upload(ctx, "vsgl light scan", &[GpuCullStatus::CLEAR])?;
         let clamped = match sampling.diffuse {
             DiffuseEmission::ClampedCosine => CLAMPED_DIFFUSE,
             DiffuseEmission::Sg => 0,
@@ -355,24 +424,37 @@ impl VsglBuildPass {
             ..Default::default()
         };
         let view = pyramid.view.unwrap_or(no_view);
+        // The warp reads only the sums' positional weights (`flux_mass`).
+        let weights = (SUMS + 1, &pyramid.sums[1]);
         let warp = [
-            (SUMS, pyramid.sums),
+            weights,
             (VIEW, view),
             (MARKS, &marks),
             (HIT_NODE, &hit_node),
         ];
         c.dispatch("vsgl_sample", &self.sample, params, &warp)?;
-        let emit = [
+        let own = [(MARKS, &marks), (HIT_NODE, &hit_node), (SLOTS, &slots)];
+        c.dispatch("vsgl_own", &self.own, params, &own)?;
+        self.scan
+            .encode(ctx, c.encoder, &slots, sampling.count, &scanned);
+        let mut emit = vec![
             (STATUS, pyramid.status),
-            (SUMS, pyramid.sums),
             (VIEW, view),
             (MARKS, &marks),
             (HIT_NODE, &hit_node),
             (VSGLS, &vsgls),
             (CENTRES, &centres),
+            (SLOTS, &slots),
         ];
+        emit.extend(sums_bindings(pyramid.sums));
         c.dispatch("vsgl_emit", &self.emit, params, &emit)?;
-        Ok((vsgls, centres))
+        // The scan appends the number of first samples, the lights, after the flags.
+        let lights = Count::Gpu(GpuCount {
+            buffer: slots,
+            offset: 4 * count as u64,
+            capacity: sampling.count,
+        });
+        Ok((vsgls, centres, lights))
     }
 }
 
@@ -380,7 +462,7 @@ impl VsglBuildPass {
 /// the fault record it writes to.
 struct Pyramid<'a> {
     tree: GpuTree,
-    sums: &'a wgpu::Buffer,
+    sums: &'a SumsBuffers,
     view: Option<&'a wgpu::Buffer>,
     status: &'a wgpu::Buffer,
 }

@@ -27,9 +27,10 @@
 //! math's domain and a `λ_σ` or SG product beyond `f32` at some pixel are recorded by the
 //! shader in the frame's fault record ([`GpuVsglStatus`]), read back after the dispatch with
 //! the construction's faults.
-use crate::buffers::{output, read_back, uniform, upload, Grid};
+use crate::buffers::{output, read_back, upload, Grid};
 use crate::context::{GpuContext, GpuError};
 use crate::gbuffer_pass::GpuGBuffer;
+use crate::gpu_count::Count;
 use crate::gpu_types::{gpu_position, GpuSample};
 use crate::ism_pass::ImperfectShadowMaps;
 use crate::shade_pass::read_image;
@@ -49,15 +50,15 @@ pub(crate) const SOURCE: &str = concat!(
 );
 const WORKGROUP: u32 = 64;
 
-/// VSGLs on the GPU in the [`GpuVsgl`] layout, one per slot (a slot may be empty: all zero),
-/// with their centres (for the imperfect shadow maps) and the frame's fault record, which the
-/// shading fills in and reads.
+/// VSGLs on the GPU in the [`GpuVsgl`] layout, with their centres (for the imperfect shadow
+/// maps), their number (the host's, or left on the GPU by [`crate::vsgl_build_pass`]) and
+/// the frame's fault record, which the shading fills in and reads.
 pub struct GpuVsgls {
-    /// [`GpuVsgl`] per slot.
+    /// [`GpuVsgl`] per VSGL (the buffer holds the count's capacity).
     pub buffer: wgpu::Buffer,
-    /// The number of slots.
-    pub count: u32,
-    /// `[μ_v, 1]` per slot (zero for an empty one).
+    /// How many there are.
+    pub count: Count,
+    /// `[μ_v, 1]` per VSGL.
     pub centres: wgpu::Buffer,
     /// The [`GpuVsglStatus`] of the frame.
     pub status: wgpu::Buffer,
@@ -76,7 +77,7 @@ impl GpuVsgls {
         let centres: Vec<[f32; 4]> = vsgls.iter().map(|v| v.mu.extend(1.0).to_array()).collect();
         Ok(Self {
             buffer: upload(ctx, "vsgls", &packed)?,
-            count,
+            count: Count::Host(count),
             centres: upload(ctx, "vsgl centres", &centres)?,
             status: upload(ctx, "vsgl status", &[GpuVsglStatus::clear(count)])?,
         })
@@ -228,11 +229,12 @@ impl VsglShadePass {
         vsgls: &GpuVsgls,
         visibility: Option<Visibility>,
     ) -> Result<(wgpu::Buffer, u32), GpuError> {
+        let capacity = vsgls.count.capacity();
         if let Some((_, maps)) = visibility {
-            if maps.params.map_count != vsgls.count {
+            if maps.params.map_count != capacity {
                 return Err(GpuError::Input(format!(
-                    "{} shadow maps for {} VSGLs",
-                    maps.params.map_count, vsgls.count
+                    "{} shadow maps for {capacity} VSGLs",
+                    maps.params.map_count
                 )));
             }
         }
@@ -246,12 +248,15 @@ impl VsglShadePass {
         if pixels > 0 {
             let params = GpuVsglParams {
                 pixel_count: pixels,
-                vsgl_count: vsgls.count,
+                vsgl_count: capacity,
                 pad: [0; 2],
             };
             let grid = Grid::for_items(ctx, u64::from(pixels), WORKGROUP)?;
-            ctx.scoped("vsgl_shade", || {
-                let params = uniform(ctx, "vsgl params", &params);
+            ctx.submit("vsgl_shade", |encoder| {
+                let at = std::mem::offset_of!(GpuVsglParams, vsgl_count);
+                let params = vsgls
+                    .count
+                    .uniform(ctx, encoder, "vsgl params", &params, at);
                 let mut buffers = vec![
                     &params,
                     samples,
@@ -261,11 +266,14 @@ impl VsglShadePass {
                     &vsgls.status,
                 ];
                 match visibility {
-                    None => ctx.dispatch("vsgl_shade", &self.pipeline, &buffers, grid),
+                    None => {
+                        ctx.encode_dispatch(encoder, "vsgl_shade", &self.pipeline, &buffers, grid)
+                    }
                     Some((normals, maps)) => {
                         let ism = maps.params_buffer(ctx);
                         buffers.extend([normals, &ism, &maps.depth]);
-                        ctx.dispatch("vsgl_shade_visible", &self.visible, &buffers, grid);
+                        let label = "vsgl_shade_visible";
+                        ctx.encode_dispatch(encoder, label, &self.visible, &buffers, grid);
                     }
                 }
                 Ok(())

@@ -153,12 +153,13 @@ pub struct GpuVsglStatus {
     /// Smallest RSM texel (over the maps in order) whose BRDF is outside the SG math's
     /// domain (`u32::MAX`: none).
     pub bad_texel: u32,
-    /// Smallest VSGL slot whose parameters left `f32` or the shading's domain (`u32::MAX`:
-    /// none).
+    /// Smallest VSGL whose parameters left `f32` or the shading's domain (`u32::MAX`: none).
     pub bad_vsgl: u32,
     /// Smallest RSM texel whose bidirectional importance left `f32` (`u32::MAX`: none).
     pub bad_view: u32,
-    pub pad: [u32; 2],
+    /// [`Self::bad_vsgl`] for the camera-side VSGLs of the bidirectional importance.
+    pub bad_camera_vsgl: u32,
+    pub pad: u32,
 }
 const _: () = assert!(std::mem::size_of::<GpuVsglStatus>() == 32);
 
@@ -172,7 +173,8 @@ impl GpuVsglStatus {
             bad_texel: u32::MAX,
             bad_vsgl: u32::MAX,
             bad_view: u32::MAX,
-            pad: [0; 2],
+            bad_camera_vsgl: u32::MAX,
+            pad: 0,
         }
     }
 
@@ -202,6 +204,13 @@ impl GpuVsglStatus {
             return Err(GpuError::Input(format!(
                 "VSGL {}: a coefficient leaves f32 or σ_v² is not positive (raise the σ² floor)",
                 self.bad_vsgl
+            )));
+        }
+        if self.bad_camera_vsgl != u32::MAX {
+            return Err(GpuError::Input(format!(
+                "camera-side VSGL {} of the bidirectional importance: a coefficient leaves f32 \
+                 or σ_v² is not positive (raise the σ² floor)",
+                self.bad_camera_vsgl
             )));
         }
         if self.overflow_vsgl != u32::MAX {
