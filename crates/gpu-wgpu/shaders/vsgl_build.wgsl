@@ -98,6 +98,14 @@ fn item(wid: vec3<u32>, groups: vec3<u32>, lid: u32) -> u32 {
     return (wid.y * groups.x + wid.x) * WORKGROUP + lid;
 }
 
+// Texel i of the map (face-major, then row-major): its column, row and level-0 tree texel.
+fn map_texel(i: u32) -> vec3<u32> {
+    let n = params.tree.n;
+    let x = i % n;
+    let y = (i / n) % n;
+    return vec3<u32>(x, y, tree_index(params.tree, params.first_face + i / (n * n), 0u, x, y));
+}
+
 // RSM texel i of the map as ClusterSums::from_texel takes it (vsgl_readback's cpu_rsm had
 // rebuilt the same on the CPU): the beam's cross-section is the texel's solid angle times its
 // squared distance from the light, or its area for an orthographic map.
@@ -135,10 +143,10 @@ fn texels(@builtin(workgroup_id) wid: vec3<u32>, @builtin(num_workgroups) groups
     if i >= params.items {
         return;
     }
-    let n = params.tree.n;
-    let x = i % n;
-    let y = (i / n) % n;
-    let node = tree_index(params.tree, params.first_face + i / (n * n), 0u, x, y);
+    let at = map_texel(i);
+    let x = at.x;
+    let y = at.y;
+    let node = at.z;
     let t = rsm_texels[i];
     var s = sums_zero();
     if t.position.w != 0.0 {
@@ -186,6 +194,19 @@ fn level_texel(i: u32, level: u32) -> vec3<u32> {
     return vec3<u32>(i / (size * size), i % size, (i / size) % size);
 }
 
+// Child c of texel t (face, column, row) of params.level, in the order (0, 0), (1, 0),
+// (0, 1), (1, 1) (Quadtree::children); NO_NODE beyond the edge of a level with odd size.
+fn child_index(t: vec3<u32>, c: u32) -> u32 {
+    let level = params.level - 1u;
+    let size = tree_size(params.tree, level);
+    let cx = 2u * t.y + (c & 1u);
+    let cy = 2u * t.z + (c >> 1u);
+    if cx < size && cy < size {
+        return tree_index(params.tree, t.x, level, cx, cy);
+    }
+    return NO_NODE;
+}
+
 // Quadtree::fill_levels for the cluster sums: each texel of `level` merges its children, in
 // the order (0, 0), (1, 0), (0, 1), (1, 1).
 @compute @workgroup_size(64)
@@ -195,18 +216,15 @@ fn reduce_sums(@builtin(workgroup_id) wid: vec3<u32>, @builtin(num_workgroups) g
     if i >= params.items {
         return;
     }
-    let level = params.level;
-    let t = level_texel(i, level);
-    let child_size = tree_size(params.tree, level - 1u);
+    let t = level_texel(i, params.level);
     var s = sums_zero();
     for (var c = 0u; c < 4u; c++) {
-        let cx = 2u * t.y + (c & 1u);
-        let cy = 2u * t.z + (c >> 1u);
-        if cx < child_size && cy < child_size {
-            s = sums_merge(s, load_sums(tree_index(params.tree, t.x, level - 1u, cx, cy)));
+        let child = child_index(t, c);
+        if child != NO_NODE {
+            s = sums_merge(s, load_sums(child));
         }
     }
-    store_sums(tree_index(params.tree, t.x, level, t.y, t.z), s);
+    store_sums(tree_index(params.tree, t.x, params.level, t.y, t.z), s);
 }
 
 // The same for the view masses.
@@ -217,18 +235,15 @@ fn reduce_view(@builtin(workgroup_id) wid: vec3<u32>, @builtin(num_workgroups) g
     if i >= params.items {
         return;
     }
-    let level = params.level;
-    let t = level_texel(i, level);
-    let child_size = tree_size(params.tree, level - 1u);
+    let t = level_texel(i, params.level);
     var m = 0.0;
     for (var c = 0u; c < 4u; c++) {
-        let cx = 2u * t.y + (c & 1u);
-        let cy = 2u * t.z + (c >> 1u);
-        if cx < child_size && cy < child_size {
-            m += view_mass[tree_index(params.tree, t.x, level - 1u, cx, cy)];
+        let child = child_index(t, c);
+        if child != NO_NODE {
+            m += view_mass[child];
         }
     }
-    view_mass[tree_index(params.tree, t.x, level, t.y, t.z)] = m;
+    view_mass[tree_index(params.tree, t.x, params.level, t.y, t.z)] = m;
 }
 
 // The view importance of the map's texels (bidirectional.rs texel_masses): each texel shaded
@@ -241,10 +256,10 @@ fn view(@builtin(workgroup_id) wid: vec3<u32>, @builtin(num_workgroups) groups: 
     if i >= params.items {
         return;
     }
-    let n = params.tree.n;
-    let x = i % n;
-    let y = (i / n) % n;
-    let node = tree_index(params.tree, params.first_face + i / (n * n), 0u, x, y);
+    let at = map_texel(i);
+    let x = at.x;
+    let y = at.y;
+    let node = at.z;
     let t = rsm_texels[i];
     var mass = 0.0;
     if t.position.w != 0.0 {

@@ -187,13 +187,7 @@ impl Splatter {
         let params = self.params(frame, tiles, 0);
         let image = output::<f32>(ctx, "indirect image", 3 * tiles.pixels as usize)?;
         ctx.submit("splat", |encoder| {
-            let params_buffer = tiles.bounds.count.uniform(
-                ctx,
-                encoder,
-                "splat params",
-                &params,
-                offset_of!(GpuRasterParams, vpl_count),
-            );
+            let params_buffer = params_uniform(ctx, encoder, tiles, &params);
             let group = bind(
                 ctx,
                 "splat",
@@ -252,13 +246,7 @@ impl Splatter {
             let nodes = NodeLists::new(ctx, tiles.pixels, capacity)?;
             let status = upload(ctx, "splat list status", &[GpuCullStatus::CLEAR])?;
             ctx.submit("splat lists", |encoder| {
-                let params_buffer = tiles.bounds.count.uniform(
-                    ctx,
-                    encoder,
-                    "splat params",
-                    &params,
-                    offset_of!(GpuRasterParams, vpl_count),
-                );
+                let params_buffer = params_uniform(ctx, encoder, tiles, &params);
                 let group = bind(
                     ctx,
                     "splat lists",
@@ -290,4 +278,18 @@ impl Splatter {
             return GpuLightLists::upload(ctx, &lists, tiles.pixels as usize, vpls);
         }
     }
+}
+
+/// `params` in a uniform with the frame's VPL count (copied in on the GPU where it lies there).
+fn params_uniform(
+    ctx: &GpuContext,
+    encoder: &mut wgpu::CommandEncoder,
+    tiles: &TiledFrame,
+    params: &GpuRasterParams,
+) -> wgpu::Buffer {
+    let at = offset_of!(GpuRasterParams, vpl_count);
+    tiles
+        .bounds
+        .count
+        .uniform(ctx, encoder, "splat params", params, at)
 }

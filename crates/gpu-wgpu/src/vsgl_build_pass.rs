@@ -38,20 +38,15 @@ use crate::gpu_types::GpuCullStatus;
 use crate::rsm_pass::GpuRsm;
 use crate::scan_pass::ScanPass;
 use crate::vsgl_build_types::{GpuBuildParams, GpuTree, CLAMPED_DIFFUSE, COUNT_LIGHTS};
-use crate::vsgl_shade_pass::GpuVsgls;
+use crate::vsgl_shade_pass::{vsgl_light_source, GpuVsgls};
 use crate::vsgl_types::{GpuVsgl, GpuVsglStatus};
 use slc_core::frame::DiffuseEmission;
 use slc_cpu_ref::vsgl::{point_shift, SampleSet};
 
-/// The shared WGSL (Fresnel and GGX, the SG algebra, the G-buffer sample, the SG receiver,
-/// the VSGL record, the RSM texel, its solid angle, the quadtree and the cluster sums) and the
-/// construction's entry points.
+/// One VSGL's radiance (`vsgl_shade_pass::vsgl_light_source`), the RSM texel, its solid
+/// angle, the quadtree and the cluster sums, then the construction's entry points.
 pub(crate) const SOURCE: &str = concat!(
-    include_str!("../shaders/fresnel_ggx.wgsl"),
-    include_str!("../shaders/sg.wgsl"),
-    include_str!("../shaders/gsample.wgsl"),
-    include_str!("../shaders/sg_surface.wgsl"),
-    include_str!("../shaders/vsgl_light.wgsl"),
+    vsgl_light_source!(),
     include_str!("../shaders/rsm_texel.wgsl"),
     include_str!("../shaders/solid_angle.wgsl"),
     include_str!("../shaders/vsgl_tree.wgsl"),

@@ -38,13 +38,26 @@ use crate::vsgl_types::{GpuVsgl, GpuVsglParams, GpuVsglStatus, VsglInput};
 use slc_bounds::SgSurface;
 use slc_core::{GBuffer, Image};
 
-/// The Fresnel/GGX helpers, the SG algebra, the G-buffer sample and the shading kernel.
+/// The Fresnel/GGX helpers, the SG algebra, the G-buffer sample, the SG receiver and one
+/// VSGL's radiance (`shaders/vsgl_light.wgsl` and what it reads): the head of this pass's
+/// source and of the VSGL construction's (`vsgl_build_pass`, whose bidirectional importance
+/// shades RSM texels by VSGLs).
+macro_rules! vsgl_light_source {
+    () => {
+        concat!(
+            include_str!("../shaders/fresnel_ggx.wgsl"),
+            include_str!("../shaders/sg.wgsl"),
+            include_str!("../shaders/gsample.wgsl"),
+            include_str!("../shaders/sg_surface.wgsl"),
+            include_str!("../shaders/vsgl_light.wgsl")
+        )
+    };
+}
+pub(crate) use vsgl_light_source;
+
+/// One VSGL's radiance, the imperfect shadow maps' lookup and the shading kernel.
 pub(crate) const SOURCE: &str = concat!(
-    include_str!("../shaders/fresnel_ggx.wgsl"),
-    include_str!("../shaders/sg.wgsl"),
-    include_str!("../shaders/gsample.wgsl"),
-    include_str!("../shaders/sg_surface.wgsl"),
-    include_str!("../shaders/vsgl_light.wgsl"),
+    vsgl_light_source!(),
     include_str!("../shaders/ism_map.wgsl"),
     include_str!("../shaders/vsgl_shade.wgsl")
 );
