@@ -144,20 +144,17 @@ fn texels(@builtin(workgroup_id) wid: vec3<u32>, @builtin(num_workgroups) groups
         return;
     }
     let at = map_texel(i);
-    let x = at.x;
-    let y = at.y;
-    let node = at.z;
     let t = rsm_texels[i];
     var s = sums_zero();
     if t.position.w != 0.0 {
-        let input = rsm_texel_input(t, x, y);
+        let input = rsm_texel_input(t, at.x, at.y);
         if valid_surface(input.surface) {
             s = texel_sums(input);
         } else {
             atomicMin(&status.bad_texel, params.first_texel + i);
         }
     }
-    store_sums(node, s);
+    store_sums(at.z, s);
 }
 
 // Level 0 of the camera's map from the G-buffer (bidirectional.rs camera_rsm): pixel (x, y) is
@@ -257,13 +254,10 @@ fn view(@builtin(workgroup_id) wid: vec3<u32>, @builtin(num_workgroups) groups: 
         return;
     }
     let at = map_texel(i);
-    let x = at.x;
-    let y = at.y;
-    let node = at.z;
     let t = rsm_texels[i];
     var mass = 0.0;
     if t.position.w != 0.0 {
-        let input = rsm_texel_input(t, x, y);
+        let input = rsm_texel_input(t, at.x, at.y);
         // A texel outside the domain is the texels pass's fault already.
         if valid_surface(input.surface) {
             let surface = make_surface(input.surface);
@@ -284,7 +278,7 @@ fn view(@builtin(workgroup_id) wid: vec3<u32>, @builtin(num_workgroups) groups: 
             }
         }
     }
-    view_mass[node] = mass;
+    view_mass[at.z] = mass;
 }
 
 // The importance p(s) of a tree texel up to a constant (ImportanceMap, bidirectional.rs mix):
