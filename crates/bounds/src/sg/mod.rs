@@ -14,7 +14,8 @@
 //!   `∫ L_in(ω) max(ω·n, 0) dω` for an SG light, clamped at the horizon (Hill's fit with exact
 //!   limits), and [`SpecularLobeSg`], its GGX specular lobe for a view direction (warped NDF of
 //!   Wang et al. 2009), combined by [`SgSurface`] into the analytic shading of VSGL eq. (2)
-//!   with the incoming radiance of eq. (5).
+//!   with the incoming radiance of eq. (5); the same shading in `f32` for inner loops
+//!   ([`SgSurface::radiance_f32`], `single.rs`, the forms of the GPU's `sg.wgsl`).
 mod cosine;
 mod integral;
 mod irradiance;
@@ -23,6 +24,7 @@ mod product;
 #[cfg(test)]
 mod quadrature;
 mod shading;
+mod single;
 mod specular;
 mod toksvig;
 
@@ -31,6 +33,7 @@ pub use integral::sg_integral;
 pub use irradiance::normalized_sg_irradiance;
 pub use lobe::SphericalGaussian;
 pub use shading::SgSurface;
+pub use single::IrradianceFit;
 pub use specular::{ggx_ndf_sg, SpecularLobeSg};
 pub use toksvig::{
     exact_mean_length, exact_sharpness, toksvig_mean_length, toksvig_sharpness, MeanMap, ToksvigSum,

@@ -17,9 +17,9 @@ use glam::Vec3;
 /// a unit-amplitude light and multiplying.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SgSurface {
-    kd_over_pi: Vec3,
-    normal: Vec3,
-    specular: SpecularLobeSg,
+    pub(crate) kd_over_pi: Vec3,
+    pub(crate) normal: Vec3,
+    pub(crate) specular: SpecularLobeSg,
 }
 
 impl SgSurface {
