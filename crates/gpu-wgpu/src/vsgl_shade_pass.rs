@@ -15,11 +15,12 @@
 //! from the CPU ([`GpuVsgls::upload`]) or built on the GPU ([`crate::vsgl_build_pass`]); empty
 //! slots of the latter shade nothing.
 //!
-//! The SG algebra is in f32 where the CPU uses f64; `shaders/sg.wgsl` uses forms free of the
-//! cancellations f32 would add (series for expm1, the Langevin function and the away-facing
-//! irradiance at small sharpness; `1 − L(λ)` formed directly), so results agree with the CPU
-//! within 6.2e-7 of each pixel on the default scene and 1.0e-5 in the worst extreme tested
-//! (`tests/gpu/vsgl.rs`).
+//! The SG algebra is in f32; `shaders/sg.wgsl` uses forms free of the cancellations f32 would
+//! add (series for expm1, the Langevin function and the away-facing irradiance at small
+//! sharpness; `1 − L(λ)` formed directly). The CPU's VSGL shading uses the same forms, written
+//! again in Rust (`slc_bounds`' `sg/single.rs`, held to its f64 forms by its own tests), so
+//! results agree with the CPU within 5.3e-7 of each pixel on the default scene and 3.2e-6 in
+//! the worst extreme tested (`tests/gpu/vsgl.rs`).
 //!
 //! Out-of-domain input is an error, never a NaN: uploaded VSGLs are validated on the CPU
 //! ([`GpuVsgl::new`]), built ones by the construction's shader with the same checks, an

@@ -3,15 +3,15 @@
 //! pixel must agree within `max_c |gpu − cpu| <= 1e-4 · max(max_c |cpu|, 1e-3 · m)`, m the
 //! largest channel of the CPU image's mean, and the GPU image must be finite.
 //!
-//! The CPU evaluates the SG algebra in f64 (`exp`, `expm1`, `tanh`), the GPU in f32 with
-//! series where f32 would cancel (`shaders/sg.wgsl`). Measured on lavapipe (the worst pixel
-//! ratio `max_c |gpu − cpu| / max(max_c |cpu|, floor)`, printed by the tests): built-in
-//! default scene at most 6.2e-7 for 16, 256 and 4096 samples (16, ~240 and ~3200 distinct
-//! VSGLs) with either importance; the synthetic frame of extremes 6.1e-7 with its 64 VSGLs
-//! together and 1.0e-5 with each VSGL alone, the worst where the only light reaching a pixel
-//! is attenuated by about e^-50 (values near 1e-22): the f32 exponent `d − λ1 − λ2` of the SG
-//! product rounds at `|d − λ1 − λ2| · 2^-24` relative. The 1e-4 target holds in every regime
-//! tested. Breaking a formula fails the tests: a Langevin series coefficient off by 2 %
+//! Both evaluate the SG algebra in f32 with series where f32 would cancel: the GPU in WGSL
+//! (`shaders/sg.wgsl`), the CPU's VSGL shading in Rust (`slc_bounds`' `sg/single.rs`, held
+//! to its f64 forms by its tests; before it shaded in f64, which these tests were first
+//! measured against: at most 6.2e-7 on the default scene and 1.0e-5 on the extremes).
+//! Measured on lavapipe (the worst pixel ratio `max_c |gpu − cpu| / max(max_c |cpu|,
+//! floor)`, printed by the tests): built-in default scene at most 5.3e-7 for 16, 256 and 4096
+//! samples (16, ~240 and ~3200 distinct VSGLs) with either importance; the synthetic frame of
+//! extremes 4.1e-7 with its 64 VSGLs together and 3.2e-6 with each VSGL alone. The 1e-4
+//! target holds in every regime tested. Breaking a formula fails the tests: a Langevin series coefficient off by 2 %
 //! (2.9e-4 on the default scene), the specular weight without its `ωo·n` (1.9), and the naive
 //! f32 `coth λ − 1/λ` below λ = 1 instead of its series (4.7e-4 on a broad lobe, one VSGL at
 //! a time).
