@@ -34,9 +34,15 @@ pub fn normalized_sg_irradiance(sharpness: f32, mu: f32) -> f32 {
     let mu = f64::from(mu.clamp(-1.0, 1.0));
     let mean = langevin(l);
     let x = (1.0 - mean).max(0.0).sqrt();
+    (mean * hill_y(x, mu) + away_facing(l)).clamp(0.0, 1.0) as f32
+}
+
+/// `y(μ)` of [`normalized_sg_irradiance`] for `x = sqrt(1 − L(λ))` (also the `f32` shading's,
+/// `sg/single.rs`, which forms `x` in `f32`).
+pub(crate) fn hill_y(x: f64, mu: f64) -> f64 {
     // The half-width of Hill's horizon transition.
     let switch = 4.0 * HILL_C0 * HILL_C0;
-    let y = if x >= switch {
+    if x >= switch {
         let a = 0.25 + 0.25 * (x - switch) / (1.0 - switch);
         a + 0.5 * mu + (0.5 - a) * mu * mu
     } else {
@@ -46,8 +52,7 @@ pub fn normalized_sg_irradiance(sharpness: f32, mu: f32) -> f32 {
         } else {
             mu.max(0.0)
         }
-    };
-    (mean * y + away_facing(l)).clamp(0.0, 1.0) as f32
+    }
 }
 
 /// `b(λ) = E(λ, −1)`, with its series `1/4 − λ/6` below λ = 1e-3 where the numerator cancels.

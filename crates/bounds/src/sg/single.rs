@@ -7,13 +7,11 @@
 //! [`SphericalGaussian::irradiance`], [`SgSurface::radiance`]) stay the reference: the tests
 //! below hold these to them.
 use crate::error::BoundsError;
+use crate::sg::irradiance::hill_y;
 use crate::sg::lobe::SphericalGaussian;
 use crate::sg::shading::SgSurface;
 use core::f32::consts::{PI, TAU};
 use glam::Vec3;
-
-/// Hill's `c0` ([`crate::sg::normalized_sg_irradiance`]).
-const HILL_C0: f32 = 0.36;
 
 /// `e^x − 1`: its Taylor series to `x^10/10!` below `|x| = 1/2` (truncation below 3e-10 of the
 /// value), `e^x − 1` above, where it does not cancel. (Plain products and sums where the
@@ -132,22 +130,9 @@ impl IrradianceFit {
     }
 
     /// `E(λ, μ)`, the normalized irradiance of [`crate::sg::normalized_sg_irradiance`] (Hill's
-    /// fit with exact limits), clamped to `[0, 1]`.
+    /// fit with exact limits, its `y(μ)` shared), clamped to `[0, 1]`.
     pub fn at(&self, mu: f32) -> f32 {
-        let mu = mu.clamp(-1.0, 1.0);
-        let x = self.x;
-        let switch = 4.0 * HILL_C0 * HILL_C0;
-        let y = if x >= switch {
-            let a = 0.25 + 0.25 * (x - switch) / (1.0 - switch);
-            a + 0.5 * mu + (0.5 - a) * mu * mu
-        } else {
-            let (x0, x1) = (HILL_C0 * mu, x / (4.0 * HILL_C0));
-            if x > 0.0 && x0.abs() <= x1 {
-                (x0 + x1) * (x0 + x1) / x
-            } else {
-                mu.max(0.0)
-            }
-        };
+        let y = hill_y(f64::from(self.x), f64::from(mu.clamp(-1.0, 1.0))) as f32;
         (self.mean * y + self.away).clamp(0.0, 1.0)
     }
 }
