@@ -1,10 +1,11 @@
 // A receiver of SG light (crates/bounds/src/sg/shading.rs SgSurface) in f32: its domain check,
-// its diffuse and warped GGX lobes, and the radiance it reflects for an incoming SG. Shared by
+// its diffuse and fitted GGX lobes, and the radiance it reflects for an incoming SG. Shared by
 // the VSGL shading (receivers are G-buffer pixels) and the VSGL construction (an RSM texel's
 // own lobes are a surface seen from its light, reciprocity). fresnel_ggx.wgsl, sg.wgsl and
-// gsample.wgsl come first.
+// gsample.wgsl and specular_table.wgsl come first.
 
-// specular.rs MIN_COS_O: views more grazing are warped as at this cosine.
+// specular.rs MIN_COS_O (specular_fit.rs TABLE_MIN_COS): views more grazing are fitted as at
+// this cosine.
 const MIN_COS_O: f32 = 1e-6;
 // check.rs UNIT_TOLERANCE: a unit vector's length within this of 1.
 const UNIT_TOLERANCE: f32 = 1e-3;
@@ -47,6 +48,10 @@ fn valid_surface(s: SurfaceIn) -> bool {
     if !(s.alpha > 0.0 && s.alpha <= 1.0) || !sg_finite(2.0 / (s.alpha * s.alpha)) || any(s.kd < vec3<f32>(0.0)) {
         return false;
     }
+    let cos_o = dot(s.normal / length(s.normal), s.omega_o / length(s.omega_o));
+    if cos_o > 0.0 && !sg_finite(fitted_sharpness(s.alpha, max(cos_o, MIN_COS_O))) {
+        return false;
+    }
     if s.fresnel_kind == FRESNEL_SCHLICK {
         return all(s.f0_eta >= vec3<f32>(0.0)) && all(s.f0_eta <= vec3<f32>(1.0));
     }
@@ -54,31 +59,63 @@ fn valid_surface(s: SurfaceIn) -> bool {
     return eta > 0.0 && sg_finite(eta);
 }
 
-// SgSurface::new with SpecularLobeSg::new and ggx_ndf_sg: D(h) ~ 1/(pi a^2) G(h; n, 2/a^2)
-// moved to the mirror direction with its sharpness over 4 wo.n, weight
-// F(wo.n) G1(wo.n)^2 / (4 wo.n); a view below the surface shades to zero.
+// SpecularFit::lookup: [mirror weight, lambda alpha^2 cos, integral, Fresnel's cosine] bilinear in
+// the table's cells (alpha in steps of 1/16, sqrt(1 - cos) in steps of 1/32), clamped.
+fn specular_fit(alpha: f32, cos_o: f32) -> vec4<f32> {
+    let last_a = f32(SPECULAR_ALPHA_STEPS - 1u);
+    let a = min(clamp(alpha, 0.0, 1.0) * last_a, last_a);
+    let i = min(u32(max(floor(a), 0.0)), SPECULAR_ALPHA_STEPS - 2u);
+    let fa = a - f32(i);
+    // t = 32 sqrt(1 - c) and r = 32 - t = 32 c / (1 + sqrt(1 - c)), the node weights t - j and
+    // r - (31 - j): no cancellation in the far node's weight at grazing views.
+    let c = clamp(cos_o, 0.0, 1.0);
+    let last = f32(SPECULAR_VIEW_STEPS - 1u);
+    let r = last * c / (1.0 + sqrt(1.0 - c));
+    let t = last - r;
+    let j = min(u32(max(floor(t), 0.0)), SPECULAR_VIEW_STEPS - 2u);
+    let w_hi = t - f32(j);
+    let w_lo = r - f32(SPECULAR_VIEW_STEPS - 2u - j);
+    let k = i * SPECULAR_VIEW_STEPS + j;
+    let lo = specular_table[k] * w_lo + specular_table[k + 1u] * w_hi;
+    let hi = specular_table[k + SPECULAR_VIEW_STEPS] * w_lo + specular_table[k + SPECULAR_VIEW_STEPS + 1u] * w_hi;
+    return lo * (1.0 - fa) + hi * fa;
+}
+
+// SpecularFit::sharpness: the fit's lambda at a view cosine c >= MIN_COS_O.
+fn fitted_sharpness(alpha: f32, c: f32) -> f32 {
+    return specular_fit(alpha, c).y / (alpha * alpha * c);
+}
+
+// SgSurface::new with SpecularLobeSg::new: the SG of specular_fit, its axis the peak
+// normalize(w r + (1 - w) n) between the mirror direction r and n, its amplitude integral / A(lambda), its weight Fresnel at
+// the fit's cosine; a view below the surface shades to zero.
 fn make_surface(s: SurfaceIn) -> Surface {
     let n = s.normal / length(s.normal);
     let wo = s.omega_o / length(s.omega_o);
-    let a2 = s.alpha * s.alpha;
     let cos_o = dot(n, wo);
     if cos_o <= 0.0 {
-        return Surface(vec3<f32>(0.0), n, Sg(n, 2.0 / a2, 0.0), vec3<f32>(0.0));
+        return Surface(vec3<f32>(0.0), n, Sg(n, 2.0 / (s.alpha * s.alpha), 0.0), vec3<f32>(0.0));
     }
     let c = max(cos_o, MIN_COS_O);
+    let fit = specular_fit(s.alpha, c);
+    let sharpness = fit.y / (s.alpha * s.alpha * c);
     var mirror = normalize(2.0 * cos_o * n - wo);
     if !finite3(mirror) {
         mirror = n;
     }
-    let g = ggx_g1_over_cos(s.alpha, c);
+    var axis = normalize(mirror * fit.x + n * (1.0 - fit.x));
+    if !finite3(axis) {
+        axis = n;
+    }
+    let x = clamp(fit.w, 0.0, 1.0);
     var f: vec3<f32>;
     if s.fresnel_kind == FRESNEL_SCHLICK {
-        f = fresnel_schlick(s.f0_eta, c);
+        f = fresnel_schlick(s.f0_eta, x);
     } else {
-        f = vec3<f32>(fresnel_dielectric(s.f0_eta.x, c));
+        f = vec3<f32>(fresnel_dielectric(s.f0_eta.x, x));
     }
-    let lobe = Sg(mirror, (2.0 / a2) / (4.0 * c), 1.0 / (PI * a2));
-    return Surface(s.kd * (1.0 / PI), n, lobe, f * (0.25 * g * g * c));
+    let lobe = Sg(axis, sharpness, fit.z / sg_integral(sharpness));
+    return Surface(s.kd * (1.0 / PI), n, lobe, f);
 }
 
 // SgSurface::radiance: diffuse + specular of VSGL eq. (2) for the incoming SG light, each

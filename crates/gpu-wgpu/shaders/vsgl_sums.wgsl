@@ -79,7 +79,7 @@ fn footprint_variance(t: TexelIn) -> f32 {
 }
 
 // ClusterSums::from_texel for a texel inside the SG domain (valid_surface): R_d = kd and
-// R_s = the integral of the warped GGX lobe of SpecularLobeSg seen from ω'_i (both zero for a
+// R_s = the integral of the fitted GGX lobe of SpecularLobeSg seen from ω'_i (both zero for a
 // photon below the shading normal, TexelLobes::new), their lobes' Toksvig mean vectors
 // weighted by the RGB totals of Φ R, and the texel's position with the variance of its patch.
 fn texel_sums(t: TexelIn) -> Sums {

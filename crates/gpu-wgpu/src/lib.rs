@@ -100,6 +100,7 @@ pub mod rsm_pass;
 pub mod scan_pass;
 pub mod scene_upload;
 pub mod shade_pass;
+mod specular_table;
 pub mod splat_pass;
 pub mod tight_cull_pass;
 pub mod tile_depth_pass;

@@ -37,6 +37,7 @@ use crate::gpu_count::{Count, GpuCount};
 use crate::gpu_types::GpuCullStatus;
 use crate::rsm_pass::GpuRsm;
 use crate::scan_pass::ScanPass;
+use crate::specular_table;
 use crate::vsgl_build_types::{GpuBuildParams, GpuTree, CLAMPED_DIFFUSE, COUNT_LIGHTS};
 use crate::vsgl_shade_pass::{vsgl_light_source, GpuVsgls};
 use crate::vsgl_types::{GpuVsgl, GpuVsglStatus};
@@ -72,6 +73,9 @@ const POSITIONS: u32 = 14;
 const NORMALS: u32 = 15;
 const CAMERA_VSGLS: u32 = 16;
 const SLOTS: u32 = 17;
+/// The specular lobe's fit (`crate::specular_table`), bound by the entries that make SG
+/// surfaces (texels, camera_texels, view).
+const SPECULAR_TABLE: u32 = specular_table::BINDING;
 
 /// The cluster sums of a tree, one array of `[f32; 4]` per field of
 /// [`crate::vsgl_build_types::GpuSums`] (in its order), one element per tree texel.
@@ -131,6 +135,7 @@ pub struct VsglBuildPass {
     own: wgpu::ComputePipeline,
     emit: wgpu::ComputePipeline,
     scan: ScanPass,
+    specular_table: wgpu::Buffer,
 }
 
 /// One step's commands (wgpu keeps the buffers they use alive until they ran).
@@ -194,6 +199,7 @@ impl VsglBuildPass {
                 own: entry("vsgl_own", "own"),
                 emit: entry("vsgl_emit", "emit"),
                 scan: ScanPass::new(ctx),
+                specular_table: specular_table::buffer(ctx),
             })
         })
     }
@@ -226,7 +232,11 @@ impl VsglBuildPass {
         self.submit(ctx, "vsgl_mip", |c| {
             for (m, first_face, first_texel) in map_offsets(maps) {
                 let params = map_params(tree, m, first_face, first_texel);
-                let mut buffers = vec![(STATUS, &status), (RSM_TEXELS, &m.texels)];
+                let mut buffers = vec![
+                    (STATUS, &status),
+                    (RSM_TEXELS, &m.texels),
+                    (SPECULAR_TABLE, &self.specular_table),
+                ];
                 buffers.extend(sums_bindings(&sums));
                 c.dispatch("vsgl_texels", &self.texels, params, &buffers)?;
             }
@@ -303,6 +313,7 @@ impl VsglBuildPass {
                 (SAMPLES, &gbuffer.samples),
                 (POSITIONS, &gbuffer.positions),
                 (NORMALS, &gbuffer.geometric_normals),
+                (SPECULAR_TABLE, &self.specular_table),
             ];
             buffers.extend(sums_bindings(&camera_sums));
             c.dispatch("vsgl_camera_texels", &self.camera_texels, params, &buffers)?;
@@ -336,6 +347,7 @@ impl VsglBuildPass {
                     (VIEW, &view),
                     (RSM_TEXELS, &m.texels),
                     (CAMERA_VSGLS, &camera_lights),
+                    (SPECULAR_TABLE, &self.specular_table),
                 ];
                 let count = Some(&camera_count);
                 c.dispatch_counted("vsgl_view", &self.view, params, &buffers, count)?;

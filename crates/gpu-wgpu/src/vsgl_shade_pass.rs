@@ -35,11 +35,13 @@ use crate::gpu_count::Count;
 use crate::gpu_types::{gpu_position, GpuSample};
 use crate::ism_pass::ImperfectShadowMaps;
 use crate::shade_pass::read_image;
+use crate::specular_table;
 use crate::vsgl_types::{GpuVsgl, GpuVsglParams, GpuVsglStatus, VsglInput};
 use slc_bounds::SgSurface;
 use slc_core::{GBuffer, Image};
 
-/// The Fresnel/GGX helpers, the SG algebra, the G-buffer sample, the SG receiver and one
+/// The Fresnel/GGX helpers, the SG algebra, the G-buffer sample, the specular lobe's fit
+/// (`shaders/specular_table.wgsl`, `slc_bounds::sg::specular_table`), the SG receiver and one
 /// VSGL's radiance (`shaders/vsgl_light.wgsl` and what it reads): the head of this pass's
 /// source and of the VSGL construction's (`vsgl_build_pass`, whose bidirectional importance
 /// shades RSM texels by VSGLs).
@@ -49,6 +51,7 @@ macro_rules! vsgl_light_source {
             include_str!("../shaders/fresnel_ggx.wgsl"),
             include_str!("../shaders/sg.wgsl"),
             include_str!("../shaders/gsample.wgsl"),
+            include_str!("../shaders/specular_table.wgsl"),
             include_str!("../shaders/sg_surface.wgsl"),
             include_str!("../shaders/vsgl_light.wgsl")
         )
@@ -102,6 +105,7 @@ impl GpuVsgls {
 pub struct VsglShadePass {
     pipeline: wgpu::ComputePipeline,
     visible: wgpu::ComputePipeline,
+    specular_table: wgpu::Buffer,
 }
 
 /// What the visibility entry point binds besides the shading inputs.
@@ -113,6 +117,7 @@ impl VsglShadePass {
             Ok(Self {
                 pipeline: ctx.compute_pipeline("vsgl_shade", SOURCE),
                 visible: ctx.compute_pipeline_entry("vsgl_shade_visible", SOURCE, "main_visible"),
+                specular_table: specular_table::buffer(ctx),
             })
         })
     }
@@ -279,17 +284,18 @@ impl VsglShadePass {
                     &out,
                     &vsgls.status,
                 ];
-                match visibility {
-                    None => {
-                        ctx.encode_dispatch(encoder, "vsgl_shade", &self.pipeline, &buffers, grid)
-                    }
+                let ism;
+                let (label, pipeline) = match visibility {
+                    None => ("vsgl_shade", &self.pipeline),
                     Some((normals, maps)) => {
-                        let ism = maps.params_buffer(ctx);
+                        ism = maps.params_buffer(ctx);
                         buffers.extend([normals, &ism, &maps.depth]);
-                        let label = "vsgl_shade_visible";
-                        ctx.encode_dispatch(encoder, label, &self.visible, &buffers, grid);
+                        ("vsgl_shade_visible", &self.visible)
                     }
-                }
+                };
+                let mut bound: Vec<_> = (0u32..).zip(buffers).collect();
+                bound.push((specular_table::BINDING, &self.specular_table));
+                ctx.encode_dispatch_at(encoder, label, pipeline, &bound, grid);
                 Ok(())
             })?;
         }

@@ -12,8 +12,8 @@
 //!   lobe of a VPL's radiant intensity).
 //! - [`SphericalGaussian::irradiance`] ([`normalized_sg_irradiance`]): the diffuse receiver's
 //!   `∫ L_in(ω) max(ω·n, 0) dω` for an SG light, clamped at the horizon (Hill's fit with exact
-//!   limits), and [`SpecularLobeSg`], its GGX specular lobe for a view direction (warped NDF of
-//!   Wang et al. 2009), combined by [`SgSurface`] into the analytic shading of VSGL eq. (2)
+//!   limits), and [`SpecularLobeSg`], its GGX specular lobe for a view direction (an SG through the
+//!   true lobe's peak with its integral, [`SpecularFit`], tabulated by quadrature), combined by [`SgSurface`] into the analytic shading of VSGL eq. (2)
 //!   with the incoming radiance of eq. (5); the same shading in `f32` for inner loops
 //!   ([`SgSurface::radiance_f32`], `single.rs`, the forms of the GPU's `sg.wgsl`).
 mod cosine;
@@ -26,6 +26,8 @@ mod quadrature;
 mod shading;
 mod single;
 mod specular;
+mod specular_fit;
+pub mod specular_table;
 mod toksvig;
 
 pub use cosine::{clamped_cosine_sg, COSINE_LOBE_AMPLITUDE, COSINE_LOBE_SHARPNESS};
@@ -35,6 +37,9 @@ pub use lobe::SphericalGaussian;
 pub use shading::SgSurface;
 pub use single::IrradianceFit;
 pub use specular::{ggx_ndf_sg, SpecularLobeSg};
+pub use specular_fit::{
+    fit_lobe, table_node, SpecularFit, ALPHA_STEPS, TABLE_MIN_ALPHA, TABLE_MIN_COS, VIEW_STEPS,
+};
 pub use toksvig::{
     exact_mean_length, exact_sharpness, toksvig_mean_length, toksvig_sharpness, MeanMap, ToksvigSum,
 };

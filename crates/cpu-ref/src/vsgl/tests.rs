@@ -402,11 +402,10 @@ fn the_specular_lobe_approximates_the_true_intensity() {
             let err = approx / truth - 1.0;
             println!("specular α {alpha} θi {theta}: truth {truth:.5} R_s {approx:.5} ({:+.1} %), L1 {:.1} %", 100.0 * err, 100.0 * l1);
             assert!((f64::from(l.specular_reflectance.x) - approx).abs() < 1e-3 * approx);
-            // Grazing incidence (70°) and rough lobes (α 0.6, clipped by the horizon) are where the isotropic warp fails (documented on
-            // `TexelLobes::specular_lobe`): only reported.
-            if theta <= 45.0 && alpha <= 0.3 {
-                assert!(err.abs() < 0.2 && l1 < 0.5, "{err} {l1}");
-            }
+            // Measured: R_s within 0.8 % of the truth (the warped SG it replaced: up to +83 %),
+            // L1 21-66 % (an isotropic SG against GGX's heavy tails and, at grazing
+            // incidence, its stretched lobe).
+            assert!(err.abs() < 0.015 && l1 < 0.7, "{err} {l1}");
         }
     }
 }

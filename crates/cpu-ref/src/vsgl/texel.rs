@@ -20,10 +20,10 @@ pub struct TexelLobes {
     /// `R_s`: the integral of the specular SG approximation of `ρ_s(ω'_i, ω) ⟨ω, n⟩`, per
     /// channel (the specular directional albedo as the SG sees it).
     pub specular_reflectance: Vec3,
-    /// The warped GGX NDF lobe of [`SpecularLobeSg`] seen from `ω'_i` (reciprocity: the view
-    /// direction of the warp is the photon's incoming direction), normalized: axis the mirror
-    /// direction of `ω'_i` about `n`, sharpness `(2/α²)/(4 ω'_i·n)`. The SG is not clipped at
-    /// the horizon, so it overestimates the energy of rough lobes at grazing incidence.
+    /// The fitted GGX lobe of [`SpecularLobeSg`] seen from `ω'_i` (reciprocity: the view
+    /// direction of the fit is the photon's incoming direction), normalized: axis the true
+    /// lobe's peak (the mirror direction of `ω'_i` for smooth lobes, bent towards `n` for rough
+    /// ones), its sharpness the one that gives the peak value the true integral.
     pub specular_lobe: SphericalGaussian,
 }
 
