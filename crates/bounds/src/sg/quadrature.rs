@@ -1,6 +1,7 @@
 //! Numerical integration over the sphere in `f64`, the reference for every closed form of
 //! this module (tests only).
 use crate::sg::lobe::SphericalGaussian;
+use crate::sg::specular_fit::GAUSS;
 use core::f64::consts::PI;
 use glam::DVec3;
 
@@ -8,13 +9,6 @@ use glam::DVec3;
 const PANELS: usize = 100;
 /// Azimuthal resolution (midpoint rule, spectrally accurate for periodic integrands).
 const N_PHI: usize = 96;
-/// Nodes and weights of the 4-point Gauss-Legendre rule on [-1, 1].
-const GAUSS: [(f64, f64); 4] = [
-    (-0.861_136_311_594_052_6, 0.347_854_845_137_453_8),
-    (-0.339_981_043_584_856_3, 0.652_145_154_862_546_1),
-    (0.339_981_043_584_856_3, 0.652_145_154_862_546_1),
-    (0.861_136_311_594_052_6, 0.347_854_845_137_453_8),
-];
 
 /// `∫_{S²} f(ω) dω` in polar coordinates around `axis`: composite 4-point Gauss-Legendre in θ
 /// on `[0, c]` and `[c, π]` with `c = min(12w, π/2)`, so that a lobe of angular width about `w`

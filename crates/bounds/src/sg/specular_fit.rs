@@ -28,8 +28,9 @@ pub const TABLE_MIN_COS: f64 = 1e-6;
 /// midpoints in φ over half the circle.
 const QUADRATURE_PANELS: usize = 64;
 const QUADRATURE_PHI: usize = 256;
-/// Nodes and weights of the 4-point Gauss-Legendre rule on [-1, 1].
-const GAUSS: [(f64, f64); 4] = [
+/// Nodes and weights of the 4-point Gauss-Legendre rule on [-1, 1] (also the tests' sphere
+/// quadrature's).
+pub(crate) const GAUSS: [(f64, f64); 4] = [
     (-0.861_136_311_594_052_6, 0.347_854_845_137_453_8),
     (-0.339_981_043_584_856_3, 0.652_145_154_862_546_1),
     (0.339_981_043_584_856_3, 0.652_145_154_862_546_1),
