@@ -5,7 +5,7 @@
 //   L_in(w) = 1/(2 pi sigma_v^2) G(w; -xi_v, lambda_v) G(w; xi_mu, lambda_sigma),
 //   xi_mu = (mu_v - x_p)/|mu_v - x_p|, lambda_sigma = |mu_v - x_p|^2 / sigma_v^2 (eq. 4),
 // a product of two SGs, shaded in closed form as crates/bounds/src/sg/shading.rs SgSurface
-// does: kd/pi times its irradiance plus the warped GGX lobe's weight times an inner product
+// does: kd/pi times its irradiance plus the fitted GGX lobe's weight times an inner product
 // (specular.rs SpecularLobeSg). fresnel_ggx.wgsl, sg.wgsl, gsample.wgsl, sg_surface.wgsl and
 // vsgl_light.wgsl (the VSGL record, its radiance and the fault record) come first.
 // Structs mirror src/vsgl_types.rs; one invocation per pixel, linear workgroup index

@@ -4,7 +4,7 @@
 //! `slc_cpu_ref::vsgl::shade_vsgls(…, visibility = false, …)`: every pixel with a G-buffer
 //! sample sums, over the VSGLs, `vsgl_radiance` — for each lobe `c_v G(ω; ξ_v, λ_v)` of the
 //! VSGL's radiant intensity, `c_v` times the closed-form shading (`slc_bounds::SgSurface`:
-//! irradiance for the diffuse term, warped GGX SG inner product for the specular one) of the
+//! irradiance for the diffuse term, fitted GGX SG inner product for the specular one) of the
 //! incoming radiance of eq. (5), `1/(2πσ_v²) G(ω; −ξ_v, λ_v) G(ω; ξ_μ, |μ_v − x_p|²/σ_v²)`.
 //! Without visibility (entry point `main`: [`VsglShadePass::shade`],
 //! [`VsglShadePass::shade_gpu_gbuffer_on_gpu`] without maps) there is no `V(x_p, μ_v)` of
