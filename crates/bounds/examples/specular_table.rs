@@ -12,12 +12,12 @@ fn main() {
     println!(
         "//! columns: `√(1 − cos θo)` = 0, 1/32, …, 1, the last at `cos θo` = 1e-6): the mirror"
     );
-    println!("//! direction's weight in the peak's, `λ α² cos θo`, the integral and the cosine at which to evaluate Fresnel.");
+    println!("//! direction's weight in the peak's, `λ α² (cos θo + α)`, the integral and the cosine at which to evaluate Fresnel.");
     println!();
     println!("use crate::sg::specular_fit::{{ALPHA_STEPS, VIEW_STEPS}};");
     println!();
     println!(
-        "/// `[mirror weight, λ α² cos θo, integral, Fresnel's cosine]` at row `i`, column `j`: entry"
+        "/// `[mirror weight, λ α² (cos θo + α), integral, Fresnel's cosine]` at row `i`, column `j`: entry"
     );
     println!("/// `i * VIEW_STEPS + j`.");
     println!("pub const TABLE: [[f32; 4]; ALPHA_STEPS * VIEW_STEPS] = [");

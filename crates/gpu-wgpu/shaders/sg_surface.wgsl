@@ -59,7 +59,7 @@ fn valid_surface(s: SurfaceIn) -> bool {
     return eta > 0.0 && sg_finite(eta);
 }
 
-// SpecularFit::lookup: [mirror weight, lambda alpha^2 cos, integral, Fresnel's cosine] bilinear in
+// SpecularFit::lookup: [mirror weight, lambda alpha^2 (cos + alpha), integral, Fresnel's cosine] bilinear in
 // the table's cells (alpha in steps of 1/16, sqrt(1 - cos) in steps of 1/32), clamped.
 fn specular_fit(alpha: f32, cos_o: f32) -> vec4<f32> {
     let last_a = f32(SPECULAR_ALPHA_STEPS - 1u);
@@ -81,9 +81,10 @@ fn specular_fit(alpha: f32, cos_o: f32) -> vec4<f32> {
     return lo * (1.0 - fa) + hi * fa;
 }
 
-// SpecularFit::sharpness: the fit's lambda at a view cosine c >= MIN_COS_O.
+// SpecularFit::sharpness: the fit's lambda at a view cosine c >= MIN_COS_O, from
+// lambda alpha^2 (c + alpha) (divided in steps: alpha^2 c would underflow for tiny alpha).
 fn fitted_sharpness(alpha: f32, c: f32) -> f32 {
-    return specular_fit(alpha, c).y / (alpha * alpha * c);
+    return specular_fit(alpha, c).y / alpha / alpha / (c + alpha);
 }
 
 // SgSurface::new with SpecularLobeSg::new: the SG of specular_fit, its axis the peak
@@ -98,7 +99,7 @@ fn make_surface(s: SurfaceIn) -> Surface {
     }
     let c = max(cos_o, MIN_COS_O);
     let fit = specular_fit(s.alpha, c);
-    let sharpness = fit.y / (s.alpha * s.alpha * c);
+    let sharpness = fit.y / s.alpha / s.alpha / (c + s.alpha);
     var mirror = normalize(2.0 * cos_o * n - wo);
     if !finite3(mirror) {
         mirror = n;

@@ -52,7 +52,8 @@ impl SpecularLobeSg {
     /// The lobe for unit `n` and `omega_o` (pointing away from the surface), GGX roughness α in
     /// (0, 1] and a valid Fresnel model. A view below the surface gives a zero lobe (the BRDF
     /// is one-sided); views within 1e-6 of grazing are fitted as at `ωo·n = 1e-6`. Fails with
-    /// [`BoundsError::Overflow`] where the sharpness does not fit `f32` (α below about 1e-19).
+    /// [`BoundsError::Overflow`] where the sharpness does not fit `f32` (α below about 4e-17 at
+    /// grazing views; at normal ones [`ggx_ndf_sg`]'s limit, about 1e-19, comes first).
     pub fn new(n: Vec3, omega_o: Vec3, alpha: f32, fresnel: Fresnel) -> Result<Self, BoundsError> {
         let ndf = ggx_ndf_sg(n, alpha)?;
         let omega_o = check::unit(omega_o, "view direction")?;

@@ -17,8 +17,8 @@ pub const ALPHA_STEPS: usize = 17;
 /// Columns of the table: `√(1 − cos θo)` from 0 to 1 in steps of 1/32 (about 2.5° near the
 /// normal, 3.6° at grazing views).
 pub const VIEW_STEPS: usize = 33;
-/// The α of the table's first row, which stands for α → 0 (the row's entries are the limits
-/// up to 1e-5: the lobe's shape scales with α there).
+/// The α of the table's first row, which stands for α → 0 (the lobe's shape scales with α
+/// there, except at views within a few α of grazing, where the row is its value at α = 1/1024).
 pub const TABLE_MIN_ALPHA: f64 = 1.0 / 1024.0;
 /// The view cosine of the table's last column (a grazing view): more grazing views are fitted
 /// as this one.
@@ -42,10 +42,10 @@ const PEAK_SPAN_ALPHAS: f64 = 24.0;
 
 /// One SG `amplitude · G(ω; axis, λ)` fitted to the GGX specular lobe seen from a view at polar
 /// angle θo: its axis lies in the plane of the normal and the view, at the lobe's peak,
-/// `normalize(w r + (1 − w) n)` with `w = mirror_weight` and the mirror direction r; `integral` is the true lobe's `∫ ρ_s ⟨ω, n⟩ dω` with `F = 1`
-/// (the directional albedo of the specular term, the SG's amplitude being
-/// `integral / A(λ)`), `fresnel_cos` where to evaluate Fresnel, and `scaled_sharpness = λ α² cos θo`, which stays finite as α → 0 and at
-/// grazing views.
+/// `normalize(w r + (1 − w) n)` with `w = mirror_weight` and the mirror direction r;
+/// `integral` is the true lobe's `∫ ρ_s ⟨ω, n⟩ dω` with `F = 1` (the directional albedo of the
+/// specular term, the SG's amplitude being `integral / A(λ)`), `fresnel_cos` where to evaluate
+/// Fresnel, and `scaled_sharpness = λ α² (cos θo + α)`.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SpecularFit {
     /// The weight of the mirror direction r in the peak's direction `w r + (1 − w) n`: 1 for
@@ -53,7 +53,9 @@ pub struct SpecularFit {
     /// A blend of the two directions keeps the axis as well conditioned as r itself (an angle
     /// or a tangent would need inverse trigonometry, and a tangent is noise at normal views).
     pub mirror_weight: f64,
-    /// `λ α² cos θo`.
+    /// `λ α² (cos θo + α)`: about 1/2 for smooth lobes at every view (λ ≈ 1/(2α² cos θo) while
+    /// `cos θo ≫ α`, ≈ 0.64/α³ at grazing views, `cos θo ≪ α`), so the table's cells need not
+    /// resolve the change between the two regimes, which happens at `cos θo ~ α`.
     pub scaled_sharpness: f64,
     /// `∫ ρ_s(ωo, ω) ⟨ω, n⟩ dω` with `F = 1`.
     pub integral: f64,
@@ -67,7 +69,7 @@ pub struct SpecularFit {
 impl SpecularFit {
     /// The SG's sharpness λ for roughness α (`cos θo` floored at [`TABLE_MIN_COS`]).
     pub fn sharpness(&self, alpha: f64, cos_o: f64) -> f64 {
-        self.scaled_sharpness / (alpha * alpha * cos_o.max(TABLE_MIN_COS))
+        self.scaled_sharpness / alpha / alpha / (cos_o.max(TABLE_MIN_COS) + alpha)
     }
 
     /// The fit for α in (0, 1] and `cos θo` in [0, 1], bilinear in the table's cells (α in steps
@@ -144,7 +146,7 @@ pub fn fit_lobe(alpha: f64, cos_o: f64) -> SpecularFit {
     let sharpness = sharpness_of_integral(integral / peak_value);
     SpecularFit {
         mirror_weight,
-        scaled_sharpness: sharpness * alpha * alpha * cos_o,
+        scaled_sharpness: sharpness * alpha * alpha * (cos_o + alpha),
         integral,
         fresnel_cos: 1.0 - (schlick / integral).powf(0.2),
     }
@@ -203,7 +205,7 @@ fn peak(alpha: f64, theta_o: f64) -> (f64, f64) {
             return 0.0;
         }
         let cos_h = s.cos();
-        let d = a2 / (PI * (a2 * cos_h * cos_h + (1.0 - cos_h * cos_h)).powi(2));
+        let d = a2 / (PI * (a2 * cos_h * cos_h + s.sin().powi(2)).powi(2));
         d * g1(a2, t.cos()) * g1_o / (4.0 * cos_o)
     };
     let step = alpha / PEAK_STEPS_PER_ALPHA;
@@ -270,7 +272,9 @@ mod tests {
         ]
     }
 
-    /// The committed table is the generator's output (regenerate with the example otherwise).
+    /// The committed table is the generator's output (regenerate with the example otherwise),
+    /// within 1e-5 relative and 1e-6 absolute: the peak search ends in rounding noise where the
+    /// maximum is flat (α = 1), which another libm may round differently.
     #[test]
     fn table_is_the_fit() {
         for (i, j) in [
@@ -289,7 +293,7 @@ mod tests {
             for k in 0..4 {
                 let err = (fit[k] - f64::from(table[k])).abs();
                 assert!(
-                    err <= 1e-6 * fit[k].abs().max(1e-6),
+                    err <= 1e-5 * fit[k].abs() + 1e-6,
                     "{i} {j} {k}: {fit:?} {table:?}"
                 );
             }
@@ -329,15 +333,16 @@ mod tests {
         }
     }
 
-    /// Between the nodes the lookup stays near the fit: the integral and Fresnel's cosine within
-    /// 0.003, the mirror weight within 0.015, the sharpness within 3 %; at views beyond 85° of
-    /// lobes smoother than α = 1/8, where the fit changes on the scale of `cos θo ~ α`, the
-    /// integral within 3 % and the sharpness within 20 %.
+    /// Between the nodes the lookup stays near the fit: the integral within 1.5 %, the mirror
+    /// weight within 0.015, the sharpness within 1.5 % and Fresnel's cosine within 0.02 (near
+    /// normal views of smooth lobes, where `(1 − x)⁵` is below 1e-8); at views beyond 85° of
+    /// lobes smoother than α = 1/8 (α down to 0.001), where the true lobe changes on the scale
+    /// of `cos θo ~ α`, the integral within 6 % and the sharpness within 25 %.
     #[test]
     fn lookup_between_nodes_follows_the_fit() {
         let (mut worst, mut worst_grazing) = ([0.0f64; 4], [0.0f64; 4]);
-        for alpha in [0.07f64, 0.28, 0.53, 0.97] {
-            for view in [2.5f64, 42.5, 77.5, 87.5] {
+        for alpha in [0.001f64, 0.02, 0.07, 0.28, 0.53, 0.97] {
+            for view in [2.5f64, 42.5, 77.5, 87.5, 89.5] {
                 let c = view.to_radians().cos();
                 let (fit, got) = (fit_lobe(alpha, c), SpecularFit::lookup(alpha, c));
                 let errs = [
@@ -356,13 +361,13 @@ mod tests {
                 }
             }
         }
-        // Measured: [0.0015, 0.0085, 0.016, 0.0007] and at grazing [0.012, -, 0.11, -].
+        // Measured: [0.0108, 0.0086, 0.0071, 0.0154] and at grazing [0.048, -, 0.185, -].
         assert!(
-            worst[0] < 3e-3 && worst[1] < 0.015 && worst[2] < 0.03 && worst[3] < 3e-3,
+            worst[0] < 0.015 && worst[1] < 0.015 && worst[2] < 0.015 && worst[3] < 0.02,
             "{worst:?}"
         );
         assert!(
-            worst_grazing[0] < 0.03 && worst_grazing[2] < 0.2,
+            worst_grazing[0] < 0.06 && worst_grazing[2] < 0.25,
             "{worst_grazing:?}"
         );
     }
