@@ -41,6 +41,17 @@ pub fn g1(alpha: f32, cos_v: f32) -> f32 {
     cos_v.abs() * g1_over_cos(alpha, cos_v)
 }
 
+/// [`d_with_sin2`] (paper eq. 7) in `f64` for `a2 = α²`, `cos θm > 0` and `sin² θm`: the
+/// quadratures that fit and test the SG lobes (`crate::sg`).
+pub(crate) fn d_f64(a2: f64, cos_m: f64, sin2_m: f64) -> f64 {
+    a2 / (core::f64::consts::PI * (a2 * cos_m * cos_m + sin2_m).powi(2))
+}
+
+/// [`g1`] (paper eq. 8) in `f64` for `a2 = α²` and `cos ≥ 0`.
+pub(crate) fn g1_f64(a2: f64, cos_v: f64) -> f64 {
+    2.0 * cos_v / (cos_v + ((1.0 - a2) * cos_v * cos_v + a2).sqrt())
+}
+
 /// The separable Smith masking-shadowing function `G2 = G1(ωi) G1(ωo)` (section 4.1, the form
 /// used with eq. (6); any Smith form satisfies `G2 <= G1(ωi)`, the step to eq. (9)).
 #[inline]

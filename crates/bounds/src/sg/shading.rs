@@ -68,6 +68,7 @@ fn saturate(v: Vec3) -> Vec3 {
 mod tests {
     use super::*;
     use crate::fresnel::Fresnel;
+    use crate::ggx::{d_f64, g1_f64};
     use crate::sg::quadrature::{eval64, sphere_integral, width};
     use core::f64::consts::PI;
     use glam::DVec3;
@@ -80,10 +81,9 @@ mod tests {
         }
         let h = (wi + wo).normalize();
         let a2 = alpha * alpha;
-        let d = a2 / (PI * (a2 * h.z * h.z + (1.0 - h.z * h.z)).powi(2));
-        let g1 = |c: f64| 2.0 * c / (c + ((1.0 - a2) * c * c + a2).sqrt());
+        let d = d_f64(a2, h.z, 1.0 - h.z * h.z);
         let f = f0 + (1.0 - f0) * (1.0 - wi.dot(h)).powi(5);
-        f * g1(ci) * g1(co) * d / (4.0 * ci * co)
+        f * g1_f64(a2, ci) * g1_f64(a2, co) * d / (4.0 * ci * co)
     }
 
     fn direction(theta_deg: f64) -> Vec3 {
@@ -131,7 +131,7 @@ mod tests {
     fn warped(view: f64, alpha: f64) -> (SphericalGaussian, f64) {
         let c = view.to_radians().cos();
         let a2 = alpha * alpha;
-        let g1 = 2.0 * c / (c + ((1.0 - a2) * c * c + a2).sqrt());
+        let g1 = g1_f64(a2, c);
         let lobe = SphericalGaussian::new(direction(-view), (0.5 / (a2 * c)) as f32, 1.0).unwrap();
         let f = 0.04 + 0.96 * (1.0 - c).powi(5);
         (lobe, f * g1 * g1 / (4.0 * c) / (PI * a2))

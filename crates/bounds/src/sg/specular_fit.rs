@@ -8,6 +8,7 @@
 //! the true peak, with the sharpness that gives it the true integral, follows the core and
 //! the energy, and bends towards the normal where the true lobe does (at α = 1 its peak is the
 //! normal for every view).
+use crate::ggx::{d_f64, g1_f64};
 use crate::sg::integral::integral_f64;
 use crate::sg::specular_table::TABLE;
 use core::f64::consts::{FRAC_PI_2, PI};
@@ -163,7 +164,7 @@ fn mirror_weight(peak_angle: f64, theta_o: f64) -> f64 {
 fn moments(alpha: f64, cos_o: f64) -> (f64, f64) {
     let a2 = alpha * alpha;
     let sin_o = (1.0 - cos_o * cos_o).max(0.0).sqrt();
-    let g1_o = g1(a2, cos_o);
+    let g1_o = g1_f64(a2, cos_o);
     let (mut integral, mut schlick) = (0.0, 0.0);
     let split = (12.0 * alpha).min(FRAC_PI_2);
     for (lo, hi) in [(0.0, split), (split, FRAC_PI_2)] {
@@ -172,7 +173,7 @@ fn moments(alpha: f64, cos_o: f64) -> (f64, f64) {
             for (node, weight) in GAUSS {
                 let theta_h = lo + (p as f64 + 0.5 + 0.5 * node) * panel;
                 let (sin_h, cos_h) = theta_h.sin_cos();
-                let d = a2 / (PI * (a2 * cos_h * cos_h + sin_h * sin_h).powi(2));
+                let d = d_f64(a2, cos_h, sin_h * sin_h);
                 // Symmetric about the plane of n and ωo: φ in [0, π], doubled.
                 let ring_weight =
                     d * sin_h * weight * 0.5 * panel * 2.0 * PI / QUADRATURE_PHI as f64;
@@ -181,7 +182,7 @@ fn moments(alpha: f64, cos_o: f64) -> (f64, f64) {
                     let oh = sin_o * sin_h * phi.cos() + cos_o * cos_h;
                     let cos_i = 2.0 * oh * cos_h - cos_o;
                     if oh > 0.0 && cos_i > 0.0 {
-                        let f = ring_weight * g1(a2, cos_i) * g1_o * oh / cos_o;
+                        let f = ring_weight * g1_f64(a2, cos_i) * g1_o * oh / cos_o;
                         integral += f;
                         schlick += f * (1.0 - oh).powi(5);
                     }
@@ -197,7 +198,7 @@ fn moments(alpha: f64, cos_o: f64) -> (f64, f64) {
 fn peak(alpha: f64, theta_o: f64) -> (f64, f64) {
     let a2 = alpha * alpha;
     let cos_o = theta_o.cos();
-    let g1_o = g1(a2, cos_o);
+    let g1_o = g1_f64(a2, cos_o);
     // The half vector at signed angle s from n, ω at 2s − θo.
     let value = |s: f64| {
         let t = 2.0 * s - theta_o;
@@ -205,8 +206,8 @@ fn peak(alpha: f64, theta_o: f64) -> (f64, f64) {
             return 0.0;
         }
         let cos_h = s.cos();
-        let d = a2 / (PI * (a2 * cos_h * cos_h + s.sin().powi(2)).powi(2));
-        d * g1(a2, t.cos()) * g1_o / (4.0 * cos_o)
+        let d = d_f64(a2, cos_h, s.sin().powi(2));
+        d * g1_f64(a2, t.cos()) * g1_o / (4.0 * cos_o)
     };
     let step = alpha / PEAK_STEPS_PER_ALPHA;
     let steps = (PEAK_SPAN_ALPHAS * PEAK_STEPS_PER_ALPHA) as i64;
@@ -251,11 +252,6 @@ fn sharpness_of_integral(ratio: f64) -> f64 {
         }
     }
     (lo * hi).sqrt()
-}
-
-/// GGX's Smith `G1` (paper eq. 8) in `f64`.
-fn g1(a2: f64, c: f64) -> f64 {
-    2.0 * c / (c + ((1.0 - a2) * c * c + a2).sqrt())
 }
 
 #[cfg(test)]
@@ -317,9 +313,9 @@ mod tests {
                         }
                         let h = (wi + wo).normalize();
                         let a2 = alpha * alpha;
-                        let d = a2 / (PI * (a2 * h.z * h.z + 1.0 - h.z * h.z).powi(2));
+                        let d = d_f64(a2, h.z, 1.0 - h.z * h.z);
                         let f = f0 + (1.0 - f0) * (1.0 - wo.dot(h)).powi(5);
-                        f * d * g1(a2, wi.z) * g1(a2, c) / (4.0 * c)
+                        f * d * g1_f64(a2, wi.z) * g1_f64(a2, c) / (4.0 * c)
                     });
                     let schlick = f0 + (1.0 - f0) * (1.0 - fit.fresnel_cos).powi(5);
                     let got = schlick * fit.integral;
