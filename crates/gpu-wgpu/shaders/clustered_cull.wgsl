@@ -12,7 +12,9 @@
 // hits in 8 runs of 32 masks each, and each writes its run's hits after the hits of the runs
 // before it and of the chunks before, so every list ascends in the VPL index, like the CPU's.
 // params.mode 0 (count): offsets[32 t + s] = entries of slice s; mode 1 (write): the lists at
-// the exclusive offsets scan.wgsl made of those counts.
+// the exclusive offsets scan.wgsl made of those counts; entries beyond the end of `lists`
+// are dropped (the buffer is sized from earlier frames; the host culls again when the scan's
+// total exceeds it: src/list_room.rs).
 
 @group(0) @binding(0) var<uniform> params: CullParams;
 @group(0) @binding(1) var<storage, read> frusta: array<ClusterFrusta>;
@@ -124,7 +126,9 @@ fn main(
             for (var i = 0u; i < RUN; i++) {
                 let k = run * RUN + i;
                 if ((masks[k] >> slice) & 1u) != 0u {
-                    lists[at] = ids[k];
+                    if at < arrayLength(&lists) {
+                        lists[at] = ids[k];
+                    }
                     at += 1u;
                 }
             }

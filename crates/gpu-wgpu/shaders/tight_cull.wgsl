@@ -9,7 +9,9 @@
 // bound.wgsl, fresnel_ggx.wgsl and box_bound.wgsl are prepended.
 // Group g = (4 t + block) * slots + slot with slots = clusters * halves and slot = cluster *
 // halves + half. params.mode 0 (count): offsets[g] = entries of group g; mode 1 (write): the
-// lists at the exclusive offsets scan.wgsl made of those counts, and each pixel's list.
+// lists at the exclusive offsets scan.wgsl made of those counts, and each pixel's list; entries beyond the end of `lists`
+// are dropped (the buffer is sized from earlier frames; the host culls again when the scan's
+// total exceeds it: src/list_room.rs).
 
 struct TightParams {
     clusters: u32,
@@ -219,7 +221,10 @@ fn main(
                 if lid >= 32u {
                     before = countOneBits(low) + countOneBits(high & ((1u << (lid - 32u)) - 1u));
                 }
-                lists[offsets[group] + written + before] = i;
+                let at = offsets[group] + written + before;
+                if at < arrayLength(&lists) {
+                    lists[at] = i;
+                }
             }
             workgroupBarrier();
             if lid == 0u {

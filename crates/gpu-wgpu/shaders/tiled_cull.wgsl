@@ -8,7 +8,9 @@
 // light lists in workgroup memory, which are flushed to the output when nearly full and at
 // the end, so every list is ascending in the VPL index, like the CPU's.
 // params.mode 0 (count): offsets[2 t + c] = entries of cluster c; mode 1 (write): the lists
-// at the exclusive offsets scan.wgsl made of those counts.
+// at the exclusive offsets scan.wgsl made of those counts, entries beyond the end of `lists`
+// dropped (the buffer is sized from earlier frames; the host culls again when the scan's
+// total exceeds it: src/list_room.rs).
 
 @group(0) @binding(0) var<uniform> params: CullParams;
 @group(0) @binding(1) var<storage, read> frusta: array<TileFrusta>;
@@ -36,11 +38,14 @@ var<workgroup> sub_range: vec2<u32>;
 fn flush(t: u32, lid: u32) {
     let n = staged_count;
     let done = flushed_count;
-    for (var j = lid; j < n.x; j += GROUP) {
-        lists[offsets[2u * t] + done.x + j] = staged[0][j];
+    let end = arrayLength(&lists);
+    let near = offsets[2u * t] + done.x;
+    let far = offsets[2u * t + 1u] + done.y;
+    for (var j = lid; j < n.x && near + j < end; j += GROUP) {
+        lists[near + j] = staged[0][j];
     }
-    for (var j = lid; j < n.y; j += GROUP) {
-        lists[offsets[2u * t + 1u] + done.y + j] = staged[1][j];
+    for (var j = lid; j < n.y && far + j < end; j += GROUP) {
+        lists[far + j] = staged[1][j];
     }
     workgroupBarrier();
     if lid == 0u {

@@ -11,7 +11,7 @@
 //!   occupied slice between its nearest and farthest mark, in a node buffer (`node_lists`);
 //! - shading (`shaders/node_shade.wgsl`): each pixel walks its cluster's list.
 //!
-//! The node buffer's size is a guess (the largest count seen so far); the count is read
+//! The node buffer's size is a guess (`list_room`: the largest count seen so far); the count is read
 //! with the frame's fault record after shading, and a frame whose nodes did not fit is
 //! filled and shaded again with a buffer of that size. Sums follow the lists' order, which
 //! the GPU's scheduling sets: images equal the list shading's up to f32 rounding.
@@ -24,13 +24,13 @@ use crate::cull_types::{GpuRasterParams, CLUSTER_SLICES};
 use crate::gpu_count::ArgsPass;
 use crate::gpu_lists::GpuLightLists;
 use crate::gpu_types::GpuShadeParams;
+use crate::list_room::{most_entries, ListRoom};
 use crate::node_lists::NodeLists;
 use crate::raster_draw::{atlas, bind, render_pipeline, SubregionDraws};
 use crate::shade_pass::vpl_eval_source;
 use slc_core::TILE_SIZE;
 use slc_cull::GlossyBound;
 use std::cell::RefCell;
-use std::sync::atomic::{AtomicU32, Ordering};
 
 /// The mesh mapping, then the shell pass.
 pub(crate) const SHELL_SOURCE: &str = concat!(
@@ -55,9 +55,6 @@ pub(crate) const SHADE_SOURCE: &str = concat!(
 /// The shell pass's target: only its size matters (the fragments write storage).
 const SHELL_TARGET: wgpu::TextureFormat = wgpu::TextureFormat::R8Unorm;
 
-/// Node buffer size the first frame tries.
-const FIRST_CAPACITY: u32 = 1 << 20;
-
 /// The byte offset of the VPL count in [`GpuRasterParams`].
 const VPL_COUNT_AT: usize = std::mem::offset_of!(GpuRasterParams, vpl_count);
 
@@ -73,7 +70,7 @@ pub struct ClusterRasterizer {
     fill: wgpu::ComputePipeline,
     shade: wgpu::ComputePipeline,
     /// The largest node count seen: the next frame's buffer.
-    capacity: AtomicU32,
+    room: ListRoom,
     args: ArgsPass,
 }
 
@@ -110,7 +107,7 @@ impl ClusterRasterizer {
                 ),
                 fill: ctx.compute_pipeline("cluster fill", FILL_SOURCE),
                 shade: ctx.compute_pipeline("node shade", SHADE_SOURCE),
-                capacity: AtomicU32::new(FIRST_CAPACITY),
+                room: ListRoom::new(),
                 args,
             })
         })
@@ -140,7 +137,14 @@ impl ClusterRasterizer {
             mesh_vertices: COVER_VERTICES * self.mesh_triangles,
             view_w: p.tiles_x,
             view_h: p.tiles_y,
-            capacity: self.capacity.load(Ordering::Relaxed),
+            capacity: self.room.entries::<[u32; 2]>(
+                ctx,
+                clusters.pixels,
+                most_entries(
+                    u64::from(CLUSTER_SLICES) * u64::from(p.tiles_x) * u64::from(p.tiles_y),
+                    frame.vpls.capacity(),
+                ),
+            ),
             scale: frame.interleaving.scale(),
             tiles_x: p.tiles_x,
             tiles_y: p.tiles_y,
@@ -324,9 +328,14 @@ impl ClusterRasterizer {
         GpuLightLists::upload(ctx, &lists, clusters.pixels as usize, vpls)
     }
 
+    /// Sets the room of the next frames' node buffers (`list_room`).
+    pub fn set_list_room(&self, entries: u32) {
+        self.room.set(entries);
+    }
+
     /// The fill pass again into a node buffer of `count` nodes (the count it needed).
     fn refill(&self, ctx: &GpuContext, nodes: &NodeFrame, count: u32) -> Result<(), GpuError> {
-        self.capacity.fetch_max(count, Ordering::Relaxed);
+        self.room.learn(count);
         let params = GpuRasterParams {
             capacity: count,
             ..nodes.params

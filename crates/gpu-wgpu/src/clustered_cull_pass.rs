@@ -18,17 +18,19 @@
 use crate::bounds_pass::{BoundsPass, BoundsSettings, GpuBounds};
 use crate::buffers::{output, upload, Grid};
 use crate::context::{GpuContext, GpuError};
-use crate::cull_frame::{check_input, cull_params, read_status, tile_grid, CullFrame, CullSizes};
+use crate::cull_frame::{check_input, cull_params, tile_grid, CullFrame, CullSizes};
 use crate::cull_types::{GpuClusterFrusta, CLUSTER_SLICES, DEPTH_RANGE, DEPTH_SPLIT};
 use crate::gpu_lists::GpuLightLists;
 use crate::gpu_lists::{no_lists, read_lists};
 use crate::gpu_types::{GpuCullParams, GpuCullStatus, CULL_COUNT, CULL_WRITE};
+use crate::list_room::{most_entries, settled, ListRoom, ListWrite};
 use crate::partition_pass::{GpuPartition, PartitionPass};
 use crate::scan_pass::ScanPass;
 use crate::tight_cull_pass::{BaseLayout, TightRefiner};
 use slc_core::{CullInput, LightLists};
 use slc_cull::{CullView, GlossyBound};
 use std::mem::offset_of;
+use std::sync::Arc;
 
 /// `shaders/tiles.wgsl` and `shaders/clusters.wgsl` followed by the depth-slice kernel.
 pub(crate) const DEPTH_SOURCE: &str = concat!(
@@ -55,6 +57,8 @@ pub struct ClusteredCuller {
     tight: TightRefiner,
     depth: wgpu::ComputePipeline,
     cull: wgpu::ComputePipeline,
+    /// What the lists of earlier frames needed.
+    room: Arc<ListRoom>,
 }
 
 impl ClusteredCuller {
@@ -68,6 +72,7 @@ impl ClusteredCuller {
                 tight: TightRefiner::new(ctx),
                 depth: ctx.compute_pipeline("cluster depth", DEPTH_SOURCE),
                 cull: ctx.compute_pipeline("clustered cull", CULL_SOURCE),
+                room: Arc::new(ListRoom::new()),
             })
         })
     }
@@ -86,14 +91,16 @@ impl ClusteredCuller {
         read_lists(ctx, &self.cull_on_gpu(ctx, input, glossy)?)
     }
 
-    /// [`Self::cull_frame`] of `input` with its G-buffer uploaded.
+    /// [`Self::cull_frame`] of `input` with its G-buffer uploaded, complete: culled again
+    /// where the lists outgrew their buffer (their totals read).
     pub fn cull_on_gpu(
         &self,
         ctx: &GpuContext,
         input: &CullInput,
         glossy: GlossyBound,
     ) -> Result<GpuLightLists, GpuError> {
-        self.cull_frame(ctx, &CullFrame::upload(ctx, input)?, glossy)
+        let frame = CullFrame::upload(ctx, input)?;
+        settled(ctx, || self.cull_frame(ctx, &frame, glossy))
     }
 
     /// Culls `frame` without a readback: 32 lists per tile (one per depth slice, slice s
@@ -206,8 +213,10 @@ impl ClusteredCuller {
         }))
     }
 
-    /// The lists of a prepared frame: counted per slice, scanned, one count read back to
-    /// size the list buffer, written; refined per block for [`GlossyBound::Tight`].
+    /// The lists of a prepared frame, in one submission: counted per slice, scanned,
+    /// written into a buffer of the room earlier frames needed (`list_room`; the total is
+    /// read with the work that uses them, [`GpuLightLists::outgrown`]); refined per block for
+    /// [`GlossyBound::Tight`].
     pub fn lists(
         &self,
         ctx: &GpuContext,
@@ -216,14 +225,18 @@ impl ClusteredCuller {
     ) -> Result<GpuLightLists, GpuError> {
         let list_count = CLUSTER_SLICES * clusters.params.tile_count;
         let offsets = output::<u32>(ctx, "list offsets", list_count as usize + 1)?;
-        // Counting writes no list entry: a placeholder fills the binding.
-        let no_entries = output::<u32>(ctx, "no lists", 1)?;
-        let run = |label: &'static str, mode: u32, entries: &wgpu::Buffer| {
-            ctx.submit(label, |encoder| {
+        let p = &clusters.params;
+        let per_subregion = u64::from(CLUSTER_SLICES) * u64::from(p.tiles_x) * u64::from(p.tiles_y);
+        let most = most_entries(per_subregion, frame.vpls.capacity());
+        let (entries, held) = self
+            .room
+            .buffer(ctx, "light lists", clusters.pixels, most)?;
+        ctx.submit("clustered cull", |encoder| {
+            for mode in [CULL_COUNT, CULL_WRITE] {
                 let params = clusters.bounds.count.uniform(
                     ctx,
                     encoder,
-                    label,
+                    "clustered cull",
                     &GpuCullParams {
                         mode,
                         ..clusters.params
@@ -239,7 +252,7 @@ impl ClusteredCuller {
                         &clusters.frusta,
                         &clusters.bounds.buffer,
                         &offsets,
-                        entries,
+                        &entries,
                         &clusters.partition.sub_offsets,
                         &clusters.partition.order,
                     ],
@@ -249,20 +262,22 @@ impl ClusteredCuller {
                     self.scan
                         .encode(ctx, encoder, &offsets, list_count, &clusters.status);
                 }
-                Ok(())
-            })
-        };
-        run("clustered cull (count)", CULL_COUNT, &no_entries)?;
-        let total = read_status(ctx, &clusters.status, frame.width)?;
-        let entries = output::<u32>(ctx, "light lists", total as usize)?;
-        run("clustered cull (write)", CULL_WRITE, &entries)?;
+            }
+            Ok(())
+        })?;
         let lists = GpuLightLists {
             offsets,
             indices: entries,
             pixel_list: clusters.pixel_list,
             list_count,
-            entries: total,
+            entries: held,
             pixels: clusters.pixels,
+            writes: vec![ListWrite {
+                status: clusters.status,
+                held,
+                room: Arc::clone(&self.room),
+                width: frame.width,
+            }],
         };
         if clusters.glossy != GlossyBound::Tight {
             return Ok(lists);
@@ -273,6 +288,12 @@ impl ClusteredCuller {
         };
         self.tight
             .refine(ctx, frame, lists, &clusters.bounds, layout)
+    }
+
+    /// Sets the room of the next frames' lists (`list_room`), the refinement's too.
+    pub fn set_list_room(&self, entries: u32) {
+        self.room.set(entries);
+        self.tight.set_list_room(entries);
     }
 }
 

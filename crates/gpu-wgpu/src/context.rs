@@ -55,6 +55,8 @@ pub enum GpuError {
     Readback { label: String, message: String },
     #[error("invalid input to the GPU backend: {0}")]
     Input(String),
+    #[error("light lists outgrew their buffer: {0}")]
+    ListsOutgrown(String),
 }
 
 /// A headless device and its queue, with what the passes need to know about the adapter.

@@ -7,7 +7,8 @@ use crate::cluster_raster_pass::{ClusterRasterizer, NodeFrame};
 use crate::clustered_cull_pass::ClusteredCuller;
 use crate::context::{GpuContext, GpuError};
 use crate::cull_frame::CullFrame;
-use crate::gpu_lists::{read_lists, GpuLightLists};
+use crate::gpu_lists::{no_lists, read_lists, GpuLightLists};
+use crate::list_room::{settled, use_settled};
 use crate::none_cull_pass::NoneCuller;
 use crate::splat_pass::Splatter;
 use crate::tiled_cull_pass::{TiledCuller, TiledFrame};
@@ -53,13 +54,18 @@ impl GpuCuller {
         input: &CullInput,
         strategy: Strategy,
     ) -> Result<LightLists, GpuError> {
-        let lists = self.cull_frame(ctx, &CullFrame::upload(ctx, input)?, strategy)?;
-        read_lists(ctx, &lists)
+        let frame = CullFrame::upload(ctx, input)?;
+        read_lists(
+            ctx,
+            &settled(ctx, || self.cull_frame(ctx, &frame, strategy))?,
+        )
     }
 
     /// The lists of `strategy` for `frame` (a G-buffer on the GPU, uploaded or rasterized),
     /// left on the GPU. The raster baselines, which shade without these lists, give what
-    /// they evaluate: the pixels each splat covers, the rasterized clusters' lists.
+    /// they evaluate: the pixels each splat covers, the rasterized clusters' lists. The
+    /// lists' totals are read after their use ([`GpuLightLists::outgrown`],
+    /// [`Self::use_lists`]).
     pub fn cull_frame(
         &self,
         ctx: &GpuContext,
@@ -86,17 +92,44 @@ impl GpuCuller {
     pub fn rasterizer(&self) -> &ClusterRasterizer {
         &self.rasterizer
     }
+
+    /// Runs `use_lists` on `lists` (of `strategy` for `frame`), then reads their culling's
+    /// fault records; lists that outgrew their buffer are culled again, now with room for
+    /// them, and used again ([`use_settled`]). Returns what the last use gave and its lists.
+    pub fn use_lists<T>(
+        &self,
+        ctx: &GpuContext,
+        frame: &CullFrame,
+        strategy: Strategy,
+        lists: GpuLightLists,
+        use_lists: impl FnMut(&GpuLightLists) -> Result<T, GpuError>,
+    ) -> Result<(T, GpuLightLists), GpuError> {
+        let recull = || self.cull_frame(ctx, frame, strategy);
+        use_settled(ctx, lists, recull, use_lists)
+    }
+
+    /// Sets the room the list cullers (tiled lists, clustered, the tight refinement) and
+    /// the raster baselines' node buffers leave for the next frames' lists, which grows
+    /// again where a frame needs more (`list_room`): to preallocate for a known scene, or to
+    /// exercise culling again.
+    pub fn set_list_room(&self, entries: u32) {
+        self.tiled.set_list_room(entries);
+        self.clustered.set_list_room(entries);
+        self.rasterizer.set_list_room(entries);
+        self.splatter.set_list_room(entries);
+    }
 }
 
 /// What a frame's culling step leaves for its shading step (`GpuRenderer`): the frusta of a
 /// tiled strategy, culled and shaded in one pass (`tiled_shade_pass`, the paper's Fig. 2),
 /// the bounds splatting draws (`splat_pass`), the rasterized clusters (`cluster_raster_pass`),
-/// or the lists of the others (clustered, tight, unculled), shaded by `shade_pass`.
+/// or the lists of the others (clustered, tight, unculled) and their strategy, shaded by
+/// `shade_pass`.
 pub enum FrameLists {
     Tiles(Box<TiledFrame>),
     Splats(Box<TiledFrame>),
     Nodes(Box<NodeFrame>),
-    Lists(GpuLightLists),
+    Lists(GpuLightLists, Strategy),
 }
 
 impl GpuCuller {
@@ -114,7 +147,7 @@ impl GpuCuller {
         frame: &CullFrame,
         strategy: Strategy,
     ) -> Result<FrameLists, GpuError> {
-        let no_pixels = || Ok(FrameLists::Lists(crate::gpu_lists::no_lists(ctx)?));
+        let no_pixels = || Ok(FrameLists::Lists(no_lists(ctx)?, strategy));
         match strategy.parts().0 {
             Layout::Splatting => {
                 return match self
@@ -134,30 +167,36 @@ impl GpuCuller {
             _ => {}
         }
         if !Self::one_pass(strategy) {
-            return Ok(FrameLists::Lists(self.cull_frame(ctx, frame, strategy)?));
+            let lists = self.cull_frame(ctx, frame, strategy)?;
+            return Ok(FrameLists::Lists(lists, strategy));
         }
-        Ok(
-            match self.tiled.prepare(ctx, frame, strategy.parts().1, false)? {
-                Some(tiles) => FrameLists::Tiles(Box::new(tiles)),
-                None => FrameLists::Lists(crate::gpu_lists::no_lists(ctx)?),
-            },
-        )
+        match self.tiled.prepare(ctx, frame, strategy.parts().1, false)? {
+            Some(tiles) => Ok(FrameLists::Tiles(Box::new(tiles))),
+            None => no_pixels(),
+        }
     }
 
     /// The lists of a culling step, built from the frusta where it kept only those (for the
-    /// metrics).
+    /// metrics), complete (culled again where they outgrew their buffer).
     pub fn frame_lists(
         &self,
         ctx: &GpuContext,
         frame: &CullFrame,
         lists: &FrameLists,
     ) -> Result<GpuLightLists, GpuError> {
-        match lists {
-            FrameLists::Tiles(tiles) => self.tiled.lists(ctx, frame, tiles),
-            FrameLists::Splats(tiles) => self.splatter.lists(ctx, frame, tiles),
-            FrameLists::Nodes(nodes) => self.rasterizer.lists(ctx, frame, nodes),
-            FrameLists::Lists(lists) => Ok(lists.clone()),
-        }
+        let (lists, recull): (_, Box<dyn Fn() -> _>) = match lists {
+            FrameLists::Tiles(tiles) => (
+                self.tiled.lists(ctx, frame, tiles)?,
+                Box::new(|| self.tiled.lists(ctx, frame, tiles)),
+            ),
+            FrameLists::Splats(tiles) => return self.splatter.lists(ctx, frame, tiles),
+            FrameLists::Nodes(nodes) => return self.rasterizer.lists(ctx, frame, nodes),
+            FrameLists::Lists(lists, strategy) => (
+                lists.clone(),
+                Box::new(|| self.cull_frame(ctx, frame, *strategy)),
+            ),
+        };
+        Ok(use_settled(ctx, lists, recull, |_| Ok(()))?.1)
     }
 }
 

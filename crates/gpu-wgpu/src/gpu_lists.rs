@@ -2,11 +2,16 @@
 //! [`LightLists`]), uploaded from the CPU or read back in the CPU's convention.
 use crate::buffers::{output, read_back, upload};
 use crate::context::{GpuContext, GpuError};
+use crate::cull_frame::read_status;
+use crate::list_room::ListWrite;
 use slc_core::{LightLists, NO_LIST};
 
 /// Light lists on the GPU in [`LightLists`]' CSR layout: list `l` holds
 /// `indices[offsets[l]..offsets[l + 1]]` (VPL indices), pixel `p` shades with list
 /// `pixel_list[p]` ([`NO_LIST`]: none). Empty lists are allowed. Clones share the buffers.
+///
+/// Lists a culler wrote on the GPU may have outgrown their buffer: their totals are read
+/// after the work that uses them ([`Self::outgrown`], [`crate::list_room::use_settled`]).
 #[derive(Clone)]
 pub struct GpuLightLists {
     pub offsets: wgpu::Buffer,
@@ -14,10 +19,13 @@ pub struct GpuLightLists {
     pub pixel_list: wgpu::Buffer,
     /// Number of lists (`offsets` holds one more entry).
     pub list_count: u32,
-    /// Number of list entries the indices buffer holds (at least the last offset).
+    /// Number of list entries the indices buffer holds: at least the last offset, unless
+    /// the lists outgrew it ([`Self::outgrown`]).
     pub entries: u32,
     /// Number of pixels (`pixel_list` entries).
     pub pixels: u32,
+    /// The list writes whose totals are still to be read, in the order they ran.
+    pub(crate) writes: Vec<ListWrite>,
 }
 
 impl GpuLightLists {
@@ -73,7 +81,25 @@ impl GpuLightLists {
             offsets: upload(ctx, "list offsets", offsets)?,
             indices: upload(ctx, "light lists", &lists.indices)?,
             pixel_list: upload(ctx, "pixel lists", &lists.pixel_list)?,
+            writes: Vec::new(),
         })
+    }
+
+    /// Reads the fault records of the culling that wrote these lists (16 bytes per list
+    /// write) once the work that used them is submitted: a fault of the culling (a sample
+    /// behind the camera, a bound beyond f32, entries beyond u32) is an error; `true` where
+    /// the lists outgrew their buffer, so they are incomplete (their culler has learnt the
+    /// room they need: cull again). Lists that were read before, uploaded or never
+    /// counted read nothing.
+    pub fn outgrown(&self, ctx: &GpuContext) -> Result<bool, GpuError> {
+        for write in &self.writes {
+            let total = read_status(ctx, &write.status, write.width)?;
+            if total > write.held {
+                write.room.learn(total);
+                return Ok(true);
+            }
+        }
+        Ok(false)
     }
 }
 
@@ -86,12 +112,19 @@ pub(crate) fn no_lists(ctx: &GpuContext) -> Result<GpuLightLists, GpuError> {
         list_count: 0,
         entries: 0,
         pixels: 0,
+        writes: Vec::new(),
     })
 }
 
 /// Reads `gpu` back as [`LightLists`] in the CPU's convention: empty lists dropped (their
-/// pixels get [`NO_LIST`]) and the rest renumbered in order.
+/// pixels get [`NO_LIST`]) and the rest renumbered in order. Lists that outgrew their buffer
+/// are [`GpuError::ListsOutgrown`] (read them through [`crate::list_room::use_settled`]).
 pub fn read_lists(ctx: &GpuContext, gpu: &GpuLightLists) -> Result<LightLists, GpuError> {
+    if gpu.outgrown(ctx)? {
+        return Err(GpuError::ListsOutgrown(
+            "cull again (the culler now leaves room for them)".into(),
+        ));
+    }
     if gpu.pixels == 0 {
         return Ok(LightLists {
             offsets: vec![0],

@@ -117,6 +117,7 @@ impl NoneCuller {
             // Every VPL is in exactly one list (GPU VPLs: at most the count's capacity).
             entries: vpl_count,
             pixels,
+            writes: Vec::new(),
         })
     }
 }

@@ -183,6 +183,12 @@ impl GpuRenderer {
         self.one_pass = one_pass;
     }
 
+    /// Sets the room the list cullers leave for the next frames' lists
+    /// ([`GpuCuller::set_list_room`]).
+    pub fn set_list_room(&self, entries: u32) {
+        self.culler.set_list_room(entries);
+    }
+
     /// The device the passes run on.
     pub fn context(&self) -> &GpuContext {
         &self.ctx
@@ -359,9 +365,8 @@ impl Renderer for GpuRenderer {
             if self.one_pass || strategy.is_raster() {
                 self.culler.prepare_frame(&self.ctx, &frame, strategy)
             } else {
-                Ok(FrameLists::Lists(
-                    self.culler.cull_frame(&self.ctx, &frame, strategy)?,
-                ))
+                let lists = self.culler.cull_frame(&self.ctx, &frame, strategy)?;
+                Ok(FrameLists::Lists(lists, strategy))
             }
         })
     }
@@ -391,14 +396,21 @@ impl Renderer for GpuRenderer {
                 .culler
                 .rasterizer()
                 .shade(&self.ctx, &frame, samples, nodes),
-            FrameLists::Lists(lists) => self.shader.shade_gpu_gbuffer_on_gpu(
-                &self.ctx,
-                &p.gbuffer,
-                &p.vpls,
-                delta,
-                interleaving,
-                lists,
-            ),
+            // The lists' totals are read after the shading; lists that outgrew their buffer
+            // are culled again and shaded again (`list_room`).
+            FrameLists::Lists(lists, strategy) => self
+                .culler
+                .use_lists(&self.ctx, &frame, *strategy, lists.clone(), |l| {
+                    self.shader.shade_gpu_gbuffer_on_gpu(
+                        &self.ctx,
+                        &p.gbuffer,
+                        &p.vpls,
+                        delta,
+                        interleaving,
+                        l,
+                    )
+                })
+                .map(|(image, _)| image),
         })?;
         // One dispatch shades every pixel: they are done together.
         progress(u64::from(p.gbuffer.width) * u64::from(p.gbuffer.height));

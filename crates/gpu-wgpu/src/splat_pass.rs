@@ -19,13 +19,13 @@ use crate::cull_frame::{read_status, CullFrame};
 use crate::cull_types::GpuRasterParams;
 use crate::gpu_lists::GpuLightLists;
 use crate::gpu_types::GpuCullStatus;
+use crate::list_room::{most_entries, ListRoom};
 use crate::node_lists::NodeLists;
 use crate::raster_draw::{atlas, bind, render_pipeline, SubregionDraws};
 use crate::shade_pass::vpl_eval_source;
 use crate::tiled_cull_pass::TiledFrame;
 use slc_core::Interleaving;
 use std::mem::offset_of;
-use std::sync::atomic::{AtomicU32, Ordering};
 
 /// The mesh mapping and one VPL's contribution, then the splatting shaders.
 pub(crate) const SOURCE: &str = concat!(
@@ -43,9 +43,6 @@ pub(crate) const RESOLVE_SOURCE: &str = concat!(
 /// The atlas's format: RGB sums in f32.
 const ATLAS: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Float;
 
-/// Node buffer size the metrics' first frame tries.
-const FIRST_CAPACITY: u32 = 1 << 20;
-
 /// The splatting pipelines.
 pub struct Splatter {
     mesh: wgpu::Buffer,
@@ -56,7 +53,7 @@ pub struct Splatter {
     list: wgpu::RenderPipeline,
     resolve: wgpu::ComputePipeline,
     /// The largest node count seen: the next metrics frame's buffer.
-    capacity: AtomicU32,
+    room: ListRoom,
 }
 
 impl Splatter {
@@ -107,7 +104,7 @@ impl Splatter {
                     Some(wgpu::Face::Front),
                 ),
                 resolve: ctx.compute_pipeline("splat resolve", RESOLVE_SOURCE),
-                capacity: AtomicU32::new(FIRST_CAPACITY),
+                room: ListRoom::new(),
             })
         })
     }
@@ -228,6 +225,11 @@ impl Splatter {
         Ok(image)
     }
 
+    /// Sets the room of the next metrics frames' node buffers (`list_room`).
+    pub fn set_list_room(&self, entries: u32) {
+        self.room.set(entries);
+    }
+
     /// What the splats evaluate, as light lists (for the metrics): pixel p's list holds the
     /// VPLs whose mesh covers it, ascending. The draws append them to a node buffer, read
     /// back (and drawn again into a larger one if it was too small) and uploaded in the CSR
@@ -241,7 +243,11 @@ impl Splatter {
         // The faults of the culling passes (a sample behind the camera, a bound beyond f32).
         read_status(ctx, &tiles.status, frame.width)?;
         loop {
-            let capacity = self.capacity.load(Ordering::Relaxed);
+            let k = frame.interleaving.k;
+            let per_subregion =
+                u64::from(frame.width.div_ceil(k)) * u64::from(frame.height.div_ceil(k));
+            let most = most_entries(per_subregion, frame.vpls.capacity());
+            let capacity = self.room.entries::<[u32; 2]>(ctx, tiles.pixels, most);
             let params = self.params(frame, tiles, capacity);
             let nodes = NodeLists::new(ctx, tiles.pixels, capacity)?;
             let status = upload(ctx, "splat list status", &[GpuCullStatus::CLEAR])?;
@@ -269,7 +275,7 @@ impl Splatter {
             })?;
             let count = read_status(ctx, &status, frame.width)?;
             if count > capacity {
-                self.capacity.fetch_max(count, Ordering::Relaxed);
+                self.room.learn(count);
                 continue;
             }
             let pixel_list: Vec<u32> = (0..tiles.pixels).collect();

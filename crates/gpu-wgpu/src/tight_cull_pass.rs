@@ -6,17 +6,20 @@
 //! `slc_bounds::BoxBound` (formed in f32 by `shaders/bounds.wgsl`, `GpuBoxBound`) may exceed
 //! ξ in the box of the group's receivers.
 //!
-//! Counting, a scan and writing, as the base cullers; the base lists' pixel entries are
-//! rewritten in place to point to the groups. One count read back sizes the list buffer.
+//! Counting, a scan and writing in one submission, as the base cullers (`list_room`: no
+//! count read back; the refined lists' total is read with the base lists' after the frame);
+//! the base lists' pixel entries are rewritten in place to point to the groups.
 use crate::bounds_pass::GpuBounds;
 use crate::buffers::{output, uniform, upload, Grid};
 use crate::context::{GpuContext, GpuError};
-use crate::cull_frame::{cull_params, read_status, tile_grid, CullFrame};
+use crate::cull_frame::{cull_params, tile_grid, CullFrame};
 use crate::cull_types::GpuTightParams;
 use crate::gpu_lists::GpuLightLists;
 use crate::gpu_types::{GpuCullParams, GpuCullStatus, CULL_COUNT, CULL_WRITE};
+use crate::list_room::{most_entries, ListRoom, ListWrite};
 use crate::scan_pass::ScanPass;
 use slc_cull::CullView;
+use std::sync::Arc;
 
 /// The tile grid, the bound records and their tests followed by the refinement kernel.
 pub(crate) const SOURCE: &str = concat!(
@@ -38,6 +41,8 @@ const _: () = assert!(crate::cull_types::CLUSTER_SLICES <= 32);
 pub struct TightRefiner {
     scan: ScanPass,
     pipeline: wgpu::ComputePipeline,
+    /// What the refined lists of earlier frames needed.
+    room: Arc<ListRoom>,
 }
 
 /// How the base strategy grouped each tile's pixels.
@@ -54,7 +59,13 @@ impl TightRefiner {
         Self {
             scan: ScanPass::new(ctx),
             pipeline: ctx.compute_pipeline("tight cull", SOURCE),
+            room: Arc::new(ListRoom::new()),
         }
+    }
+
+    /// Sets the room of the next frames' refined lists (`list_room`).
+    pub fn set_list_room(&self, entries: u32) {
+        self.room.set(entries);
     }
 
     /// Refines `base`, the lists of `frame` culled with `bounds` in `layout`, left on the
@@ -92,17 +103,19 @@ impl TightRefiner {
         );
         let offsets = output::<u32>(ctx, "tight list offsets", list_count as usize + 1)?;
         let status = upload(ctx, "tight cull status", &[GpuCullStatus::CLEAR])?;
-        let no_entries = output::<u32>(ctx, "no lists", 1)?;
-        let run = |mode: u32, lists: &wgpu::Buffer, scan: bool| {
-            let label = if mode == CULL_COUNT {
-                "tight cull (count)"
-            } else {
-                "tight cull (write)"
-            };
-            ctx.submit(label, |encoder| {
+        let per_subregion =
+            u64::from(BLOCKS_PER_TILE * slots) * u64::from(tiles.0) * u64::from(tiles.1);
+        let most = most_entries(per_subregion, frame.vpls.capacity());
+        let (lists, held) = self
+            .room
+            .buffer(ctx, "tight light lists", base.pixels, most)?;
+        ctx.submit("tight cull", |encoder| {
+            for mode in [CULL_COUNT, CULL_WRITE] {
                 let at = std::mem::offset_of!(GpuCullParams, vpl_count);
                 let params = cull_params(frame, &view, tiles, mode);
-                let params = bounds.count.uniform(ctx, encoder, label, &params, at);
+                let params = bounds
+                    .count
+                    .uniform(ctx, encoder, "tight cull", &params, at);
                 ctx.encode_dispatch(
                     encoder,
                     "tight cull",
@@ -117,28 +130,32 @@ impl TightRefiner {
                         &bounds.buffer,
                         &bounds.box_bounds,
                         &offsets,
-                        lists,
+                        &lists,
                     ],
                     grid,
                 );
-                if scan {
+                if mode == CULL_COUNT {
                     self.scan
                         .encode(ctx, encoder, &offsets, list_count, &status);
                 }
-                Ok(())
-            })
-        };
-        run(CULL_COUNT, &no_entries, true)?;
-        let total = read_status(ctx, &status, frame.width)?;
-        let lists = output::<u32>(ctx, "tight light lists", total as usize)?;
-        run(CULL_WRITE, &lists, false)?;
+            }
+            Ok(())
+        })?;
+        let mut writes = base.writes;
+        writes.push(ListWrite {
+            status,
+            held,
+            room: Arc::clone(&self.room),
+            width: frame.width,
+        });
         Ok(GpuLightLists {
             offsets,
             indices: lists,
             pixel_list: base.pixel_list,
             list_count,
-            entries: total,
+            entries: held,
             pixels: base.pixels,
+            writes,
         })
     }
 }

@@ -7,8 +7,10 @@
 //! read back, is a [`LightLists`] in the CPU's convention: empty lists are dropped, every
 //! list ascends in the VPL index, and each pixel with a sample points to its cluster's list.
 //!
-//! One count read back between the two culling dispatches sizes the list buffer exactly; a
-//! total beyond the storage-binding limit is refused ([`GpuError::BufferTooLarge`]).
+//! Counting and writing run in one submission, into a buffer of the room earlier frames'
+//! lists needed (`list_room`): no count is read back inside a frame; lists that outgrew
+//! their buffer are culled again with the total their fault record reports. A total beyond
+//! the storage-binding limit is refused ([`GpuError::BufferTooLarge`]).
 //! [`TiledCuller::cull_on_gpu`] leaves the lists on the GPU for `shade_pass` instead;
 //! [`TiledCuller::prepare`] stops before the lists, for the one-pass culling and shading of
 //! `tiled_shade_pass`, and [`TiledCuller::lists`] builds them from there. With
@@ -16,10 +18,11 @@
 use crate::bounds_pass::{BoundsPass, BoundsSettings, GpuBounds};
 use crate::buffers::{output, upload, Grid};
 use crate::context::{GpuContext, GpuError};
-use crate::cull_frame::{check_input, cull_params, read_status, tile_grid, CullFrame, CullSizes};
+use crate::cull_frame::{check_input, cull_params, tile_grid, CullFrame, CullSizes};
 use crate::gpu_lists::GpuLightLists;
 use crate::gpu_lists::{no_lists, read_lists};
 use crate::gpu_types::{GpuCullParams, GpuCullStatus, GpuTileFrusta, CULL_COUNT, CULL_WRITE};
+use crate::list_room::{most_entries, settled, ListRoom, ListWrite};
 use crate::partition_pass::PartitionPass;
 use crate::scan_pass::ScanPass;
 use crate::tight_cull_pass::{BaseLayout, TightRefiner};
@@ -27,6 +30,7 @@ use crate::tile_depth_pass::{TileDepthBuffers, TileDepthPass};
 use slc_core::{CullInput, LightLists};
 use slc_cull::{CullView, GlossyBound};
 use std::mem::offset_of;
+use std::sync::Arc;
 
 /// `shaders/tiles.wgsl`, `shaders/bound.wgsl` and `shaders/frustum_tests.wgsl` followed by
 /// the culling kernel.
@@ -46,6 +50,8 @@ pub struct TiledCuller {
     scan: ScanPass,
     tight: TightRefiner,
     pipeline: wgpu::ComputePipeline,
+    /// What the lists of earlier frames needed.
+    room: Arc<ListRoom>,
 }
 
 impl TiledCuller {
@@ -59,6 +65,7 @@ impl TiledCuller {
                 scan: ScanPass::new(ctx),
                 tight: TightRefiner::new(ctx),
                 pipeline: ctx.compute_pipeline("tiled cull", SOURCE),
+                room: Arc::new(ListRoom::new()),
             })
         })
     }
@@ -76,14 +83,16 @@ impl TiledCuller {
         read_lists(ctx, &self.cull_on_gpu(ctx, input, glossy)?)
     }
 
-    /// [`Self::cull_frame`] of `input` with its G-buffer uploaded.
+    /// [`Self::cull_frame`] of `input` with its G-buffer uploaded, complete: culled again
+    /// where the lists outgrew their buffer (their totals read).
     pub fn cull_on_gpu(
         &self,
         ctx: &GpuContext,
         input: &CullInput,
         glossy: GlossyBound,
     ) -> Result<GpuLightLists, GpuError> {
-        self.cull_frame(ctx, &CullFrame::upload(ctx, input)?, glossy)
+        let frame = CullFrame::upload(ctx, input)?;
+        settled(ctx, || self.cull_frame(ctx, &frame, glossy))
     }
 
     /// Culls `frame` without reading the lists back: they stay on the GPU in the CSR layout
@@ -191,9 +200,11 @@ impl TiledCuller {
         }))
     }
 
-    /// The lists of a prepared frame: counted per cluster, scanned, one count read back to
-    /// size the list buffer, written; refined per block for [`GlossyBound::Tight`] (which
-    /// rewrites the frame's pixel lists in place: `tiles` is spent then).
+    /// The lists of a prepared frame, in one submission: counted per cluster, scanned,
+    /// written into a buffer of the room earlier frames needed (`list_room`; the total is
+    /// read with the work that uses them, [`GpuLightLists::outgrown`]); refined per block for
+    /// [`GlossyBound::Tight`] (which rewrites the frame's pixel lists in place: `tiles` is
+    /// spent then).
     pub fn lists(
         &self,
         ctx: &GpuContext,
@@ -202,19 +213,16 @@ impl TiledCuller {
     ) -> Result<GpuLightLists, GpuError> {
         let lists_count = 2 * tiles.params.tile_count;
         let offsets = output::<u32>(ctx, "list offsets", lists_count as usize + 1)?;
-        // Counting writes no list entry: a placeholder fills the binding.
-        let no_entries = output::<u32>(ctx, "no lists", 1)?;
-        let run = |mode: u32, entries: &wgpu::Buffer| {
-            let label = if mode == CULL_COUNT {
-                "tiled cull (count)"
-            } else {
-                "tiled cull (write)"
-            };
-            ctx.submit(label, |encoder| {
+        let p = &tiles.params;
+        let per_subregion = 2 * u64::from(p.tiles_x) * u64::from(p.tiles_y);
+        let most = most_entries(per_subregion, frame.vpls.capacity());
+        let (entries, held) = self.room.buffer(ctx, "light lists", tiles.pixels, most)?;
+        ctx.submit("tiled cull", |encoder| {
+            for mode in [CULL_COUNT, CULL_WRITE] {
                 let params = tiles.bounds.count.uniform(
                     ctx,
                     encoder,
-                    label,
+                    "tiled cull",
                     &GpuCullParams {
                         mode,
                         ..tiles.params
@@ -230,7 +238,7 @@ impl TiledCuller {
                         &tiles.frusta,
                         &tiles.bounds.buffer,
                         &offsets,
-                        entries,
+                        &entries,
                         &tiles.order,
                     ],
                     tiles.grid,
@@ -239,20 +247,22 @@ impl TiledCuller {
                     self.scan
                         .encode(ctx, encoder, &offsets, lists_count, &tiles.status);
                 }
-                Ok(())
-            })
-        };
-        run(CULL_COUNT, &no_entries)?;
-        let total = read_status(ctx, &tiles.status, frame.width)?;
-        let entries = output::<u32>(ctx, "light lists", total as usize)?;
-        run(CULL_WRITE, &entries)?;
+            }
+            Ok(())
+        })?;
         let lists = GpuLightLists {
             offsets,
             indices: entries,
             pixel_list: tiles.pixel_list.clone(),
             list_count: lists_count,
-            entries: total,
+            entries: held,
             pixels: tiles.pixels,
+            writes: vec![ListWrite {
+                status: tiles.status.clone(),
+                held,
+                room: Arc::clone(&self.room),
+                width: frame.width,
+            }],
         };
         if tiles.glossy != GlossyBound::Tight {
             return Ok(lists);
@@ -262,6 +272,12 @@ impl TiledCuller {
             split: true,
         };
         self.tight.refine(ctx, frame, lists, &tiles.bounds, layout)
+    }
+
+    /// Sets the room of the next frames' lists (`list_room`), the refinement's too.
+    pub fn set_list_room(&self, entries: u32) {
+        self.room.set(entries);
+        self.tight.set_list_room(entries);
     }
 }
 
