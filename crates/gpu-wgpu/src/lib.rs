@@ -14,7 +14,7 @@
 //!   counting sort on the GPU;
 //! - [`tile_depth_pass`]: Modified HalfZ tile frusta (section 5.1) from G-buffer positions;
 //! - [`tiled_cull_pass`]: tiled culling of interleaved subregions (sections 5-6, Listing 2)
-//!   with workgroup-shared light lists, sized by [`scan_pass`]; the sphere,
+//!   with workgroup-shared light lists, offset by [`scan_pass`]; the sphere,
 //!   enclosing-sphere and ellipsoid strategies, read back as `slc_core::LightLists` or left
 //!   on the GPU for shading;
 //! - [`tight_cull_pass`]: the `tight` and `clustered-tight` refinement, per 8 x 8 block,
@@ -47,7 +47,8 @@
 //!   `clustered-enclosing-sphere`, with its structs in [`cull_types`];
 //! - [`culler`]: every `slc_core::Strategy` ([`culler::GpuCuller`], bound to one strategy as
 //!   a `slc_core::Culler`); [`cull_frame`] holds what the culling passes share, [`gpu_lists`]
-//!   the lists they leave on the GPU;
+//!   the lists they leave on the GPU, [`list_room`] the room their buffers get (no count is
+//!   read back inside a frame; lists that outgrew it are culled again);
 //! - [`denoise_pass`]: the cross bilateral filter guided by depth and normal (section 6),
 //!   the twin of `slc_cpu_ref::denoise::cross_bilateral`, on GPU buffers or uploaded images
 //!   (struct in [`denoise_types`]);

@@ -14,9 +14,10 @@ pub fn frame_notes(ctx: &GpuContext) -> Vec<String> {
         ),
         "the VPLs and their count stay on the GPU from their generation to the shading (the \
          passes after it are sized there: indirect dispatches, the count copied into their \
-         parameters); what is read back is the images, the culling's 16-byte fault record \
-         after the shading (the compute clustered and tight strategies also read their list \
-         totals before writing the lists) and the VPL count for the report after the frame"
+         parameters); the light lists are written into buffers sized from earlier frames; \
+         what is read back is the images, the culling's 16-byte fault record after the \
+         shading (two for the tight strategies; a frame whose lists outgrew their buffer is \
+         culled and shaded again) and the VPL count for the report after the frame"
             .to_string(),
         if ctx.timestamps_trusted {
             "timings_ms of GPU passes are wall clock around the GPU work (uploads, readbacks \

@@ -3,6 +3,7 @@
 use crate::common::gpu;
 use crate::tiled::frame;
 use slc_core::{builtin, CullInput, Culler, GlossyBound, Interleaving, Strategy};
+use slc_gpu_wgpu::context::GpuError;
 use slc_gpu_wgpu::cull_frame::CullFrame;
 use slc_gpu_wgpu::culler::GpuCuller;
 use slc_gpu_wgpu::gpu_lists::read_lists;
@@ -115,5 +116,49 @@ fn shading_reads_every_strategys_lists_on_the_gpu() {
                 "{name} K {k}: {lit} lit pixels"
             );
         }
+    }
+}
+
+/// Lists that outgrew the room their culler left are refused when read back (a typed error,
+/// never truncated lists); used through `use_lists` they are culled again until complete:
+/// once more for a list culler, twice for the tight ones with both rooms too small (the
+/// base lists, then the refined ones). The complete lists equal those culled with room.
+#[test]
+fn outgrown_lists_are_refused_or_culled_again() {
+    let Some(ctx) = gpu() else { return };
+    let culler = GpuCuller::new(&ctx).unwrap();
+    let (scene, camera) = default_scene();
+    let (gbuffer, vpls) = frame(&scene, &camera, (72, 50), 16);
+    let input = input_k2(&gbuffer, &camera, &vpls);
+    let frame = CullFrame::upload(&ctx, &input).unwrap();
+    for (strategy, uses) in [
+        (Strategy::Sphere, 2),
+        (Strategy::Clustered, 2),
+        (Strategy::Tight, 3),
+        (Strategy::ClusteredTight, 3),
+    ] {
+        culler.set_list_room(1 << 20);
+        let roomy = culler.cull(&ctx, &input, strategy).unwrap();
+        culler.set_list_room(1);
+        let cramped = culler.cull_frame(&ctx, &frame, strategy).unwrap();
+        assert!(
+            matches!(read_lists(&ctx, &cramped), Err(GpuError::ListsOutgrown(_))),
+            "{strategy}"
+        );
+        culler.set_list_room(1);
+        let cramped = culler.cull_frame(&ctx, &frame, strategy).unwrap();
+        let mut used = 0;
+        let (read, settled) = culler
+            .use_lists(&ctx, &frame, strategy, cramped, |lists| {
+                used += 1;
+                Ok(lists.entries)
+            })
+            .unwrap();
+        assert_eq!(used, uses, "{strategy}");
+        assert_eq!(read, settled.entries, "{strategy}");
+        assert_eq!(read_lists(&ctx, &settled).unwrap(), roomy, "{strategy}");
+        // Learnt: the next frame's lists fit at once.
+        let next = culler.cull_frame(&ctx, &frame, strategy).unwrap();
+        assert_eq!(read_lists(&ctx, &next).unwrap(), roomy, "{strategy}");
     }
 }
