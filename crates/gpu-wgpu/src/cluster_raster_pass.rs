@@ -11,8 +11,8 @@
 //!   occupied slice between its nearest and farthest mark, in a node buffer (`node_lists`);
 //! - shading (`shaders/node_shade.wgsl`): each pixel walks its cluster's list.
 //!
-//! The node buffer's size is a guess (`list_room`: the largest count seen so far); the count is read
-//! with the frame's fault record after shading, and a frame whose nodes did not fit is
+//! The node buffer's size is a guess (`list_room`: the largest count seen so far); the count
+//! is read with the frame's fault record after shading, and a frame whose nodes did not fit is
 //! filled and shaded again with a buffer of that size. Sums follow the lists' order, which
 //! the GPU's scheduling sets: images equal the list shading's up to f32 rounding.
 use crate::bound_mesh::BoundMesh;
@@ -24,7 +24,7 @@ use crate::cull_types::{GpuRasterParams, CLUSTER_SLICES};
 use crate::gpu_count::ArgsPass;
 use crate::gpu_lists::GpuLightLists;
 use crate::gpu_types::GpuShadeParams;
-use crate::list_room::{most_entries, ListRoom};
+use crate::list_room::ListRoom;
 use crate::node_lists::NodeLists;
 use crate::raster_draw::{atlas, bind, render_pipeline, SubregionDraws};
 use crate::shade_pass::vpl_eval_source;
@@ -139,11 +139,8 @@ impl ClusterRasterizer {
             view_h: p.tiles_y,
             capacity: self.room.entries::<[u32; 2]>(
                 ctx,
-                clusters.pixels,
-                most_entries(
-                    u64::from(CLUSTER_SLICES) * u64::from(p.tiles_x) * u64::from(p.tiles_y),
-                    frame.vpls.capacity(),
-                ),
+                frame,
+                u64::from(CLUSTER_SLICES) * u64::from(p.tiles_x) * u64::from(p.tiles_y),
             ),
             scale: frame.interleaving.scale(),
             tiles_x: p.tiles_x,

@@ -23,7 +23,7 @@ use crate::cull_types::{GpuClusterFrusta, CLUSTER_SLICES, DEPTH_RANGE, DEPTH_SPL
 use crate::gpu_lists::GpuLightLists;
 use crate::gpu_lists::{no_lists, read_lists};
 use crate::gpu_types::{GpuCullParams, GpuCullStatus, CULL_COUNT, CULL_WRITE};
-use crate::list_room::{most_entries, settled, ListRoom, ListWrite};
+use crate::list_room::{settled, ListRoom};
 use crate::partition_pass::{GpuPartition, PartitionPass};
 use crate::scan_pass::ScanPass;
 use crate::tight_cull_pass::{BaseLayout, TightRefiner};
@@ -227,10 +227,9 @@ impl ClusteredCuller {
         let offsets = output::<u32>(ctx, "list offsets", list_count as usize + 1)?;
         let p = &clusters.params;
         let per_subregion = u64::from(CLUSTER_SLICES) * u64::from(p.tiles_x) * u64::from(p.tiles_y);
-        let most = most_entries(per_subregion, frame.vpls.capacity());
-        let (entries, held) = self
-            .room
-            .buffer(ctx, "light lists", clusters.pixels, most)?;
+        let (entries, write) =
+            self.room
+                .buffer(ctx, frame, "light lists", per_subregion, &clusters.status)?;
         ctx.submit("clustered cull", |encoder| {
             for mode in [CULL_COUNT, CULL_WRITE] {
                 let params = clusters.bounds.count.uniform(
@@ -270,14 +269,9 @@ impl ClusteredCuller {
             indices: entries,
             pixel_list: clusters.pixel_list,
             list_count,
-            entries: held,
+            entries: write.held,
             pixels: clusters.pixels,
-            writes: vec![ListWrite {
-                status: clusters.status,
-                held,
-                room: Arc::clone(&self.room),
-                width: frame.width,
-            }],
+            writes: vec![write],
         };
         if clusters.glossy != GlossyBound::Tight {
             return Ok(lists);

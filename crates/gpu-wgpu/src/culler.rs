@@ -13,6 +13,7 @@ use crate::none_cull_pass::NoneCuller;
 use crate::splat_pass::Splatter;
 use crate::tiled_cull_pass::{TiledCuller, TiledFrame};
 use slc_core::{CullInput, Culler, GlossyBound, Layout, LightLists, Strategy};
+use std::cell::RefCell;
 
 /// The pipelines of every strategy.
 pub struct GpuCuller {
@@ -95,17 +96,22 @@ impl GpuCuller {
 
     /// Runs `use_lists` on `lists` (of `strategy` for `frame`), then reads their culling's
     /// fault records; lists that outgrew their buffer are culled again, now with room for
-    /// them, and used again ([`use_settled`]). Returns what the last use gave and its lists.
+    /// them, and used again ([`use_settled`]). Returns what the last use gave; `lists` then
+    /// holds the lists it used, complete, their records read (using them again reads
+    /// nothing).
     pub fn use_lists<T>(
         &self,
         ctx: &GpuContext,
         frame: &CullFrame,
         strategy: Strategy,
-        lists: GpuLightLists,
+        lists: &RefCell<GpuLightLists>,
         use_lists: impl FnMut(&GpuLightLists) -> Result<T, GpuError>,
-    ) -> Result<(T, GpuLightLists), GpuError> {
+    ) -> Result<T, GpuError> {
         let recull = || self.cull_frame(ctx, frame, strategy);
-        use_settled(ctx, lists, recull, use_lists)
+        let first = lists.borrow().clone();
+        let (out, complete) = use_settled(ctx, first, recull, use_lists)?;
+        *lists.borrow_mut() = complete;
+        Ok(out)
     }
 
     /// Sets the room the list cullers (tiled lists, clustered, the tight refinement) and
@@ -124,12 +130,13 @@ impl GpuCuller {
 /// tiled strategy, culled and shaded in one pass (`tiled_shade_pass`, the paper's Fig. 2),
 /// the bounds splatting draws (`splat_pass`), the rasterized clusters (`cluster_raster_pass`),
 /// or the lists of the others (clustered, tight, unculled) and their strategy, shaded by
-/// `shade_pass`.
+/// `shade_pass` (replaced by complete ones where they outgrew their buffer,
+/// [`GpuCuller::use_lists`]).
 pub enum FrameLists {
     Tiles(Box<TiledFrame>),
     Splats(Box<TiledFrame>),
     Nodes(Box<NodeFrame>),
-    Lists(GpuLightLists, Strategy),
+    Lists(RefCell<GpuLightLists>, Strategy),
 }
 
 impl GpuCuller {
@@ -147,7 +154,7 @@ impl GpuCuller {
         frame: &CullFrame,
         strategy: Strategy,
     ) -> Result<FrameLists, GpuError> {
-        let no_pixels = || Ok(FrameLists::Lists(no_lists(ctx)?, strategy));
+        let no_pixels = || Ok(FrameLists::Lists(RefCell::new(no_lists(ctx)?), strategy));
         match strategy.parts().0 {
             Layout::Splatting => {
                 return match self
@@ -168,7 +175,7 @@ impl GpuCuller {
         }
         if !Self::one_pass(strategy) {
             let lists = self.cull_frame(ctx, frame, strategy)?;
-            return Ok(FrameLists::Lists(lists, strategy));
+            return Ok(FrameLists::Lists(RefCell::new(lists), strategy));
         }
         match self.tiled.prepare(ctx, frame, strategy.parts().1, false)? {
             Some(tiles) => Ok(FrameLists::Tiles(Box::new(tiles))),
@@ -184,19 +191,15 @@ impl GpuCuller {
         frame: &CullFrame,
         lists: &FrameLists,
     ) -> Result<GpuLightLists, GpuError> {
-        let (lists, recull): (_, Box<dyn Fn() -> _>) = match lists {
-            FrameLists::Tiles(tiles) => (
-                self.tiled.lists(ctx, frame, tiles)?,
-                Box::new(|| self.tiled.lists(ctx, frame, tiles)),
-            ),
-            FrameLists::Splats(tiles) => return self.splatter.lists(ctx, frame, tiles),
-            FrameLists::Nodes(nodes) => return self.rasterizer.lists(ctx, frame, nodes),
-            FrameLists::Lists(lists, strategy) => (
-                lists.clone(),
-                Box::new(|| self.cull_frame(ctx, frame, *strategy)),
-            ),
-        };
-        Ok(use_settled(ctx, lists, recull, |_| Ok(()))?.1)
+        match lists {
+            FrameLists::Tiles(tiles) => settled(ctx, || self.tiled.lists(ctx, frame, tiles)),
+            FrameLists::Splats(tiles) => self.splatter.lists(ctx, frame, tiles),
+            FrameLists::Nodes(nodes) => self.rasterizer.lists(ctx, frame, nodes),
+            FrameLists::Lists(lists, strategy) => {
+                self.use_lists(ctx, frame, *strategy, lists, |_| Ok(()))?;
+                Ok(lists.borrow().clone())
+            }
+        }
     }
 }
 

@@ -10,6 +10,7 @@
 //! culling, and no frame waits for a count between culling and shading.
 use crate::buffers::output;
 use crate::context::{GpuContext, GpuError};
+use crate::cull_frame::CullFrame;
 use crate::gpu_lists::GpuLightLists;
 use std::sync::atomic::{AtomicU32, Ordering};
 use std::sync::Arc;
@@ -36,29 +37,40 @@ impl ListRoom {
         Self::default()
     }
 
-    /// Entries of `T` in the next buffer for a frame of `pixels` pixels whose lists cannot
-    /// exceed `most` entries: what the most demanding earlier frame needed with a quarter
-    /// more, before any frame [`FIRST_ROOM`]; never more than `most` or the storage-binding
-    /// limit allows, never less than an earlier frame's total.
-    pub fn entries<T>(&self, ctx: &GpuContext, pixels: u32, most: u64) -> u32 {
+    /// Entries of `T` in the next buffer for `frame`'s lists, `lists_per_subregion` in each
+    /// of its K² subregions: what the most demanding earlier frame needed with a quarter
+    /// more, before any frame [`FIRST_ROOM`] or one per pixel; never more than the lists can
+    /// hold ([`most_entries`]) or the storage-binding limit allows, never less than an
+    /// earlier frame's total.
+    pub fn entries<T>(&self, ctx: &GpuContext, frame: &CullFrame, lists_per_subregion: u64) -> u32 {
         let size = std::mem::size_of::<T>().max(1) as u64;
+        let most = most_entries(lists_per_subregion, frame.vpls.capacity());
         let limit = (ctx.limits.max_storage_buffer_binding_size / size).min(most);
+        let pixels = u64::from(frame.width) * u64::from(frame.height);
         room(self.needed.load(Ordering::Relaxed), pixels, limit)
     }
 
-    /// A zeroed list buffer of [`Self::entries`] `u32`s and the entries it holds (what the
-    /// write kernels' `arrayLength` sees: at least the smallest binding).
-    pub fn buffer(
-        &self,
+    /// A zeroed list buffer of [`Self::entries`] `u32`s for `frame`'s lists, and the
+    /// [`ListWrite`] that reads their total from `status` (the fault record their scan
+    /// fills) and reports it to this room.
+    pub(crate) fn buffer(
+        self: &Arc<Self>,
         ctx: &GpuContext,
+        frame: &CullFrame,
         label: &str,
-        pixels: u32,
-        most: u64,
-    ) -> Result<(wgpu::Buffer, u32), GpuError> {
-        let entries = self.entries::<u32>(ctx, pixels, most);
+        lists_per_subregion: u64,
+        status: &wgpu::Buffer,
+    ) -> Result<(wgpu::Buffer, ListWrite), GpuError> {
+        let entries = self.entries::<u32>(ctx, frame, lists_per_subregion);
         let buffer = output::<u32>(ctx, label, entries as usize)?;
-        let held = u32::try_from(buffer.size() / 4).unwrap_or(u32::MAX);
-        Ok((buffer, held))
+        let write = ListWrite {
+            status: status.clone(),
+            // What the write kernels' `arrayLength` sees: at least the smallest binding.
+            held: u32::try_from(buffer.size() / 4).unwrap_or(u32::MAX),
+            room: Arc::clone(self),
+            width: frame.width,
+        };
+        Ok((buffer, write))
     }
 
     /// Records that a frame's lists needed `total` entries.
@@ -75,10 +87,10 @@ impl ListRoom {
 
 /// [`ListRoom::entries`] for `needed` (0: nothing learnt yet), at most `limit` unless an
 /// earlier frame needed more (then its allocation is refused as too large).
-fn room(needed: u32, pixels: u32, limit: u64) -> u32 {
+fn room(needed: u32, pixels: u64, limit: u64) -> u32 {
     let limit = limit.min(u64::from(u32::MAX));
     match u64::from(needed) {
-        0 => FIRST_ROOM.max(u64::from(pixels)).min(limit) as u32,
+        0 => FIRST_ROOM.max(pixels).min(limit) as u32,
         n => (n + n / 4).min(limit).max(n) as u32,
     }
 }
@@ -86,7 +98,7 @@ fn room(needed: u32, pixels: u32, limit: u64) -> u32 {
 /// The most entries lists can hold: each lists only VPLs of its own subregion, so with
 /// `lists_per_subregion` lists in each of the K² subregions they hold at most that many
 /// times the frame's VPLs (`vpls`, the count's capacity).
-pub(crate) fn most_entries(lists_per_subregion: u64, vpls: usize) -> u64 {
+fn most_entries(lists_per_subregion: u64, vpls: usize) -> u64 {
     lists_per_subregion.saturating_mul(vpls as u64)
 }
 
@@ -146,6 +158,7 @@ mod tests {
         assert_eq!(room(0, 640 * 360, u64::MAX), 1 << 20);
         assert_eq!(room(0, 1920 * 1080, u64::MAX), 1920 * 1080);
         assert_eq!(room(0, 1920 * 1080, 5_000), 5_000);
+        assert_eq!(room(0, 1 << 40, u64::MAX), u32::MAX);
         assert_eq!(room(0, 0, 0), 0);
         // After: a quarter more than the most a frame needed, within the bound and the
         // binding limit, but never less than that total (its allocation then fails loudly).

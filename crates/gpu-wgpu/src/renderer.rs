@@ -45,7 +45,7 @@ use slc_core::{
 };
 use slc_cpu_ref::{CpuFrames, CpuPrepared, Tracer};
 use std::borrow::Cow;
-use std::cell::OnceCell;
+use std::cell::{OnceCell, RefCell};
 use std::collections::BTreeMap;
 use std::sync::Arc;
 
@@ -366,7 +366,7 @@ impl Renderer for GpuRenderer {
                 self.culler.prepare_frame(&self.ctx, &frame, strategy)
             } else {
                 let lists = self.culler.cull_frame(&self.ctx, &frame, strategy)?;
-                Ok(FrameLists::Lists(lists, strategy))
+                Ok(FrameLists::Lists(RefCell::new(lists), strategy))
             }
         })
     }
@@ -398,19 +398,19 @@ impl Renderer for GpuRenderer {
                 .shade(&self.ctx, &frame, samples, nodes),
             // The lists' totals are read after the shading; lists that outgrew their buffer
             // are culled again and shaded again (`list_room`).
-            FrameLists::Lists(lists, strategy) => self
-                .culler
-                .use_lists(&self.ctx, &frame, *strategy, lists.clone(), |l| {
-                    self.shader.shade_gpu_gbuffer_on_gpu(
-                        &self.ctx,
-                        &p.gbuffer,
-                        &p.vpls,
-                        delta,
-                        interleaving,
-                        l,
-                    )
-                })
-                .map(|(image, _)| image),
+            FrameLists::Lists(lists, strategy) => {
+                self.culler
+                    .use_lists(&self.ctx, &frame, *strategy, lists, |l| {
+                        self.shader.shade_gpu_gbuffer_on_gpu(
+                            &self.ctx,
+                            &p.gbuffer,
+                            &p.vpls,
+                            delta,
+                            interleaving,
+                            l,
+                        )
+                    })
+            }
         })?;
         // One dispatch shades every pixel: they are done together.
         progress(u64::from(p.gbuffer.width) * u64::from(p.gbuffer.height));

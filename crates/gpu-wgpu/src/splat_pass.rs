@@ -19,7 +19,7 @@ use crate::cull_frame::{read_status, CullFrame};
 use crate::cull_types::GpuRasterParams;
 use crate::gpu_lists::GpuLightLists;
 use crate::gpu_types::GpuCullStatus;
-use crate::list_room::{most_entries, ListRoom};
+use crate::list_room::ListRoom;
 use crate::node_lists::NodeLists;
 use crate::raster_draw::{atlas, bind, render_pipeline, SubregionDraws};
 use crate::shade_pass::vpl_eval_source;
@@ -243,11 +243,11 @@ impl Splatter {
         // The faults of the culling passes (a sample behind the camera, a bound beyond f32).
         read_status(ctx, &tiles.status, frame.width)?;
         loop {
+            // One list per pixel.
             let k = frame.interleaving.k;
             let per_subregion =
                 u64::from(frame.width.div_ceil(k)) * u64::from(frame.height.div_ceil(k));
-            let most = most_entries(per_subregion, frame.vpls.capacity());
-            let capacity = self.room.entries::<[u32; 2]>(ctx, tiles.pixels, most);
+            let capacity = self.room.entries::<[u32; 2]>(ctx, frame, per_subregion);
             let params = self.params(frame, tiles, capacity);
             let nodes = NodeLists::new(ctx, tiles.pixels, capacity)?;
             let status = upload(ctx, "splat list status", &[GpuCullStatus::CLEAR])?;

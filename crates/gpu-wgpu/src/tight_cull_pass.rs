@@ -16,7 +16,7 @@ use crate::cull_frame::{cull_params, tile_grid, CullFrame};
 use crate::cull_types::GpuTightParams;
 use crate::gpu_lists::GpuLightLists;
 use crate::gpu_types::{GpuCullParams, GpuCullStatus, CULL_COUNT, CULL_WRITE};
-use crate::list_room::{most_entries, ListRoom, ListWrite};
+use crate::list_room::ListRoom;
 use crate::scan_pass::ScanPass;
 use slc_cull::CullView;
 use std::sync::Arc;
@@ -105,10 +105,9 @@ impl TightRefiner {
         let status = upload(ctx, "tight cull status", &[GpuCullStatus::CLEAR])?;
         let per_subregion =
             u64::from(BLOCKS_PER_TILE * slots) * u64::from(tiles.0) * u64::from(tiles.1);
-        let most = most_entries(per_subregion, frame.vpls.capacity());
-        let (lists, held) = self
-            .room
-            .buffer(ctx, "tight light lists", base.pixels, most)?;
+        let (lists, write) =
+            self.room
+                .buffer(ctx, frame, "tight light lists", per_subregion, &status)?;
         ctx.submit("tight cull", |encoder| {
             for mode in [CULL_COUNT, CULL_WRITE] {
                 let at = std::mem::offset_of!(GpuCullParams, vpl_count);
@@ -141,19 +140,15 @@ impl TightRefiner {
             }
             Ok(())
         })?;
+        let entries = write.held;
         let mut writes = base.writes;
-        writes.push(ListWrite {
-            status,
-            held,
-            room: Arc::clone(&self.room),
-            width: frame.width,
-        });
+        writes.push(write);
         Ok(GpuLightLists {
             offsets,
             indices: lists,
             pixel_list: base.pixel_list,
             list_count,
-            entries: held,
+            entries,
             pixels: base.pixels,
             writes,
         })

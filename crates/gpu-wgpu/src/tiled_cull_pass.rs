@@ -22,7 +22,7 @@ use crate::cull_frame::{check_input, cull_params, tile_grid, CullFrame, CullSize
 use crate::gpu_lists::GpuLightLists;
 use crate::gpu_lists::{no_lists, read_lists};
 use crate::gpu_types::{GpuCullParams, GpuCullStatus, GpuTileFrusta, CULL_COUNT, CULL_WRITE};
-use crate::list_room::{most_entries, settled, ListRoom, ListWrite};
+use crate::list_room::{settled, ListRoom};
 use crate::partition_pass::PartitionPass;
 use crate::scan_pass::ScanPass;
 use crate::tight_cull_pass::{BaseLayout, TightRefiner};
@@ -215,8 +215,9 @@ impl TiledCuller {
         let offsets = output::<u32>(ctx, "list offsets", lists_count as usize + 1)?;
         let p = &tiles.params;
         let per_subregion = 2 * u64::from(p.tiles_x) * u64::from(p.tiles_y);
-        let most = most_entries(per_subregion, frame.vpls.capacity());
-        let (entries, held) = self.room.buffer(ctx, "light lists", tiles.pixels, most)?;
+        let (entries, write) =
+            self.room
+                .buffer(ctx, frame, "light lists", per_subregion, &tiles.status)?;
         ctx.submit("tiled cull", |encoder| {
             for mode in [CULL_COUNT, CULL_WRITE] {
                 let params = tiles.bounds.count.uniform(
@@ -255,14 +256,9 @@ impl TiledCuller {
             indices: entries,
             pixel_list: tiles.pixel_list.clone(),
             list_count: lists_count,
-            entries: held,
+            entries: write.held,
             pixels: tiles.pixels,
-            writes: vec![ListWrite {
-                status: tiles.status.clone(),
-                held,
-                room: Arc::clone(&self.room),
-                width: frame.width,
-            }],
+            writes: vec![write],
         };
         if tiles.glossy != GlossyBound::Tight {
             return Ok(lists);

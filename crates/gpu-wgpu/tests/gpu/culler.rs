@@ -8,6 +8,7 @@ use slc_gpu_wgpu::cull_frame::CullFrame;
 use slc_gpu_wgpu::culler::GpuCuller;
 use slc_gpu_wgpu::gpu_lists::read_lists;
 use slc_gpu_wgpu::shade_pass::ShadePass;
+use std::cell::RefCell;
 
 /// The built-in default scene and its camera.
 fn default_scene() -> (slc_core::Scene, slc_core::Camera) {
@@ -146,14 +147,15 @@ fn outgrown_lists_are_refused_or_culled_again() {
             "{strategy}"
         );
         culler.set_list_room(1);
-        let cramped = culler.cull_frame(&ctx, &frame, strategy).unwrap();
+        let cramped = RefCell::new(culler.cull_frame(&ctx, &frame, strategy).unwrap());
         let mut used = 0;
-        let (read, settled) = culler
-            .use_lists(&ctx, &frame, strategy, cramped, |lists| {
+        let read = culler
+            .use_lists(&ctx, &frame, strategy, &cramped, |lists| {
                 used += 1;
                 Ok(lists.entries)
             })
             .unwrap();
+        let settled = cramped.into_inner();
         assert_eq!(used, uses, "{strategy}");
         assert_eq!(read, settled.entries, "{strategy}");
         assert_eq!(read_lists(&ctx, &settled).unwrap(), roomy, "{strategy}");
