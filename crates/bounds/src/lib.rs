@@ -65,6 +65,9 @@ pub mod fresnel;
 pub mod frustum;
 pub mod ggx;
 pub mod glossy;
+pub mod lanes;
+#[cfg(target_arch = "x86_64")]
+pub mod lanes_avx;
 pub mod sg;
 pub mod shading_normal;
 pub mod sphere;

@@ -2,14 +2,14 @@
 //! where the roulette accepted it ([`Passing`]), the weighted contribution
 //! f(x; ωl, ωo) I(ω) cos θx / (l² p) of eq. (1) and (3) with the receiver's BRDF (eq. 6-8),
 //! as [`crate::vpl_shading::received`] forms it. Each lane performs the shader's IEEE
-//! operations in the same order ([`slc_cull::lanes`]), so the two agree bit for bit. Lanes
+//! operations in the same order ([`slc_bounds::lanes`]), so the two agree bit for bit. Lanes
 //! this does not model (an anisotropic receiver, a dielectric one, or a half vector the shader
 //! forms in f64) are left to the scalar shader.
 use core::f32::consts::FRAC_1_PI;
+use slc_bounds::lanes::{dot, max, Lanes8, F8};
 use slc_bounds::{Fresnel, StochasticParams};
 use slc_core::GSample;
 use slc_cull::ggx_lanes::{g1_over_cos, HalfVector};
-use slc_cull::lanes::{dot, max, Lanes8, F8};
 use slc_cull::receiver_chunks::Passing;
 
 /// The BRDF inputs of eight receivers (lane k: receiver k of a chunk of
@@ -114,7 +114,7 @@ fn received_avx2(
     params: &StochasticParams,
     out: &mut [F8; 3],
 ) -> u8 {
-    use slc_cull::lanes_avx::A8;
+    use slc_bounds::lanes_avx::A8;
     let (c, formed) = received::<A8>(brdfs, load3(omega), A8::load(l2), load3(intensity), params);
     *out = [c[0].store(), c[1].store(), c[2].store()];
     A8::bits(formed)

@@ -8,11 +8,11 @@
 //! pair they pass is rejected by the roulette. And the receivers' BRDF formed eight pairs at a
 //! time (`slc_cpu_ref::received_lanes`) equals the scalar shader's bit for bit.
 use glam::Vec3;
+use slc_bounds::lanes::F8;
 use slc_bounds::{scalar_intensity, Anisotropy, Brdf, Fresnel, StochasticParams};
 use slc_core::{GSample, Vpl, VplLobe};
 use slc_cpu_ref::received_lanes::{received_pairs, ReceiverBrdfs};
 use slc_cpu_ref::vpl_shading::{received, vpl_contribution};
-use slc_cull::lanes::F8;
 use slc_cull::{ReachChunks, ReceiverChunks, VplReach};
 
 /// xorshift64*, uniform floats in [0, 1).

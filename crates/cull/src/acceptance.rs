@@ -18,8 +18,8 @@
 //!   (`slc_bounds::anisotropy`) always passes where ωo·n > 0; its own bound (`reach`) still
 //!   applies.
 use crate::ggx_lanes::{g1_over_cos, HalfVector};
-use crate::lanes::{dot, max, Lanes8, Real, F8, M8};
 use core::f32::consts::FRAC_1_PI;
+use slc_bounds::lanes::{dot, max, Lanes8, Real, F8, M8};
 use slc_bounds::{ggx, Fresnel, StochasticParams};
 use slc_core::{Vpl, VplLobe};
 

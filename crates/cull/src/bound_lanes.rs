@@ -21,9 +21,9 @@
 //!   infinity, and then rejects a gap the exact test rejects too); any NaN met on the way
 //!   turns a gap into 0, which keeps the lane.
 use crate::frusta::TileFrusta;
-use crate::lanes::{max, min, Lanes8, F8};
 use crate::vpl_bounds::{ViewEllipsoid, ViewSphere};
 use glam::DVec3;
+use slc_bounds::lanes::{max, min, Lanes8, F8};
 
 /// How far a gap is lowered, relative to the largest magnitude in its lane: 64 ε (2⁻¹⁷),
 /// about 13 times the rounding a gap can accumulate.
@@ -165,7 +165,7 @@ fn candidates<C: Chunks + ?Sized>(chunks: &C, tile: &TileLanes, out: &mut Vec<u8
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2")]
 fn candidates_avx2<C: Chunks + ?Sized>(chunks: &C, tile: &TileLanes, out: &mut Vec<u8>) {
-    chunks.test::<crate::lanes_avx::A8>(tile, out);
+    chunks.test::<slc_bounds::lanes_avx::A8>(tile, out);
 }
 
 /// The lowered gap of one axis: the distance from `c` to [lo, hi], less `e`, at least 0.

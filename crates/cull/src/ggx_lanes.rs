@@ -1,9 +1,9 @@
-//! The GGX microfacet terms of paper eq. (6)-(8) in lanes ([`crate::lanes`]), shared by the
+//! The GGX microfacet terms of paper eq. (6)-(8) in lanes ([`slc_bounds::lanes`]), shared by the
 //! roulette (the VPL's lobe, [`crate::acceptance`]) and the shading of the receivers' BRDF:
 //! each lane performs the IEEE operations of `slc_bounds::brdf::microfacet` (isotropic, the
 //! half vector formed in f32) in the same order, so the two agree bit for bit there.
-use crate::lanes::{clamp01, cross, dot, max, Real};
 use core::f32::consts::PI;
+use slc_bounds::lanes::{clamp01, cross, dot, max, Real};
 
 /// `ggx::g1_over_cos` of eq. (8), `2 / (c + sqrt((1 − α²) c² + α²))`, for a cosine c > 0
 /// (the scalar takes |c|; every caller has already required c > 0 where the value is used).

@@ -77,9 +77,6 @@ mod bound_lanes;
 mod depth;
 mod frusta;
 pub mod ggx_lanes;
-pub mod lanes;
-#[cfg(target_arch = "x86_64")]
-pub mod lanes_avx;
 mod lists;
 pub mod metrics;
 mod par;

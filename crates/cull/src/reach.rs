@@ -6,9 +6,9 @@
 //! rejects a pair that the full evaluation accepts: the estimate stays bit for bit the same,
 //! only cheaper.
 use crate::acceptance::Acceptance;
-use crate::lanes::{dot, Lanes8, Real, F8};
 use crate::vpl_bounds::{GlossyBound, LocalBound};
 use glam::{DMat3, DVec3, Vec3};
+use slc_bounds::lanes::{dot, Lanes8, Real, F8};
 use slc_bounds::StochasticParams;
 use slc_core::{CullError, Vpl, VplLobe};
 
@@ -18,7 +18,7 @@ use slc_core::{CullError, Vpl, VplLobe};
 /// unit normals), so the sign cannot flip within the margin.
 pub const SIGN_MARGIN: f32 = 1e-5;
 
-/// One VPL's early exits in lanes of `R` (see [`crate::lanes`]): its normal n, and its own
+/// One VPL's early exits in lanes of `R` (see [`slc_bounds::lanes`]): its normal n, and its own
 /// bound as a stretch S and centre S·(c − q) with the bound the unit ball of S d − S·(c − q)
 /// (the spheroid of eq. 12-15: S = diag(1/r) Rᵀ; the section-6 sphere: S = I/r), and the limit
 /// that |S d − S·(c − q)|² may reach: 1 plus a margin above the f32 rounding of the test.

@@ -6,9 +6,9 @@
 //! (p > ξ, [`crate::acceptance`]) is evaluated for a chunk only when one of its lanes
 //! passes the bound and sign tests.
 use crate::acceptance::Acceptance;
-use crate::lanes::{Lanes8, Real, F8};
 use crate::reach::{Reach, VplReach};
 use glam::Vec3;
+use slc_bounds::lanes::{Lanes8, Real, F8};
 use slc_core::Vpl;
 
 /// Eight VPLs: their positions q, their early exits and their indices. Lanes past the end of
@@ -142,7 +142,7 @@ fn passing(c: &Chunk, x: Vec3, normal: Option<Vec3>) -> u8 {
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2")]
 fn passing_avx2(c: &Chunk, x: Vec3, normal: Option<Vec3>) -> u8 {
-    passing_lanes::<crate::lanes_avx::A8>(c, x, normal)
+    passing_lanes::<slc_bounds::lanes_avx::A8>(c, x, normal)
 }
 
 #[inline(always)]

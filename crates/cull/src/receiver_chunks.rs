@@ -10,9 +10,9 @@
 //! each VPL tested only against the sets it is listed for: the lists of a tile share their
 //! chunks, which stay full however short each list is.
 use crate::acceptance::Acceptance;
-use crate::lanes::{Lanes8, Real, F8};
 use crate::reach::{Reach, VplReach};
 use glam::Vec3;
+use slc_bounds::lanes::{Lanes8, Real, F8};
 
 /// Most receiver sets a [`ReceiverChunks`] holds: the bits of a `u32` membership mask.
 pub const MAX_SETS: usize = 32;
@@ -244,7 +244,7 @@ fn passing_avx2(
     normals: bool,
     passing: &mut Vec<Passing>,
 ) {
-    passing_in::<crate::lanes_avx::A8>(receivers, reach, members, normals, passing);
+    passing_in::<slc_bounds::lanes_avx::A8>(receivers, reach, members, normals, passing);
 }
 
 /// [`ReceiverChunks::passing_sets`] in lanes of `L`: each VPL first against the box of the

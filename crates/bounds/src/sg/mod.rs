@@ -14,8 +14,9 @@
 //!   `∫ L_in(ω) max(ω·n, 0) dω` for an SG light, clamped at the horizon (Hill's fit with exact
 //!   limits), and [`SpecularLobeSg`], its GGX specular lobe for a view direction (an SG through the
 //!   true lobe's peak with its integral, [`SpecularFit`], tabulated by quadrature), combined by [`SgSurface`] into the analytic shading of VSGL eq. (2)
-//!   with the incoming radiance of eq. (5); the same shading in `f32` for inner loops
-//!   ([`SgSurface::radiance_f32`], `single.rs`, the forms of the GPU's `sg.wgsl`).
+//!   with the incoming radiance of eq. (5); the same shading in `f32` for inner loops, one
+//!   light or eight per vector ([`SgLanes`], [`SgSurface::radiance_lanes`], `single.rs`, the
+//!   forms of the GPU's `sg.wgsl`).
 mod cosine;
 mod integral;
 mod irradiance;
@@ -35,7 +36,7 @@ pub use integral::sg_integral;
 pub use irradiance::normalized_sg_irradiance;
 pub use lobe::SphericalGaussian;
 pub use shading::SgSurface;
-pub use single::IrradianceFit;
+pub use single::{finite, splat3, IrradianceFit, SgLanes};
 pub use specular::{ggx_ndf_sg, SpecularLobeSg};
 pub use specular_fit::{
     fit_lobe, table_node, SpecularFit, ALPHA_STEPS, TABLE_MIN_ALPHA, TABLE_MIN_COS, VIEW_STEPS,

@@ -13,7 +13,7 @@ use glam::Vec3;
 /// this one.
 const MIN_COS_O: f32 = TABLE_MIN_COS as f32;
 
-/// The GGX NDF of the BRDF (eq. 7 of the stochastic-light-culling paper, [`ggx::d`]) as an SG
+/// The GGX NDF of the BRDF (eq. 7 of the stochastic-light-culling paper, [`crate::ggx::d`]) as an SG
 /// over half vectors, `D(h) ≈ 1/(πα²) G(h; n, 2/α²)`: the peak value of D and, for small α,
 /// the unit projected area `∫ D(h) (h·n) dh = 1` (Wang et al. 2009 fit the Cook-Torrance NDF the
 /// same way; this is its GGX form as in Pettineo's "SG Series Part 4"). Fails for a non-unit

@@ -1,10 +1,11 @@
 //! The optional bidirectional importance of VSGL section 4.3: VSGLs generated on the camera's
 //! G-buffer estimate how much each RSM texel's VPLs reach the image.
+use super::emitter::Emitter;
+use super::emitter_lanes::EmitterChunks;
 use super::error::VsglError;
 use super::importance::ImportanceMap;
 use super::mip::MipRsm;
 use super::sampling::{sample_points, FilteredSampler, Footprint, SampleSet};
-use super::shading::Emitter;
 use super::sums::ClusterSums;
 use crate::rsm::{Rsm, RsmTexel};
 use glam::Vec3;
@@ -81,6 +82,7 @@ pub fn bidirectional_importance(
             Emitter::new(&v.scaled(s.weight as f32), diffuse)
         })
         .collect::<Result<Vec<Emitter>, VsglError>>()?;
+    let vsgls = EmitterChunks::new(&vsgls);
     // (view, flux) masses per texel of every map.
     let masses = maps
         .iter()
@@ -124,13 +126,11 @@ pub fn bidirectional_importance(
 
 /// The view importance (the texel's flux times the radiance the camera VSGLs send it, RGB
 /// total) and the flux importance of one texel.
-fn texel_masses(t: &RsmTexel, vsgls: &[Emitter]) -> Result<(f64, f64), VsglError> {
+fn texel_masses(t: &RsmTexel, vsgls: &EmitterChunks) -> Result<(f64, f64), VsglError> {
     let flux = ClusterSums::from_texel(t, MeanMap::Toksvig)?.weight();
     let surface = SgSurface::new(t.normal, t.omega_i, &t.brdf)?;
     let mut radiance = Vec3::ZERO;
-    for v in vsgls {
-        radiance += v.radiance(&surface, t.position)?;
-    }
+    vsgls.each_radiance(&surface, t.position, |_, c| radiance += c)?;
     let view = f64::from((t.flux * radiance).element_sum());
     Ok((view, flux))
 }

@@ -21,6 +21,8 @@
 //! - [`bidirectional_importance`]: the optional importance of section 4.3, estimated with
 //!   VSGLs generated on the G-buffer ([`camera_rsm`]).
 mod bidirectional;
+mod emitter;
+mod emitter_lanes;
 mod error;
 mod importance;
 mod light;

@@ -92,7 +92,7 @@ const MIN_FOOTPRINT_COS: f64 = 0.01;
 
 /// The positional variance of the surface patch an RSM texel stands for: its beam's square
 /// cross-section `a²` ([`RsmTexel::cross_section`]) meets the surface at the cosine
-/// `c = |n_g · ω_i|` (at least [`MIN_FOOTPRINT_COS`]), a rectangle of sides `a` and `a/c`,
+/// `c = |n_g · ω_i|` (at least `MIN_FOOTPRINT_COS`), a rectangle of sides `a` and `a/c`,
 /// whose uniform distribution has the variance `(a² + a²/c²)/12` (the sum of `side²/12` over
 /// its two axes).
 pub fn footprint_variance(texel: &RsmTexel) -> f64 {

@@ -10,10 +10,11 @@
 //! where either side is NaN), so a lane agrees bit for bit with the scalar code.
 use crate::lanes::{Lanes8, Real, F8, M8};
 use core::arch::x86_64::{
-    __m256, _mm256_add_ps, _mm256_and_ps, _mm256_blendv_ps, _mm256_castsi256_ps, _mm256_cmp_ps,
-    _mm256_div_ps, _mm256_load_ps, _mm256_movemask_ps, _mm256_mul_ps, _mm256_or_ps,
-    _mm256_set1_epi32, _mm256_set1_ps, _mm256_sqrt_ps, _mm256_store_ps, _mm256_sub_ps,
-    _mm256_xor_ps, _CMP_GT_OQ, _CMP_LE_OQ,
+    __m256, _mm256_add_epi32, _mm256_add_ps, _mm256_and_ps, _mm256_blendv_ps, _mm256_castsi256_ps,
+    _mm256_cmp_ps, _mm256_cvttps_epi32, _mm256_div_ps, _mm256_floor_ps, _mm256_load_ps,
+    _mm256_movemask_ps, _mm256_mul_ps, _mm256_or_ps, _mm256_round_ps, _mm256_set1_epi32,
+    _mm256_set1_ps, _mm256_slli_epi32, _mm256_sqrt_ps, _mm256_store_ps, _mm256_sub_ps,
+    _mm256_xor_ps, _CMP_GT_OQ, _CMP_LE_OQ, _MM_FROUND_NO_EXC, _MM_FROUND_TO_NEAREST_INT,
 };
 use core::fmt::{self, Debug};
 use core::ops::{Add, BitAnd, BitOr, Div, Mul, Neg, Not, Sub};
@@ -109,6 +110,30 @@ impl Real for A8 {
     fn select(mask: AM8, a: Self, b: Self) -> Self {
         A8(unsafe { _mm256_blendv_ps(b.0, a.0, mask.0) })
     }
+    #[inline(always)]
+    fn round(self) -> Self {
+        A8(unsafe { _mm256_round_ps::<{ _MM_FROUND_TO_NEAREST_INT | _MM_FROUND_NO_EXC }>(self.0) })
+    }
+    #[inline(always)]
+    fn floor(self) -> Self {
+        A8(unsafe { _mm256_floor_ps(self.0) })
+    }
+    #[inline(always)]
+    fn exp2i(self) -> Self {
+        // The integral values convert exactly; AVX2 for the 256-bit integer add and shift.
+        A8(unsafe {
+            let n = _mm256_add_epi32(_mm256_cvttps_epi32(self.0), _mm256_set1_epi32(127));
+            _mm256_castsi256_ps(_mm256_slli_epi32::<23>(n))
+        })
+    }
+    #[inline(always)]
+    fn all(mask: AM8) -> bool {
+        <A8 as Lanes8>::bits(mask) == u8::MAX
+    }
+    #[inline(always)]
+    fn any(mask: AM8) -> bool {
+        <A8 as Lanes8>::bits(mask) != 0
+    }
 }
 
 impl Lanes8 for A8 {
@@ -141,10 +166,21 @@ mod tests {
     /// Every operation of both lane types on `a` and `b`, as bit patterns.
     fn each<L: Lanes8>(a: F8, b: F8, out: impl Fn(L) -> F8) -> Vec<u32> {
         let (x, y) = (L::load(&a), L::load(&b));
-        let mut v: Vec<F8> = [x + y, x - y, x * y, x / y, -x, x.sqrt()]
-            .into_iter()
-            .map(&out)
-            .collect();
+        let mut v: Vec<F8> = [
+            x + y,
+            x - y,
+            x * y,
+            x / y,
+            -x,
+            x.sqrt(),
+            x.round(),
+            x.floor(),
+            crate::lanes::exp(x),
+            crate::lanes::exp(x * L::splat(1e-37)),
+        ]
+        .into_iter()
+        .map(&out)
+        .collect();
         let m = x.gt(y);
         v.push(out(L::select(m, x, y)));
         v.push(out(L::select(!m | x.le(y), x, y)));
