@@ -194,11 +194,15 @@ fn hill_y<R: Real>(x: R, mu: R) -> R {
 
 /// What `E(λ, μ)` needs of λ alone, for many cosines μ with one sharpness (a VSGL's diffuse
 /// lobe against every receiver): the Langevin mean length `L(λ)`, Hill's `x = √(1 − L)` and the
-/// away-facing `b(λ)`. One sharpness per lane of `R`.
+/// away-facing `b(λ)`. One sharpness per lane of `R`; the fields are public so that fits made
+/// one at a time can be packed into lanes.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct IrradianceFit<R = f32> {
+    /// `L(λ)`.
     pub mean: R,
+    /// `x = √(1 − L(λ))`.
     pub x: R,
+    /// `b(λ)`.
     pub away: R,
 }
 
