@@ -32,6 +32,22 @@ struct Vsgl {
     specular_lobe: vec4<f32>,
 }
 
+// slc_bounds::sg::GGX_MIXTURE and MIXTURE_FROM (crates/bounds/src/sg/mixture.rs; a test of
+// src/vsgl_shade_pass.rs holds these to them): the sharpness scale and weight of the three SGs
+// that stand for a specular lobe of sharpness MIXTURE_FROM or more (GGX's tails).
+const GGX_MIXTURE = array<vec2<f32>, 3>(vec2<f32>(2.254, 0.7082), vec2<f32>(0.5566, 0.2742), vec2<f32>(0.09101, 0.01758));
+const MIXTURE_FROM: f32 = 3.0;
+
+// slc_bounds::sg::mixture_scale: A(l) / sum_k w_k A(c_k l), so that the mixture has the
+// lobe's integral.
+fn mixture_scale(l: f32) -> f32 {
+    var sum = 0.0;
+    for (var m = 0u; m < 3u; m++) {
+        sum += GGX_MIXTURE[m].y * sg_integral(GGX_MIXTURE[m].x * l);
+    }
+    return sg_integral(l) / sum;
+}
+
 // The radiance VSGL e reflects at the receiver at x (xyz); w = 1 when its positional SG
 // (lambda_sigma) or an SG product left f32, where the CPU fails with an overflow. The lobe
 // loop sets a flag rather than returning: an exit from inside the loop measured 1.7x slower
@@ -59,12 +75,25 @@ fn vsgl_contribution(surface: Surface, x: vec3<f32>, e: Vsgl) -> vec4<f32> {
         if all(c == vec3<f32>(0.0)) || (clamped && k == 0u) {
             continue;
         }
-        let emitted = Sg(lobes[k].xyz, lobes[k].w, 1.0);
-        let light = sg_product(emitted, position);
-        if !(sg_finite(light.sharpness) && sg_finite(light.amplitude)) {
-            overflow = 1.0;
+        // The specular lobe as GGX's mixture (slc_bounds::sg::ggx_mixture).
+        let lambda = lobes[k].w;
+        var count = 1u;
+        var s = 1.0;
+        if k == 1u && lambda >= MIXTURE_FROM {
+            count = 3u;
+            s = mixture_scale(lambda);
         }
-        radiance += c * surface_radiance(surface, light);
+        for (var m = 0u; m < count; m++) {
+            var emitted = Sg(lobes[k].xyz, lambda, 1.0);
+            if count == 3u {
+                emitted = Sg(lobes[k].xyz, GGX_MIXTURE[m].x * lambda, GGX_MIXTURE[m].y * s);
+            }
+            let light = sg_product(emitted, position);
+            if !(sg_finite(light.sharpness) && sg_finite(light.amplitude)) {
+                overflow = 1.0;
+            }
+            radiance += c * surface_radiance(surface, light);
+        }
     }
     // The clamped-cosine diffuse intensity (DiffuseEmission::ClampedCosine): the
     // peak times the vMF-convolved clamped cosine towards the receiver (a quarter

@@ -308,3 +308,28 @@ impl VsglShadePass {
         Ok((out, state.lights()?))
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use slc_bounds::sg::{GGX_MIXTURE, MIXTURE_FROM};
+
+    /// The WGSL mixture is the Rust one.
+    #[test]
+    fn wgsl_declares_the_rust_mixture() {
+        let wgsl = include_str!("../shaders/vsgl_light.wgsl");
+        let sgs: Vec<String> = GGX_MIXTURE
+            .iter()
+            .map(|m| format!("vec2<f32>({:?}, {:?})", m.sharpness_scale, m.weight))
+            .collect();
+        for line in [
+            format!(
+                "const GGX_MIXTURE = array<vec2<f32>, {}>({});",
+                GGX_MIXTURE.len(),
+                sgs.join(", ")
+            ),
+            format!("const MIXTURE_FROM: f32 = {MIXTURE_FROM:?};"),
+        ] {
+            assert!(wgsl.lines().any(|l| l == line), "missing: {line}");
+        }
+    }
+}

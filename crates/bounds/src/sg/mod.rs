@@ -21,6 +21,7 @@ mod cosine;
 mod integral;
 mod irradiance;
 mod lobe;
+mod mixture;
 mod product;
 #[cfg(test)]
 mod quadrature;
@@ -35,6 +36,7 @@ pub use cosine::{clamped_cosine_sg, COSINE_LOBE_AMPLITUDE, COSINE_LOBE_SHARPNESS
 pub use integral::sg_integral;
 pub use irradiance::normalized_sg_irradiance;
 pub use lobe::SphericalGaussian;
+pub use mixture::{ggx_mixture, mixture_scale, MixtureSg, GGX_MIXTURE, MIXTURE_FROM};
 pub use shading::SgSurface;
 pub use single::{finite, splat3, IrradianceFit, SgLanes};
 pub use specular::{ggx_ndf_sg, SpecularLobeSg};

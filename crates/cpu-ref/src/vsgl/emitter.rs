@@ -6,8 +6,8 @@ use super::light::Vsgl;
 use core::f32::consts::{FRAC_1_PI, TAU};
 use glam::Vec3;
 use slc_bounds::lanes::{dot, Real};
-use slc_bounds::sg::{finite, sg_integral, splat3, IrradianceFit, SgLanes};
-use slc_bounds::{BoundsError, SgSurface};
+use slc_bounds::sg::{finite, ggx_mixture, sg_integral, splat3, IrradianceFit, SgLanes};
+use slc_bounds::{BoundsError, SgSurface, SphericalGaussian};
 use slc_core::frame::DiffuseEmission;
 
 /// One emitted SG lobe `c_v G(ω; −ξ_v, λ_v)` of eq. (5), and where it is present (a zero
@@ -33,15 +33,16 @@ pub(crate) struct ClampedDiffuse<R: Real> {
 
 /// A VSGL prepared for shading many receivers (one per lane of `R`): its position, the
 /// emitted SG lobes `G(ω; −ξ_v, λ_v)` of eq. (5) with their coefficients `c_v` (the SG
-/// diffuse lobe first, then the specular one) and the clamped diffuse intensity when it
-/// replaces the diffuse SG; `live` where the lane holds a VSGL.
+/// diffuse lobe first, then the specular one as the three SGs of its GGX profile,
+/// [`slc_bounds::sg::ggx_mixture`]) and the clamped diffuse intensity when it replaces the
+/// diffuse SG; `live` where the lane holds a VSGL.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct Emitter<R: Real = f32> {
     pub(crate) mu: [R; 3],
     pub(crate) sigma2: R,
     /// `1/(2πσ_v²)`, the coefficient of eq. (1) and (5).
     pub(crate) density: R,
-    pub(crate) lobes: [EmittedLobe<R>; 2],
+    pub(crate) lobes: [EmittedLobe<R>; 4],
     pub(crate) clamped: ClampedDiffuse<R>,
     pub(crate) live: R::Mask,
 }
@@ -63,7 +64,7 @@ impl Emitter {
             mu: [0.0; 3],
             sigma2: 1.0,
             density: 1.0,
-            lobes: [lobe; 2],
+            lobes: [lobe; 4],
             clamped: ClampedDiffuse {
                 peak: [0.0; 3],
                 normal: [0.0, 0.0, 1.0],
@@ -93,42 +94,35 @@ impl Emitter {
             live: true,
             ..Self::DARK
         };
-        let mut count = 0;
-        let sg_diffuse = diffuse == DiffuseEmission::Sg;
-        for (c, xi, lambda, as_sg) in [
-            (
-                vsgl.c_diffuse,
-                vsgl.xi_diffuse,
-                vsgl.lambda_diffuse,
-                sg_diffuse,
-            ),
-            (
-                vsgl.c_specular,
-                vsgl.xi_specular,
-                vsgl.lambda_specular,
-                true,
-            ),
-        ] {
-            if c == Vec3::ZERO {
-                continue;
-            }
-            if as_sg {
-                // I_v(−ω) ∝ G(−ω; ξ_v, λ_v) = G(ω; −ξ_v, λ_v): the light leaving μ_v towards x_p.
-                let lobe = slc_bounds::SphericalGaussian::new(-xi, lambda, 1.0)?;
-                e.lobes[count] = EmittedLobe {
-                    c: c.to_array(),
-                    lobe: SgLanes::splat(&lobe),
-                    present: true,
-                };
-                count += 1;
+        // I_v(−ω) ∝ G(−ω; ξ_v, λ_v) = G(ω; −ξ_v, λ_v): the light leaving μ_v towards x_p.
+        let emitted = |xi: Vec3, lambda| SphericalGaussian::new(-xi, lambda, 1.0);
+        let mut sgs = Vec::with_capacity(4);
+        if vsgl.c_diffuse != Vec3::ZERO {
+            if diffuse == DiffuseEmission::Sg {
+                sgs.push((
+                    vsgl.c_diffuse,
+                    emitted(vsgl.xi_diffuse, vsgl.lambda_diffuse)?,
+                ));
             } else {
                 e.clamped = ClampedDiffuse {
-                    peak: (c * (sg_integral(lambda) * FRAC_1_PI)).to_array(),
-                    normal: xi.to_array(),
+                    peak: (vsgl.c_diffuse * (sg_integral(vsgl.lambda_diffuse) * FRAC_1_PI))
+                        .to_array(),
+                    normal: vsgl.xi_diffuse.to_array(),
                     fit: IrradianceFit::new(vsgl.normal_concentration),
                     present: true,
                 };
             }
+        }
+        if vsgl.c_specular != Vec3::ZERO {
+            let lobe = emitted(vsgl.xi_specular, vsgl.lambda_specular)?;
+            sgs.extend(ggx_mixture(&lobe).map(|g| (vsgl.c_specular, g)));
+        }
+        for (slot, (c, lobe)) in e.lobes.iter_mut().zip(sgs) {
+            *slot = EmittedLobe {
+                c: c.to_array(),
+                lobe: SgLanes::splat(&lobe),
+                present: true,
+            };
         }
         Ok(e)
     }

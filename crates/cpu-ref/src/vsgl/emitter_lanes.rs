@@ -103,7 +103,7 @@ fn gather(lanes: [&Emitter; 8]) -> Emitter<F8> {
         mu: f3(&|e| e.mu),
         sigma2: f(&|e| e.sigma2),
         density: f(&|e| e.density),
-        lobes: [lobe(0), lobe(1)],
+        lobes: [lobe(0), lobe(1), lobe(2), lobe(3)],
         clamped: ClampedDiffuse {
             peak: f3(&|e| e.clamped.peak),
             normal: f3(&|e| e.clamped.normal),
@@ -136,7 +136,12 @@ fn load<L: Lanes8>(e: &Emitter<F8>) -> Emitter<L> {
         mu: v3(&e.mu),
         sigma2: L::load(&e.sigma2),
         density: L::load(&e.density),
-        lobes: [lobe(&e.lobes[0]), lobe(&e.lobes[1])],
+        lobes: [
+            lobe(&e.lobes[0]),
+            lobe(&e.lobes[1]),
+            lobe(&e.lobes[2]),
+            lobe(&e.lobes[3]),
+        ],
         clamped: ClampedDiffuse {
             peak: v3(&c.peak),
             normal: v3(&c.normal),

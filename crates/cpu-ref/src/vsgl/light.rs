@@ -2,7 +2,7 @@
 use super::sums::ClusterSums;
 use core::f32::consts::TAU;
 use glam::Vec3;
-use slc_bounds::sg::{exact_sharpness, COSINE_LOBE_SHARPNESS};
+use slc_bounds::sg::{exact_sharpness, ggx_mixture, COSINE_LOBE_SHARPNESS};
 use slc_bounds::{BoundsError, SphericalGaussian, ToksvigSum};
 
 /// A VSGL: the radiant intensity `I_v(ω) ≈ c_d G(ω; ξ_d, λ_d) + c_s G(ω; ξ_s, λ_s)` of a
@@ -86,18 +86,26 @@ impl Vsgl {
     }
 
     /// The radiant intensity `I_v(ω) ≈ c_d G(ω; ξ_d, λ_d) + c_s G(ω; ξ_s, λ_s)` towards the
-    /// unit direction `omega` (section 3.1.1), per channel.
+    /// unit direction `omega` (section 3.1.1), per channel, with the specular lobe as the
+    /// shading takes it ([`Vsgl::specular_intensity`]).
     pub fn intensity(&self, omega: Vec3) -> Vec3 {
-        let g = |axis, sharpness| {
-            SphericalGaussian {
-                axis,
-                sharpness,
-                amplitude: 1.0,
-            }
-            .eval(omega)
+        let diffuse = SphericalGaussian {
+            axis: self.xi_diffuse,
+            sharpness: self.lambda_diffuse,
+            amplitude: 1.0,
         };
-        self.c_diffuse * g(self.xi_diffuse, self.lambda_diffuse)
-            + self.c_specular * g(self.xi_specular, self.lambda_specular)
+        self.c_diffuse * diffuse.eval(omega) + self.specular_intensity(omega)
+    }
+
+    /// The specular part `c_s G(ω; ξ_s, λ_s)` of [`Vsgl::intensity`], the SG replaced by the
+    /// SGs of GGX's profile ([`slc_bounds::sg::ggx_mixture`], which keeps its integral).
+    pub fn specular_intensity(&self, omega: Vec3) -> Vec3 {
+        let lobe = SphericalGaussian {
+            axis: self.xi_specular,
+            sharpness: self.lambda_specular,
+            amplitude: 1.0,
+        };
+        self.c_specular * ggx_mixture(&lobe).map(|g| g.eval(omega)).sum::<f32>()
     }
 
     /// The coefficients `c_v/(2π σ_v²)` of the emitted radiance of eq. (1) (and of `c_in` in

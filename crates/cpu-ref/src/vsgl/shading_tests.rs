@@ -107,11 +107,7 @@ fn a_small_vsgl_is_its_sg_point_light() {
                 let intensity = match diffuse {
                     DiffuseEmission::Sg => v.intensity(-to_light),
                     DiffuseEmission::ClampedCosine => {
-                        let specular =
-                            SphericalGaussian::new(v.xi_specular, v.lambda_specular, 1.0)
-                                .unwrap()
-                                .eval(-to_light);
-                        v.c_specular * specular
+                        v.specular_intensity(-to_light)
                             + glossy.flux * glossy.brdf.kd / PI
                                 * glossy.normal.dot(-to_light).max(0.0)
                     }
