@@ -5,8 +5,9 @@
 //! sample sums, over the VSGLs, `vsgl_radiance` — for each lobe `c_v G(ω; ξ_v, λ_v)` of the
 //! VSGL's radiant intensity, `c_v` times the closed-form shading (`slc_bounds::SgSurface`:
 //! irradiance for the diffuse term, fitted GGX SG inner product for the specular one) of the
-//! incoming radiance of eq. (5), `1/(2πσ_v²) G(ω; −ξ_v, λ_v) G(ω; ξ_μ, |μ_v − x_p|²/σ_v²)`.
-//! Without visibility (entry point `main`: [`VsglShadePass::shade`],
+//! incoming radiance of eq. (5), `1/(2πσ_v²) G(ω; −ξ_v, λ_v) G(ω; ξ_μ, |μ_v − x_p|²/σ_v²)`,
+//! a specular lobe of sharpness 3 or more as the three SGs of GGX's profile
+//! (`slc_bounds::sg::ggx_mixture`, `mixture_scale` in `shaders/vsgl_light.wgsl`). Without visibility (entry point `main`: [`VsglShadePass::shade`],
 //! [`VsglShadePass::shade_gpu_gbuffer_on_gpu`] without maps) there is no `V(x_p, μ_v)` of
 //! eq. 3. With imperfect shadow maps ([`crate::ism_pass`], entry point `main_visible`:
 //! [`VsglShadePass::shade_visible`], [`VsglShadePass::shade_gpu_gbuffer_on_gpu`] with maps)

@@ -5,6 +5,8 @@
 //! - [`SphericalGaussian`]: `c G(ω; ξ, λ) = c exp(λ(ω·ξ − 1))` (VSGL section 2.2), its
 //!   integral [`sg_integral`] `A(λ)` and normalization, scaling, the product of two SGs (the form
 //!   of VSGL eq. 5) and their inner product.
+//! - [`ggx_mixture`]: a GGX lobe's SG (peak and integral) as three SGs on its axis that follow
+//!   GGX's heavy tails ([`GGX_MIXTURE`]), the specular emission of a VSGL.
 //! - [`ToksvigSum`]: Toksvig filtering of a set of lobes into one (VSGL section 3.1.1) through
 //!   mean vectors, with the paper's length `λ/(λ+1)` ([`toksvig_mean_length`]) and the exact
 //!   one `coth λ − 1/λ` ([`exact_mean_length`]), and their inverses.

@@ -16,8 +16,9 @@
 //!   (section 4.2), by hierarchical sample warping of [`sample_points`] down the quadtree of
 //!   importance masses, stopping at the level `l = l_max − ½ log2(N p(s))`.
 //! - [`vsgl_radiance`] and [`shade_vsgls`]: shading (section 3.2, eq. 2-5), the incoming
-//!   radiance of a VSGL as one SG against the receiver's diffuse + GGX lobe, with an optional
-//!   shadow ray to `μ_v`.
+//!   radiance of a VSGL as SGs (one per emitted lobe, three for a specular lobe of GGX's
+//!   profile) against the receiver's diffuse + GGX lobe, eight VSGLs per vector, with an
+//!   optional shadow ray to `μ_v`.
 //! - [`bidirectional_importance`]: the optional importance of section 4.3, estimated with
 //!   VSGLs generated on the G-buffer ([`camera_rsm`]).
 mod bidirectional;

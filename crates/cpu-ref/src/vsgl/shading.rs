@@ -20,7 +20,8 @@ use slc_core::{GBuffer, Image};
 ///
 /// a product of two SGs and so one SG, shaded in closed form by `surface` ([`SgSurface`]: the
 /// SG's irradiance for the diffuse term, the fitted GGX lobe for the specular one); the
-/// diffuse lobe as `diffuse` says. A receiver at `μ_v` itself sees the constant `λ_σ = 0` (and
+/// diffuse lobe as `diffuse` says, a specular lobe of sharpness 3 or more as the three SGs of
+/// GGX's profile ([`slc_bounds::sg::ggx_mixture`], each shaded so). A receiver at `μ_v` itself sees the constant `λ_σ = 0` (and
 /// the clamped diffuse intensity averaged over all directions, `Σ Φ R_d/(4π)`). Fails for a
 /// `σ_v²` that is not positive and finite, or when a lobe leaves the `f32` range.
 pub fn vsgl_radiance(
