@@ -143,7 +143,12 @@ fn away_facing<R: Real>(l: R) -> R {
             crate::branch!(
                 R,
                 one.le(l),
-                e * (one - e * (one + l)) / (l * (one - e * e)),
+                {
+                    // `e²` from `e` raised to 2^−62 at least: `1 − e²` rounds to 1 either way
+                    // below that, and the square stays clear of subnormals (see `exp`).
+                    let e_floor = max(e, R::splat(2.168_404_3e-19));
+                    e * (one - e * (one + l)) / (l * (one - e_floor * e_floor))
+                },
                 {
                     let mut s = R::splat(2.296_443_2e-8);
                     for c in [
