@@ -118,8 +118,16 @@ fn vsgl_pack(s: Sums, factor: f32, sigma2_floor: f32, clamped: bool) -> Packed {
         }
     }
     var specular_lobe = vec4<f32>(0.0);
+    var stretch = array<vec4<f32>, 2>(vec4<f32>(0.0, 0.0, 0.0, 1.0), vec4<f32>(0.0, 0.0, 0.0, 1.0));
     if any(c_s != vec3<f32>(0.0)) {
         specular_lobe = vec4<f32>(-specular.axis, specular.sharpness);
+        // light.rs Vsgl::specular_stretch: the direction of Σ w_s n (zero where it is zero).
+        let n_sum = sums_specular_normal(s);
+        var normal = vec3<f32>(0.0);
+        if any(n_sum != vec3<f32>(0.0)) {
+            normal = normalize(n_sum);
+        }
+        stretch = lobe_stretch(specular.axis, specular.sharpness, normal);
     }
     let vsgl = Vsgl(
         vec4<f32>(mu, sigma2),
@@ -127,6 +135,8 @@ fn vsgl_pack(s: Sums, factor: f32, sigma2_floor: f32, clamped: bool) -> Packed {
         diffuse_lobe,
         vec4<f32>(c_s, select(0.0, 1.0, clamped)),
         specular_lobe,
+        stretch[0],
+        stretch[1],
     );
     return Packed(vsgl, ok);
 }

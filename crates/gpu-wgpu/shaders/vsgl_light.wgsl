@@ -30,6 +30,52 @@ struct Vsgl {
     diffuse_lobe: vec4<f32>,
     specular_c: vec4<f32>,
     specular_lobe: vec4<f32>,
+    // The specular lobe's stretch (slc_bounds::sg::LobeStretch): the tangent in the plane of
+    // incidence (xyz) and cos θ (w), the bitangent (xyz) and 1 / cos θ (w); all zero but the
+    // cosines (1) for none.
+    stretch_tangent: vec4<f32>,
+    stretch_bitangent: vec4<f32>,
+}
+
+// slc_bounds::sg::STRETCH_MIN_COS and STRETCH_SHARPNESS (a test of src/vsgl_shade_pass.rs
+// holds these to them).
+const STRETCH_MIN_COS: f32 = 0.2;
+const STRETCH_SHARPNESS: f32 = 10.0;
+
+// LobeStretch::new: the stretch of a lobe of unit `axis` and `sharpness` reflected off a
+// surface of `normal` (unit or zero), as [tangent, cos θ], [bitangent, 1 / cos θ].
+fn lobe_stretch(axis: vec3<f32>, sharpness: f32, normal: vec3<f32>) -> array<vec4<f32>, 2> {
+    let c = abs(dot(normal, axis));
+    let along = normal - dot(normal, axis) * axis;
+    let len = length(along);
+    if !(sharpness >= MIXTURE_FROM && sg_finite(sharpness) && len > 1e-4 && sg_finite(c)) {
+        return array<vec4<f32>, 2>(vec4<f32>(0.0, 0.0, 0.0, 1.0), vec4<f32>(0.0, 0.0, 0.0, 1.0));
+    }
+    let t = along / len;
+    let b = normalize(cross(axis, t));
+    let p = sharpness / (sharpness + STRETCH_SHARPNESS);
+    let cos = pow(clamp(c, STRETCH_MIN_COS, 1.0), p);
+    return array<vec4<f32>, 2>(vec4<f32>(t, cos), vec4<f32>(b, 1.0 / cos));
+}
+
+// LobeStretch::factor: k(ω) = (u² cos θ + v² / cos θ) / (u² + v²), 1 without a stretch.
+fn stretch_factor(e: Vsgl, w: vec3<f32>) -> f32 {
+    let u = dot(e.stretch_tangent.xyz, w);
+    let v = dot(e.stretch_bitangent.xyz, w);
+    let r2 = u * u + v * v;
+    if r2 > 0.0 {
+        return (u * u * e.stretch_tangent.w + v * v * e.stretch_bitangent.w) / r2;
+    }
+    return 1.0;
+}
+
+// LobeStretch::amplitude_factor: the amplitude of the isotropic stand-in of sharpness l k in
+// a product with a lobe of sharpness `other`.
+fn stretch_amplitude(e: Vsgl, l: f32, k: f32, other: f32) -> f32 {
+    let q = l * k + other;
+    let x = l * e.stretch_tangent.w + other;
+    let y = l * e.stretch_bitangent.w + other;
+    return sqrt((q / x) * (q / y));
 }
 
 // slc_bounds::sg::GGX_MIXTURE and MIXTURE_FROM (crates/bounds/src/sg/mixture.rs; a test of
@@ -79,14 +125,19 @@ fn vsgl_contribution(surface: Surface, x: vec3<f32>, e: Vsgl) -> vec4<f32> {
         let lambda = lobes[k].w;
         var count = 1u;
         var s = 1.0;
+        var stretch = 1.0;
         if k == 1u && lambda >= MIXTURE_FROM {
             count = 3u;
             s = mixture_scale(lambda);
+            stretch = stretch_factor(e, position.axis);
         }
         for (var m = 0u; m < count; m++) {
             var emitted = Sg(lobes[k].xyz, lambda, 1.0);
             if count == 3u {
-                emitted = Sg(lobes[k].xyz, GGX_MIXTURE[m].x * lambda, GGX_MIXTURE[m].y * s);
+                // Emitter::radiance_in: each SG of the mixture stretched towards the receiver.
+                let l = GGX_MIXTURE[m].x * lambda;
+                let a = stretch_amplitude(e, l, stretch, position.sharpness);
+                emitted = Sg(lobes[k].xyz, l * stretch, GGX_MIXTURE[m].y * s * a);
             }
             let light = sg_product(emitted, position);
             if !(sg_finite(light.sharpness) && sg_finite(light.amplitude)) {

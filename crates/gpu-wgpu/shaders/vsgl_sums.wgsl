@@ -15,11 +15,19 @@ struct Sums {
     // (b) Σ Φ R_s (rgb) and the positional weight Σ w, w = the RGB total of Φ (R_d + R_s) (w).
     specular_w: vec4<f32>,
     // (c) Σ w_d ξ̄_d, w_d the RGB total of Φ R_d and ξ̄_d the diffuse lobe's mean vector (xyz).
+    // w: the x of (g).
     diffuse_mean: vec4<f32>,
-    // (d) Σ w_s ξ̄_s, the same for the specular lobe (xyz).
+    // (d) Σ w_s ξ̄_s, the same for the specular lobe (xyz). w: the y of (g).
     specular_mean: vec4<f32>,
-    // μ = Σ w x / Σ w (xyz; zero for an empty cluster).
+    // μ = Σ w x / Σ w (xyz; zero for an empty cluster). w: the z of (g).
     mu: vec4<f32>,
+}
+
+// (g) Σ w_s n, the specular-weighted shading normal (the plane of incidence of the specular
+// lobe's stretch), kept in the w components of (c), (d) and μ so that the pyramid keeps its
+// five arrays (and bindings).
+fn sums_specular_normal(s: Sums) -> vec3<f32> {
+    return vec3<f32>(s.diffuse_mean.w, s.specular_mean.w, s.mu.w);
 }
 
 // cosine.rs COSINE_LOBE_SHARPNESS: the SG fit of the clamped cosine.
@@ -31,7 +39,8 @@ fn sums_zero() -> Sums {
     return Sums(vec4<f32>(0.0), vec4<f32>(0.0), vec4<f32>(0.0), vec4<f32>(0.0), vec4<f32>(0.0));
 }
 
-// ClusterSums::merge: every field a sum but μ and M2, merged as the header says.
+// ClusterSums::merge: every field a sum but μ and M2, merged as the header says (the w of μ,
+// part of (g), is a sum).
 fn sums_merge(a: Sums, b: Sums) -> Sums {
     let wa = a.specular_w.w;
     let wb = b.specular_w.w;
@@ -49,7 +58,7 @@ fn sums_merge(a: Sums, b: Sums) -> Sums {
         vec4<f32>(a.specular_w.xyz + b.specular_w.xyz, w),
         a.diffuse_mean + b.diffuse_mean,
         a.specular_mean + b.specular_mean,
-        vec4<f32>(mu, 0.0),
+        vec4<f32>(mu, a.mu.w + b.mu.w),
     );
 }
 
@@ -98,11 +107,12 @@ fn texel_sums(t: TexelIn) -> Sums {
     let w = rgb.x + rgb.y + rgb.z;
     let diffuse_mean = surface.normal * (w_d * toksvig_mean_length(COSINE_LOBE_SHARPNESS));
     let specular_mean = surface.lobe.axis * (w_s * toksvig_mean_length(surface.lobe.sharpness));
+    let specular_normal = surface.normal * w_s;
     return Sums(
         vec4<f32>(diffuse, w * footprint_variance(t)),
         vec4<f32>(specular, w),
-        vec4<f32>(diffuse_mean, 0.0),
-        vec4<f32>(specular_mean, 0.0),
-        vec4<f32>(t.position, 0.0),
+        vec4<f32>(diffuse_mean, specular_normal.x),
+        vec4<f32>(specular_mean, specular_normal.y),
+        vec4<f32>(t.position, specular_normal.z),
     );
 }

@@ -84,11 +84,12 @@ pub struct GpuSums {
     pub diffuse_m2: [f32; 4],
     /// `Σ Φ R_s` (rgb), the positional weight `Σ w` (w).
     pub specular_w: [f32; 4],
-    /// `Σ w_d ξ̄_d` (xyz).
+    /// `Σ w_d ξ̄_d` (xyz); the x of `Σ w_s n` (w).
     pub diffuse_mean: [f32; 4],
-    /// `Σ w_s ξ̄_s` (xyz).
+    /// `Σ w_s ξ̄_s` (xyz); the y of `Σ w_s n` (w).
     pub specular_mean: [f32; 4],
-    /// `μ = Σ w x / Σ w` (xyz).
+    /// `μ = Σ w x / Σ w` (xyz); the z of `Σ w_s n` (w), the specular-weighted normal
+    /// (`ClusterSums::specular_normal`).
     pub mu: [f32; 4],
 }
 const _: () = assert!(std::mem::size_of::<GpuSums>() == 80);

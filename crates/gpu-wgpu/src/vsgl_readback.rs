@@ -94,6 +94,7 @@ pub fn vsgl_input(v: &Vsgl, diffuse: DiffuseEmission) -> VsglInput {
         },
         mu: v.mu,
         sigma2: v.sigma2,
+        specular_normal: v.specular_normal,
         lobes: [
             VsglLobe {
                 c: v.c_diffuse,

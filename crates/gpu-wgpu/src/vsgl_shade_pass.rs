@@ -312,9 +312,9 @@ impl VsglShadePass {
 
 #[cfg(test)]
 mod tests {
-    use slc_bounds::sg::{GGX_MIXTURE, MIXTURE_FROM};
+    use slc_bounds::sg::{GGX_MIXTURE, MIXTURE_FROM, STRETCH_MIN_COS, STRETCH_SHARPNESS};
 
-    /// The WGSL mixture is the Rust one.
+    /// The WGSL mixture and stretch constants are the Rust ones.
     #[test]
     fn wgsl_declares_the_rust_mixture() {
         let wgsl = include_str!("../shaders/vsgl_light.wgsl");
@@ -329,6 +329,8 @@ mod tests {
                 sgs.join(", ")
             ),
             format!("const MIXTURE_FROM: f32 = {MIXTURE_FROM:?};"),
+            format!("const STRETCH_MIN_COS: f32 = {STRETCH_MIN_COS:?};"),
+            format!("const STRETCH_SHARPNESS: f32 = {STRETCH_SHARPNESS:?};"),
         ] {
             assert!(wgsl.lines().any(|l| l == line), "missing: {line}");
         }

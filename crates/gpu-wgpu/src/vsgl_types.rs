@@ -6,7 +6,7 @@ use crate::context::GpuError;
 use bytemuck::{Pod, Zeroable};
 use core::f32::consts::{FRAC_1_PI, TAU};
 use glam::Vec3;
-use slc_bounds::sg::sg_integral;
+use slc_bounds::sg::{sg_integral, LobeStretch};
 use slc_bounds::SphericalGaussian;
 
 /// One lobe `c_v G(ω; ξ_v, λ_v)` of a VSGL's radiant intensity (VSGL section 3.1.1): the
@@ -34,6 +34,10 @@ pub struct VsglInput {
     /// distribution of concentration κ (`Vsgl::normal_concentration`) about `ξ_v`, of peak
     /// `c_v A(λ_v)/π`.
     pub clamped_diffuse: Option<f32>,
+    /// The direction of the cluster's specular-weighted mean normal
+    /// (`slc_cpu_ref::vsgl::Vsgl::specular_normal`; zero: unknown), for the specular lobe's
+    /// stretch ([`LobeStretch`]).
+    pub specular_normal: Vec3,
 }
 
 /// Parameters of the VSGL shading pass. Keep in sync with `VsglParams` in
@@ -64,8 +68,13 @@ pub struct GpuVsgl {
     pub specular_c: [f32; 4],
     /// The emitted specular lobe's axis `−ξ_v` (xyz) and `λ_v` (w).
     pub specular_lobe: [f32; 4],
+    /// The specular lobe's [`LobeStretch`]: the tangent in the plane of incidence (xyz) and
+    /// `cos θ` (w).
+    pub stretch_tangent: [f32; 4],
+    /// The bitangent across the plane (xyz) and `1 / cos θ` (w).
+    pub stretch_bitangent: [f32; 4],
 }
-const _: () = assert!(std::mem::size_of::<GpuVsgl>() == 80);
+const _: () = assert!(std::mem::size_of::<GpuVsgl>() == 112);
 
 impl GpuVsgl {
     /// Packs VSGL `index` after the CPU's checks (`Emitter::new`): `σ_v²` positive with a
@@ -123,6 +132,13 @@ impl GpuVsgl {
             };
         }
         let [(cd, ld), (mut cs, ls)] = packed;
+        let specular = &vsgl.lobes[1];
+        let stretch = if specular.c == Vec3::ZERO {
+            LobeStretch::NONE
+        } else {
+            LobeStretch::new(specular.xi, specular.lambda, vsgl.specular_normal)
+        };
+        let [t, b] = [stretch.tangent, stretch.bitangent];
         cs[3] = if vsgl.clamped_diffuse.is_some() {
             1.0
         } else {
@@ -134,6 +150,8 @@ impl GpuVsgl {
             diffuse_lobe: ld,
             specular_c: cs,
             specular_lobe: ls,
+            stretch_tangent: [t[0], t[1], t[2], stretch.cos],
+            stretch_bitangent: [b[0], b[1], b[2], stretch.inv_cos],
         })
     }
 }
@@ -254,6 +272,7 @@ mod tests {
             sigma2,
             lobes: [lobe; 2],
             clamped_diffuse: None,
+            specular_normal: Vec3::ZERO,
         }
     }
 

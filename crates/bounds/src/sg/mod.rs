@@ -6,7 +6,9 @@
 //!   integral [`sg_integral`] `A(λ)` and normalization, scaling, the product of two SGs (the form
 //!   of VSGL eq. 5) and their inner product.
 //! - [`ggx_mixture`]: a GGX lobe's SG (peak and integral) as three SGs on its axis that follow
-//!   GGX's heavy tails ([`GGX_MIXTURE`]), the specular emission of a VSGL.
+//!   GGX's heavy tails ([`GGX_MIXTURE`]), the specular emission of a VSGL, and
+//!   [`LobeStretch`], the anisotropy of a reflected lobe (narrower across the plane of
+//!   incidence).
 //! - [`ToksvigSum`]: Toksvig filtering of a set of lobes into one (VSGL section 3.1.1) through
 //!   mean vectors, with the paper's length `λ/(λ+1)` ([`toksvig_mean_length`]) and the exact
 //!   one `coth λ − 1/λ` ([`exact_mean_length`]), and their inverses.
@@ -32,6 +34,7 @@ mod single;
 mod specular;
 mod specular_fit;
 pub mod specular_table;
+mod stretch;
 mod toksvig;
 
 pub use cosine::{clamped_cosine_sg, COSINE_LOBE_AMPLITUDE, COSINE_LOBE_SHARPNESS};
@@ -45,6 +48,7 @@ pub use specular::{ggx_ndf_sg, SpecularLobeSg};
 pub use specular_fit::{
     fit_lobe, table_node, SpecularFit, ALPHA_STEPS, TABLE_MIN_ALPHA, TABLE_MIN_COS, VIEW_STEPS,
 };
+pub use stretch::{LobeStretch, STRETCH_MIN_COS, STRETCH_SHARPNESS};
 pub use toksvig::{
     exact_mean_length, exact_sharpness, toksvig_mean_length, toksvig_sharpness, MeanMap, ToksvigSum,
 };

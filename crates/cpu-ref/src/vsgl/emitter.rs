@@ -6,17 +6,21 @@ use super::light::Vsgl;
 use core::f32::consts::{FRAC_1_PI, TAU};
 use glam::Vec3;
 use slc_bounds::lanes::{dot, Real};
-use slc_bounds::sg::{finite, ggx_mixture, sg_integral, splat3, IrradianceFit, SgLanes};
+use slc_bounds::sg::{
+    finite, ggx_mixture, sg_integral, splat3, IrradianceFit, LobeStretch, SgLanes,
+};
 use slc_bounds::{BoundsError, SgSurface, SphericalGaussian};
 use slc_core::frame::DiffuseEmission;
 
-/// One emitted SG lobe `c_v G(ω; −ξ_v, λ_v)` of eq. (5), and where it is present (a zero
-/// coefficient leaves the lobe out).
+/// One emitted SG lobe `c_v G(ω; −ξ_v, λ_v)` of eq. (5), where it is present (a zero
+/// coefficient leaves the lobe out) and where it is stretched by the emitter's
+/// [`LobeStretch`] (the specular SGs).
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct EmittedLobe<R: Real> {
     pub(crate) c: [R; 3],
     pub(crate) lobe: SgLanes<R>,
     pub(crate) present: R::Mask,
+    pub(crate) stretched: R::Mask,
 }
 
 /// A VSGL's diffuse intensity in the [`DiffuseEmission::ClampedCosine`] form, where present.
@@ -34,8 +38,8 @@ pub(crate) struct ClampedDiffuse<R: Real> {
 /// A VSGL prepared for shading many receivers (one per lane of `R`): its position, the
 /// emitted SG lobes `G(ω; −ξ_v, λ_v)` of eq. (5) with their coefficients `c_v` (the SG
 /// diffuse lobe first, then the specular one as the three SGs of its GGX profile,
-/// [`slc_bounds::sg::ggx_mixture`]) and the clamped diffuse intensity when it replaces the
-/// diffuse SG; `live` where the lane holds a VSGL.
+/// [`slc_bounds::sg::ggx_mixture`], with the specular lobe's stretch) and the clamped diffuse
+/// intensity when it replaces the diffuse SG; `live` where the lane holds a VSGL.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct Emitter<R: Real = f32> {
     pub(crate) mu: [R; 3],
@@ -44,6 +48,7 @@ pub(crate) struct Emitter<R: Real = f32> {
     pub(crate) density: R,
     pub(crate) lobes: [EmittedLobe<R>; 4],
     pub(crate) clamped: ClampedDiffuse<R>,
+    pub(crate) stretch: LobeStretch<R>,
     pub(crate) live: R::Mask,
 }
 
@@ -59,6 +64,7 @@ impl Emitter {
             c: [0.0; 3],
             lobe: none,
             present: false,
+            stretched: false,
         };
         Self {
             mu: [0.0; 3],
@@ -75,6 +81,7 @@ impl Emitter {
                 },
                 present: false,
             },
+            stretch: LobeStretch::NONE,
             live: false,
         }
     };
@@ -96,12 +103,13 @@ impl Emitter {
         };
         // I_v(−ω) ∝ G(−ω; ξ_v, λ_v) = G(ω; −ξ_v, λ_v): the light leaving μ_v towards x_p.
         let emitted = |xi: Vec3, lambda| SphericalGaussian::new(-xi, lambda, 1.0);
-        let mut sgs = Vec::with_capacity(4);
+        let mut sgs: Vec<(Vec3, SphericalGaussian, bool)> = Vec::with_capacity(4);
         if vsgl.c_diffuse != Vec3::ZERO {
             if diffuse == DiffuseEmission::Sg {
                 sgs.push((
                     vsgl.c_diffuse,
                     emitted(vsgl.xi_diffuse, vsgl.lambda_diffuse)?,
+                    false,
                 ));
             } else {
                 e.clamped = ClampedDiffuse {
@@ -115,13 +123,16 @@ impl Emitter {
         }
         if vsgl.c_specular != Vec3::ZERO {
             let lobe = emitted(vsgl.xi_specular, vsgl.lambda_specular)?;
-            sgs.extend(ggx_mixture(&lobe).map(|g| (vsgl.c_specular, g)));
+            e.stretch = vsgl.specular_stretch();
+            let stretched = e.stretch != LobeStretch::NONE;
+            sgs.extend(ggx_mixture(&lobe).map(|g| (vsgl.c_specular, g, stretched)));
         }
-        for (slot, (c, lobe)) in e.lobes.iter_mut().zip(sgs) {
+        for (slot, (c, lobe, stretched)) in e.lobes.iter_mut().zip(sgs) {
             *slot = EmittedLobe {
                 c: c.to_array(),
                 lobe: SgLanes::splat(&lobe),
                 present: true,
+                stretched,
             };
         }
         Ok(e)
@@ -171,11 +182,24 @@ impl<R: Real> Emitter<R> {
             amplitude: self.density,
         };
         let mut radiance = [zero; 3];
+        // The stretch towards the receiver, formed once for the specular SGs (one axis).
+        let (mut k, mut have_k) = (R::splat(1.0), false);
         for lobe in &self.lobes {
             if !R::any(lobe.present) {
                 continue;
             }
-            let (product, over) = lobe.lobe.product(&position);
+            let mut emitted = lobe.lobe;
+            if R::any(lobe.stretched) {
+                if !have_k {
+                    (k, have_k) = (self.stretch.factor(position.axis), true);
+                }
+                let l = emitted.sharpness;
+                let a = self.stretch.amplitude_factor(l, k, position.sharpness);
+                emitted.sharpness = R::select(lobe.stretched, l * k, l);
+                emitted.amplitude =
+                    R::select(lobe.stretched, emitted.amplitude * a, emitted.amplitude);
+            }
+            let (product, over) = emitted.product(&position);
             overflow = overflow | (over & lobe.present);
             let shaded = surface.radiance_lanes(&product);
             for (c, out) in radiance.iter_mut().enumerate() {

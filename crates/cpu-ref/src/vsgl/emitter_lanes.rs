@@ -5,7 +5,7 @@ use super::emitter::{ClampedDiffuse, EmittedLobe, Emitter, OVERFLOW};
 use super::error::VsglError;
 use glam::Vec3;
 use slc_bounds::lanes::{Lanes8, F8, M8};
-use slc_bounds::sg::{splat3, IrradianceFit, SgLanes};
+use slc_bounds::sg::{splat3, IrradianceFit, LobeStretch, SgLanes};
 use slc_bounds::SgSurface;
 
 /// Emitters in chunks of eight lanes, in order (the last chunk's unused lanes dark).
@@ -98,6 +98,7 @@ fn gather(lanes: [&Emitter; 8]) -> Emitter<F8> {
             amplitude: f(&|e| e.lobes[j].lobe.amplitude),
         },
         present: m(&|e| e.lobes[j].present),
+        stretched: m(&|e| e.lobes[j].stretched),
     };
     Emitter {
         mu: f3(&|e| e.mu),
@@ -113,6 +114,12 @@ fn gather(lanes: [&Emitter; 8]) -> Emitter<F8> {
                 away: f(&|e| e.clamped.fit.away),
             },
             present: m(&|e| e.clamped.present),
+        },
+        stretch: LobeStretch {
+            tangent: f3(&|e| e.stretch.tangent),
+            bitangent: f3(&|e| e.stretch.bitangent),
+            cos: f(&|e| e.stretch.cos),
+            inv_cos: f(&|e| e.stretch.inv_cos),
         },
         live: m(&|e| e.live),
     }
@@ -130,6 +137,7 @@ fn load<L: Lanes8>(e: &Emitter<F8>) -> Emitter<L> {
             amplitude: L::load(&l.lobe.amplitude),
         },
         present: L::load_mask(&l.present),
+        stretched: L::load_mask(&l.stretched),
     };
     let c = &e.clamped;
     Emitter {
@@ -151,6 +159,12 @@ fn load<L: Lanes8>(e: &Emitter<F8>) -> Emitter<L> {
                 away: L::load(&c.fit.away),
             },
             present: L::load_mask(&c.present),
+        },
+        stretch: LobeStretch {
+            tangent: v3(&e.stretch.tangent),
+            bitangent: v3(&e.stretch.bitangent),
+            cos: L::load(&e.stretch.cos),
+            inv_cos: L::load(&e.stretch.inv_cos),
         },
         live: L::load_mask(&e.live),
     }
@@ -198,14 +212,23 @@ mod tests {
     /// 1e7 and `σ²` from 1e-6 to 100, near the origin.
     fn vsgl(rng: &mut Rng) -> Vsgl {
         let c = |rng: &mut Rng| Vec3::new(rng.f32(), rng.f32(), rng.f32()) * rng.log(-3.0, 3.0, 5);
+        let xi_specular = rng.unit();
+        // The specular normal unknown now and then, along the lobe's axis now and then, else
+        // any direction.
+        let specular_normal = match (rng.f32() * 8.0) as u32 {
+            0 => Vec3::ZERO,
+            1 => xi_specular,
+            _ => rng.unit(),
+        };
         Vsgl {
             c_diffuse: c(rng),
             xi_diffuse: rng.unit(),
             lambda_diffuse: rng.log(-4.0, 2.0, 8),
             normal_concentration: rng.log(-3.0, 7.0, 8),
             c_specular: c(rng),
-            xi_specular: rng.unit(),
+            xi_specular,
             lambda_specular: rng.log(-3.0, 5.0, 8),
+            specular_normal,
             mu: Vec3::new(
                 rng.range(-2.0, 2.0),
                 rng.range(-2.0, 2.0),

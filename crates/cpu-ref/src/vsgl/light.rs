@@ -2,7 +2,7 @@
 use super::sums::ClusterSums;
 use core::f32::consts::TAU;
 use glam::Vec3;
-use slc_bounds::sg::{exact_sharpness, ggx_mixture, COSINE_LOBE_SHARPNESS};
+use slc_bounds::sg::{exact_sharpness, ggx_mixture, LobeStretch, COSINE_LOBE_SHARPNESS};
 use slc_bounds::{BoundsError, SphericalGaussian, ToksvigSum};
 
 /// A VSGL: the radiant intensity `I_v(ω) ≈ c_d G(ω; ξ_d, λ_d) + c_s G(ω; ξ_s, λ_s)` of a
@@ -27,6 +27,10 @@ pub struct Vsgl {
     pub xi_specular: Vec3,
     /// `λ_v` of the specular lobe.
     pub lambda_specular: f32,
+    /// The direction of the specular-weighted mean normal (sum (g); zero where it is zero),
+    /// which with `ξ_s` spans the plane of incidence of the lobe's stretch
+    /// ([`Vsgl::specular_stretch`]).
+    pub specular_normal: Vec3,
     /// `μ_v = Σ w_i x_i / Σ w_i` (zero for an empty cluster).
     pub mu: Vec3,
     /// `σ_v² = Σ w_i |x_i|² / Σ w_i − |μ_v|²`, clamped to at least the floor given.
@@ -52,6 +56,7 @@ impl Vsgl {
         let normal_concentration = exact_sharpness(mean_normal);
         let (xi_specular, lambda_specular, c_specular) =
             filtered(&sums.specular_lobe, sums.specular_weight.as_vec3())?;
+        let specular_normal = sums.specular_normal.normalize_or_zero().as_vec3();
         let weight = sums.weight();
         let (mu, sigma2) = if weight > 0.0 {
             let mu = sums.weighted_position / weight;
@@ -68,6 +73,7 @@ impl Vsgl {
             c_specular,
             xi_specular,
             lambda_specular,
+            specular_normal,
             mu,
             sigma2: sigma2.max(sigma2_floor),
             weight: weight as f32,
@@ -98,14 +104,31 @@ impl Vsgl {
     }
 
     /// The specular part `c_s G(ω; ξ_s, λ_s)` of [`Vsgl::intensity`], the SG replaced by the
-    /// SGs of GGX's profile ([`slc_bounds::sg::ggx_mixture`], which keeps its integral).
+    /// SGs of GGX's profile ([`slc_bounds::sg::ggx_mixture`], which keeps its integral), each
+    /// stretched ([`Vsgl::specular_stretch`]): sharpness `λ k(ω)` along ω.
     pub fn specular_intensity(&self, omega: Vec3) -> Vec3 {
         let lobe = SphericalGaussian {
             axis: self.xi_specular,
             sharpness: self.lambda_specular,
             amplitude: 1.0,
         };
-        self.c_specular * ggx_mixture(&lobe).map(|g| g.eval(omega)).sum::<f32>()
+        let k = self.specular_stretch().factor(omega.to_array());
+        let sum = ggx_mixture(&lobe)
+            .map(|g| {
+                let stretched = SphericalGaussian {
+                    sharpness: g.sharpness * k,
+                    ..g
+                };
+                stretched.eval(omega)
+            })
+            .sum::<f32>();
+        self.c_specular * sum
+    }
+
+    /// The stretch of the specular lobe ([`LobeStretch::new`] of `ξ_s`, `λ_s` and the
+    /// specular-weighted mean normal): none for broad lobes or an unknown normal.
+    pub fn specular_stretch(&self) -> LobeStretch {
+        LobeStretch::new(self.xi_specular, self.lambda_specular, self.specular_normal)
     }
 
     /// The coefficients `c_v/(2π σ_v²)` of the emitted radiance of eq. (1) (and of `c_in` in

@@ -16,7 +16,10 @@ use slc_bounds::{BoundsError, SphericalGaussian, ToksvigSum};
 ///   with `w_i` the total of the RGB channels of `Φ_i (R_{d,i} + R_{s,i})` (section 3.1.2) and
 ///   `s_i²` the variance of the surface patch texel `i` stands for ([`footprint_variance`]):
 ///   by the law of total variance, `σ_v²` is then the variance of the cluster's patches, not
-///   only of its texel centres, and a single texel is a small area light rather than a point.
+///   only of its texel centres, and a single texel is a small area light rather than a point;
+/// - (g) the specular-weighted normal `Σ w_{s,i} n_i` (not in the paper), whose direction with
+///   the specular lobe's axis gives the plane of incidence of the lobe's stretch
+///   ([`slc_bounds::sg::LobeStretch`]).
 ///
 /// Every field is a plain sum, so clusters add ([`ClusterSums::merge`]) as mip levels do.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -33,6 +36,8 @@ pub struct ClusterSums {
     pub weighted_position: DVec3,
     /// (f) `Σ w_i |x_i|²`.
     pub weighted_squared_norm: f64,
+    /// (g) `Σ w_{s,i} n_i`, `w_s` the totals of (b) and `n_i` the shading normal.
+    pub specular_normal: DVec3,
 }
 
 impl ClusterSums {
@@ -45,6 +50,7 @@ impl ClusterSums {
             specular_lobe: ToksvigSum::new(map),
             weighted_position: DVec3::ZERO,
             weighted_squared_norm: 0.0,
+            specular_normal: DVec3::ZERO,
         }
     }
 
@@ -67,6 +73,7 @@ impl ClusterSums {
         sums.specular_weight = specular_weight;
         sums.weighted_position = w * x;
         sums.weighted_squared_norm = w * (x.length_squared() + footprint_variance(texel));
+        sums.specular_normal = specular_weight.element_sum() * texel.normal.as_dvec3();
         Ok(sums)
     }
 
@@ -78,6 +85,7 @@ impl ClusterSums {
         self.specular_lobe.merge(&other.specular_lobe);
         self.weighted_position += other.weighted_position;
         self.weighted_squared_norm += other.weighted_squared_norm;
+        self.specular_normal += other.specular_normal;
     }
 
     /// The positional weight `Σ w_i`, the total of the RGB channels of (a) + (b).

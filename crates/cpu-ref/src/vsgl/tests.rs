@@ -43,7 +43,7 @@ fn sphere_integral(axis: Vec3, f: impl Fn(Vec3) -> f64) -> f64 {
 fn direct_vsgl(rsm: &Rsm, face: u32, x: [u32; 2], y: [u32; 2], map: MeanMap) -> Vsgl {
     let n = rsm.resolution;
     let (mut wd, mut ws, mut md, mut ms) = (DVec3::ZERO, DVec3::ZERO, DVec3::ZERO, DVec3::ZERO);
-    let mut normals = DVec3::ZERO;
+    let (mut normals, mut specular_normals) = (DVec3::ZERO, DVec3::ZERO);
     let (mut w, mut wx, mut wxx) = (0.0, DVec3::ZERO, 0.0);
     for row in y[0]..y[1].min(n) {
         for col in x[0]..x[1].min(n) {
@@ -63,6 +63,7 @@ fn direct_vsgl(rsm: &Rsm, face: u32, x: [u32; 2], y: [u32; 2], map: MeanMap) -> 
             md += d.element_sum() * mean(l.diffuse_lobe);
             normals += d.element_sum() * t.normal.as_dvec3();
             ms += s.element_sum() * mean(l.specular_lobe);
+            specular_normals += s.element_sum() * t.normal.as_dvec3();
             let wi = (d + s).element_sum();
             let p = t.position.as_dvec3();
             // The patch of a texel of cross-section a² at incidence c: (a² + a²/c²)/12.
@@ -105,6 +106,7 @@ fn direct_vsgl(rsm: &Rsm, face: u32, x: [u32; 2], y: [u32; 2], map: MeanMap) -> 
         c_specular,
         xi_specular,
         lambda_specular,
+        specular_normal: specular_normals.normalize_or_zero().as_vec3(),
         mu: mu.as_vec3(),
         sigma2: (sigma2 as f32).max(FLOOR),
         weight: w as f32,
@@ -512,5 +514,51 @@ fn the_normal_concentration_matches_the_mean_normal() {
             0.0,
             1e-5
         ));
+    }
+}
+
+#[test]
+fn the_stretch_follows_the_true_lobe() {
+    // (e) One glossy texel's VSGL: the L1 error of its specular intensity (the mixture of
+    // GGX's profile) against the true lobe, with the stretch of the plane of incidence and
+    // without (an unknown normal). Measured (`--nocapture`), isotropic → stretched:
+    // α 0.08 at 45° 23.9 → 6.9 %, at 70° 63.0 → 22.5 %; α 0.4 at 70° 54.8 → 47.7 %.
+    for alpha in [0.08f32, 0.2, 0.3, 0.4] {
+        let mut line = format!("α {alpha}:");
+        for theta in [0.0f32, 22.5, 45.0, 60.0, 70.0, 80.0] {
+            let (s, c) = theta.to_radians().sin_cos();
+            let mut t = plane_texel(Vec3::ZERO, 1.0);
+            t.omega_i = Vec3::new(s, 0.0, c);
+            t.brdf.kd = Vec3::ZERO;
+            t.brdf.alpha = alpha;
+            let sums = super::sums::ClusterSums::from_texel(&t, MeanMap::Toksvig).unwrap();
+            let v = Vsgl::from_sums(&sums, FLOOR).unwrap();
+            let isotropic = Vsgl {
+                specular_normal: Vec3::ZERO,
+                ..v
+            };
+            assert_eq!(v.specular_normal, Vec3::Z);
+            let exact =
+                |w: Vec3| f64::from(t.brdf.specular(t.normal, t.omega_i, w).x * w.z.max(0.0));
+            let truth = sphere_integral(v.xi_specular, exact);
+            let l1 = |v: &Vsgl| {
+                sphere_integral(v.xi_specular, |w| {
+                    (exact(w) - f64::from(v.specular_intensity(w).x)).abs()
+                }) / truth
+            };
+            let (before, after) = (l1(&isotropic), l1(&v));
+            line += &format!(" {theta}° {:.1} → {:.1} %", 100.0 * before, 100.0 * after);
+            assert!(
+                after <= before + 0.002,
+                "α {alpha} θ {theta}: {before} {after}"
+            );
+            if theta == 0.0 {
+                assert_eq!(before, after);
+            }
+            if alpha < 0.1 && (22.0..50.0).contains(&theta) {
+                assert!(after < 0.08, "α {alpha} θ {theta}: {after}");
+            }
+        }
+        println!("{line}");
     }
 }

@@ -225,6 +225,14 @@ fn extreme_vsgls() -> Vec<Vsgl> {
                 },
                 xi_specular: down,
                 lambda_specular: ls,
+                // Stretched in a plane of incidence now and then, at grazing too; isotropic
+                // where unknown.
+                specular_normal: match k % 4 {
+                    0 => Vec3::ZERO,
+                    1 => Vec3::new(0.6, 0.0, 0.8),
+                    2 => Vec3::new(-0.2, 0.97, 0.1).normalize(),
+                    _ => -Vec3::Z,
+                },
                 mu,
                 sigma2: sigmas[k % sigmas.len()],
                 weight: 1.0,

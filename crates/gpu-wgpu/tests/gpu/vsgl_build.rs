@@ -87,7 +87,8 @@ fn cpu_mips(ctx: &GpuContext, maps: &[GpuRsm]) -> Vec<MipRsm> {
 }
 
 /// The largest error of a GPU cluster's sums against the CPU's, each field relative to its
-/// own scale: the weights and the lobes' mean sums to the cluster's weight, `μ` to `extent`,
+/// own scale: the weights, the lobes' mean sums and the specular-weighted normal to the
+/// cluster's weight, `μ` to `extent`,
 /// `σ²` to itself plus `1e-7 extent²`.
 fn sums_error(cpu: &ClusterSums, gpu: &GpuSums, extent: f64) -> f64 {
     let w = cpu.weight();
@@ -102,6 +103,11 @@ fn sums_error(cpu: &ClusterSums, gpu: &GpuSums, extent: f64) -> f64 {
     let mu = cpu.weighted_position / w;
     let sigma2 = cpu.weighted_squared_norm / w - mu.length_squared();
     let gpu_sigma2 = f64::from(gpu.diffuse_m2[3]) / gpu_w;
+    let gpu_normal = glam::DVec3::new(
+        gpu.diffuse_mean[3].into(),
+        gpu.specular_mean[3].into(),
+        gpu.mu[3].into(),
+    );
     [
         (gpu_w - w).abs() / w,
         (v(gpu.diffuse_m2) - cpu.diffuse_weight).length() / w,
@@ -110,6 +116,7 @@ fn sums_error(cpu: &ClusterSums, gpu: &GpuSums, extent: f64) -> f64 {
         lobe(&cpu.specular_lobe, gpu.specular_mean),
         (v(gpu.mu) - mu).length() / extent,
         (gpu_sigma2 - sigma2).abs() / (sigma2.abs() + 1e-7 * extent * extent),
+        (gpu_normal - cpu.specular_normal).length() / w,
     ]
     .into_iter()
     .fold(0.0, f64::max)

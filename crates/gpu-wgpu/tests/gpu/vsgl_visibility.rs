@@ -256,6 +256,7 @@ fn a_wall_between_shadows_and_the_open_is_unchanged() {
         sigma2: 0.05,
         lobes: [lobe, lobe],
         clamped_diffuse: Some(1.0),
+        specular_normal: Vec3::ZERO,
     };
     let uploaded = GpuVsgls::upload(&ctx, &[vsgl]).unwrap();
     let settings = IsmSettings {
