@@ -54,28 +54,70 @@ pub fn finite<R: Real>(v: R) -> R::Mask {
 #[inline(always)]
 fn expm1<R: Real>(x: R) -> R {
     let small = x.gt(R::splat(-0.5)) & R::splat(0.5).gt(x);
-    crate::branch!(
-        R,
-        small,
-        {
-            let mut t = R::splat(1.0 / 3_628_800.0);
-            for c in [
-                1.0 / 362_880.0,
-                1.0 / 40_320.0,
-                1.0 / 5_040.0,
-                1.0 / 720.0,
-                1.0 / 120.0,
-                1.0 / 24.0,
-                1.0 / 6.0,
-                0.5,
-                1.0,
-            ] {
-                t = t * x + R::splat(c);
-            }
-            t * x
-        },
-        exp(x) - R::splat(1.0),
-    )
+    crate::branch!(R, small, expm1_series(x), exp(x) - R::splat(1.0))
+}
+
+/// The Taylor series of [`expm1`], for `|x| < 1/2`.
+#[inline(always)]
+fn expm1_series<R: Real>(x: R) -> R {
+    let mut t = R::splat(1.0 / 3_628_800.0);
+    for c in [
+        1.0 / 362_880.0,
+        1.0 / 40_320.0,
+        1.0 / 5_040.0,
+        1.0 / 720.0,
+        1.0 / 120.0,
+        1.0 / 24.0,
+        1.0 / 6.0,
+        0.5,
+        1.0,
+    ] {
+        t = t * x + R::splat(c);
+    }
+    t * x
+}
+
+/// The exponentials of one sharpness `λ ≥ 0` that its integral, Langevin mean and away-facing
+/// irradiance share (one `exp` for the three where each took its own): `e = e^{−λ}`,
+/// `e2 = e^{−2λ}` as `e²` (from `e` raised to 2^−62 at least: `1 − e^{−2λ}` rounds to 1 below
+/// that, and the square stays clear of subnormals, see `exp`), and `m2 = e^{−2λ} − 1` by
+/// [`expm1`]'s series below `λ = 1/4`, `e2 − 1` above.
+struct Decay<R> {
+    l: R,
+    e: R,
+    e2: R,
+    m2: R,
+}
+
+impl<R: Real> Decay<R> {
+    #[inline(always)]
+    fn new(sharpness: R) -> Self {
+        let l = max(sharpness, R::splat(0.0));
+        let e = exp(-l);
+        let e_floor = max(e, R::splat(2.168_404_3e-19));
+        let e2 = e_floor * e_floor;
+        let m2 = crate::branch!(
+            R,
+            R::splat(0.25).gt(l),
+            expm1_series(R::splat(-2.0) * l),
+            e2 - R::splat(1.0)
+        );
+        Self { l, e, e2, m2 }
+    }
+
+    /// [`integral`] from the shared exponentials.
+    #[inline(always)]
+    fn integral(&self) -> R {
+        let l = self.l;
+        crate::branch!(R, l.gt(R::splat(20.0)), R::splat(TAU) / l, {
+            crate::branch!(
+                R,
+                l.le(R::splat(0.0)),
+                R::splat(4.0 * PI),
+                -R::splat(TAU) * self.m2 / l,
+            )
+        })
+    }
 }
 
 /// `A(λ) = 2π/λ (1 − e^{−2λ})` ([`crate::sg::sg_integral`]): `4π` at 0, `2π/λ` above 20.
@@ -96,8 +138,8 @@ fn integral<R: Real>(sharpness: R) -> R {
 /// truncation below 1e-8 of the value); up to 20 with `coth = 1 + t`, `t = 2e/(1 − e)`,
 /// `e = e^{−2λ}`, and `1 − L = 1/λ − t` formed directly; above 20, `1 − 1/λ` and `1/λ`.
 #[inline(always)]
-fn langevin<R: Real>(l: R) -> (R, R) {
-    let one = R::splat(1.0);
+fn langevin<R: Real>(d: &Decay<R>) -> (R, R) {
+    let (l, one) = (d.l, R::splat(1.0));
     crate::branch!(
         R,
         one.gt(l),
@@ -120,8 +162,7 @@ fn langevin<R: Real>(l: R) -> (R, R) {
         },
         {
             crate::branch!(R, l.gt(R::splat(20.0)), (one - one / l, one / l), {
-                let e = exp(R::splat(-2.0) * l);
-                let t = R::splat(2.0) * e / (one - e);
+                let t = R::splat(2.0) * d.e2 / -d.m2;
                 ((one + t) - one / l, one / l - t)
             })
         },
@@ -132,23 +173,17 @@ fn langevin<R: Real>(l: R) -> (R, R) {
 /// 1 on, and between them its numerator `1 − e^{−λ}(1 + λ)` by its series to `k = 12`
 /// (truncation below 1e-8 of the value).
 #[inline(always)]
-fn away_facing<R: Real>(l: R) -> R {
-    let one = R::splat(1.0);
+fn away_facing<R: Real>(d: &Decay<R>) -> R {
+    let (l, e, one) = (d.l, d.e, R::splat(1.0));
     crate::branch!(
         R,
         R::splat(1e-3).gt(l),
         R::splat(0.25) - l / R::splat(6.0),
         {
-            let e = exp(-l);
             crate::branch!(
                 R,
                 one.le(l),
-                {
-                    // `e²` from `e` raised to 2^−62 at least: `1 − e²` rounds to 1 either way
-                    // below that, and the square stays clear of subnormals (see `exp`).
-                    let e_floor = max(e, R::splat(2.168_404_3e-19));
-                    e * (one - e * (one + l)) / (l * (one - e_floor * e_floor))
-                },
+                e * (one - e * (one + l)) / (l * (one - d.e2)),
                 {
                     let mut s = R::splat(2.296_443_2e-8);
                     for c in [
@@ -165,7 +200,7 @@ fn away_facing<R: Real>(l: R) -> R {
                     ] {
                         s = s * l + R::splat(c);
                     }
-                    e * (l * s) / -expm1(R::splat(-2.0) * l)
+                    e * (l * s) / -d.m2
                 },
             )
         },
@@ -215,13 +250,16 @@ impl<R: Real> IrradianceFit<R> {
     /// The fit of sharpness `sharpness` (negative or NaN taken as 0).
     #[inline(always)]
     pub fn new(sharpness: R) -> Self {
-        let zero = R::splat(0.0);
-        let l = max(sharpness, zero);
-        let (mean, rest) = langevin(l);
+        Self::of(&Decay::new(sharpness))
+    }
+
+    #[inline(always)]
+    fn of(d: &Decay<R>) -> Self {
+        let (mean, rest) = langevin(d);
         Self {
             mean,
-            x: max(rest, zero).sqrt(),
-            away: away_facing(l),
+            x: max(rest, R::splat(0.0)).sqrt(),
+            away: away_facing(d),
         }
     }
 
@@ -315,11 +353,9 @@ impl<R: Real> SgLanes<R> {
     /// [`SphericalGaussian::irradiance`] for the unit normal `n`, saturated at `f32::MAX`.
     #[inline(always)]
     pub fn irradiance(&self, n: [R; 3]) -> R {
-        let e = IrradianceFit::new(self.sharpness).at(dot(self.axis, n));
-        min(
-            self.amplitude * integral(self.sharpness) * e,
-            R::splat(f32::MAX),
-        )
+        let d = Decay::new(self.sharpness);
+        let e = IrradianceFit::of(&d).at(dot(self.axis, n));
+        min(self.amplitude * d.integral() * e, R::splat(f32::MAX))
     }
 }
 

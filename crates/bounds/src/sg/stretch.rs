@@ -20,7 +20,7 @@
 //! lobes below [`crate::sg::MIXTURE_FROM`] stay isotropic. The slc-cpu-ref VSGL tests measure
 //! the L1 error against the true texel lobe with and without the stretch (α 0.08 to 0.4,
 //! incidence 22.5° to 80°): never worse, 23.9 % → 6.9 % at α 0.08 and 45°.
-use crate::lanes::{dot, Real};
+use crate::lanes::{dot, min, Real};
 use crate::sg::mixture::MIXTURE_FROM;
 use glam::Vec3;
 
@@ -110,14 +110,15 @@ impl<R: Real> LobeStretch<R> {
     /// θ + λ_o))` and the isotropic stand-in's to `2π / (λ k + λ_o)`, whose ratio this is. It
     /// is 1 for a sharp `other` (the stand-in already has the stretched lobe's value along ω)
     /// and `k` for a broad one (the integral `2π/λ` of the stretched lobe), and exactly 1
-    /// where `k` and `cos θ` are 1. Formed as `√((q/x)(q/y))`, each ratio within
-    /// `[cos θ, 1/cos θ]`, so that no sharpness up to `f32::MAX` overflows it.
+    /// where `k` and `cos θ` are 1. `other` is taken at most 1e18 (beyond, the factor is 1
+    /// to `f32` precision for any sharpness up to 1e9), so that the squares cannot overflow.
     #[inline(always)]
     pub fn amplitude_factor(&self, sharpness: R, k: R, other: R) -> R {
+        let other = min(other, R::splat(1e18));
         let q = sharpness * k + other;
         let x = sharpness * self.cos + other;
         let y = sharpness * self.inv_cos + other;
-        ((q / x) * (q / y)).sqrt()
+        (q * q / (x * y)).sqrt()
     }
 }
 
