@@ -3,11 +3,12 @@
 //! as Tokuyoshi 2015 section 5 uses them (there 64² per VSGL from 8192 points each): compute
 //! only, no rasterization (`shaders/ism.wgsl`, `shaders/ism_map.wgsl`).
 //!
-//! * Caster points ([`caster_points`], on the CPU, deterministic): `points` samples uniformly
-//!   by area over the scene's triangles (`slc_core::rng`, stream `ISM_CASTERS`), each a disc
-//!   with the triangle's normal and the radius `footprint · sqrt(A / (π M))`, `A` the scene's
-//!   area and M the points a map draws: `footprint` = 1 would tile the area exactly with M
-//!   discs; the overlap closes the gaps a random point set leaves. Each map draws `points_per_map` of them, a run of the
+//! * Caster points ([`caster_points`], on the CPU, deterministic): `points` samples over the
+//!   scene's triangles (`slc_core::rng`, stream `ISM_CASTERS`), uniformly by area or, with
+//!   `view`, denser near the eye (`crate::ism_casters`), each a disc with the triangle's
+//!   normal and the radius `footprint · sqrt(1 / (π M p(x)))`, `p` the points' density over the
+//!   area (`1/A` when uniform) and M the points a map draws: `footprint` = 1 would tile the
+//!   area exactly with M discs; the overlap closes the gaps a random point set leaves. Each map draws `points_per_map` of them, a run of the
 //!   array from an offset of its own (a random subset, as the paper gives each VSGL, since the
 //!   points are independent samples); with `points_per_map = points` all maps share them.
 //! * Maps ([`IsmPass::render`]): per VSGL a full-sphere octahedral map of `resolution²`
@@ -37,11 +38,10 @@
 use crate::buffers::{output, uniform, upload, Grid};
 use crate::context::{GpuContext, GpuError};
 use crate::gpu_count::{ArgsPass, Count};
+pub use crate::ism_casters::caster_points;
 use bytemuck::{Pod, Zeroable};
 use core::f32::consts::PI;
 use glam::Vec3;
-use slc_core::rng::{stream, uniform as rng_uniform};
-use slc_core::Scene;
 
 /// The splatting kernel and the clear.
 pub(crate) const SOURCE: &str = concat!(
@@ -80,19 +80,25 @@ pub struct IsmSettings {
     pub points_per_map: u32,
     /// Pull-push levels of the hole filling (0: none; see the module docs).
     pub fill_levels: u32,
+    /// The eye whose view the caster points adapt to (view-adaptive maps, Ritschel et al.
+    /// 2011: density `∝ 1/max(d, near)²` at distance d from it, `crate::ism_casters`); `None`:
+    /// uniform by area.
+    pub view: Option<Vec3>,
 }
 
 impl IsmSettings {
     /// The paper's sizes (8192 points, 64²) with the footprint and bias measured on the
     /// built-in scene (`tests/gpu/vsgl_visibility.rs`, `ism_settings_sweep`), for a scene
-    /// whose tracer offset is `lift`. Every map shares the points and no hole is filled:
-    /// measured there against the CPU's shadow rays (mean / 99th percentile of the per-pixel
-    /// error), the discs already close the surfaces (0.0766 / 0.545), pull-push adds false
-    /// shadow where it fills open directions (one level: 0.0776 / 0.545), and per-map subsets
-    /// of a 262,144-point pool change little (0.0757 / 0.557) for 32 times the points to
-    /// sample. With the paper's one-texel points instead of discs, pull-push pays (65,536
-    /// pooled, 8192 per map: 0.0904 / 0.746 without, 0.0893 / 0.648 with two levels) but
-    /// stays behind the discs.
+    /// whose tracer offset is `lift`. Every map shares the points, no hole is filled and the
+    /// points are uniform: measured there against the CPU's shadow rays (mean / 99th percentile
+    /// of the per-pixel error, commit 376466e's shading), the discs already close the surfaces
+    /// (0.0738 / 0.498), pull-push adds false shadow where it fills open directions (one
+    /// level: 0.0744 / 0.498), and per-map subsets of a 262,144-point pool change little
+    /// (0.0742 / 0.516) for 32 times the points to sample. With the paper's one-texel points
+    /// instead of discs, pull-push pays (65,536 pooled, 8192 per map: 0.0882 / 0.758 without,
+    /// 0.0869 / 0.702 with two levels) but stays behind the discs. View-adaptive points
+    /// ([`IsmSettings::view`]) do not pay there nor on Sponza (0.0743 / 0.524 and 0.328 / 2.46
+    /// against 0.0738 / 0.498 and 0.298 / 2.57 uniform).
     pub fn paper(lift: f32) -> Self {
         Self {
             points: 8192,
@@ -105,6 +111,7 @@ impl IsmSettings {
             bias_slope: 1.0,
             points_per_map: 8192,
             fill_levels: 0,
+            view: None,
         }
     }
 
@@ -153,64 +160,6 @@ pub struct GpuCaster {
     pub normal: [f32; 4],
 }
 const _: () = assert!(std::mem::size_of::<GpuCaster>() == 32);
-
-/// `settings.points` caster discs sampled uniformly by area over `scene`'s triangles (see the
-/// module docs), less those an alpha mask cuts away (the others keep their density); none
-/// for a scene without area. Deterministic in `settings.seed`.
-pub fn caster_points(scene: &Scene, settings: &IsmSettings) -> Vec<GpuCaster> {
-    let mut tris = Vec::new();
-    let mut cdf = Vec::new();
-    let mut total = 0.0f64;
-    for mesh in &scene.meshes {
-        let material = scene.materials.get(mesh.material);
-        for t in &mesh.triangles {
-            let [a, b, c] = t.map(|i| mesh.positions.get(i as usize).copied());
-            let (Some(a), Some(b), Some(c)) = (a, b, c) else {
-                continue;
-            };
-            let cross = (b - a).cross(c - a);
-            let area = 0.5 * f64::from(cross.length());
-            if !(area > 0.0 && area.is_finite()) {
-                continue;
-            }
-            total += area;
-            let uvs = mesh
-                .uvs
-                .as_ref()
-                .map(|uv| t.map(|i| uv.get(i as usize).copied()))
-                .and_then(|[a, b, c]| Some([a?, b?, c?]));
-            tris.push((a, b, c, cross.normalize(), material, uvs));
-            cdf.push(total);
-        }
-    }
-    if tris.is_empty() || settings.points == 0 {
-        return Vec::new();
-    }
-    // Each map draws `points_per_map` of the points: their discs tile the area.
-    let per_map = settings.points_per_map.clamp(1, settings.points);
-    let radius =
-        settings.footprint * (total / (f64::from(per_map) * std::f64::consts::PI)).sqrt() as f32;
-    (0..settings.points)
-        .filter_map(|i| {
-            let u = |k| rng_uniform(settings.seed, i, stream::ISM_CASTERS, k);
-            let target = f64::from(u(0)) * total;
-            let t = cdf.partition_point(|&c| c < target).min(tris.len() - 1);
-            let (a, b, c, n, material, uvs) = tris[t];
-            let s = u(1).sqrt();
-            let r = u(2);
-            let w = [1.0 - s, s * (1.0 - r), s * r];
-            let uv = uvs.map(|[ua, ub, uc]| ua * w[0] + ub * w[1] + uc * w[2]);
-            if material.is_some_and(|m| m.cuts(uv, &scene.textures)) {
-                return None;
-            }
-            let p: Vec3 = a * w[0] + b * w[1] + c * w[2];
-            Some(GpuCaster {
-                position_radius: [p.x, p.y, p.z, radius],
-                normal: [n.x, n.y, n.z, 0.0],
-            })
-        })
-        .collect()
-}
 
 /// Imperfect shadow maps on the GPU: one per VSGL, in VSGL order.
 pub struct ImperfectShadowMaps {
@@ -402,22 +351,5 @@ mod tests {
         use std::mem::size_of;
         assert_eq!(wgsl_size(SOURCE, "IsmParams"), size_of::<GpuIsmParams>());
         assert_eq!(wgsl_size(SOURCE, "Caster"), size_of::<GpuCaster>());
-    }
-
-    /// Points lie on the triangles, spread by area, deterministically.
-    #[test]
-    fn caster_points_cover_the_scene_by_area() {
-        let scene = slc_core::builtin("default").unwrap();
-        let settings = IsmSettings::paper(1e-4);
-        let a = caster_points(&scene, &settings);
-        assert_eq!(a.len(), 8192);
-        assert_eq!(a, caster_points(&scene, &settings));
-        let (lo, hi) = scene.bounds().unwrap();
-        for c in &a {
-            let p = Vec3::from_slice(&c.position_radius[..3]);
-            assert!(p.cmpge(lo - 1e-4).all() && p.cmple(hi + 1e-4).all(), "{p}");
-            assert!((Vec3::from_slice(&c.normal[..3]).length() - 1.0).abs() < 1e-4);
-            assert!(c.position_radius[3] > 0.0);
-        }
     }
 }

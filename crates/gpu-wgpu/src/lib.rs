@@ -87,6 +87,7 @@ pub mod gbuffer_pass;
 pub mod gpu_count;
 pub mod gpu_lists;
 pub mod gpu_types;
+pub mod ism_casters;
 pub mod ism_pass;
 pub mod list_room;
 pub mod node_lists;

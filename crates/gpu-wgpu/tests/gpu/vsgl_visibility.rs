@@ -11,7 +11,7 @@ use glam::Vec3;
 use slc_bounds::sg::MeanMap;
 use slc_bounds::{Brdf, Fresnel};
 use slc_core::frame::DiffuseEmission;
-use slc_core::{builtin, GBuffer, GSample, Image, Mesh, Scene};
+use slc_core::{builtin, Camera, GBuffer, GSample, Image, Mesh, Scene};
 use slc_cpu_ref::gbuffer::{trace_gbuffer, PixelSample};
 use slc_cpu_ref::rsm::{trace_rsm, TexelSample};
 use slc_cpu_ref::sampled_lights::{sample_vsgls, sigma2_floor};
@@ -61,11 +61,16 @@ struct Frame {
 fn default_frame(count: u32) -> Frame {
     let scene = builtin("default").unwrap();
     let camera = scene.camera_or_default();
+    frame(scene, &camera, count)
+}
+
+/// 256 flux-sampled VSGLs of `scene` from 32² RSMs, seen by `camera` at 64x48.
+fn frame(scene: Scene, camera: &Camera, count: u32) -> Frame {
     let tracer = Tracer::new(&scene);
     let gbuffer = trace_gbuffer(
         &scene,
         &tracer,
-        &camera,
+        camera,
         64,
         48,
         PixelSample::Jittered { seed: 3, index: 0 },
@@ -201,6 +206,52 @@ fn ism_settings_sweep() {
         let (gpu, _) = gpu_images(&ctx, &f, &s);
         let (mean, p99) = error_stats(&gpu, &cpu);
         println!("{points} points, {resolution}²: mean {mean:.4} p99 {p99:.4}");
+    }
+    // View-adaptive points (denser near the eye) against uniform ones, on the built-in scene
+    // and on Sponza (whose depth range is far wider).
+    let (sponza, sponza_camera) = crate::raster_common::sponza();
+    let eye = f.scene.camera_or_default().position;
+    let sponza_eye = sponza_camera.position;
+    let sponza_frame = frame(sponza, &sponza_camera, 256);
+    let sponza_cpu = shade_vsgls(
+        &sponza_frame.tracer,
+        &sponza_frame.gbuffer,
+        &sponza_frame.vsgls,
+        DiffuseEmission::ClampedCosine,
+        true,
+        &|_| {},
+    )
+    .unwrap();
+    let sponza_base = IsmSettings::paper(Tracer::scene_epsilon(&sponza_frame.scene));
+    for (name, f, cpu, eye, base) in [
+        ("built-in", &f, &cpu, eye, base),
+        (
+            "Sponza",
+            &sponza_frame,
+            &sponza_cpu,
+            sponza_eye,
+            sponza_base,
+        ),
+    ] {
+        for (points, resolution) in [(8192, 64), (32768, 64), (8192, 128)] {
+            for view in [None, Some(eye)] {
+                let s = IsmSettings {
+                    points,
+                    points_per_map: points,
+                    resolution,
+                    max_splat: 4 * resolution / 64,
+                    view,
+                    ..base
+                };
+                let (gpu, _) = gpu_images(&ctx, f, &s);
+                let (mean, p99) = error_stats(&gpu, cpu);
+                println!(
+                    "{name}: {points} points, {resolution}², view-adaptive {}: mean {mean:.4} p99 \
+                 {p99:.4}",
+                    view.is_some()
+                );
+            }
+        }
     }
 }
 
