@@ -118,9 +118,15 @@ fn vsgl_pack(s: Sums, factor: f32, sigma2_floor: f32, clamped: bool) -> Packed {
         }
     }
     var specular_lobe = vec4<f32>(0.0);
+    var specular_c = c_s;
     var stretch = array<vec4<f32>, 2>(vec4<f32>(0.0, 0.0, 0.0, 1.0), vec4<f32>(0.0, 0.0, 0.0, 1.0));
     if any(c_s != vec3<f32>(0.0)) {
         specular_lobe = vec4<f32>(-specular.axis, specular.sharpness);
+        // GpuVsgl::new: the mixture's scale s(λ) in c, once per VSGL.
+        if specular.sharpness >= MIXTURE_FROM {
+            specular_c = c_s * mixture_scale(specular.sharpness);
+            ok = ok && finite3(specular_c);
+        }
         // light.rs Vsgl::specular_stretch: the direction of Σ w_s n (zero where it is zero).
         let n_sum = sums_specular_normal(s);
         var normal = vec3<f32>(0.0);
@@ -133,7 +139,7 @@ fn vsgl_pack(s: Sums, factor: f32, sigma2_floor: f32, clamped: bool) -> Packed {
         vec4<f32>(mu, sigma2),
         vec4<f32>(diffuse_c, density),
         diffuse_lobe,
-        vec4<f32>(c_s, select(0.0, 1.0, clamped)),
+        vec4<f32>(specular_c, select(0.0, 1.0, clamped)),
         specular_lobe,
         stretch[0],
         stretch[1],

@@ -86,7 +86,7 @@ const GGX_MIXTURE = array<vec2<f32>, 3>(vec2<f32>(2.254, 0.7082), vec2<f32>(0.55
 const MIXTURE_FROM: f32 = 3.0;
 
 // slc_bounds::sg::mixture_scale: A(l) / sum_k w_k A(c_k l), so that the mixture has the
-// lobe's integral.
+// lobe's integral (applied to c when a VSGL is packed, vsgl_pack).
 fn mixture_scale(l: f32) -> f32 {
     var sum = 0.0;
     for (var m = 0u; m < 3u; m++) {
@@ -124,12 +124,11 @@ fn vsgl_contribution(surface: Surface, x: vec3<f32>, e: Vsgl) -> vec4<f32> {
         }
         // The specular lobe as GGX's mixture (slc_bounds::sg::ggx_mixture).
         let lambda = lobes[k].w;
+        // The mixture's scale s(λ) is in the packed c (GpuVsgl::new, vsgl_pack).
         var count = 1u;
-        var s = 1.0;
         var stretch = 1.0;
         if k == 1u && lambda >= MIXTURE_FROM {
             count = 3u;
-            s = mixture_scale(lambda);
             stretch = stretch_factor(e, position.axis);
         }
         for (var m = 0u; m < count; m++) {
@@ -138,7 +137,7 @@ fn vsgl_contribution(surface: Surface, x: vec3<f32>, e: Vsgl) -> vec4<f32> {
                 // Emitter::radiance_in: each SG of the mixture stretched towards the receiver.
                 let l = GGX_MIXTURE[m].x * lambda;
                 let a = stretch_amplitude(e, l, stretch, position.sharpness);
-                emitted = Sg(lobes[k].xyz, l * stretch, GGX_MIXTURE[m].y * s * a);
+                emitted = Sg(lobes[k].xyz, l * stretch, GGX_MIXTURE[m].y * a);
             }
             let light = sg_product(emitted, position);
             if !(sg_finite(light.sharpness) && sg_finite(light.amplitude)) {

@@ -6,7 +6,7 @@ use crate::context::GpuError;
 use bytemuck::{Pod, Zeroable};
 use core::f32::consts::{FRAC_1_PI, TAU};
 use glam::Vec3;
-use slc_bounds::sg::{sg_integral, LobeStretch};
+use slc_bounds::sg::{mixture_scale, sg_integral, LobeStretch, MIXTURE_FROM};
 use slc_bounds::SphericalGaussian;
 
 /// One lobe `c_v G(ω; ξ_v, λ_v)` of a VSGL's radiant intensity (VSGL section 3.1.1): the
@@ -62,7 +62,9 @@ pub struct GpuVsgl {
     pub diffuse_c_density: [f32; 4],
     /// The emitted diffuse lobe's axis `−ξ_v` (xyz) and `λ_v` (w).
     pub diffuse_lobe: [f32; 4],
-    /// `c_v` of the specular lobe (xyz; zero: left out); w: 1 when the diffuse lobe is the
+    /// `c_v` of the specular lobe (xyz; zero: left out), times the scale `s(λ_v)` of its
+    /// three SGs where it is shaded as GGX's mixture (`slc_bounds::sg::mixture_scale`, from
+    /// `MIXTURE_FROM` on: once here rather than per pixel); w: 1 when the diffuse lobe is the
     /// clamped cosine (then `diffuse_c_density.xyz` is its peak `c_v A(λ_v)/π` and
     /// `diffuse_lobe` holds `ξ_v` and κ), 0 for the SG.
     pub specular_c: [f32; 4],
@@ -139,6 +141,13 @@ impl GpuVsgl {
             LobeStretch::new(specular.xi, specular.lambda, vsgl.specular_normal)
         };
         let [t, b] = [stretch.tangent, stretch.bitangent];
+        if ls[3] >= MIXTURE_FROM {
+            let scaled = Vec3::from_slice(&cs[..3]) * mixture_scale(ls[3]);
+            if !scaled.is_finite() {
+                return Err(bad(format!("specular c_v {scaled} is not finite")));
+            }
+            cs[..3].copy_from_slice(&scaled.to_array());
+        }
         cs[3] = if vsgl.clamped_diffuse.is_some() {
             1.0
         } else {

@@ -254,12 +254,20 @@ fn same_vsgl(a: &GpuVsgl, b: &GpuVsgl, extent: f32) -> bool {
 /// The total `Σ Φ (R_d + R_s)` a VSGL carries: `c_v A(λ_v)` of each lobe (the
 /// clamped diffuse lobe holds the peak `c_v A(λ_v)/π`).
 fn carried(v: &GpuVsgl) -> f64 {
+    use slc_bounds::sg::{mixture_scale, sg_integral, MIXTURE_FROM};
     let total = |c: [f32; 4]| f64::from(c[0] + c[1] + c[2]);
-    let specular = total(v.specular_c) * f64::from(slc_bounds::sg::sg_integral(v.specular_lobe[3]));
+    let lambda = v.specular_lobe[3];
+    // The packed specular c carries the mixture's scale (GpuVsgl::specular_c).
+    let scale = if lambda >= MIXTURE_FROM {
+        mixture_scale(lambda)
+    } else {
+        1.0
+    };
+    let specular = total(v.specular_c) * f64::from(sg_integral(lambda) / scale);
     let diffuse = if v.specular_c[3] != 0.0 {
         total(v.diffuse_c_density) * std::f64::consts::PI
     } else {
-        total(v.diffuse_c_density) * f64::from(slc_bounds::sg::sg_integral(v.diffuse_lobe[3]))
+        total(v.diffuse_c_density) * f64::from(sg_integral(v.diffuse_lobe[3]))
     };
     diffuse + specular
 }
