@@ -70,13 +70,12 @@ fn stretch_factor(e: Vsgl, w: vec3<f32>) -> f32 {
 }
 
 // LobeStretch::amplitude_factor: the amplitude of the isotropic stand-in of sharpness l k in
-// a product with a lobe of sharpness `other` (at most 1e18).
-fn stretch_amplitude(e: Vsgl, l: f32, k: f32, other_in: f32) -> f32 {
-    let other = min(other_in, 1e18);
+// a product with a lobe of sharpness `other`, as sqrt((q/x)(q/y)) (no overflow).
+fn stretch_amplitude(e: Vsgl, l: f32, k: f32, other: f32) -> f32 {
     let q = l * k + other;
     let x = l * e.stretch_tangent.w + other;
     let y = l * e.stretch_bitangent.w + other;
-    return sqrt(q * q / (x * y));
+    return sqrt((q / x) * (q / y));
 }
 
 // slc_bounds::sg::GGX_MIXTURE and MIXTURE_FROM (crates/bounds/src/sg/mixture.rs; a test of

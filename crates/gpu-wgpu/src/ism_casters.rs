@@ -65,7 +65,10 @@ impl Weight {
 
 /// `settings.points` caster discs on `scene`'s triangles (see the module docs), less those an
 /// alpha mask cuts away (the others keep their density); none for a scene without area.
-/// Deterministic in `settings.seed` (and the eye).
+/// Deterministic in `settings.seed` (and the eye). View-adaptive sampling draws at most
+/// `MAX_CANDIDATES_PER_POINT` candidates per point: where the triangles' bounds are loose
+/// (large triangles near the eye) the set may come out short, its discs still sized for the
+/// density they were drawn with.
 pub fn caster_points(scene: &Scene, settings: &IsmSettings) -> Vec<GpuCaster> {
     let near = scene
         .bounds()

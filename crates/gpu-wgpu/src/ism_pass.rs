@@ -63,7 +63,8 @@ pub struct IsmSettings {
     pub points: u32,
     /// Texels per side of each octahedral map (the paper: 64).
     pub resolution: u32,
-    /// Disc radius over `sqrt(A / (π M))`, M = `points_per_map`.
+    /// Disc radius over `sqrt(1 / (π M p(x)))`, M = `points_per_map` and `p` the points'
+    /// density over the area (`1/A` when uniform).
     pub footprint: f32,
     /// The widest splat, in texels from a point's own texel.
     pub max_splat: u32,

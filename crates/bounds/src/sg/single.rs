@@ -3,7 +3,8 @@
 //! the forms of the GPU's `crates/gpu-wgpu/shaders/sg.wgsl`, which avoid the cancellations
 //! plain `f32` would suffer (series for `expm1`, the Langevin function and the away-facing
 //! irradiance at small sharpness, `1 − L(λ)` formed directly, the product's exponent
-//! `d − λ1 − λ2` without cancelling). Each branch is taken per lane ([`crate::branch!`]), and `e^x` is
+//! `d − λ1 − λ2` without cancelling; here `e^{−2λ}` is the square of `e^{−λ}` where the
+//! GPU forms its own, within the rounding). Each branch is taken per lane ([`crate::branch!`]), and `e^x` is
 //! [`crate::lanes::exp`], so a lane equals the scalar form bit for bit. The `f64` forms of the
 //! sibling modules ([`SphericalGaussian::product`], [`SphericalGaussian::inner_product`],
 //! [`SphericalGaussian::irradiance`], [`SgSurface::radiance`]) stay the reference: the tests

@@ -249,6 +249,22 @@ fn same_vsgl(a: &GpuVsgl, b: &GpuVsgl, extent: f32) -> bool {
         && a.specular_c[3] == b.specular_c[3]
         && lobe(a.diffuse_lobe, b.diffuse_lobe)
         && lobe(a.specular_lobe, b.specular_lobe)
+        && stretch(a, b)
+}
+
+/// The specular lobe's stretch of two packed VSGLs agrees: `cos θ` and its inverse within
+/// 1e-4, and, where the stretch is more than a rounding (`cos θ` below 0.999), the tangent
+/// and bitangent within 1e-3 up to their sign (the stretch depends on their squares).
+fn stretch(a: &GpuVsgl, b: &GpuVsgl) -> bool {
+    let (ta, tb) = (a.stretch_tangent, b.stretch_tangent);
+    let (ba, bb) = (a.stretch_bitangent, b.stretch_bitangent);
+    let near = |x: [f32; 4], y: [f32; 4]| {
+        let d = |s: f32| (0..3).all(|i| (x[i] - s * y[i]).abs() <= 1e-3);
+        d(1.0) || d(-1.0)
+    };
+    (ta[3] - tb[3]).abs() <= 1e-4
+        && (ba[3] - bb[3]).abs() <= 1e-4 * ba[3].max(bb[3])
+        && (ta[3] >= 0.999 || (near(ta, tb) && near(ba, bb)))
 }
 
 /// The total `Σ Φ (R_d + R_s)` a VSGL carries: `c_v A(λ_v)` of each lobe (the
