@@ -90,7 +90,7 @@ impl BoxBound {
         // G1(ωo) bounded by the isotropic G1 of its smallest α (`crate::anisotropy`).
         let flux = lobe.flux() * lobe.bound_factor();
         let f_max = f64::from(scalar_intensity(
-            flux * lobe.fresnel().max_over_half_vectors(cos_i),
+            flux * lobe.fresnel().max_over_half_vectors(cos_i, lobe.sin_i()),
         ));
         Self {
             lobe: Lobe::Glossy {
@@ -100,7 +100,7 @@ impl BoxBound {
                 alpha,
                 omega_i,
                 omega_u: lobe.reflection().as_dvec3().normalize(),
-                cos_h_max: f64::from(cos_theta_h_max(cos_i)),
+                cos_h_max: f64::from(cos_theta_h_max(cos_i, lobe.sin_i())),
                 g1_i,
             },
             normal,

@@ -23,11 +23,12 @@ impl Fresnel {
     }
 
     /// F_max(ωi): the largest Fresnel factor over all half vectors reachable from an incoming
-    /// direction with cosine `cos_i` to the normal; supplemental eq. (2) for Schlick and
-    /// eq. (6) for dielectrics: [`Self::max_from`] the cosine of θh_max(ωi).
+    /// direction with cosine `cos_i` and sine `sin_i` to the normal; supplemental eq. (2) for
+    /// Schlick and eq. (6) for dielectrics: [`Self::max_from`] the cosine of θh_max(ωi)
+    /// ([`cos_theta_h_max`]).
     #[inline]
-    pub fn max_over_half_vectors(&self, cos_i: f32) -> Vec3 {
-        self.max_from(cos_theta_h_max(cos_i))
+    pub fn max_over_half_vectors(&self, cos_i: f32, sin_i: f32) -> Vec3 {
+        self.max_from(cos_theta_h_max(cos_i, sin_i))
     }
 
     /// The largest Fresnel factor per channel over half vectors with ωi·ωh in `[cos_h, 1]`:
@@ -85,13 +86,24 @@ pub fn dielectric(eta: f32, cos_h: f32) -> f32 {
 /// `sqrt((1 - sqrt(1 - (ωi·n)²)) / 2)`, evaluated as `cos θi / sqrt(2 (1 + sin θi))`. The
 /// reflected direction makes the angle 2θh with ωi, and the largest angle between ωi and a
 /// direction of the upper hemisphere is θi + π/2.
+///
+/// The sine is an argument, not `sqrt(1 − cos²)`: near normal incidence that root loses half
+/// the digits (one f32 ulp below 1 is already a sine of 3.5e-4, so two renderers whose
+/// cosines differ by an ulp differ by 2e-4 in F_max). Callers with the vectors pass
+/// `|n × ωi|` ([`crate::GlossyLobe::sin_i`]), exact there.
 #[inline]
-pub fn cos_theta_h_max(cos_i: f32) -> f32 {
+pub fn cos_theta_h_max(cos_i: f32, sin_i: f32) -> f32 {
     let c = cos_i.clamp(0.0, 1.0);
-    let sin_i = (1.0 - c * c).max(0.0).sqrt();
+    let sin_i = sin_i.clamp(0.0, 1.0);
     // 1 - sin θi = cos² θi / (1 + sin θi): no cancellation near grazing incidence, where
     // 1 - sin θi would round to 0 for cos θi below about 3e-4.
     c / (2.0 * (1.0 + sin_i)).sqrt()
+}
+
+/// `sqrt(1 − cos²)`, the sine for callers that have only a cosine.
+#[inline]
+pub fn sin_from_cos(cos: f32) -> f32 {
+    (1.0 - cos * cos).max(0.0).sqrt()
 }
 
 #[cfg(test)]
@@ -127,7 +139,7 @@ mod tests {
     }
 
     fn assert_bounds_and_attains(fresnel: Fresnel, cos_i: f32, cosines: &[f32]) {
-        let f_max = fresnel.max_over_half_vectors(cos_i);
+        let f_max = fresnel.max_over_half_vectors(cos_i, sin_from_cos(cos_i));
         let mut attained = Vec3::ZERO;
         for &c in cosines {
             let f = fresnel.eval(c);
@@ -174,12 +186,12 @@ mod tests {
         for k in 0..=100 {
             let theta_i = k as f32 / 100.0 * core::f32::consts::FRAC_PI_2;
             let expected = (0.5 * theta_i + core::f32::consts::FRAC_PI_4).cos();
-            assert!((cos_theta_h_max(theta_i.cos()) - expected).abs() < 1e-3);
+            assert!((cos_theta_h_max(theta_i.cos(), theta_i.sin()) - expected).abs() < 1e-3);
         }
-        assert_eq!(cos_theta_h_max(0.0), 0.0);
+        assert_eq!(cos_theta_h_max(0.0, 1.0), 0.0);
         // Near grazing incidence θh_max = π/2 - θ_i'/2 with θ_i' = π/2 - θi: cos ≈ cos θi / 2.
-        assert!((cos_theta_h_max(1e-6) - 5e-7).abs() < 1e-12);
-        assert!((cos_theta_h_max(1.0) - core::f32::consts::FRAC_1_SQRT_2).abs() < 1e-6);
+        assert!((cos_theta_h_max(1e-6, 1.0) - 5e-7).abs() < 1e-12);
+        assert!((cos_theta_h_max(1.0, 0.0) - core::f32::consts::FRAC_1_SQRT_2).abs() < 1e-6);
     }
 
     #[test]

@@ -162,6 +162,13 @@ impl GlossyLobe {
         self.normal.dot(self.omega_i)
     }
 
+    /// |n × ωi|, the sine of ωi's angle to the normal, exact near normal incidence (where
+    /// `sqrt(1 − cos²)` is not: [`crate::fresnel::cos_theta_h_max`]).
+    #[inline]
+    pub fn sin_i(&self) -> f32 {
+        self.normal.cross(self.omega_i).length()
+    }
+
     /// The mirror direction ω_u = 2(ωi·n)n − ωi of section 4.2 (the spheroid's long axis).
     #[inline]
     pub fn reflection(&self) -> Vec3 {
@@ -197,8 +204,9 @@ impl GlossyLobe {
     /// an `f32`.
     pub fn radius(&self, params: &StochasticParams) -> Result<f32, BoundsError> {
         let cos_i = self.cos_i();
-        let peak = scalar_intensity(self.flux * self.fresnel.max_over_half_vectors(cos_i))
-            * self.bound_factor();
+        let peak =
+            scalar_intensity(self.flux * self.fresnel.max_over_half_vectors(cos_i, self.sin_i()))
+                * self.bound_factor();
         if cos_i <= 0.0 || peak <= 0.0 {
             return Ok(0.0);
         }
@@ -234,6 +242,34 @@ mod tests {
         assert!((got - want).abs() < 1e-5 * want, "{got} vs {want}");
         assert!((l.reflection() - Vec3::new(-0.6, 0.0, 0.8)).length() < 1e-6);
         assert!((l.cos_i() - 0.8).abs() < 1e-6);
+    }
+
+    /// At normal incidence the radius is that of `n = ωi = z` whatever f32 unit vector `n` is,
+    /// though `n·n` rounds an ulp below 1 for many of them: F_max's θh_max takes the sine
+    /// `|n × ωi|`. With `sqrt(1 − cos²)` one ulp gave a sine of 3.5e-4 and radii 2e-4 apart
+    /// (how the GPU, whose `normalize` rounds differently, disagreed with the CPU).
+    #[test]
+    fn normal_incidence_radius_does_not_hang_on_an_ulp() {
+        let params = StochasticParams::new(1e-3, 3e-8).unwrap();
+        let mut rng = crate::test_util::Rng::new(12);
+        for f in [
+            Fresnel::Dielectric(1.5),
+            Fresnel::Schlick(Vec3::splat(0.04)),
+        ] {
+            let flux = Vec3::new(3.0, 0.5, 0.0);
+            let exact = lobe(Vec3::Z, Vec3::Z, 1e-3, flux, f)
+                .radius(&params)
+                .unwrap();
+            let mut below_one = 0;
+            for _ in 0..200 {
+                let n = rng.unit();
+                let l = lobe(n, n, 1e-3, flux, f);
+                below_one += usize::from(l.cos_i() < 1.0);
+                let r = l.radius(&params).unwrap();
+                assert!((r / exact - 1.0).abs() < 1e-6, "{n}: {r} vs {exact}");
+            }
+            assert!(below_one > 20, "{below_one}");
+        }
     }
 
     #[test]

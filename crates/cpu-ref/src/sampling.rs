@@ -1,5 +1,6 @@
 //! Importance sampling of the diffuse + GGX BRDF for the path-traced reference.
 use glam::Vec3;
+use slc_bounds::fresnel::sin_from_cos;
 use slc_bounds::{ggx, Brdf};
 use std::f32::consts::{FRAC_1_PI, PI};
 
@@ -7,7 +8,10 @@ use std::f32::consts::{FRAC_1_PI, PI};
 /// max(kd) against max F_max(ωo).
 fn specular_probability(brdf: &Brdf, cos_o: f32) -> f32 {
     let wd = brdf.kd.max_element();
-    let ws = brdf.fresnel.max_over_half_vectors(cos_o).max_element();
+    let ws = brdf
+        .fresnel
+        .max_over_half_vectors(cos_o, sin_from_cos(cos_o))
+        .max_element();
     if wd + ws <= 0.0 {
         0.0
     } else {

@@ -20,7 +20,7 @@ pub fn generate_vpls(maps: &[Rsm], seed: u32, lobes: LobeSelection) -> Vec<Vpl> 
         for (k, texel) in rsm.texels.iter().enumerate() {
             let Some(t) = texel else { continue };
             let id = 2 * (base + k as u32);
-            let specular = t.brdf.fresnel.max_over_half_vectors(1.0).max_element() > 0.0;
+            let specular = t.brdf.fresnel.max_over_half_vectors(1.0, 0.0).max_element() > 0.0;
             for (lobe, present, id) in [
                 (VplLobe::Diffuse, t.brdf.kd.max_element() > 0.0, id),
                 (VplLobe::Glossy, specular, id + 1),

@@ -51,15 +51,17 @@ fn view_rotation() -> mat3x3<f32> {
 }
 
 // cos of the largest angle between omega_i and a half vector (supplemental, after eq. 2).
-fn cos_theta_h_max(cos_i: f32) -> f32 {
+// The sine is |n x w_i|, not sqrt(1 - cos^2), which loses half the digits near normal
+// incidence (fresnel.rs cos_theta_h_max).
+fn cos_theta_h_max(cos_i: f32, sin_i: f32) -> f32 {
     let c = clamp(cos_i, 0.0, 1.0);
-    let sin_i = sqrt(max(1.0 - c * c, 0.0));
-    return c / sqrt(2.0 * (1.0 + sin_i));
+    return c / sqrt(2.0 * (1.0 + clamp(sin_i, 0.0, 1.0)));
 }
 
 // F_max(omega_i): supplemental eq. (2) (Schlick) and eq. (6) (dielectric) at theta_h_max.
-fn fresnel_max(vpl: Vpl, cos_i: f32) -> vec3<f32> {
-    return fresnel_max_from(vpl.info.y, vpl.f0.xyz, vpl.omega_i_eta.w, cos_theta_h_max(cos_i));
+fn fresnel_max(vpl: Vpl, n: vec3<f32>, wi: vec3<f32>) -> vec3<f32> {
+    let h_max = cos_theta_h_max(dot(n, wi), length(cross(n, wi)));
+    return fresnel_max_from(vpl.info.y, vpl.f0.xyz, vpl.omega_i_eta.w, h_max);
 }
 
 fn finite(x: f32) -> bool {
@@ -157,7 +159,7 @@ fn glossy_bound(vpl: Vpl, q: vec3<f32>, index: u32) -> Bound {
     let cos_i = dot(n, wi);
     // GlossyLobe::radius: the flux times the bound factor (w, 1 unless normal-mapped or
     // anisotropic).
-    let peak = scalar(vpl.flux.xyz * fresnel_max(vpl, cos_i)) * vpl.geometric_tilt.w;
+    let peak = scalar(vpl.flux.xyz * fresnel_max(vpl, n, wi)) * vpl.geometric_tilt.w;
     if cos_i <= 0.0 || peak <= 0.0 {
         return empty_bound(index);
     }
@@ -226,7 +228,7 @@ fn box_bound(vpl: Vpl, q: vec3<f32>) -> BoxBound {
     let cos_i = dot(n, wi);
     let flux = vpl.flux.xyz * vpl.geometric_tilt.w;
     let g1_i = 0.25 * ggx_g1_over_cos(alpha, cos_i);
-    let peak = scalar(flux * fresnel_max(vpl, cos_i)) * g1_i / (PI * alpha * alpha);
+    let peak = scalar(flux * fresnel_max(vpl, n, wi)) * g1_i / (PI * alpha * alpha);
     if !(cos_i > 0.0) {
         return b;
     }
@@ -239,7 +241,8 @@ fn box_bound(vpl: Vpl, q: vec3<f32>) -> BoxBound {
         g1_alpha = 0.0;
     }
     b.normal_peak = vec4<f32>(normalize(rot * n), peak);
-    b.omega_i_cos_h_max = vec4<f32>(normalize(rot * wi), cos_theta_h_max(cos_i));
+    let h_max = cos_theta_h_max(cos_i, length(cross(n, wi)));
+    b.omega_i_cos_h_max = vec4<f32>(normalize(rot * wi), h_max);
     b.omega_u_g1_i = vec4<f32>(normalize(rot * (2.0 * cos_i * n - wi)), g1_i);
     b.flux_alpha = vec4<f32>(flux, alpha);
     b.info.x = BOX_GLOSSY;

@@ -201,7 +201,7 @@ pub struct GpuVplGenParams {
     pub lobes: u32,
     /// `gpu_types::CULL_COUNT` or `CULL_WRITE`.
     pub mode: u32,
-    /// `cos_theta_h_max(1)` of `Fresnel::max_over_half_vectors(1)`.
+    /// `cos_theta_h_max(1, 0)` of `Fresnel::max_over_half_vectors(1, 0)`.
     pub cos_h_max: f32,
     pub pad: [u32; 2],
 }

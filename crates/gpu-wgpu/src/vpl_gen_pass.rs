@@ -150,7 +150,7 @@ impl VplGenPass {
                     seed,
                     lobes: lobes.mask(),
                     mode,
-                    cos_h_max: cos_theta_h_max(1.0),
+                    cos_h_max: cos_theta_h_max(1.0, 0.0),
                     pad: [0; 2],
                 };
                 let grid = Grid::for_items(ctx, u64::from(texel_count), WORKGROUP)?;
