@@ -8,19 +8,25 @@ use slc_bounds::lanes::{Lanes8, F8, M8};
 use slc_bounds::sg::{splat3, IrradianceFit, LobeStretch, SgLanes};
 use slc_bounds::SgSurface;
 
-/// Emitters in chunks of eight lanes, in order (the last chunk's unused lanes dark).
+/// Emitters in chunks of eight lanes (the last chunk's unused lanes dark), grouped by the
+/// SG lobes they shade: a chunk evaluates a lobe for all its lanes where any lane has it, so
+/// VSGLs with one specular SG and those with the three of the mixture share no chunk where
+/// that can be helped.
 pub(crate) struct EmitterChunks {
     chunks: Vec<Emitter<F8>>,
-    len: usize,
+    /// The emitters' indices in lane order.
+    order: Vec<usize>,
     avx2: bool,
 }
 
 impl EmitterChunks {
     pub(crate) fn new(emitters: &[Emitter]) -> Self {
-        let chunks = emitters
+        let mut order: Vec<usize> = (0..emitters.len()).collect();
+        order.sort_by_key(|&i| Self::shape(&emitters[i]));
+        let chunks = order
             .chunks(8)
             .map(|c| {
-                let lane = |k: usize| c.get(k).unwrap_or(&Emitter::DARK);
+                let lane = |k: usize| c.get(k).map_or(&Emitter::DARK, |&i| &emitters[i]);
                 gather(core::array::from_fn(lane))
             })
             .collect();
@@ -30,28 +36,38 @@ impl EmitterChunks {
         let avx2 = false;
         Self {
             chunks,
-            len: emitters.len(),
+            order,
             avx2,
         }
     }
 
-    /// Calls `visit` with the radiance of every emitter at the receiver `surface` at `x_p`
-    /// (its [`Emitter::radiance`], bit for bit), in the emitters' order, eight at a time; fails
-    /// where a `λ_σ` or lobe product leaves `f32`.
+    /// Which lobes an emitter shades, as a sort key: the present SG lobes and the clamped
+    /// diffuse intensity, one bit each.
+    fn shape(e: &Emitter) -> u8 {
+        let lobes = e.lobes.iter().enumerate();
+        lobes.fold(u8::from(e.clamped.present), |key, (j, l)| {
+            key | (u8::from(l.present) << (j + 1))
+        })
+    }
+
+    /// Calls `visit` with the index and radiance of every emitter at the receiver `surface` at
+    /// `x_p` (its [`Emitter::radiance`], bit for bit), eight at a time, in the chunks' order
+    /// (grouped by [`Self::shape`], not the emitters' order); fails where a `λ_σ` or lobe
+    /// product leaves `f32`.
     pub(crate) fn each_radiance(
         &self,
         surface: &SgSurface,
         x_p: Vec3,
         mut visit: impl FnMut(usize, Vec3),
     ) -> Result<(), VsglError> {
-        for (i, chunk) in self.chunks.iter().enumerate() {
+        for (chunk, indices) in self.chunks.iter().zip(self.order.chunks(8)) {
             let (radiance, overflow) = self.radiance(chunk, surface, x_p);
             if overflow != 0 {
                 return Err(OVERFLOW.into());
             }
-            for k in 0..(self.len - 8 * i).min(8) {
+            for (k, &i) in indices.iter().enumerate() {
                 let c = Vec3::new(radiance[0].0[k], radiance[1].0[k], radiance[2].0[k]);
-                visit(8 * i + k, c);
+                visit(i, c);
             }
         }
         Ok(())
@@ -248,16 +264,17 @@ mod tests {
         }
     }
 
-    /// The radiance of every emitter through the chunks, as bit patterns.
+    /// The radiance of every emitter through the chunks, as bit patterns in the emitters'
+    /// order (each visited once).
     fn through(chunks: &EmitterChunks, surface: &SgSurface, x_p: Vec3) -> Vec<[u32; 3]> {
-        let mut out = Vec::new();
+        let mut out = vec![None; chunks.order.len()];
         chunks
             .each_radiance(surface, x_p, |i, c| {
-                assert_eq!(i, out.len());
-                out.push(c.to_array().map(f32::to_bits));
+                assert!(out[i].is_none(), "{i} twice");
+                out[i] = Some(c.to_array().map(f32::to_bits));
             })
             .unwrap();
-        out
+        out.into_iter().map(Option::unwrap).collect()
     }
 
     /// Eight at a time (AVX2 where the CPU has it, plain arrays too) equals one at a time bit
@@ -295,6 +312,13 @@ mod tests {
                     })
                     .collect();
                 let mut chunks = EmitterChunks::new(&emitters);
+                // Grouped by shape: a chunk mixes shapes only where one group ends.
+                let shapes: Vec<u8> = chunks
+                    .order
+                    .iter()
+                    .map(|&i| EmitterChunks::shape(&emitters[i]))
+                    .collect();
+                assert!(shapes.windows(2).all(|w| w[0] <= w[1]), "{shapes:?}");
                 assert_eq!(through(&chunks, &surface, x_p), one_at_a_time);
                 chunks.avx2 = false;
                 assert_eq!(through(&chunks, &surface, x_p), one_at_a_time);
