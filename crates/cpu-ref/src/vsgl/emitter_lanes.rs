@@ -11,7 +11,8 @@ use slc_bounds::SgSurface;
 /// Emitters in chunks of eight lanes (the last chunk's unused lanes dark), grouped by the
 /// SG lobes they shade: a chunk evaluates a lobe for all its lanes where any lane has it, so
 /// VSGLs with one specular SG and those with the three of the mixture share no chunk where
-/// that can be helped.
+/// that can be helped. Within a group they go by `σ²`, so that a chunk's lanes see positional
+/// lobes of similar sharpness `λ_σ = |μ − x|²/σ²` and take the same branches more often.
 pub(crate) struct EmitterChunks {
     chunks: Vec<Emitter<F8>>,
     /// The emitters' indices in lane order.
@@ -22,7 +23,10 @@ pub(crate) struct EmitterChunks {
 impl EmitterChunks {
     pub(crate) fn new(emitters: &[Emitter]) -> Self {
         let mut order: Vec<usize> = (0..emitters.len()).collect();
-        order.sort_by_key(|&i| Self::shape(&emitters[i]));
+        order.sort_by(|&a, &b| {
+            let (ea, eb) = (&emitters[a], &emitters[b]);
+            (Self::shape(ea).cmp(&Self::shape(eb))).then(ea.sigma2.total_cmp(&eb.sigma2))
+        });
         let chunks = order
             .chunks(8)
             .map(|c| {
