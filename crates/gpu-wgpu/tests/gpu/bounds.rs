@@ -9,6 +9,13 @@
 //!   r, whose f32 rounding scales with those magnitudes);
 //! - BS entries: 1e-5 max|BS| (the largest entry; B and S are f32 on both sides);
 //! - BS·c: 1e-5 |BS|_F (|c| + |p| + |eye|) (a matrix-vector product's rounding).
+//!
+//! Each tolerance also takes how far the CPU's own quantity moves when ωi turns by
+//! [`DIRECTION_TURN`] (four roundings) towards or away from the normal: a GPU whose `normalize`, division and
+//! square root are not correctly rounded (WGSL allows 2.5 ulp; NVIDIA's differ from lavapipe's)
+//! sees directions a few ulps from the CPU's, and near grazing incidence `G1/cos` turns that
+//! into relative changes of `δcos/(cos + α)` (2e-5 on an H100 at cos 1e-5, α 1e-3). On
+//! lavapipe that spread is well below the 1e-5 almost everywhere.
 use crate::common::gpu;
 use glam::{DMat3, DVec3, Vec3};
 use slc_bounds::{Anisotropy, Brdf, Fresnel, Sphere, Spheroid, StochasticParams, TestSpace};
@@ -24,6 +31,9 @@ use slc_gpu_wgpu::GpuContext;
 
 const SLACK: f64 = 1e-3;
 const TOL: f64 = 1e-5;
+/// The turn of ωi, in radians, over which the CPU's quantities are spread: four units of f32
+/// rounding.
+const DIRECTION_TURN: f32 = 4.0 * (f32::EPSILON / 2.0);
 const GLOSSY: [GlossyBound; 3] = [
     GlossyBound::Sphere,
     GlossyBound::EnclosingSphere,
@@ -96,6 +106,48 @@ pub fn reference(vpl: &Vpl, delta: f32, view: &CullView, glossy: GlossyBound) ->
     }
 }
 
+/// `vpl` with ωi turned by `angle` in the plane of ωi and the normal (about any axis
+/// normal to ωi at normal incidence).
+fn turned(vpl: &Vpl, angle: f32) -> Vpl {
+    let axis = vpl.normal.cross(vpl.omega_i);
+    let axis = if axis.length_squared() > 0.0 {
+        axis.normalize()
+    } else {
+        vpl.omega_i.any_orthonormal_vector()
+    };
+    Vpl {
+        omega_i: glam::Quat::from_axis_angle(axis, angle) * vpl.omega_i,
+        ..*vpl
+    }
+}
+
+/// How far each compared quantity (radius, sphere centre, BS, BS·c) moves from `a` to `b`
+/// (0 where the two are not bounds of one kind).
+fn spread(a: &Reference, b: &Reference) -> [f64; 4] {
+    match (a, b) {
+        (
+            Reference::Sphere { center, radius },
+            Reference::Sphere {
+                center: c2,
+                radius: r2,
+            },
+        ) => [(radius - r2).abs(), (*center - *c2).length(), 0.0, 0.0],
+        (
+            Reference::Ellipsoid { bs, center, .. },
+            Reference::Ellipsoid {
+                bs: bs2,
+                center: c2,
+                ..
+            },
+        ) => {
+            let entries = (*bs - *bs2).to_cols_array();
+            let worst = entries.iter().fold(0.0f64, |m, e| m.max(e.abs()));
+            [0.0, 0.0, worst, (*center - *c2).length()]
+        }
+        _ => [0.0; 4],
+    }
+}
+
 fn xyz(v: [f32; 4]) -> DVec3 {
     DVec3::new(v[0].into(), v[1].into(), v[2].into())
 }
@@ -133,7 +185,16 @@ fn compare(
             assert_eq!(g.subregion, interleaving.vpl_subregion(vpl.id), "VPL {i}");
             let at = format!("VPL {i} ({:?}, {glossy:?}, {vpl:?})", vpl.lobe);
             let p = vpl.position.as_dvec3().length();
-            match reference(vpl, delta, &view, glossy) {
+            let exact = reference(vpl, delta, &view, glossy);
+            let mut cond = [0.0f64; 4];
+            for angle in [DIRECTION_TURN, -DIRECTION_TURN] {
+                let moved = spread(
+                    &exact,
+                    &reference(&turned(vpl, angle), delta, &view, glossy),
+                );
+                cond = core::array::from_fn(|k| cond[k].max(moved[k]));
+            }
+            match exact {
                 Reference::Empty => {
                     assert_eq!(
                         g.kind, BOUND_EMPTY,
@@ -151,14 +212,15 @@ fn compare(
                     let r = f64::from(g.center[3]).sqrt();
                     worst_seen[0] = worst_seen[0].max((r - radius).abs() / radius);
                     assert!(
-                        (r - radius).abs() <= TOL * radius,
-                        "{at}: radius GPU {r} CPU {radius}"
+                        (r - radius).abs() <= TOL * radius + cond[0],
+                        "{at}: radius GPU {r} CPU {radius} (spread {})",
+                        cond[0]
                     );
                     let d = (xyz(g.center) - center).length();
                     let scale = center.length() + radius + p + eye;
                     worst_seen[1] = worst_seen[1].max(d / scale);
                     assert!(
-                        d <= TOL * scale,
+                        d <= TOL * scale + cond[1],
                         "{at}: centre GPU {:?} CPU {center} (|d| {d})",
                         g.center
                     );
@@ -185,7 +247,7 @@ fn compare(
                         .fold(0.0, f64::max);
                     worst_seen[2] = worst_seen[2].max(worst / largest);
                     assert!(
-                        worst <= TOL * largest,
+                        worst <= TOL * largest + cond[2],
                         "{at}: BS GPU {gbs} CPU {bs} (worst {worst}, max {largest})"
                     );
                     let frob = cols(bs)
@@ -197,7 +259,7 @@ fn compare(
                     let scale = frob * (view_center.length() + p + eye);
                     worst_seen[3] = worst_seen[3].max(d / scale);
                     assert!(
-                        d <= TOL * scale,
+                        d <= TOL * scale + cond[3],
                         "{at}: BS·c GPU {:?} CPU {center} (|d| {d}, scale {scale})",
                         g.center
                     );
