@@ -51,7 +51,7 @@ impl Fresnel {
 }
 
 /// How far past θh_max a dielectric's F_max is evaluated, in f32 ulps of the cosine (keep
-/// in sync with `fresnel_max` in crates/gpu-wgpu/shaders/bounds.wgsl).
+/// in sync with `fresnel_max_from` in crates/gpu-wgpu/shaders/fresnel_ggx.wgsl).
 pub const DIELECTRIC_ULPS: f32 = 4.0;
 
 /// Schlick's approximation, supplemental eq. (1): `F0 + (1 - F0)(1 - cos θh)^5`, where
@@ -89,8 +89,9 @@ pub fn dielectric(eta: f32, cos_h: f32) -> f32 {
 ///
 /// The sine is an argument, not `sqrt(1 − cos²)`: near normal incidence that root loses half
 /// the digits (one f32 ulp below 1 is already a sine of 3.5e-4, so two renderers whose
-/// cosines differ by an ulp differ by 2e-4 in F_max). Callers with the vectors pass
-/// `|n × ωi|` ([`crate::GlossyLobe::sin_i`]), exact there.
+/// cosines differ by an ulp differ by 2e-4 in F_max). The bounds pass `|n × ωi|`
+/// ([`crate::GlossyLobe::sin_i`]), exact there; [`sin_from_cos`] serves callers with only a
+/// cosine or no need for those digits (the path tracer's lobe choice).
 #[inline]
 pub fn cos_theta_h_max(cos_i: f32, sin_i: f32) -> f32 {
     let c = cos_i.clamp(0.0, 1.0);

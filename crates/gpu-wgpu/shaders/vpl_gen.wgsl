@@ -2,7 +2,7 @@
 // light's map (global texel index base + k over the concatenated maps) makes a diffuse VPL
 // with id 2 (base + k) where kd > 0 and a glossy VPL with id 2 (base + k) + 1 where the
 // specular layer reflects (max over half vectors of F at normal incidence > 0,
-// Fresnel::max_over_half_vectors(1)), each if the lobe is wanted; xi = vpl_xi(seed, id)
+// Fresnel::max_over_half_vectors(1, 0)), each if the lobe is wanted; xi = vpl_xi(seed, id)
 // (rng.wgsl). Run twice like the tiled culler: CULL_COUNT writes each texel's VPL count,
 // the scan (scan.wgsl) turns counts into offsets, CULL_WRITE writes the VPLs at their
 // offsets: the same order as the CPU (texel-major, diffuse before glossy), compacted.
@@ -36,7 +36,7 @@ fn max3(v: vec3<f32>) -> f32 {
     return max(v.x, max(v.y, v.z));
 }
 
-// Fresnel::max_over_half_vectors(1) > 0 for the texel's Fresnel model.
+// Fresnel::max_over_half_vectors(1, 0) > 0 for the texel's Fresnel model.
 fn reflects(t: RsmTexel) -> bool {
     let c = params.cos_h_max;
     if t.info.x == FRESNEL_SCHLICK {

@@ -328,7 +328,7 @@ mod tests {
                 assert_eq!(through(&chunks, &surface, x_p), one_at_a_time);
             }
         }
-        // λ_σ = |μ − x|²/σ² beyond f32 in the third lane: an error either way.
+        // λ_σ = |μ − x|²/σ² beyond f32 in one lane: an error either way.
         let mut far = vsgl(&mut rng);
         far.sigma2 = 1e-36;
         far.mu = Vec3::splat(1e3);

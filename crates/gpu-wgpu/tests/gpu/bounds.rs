@@ -13,9 +13,9 @@
 //! Each tolerance also takes how far the CPU's own quantity moves when ωi turns by
 //! [`DIRECTION_TURN`] (four roundings) towards or away from the normal: a GPU whose `normalize`, division and
 //! square root are not correctly rounded (WGSL allows 2.5 ulp; NVIDIA's differ from lavapipe's)
-//! sees directions a few ulps from the CPU's, and near grazing incidence `G1/cos` turns that
-//! into relative changes of `δcos/(cos + α)` (2e-5 on an H100 at cos 1e-5, α 1e-3). On
-//! lavapipe that spread is well below the 1e-5 almost everywhere.
+//! sees directions a few ulps from the CPU's, and near grazing incidence `G1/cos` changes by
+//! `δcos/(cos + α)` relative (the radius by half that: 2e-5 apart on an H100 at cos 1e-5,
+//! α 1e-3). Away from grazing incidence the spread is well below 1e-5.
 use crate::common::gpu;
 use glam::{DMat3, DVec3, Vec3};
 use slc_bounds::{Anisotropy, Brdf, Fresnel, Sphere, Spheroid, StochasticParams, TestSpace};
@@ -110,7 +110,7 @@ pub fn reference(vpl: &Vpl, delta: f32, view: &CullView, glossy: GlossyBound) ->
 /// normal to ωi at normal incidence).
 fn turned(vpl: &Vpl, angle: f32) -> Vpl {
     let axis = vpl.normal.cross(vpl.omega_i);
-    let axis = if axis.length_squared() > 0.0 {
+    let axis = if axis.length_squared() > 1e-20 {
         axis.normalize()
     } else {
         vpl.omega_i.any_orthonormal_vector()

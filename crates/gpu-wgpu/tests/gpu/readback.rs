@@ -14,9 +14,11 @@ use slc_core::{builtin, Interleaving, Light, Renderer, Strategy};
 use slc_gpu_wgpu::GpuRenderer;
 use std::collections::BTreeMap;
 
-/// The bytes read back by label between two readings of the renderer's counters.
+/// The bytes read back by label between two readings of the renderer's counters, less the
+/// timestamps a step reads where the adapter's timestamps are trusted (never elsewhere).
 fn read_since(before: &BTreeMap<String, u64>, r: &GpuRenderer) -> BTreeMap<String, u64> {
-    r.readback_bytes()
+    let mut read: BTreeMap<String, u64> = r
+        .readback_bytes()
         .unwrap()
         .into_iter()
         .map(|(k, v)| {
@@ -24,7 +26,13 @@ fn read_since(before: &BTreeMap<String, u64>, r: &GpuRenderer) -> BTreeMap<Strin
             (k, v - was)
         })
         .filter(|(_, v)| *v > 0)
-        .collect()
+        .collect();
+    let stamps = read.remove("timestamps");
+    assert!(
+        stamps.is_none() || r.context().timestamps_trusted,
+        "{stamps:?}"
+    );
+    read
 }
 
 fn labels(entries: &[(&str, u64)]) -> BTreeMap<String, u64> {
