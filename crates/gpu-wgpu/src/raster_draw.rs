@@ -163,6 +163,9 @@ impl SubregionDraws {
             &[params_buffer, sub_offsets, &args],
             Grid::for_items(ctx, u64::from(subregions), 64)?,
         );
+        // Timed while profiling, as the compute passes are: without it a GPU profile of a
+        // raster baseline left out its draws.
+        let timed = ctx.render_timestamps(label);
         let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
             label: Some(label),
             color_attachments: &[Some(wgpu::RenderPassColorAttachment {
@@ -175,7 +178,7 @@ impl SubregionDraws {
                 },
             })],
             depth_stencil_attachment: None,
-            timestamp_writes: None,
+            timestamp_writes: timed.as_ref().map(crate::profiler::render_pass_writes),
             occlusion_query_set: None,
             multiview_mask: None,
         });
