@@ -144,16 +144,22 @@ impl Shader for SampledShader {
         input: ShadeInput<'_, R>,
         progress: Progress,
     ) -> Result<Shaded, RenderError> {
-        r.shade_sampled(
-            input.scene,
-            input.loaded,
-            input.prepared,
-            self.lights,
-            &self.sampling,
-            input.seed,
-            input.visibility,
-            progress,
-        )
+        // Profiled as the stochastic shader's passes are: a GPU with trusted timestamps gives
+        // the VSGL passes' own times beside the wall clock.
+        let (mut shaded, gpu_timings) = r.profiled(|| {
+            r.shade_sampled(
+                input.scene,
+                input.loaded,
+                input.prepared,
+                self.lights,
+                &self.sampling,
+                input.seed,
+                input.visibility,
+                progress,
+            )
+        })?;
+        shaded.gpu_timings = gpu_timings;
+        Ok(shaded)
     }
 }
 
