@@ -3,10 +3,12 @@
 //! profile. The first test runs compute passes only, where lavapipe's timestamps do measure
 //! execution; the second shows why they are not trusted on CPU adapters after a render pass.
 use crate::common::gpu;
-use crate::tiled::frame;
-use slc_core::{builtin, CullInput, Interleaving};
+use crate::tiled::{frame, frame_sampled};
+use slc_core::{builtin, CullInput, Interleaving, Strategy};
+use slc_cpu_ref::gbuffer::PixelSample;
 use slc_cull::GlossyBound;
 use slc_gpu_wgpu::cull_frame::CullFrame;
+use slc_gpu_wgpu::culler::GpuCuller;
 use slc_gpu_wgpu::gbuffer_pass::GbufferPass;
 use slc_gpu_wgpu::scene_upload::GpuScene;
 use slc_gpu_wgpu::shade_pass::ShadePass;
@@ -160,16 +162,10 @@ fn timestamps_after_a_render_pass() {
 #[test]
 fn raster_baseline_draws_are_timed() {
     let Some(ctx) = gpu() else { return };
-    let culler = slc_gpu_wgpu::culler::GpuCuller::new(&ctx).unwrap();
+    let culler = GpuCuller::new(&ctx).unwrap();
     let scene = builtin("default").unwrap();
     let camera = scene.camera_or_default();
-    let (gbuffer, vpls) = crate::tiled::frame_sampled(
-        &scene,
-        &camera,
-        (64, 48),
-        16,
-        slc_cpu_ref::gbuffer::PixelSample::Centre,
-    );
+    let (gbuffer, vpls) = frame_sampled(&scene, &camera, (64, 48), 16, PixelSample::Centre);
     let input = CullInput {
         gbuffer: &gbuffer,
         camera: &camera,
@@ -181,7 +177,7 @@ fn raster_baseline_draws_are_timed() {
         eprintln!("notice: {} has no timestamp queries", ctx.adapter_name);
         return;
     }
-    for strategy in slc_core::Strategy::RASTER {
+    for strategy in Strategy::RASTER {
         culler.cull(&ctx, &input, strategy).unwrap();
     }
     let profile = ctx.finish_profiling().unwrap();
