@@ -10,7 +10,7 @@ use slc_bounds::BoundsError;
 use slc_core::{CullError, CullInput, GBuffer, GSample, Image, LightLists, Vpl, NO_LIST};
 use slc_cull::prefetch::prefetch;
 use slc_cull::receiver_chunks::{Passing, MAX_SETS};
-use slc_cull::tiles::{Tile, TileOrder};
+use slc_cull::tiles::{Band, Tile, TileOrder};
 use slc_cull::{ReceiverChunks, VplReach};
 
 /// How each VPL's contribution is weighted.
@@ -115,9 +115,10 @@ pub fn shade_vpls(
 /// or do not fit the G-buffer, or when the image has 2³² pixels or more. Pairs that [`VplReach`]
 /// rejects (outside the VPL's own bound, facing away at either end, or not accepted by the
 /// roulette) are skipped before the receiver's BRDF: their contribution is exactly 0, so the
-/// image is the same bit for bit. The pixels are shaded tile by tile in the deinterleaved
-/// order of [`TileOrder`] (the culling's tiles), each tile's pixels grouped by list in Z
-/// order. The pixels of a list are shaded VPL by VPL, each VPL tested against eight of them
+/// image is the same bit for bit. The pixels are shaded tile by tile (the culling's tiles),
+/// band by band of [`TileOrder::bands`] in parallel, the K tiles at one place of a row of
+/// subregions one after another (they share the G-buffer's cache lines), each tile's pixels
+/// grouped by list in Z order and written in place. The pixels of a list are shaded VPL by VPL, each VPL tested against eight of them
 /// at a time ([`ReceiverChunks`]), the short lists of a tile sharing their chunks
 /// ([`SHARED_WINDOW_PIXELS`]). Where those lanes accepted a pair with the shader's own
 /// operations, their ωo, l² and I(ωo) are used as they are, and the receiver's BRDF is
@@ -156,30 +157,23 @@ pub fn shade_lists(
         scale: input.interleaving.scale(),
         visibility,
     };
-    // One slot per pixel in tile order, cut into each tile's run.
-    let mut shaded = vec![Vec3::ZERO; gbuffer.samples.len()];
-    let mut runs = Vec::with_capacity(order.tiles().len());
-    let mut rest = shaded.as_mut_slice();
-    for len in order.run_lengths() {
-        let (mine, tail) = rest.split_at_mut(len);
-        runs.push(mine);
-        rest = tail;
-    }
-    order.tiles().par_iter().zip(runs).for_each_init(
-        TileScratch::default,
-        |scratch, (tile, out)| {
-            shading.tile(tile, k, out, scratch);
-            progress(out.len() as u64);
-        },
-    );
     let mut image = Image::new(w, h);
-    image
-        .pixels
-        .par_chunks_mut(w.max(1) as usize)
-        .enumerate()
-        .for_each(|(y, row)| {
-            order.for_each_in_row(y as u32, |x, slot| row[x as usize] = shaded[slot]);
-        });
+    order
+        .bands(&mut image.pixels, 1)?
+        .into_par_iter()
+        .for_each_init(
+            || (TileScratch::default(), Vec::new()),
+            |(scratch, out), band| {
+                let Band { tiles, mut rows } = band;
+                for tile in tiles {
+                    out.clear();
+                    out.resize(tile.pixel_count(), Vec3::ZERO);
+                    shading.tile(tile, k, out, scratch);
+                    rows.put(tile, out);
+                    progress(out.len() as u64);
+                }
+            },
+        );
     Ok(image)
 }
 
@@ -219,7 +213,8 @@ struct TileScratch<'a> {
 }
 
 impl<'a> ListShading<'a> {
-    /// Shades the pixels of `tile` into `out` (its run in tile order): its pixels grouped by
+    /// Shades the pixels of `tile` into `out` (in the order of `Tile::pixels`, zero where a
+    /// pixel has no list or sample): its pixels grouped by
     /// list, then up to [`MAX_SETS`] consecutive lists at a time ([`Self::lists_window`]).
     fn tile(&self, tile: &Tile, k: u32, out: &mut [Vec3], scratch: &mut TileScratch<'a>) {
         let width = self.gbuffer.width;

@@ -16,7 +16,7 @@ use crate::lists::pixel_count;
 use crate::partition::Partition;
 use crate::reach::VplReach;
 use crate::receiver_chunks::{Passing, ReceiverChunks};
-use crate::tiles::{Tile, TileOrder};
+use crate::tiles::{Band, Tile, TileOrder};
 use glam::Vec3;
 use rayon::prelude::*;
 use slc_bounds::{scalar_intensity, StochasticParams};
@@ -29,7 +29,7 @@ pub fn measure(input: &CullInput, lists: &LightLists) -> Result<CullMetrics, Cul
 }
 
 /// The metrics of several sets of light lists for the same input, evaluating each pair's
-/// truth once: O(pixels x VPLs per subregion), in parallel over rows. Errors when δ or a ξ
+/// truth once: O(pixels x VPLs per subregion), in parallel over bands of rows. Errors when δ or a ξ
 /// is out of its domain, or when a set of lists does not fit the input.
 pub fn measure_all(
     input: &CullInput,
@@ -48,61 +48,48 @@ pub fn measure_all(
         input.interleaving.k,
     );
     let order = TileOrder::new(w, h, k)?;
-    // Per pixel (in tile order) and list set: [listed, true positives, missed].
-    let mut in_tiles = vec![[0u32; 3]; pixels * m];
-    let mut runs = Vec::with_capacity(order.tiles().len());
-    let mut rest = in_tiles.as_mut_slice();
-    for len in order.run_lengths() {
-        let (mine, tail) = rest.split_at_mut(len * m);
-        runs.push(mine);
-        rest = tail;
-    }
-    order.tiles().par_iter().zip(runs).for_each_init(
+    // Per pixel and list set: [listed, true positives, missed].
+    let mut stats = vec![[0u32; 3]; pixels * m];
+    order.bands(&mut stats, m)?.into_par_iter().for_each_init(
         TruthScratch::default,
-        |scratch, (tile, out)| {
-            scratch.truth(
-                input,
-                tile,
-                partition.of(tile.subregion(k)),
-                &reach,
-                &roulette,
-            );
-            for (slot, [x, y]) in tile.pixels(k).enumerate() {
-                let p = (y * w + x) as usize;
-                let truth = &scratch.truth[slot];
-                for (set, l) in lists.iter().enumerate() {
-                    let listed = l.for_pixel(p);
-                    let tp = matches(listed, truth, &mut scratch.sorted);
-                    out[slot * m + set] = [listed.len() as u32, tp, truth.len() as u32 - tp];
+        |scratch, band| {
+            let Band { tiles, mut rows } = band;
+            for tile in tiles {
+                scratch.truth(
+                    input,
+                    tile,
+                    partition.of(tile.subregion(k)),
+                    &reach,
+                    &roulette,
+                );
+                scratch.stats.clear();
+                for (slot, [x, y]) in tile.pixels(k).enumerate() {
+                    let p = (y * w + x) as usize;
+                    let truth = &scratch.truth[slot];
+                    for l in lists {
+                        let listed = l.for_pixel(p);
+                        let tp = matches(listed, truth, &mut scratch.sorted);
+                        scratch
+                            .stats
+                            .push([listed.len() as u32, tp, truth.len() as u32 - tp]);
+                    }
                 }
+                rows.put(tile, &scratch.stats);
             }
         },
     );
-    // Back to image order.
-    let width = w as usize;
-    let mut stats = vec![[0u32; 3]; pixels * m];
-    if m > 0 {
-        stats
-            .par_chunks_mut(width.max(1) * m)
-            .enumerate()
-            .for_each(|(y, row)| {
-                order.for_each_in_row(y as u32, |x, slot| {
-                    let x = x as usize;
-                    row[x * m..(x + 1) * m].copy_from_slice(&in_tiles[slot * m..(slot + 1) * m]);
-                });
-            });
-    }
     Ok((0..m)
         .map(|k| summarize(stats.iter().skip(k).step_by(m.max(1)), pixels))
         .collect())
 }
 
 /// Scratch of one thread: per pixel of a tile the VPLs the roulette accepts there, the
-/// tile's receivers in lanes and the chunks where one VPL passes, and a sorted copy of a
-/// list.
+/// tile's receivers in lanes and the chunks where one VPL passes, a sorted copy of a list
+/// and the tile's statistics per pixel and list set.
 #[derive(Default)]
 struct TruthScratch {
     truth: Vec<Vec<u32>>,
+    stats: Vec<[u32; 3]>,
     slots: Vec<usize>,
     receivers: ReceiverChunks,
     passing: Vec<Passing>,

@@ -64,7 +64,7 @@ impl Tile {
 
     /// The number of pixels of the tile.
     #[inline]
-    pub(crate) fn pixel_count(&self) -> usize {
+    pub fn pixel_count(&self) -> usize {
         (self.count[0] * self.count[1]) as usize
     }
 
@@ -130,28 +130,25 @@ const fn even_bits(m: u32) -> u32 {
     (x | x >> 8) & 0x0000_ffff
 }
 
-/// The pixels of an image laid out tile by tile: every tile of the culling, in its order
-/// (subregion by subregion, row-major within each), each
-/// tile's pixels row by row, so a tile's pixels are one contiguous run (the subregion images
-/// of section 6 deinterleaved). Shading in this order reads each tile's G-buffer samples with
-/// the subregion's stride K and writes one run per tile; [`TileOrder::slot`] maps a screen
-/// pixel back to its place in the run.
+/// The tiles of an image grouped in **bands** for shading: band (sy, ty) holds every tile of
+/// the row of subregions sy whose pixels lie in tile row ty of its subregion, i.e. in the
+/// image rows sy + K·(16·ty + j), j < 16, and no other tile writes those rows. Bands therefore
+/// own disjoint rows of an image and can be shaded in parallel, each writing its pixels in
+/// place (no image in tile order to put back in row order). Within a band the tiles are in
+/// **place order**: the K tiles at one place (sx = 0..K) follow each other, so tiles that read
+/// the same G-buffer cache lines (screen pixels x and x + 1 lie in subregions sx and sx + 1)
+/// run while those lines are cached.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct TileOrder {
     tiles: Vec<Tile>,
-    /// Where tile t's run starts; the last entry is the pixel count.
-    starts: Vec<usize>,
-    /// Per subregion (row-major in the K x K grid, clipped to the image): its first tile and
-    /// tiles per row.
-    first_tile: Vec<u32>,
-    tiles_per_row: Vec<u32>,
     k: u32,
     width: u32,
+    height: u32,
 }
 
 impl TileOrder {
-    /// The tile order of a `width` x `height` image with interleaving factor `k`; errors when
-    /// K is not in 1..=1024 or the image has 2³² pixels or more (pixel indices are u32).
+    /// The tiles of a `width` x `height` image with interleaving factor `k`; errors when K is
+    /// not in 1..=1024 or the image has 2³² pixels or more (pixel indices are u32).
     pub fn new(width: u32, height: u32, k: u32) -> Result<Self, CullError> {
         check(Interleaving { k, seed: 0 }, 0)?;
         if u32::try_from(u64::from(width) * u64::from(height)).is_err() {
@@ -159,70 +156,112 @@ impl TileOrder {
                 "a {width}x{height} image has more pixels than 32-bit indices address"
             )));
         }
-        let tiles = tiles(width, height, k);
-        let mut starts = Vec::with_capacity(tiles.len() + 1);
-        starts.push(0);
-        let (mut first_tile, mut tiles_per_row) = (Vec::new(), Vec::new());
-        for (t, tile) in tiles.iter().enumerate() {
-            starts.push(starts[t] + tile.pixel_count());
-            if tile.first == [0, 0] {
-                first_tile.push(t as u32);
-                tiles_per_row
-                    .push(subregion_size(width, height, k, tile.sub)[0].div_ceil(TILE_SIZE));
-            }
-        }
         Ok(Self {
-            tiles,
-            starts,
-            first_tile,
-            tiles_per_row,
+            tiles: tiles(width, height, k),
             k,
             width,
+            height,
         })
     }
 
-    /// The tiles, in order.
+    /// The tiles, subregion by subregion (row-major in the K x K grid), row-major within each.
     pub fn tiles(&self) -> &[Tile] {
         &self.tiles
     }
 
-    /// The length of each tile's run, in order.
-    pub fn run_lengths(&self) -> impl Iterator<Item = usize> + '_ {
-        self.starts.windows(2).map(|w| w[1] - w[0])
+    /// The bands of `image` (row-major, `per_pixel` entries per pixel), row of subregions by
+    /// row of subregions, each band's tiles in place order with the image rows they write.
+    /// Errors when `image` does not hold `per_pixel` entries per pixel.
+    pub fn bands<'a, T>(
+        &self,
+        image: &'a mut [T],
+        per_pixel: usize,
+    ) -> Result<Vec<Band<'_, 'a, T>>, CullError> {
+        let (w, h, k) = (self.width, self.height, self.k);
+        let row_len = (w as usize).checked_mul(per_pixel);
+        if row_len.and_then(|r| r.checked_mul(h as usize)) != Some(image.len()) {
+            return Err(CullError::Input(format!(
+                "{} entries for a {w}x{h} image of {per_pixel} per pixel",
+                image.len()
+            )));
+        }
+        if w == 0 || h == 0 {
+            return Ok(Vec::new());
+        }
+        // Band (sy, ty) is number first_band[sy] + ty.
+        let mut first_band = vec![0usize; k.min(h) as usize + 1];
+        for sy in 0..k.min(h) {
+            let rows = subregion_size(w, h, k, [0, sy])[1];
+            first_band[sy as usize + 1] =
+                first_band[sy as usize] + rows.div_ceil(TILE_SIZE) as usize;
+        }
+        let band_of = |sy: u32, b: u32| first_band[sy as usize] + (b / TILE_SIZE) as usize;
+        let mut bands: Vec<Band<T>> = (0..first_band[k.min(h) as usize])
+            .map(|_| Band {
+                tiles: Vec::new(),
+                rows: BandRows {
+                    rows: Vec::new(),
+                    k,
+                    per_pixel,
+                },
+            })
+            .collect();
+        for tile in &self.tiles {
+            bands[band_of(tile.sub[1], tile.first[1])].tiles.push(tile);
+        }
+        for band in &mut bands {
+            band.tiles.sort_by_key(|t| (t.first[0], t.sub[0]));
+        }
+        // With nothing per pixel there is nothing to write and no row to hand out.
+        let row_len = row_len.unwrap_or(0);
+        if row_len > 0 {
+            for (y, row) in (0..h).zip(image.chunks_mut(row_len)) {
+                bands[band_of(y % k, y / k)].rows.rows.push(row);
+            }
+        }
+        Ok(bands)
     }
+}
 
-    /// The place of screen pixel (x, y) in the tile-by-tile layout.
-    #[inline]
-    pub fn slot(&self, x: u32, y: u32) -> usize {
-        let k = self.k;
-        let sub = (y % k) * k.min(self.width) + x % k;
-        let (a, b) = (x / k, y / k);
-        let t = self.first_tile[sub as usize]
-            + (b / TILE_SIZE) * self.tiles_per_row[sub as usize]
-            + a / TILE_SIZE;
-        let tile = &self.tiles[t as usize];
-        self.starts[t as usize] + ((b % TILE_SIZE) * tile.count[0] + a % TILE_SIZE) as usize
-    }
+/// One band of [`TileOrder::bands`]: its tiles in place order and the image rows they write.
+pub struct Band<'o, 'a, T> {
+    pub tiles: Vec<&'o Tile>,
+    pub rows: BandRows<'a, T>,
+}
 
-    /// Calls `f(x, slot(x, y))` for every pixel of row `y`, x running over each residue
-    /// x mod K in turn: the slots of one residue are consecutive within a tile, so
-    /// [`Self::slot`] (four divisions) is formed only at tile edges.
-    pub fn for_each_in_row(&self, y: u32, mut f: impl FnMut(u32, usize)) {
-        for r in 0..self.k.min(self.width) {
-            let mut slot = self.slot(r, y);
-            let (mut x, mut column) = (r, 0);
-            loop {
-                f(x, slot);
-                x = match x.checked_add(self.k) {
-                    Some(next) if next < self.width => next,
-                    _ => break,
-                };
-                column += 1;
-                slot = if column % TILE_SIZE == 0 {
-                    self.slot(x, y)
-                } else {
-                    slot + 1
-                };
+/// The image rows of a band: sy + K·(16·ty + j) for j = 0, 1, ...
+pub struct BandRows<'a, T> {
+    rows: Vec<&'a mut [T]>,
+    k: u32,
+    per_pixel: usize,
+}
+
+impl<T: Copy> BandRows<'_, T> {
+    /// Writes `values` (`per_pixel` entries per pixel of `tile`, in the order of
+    /// [`Tile::pixels`]) to the tile's pixels. `tile` must be one of the band's tiles.
+    ///
+    /// # Panics
+    /// If `values` is not `per_pixel` entries per pixel of `tile`, or the tile's rows are
+    /// not the band's.
+    pub fn put(&mut self, tile: &Tile, values: &[T]) {
+        let n = self.per_pixel;
+        assert_eq!(values.len(), tile.pixel_count() * n, "values of one tile");
+        if n == 0 {
+            return;
+        }
+        assert_eq!(
+            self.rows.len(),
+            tile.count[1] as usize,
+            "a tile of the band"
+        );
+        for (row, values) in self
+            .rows
+            .iter_mut()
+            .zip(values.chunks_exact(tile.count[0] as usize * n))
+        {
+            for (a, value) in values.chunks_exact(n).enumerate() {
+                let x = (tile.sub[0] + self.k * (tile.first[0] + a as u32)) as usize;
+                row[x * n..(x + 1) * n].copy_from_slice(value);
             }
         }
     }
@@ -288,10 +327,11 @@ mod tests {
     }
 
     #[test]
-    fn tile_order_slots_are_the_tiles_pixels_in_order() {
+    fn bands_write_every_pixel_of_their_tiles_in_place_order() {
         for (w, h) in [
             (0, 0),
             (0, 5),
+            (5, 0),
             (1, 1),
             (5, 3),
             (17, 33),
@@ -299,26 +339,45 @@ mod tests {
             (130, 260),
         ] {
             for k in [1, 2, 3, 8, 200] {
-                let order = TileOrder::new(w, h, k).unwrap();
-                let mut next = 0;
-                for tile in order.tiles() {
-                    for [x, y] in tile.pixels(k) {
-                        assert_eq!(order.slot(x, y), next, "{w}x{h} K {k}: ({x}, {y})");
-                        next += 1;
+                for n in [0, 1, 2] {
+                    let order = TileOrder::new(w, h, k).unwrap();
+                    let mut image = vec![usize::MAX; (w * h) as usize * n];
+                    let mut tiles = 0;
+                    for band in order.bands(&mut image, n).unwrap() {
+                        let Band {
+                            tiles: band_tiles,
+                            mut rows,
+                        } = band;
+                        for pair in band_tiles.windows(2) {
+                            let (a, b) = (pair[0], pair[1]);
+                            assert_eq!((a.sub[1], a.first[1]), (b.sub[1], b.first[1]));
+                            // The K tiles at one place follow each other.
+                            if a.first == b.first {
+                                assert_eq!(b.sub[0], a.sub[0] + 1, "{w}x{h} K {k}");
+                            } else {
+                                assert_eq!(b.sub[0], 0, "{w}x{h} K {k}: {b:?} after {a:?}");
+                            }
+                        }
+                        for tile in band_tiles {
+                            let values: Vec<usize> = tile
+                                .pixels(k)
+                                .flat_map(|[x, y]| {
+                                    (0..n).map(move |c| (y * w + x) as usize * n + c)
+                                })
+                                .collect();
+                            rows.put(tile, &values);
+                            tiles += 1;
+                        }
                     }
-                }
-                assert_eq!(next, (w * h) as usize);
-                assert_eq!(order.run_lengths().sum::<usize>(), next);
-                for y in 0..h {
-                    let mut seen = vec![false; w as usize];
-                    order.for_each_in_row(y, |x, slot| {
-                        assert_eq!(slot, order.slot(x, y), "{w}x{h} K {k}: ({x}, {y})");
-                        assert!(!std::mem::replace(&mut seen[x as usize], true));
-                    });
-                    assert!(seen.iter().all(|&s| s), "{w}x{h} K {k}: row {y}");
+                    assert_eq!(tiles, order.tiles().len(), "{w}x{h} K {k}");
+                    let wrong = image.iter().enumerate().position(|(i, &v)| v != i);
+                    assert_eq!(wrong, None, "{w}x{h} K {k}, {n} per pixel");
                 }
             }
         }
+        let order = TileOrder::new(5, 3, 2).unwrap();
+        assert!(order.bands(&mut [0u8; 29], 2).is_err());
+        assert!(order.bands(&mut [0u8; 30], 2).is_ok());
     }
 
     #[test]
