@@ -28,15 +28,11 @@ pub struct ReceiverBrdfs {
 }
 
 impl ReceiverBrdfs {
-    /// Replaces `chunks` by the BRDF inputs of `receivers` in chunks of eight, in order.
-    pub fn refill<'g>(chunks: &mut Vec<Self>, receivers: impl Iterator<Item = &'g GSample>) {
-        chunks.clear();
-        for (i, g) in receivers.enumerate() {
-            let lane = i % 8;
-            if lane == 0 {
-                chunks.push(Self::EMPTY);
-            }
-            let c = chunks.last_mut().expect("pushed above");
+    /// The BRDF inputs of `receivers` (at most eight: lane k is receiver k; the others
+    /// model nothing).
+    pub fn of_chunk<'g>(receivers: impl IntoIterator<Item = &'g GSample>) -> Self {
+        let mut c = Self::EMPTY;
+        for (lane, g) in receivers.into_iter().take(8).enumerate() {
             let brdf = &g.brdf;
             let (Fresnel::Schlick(f0), None) = (brdf.fresnel, brdf.anisotropy) else {
                 continue;
@@ -50,6 +46,7 @@ impl ReceiverBrdfs {
             c.alpha.0[lane] = brdf.alpha;
             c.modelled |= 1 << lane;
         }
+        c
     }
 
     /// Eight lanes modelling nothing (finite values).

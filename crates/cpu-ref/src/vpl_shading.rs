@@ -193,7 +193,8 @@ struct ListShading<'a> {
 /// pixel) triples of its pixels with a list, those grouped by list, where each group starts
 /// and the next free place while grouping; for the lists shaded together, their VPLs (each
 /// with the lists that hold it) and per VPL a stamp of those lists while merging; the
-/// receivers in lanes with their BRDFs, samples and sets, sums and the chunks where one VPL
+/// receivers in lanes, the BRDF lanes of their chunks (formed only for a chunk where a pair
+/// passes, which `formed` marks), their samples and sets, sums and the chunks where one VPL
 /// passes.
 #[derive(Default)]
 struct TileScratch<'a> {
@@ -207,6 +208,7 @@ struct TileScratch<'a> {
     stamps: Vec<u32>,
     receivers: ReceiverChunks,
     brdfs: Vec<ReceiverBrdfs>,
+    formed: Vec<bool>,
     samples: Vec<(u32, &'a GSample, u8)>,
     sums: Vec<Vec3>,
     passing: Vec<Passing>,
@@ -330,16 +332,27 @@ impl<'a> ListShading<'a> {
                 .iter()
                 .map(|(_, g, set)| (g.position, g.normal, *set)),
         );
-        ReceiverBrdfs::refill(&mut scratch.brdfs, samples.iter().map(|(_, g, _)| *g));
         scratch.sums.clear();
         scratch.sums.resize(samples.len(), Vec3::ZERO);
         scratch
             .receivers
             .passing_sets(self.reach, &scratch.members, true, &mut scratch.passing);
+        // The receivers' BRDF lanes are formed for the chunks where a pair passes only.
+        let chunks = samples.len().div_ceil(8);
+        if scratch.brdfs.len() < chunks {
+            scratch.brdfs.resize(chunks, ReceiverBrdfs::of_chunk([]));
+        }
+        scratch.formed.clear();
+        scratch.formed.resize(chunks, false);
         let mut values = [F8([0.0; 8]); 3];
         for chunk in &scratch.passing {
             let k = chunk.vpl as usize;
             let (vpl, params) = (&self.vpls[k], &self.roulette[k]);
+            if !scratch.formed[chunk.chunk] {
+                let receivers = samples[chunk.chunk * 8..].iter().take(8).map(|s| s.1);
+                scratch.brdfs[chunk.chunk] = ReceiverBrdfs::of_chunk(receivers);
+                scratch.formed[chunk.chunk] = true;
+            }
             let formed = received_lanes(&scratch.brdfs[chunk.chunk], chunk, params, &mut values);
             let mut bits = chunk.bits;
             while bits != 0 {

@@ -396,10 +396,9 @@ fn formed_lanes_equal_the_scalar_shader() {
     }
     let mut rng = Rng(0xbeef);
     let (mut formed_nonzero, mut left) = (0, 0);
-    let mut brdfs = Vec::new();
     for _ in 0..25_000 {
         let receivers: Vec<GSample> = (0..8).map(|_| lobe_receiver(&mut rng)).collect();
-        ReceiverBrdfs::refill(&mut brdfs, receivers.iter());
+        let brdfs = ReceiverBrdfs::of_chunk(&receivers);
         let xi = match rng.f32() {
             u if u < 0.2 => rng.log(-7.0, -3.0),
             u if u < 0.4 => 1.0 - rng.log(-7.0, -3.0),
@@ -433,7 +432,7 @@ fn formed_lanes_equal_the_scalar_shader() {
         let lanes3 = |v: &[Vec3]| [0, 1, 2].map(|c| F8(core::array::from_fn(|k| v[k][c])));
         let mut out = [F8([0.0; 8]); 3];
         let formed = received_pairs(
-            &brdfs[0],
+            &brdfs,
             &lanes3(&lane_omega),
             &F8(core::array::from_fn(|k| l2[k])),
             &lanes3(&intensity),
