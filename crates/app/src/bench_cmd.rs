@@ -118,13 +118,15 @@ impl OnBackend for Bench<'_> {
         r.check(&first).map_err(message)?;
         let device = r.info(&first);
         let provenance = Provenance::new(args.frame.scene.as_deref(), &scene);
-        // The listed pairs, and so the ceiling, are counted by the CPU only.
-        let ceiling = (device.backend == "cpu").then(ceiling::exit_test_mpairs_per_s);
+        // The listed pairs, and so the ceiling, are counted by the CPU only. The ceiling is
+        // measured right before every run: this machine's speed drifts from minute to minute,
+        // and a share against a ceiling measured once at the start drifts with it.
+        let measure_ceiling = device.backend == "cpu";
         let mut rows = Vec::new();
         // (frame, strategy, culling + shading ms) for the paper's Table 2 layout.
         let mut table2 = Vec::new();
         let mut md = format!(
-            "# slc bench: {}\n\nBackend {}, adapter {}, {} rayon threads, δ = {}, K = {}, lobes {:?}, median (min–max) of {} runs. Milliseconds per pass; M pairs/s: the pixel-VPL pairs the lists hold over the shading time (the CPU counts them; n/a on the GPU, whose lists stay there); ceiling: {}.\n\n{}| resolution | VPLs | strategy | {} | culling + shading | M pairs/s | of ceiling |\n|---|---|---|{}---|---|---|\n",
+            "# slc bench: {}\n\nBackend {}, adapter {}, {} rayon threads, δ = {}, K = {}, lobes {:?}, median (min–max) of {} runs. Milliseconds per pass; M pairs/s: the pixel-VPL pairs the lists hold over the shading time (the CPU counts them; n/a on the GPU, whose lists stay there); ceiling: {}.\n\n{}| resolution | VPLs | strategy | {} | culling + shading | M pairs/s | ceiling M pairs/s | of ceiling |\n|---|---|---|{}---|---|---|---|\n",
             scene.name,
             device.backend,
             device.adapter,
@@ -133,10 +135,14 @@ impl OnBackend for Bench<'_> {
             args.pipeline.interleave,
             args.frame.lobes,
             args.repeat,
-            ceiling.map_or("n/a".into(), |c| format!(
-                "{c:.0} M pairs/s, the eight-lane exit test alone on VPLs in L1 with every thread \
-                 busy, measured now (docs/cpu-ceiling.md)"
-            )),
+            if measure_ceiling {
+                "the eight-lane exit test alone on VPLs in L1 with every thread busy \
+                 (docs/cpu-ceiling.md), measured right before every run; each run's pairs per \
+                 second over its own ceiling, the median of those shares (and of the ceilings) \
+                 per row"
+            } else {
+                "n/a"
+            },
             device
                 .notes
                 .iter()
@@ -175,7 +181,9 @@ impl OnBackend for Bench<'_> {
                     let s = Stochastic { strategy, ..base };
                     // Every run lists the same pairs (same VPLs, ξ and lists).
                     let mut listed_pairs = None;
+                    let mut ceilings = Vec::new();
                     let runs = repeated(args.repeat, || {
+                        ceilings.push(measure_ceiling.then(ceiling::exit_test_mpairs_per_s));
                         let out = s.shade(r, input, &|_| {}).map_err(message)?;
                         listed_pairs = out.listed_pairs;
                         let (mut t, gpu_timings) = frame_timings(&p, &out);
@@ -189,15 +197,19 @@ impl OnBackend for Bench<'_> {
                         }
                         Ok(t)
                     })?;
-                    let row = BenchRow::of(s, &runs, listed_pairs, ceiling);
+                    // `repeated` runs one warm-up first where it repeats: its ceiling goes too.
+                    let ceilings = &ceilings[ceilings.len() - runs.len()..];
+                    let row = BenchRow::of(s, &runs, listed_pairs, ceilings);
                     let cs = row.culling_plus_shading_ms;
                     let _ = writeln!(
                         md,
-                        "| {w}x{h} | {vpl_count} | {strategy} | {} | {} | {} | {} |",
+                        "| {w}x{h} | {vpl_count} | {strategy} | {} | {} | {} | {} | {} |",
                         row.pass_medians().map(|ms| format!("{ms:.1}")).join(" | "),
                         row.culling_plus_shading().text(row.runs),
                         row.shading_mpairs_per_s
                             .map_or("n/a".into(), |v| format!("{v:.1}")),
+                        row.ceiling_mpairs_per_s
+                            .map_or("n/a".into(), |v| format!("{v:.0}")),
                         row.ceiling_share
                             .map_or("n/a".into(), |v| format!("{:.1}%", 100.0 * v))
                     );
@@ -303,9 +315,11 @@ struct BenchRow {
     listed_pairs: Option<u64>,
     /// Listed pairs shaded per second (millions), over the median shading time.
     shading_mpairs_per_s: Option<f64>,
-    /// The ceiling measured for this run (`ceiling`), millions of pairs per second.
+    /// The median of the ceilings measured right before each run (`ceiling`), millions of
+    /// pairs per second.
     ceiling_mpairs_per_s: Option<f64>,
-    /// `shading_mpairs_per_s` over the ceiling.
+    /// The median over the runs of each run's listed pairs per second over the ceiling
+    /// measured right before it.
     ceiling_share: Option<f64>,
 }
 
@@ -314,7 +328,7 @@ impl BenchRow {
         s: Stochastic,
         runs: &[Timings],
         listed_pairs: Option<u64>,
-        ceiling: Option<f64>,
+        ceilings: &[Option<f64>],
     ) -> Self {
         let [gbuffer_ms, rsm_ms, vpl_generation_ms, direct_ms, culling_ms, shading_ms, denoise_ms] =
             PASSES.map(|n| Spread::of_passes(runs, &[n]).median);
@@ -338,8 +352,12 @@ impl BenchRow {
             culling_plus_shading_ms_max: cs.max,
             listed_pairs,
             shading_mpairs_per_s,
-            ceiling_mpairs_per_s: ceiling,
-            ceiling_share: shading_mpairs_per_s.zip(ceiling).map(|(s, c)| s / c),
+            ceiling_mpairs_per_s: median_of(ceilings.iter().copied()),
+            ceiling_share: median_of(runs.iter().zip(ceilings).map(|(t, c)| {
+                let shading_ms = t.get("shading");
+                let pairs = listed_pairs.filter(|_| shading_ms > 0.0)?;
+                Some(pairs as f64 / (shading_ms * 1e3) / (*c)?)
+            })),
         }
     }
 
@@ -365,9 +383,48 @@ impl BenchRow {
     }
 }
 
+/// The median of `values`, `None` where any is missing or there are none.
+fn median_of(values: impl Iterator<Item = Option<f64>>) -> Option<f64> {
+    let values: Option<Vec<f64>> = values.collect();
+    values
+        .filter(|v| !v.is_empty())
+        .map(|v| Spread::of(&v).median)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Each run's share is its own pairs per second over the ceiling measured before it: a
+    /// machine slowing down between runs slows both and leaves the share where it was.
+    #[test]
+    fn each_runs_share_is_against_its_own_ceiling() {
+        let run = |shading_ms: f64| {
+            let mut t = Timings::default();
+            t.add("shading", shading_ms);
+            t
+        };
+        let s = Stochastic {
+            delta: 1e-3,
+            strategy: Strategy::Ellipsoid,
+            interleave: 8,
+            denoise: false,
+            metrics: false,
+        };
+        // 1e6 pairs in 1 ms is 1,000 M pairs/s; in 2 ms, 500.
+        let runs = [run(1.0), run(2.0), run(2.0)];
+        let ceilings = [Some(4000.0), Some(2000.0), Some(2000.0)];
+        let row = BenchRow::of(s, &runs, Some(1_000_000), &ceilings);
+        assert_eq!(row.ceiling_share, Some(0.25));
+        assert_eq!(row.ceiling_mpairs_per_s, Some(2000.0));
+        assert_eq!(row.shading_mpairs_per_s, Some(500.0));
+        // No share without a ceiling (a GPU run) or without the listed pairs.
+        assert_eq!(
+            BenchRow::of(s, &runs, Some(1), &[None; 3]).ceiling_share,
+            None
+        );
+        assert_eq!(BenchRow::of(s, &runs, None, &ceilings).ceiling_share, None);
+    }
 
     /// Rows under the paper's names, one column per frame, ratios to the ellipsoid's time,
     /// a dash where a strategy did not run on a frame.

@@ -355,18 +355,21 @@ fn bench_writes_a_row_per_resolution_vpl_count_and_strategy() {
     assert!(rows
         .iter()
         .all(|r| r["times"]["shading_mpairs_per_s"].as_f64().unwrap() > 0.0));
-    // One ceiling per run, and each row's share of it.
-    let ceiling = rows[0]["times"]["ceiling_mpairs_per_s"].as_f64().unwrap();
-    assert!(ceiling > 0.0);
+    // A ceiling measured before every run (each row's the median of its runs') and a share
+    // of it (the median of each run's own share; checked in bench_cmd's unit test).
     for r in rows {
         let t = &r["times"];
-        assert_eq!(t["ceiling_mpairs_per_s"].as_f64(), Some(ceiling));
+        let ceiling = t["ceiling_mpairs_per_s"].as_f64().unwrap();
+        assert!(ceiling > 0.0, "{r}");
         let share = t["ceiling_share"].as_f64().unwrap();
-        let expected = t["shading_mpairs_per_s"].as_f64().unwrap() / ceiling;
-        assert!((share - expected).abs() <= 1e-12 * expected, "{r}");
+        assert!(share > 0.0 && share.is_finite(), "{r}");
     }
     let md = std::fs::read_to_string(out.join("bench.md")).unwrap();
-    assert!(md.contains("| 24x16 |") && md.contains("M pairs/s, the eight-lane exit test"));
+    assert!(md.contains("| 24x16 |") && md.contains("measured right before every run"));
+    assert!(
+        md.contains("| M pairs/s | ceiling M pairs/s | of ceiling |"),
+        "{md}"
+    );
     std::fs::remove_dir_all(&out).ok();
 }
 
