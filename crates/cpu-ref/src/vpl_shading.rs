@@ -118,8 +118,9 @@ pub fn shade_vpls(
 /// image is the same bit for bit. The pixels are shaded tile by tile (the culling's tiles),
 /// band by band of [`TileOrder::bands`] in parallel, the K tiles at one place of a row of
 /// subregions one after another (they share the G-buffer's cache lines), each tile's pixels
-/// grouped by list in Z order and written in place. The pixels of a list are shaded VPL by VPL, each VPL tested against eight of them
-/// at a time ([`ReceiverChunks`]), the short lists of a tile sharing their chunks
+/// grouped by list in Z order and written in place. The pixels of a list are shaded VPL by
+/// VPL, each VPL tested against eight of them at a time ([`ReceiverChunks`]), the short lists
+/// of a tile sharing their chunks
 /// ([`SHARED_WINDOW_PIXELS`]). Where those lanes accepted a pair with the shader's own
 /// operations, their ωo, l² and I(ωo) are used as they are, and the receiver's BRDF is
 /// formed eight receivers at a time as well (`received_lanes`, else [`received`]). Every
@@ -216,8 +217,8 @@ struct TileScratch<'a> {
 
 impl<'a> ListShading<'a> {
     /// Shades the pixels of `tile` into `out` (in the order of `Tile::pixels`, zero where a
-    /// pixel has no list or sample): its pixels grouped by
-    /// list, then up to [`MAX_SETS`] consecutive lists at a time ([`Self::lists_window`]).
+    /// pixel has no list or sample): its pixels grouped by list, then up to [`MAX_SETS`]
+    /// consecutive lists at a time ([`Self::lists_window`]).
     fn tile(&self, tile: &Tile, k: u32, out: &mut [Vec3], scratch: &mut TileScratch<'a>) {
         let width = self.gbuffer.width;
         // The tile's pixels with a list as (rank of the list among the tile's lists, slot,

@@ -29,8 +29,8 @@ pub fn measure(input: &CullInput, lists: &LightLists) -> Result<CullMetrics, Cul
 }
 
 /// The metrics of several sets of light lists for the same input, evaluating each pair's
-/// truth once: O(pixels x VPLs per subregion), in parallel over bands of rows. Errors when δ or a ξ
-/// is out of its domain, or when a set of lists does not fit the input.
+/// truth once: O(pixels x VPLs per subregion), in parallel over bands of rows. Errors when δ
+/// or a ξ is out of its domain, or when a set of lists does not fit the input.
 pub fn measure_all(
     input: &CullInput,
     lists: &[&LightLists],

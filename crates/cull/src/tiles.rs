@@ -164,11 +164,6 @@ impl TileOrder {
         })
     }
 
-    /// The tiles, subregion by subregion (row-major in the K x K grid), row-major within each.
-    pub fn tiles(&self) -> &[Tile] {
-        &self.tiles
-    }
-
     /// The bands of `image` (row-major, `per_pixel` entries per pixel), row of subregions by
     /// row of subregions, each band's tiles in place order with the image rows they write.
     /// Errors when `image` does not hold `per_pixel` entries per pixel.
@@ -196,11 +191,15 @@ impl TileOrder {
                 first_band[sy as usize] + rows.div_ceil(TILE_SIZE) as usize;
         }
         let band_of = |sy: u32, b: u32| first_band[sy as usize] + (b / TILE_SIZE) as usize;
-        let mut bands: Vec<Band<T>> = (0..first_band[k.min(h) as usize])
-            .map(|_| Band {
+        let mut bands: Vec<Band<T>> = (0..k.min(h))
+            .flat_map(|sy| {
+                (first_band[sy as usize]..first_band[sy as usize + 1]).map(move |b| (sy, b))
+            })
+            .map(|(sy, b)| Band {
                 tiles: Vec::new(),
                 rows: BandRows {
                     rows: Vec::new(),
+                    place: [sy, (b - first_band[sy as usize]) as u32 * TILE_SIZE],
                     k,
                     per_pixel,
                 },
@@ -213,8 +212,7 @@ impl TileOrder {
             band.tiles.sort_by_key(|t| (t.first[0], t.sub[0]));
         }
         // With nothing per pixel there is nothing to write and no row to hand out.
-        let row_len = row_len.unwrap_or(0);
-        if row_len > 0 {
+        if let Some(row_len) = row_len.filter(|&r| r > 0) {
             for (y, row) in (0..h).zip(image.chunks_mut(row_len)) {
                 bands[band_of(y % k, y / k)].rows.rows.push(row);
             }
@@ -232,6 +230,9 @@ pub struct Band<'o, 'a, T> {
 /// The image rows of a band: sy + K·(16·ty + j) for j = 0, 1, ...
 pub struct BandRows<'a, T> {
     rows: Vec<&'a mut [T]>,
+    /// The band's row of subregions sy and first row 16·ty of the subregion image: every
+    /// tile of the band has `sub[1]` and `first[1]` equal to these.
+    place: [u32; 2],
     k: u32,
     per_pixel: usize,
 }
@@ -241,19 +242,19 @@ impl<T: Copy> BandRows<'_, T> {
     /// [`Tile::pixels`]) to the tile's pixels. `tile` must be one of the band's tiles.
     ///
     /// # Panics
-    /// If `values` is not `per_pixel` entries per pixel of `tile`, or the tile's rows are
-    /// not the band's.
+    /// If `values` is not `per_pixel` entries per pixel of `tile`, or `tile` is not one of
+    /// the band's.
     pub fn put(&mut self, tile: &Tile, values: &[T]) {
         let n = self.per_pixel;
         assert_eq!(values.len(), tile.pixel_count() * n, "values of one tile");
+        assert_eq!(
+            [tile.sub[1], tile.first[1]],
+            self.place,
+            "a tile of the band"
+        );
         if n == 0 {
             return;
         }
-        assert_eq!(
-            self.rows.len(),
-            tile.count[1] as usize,
-            "a tile of the band"
-        );
         for (row, values) in self
             .rows
             .iter_mut()
@@ -369,7 +370,7 @@ mod tests {
                             tiles += 1;
                         }
                     }
-                    assert_eq!(tiles, order.tiles().len(), "{w}x{h} K {k}");
+                    assert_eq!(tiles, super::tiles(w, h, k).len(), "{w}x{h} K {k}");
                     let wrong = image.iter().enumerate().position(|(i, &v)| v != i);
                     assert_eq!(wrong, None, "{w}x{h} K {k}, {n} per pixel");
                 }
@@ -378,6 +379,18 @@ mod tests {
         let order = TileOrder::new(5, 3, 2).unwrap();
         assert!(order.bands(&mut [0u8; 29], 2).is_err());
         assert!(order.bands(&mut [0u8; 30], 2).is_ok());
+        // A band refuses another band's tile, even one with as many rows and pixels.
+        let order = TileOrder::new(4, 4, 2).unwrap();
+        let mut image = [0u8; 16];
+        let mut bands = order.bands(&mut image, 1).unwrap();
+        let (ours, other) = (*bands[0].tiles[0], *bands[1].tiles[0]);
+        assert_eq!((ours.count, ours.sub[0]), (other.count, other.sub[0]));
+        let values = vec![1; other.pixel_count()];
+        let put = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+            bands[0].rows.put(&other, &values)
+        }));
+        assert!(put.is_err());
+        bands[0].rows.put(&ours, &values);
     }
 
     #[test]
