@@ -30,6 +30,8 @@ use crate::{DiffuseLobe, GlossyLobe};
 use core::f64::consts::FRAC_1_PI;
 use glam::{DMat3, DVec3, Vec3};
 
+pub mod lanes;
+
 /// Added to sin β of the cone of directions: covers the f32 rounding of the shader's unit
 /// direction ωo (about 1e-7 rad) and half vector (at most about 1e-4 α rad where the shader
 /// forms it in f32, see `brdf::microfacet`), with a margin of 10 for α >= 0.01.

@@ -1,4 +1,5 @@
 //! Fresnel factors and their maxima over half vectors (supplemental, section 1).
+use crate::lanes::{clamp01, Real};
 use glam::Vec3;
 
 /// A Fresnel model: Schlick's approximation with an RGB reflectance at normal incidence, or
@@ -68,17 +69,26 @@ pub fn schlick(f0: Vec3, cos_h: f32) -> Vec3 {
 /// reflection (η² < sin² θh) gives 1.
 #[inline]
 pub fn dielectric(eta: f32, cos_h: f32) -> f32 {
-    let c = cos_h.clamp(0.0, 1.0);
+    dielectric_lanes(eta, cos_h)
+}
+
+/// [`dielectric`] written once for one `f32` and for lanes ([`crate::lanes`]): the same IEEE
+/// operations in every lane.
+#[inline(always)]
+pub fn dielectric_lanes<R: Real>(eta: R, cos_h: R) -> R {
+    let one = R::splat(1.0);
+    let c = clamp01(cos_h);
     // η² − sin² θh as (η² − 1) + cos² θh: exact for index-matched media (η = 1) near grazing.
-    let g2 = (eta * eta - 1.0) + c * c;
-    if g2 <= 0.0 {
-        return 1.0;
-    }
+    let g2 = (eta * eta - one) + c * c;
     let g = g2.sqrt();
     let e2c = eta * eta * c;
-    let perp = ((c - g) / (c + g)).powi(2);
-    let par = ((g - e2c) / (g + e2c)).powi(2);
-    0.5 * (perp + par)
+    let perp = (c - g) / (c + g);
+    let par = (g - e2c) / (g + e2c);
+    R::select(
+        g2.le(R::splat(0.0)),
+        one,
+        R::splat(0.5) * (perp * perp + par * par),
+    )
 }
 
 /// Cosine of the largest angle θh_max(ωi) = ½ arccos(ωi·n) + π/4 between ωi and a half vector

@@ -79,6 +79,7 @@ mod test_util;
 
 pub use aabb::Aabb;
 pub use anisotropy::Anisotropy;
+pub use box_bound::lanes::BoxBoundLanes;
 pub use box_bound::{BoxBound, ReceiverBox};
 pub use brdf::Brdf;
 pub use diffuse::DiffuseLobe;

@@ -119,7 +119,9 @@ pub fn shade_vpls(
 /// band by band of [`TileOrder::bands`] in parallel, the K tiles at one place of a row of
 /// subregions one after another (they share the G-buffer's cache lines), each tile's pixels
 /// grouped by list in Z order and written in place. The pixels of a list are shaded VPL by
-/// VPL, each VPL tested against eight of them at a time ([`ReceiverChunks`]), the short lists
+/// VPL, each VPL first tested against the box of the pixels (its bound of p over boxes,
+/// eight VPLs at a time: [`VplReach::box_may_exceed_xi`]), then against eight of them at a
+/// time ([`ReceiverChunks`]), the short lists
 /// of a tile sharing their chunks
 /// ([`SHARED_WINDOW_PIXELS`]). Where those lanes accepted a pair with the shader's own
 /// operations, their ωo, l² and I(ωo) are used as they are, and the receiver's BRDF is

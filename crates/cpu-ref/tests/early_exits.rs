@@ -3,7 +3,9 @@
 //! eq. (2) crosses ξ, and at the extremes (α 1e-4 … 1, grazing and normal incidence at both
 //! ends, ξ near 0 and 1, δ 1e-9 … 1e3, flux from 1e-6 to 1e6), no exit ever rejects a pair
 //! that the roulette accepts (p > ξ) or whose weighted contribution (eq. 1, 3) is not 0, and
-//! the eight-lane test passes exactly the pairs the scalar one passes. Where the shader forms
+//! the eight-lane test passes exactly the pairs the scalar one passes (the receivers-in-lanes
+//! test: wherever the VPL's bound over the receivers' box keeps it; where that bound rejects
+//! the box, no pair, and the shader accepts none of its receivers). Where the shader forms
 //! p in f32 with Schlick's Fresnel or a diffuse lobe, the exits decide exactly as it does: no
 //! pair they pass is rejected by the roulette. And the receivers' BRDF formed eight pairs at a
 //! time (`slc_cpu_ref::received_lanes`) equals the scalar shader's bit for bit.
@@ -186,6 +188,7 @@ fn no_early_exit_drops_an_accepted_or_contributing_pair() {
     let mut receiver_lanes = ReceiverChunks::default();
     let mut passing = Vec::new();
     let mut handed_on = 0u32;
+    let mut box_rejected = 0u32;
     for case in 0..cases {
         let vpl = random_vpl(&mut rng);
         let params = StochasticParams::new(rng.log(-9.0, 3.0), vpl.xi).unwrap();
@@ -313,7 +316,32 @@ fn no_early_exit_drops_an_accepted_or_contributing_pair() {
                     }
                 })
                 .collect();
-            assert_eq!(lanes, scalar, "case {case}: receivers in lanes");
+            // The lanes first test the VPL's bound over the receivers' box: where it passes,
+            // they pass exactly the receivers the scalar test passes; where it does not, none,
+            // and the shader accepts none of them.
+            let (lo, hi) = receivers
+                .iter()
+                .fold((Vec3::INFINITY, Vec3::NEG_INFINITY), |(lo, hi), &(x, _)| {
+                    (lo.min(x), hi.max(x))
+                });
+            if reach.box_may_exceed_xi(lo, hi) {
+                assert_eq!(lanes, scalar, "case {case}: receivers in lanes");
+            } else {
+                assert!(
+                    lanes.is_empty(),
+                    "case {case}: receivers in lanes {lanes:?}"
+                );
+                for &(x, _) in &receivers {
+                    let d = x - vpl.position;
+                    let l2 = d.length_squared();
+                    let p = params.probability(scalar_intensity(vpl.intensity(d / l2.sqrt())), l2);
+                    assert!(
+                        !(l2 > 0.0 && p > params.xi()),
+                        "case {case}: box rejected p {p}"
+                    );
+                }
+                box_rejected += 1;
+            }
         }
         accepted += u32::from(accepts);
         contributing += u32::from(contribution != Vec3::ZERO);
@@ -330,6 +358,10 @@ fn no_early_exit_drops_an_accepted_or_contributing_pair() {
     assert!(
         handed_on > cases / 20,
         "{handed_on} pairs' values handed on"
+    );
+    assert!(
+        box_rejected > cases / 20,
+        "{box_rejected} boxes of receivers rejected"
     );
 }
 

@@ -9,7 +9,7 @@ use crate::acceptance::Acceptance;
 use crate::vpl_bounds::{GlossyBound, LocalBound};
 use glam::{DMat3, DVec3, Vec3};
 use slc_bounds::lanes::{dot, Lanes8, Real, F8};
-use slc_bounds::StochasticParams;
+use slc_bounds::{BoxBound, BoxBoundLanes, StochasticParams};
 use slc_core::{CullError, Vpl, VplLobe};
 
 /// Relative margin of the sign tests: a pair is rejected only when the cosine at one end,
@@ -125,13 +125,17 @@ fn behind<R: Real>(t: R, margin_sq: R) -> R::Mask {
 
 /// What one VPL needs for the early exits: its own bound (the tightest one: the spheroid for
 /// a glossy VPL, whatever the culling strategy, since every strategy's bound contains every
-/// pair with p > ξ), its normal, and its roulette ([`Acceptance`]).
+/// pair with p > ξ), its normal, its roulette ([`Acceptance`]) and its bound over boxes of
+/// receivers ([`Self::box_may_exceed_xi`]).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct VplReach {
     /// The VPL's position q: the receivers' offsets d = x − q are formed from it.
     pub(crate) position: Vec3,
     pub(crate) reach: Reach<f32>,
     pub(crate) acceptance: Acceptance<f32>,
+    /// The bound of p over boxes of receivers (`slc_bounds::BoxBound`, in f32 at `position`): tested
+    /// for eight VPLs at a time against the box of the receivers before anything else.
+    pub(crate) box_bound: BoxBoundLanes<f32>,
 }
 
 impl VplReach {
@@ -139,10 +143,26 @@ impl VplReach {
     /// when the VPL is outside the domain of slc-bounds (see `slc_bounds::BoundsError`).
     pub fn new(vpl: &Vpl, params: &StochasticParams) -> Result<Self, CullError> {
         let dark = reflects_nothing(vpl);
+        // The bound over boxes of receivers at the VPL, and its own bound (the glossy lobe
+        // built once for both).
+        let (local, box_bound) = match (dark, vpl.lobe) {
+            (true, _) => (LocalBound::Empty, BoxBoundLanes::ALWAYS),
+            (false, VplLobe::Diffuse) => (
+                LocalBound::new(vpl, params, GlossyBound::Ellipsoid)?,
+                BoxBound::diffuse(&vpl.diffuse_lobe()?, params).to_f32(vpl.position),
+            ),
+            (false, VplLobe::Glossy) => {
+                let lobe = vpl.glossy_lobe()?;
+                (
+                    LocalBound::glossy(&lobe, params, GlossyBound::Ellipsoid)?,
+                    BoxBound::glossy(&lobe, params).to_f32(vpl.position),
+                )
+            }
+        };
         let (stretch, center, limit) = if dark {
             (DMat3::ZERO, DVec3::ZERO, -1.0)
         } else {
-            match LocalBound::new(vpl, params, GlossyBound::Ellipsoid)? {
+            match local {
                 LocalBound::Empty => (DMat3::ZERO, DVec3::ZERO, f64::INFINITY),
                 LocalBound::Sphere { center, radius_sq } => {
                     let radius = radius_sq.sqrt();
@@ -174,6 +194,7 @@ impl VplReach {
                 limit: limit as f32,
             },
             acceptance: Acceptance::new(vpl, params, dark),
+            box_bound,
         })
     }
 
@@ -187,6 +208,7 @@ impl VplReach {
             limit: -1.0,
         },
         acceptance: Acceptance::NEVER,
+        box_bound: BoxBoundLanes::ALWAYS,
     };
 
     /// Every VPL's roulette (δ and its ξ) and, in parallel, its early exits: those of the
@@ -237,6 +259,16 @@ impl VplReach {
     pub fn may_contribute(&self, d: Vec3, receiver_normal: Vec3) -> bool {
         self.may_reach(d, receiver_normal)
             && self.acceptance.may_accept(self.reach.normal, d.to_array())
+    }
+
+    /// Whether p(ωo, l) > ξ may hold at some receiver in the box `[lo, hi]` (the receivers'
+    /// f32 positions, from which the shader forms d = x − q): the VPL's bound over boxes
+    /// (`slc_bounds::BoxBound` in f32, [`BoxBoundLanes`]). False only where every receiver
+    /// in the box has p <= ξ; [`crate::ReceiverChunks`] tests it, eight VPLs at a time, before
+    /// any pair.
+    #[inline]
+    pub fn box_may_exceed_xi(&self, lo: Vec3, hi: Vec3) -> bool {
+        self.box_bound.may_exceed_xi(lo.to_array(), hi.to_array())
     }
 
     /// [`Self::may_contribute`] without the roulette: the bound and sign tests alone. A

@@ -255,14 +255,24 @@ impl<T: Copy> BandRows<'_, T> {
         if n == 0 {
             return;
         }
-        for (row, values) in self
+        let x = |a: usize| (tile.sub[0] + self.k * (tile.first[0] + a as u32)) as usize;
+        let rows = self
             .rows
             .iter_mut()
-            .zip(values.chunks_exact(tile.count[0] as usize * n))
-        {
+            .zip(values.chunks_exact(tile.count[0] as usize * n));
+        if n == 1 {
+            // One value per pixel (the shading's): assigned, not copied as a slice of runtime
+            // length (a call to memcpy per pixel).
+            for (row, values) in rows {
+                for (a, &value) in values.iter().enumerate() {
+                    row[x(a)] = value;
+                }
+            }
+            return;
+        }
+        for (row, values) in rows {
             for (a, value) in values.chunks_exact(n).enumerate() {
-                let x = (tile.sub[0] + self.k * (tile.first[0] + a as u32)) as usize;
-                row[x * n..(x + 1) * n].copy_from_slice(value);
+                row[x(a) * n..(x(a) + 1) * n].copy_from_slice(value);
             }
         }
     }

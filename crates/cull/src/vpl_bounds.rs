@@ -7,7 +7,7 @@ use crate::partition::Partition;
 use crate::view::CullView;
 use glam::{DVec3, Mat3, Vec3};
 use rayon::prelude::*;
-use slc_bounds::{BoxBound, Sphere, Spheroid, StochasticParams, TestSpace};
+use slc_bounds::{BoxBound, GlossyLobe, Sphere, Spheroid, StochasticParams, TestSpace};
 pub use slc_core::GlossyBound;
 use slc_core::{CullError, Vpl, VplLobe};
 
@@ -81,19 +81,25 @@ impl LocalBound {
                 }
                 Ok(Self::sphere(Sphere::diffuse(&vpl.diffuse_lobe()?, params)?))
             }
-            VplLobe::Glossy => {
-                let lobe = vpl.glossy_lobe()?;
-                Ok(match glossy {
-                    GlossyBound::Sphere => Self::sphere(Sphere::around_vpl(&lobe, params)?),
-                    GlossyBound::EnclosingSphere => {
-                        Self::sphere(Sphere::enclosing(&Spheroid::new(&lobe, params)?))
-                    }
-                    GlossyBound::Ellipsoid | GlossyBound::Tight => {
-                        Self::spheroid(&Spheroid::new(&lobe, params)?)
-                    }
-                })
-            }
+            VplLobe::Glossy => Self::glossy(&vpl.glossy_lobe()?, params, glossy),
         }
+    }
+
+    /// [`Self::new`] for a glossy VPL's lobe (validated by slc-bounds).
+    pub(crate) fn glossy(
+        lobe: &GlossyLobe,
+        params: &StochasticParams,
+        glossy: GlossyBound,
+    ) -> Result<Self, CullError> {
+        Ok(match glossy {
+            GlossyBound::Sphere => Self::sphere(Sphere::around_vpl(lobe, params)?),
+            GlossyBound::EnclosingSphere => {
+                Self::sphere(Sphere::enclosing(&Spheroid::new(lobe, params)?))
+            }
+            GlossyBound::Ellipsoid | GlossyBound::Tight => {
+                Self::spheroid(&Spheroid::new(lobe, params)?)
+            }
+        })
     }
 
     fn sphere(sphere: Sphere) -> Self {

@@ -9,20 +9,20 @@ use glam::{DQuat, DVec3};
 
 /// A VPL of either lobe with the lobe's own intensity of eq. (4).
 #[derive(Clone, Copy)]
-enum TestLobe {
+pub(super) enum TestLobe {
     Glossy(GlossyLobe),
     Diffuse(DiffuseLobe),
 }
 
 impl TestLobe {
-    fn intensity(&self, omega_o: Vec3) -> f32 {
+    pub(super) fn intensity(&self, omega_o: Vec3) -> f32 {
         match self {
             Self::Glossy(l) => l.intensity(omega_o),
             Self::Diffuse(l) => l.intensity(omega_o),
         }
     }
 
-    fn bound(&self, params: &StochasticParams) -> BoxBound {
+    pub(super) fn bound(&self, params: &StochasticParams) -> BoxBound {
         match self {
             Self::Glossy(l) => BoxBound::glossy(l, params),
             Self::Diffuse(l) => BoxBound::diffuse(l, params),
@@ -42,7 +42,7 @@ impl TestLobe {
 /// the glossy ones on a tilted shading normal (a geometric normal up to 0.8 rad away, from
 /// 1e-6 rad, with ωi above it: `crate::shading_normal`), a third (independently) anisotropic
 /// with α_t from 1e-4 to 1 along a random tangent (`crate::anisotropy`).
-fn random_lobe(rng: &mut Rng) -> TestLobe {
+pub(super) fn random_lobe(rng: &mut Rng) -> TestLobe {
     let n = rng.unit();
     let theta_i = match rng.u64() % 4 {
         0 => 0.0,
@@ -86,7 +86,7 @@ fn random_lobe(rng: &mut Rng) -> TestLobe {
     TestLobe::Glossy(lobe)
 }
 
-fn random_params(rng: &mut Rng) -> StochasticParams {
+pub(super) fn random_params(rng: &mut Rng) -> StochasticParams {
     let delta = 10f32.powf(rng.range(-9.0, 3.0));
     let xi = match rng.u64() % 3 {
         0 => 10f32.powf(rng.range(-7.0, -1.0)),
@@ -98,7 +98,7 @@ fn random_params(rng: &mut Rng) -> StochasticParams {
 
 /// A direction the lobe is likely to reach: near its mirror direction (within a few α) half
 /// the time for a glossy lobe, anywhere above the surface otherwise.
-fn direction(rng: &mut Rng, lobe: &TestLobe) -> Vec3 {
+pub(super) fn direction(rng: &mut Rng, lobe: &TestLobe) -> Vec3 {
     if let TestLobe::Glossy(l) = lobe {
         if rng.u64().is_multiple_of(2) {
             let spread = 4.0 * l.alpha() * rng.f32();
@@ -113,14 +113,14 @@ fn direction(rng: &mut Rng, lobe: &TestLobe) -> Vec3 {
 }
 
 /// Whether p > ξ at offset `d` as the shader decides it (f32).
-fn accepted(lobe: &TestLobe, params: &StochasticParams, d: Vec3) -> bool {
+pub(super) fn accepted(lobe: &TestLobe, params: &StochasticParams, d: Vec3) -> bool {
     let l2 = d.length_squared();
     l2 > 0.0 && params.probability(lobe.intensity(d / l2.sqrt()), l2) > params.xi()
 }
 
 /// A random box holding `x`: cubes and slabs from 1e-7 to 10 times |x| wide, rotated never
 /// (boxes are axis-aligned) but placed with x anywhere in them.
-fn box_around(rng: &mut Rng, x: DVec3) -> (DVec3, DVec3) {
+pub(super) fn box_around(rng: &mut Rng, x: DVec3) -> (DVec3, DVec3) {
     let scale = x.length() * 10f64.powf(f64::from(rng.range(-7.0, 1.0)));
     let size = DVec3::new(rng.f64(), rng.f64(), rng.f64()) * scale;
     let size = if rng.u64().is_multiple_of(4) {
@@ -199,7 +199,7 @@ fn a_bound_one_percent_small_misses() {
     assert!(missed > 100, "{missed}");
 }
 
-fn lobe_name(lobe: &TestLobe) -> String {
+pub(super) fn lobe_name(lobe: &TestLobe) -> String {
     match lobe {
         TestLobe::Glossy(l) => format!("{l:?}"),
         TestLobe::Diffuse(l) => format!("{l:?}"),
