@@ -1,5 +1,6 @@
 //! A bound of a VPL's roulette probability p(ωo, l) of eq. (2) over a box of receivers:
-//! the refinement behind the `tight` culling strategies (docs/tight-bounds.md).
+//! the refinement behind the `tight` culling strategies (docs/tight-bounds.md), and in f32
+//! ([`lanes`]) the first test of every VPL against a window's receivers in the CPU shading.
 //!
 //! The spheroid of eq. (12)-(15) drops three factors of the glossy intensity
 //! `I(ωo) = Φ F(ωi·ωh) G1(ωi) G1(ωo) D(ωh·n) / (4 ωi·n)` (eq. 4, 6, 8; the cosine ωo·n of eq. 4

@@ -1,5 +1,6 @@
 //! The GGX (Trowbridge-Reitz) microfacet distribution and its Smith masking function, for a
 //! roughness α in (0, 1] (section 4.1).
+use crate::lanes::Real;
 use core::f32::consts::PI;
 
 /// GGX normal distribution function, paper eq. (7):
@@ -32,6 +33,15 @@ pub fn g1_over_cos(alpha: f32, cos_v: f32) -> f32 {
     let c = cos_v.abs();
     let a2 = alpha * alpha;
     2.0 / (c + ((1.0 - a2) * c * c + a2).sqrt())
+}
+
+/// [`g1_over_cos`] written once for one `f32` and for lanes ([`crate::lanes`]), from α² and a
+/// cosine c > 0 (the scalar takes |c|): `2 / (c + sqrt((1 − α²) c² + α²))`, the same IEEE
+/// operations in every lane.
+#[inline(always)]
+pub fn g1_over_cos_lanes<R: Real>(alpha_sq: R, cos: R) -> R {
+    let one = R::splat(1.0);
+    R::splat(2.0) / (cos + ((one - alpha_sq) * cos * cos + alpha_sq).sqrt())
 }
 
 /// Smith masking function for GGX, paper eq. (8):

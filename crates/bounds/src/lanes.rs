@@ -349,6 +349,27 @@ impl Real for F8 {
     }
 }
 
+/// One `f32` field of eight records as lanes: lane k is `get(of[k])` (the transposition of
+/// eight per-item records, such as eight VPLs' constants, into a structure of lanes).
+#[inline]
+pub fn gather<T>(of: &[&T; 8], get: impl Fn(&T) -> f32) -> F8 {
+    F8(core::array::from_fn(|k| get(of[k])))
+}
+
+/// [`gather`] for a field of three `f32`: one [`F8`] per component.
+#[inline]
+pub fn gather3<T>(of: &[&T; 8], get: impl Fn(&T) -> [f32; 3]) -> [F8; 3] {
+    core::array::from_fn(|c| F8(core::array::from_fn(|k| get(of[k])[c])))
+}
+
+/// [`gather`] for a flag: lane k set where `get(of[k])` holds.
+#[inline]
+pub fn gather_flags<T>(of: &[&T; 8], get: impl Fn(&T) -> bool) -> M8 {
+    M8(core::array::from_fn(|k| {
+        u32::from(get(of[k])).wrapping_neg()
+    }))
+}
+
 /// Eight lanes of [`Real`] that load from the memory layout [`F8`] / [`M8`] (chunks are
 /// stored as plain arrays) and give their flags as a bit pattern: [`F8`] itself, or
 /// `lanes_avx::A8` in AVX registers inside the AVX2 kernels.

@@ -340,7 +340,7 @@ fn no_early_exit_drops_an_accepted_or_contributing_pair() {
                         "case {case}: box rejected p {p}"
                     );
                 }
-                box_rejected += 1;
+                box_rejected += u32::from(normals);
             }
         }
         accepted += u32::from(accepts);

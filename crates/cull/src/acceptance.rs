@@ -19,7 +19,7 @@
 //!   applies.
 use crate::ggx_lanes::{g1_over_cos, HalfVector};
 use core::f32::consts::FRAC_1_PI;
-use slc_bounds::lanes::{dot, max, Lanes8, Real, F8, M8};
+use slc_bounds::lanes::{dot, gather, gather3, gather_flags, max, Lanes8, Real, F8};
 use slc_bounds::{ggx, Fresnel, StochasticParams};
 use slc_core::{Vpl, VplLobe};
 
@@ -131,29 +131,20 @@ impl Acceptance<F8> {
 
     /// The tests of eight VPLs, one per lane.
     pub(crate) fn lanes(of: [&Acceptance<f32>; 8]) -> Self {
-        let one = |get: fn(&Acceptance<f32>) -> f32| F8(core::array::from_fn(|k| get(of[k])));
-        let three = |get: fn(&Acceptance<f32>) -> [f32; 3]| {
-            core::array::from_fn(|c| F8(core::array::from_fn(|k| get(of[k])[c])))
-        };
+        let of = &of;
         Self {
-            omega_i: three(|a| a.omega_i),
-            alpha: one(|a| a.alpha),
-            alpha_sq: one(|a| a.alpha_sq),
-            g1_over_cos_i: one(|a| a.g1_over_cos_i),
-            fresnel_a: three(|a| a.fresnel_a),
-            fresnel_b: three(|a| a.fresnel_b),
-            emitted: three(|a| a.emitted),
-            glossy: M8(core::array::from_fn(|k| {
-                u32::from(of[k].glossy).wrapping_neg()
-            })),
-            unmodelled: M8(core::array::from_fn(|k| {
-                u32::from(of[k].unmodelled).wrapping_neg()
-            })),
-            exact: M8(core::array::from_fn(|k| {
-                u32::from(of[k].exact).wrapping_neg()
-            })),
-            xi: one(|a| a.xi),
-            delta: one(|a| a.delta),
+            omega_i: gather3(of, |a| a.omega_i),
+            alpha: gather(of, |a| a.alpha),
+            alpha_sq: gather(of, |a| a.alpha_sq),
+            g1_over_cos_i: gather(of, |a| a.g1_over_cos_i),
+            fresnel_a: gather3(of, |a| a.fresnel_a),
+            fresnel_b: gather3(of, |a| a.fresnel_b),
+            emitted: gather3(of, |a| a.emitted),
+            glossy: gather_flags(of, |a| a.glossy),
+            unmodelled: gather_flags(of, |a| a.unmodelled),
+            exact: gather_flags(of, |a| a.exact),
+            xi: gather(of, |a| a.xi),
+            delta: gather(of, |a| a.delta),
         }
     }
 }

@@ -7,11 +7,7 @@ use slc_bounds::lanes::{clamp01, cross, dot, max, Real};
 
 /// `ggx::g1_over_cos` of eq. (8), `2 / (c + sqrt((1 − α²) c² + α²))`, for a cosine c > 0
 /// (the scalar takes |c|; every caller has already required c > 0 where the value is used).
-#[inline(always)]
-pub fn g1_over_cos<R: Real>(alpha_sq: R, cos: R) -> R {
-    let one = R::splat(1.0);
-    R::splat(2.0) / (cos + ((one - alpha_sq) * cos * cos + alpha_sq).sqrt())
-}
+pub use slc_bounds::ggx::g1_over_cos_lanes as g1_over_cos;
 
 /// What the half vector ωh = (ωi + ωo)/|ωi + ωo| of unit ωi, ωo gives `microfacet`.
 #[derive(Clone, Copy, Debug)]

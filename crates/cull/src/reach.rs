@@ -6,7 +6,7 @@
 //! rejects a pair that the full evaluation accepts: the estimate stays bit for bit the same,
 //! only cheaper.
 use crate::acceptance::Acceptance;
-use crate::vpl_bounds::{GlossyBound, LocalBound};
+use crate::vpl_bounds::{lobe_box_bound, GlossyBound, LocalBound};
 use glam::{DMat3, DVec3, Vec3};
 use slc_bounds::lanes::{dot, Lanes8, Real, F8};
 use slc_bounds::{BoxBound, BoxBoundLanes, StochasticParams};
@@ -149,7 +149,7 @@ impl VplReach {
             (true, _) => (LocalBound::Empty, BoxBoundLanes::ALWAYS),
             (false, VplLobe::Diffuse) => (
                 LocalBound::new(vpl, params, GlossyBound::Ellipsoid)?,
-                BoxBound::diffuse(&vpl.diffuse_lobe()?, params).to_f32(vpl.position),
+                lobe_box_bound(vpl, params)?.to_f32(vpl.position),
             ),
             (false, VplLobe::Glossy) => {
                 let lobe = vpl.glossy_lobe()?;

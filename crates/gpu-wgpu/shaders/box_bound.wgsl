@@ -54,7 +54,9 @@ fn cone_max_cos(c: Cone, u: vec3<f32>) -> f32 {
     if !c.bounded || cos_g >= c.cos_b {
         return 1.0;
     }
-    let v = cos_g * c.cos_b + sqrt(max(1.0 - cos_g * cos_g, 0.0)) * c.sin_b;
+    // The sine as |u x axis|: sqrt(1 - cos^2) would turn the cosine's f32 rounding into an
+    // angle off by up to 6e-4 near cos = +-1, far beyond the slacks.
+    let v = cos_g * c.cos_b + length(cross(u, c.axis)) * c.sin_b;
     return min(v + COS_SLACK, 1.0);
 }
 
@@ -65,7 +67,7 @@ fn cone_min_cos(c: Cone, u: vec3<f32>) -> f32 {
     if !c.bounded || cos_g <= -c.cos_b {
         return -1.0;
     }
-    let v = cos_g * c.cos_b - sqrt(max(1.0 - cos_g * cos_g, 0.0)) * c.sin_b;
+    let v = cos_g * c.cos_b - length(cross(u, c.axis)) * c.sin_b;
     return max(v - COS_SLACK, -1.0);
 }
 

@@ -8,8 +8,12 @@
 //! [`PROBABILITY_SLACK`](super::PROBABILITY_SLACK) on p, each of which covers the shader's rounding tenfold or more)
 //! every cosine the test compares is moved by [`COS_SLACK`] towards the side that keeps
 //! more: a cosine formed in f32 from unit vectors is off by about 1e-7 (the rounded unit
-//! vectors of the bound included). The other f32 roundings (some 40 of 6e-8 in the value
-//! compared with δ ξ l²) stay far below [`PROBABILITY_SLACK`](super::PROBABILITY_SLACK).
+//! vectors of the bound included). The sine of the angle between a direction and the cone's
+//! axis is |u × a|, not sqrt(1 − cos²): near cos = ±1 that root turns the cosine's 1e-7 into
+//! an angle off by up to 6e-4, far more than the slacks. The other f32 roundings (some 40
+//! of 6e-8 in the value compared with δ ξ l²) stay far below
+//! [`PROBABILITY_SLACK`](super::PROBABILITY_SLACK), as long as δ ξ l² is a normal float:
+//! below 2⁻¹⁰⁰ the test keeps the VPL.
 //!
 //! The box is given in the shader's own coordinates, and the test forms its offsets from
 //! each VPL as the shader forms d = x − q (f32 subtraction): rounding is monotone, so every
@@ -17,7 +21,10 @@
 //! rounded here.
 use super::{BoxBound, Lobe, CONE_SLACK};
 use crate::fresnel::{dielectric, dielectric_lanes, DIELECTRIC_ULPS};
-use crate::lanes::{clamp01, dot, max, min, Lanes8, Real, F8, M8};
+use crate::ggx::g1_over_cos_lanes;
+use crate::lanes::{
+    clamp01, cross, dot, gather, gather3, gather_flags, max, min, Lanes8, Real, F8,
+};
 use crate::Fresnel;
 use core::f32::consts::PI;
 use glam::Vec3;
@@ -132,33 +139,25 @@ impl BoxBoundLanes<f32> {
 impl BoxBoundLanes<F8> {
     /// The bounds of eight VPLs, one per lane.
     pub fn gather(of: [&BoxBoundLanes<f32>; 8]) -> Self {
-        let one = |get: fn(&BoxBoundLanes<f32>) -> f32| F8(core::array::from_fn(|k| get(of[k])));
-        let three = |get: fn(&BoxBoundLanes<f32>) -> [f32; 3]| {
-            core::array::from_fn(|c| F8(core::array::from_fn(|k| get(of[k])[c])))
-        };
-        let flag = |get: fn(&BoxBoundLanes<f32>) -> bool| {
-            M8(core::array::from_fn(|k| {
-                u32::from(get(of[k])).wrapping_neg()
-            }))
-        };
+        let of = &of;
         Self {
-            position: three(|b| b.position),
-            normal: three(|b| b.normal),
-            peak: one(|b| b.peak),
-            delta_xi: one(|b| b.delta_xi),
-            flux: three(|b| b.flux),
-            fresnel_a: three(|b| b.fresnel_a),
-            fresnel_b: three(|b| b.fresnel_b),
-            eta: one(|b| b.eta),
-            alpha: one(|b| b.alpha),
-            omega_i: three(|b| b.omega_i),
-            omega_u: three(|b| b.omega_u),
-            cos_h_max: one(|b| b.cos_h_max),
-            g1_i: one(|b| b.g1_i),
-            g1_o_alpha: one(|b| b.g1_o_alpha),
-            glossy: flag(|b| b.glossy),
-            dielectric: flag(|b| b.dielectric),
-            always: flag(|b| b.always),
+            position: gather3(of, |b| b.position),
+            normal: gather3(of, |b| b.normal),
+            peak: gather(of, |b| b.peak),
+            delta_xi: gather(of, |b| b.delta_xi),
+            flux: gather3(of, |b| b.flux),
+            fresnel_a: gather3(of, |b| b.fresnel_a),
+            fresnel_b: gather3(of, |b| b.fresnel_b),
+            eta: gather(of, |b| b.eta),
+            alpha: gather(of, |b| b.alpha),
+            omega_i: gather3(of, |b| b.omega_i),
+            omega_u: gather3(of, |b| b.omega_u),
+            cos_h_max: gather(of, |b| b.cos_h_max),
+            g1_i: gather(of, |b| b.g1_i),
+            g1_o_alpha: gather(of, |b| b.g1_o_alpha),
+            glossy: gather_flags(of, |b| b.glossy),
+            dielectric: gather_flags(of, |b| b.dielectric),
+            always: gather_flags(of, |b| b.always),
         }
     }
 
@@ -192,8 +191,9 @@ impl<R: Real> BoxBoundLanes<R> {
     /// Whether p(ωo, l) > ξ may hold at some receiver in the box `[lo, hi]` (in the shader's
     /// coordinates, the same in every lane) for each lane's VPL: [`BoxBound::may_exceed_xi`]
     /// in f32 with the slacks of the module docs. False only where every offset the shader
-    /// forms from a point of the box has p <= ξ. Non-finite values on the way fail the
-    /// comparisons that reject, so they keep the VPL.
+    /// forms from a point of the box has p <= ξ. A box whose offsets are not finite (or whose
+    /// squared length overflows) keeps every VPL, and so does a threshold δ ξ l² below 2⁻¹⁰⁰,
+    /// where f32 rounding is no longer relative.
     #[inline(always)]
     pub fn may_exceed_xi(&self, lo: [R; 3], hi: [R; 3]) -> R::Mask {
         let (zero, one) = (R::splat(0.0), R::splat(1.0));
@@ -209,7 +209,10 @@ impl<R: Real> BoxBoundLanes<R> {
         ];
         let l2_min = dot(gap, gap);
         let around = !l2_min.gt(zero);
+        let big = R::splat(f32::MAX);
+        let finite = dot(lo, lo).le(big) & dot(hi, hi).le(big);
         let threshold = self.delta_xi * l2_min;
+        let normal_threshold = threshold.gt(R::splat(TINY_THRESHOLD));
         let bright = !self.peak.le(threshold);
         // h = the largest n·d over the box (at a corner): ωo·n <= h/|d|.
         let n = self.normal;
@@ -234,8 +237,7 @@ impl<R: Real> BoxBoundLanes<R> {
         let d = a2 / (R::splat(PI) * denom * denom);
         // G1(ωo) <= G1 of the smallest α at the largest cos θo (eq. 8), or 1.
         let c = min(cos_o, one);
-        let g_sq = self.g1_o_alpha * self.g1_o_alpha;
-        let g1 = R::splat(2.0) * c / (c + ((one - g_sq) * c * c + g_sq).sqrt());
+        let g1 = g1_over_cos_lanes(self.g1_o_alpha * self.g1_o_alpha, c) * c;
         let g1_o = R::select(self.g1_o_alpha.gt(zero), g1, one);
         // The smallest ωi·ωh over the cone, no smaller than cos θh_max; F at it.
         let cos_h = max(
@@ -259,7 +261,8 @@ impl<R: Real> BoxBoundLanes<R> {
             flux[2] * fresnel[2],
         );
         let value = R::select(self.glossy, f * self.g1_i * g1_o * d, self.peak * cos_o);
-        self.always | around | (bright & !below & facing & !value.le(threshold))
+        let rejects = normal_threshold & (!bright | below | !facing | value.le(threshold));
+        self.always | around | !finite | !rejects
     }
 }
 
@@ -268,6 +271,10 @@ impl<R: Real> BoxBoundLanes<R> {
 fn load3<L: Lanes8>(v: &[F8; 3]) -> [L; 3] {
     [L::load(&v[0]), L::load(&v[1]), L::load(&v[2])]
 }
+
+/// Below this δ ξ l² (2⁻¹⁰⁰) the test keeps every VPL: products near the subnormal range
+/// round by more than their relative slack.
+const TINY_THRESHOLD: f32 = 7.888_609e-31;
 
 /// |v| as the larger of v and −v.
 #[inline(always)]
@@ -310,13 +317,20 @@ impl<R: Real> Cone<R> {
         }
     }
 
+    /// The cosine (clamped to [−1, 1]) and sine of the angle between the unit vector `u` and
+    /// the axis, the sine as |u × a| (see the module docs).
+    #[inline(always)]
+    fn angle_to(&self, u: [R; 3]) -> (R, R) {
+        let sin = cross(u, self.axis);
+        (clamp_cos(dot(u, self.axis)), dot(sin, sin).sqrt())
+    }
+
     /// The largest cosine between the unit vector `u` and a direction of the cone,
     /// cos(max(0, ∠(u, a) − β)), plus [`COS_SLACK`] (at most 1).
     #[inline(always)]
     fn max_cos(&self, u: [R; 3]) -> R {
         let one = R::splat(1.0);
-        let cos_g = clamp_cos(dot(u, self.axis));
-        let sin_g = max(one - cos_g * cos_g, R::splat(0.0)).sqrt();
+        let (cos_g, sin_g) = self.angle_to(u);
         let v = min(
             cos_g * self.cos_b + sin_g * self.sin_b + R::splat(COS_SLACK),
             one,
@@ -329,8 +343,7 @@ impl<R: Real> Cone<R> {
     #[inline(always)]
     fn min_cos(&self, u: [R; 3]) -> R {
         let one = R::splat(1.0);
-        let cos_g = clamp_cos(dot(u, self.axis));
-        let sin_g = max(one - cos_g * cos_g, R::splat(0.0)).sqrt();
+        let (cos_g, sin_g) = self.angle_to(u);
         let v = max(
             cos_g * self.cos_b - sin_g * self.sin_b - R::splat(COS_SLACK),
             -one,

@@ -29,7 +29,7 @@ impl TestLobe {
         }
     }
 
-    fn normal(&self) -> Vec3 {
+    pub(super) fn normal(&self) -> Vec3 {
         match self {
             Self::Glossy(l) => l.normal(),
             Self::Diffuse(l) => l.normal(),
@@ -38,7 +38,8 @@ impl TestLobe {
 }
 
 /// A random lobe at the extremes: α from 1e-4 to 1, ωi from normal to grazing incidence,
-/// Schlick or dielectric Fresnel (η below and above 1), flux from 1e-6 to 1e6; a third of
+/// Schlick (F0 up to 1, or below 1e-3) or dielectric Fresnel (η below, near and above 1),
+/// flux from 1e-6 to 1e6; a third of
 /// the glossy ones on a tilted shading normal (a geometric normal up to 0.8 rad away, from
 /// 1e-6 rad, with ωi above it: `crate::shading_normal`), a third (independently) anisotropic
 /// with α_t from 1e-4 to 1 along a random tangent (`crate::anisotropy`).
@@ -62,9 +63,13 @@ pub(super) fn random_lobe(rng: &mut Rng) -> TestLobe {
         return TestLobe::Diffuse(DiffuseLobe::new(Vec3::ZERO, n, flux, kd).unwrap());
     }
     let alpha = 10f32.powf(rng.range(-4.0, 0.0));
-    let fresnel = match rng.u64() % 3 {
+    let fresnel = match rng.u64() % 5 {
         0 => Fresnel::Schlick(Vec3::new(rng.f32(), rng.f32(), rng.f32())),
-        1 => Fresnel::Dielectric(rng.range(0.2, 0.99)),
+        // Schlick's F0 near 0: F is all in its (1 − c)⁵ term.
+        1 => Fresnel::Schlick(Vec3::new(rng.f32(), rng.f32(), rng.f32()) * 1e-3),
+        2 => Fresnel::Dielectric(rng.range(0.2, 0.99)),
+        // Nearly index-matched: F is near 0 except at grazing.
+        3 => Fresnel::Dielectric(rng.range(0.99, 1.01)),
         _ => Fresnel::Dielectric(rng.range(1.01, 5.0)),
     };
     let mut lobe = GlossyLobe::new(Vec3::ZERO, n, omega_i, alpha, flux, fresnel).unwrap();
