@@ -144,45 +144,42 @@ impl VplReach {
     pub fn new(vpl: &Vpl, params: &StochasticParams) -> Result<Self, CullError> {
         let dark = reflects_nothing(vpl);
         // The bound over boxes of receivers at the VPL, and its own bound (the glossy lobe
-        // built once for both).
+        // built once for both); none for a VPL that reflects nothing.
         let (local, box_bound) = match (dark, vpl.lobe) {
-            (true, _) => (LocalBound::Empty, BoxBoundLanes::ALWAYS),
+            (true, _) => (None, BoxBoundLanes::ALWAYS),
             (false, VplLobe::Diffuse) => (
-                LocalBound::new(vpl, params, GlossyBound::Ellipsoid)?,
+                Some(LocalBound::new(vpl, params, GlossyBound::Ellipsoid)?),
                 lobe_box_bound(vpl, params)?.to_f32(vpl.position),
             ),
             (false, VplLobe::Glossy) => {
                 let lobe = vpl.glossy_lobe()?;
                 (
-                    LocalBound::glossy(&lobe, params, GlossyBound::Ellipsoid)?,
+                    Some(LocalBound::glossy(&lobe, params, GlossyBound::Ellipsoid)?),
                     BoxBound::glossy(&lobe, params).to_f32(vpl.position),
                 )
             }
         };
-        let (stretch, center, limit) = if dark {
-            (DMat3::ZERO, DVec3::ZERO, -1.0)
-        } else {
-            match local {
-                LocalBound::Empty => (DMat3::ZERO, DVec3::ZERO, f64::INFINITY),
-                LocalBound::Sphere { center, radius_sq } => {
-                    let radius = radius_sq.sqrt();
-                    stretched(
-                        DMat3::from_diagonal(DVec3::splat(radius.recip())),
-                        center,
-                        radius,
-                    )
-                }
-                LocalBound::Spheroid {
+        let (stretch, center, limit) = match local {
+            None => (DMat3::ZERO, DVec3::ZERO, -1.0),
+            Some(LocalBound::Empty) => (DMat3::ZERO, DVec3::ZERO, f64::INFINITY),
+            Some(LocalBound::Sphere { center, radius_sq }) => {
+                let radius = radius_sq.sqrt();
+                stretched(
+                    DMat3::from_diagonal(DVec3::splat(radius.recip())),
                     center,
-                    rotation,
-                    semi_axes,
-                } => stretched(
-                    DMat3::from_diagonal(semi_axes.as_dvec3().recip())
-                        * rotation.as_dmat3().transpose(),
-                    center,
-                    f64::from(semi_axes.max_element()),
-                ),
+                    radius,
+                )
             }
+            Some(LocalBound::Spheroid {
+                center,
+                rotation,
+                semi_axes,
+            }) => stretched(
+                DMat3::from_diagonal(semi_axes.as_dvec3().recip())
+                    * rotation.as_dmat3().transpose(),
+                center,
+                f64::from(semi_axes.max_element()),
+            ),
         };
         let rows = stretch.transpose().to_cols_array().map(|v| v as f32);
         Ok(Self {

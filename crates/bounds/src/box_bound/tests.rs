@@ -139,6 +139,28 @@ pub(super) fn box_around(rng: &mut Rng, x: DVec3) -> (DVec3, DVec3) {
     (lo, lo + size)
 }
 
+/// An offset from the VPL along a random [`direction`] at up to its random range l_max
+/// (eq. 5): mostly at its edge (0.9 to 1 of l_max), a quarter anywhere below; `None` where
+/// the range is 0 or not finite.
+pub(super) fn near_the_range(
+    rng: &mut Rng,
+    lobe: &TestLobe,
+    params: &StochasticParams,
+) -> Option<Vec3> {
+    let dir = direction(rng, lobe);
+    let l_max = params.range(lobe.intensity(dir));
+    if !(l_max > 0.0 && l_max < 1e30) {
+        return None;
+    }
+    let l = l_max
+        * if rng.u64().is_multiple_of(4) {
+            rng.f32()
+        } else {
+            1.0 - 0.1 * rng.f32()
+        };
+    Some(dir * l)
+}
+
 /// Points with p > ξ, sampled at up to the random range along random directions (mostly
 /// at its edge, 0.9 to 1 of l_max), each in random boxes: `check` sees every (bound, box).
 fn for_accepted_boxes(
@@ -152,18 +174,9 @@ fn for_accepted_boxes(
         let lobe = random_lobe(&mut rng);
         let params = random_params(&mut rng);
         for _ in 0..20 {
-            let dir = direction(&mut rng, &lobe);
-            let l_max = params.range(lobe.intensity(dir));
-            if !(l_max > 0.0 && l_max < 1e30) {
+            let Some(x) = near_the_range(&mut rng, &lobe, &params) else {
                 continue;
-            }
-            let l = l_max
-                * if rng.u64().is_multiple_of(4) {
-                    rng.f32()
-                } else {
-                    1.0 - 0.1 * rng.f32()
-                };
-            let x = dir * l;
+            };
             if !accepted(&lobe, &params, x) {
                 continue;
             }

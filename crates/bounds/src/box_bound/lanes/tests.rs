@@ -3,7 +3,8 @@
 //! f64 bound it rounds (it rejects nearly all the boxes that one does), and in eight lanes
 //! against one lane at a time, bit for bit.
 use super::super::tests::{
-    accepted, box_around, direction, lobe_name, random_lobe, random_params, TestLobe,
+    accepted, box_around, direction, lobe_name, near_the_range, random_lobe, random_params,
+    TestLobe,
 };
 use super::super::ReceiverBox;
 use super::*;
@@ -40,18 +41,10 @@ fn every_f32_box_with_an_accepted_receiver_passes() {
         let shrunk = StochasticParams::new(params.delta() * 1.01, params.xi()).unwrap();
         let shrunk = lobe.bound(&shrunk).to_f32(q);
         for _ in 0..20 {
-            let dir = direction(&mut rng, &lobe);
-            let l_max = params.range(lobe.intensity(dir));
-            if !(l_max > 0.0 && l_max < 1e30) {
+            let Some(offset) = near_the_range(&mut rng, &lobe, &params) else {
                 continue;
-            }
-            let l = l_max
-                * if rng.u64().is_multiple_of(4) {
-                    rng.f32()
-                } else {
-                    1.0 - 0.1 * rng.f32()
-                };
-            let x = q + dir * l;
+            };
+            let x = q + offset;
             // The offset as the shader forms it.
             if !accepted(&lobe, &params, x - q) {
                 continue;
