@@ -20,6 +20,8 @@ pub trait Job {
 #[derive(Default)]
 pub struct Loaded {
     cpu: Option<<CpuRenderer as Renderer>::Scene>,
+    /// The CPU renderer, kept from job to job (it reuses its frames' images).
+    cpu_renderer: CpuRenderer,
     #[cfg(feature = "gpu")]
     gpu: Option<(
         slc_gpu_wgpu::GpuRenderer,
@@ -47,14 +49,14 @@ impl Loaded {
     ) -> Result<J::Output, String> {
         match options.backend {
             Backend::Cpu => {
-                CpuRenderer
+                self.cpu_renderer
                     .check(&options.settings)
                     .map_err(|e| e.to_string())?;
                 let loaded = match &mut self.cpu {
                     Some(l) => l,
-                    slot => slot.insert(CpuRenderer.load(scene).map_err(|e| e.to_string())?),
+                    slot => slot.insert(self.cpu_renderer.load(scene).map_err(|e| e.to_string())?),
                 };
-                job.run(&CpuRenderer, scene, loaded)
+                job.run(&self.cpu_renderer, scene, loaded)
             }
             Backend::Gpu => self.run_gpu(options, scene, job),
         }

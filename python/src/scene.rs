@@ -107,7 +107,7 @@ impl Job for CompareJob<'_> {
             let s = with(Method::VplReference);
             out.push((
                 "reference_vpl",
-                FrameData::new(&CpuRenderer, scene, self.spec, &s, f)?,
+                FrameData::new(&CpuRenderer::default(), scene, self.spec, &s, f)?,
             ));
         }
         let input = ShadeInput {
@@ -207,7 +207,7 @@ impl Job for ListsJob<'_> {
         let p = r.prepare(scene, loaded, settings, None).map_err(message)?;
         let cpu_p = r.cpu_frame(scene, loaded, &p).map_err(message)?;
         let s = self.stochastic;
-        CpuRenderer
+        CpuRenderer::default()
             .cull(
                 &cpu_p,
                 s.strategy,

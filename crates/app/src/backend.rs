@@ -14,7 +14,7 @@ pub trait OnBackend {
 /// Runs `command` on the backend `on` names.
 pub fn run_on(on: BackendChoice, command: impl OnBackend) -> Result<(), String> {
     match on.backend {
-        Backend::Cpu => command.run(&CpuRenderer),
+        Backend::Cpu => command.run(&CpuRenderer::default()),
         Backend::Gpu => run_on_gpu(on.one_pass, command),
     }
 }

@@ -129,7 +129,7 @@ impl OnBackend for Compare<'_> {
         let cpu = cpu_input(&scene, &cpu_p, f.seed, f.visibility);
         let vpl_count = p.vpl_count().map_err(message)?;
         eprintln!("{vpl_count} VPLs");
-        let cpu_device = CpuRenderer.info(&settings);
+        let cpu_device = CpuRenderer::default().info(&settings);
 
         let reference = (!args.no_reference)
             .then(|| all_vpl_reference(cpu, true))
@@ -162,7 +162,7 @@ impl OnBackend for Compare<'_> {
             metrics: false,
             ..base
         }
-        .shade(&CpuRenderer, cpu, &|_| {})
+        .shade(&CpuRenderer::default(), cpu, &|_| {})
         .map_err(message)?
         .indirect;
         let input = f.input(&scene, &loaded, &p);
@@ -323,7 +323,7 @@ fn sampled_lights<R: Renderer>(
         let device = if backend == r.name() {
             r.info(&settings)
         } else {
-            CpuRenderer.info(&settings)
+            CpuRenderer::default().info(&settings)
         };
         let total = prepared.direct.add(&out.indirect);
         let dir = e.name();

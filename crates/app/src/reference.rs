@@ -35,7 +35,7 @@ pub fn all_vpl_reference(
         "all-VPL reference".into(),
     );
     let r = AllVplShader
-        .shade(&CpuRenderer, input, &|n| bar.inc(n))
+        .shade(&CpuRenderer::default(), input, &|n| bar.inc(n))
         .map_err(|e| e.to_string())?;
     bar.finish_and_clear();
     Ok(r.indirect)

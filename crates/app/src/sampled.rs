@@ -30,8 +30,8 @@ pub fn shade_sampled<R: Renderer>(
     let shaded = match lights {
         SampledLights::Vsgl => shader.shade(r, on_r, &|_| {}).map(|s| (s, r.name())),
         SampledLights::Vpl => shader
-            .shade(&CpuRenderer, cpu, &|_| {})
-            .map(|s| (s, CpuRenderer.name())),
+            .shade(&CpuRenderer::default(), cpu, &|_| {})
+            .map(|s| (s, CpuRenderer::default().name())),
     };
     shaded.map_err(message)
 }

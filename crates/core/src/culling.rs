@@ -131,16 +131,35 @@ impl LightLists {
                 self.indices.len()
             ));
         }
-        if let Some(&i) = self.indices.iter().find(|&&i| i as usize >= vpls) {
-            return bad(format!("VPL index {i} of {vpls} VPLs"));
+        // The largest entries first, in reductions without an early exit (they vectorize; a
+        // search for the first bad entry does not), the offender looked up only if one is bad.
+        if self
+            .indices
+            .iter()
+            .max()
+            .is_some_and(|&i| i as usize >= vpls)
+        {
+            let i = self.indices.iter().find(|&&i| i as usize >= vpls);
+            return bad(format!(
+                "VPL index {} of {vpls} VPLs",
+                i.expect("the largest")
+            ));
         }
         let lists = self.len();
-        if let Some(&l) = self
+        // NO_LIST (u32::MAX) as 0: the largest list a pixel names.
+        let named = |l: u32| if l == NO_LIST { 0 } else { l };
+        if self
             .pixel_list
             .iter()
-            .find(|&&l| l != NO_LIST && l as usize >= lists)
+            .map(|&l| named(l))
+            .max()
+            .is_some_and(|l| l as usize >= lists)
         {
-            return bad(format!("list {l} of {lists} lists"));
+            let l = self
+                .pixel_list
+                .iter()
+                .find(|&&l| named(l) as usize >= lists);
+            return bad(format!("list {} of {lists} lists", l.expect("the largest")));
         }
         Ok(())
     }

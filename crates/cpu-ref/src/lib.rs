@@ -44,6 +44,7 @@
 //! ```
 pub mod denoise;
 pub mod direct;
+mod frame_images;
 pub mod gbuffer;
 pub mod path;
 pub mod prepare;

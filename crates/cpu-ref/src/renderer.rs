@@ -3,11 +3,12 @@
 //! has every method, the references and shadow rays included. [`CpuFrames`] is how other
 //! backends hand a frame to what only the CPU computes.
 use crate::denoise::{cross_bilateral, BilateralParams};
+use crate::frame_images::SpareImage;
 use crate::path::trace_pixel_sample;
 use crate::prepare::{prepare, CpuPrepared};
 use crate::sampled_lights::{shade_sampled_vpls, shade_vsgl};
 use crate::tracer::Tracer;
-use crate::vpl_shading::{shade_lists, shade_vpls, VplEstimator};
+use crate::vpl_shading::{shade_lists_into, shade_vpls, VplEstimator};
 use rayon::prelude::*;
 use slc_core::frame::{LightSampling, RenderError, RenderSettings, RenderedFrame, Shaded};
 use slc_core::shader::SampledLights;
@@ -18,9 +19,14 @@ use slc_core::{
 use std::borrow::Cow;
 use std::sync::Arc;
 
-/// The CPU reference renderer on rayon's threads.
-#[derive(Clone, Copy, Debug, Default)]
-pub struct CpuRenderer;
+/// The CPU reference renderer on rayon's threads. It keeps the last noisy image its filter
+/// consumed ([`Renderer::denoise`]) and shades the next frame of the same size into it
+/// ([`shade_lists_into`]): in a loop of frames (cull, shade, filter) the shading then
+/// allocates and clears no image. A clone keeps none.
+#[derive(Clone, Debug, Default)]
+pub struct CpuRenderer {
+    spare: SpareImage,
+}
 
 impl Renderer for CpuRenderer {
     type Scene = Arc<Tracer>;
@@ -86,7 +92,10 @@ impl Renderer for CpuRenderer {
         progress: Progress,
     ) -> Result<Image, RenderError> {
         let input = p.cull_input(delta, interleaving);
-        Ok(shade_lists(&p.tracer, &input, lists, visibility, progress)?)
+        let spare = self.spare.take();
+        Ok(shade_lists_into(
+            &p.tracer, &input, lists, visibility, progress, spare,
+        )?)
     }
 
     fn listed_pairs(&self, lists: &LightLists) -> Option<u64> {
@@ -94,11 +103,9 @@ impl Renderer for CpuRenderer {
     }
 
     fn denoise(&self, p: &CpuPrepared, image: Image) -> Result<Image, RenderError> {
-        Ok(cross_bilateral(
-            &image,
-            &p.gbuffer,
-            BilateralParams::default(),
-        ))
+        let filtered = cross_bilateral(&image, &p.gbuffer, BilateralParams::default());
+        self.spare.keep(image);
+        Ok(filtered)
     }
 
     fn read_image(&self, _p: &CpuPrepared, image: Image) -> Result<Image, RenderError> {
@@ -198,7 +205,7 @@ pub fn render(
     settings: &RenderSettings,
     progress: Progress,
 ) -> Result<RenderedFrame, RenderError> {
-    slc_core::render(&CpuRenderer, scene, settings, progress)
+    slc_core::render(&CpuRenderer::default(), scene, settings, progress)
 }
 
 /// A backend whose prepared frames the CPU can read: what only the CPU computes (the

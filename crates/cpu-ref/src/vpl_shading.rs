@@ -1,5 +1,6 @@
 //! Shading with every VPL (no culling): the exact VPL sum, or the stochastic estimate of
 //! paper eq. (3) where each VPL is kept at a pixel only if p(ωo, l) > ξ.
+use crate::frame_images::black_image;
 use crate::received_lanes::{received_lanes, ReceiverBrdfs};
 use crate::tracer::Tracer;
 use glam::Vec3;
@@ -82,7 +83,7 @@ pub fn shade_vpls(
                 .collect::<Result<Vec<_>, _>>()?,
         ),
     };
-    let mut image = Image::new(gbuffer.width, gbuffer.height);
+    let mut image = black_image(gbuffer.width, gbuffer.height);
     let w = gbuffer.width as usize;
     image
         .pixels
@@ -134,6 +135,21 @@ pub fn shade_lists(
     visibility: bool,
     progress: &(dyn Fn(u64) + Sync),
 ) -> Result<Image, CullError> {
+    shade_lists_into(tracer, input, lists, visibility, progress, None)
+}
+
+/// [`shade_lists`] written into `spare`, an image the caller is done with (a previous frame),
+/// where it has the G-buffer's size: every pixel is written (0 where a pixel has no list or no
+/// surface), so its old values do not matter and its buffer is neither allocated nor cleared
+/// again. Any other `spare` is dropped and a new image made.
+pub fn shade_lists_into(
+    tracer: &Tracer,
+    input: &CullInput,
+    lists: &LightLists,
+    visibility: bool,
+    progress: &(dyn Fn(u64) + Sync),
+    spare: Option<Image>,
+) -> Result<Image, CullError> {
     let (gbuffer, vpls) = (input.gbuffer, input.vpls);
     let (w, h, k) = (gbuffer.width, gbuffer.height, input.interleaving.k);
     let order = TileOrder::new(w, h, k)?;
@@ -160,7 +176,14 @@ pub fn shade_lists(
         scale: input.interleaving.scale(),
         visibility,
     };
-    let mut image = Image::new(w, h);
+    let mut image = match spare {
+        Some(image)
+            if (image.width, image.height, image.pixels.len()) == (w, h, gbuffer.samples.len()) =>
+        {
+            image
+        }
+        _ => black_image(w, h),
+    };
     order
         .bands(&mut image.pixels, 1)?
         .into_par_iter()

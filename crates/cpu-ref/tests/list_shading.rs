@@ -8,7 +8,7 @@ use glam::Vec3;
 use slc_bounds::{Anisotropy, Fresnel, StochasticParams};
 use slc_core::frame::{LobeSelection, Method, RenderSettings};
 use slc_core::{builtin, CullInput, Image, Interleaving, LightLists, Strategy, NO_LIST};
-use slc_cpu_ref::vpl_shading::{shade_lists, vpl_contribution};
+use slc_cpu_ref::vpl_shading::{shade_lists, shade_lists_into, vpl_contribution};
 use slc_cpu_ref::{prepare, Tracer};
 
 /// The built-in scene's G-buffer and VPLs at `width` x `height` with RSM `rsm`.
@@ -46,13 +46,27 @@ fn plain(input: &CullInput, lists: &slc_core::LightLists) -> Image {
     image
 }
 
-/// `shade_lists` and the plain sum of `lists`.
+/// `shade_lists` and the plain sum of `lists`. Shading into a spare image of the same size
+/// full of NaN (every pixel written), or into one of another size (dropped), gives the same
+/// image.
 fn shaded_and_plain(
     p: &slc_cpu_ref::CpuPrepared,
     input: &CullInput,
     lists: &LightLists,
 ) -> (Image, Image) {
     let got = shade_lists(&p.tracer, input, lists, false, &|_| {}).unwrap();
+    let (w, h) = (input.gbuffer.width, input.gbuffer.height);
+    let nan = Image {
+        width: w,
+        height: h,
+        pixels: vec![Vec3::NAN; got.pixels.len()],
+    };
+    for spare in [nan, Image::new(w + 1, h), Image::new(h, w)] {
+        let into = shade_lists_into(&p.tracer, input, lists, false, &|_| {}, Some(spare));
+        let into = into.unwrap();
+        assert_eq!((into.width, into.height), (w, h));
+        assert_eq!(differing(&into, &got), 0, "into a spare image");
+    }
     (got, plain(input, lists))
 }
 
@@ -217,4 +231,38 @@ fn shade_lists_checks_the_listed_vpls() {
     assert_eq!(unlisted.pixels, shaded.pixels);
     let listed = shade_lists(&p.tracer, &spoilt_input, &lists(bad as u32), false, &|_| {});
     assert!(listed.is_err());
+}
+
+/// `CpuRenderer` shades the next frame into the noisy image its filter consumed: frame after
+/// frame (cull, shade, filter), two frames of one size (other VPLs) and one of another size
+/// in turn, each frame's images are the same bit for bit as the first time.
+#[test]
+fn the_renderer_shades_frame_after_frame_into_the_filtered_image() {
+    use slc_core::Renderer;
+    let r = slc_cpu_ref::CpuRenderer::default();
+    let frames = [
+        prepared(61, 47, 24),
+        prepared(61, 47, 16),
+        prepared(20, 12, 8),
+    ];
+    let k = Interleaving { k: 4, seed: 3 };
+    let frame = |p: &slc_cpu_ref::CpuPrepared| {
+        let lists = r.cull(p, Strategy::Ellipsoid, 1e-3, k).unwrap();
+        let noisy = r
+            .shade_lists(&p.tracer, p, &lists, 1e-3, k, false, &|_| {})
+            .unwrap();
+        let filtered = r.denoise(p, noisy.clone()).unwrap();
+        (noisy, filtered)
+    };
+    let first: Vec<_> = frames.iter().map(frame).collect();
+    assert_ne!(
+        differing(&first[0].0, &first[1].0),
+        0,
+        "other VPLs, another image"
+    );
+    for (i, p) in [0, 1, 0, 2, 1, 1, 0].map(|i| (i, &frames[i])) {
+        let (noisy, filtered) = frame(p);
+        assert_eq!(differing(&noisy, &first[i].0), 0, "frame {i} shaded");
+        assert_eq!(differing(&filtered, &first[i].1), 0, "frame {i} filtered");
+    }
 }

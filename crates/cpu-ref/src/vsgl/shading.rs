@@ -4,6 +4,7 @@ use super::emitter::Emitter;
 use super::emitter_lanes::EmitterChunks;
 use super::error::VsglError;
 use super::light::Vsgl;
+use crate::frame_images::black_image;
 use crate::tracer::Tracer;
 use glam::Vec3;
 use rayon::prelude::*;
@@ -51,7 +52,7 @@ pub fn shade_vsgls(
         .map(|v| Emitter::new(v, diffuse))
         .collect::<Result<Vec<_>, _>>()?;
     let chunks = EmitterChunks::new(&emitters);
-    let mut image = Image::new(gbuffer.width, gbuffer.height);
+    let mut image = black_image(gbuffer.width, gbuffer.height);
     let w = gbuffer.width as usize;
     image
         .pixels

@@ -197,7 +197,7 @@ fn frame_matches(
         visibility: false,
     };
     let cpu_indirect = stochastic
-        .shade(&CpuRenderer, cpu_input, &|_| {})
+        .shade(&CpuRenderer::default(), cpu_input, &|_| {})
         .unwrap()
         .indirect;
     let cpu = cpu_indirect.add(&prepared.direct);

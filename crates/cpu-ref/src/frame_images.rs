@@ -1,0 +1,72 @@
+//! The full-frame images the CPU passes shade into: cleared on every rayon thread
+//! ([`black_image`]), or a frame the renderer is done with, reused ([`SpareImage`]).
+use glam::Vec3;
+use rayon::prelude::*;
+use slc_core::Image;
+use std::sync::{Mutex, PoisonError};
+
+/// A `width` x `height` image of zeros, its pixels written by every rayon thread: one thread
+/// takes about 3.5 ms to clear a 1920x1080 frame (25 MB) whose pages are resident, and about
+/// 11 ms where they are fresh (each page faulted in), a tenth of the CPU shading's time.
+pub(crate) fn black_image(width: u32, height: u32) -> Image {
+    let mut pixels = Vec::new();
+    rayon::iter::repeat_n(Vec3::ZERO, width as usize * height as usize)
+        .collect_into_vec(&mut pixels);
+    Image {
+        width,
+        height,
+        pixels,
+    }
+}
+
+/// A frame a renderer is done with (the noisy image its filter consumed), kept for its next
+/// shading of the same size, which writes every pixel: that frame then costs neither an
+/// allocation nor a clear (a fresh 1920x1080 frame, 25 MB, is about 5 ms of page faults and
+/// writes on two threads). One image at most; a clone starts empty.
+#[derive(Debug, Default)]
+pub(crate) struct SpareImage(Mutex<Option<Image>>);
+
+impl Clone for SpareImage {
+    fn clone(&self) -> Self {
+        Self::default()
+    }
+}
+
+impl SpareImage {
+    /// Keeps `image`, in place of the one kept before.
+    pub(crate) fn keep(&self, image: Image) {
+        *self.0.lock().unwrap_or_else(PoisonError::into_inner) = Some(image);
+    }
+
+    /// The image kept, if any (no longer kept).
+    pub(crate) fn take(&self) -> Option<Image> {
+        self.0.lock().unwrap_or_else(PoisonError::into_inner).take()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn black_image_is_image_new_written_in_parallel() {
+        for (w, h) in [(0, 0), (1, 1), (3, 0), (641, 359)] {
+            let image = black_image(w, h);
+            let want = Image::new(w, h);
+            assert_eq!((image.width, image.height), (want.width, want.height));
+            assert_eq!(image.pixels, want.pixels);
+        }
+    }
+
+    #[test]
+    fn a_spare_image_is_taken_once_and_clones_start_empty() {
+        let spare = SpareImage::default();
+        assert!(spare.take().is_none());
+        spare.keep(Image::new(2, 3));
+        spare.keep(Image::new(4, 5));
+        assert!(spare.clone().take().is_none());
+        let kept = spare.take().expect("kept");
+        assert_eq!((kept.width, kept.height), (4, 5));
+        assert!(spare.take().is_none());
+    }
+}
