@@ -146,19 +146,16 @@ impl LightLists {
             ));
         }
         let lists = self.len();
-        // NO_LIST (u32::MAX) as 0: the largest list a pixel names.
-        let named = |l: u32| if l == NO_LIST { 0 } else { l };
+        // l + 1, NO_LIST (u32::MAX) as 0: at most `lists` for a pixel without or with a list.
+        let named = |l: u32| l.wrapping_add(1);
         if self
             .pixel_list
             .iter()
             .map(|&l| named(l))
             .max()
-            .is_some_and(|l| l as usize >= lists)
+            .is_some_and(|l| l as usize > lists)
         {
-            let l = self
-                .pixel_list
-                .iter()
-                .find(|&&l| named(l) as usize >= lists);
+            let l = self.pixel_list.iter().find(|&&l| named(l) as usize > lists);
             return bad(format!("list {} of {lists} lists", l.expect("the largest")));
         }
         Ok(())
@@ -247,6 +244,19 @@ mod tests {
             ..good
         };
         assert!(short.check(2, 2).is_err());
+        // No lists at all: every pixel without one is fine, a pixel naming list 0 is not.
+        let none = LightLists {
+            offsets: vec![0],
+            indices: vec![],
+            pixel_list: vec![NO_LIST; 3],
+        };
+        assert!(none.check(3, 0).is_ok());
+        let named = LightLists {
+            pixel_list: vec![NO_LIST, 0, NO_LIST],
+            ..none
+        };
+        let message = named.check(3, 0).unwrap_err().to_string();
+        assert!(message.contains("list 0 of 0 lists"), "{message}");
         assert!(LightLists::default().check(0, 0).is_ok());
     }
 
