@@ -19,7 +19,10 @@
 //!
 //! [`CpuRenderer`] is the CPU backend of the renderer API (`slc_core::Renderer`): every step
 //! of the frame, the references and shadow rays included; [`render()`] runs a whole frame on
-//! it, and [`prepare()`] makes a frame's G-buffer, RSMs, VPLs and direct light. Its images
+//! it, and [`prepare()`] makes a frame's G-buffer, RSMs, VPLs and direct light. A renderer kept
+//! from frame to frame shades each frame into the noisy image its filter consumed the frame
+//! before ([`vpl_shading::shade_lists_into`]), so a loop of frames allocates no image to
+//! shade into. Its images
 //! agree with an independent path tracer (Mitsuba 3) within noise: see
 //! `tests/reference_cornell_a.rs` at the workspace root.
 //!
