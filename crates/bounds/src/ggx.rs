@@ -30,13 +30,11 @@ pub fn d_with_sin2(alpha: f32, cos_m: f32, sin2_m: f32) -> f32 {
 /// Finite at grazing incidence (cos -> 0), where G1 itself goes to 0; equals 2/α there.
 #[inline]
 pub fn g1_over_cos(alpha: f32, cos_v: f32) -> f32 {
-    let c = cos_v.abs();
-    let a2 = alpha * alpha;
-    2.0 / (c + ((1.0 - a2) * c * c + a2).sqrt())
+    g1_over_cos_lanes(alpha * alpha, cos_v.abs())
 }
 
 /// [`g1_over_cos`] written once for one `f32` and for lanes ([`crate::lanes`]), from α² and a
-/// cosine c > 0 (the scalar takes |c|): `2 / (c + sqrt((1 − α²) c² + α²))`, the same IEEE
+/// cosine c >= 0 (the scalar passes |c|): `2 / (c + sqrt((1 − α²) c² + α²))`, the same IEEE
 /// operations in every lane.
 #[inline(always)]
 pub fn g1_over_cos_lanes<R: Real>(alpha_sq: R, cos: R) -> R {
