@@ -25,12 +25,24 @@ pub enum GpuTiled {
     Lists,
 }
 
-/// The backend a command runs on, as `--backend` and `--gpu-tiled` chose it.
+/// How the GPU backend rasterizes clustered-raster's bounding meshes conservatively.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum GpuConservative {
+    /// By the adapter (`CONSERVATIVE_RASTERIZATION`), where it has it; else in software.
+    Hardware,
+    /// Each triangle drawn as the whole cells around it, kept where it meets them.
+    Software,
+}
+
+/// The backend a command runs on, as `--backend`, `--gpu-tiled` and `--gpu-conservative`
+/// chose it.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct BackendChoice {
     pub backend: Backend,
     /// The GPU's tiled strategies culled and shaded in one pass.
     pub one_pass: bool,
+    /// The GPU's conservative rasterization in hardware where the adapter has it.
+    pub hardware_conservative: bool,
 }
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
@@ -119,6 +131,10 @@ pub struct FrameArgs {
     /// or culled into light lists and shaded by a second pass, to compare the two.
     #[arg(long, value_enum)]
     pub gpu_tiled: Option<GpuTiled>,
+    /// With `--backend gpu`: clustered-raster's conservative rasterization in hardware (the
+    /// default, where the adapter has it) or in software, to compare the two (the same lists).
+    #[arg(long, value_enum)]
+    pub gpu_conservative: Option<GpuConservative>,
     #[arg(long, value_enum, default_value_t = Shader::Vpl)]
     pub shader: Shader,
     /// Reflective-shadow-map resolution per face (a point light has six faces; each texel makes
@@ -151,15 +167,22 @@ pub fn stops(s: &str) -> Result<f32, String> {
 }
 
 impl FrameArgs {
-    /// The backend `--backend` and `--gpu-tiled` choose; `--gpu-tiled` without the GPU
-    /// backend is an error.
+    /// The backend `--backend`, `--gpu-tiled` and `--gpu-conservative` choose; either of the
+    /// last two without the GPU backend is an error.
     pub fn backend_choice(&self) -> Result<BackendChoice, String> {
         if self.backend != Backend::Gpu && self.gpu_tiled.is_some() {
             return Err("--gpu-tiled chooses how the GPU backend culls; add --backend gpu".into());
         }
+        if self.backend != Backend::Gpu && self.gpu_conservative.is_some() {
+            return Err(
+                "--gpu-conservative chooses how the GPU backend rasterizes; add --backend gpu"
+                    .into(),
+            );
+        }
         Ok(BackendChoice {
             backend: self.backend,
             one_pass: self.gpu_tiled != Some(GpuTiled::Lists),
+            hardware_conservative: self.gpu_conservative != Some(GpuConservative::Software),
         })
     }
 

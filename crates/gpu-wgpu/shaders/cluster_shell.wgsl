@@ -6,10 +6,11 @@
 // volume occupies in a tile lie between the ones its front and back surface reach there, and
 // cluster_fill.wgsl fills the span.
 //
-// Conservative rasterization without the adapter feature (lavapipe has none): each triangle
-// is drawn as its cover, the rectangle of whole cells around its projection (6 vertices), and
-// the fragment keeps a cell only where the triangle meets it (edge functions with a margin):
-// every cell the triangle touches, as the hardware's overestimating mode. Each kept cell is
+// Conservative rasterization in hardware where the adapter has it (vs_conservative, with
+// Features::CONSERVATIVE_RASTERIZATION), else in software (vs_main; lavapipe has no such
+// feature): each triangle is drawn as its cover, the rectangle of whole cells around its
+// projection (6 vertices). Either way the fragment keeps a cell only where the triangle meets
+// it (edge functions with a margin): every cell the triangle touches. Each kept cell is
 // marked with the triangle's depth range over it (its vertices' range cut by its plane at the
 // cell's corners, as [OP16]); a triangle reaching the eye plane marks every cell from depth 0.
 // Marks before the nearest sample or past the farthest go to the first or last slice: the
@@ -70,42 +71,99 @@ fn triangle(j: u32, s: u32, t: u32) -> Triangle {
     return tri;
 }
 
-@vertex
-fn vs_main(@builtin(vertex_index) vertex: u32, @builtin(instance_index) instance: u32)
-    -> ShellVertex {
+// Clip-space position of a vertex that draws nothing: outside the clip volume, so that no
+// rasterizer, also one that rasterizes degenerate triangles conservatively, makes a fragment.
+const NOWHERE: vec4<f32> = vec4<f32>(-4.0, -4.0, 0.0, 1.0);
+
+// Clip-space position (y up) of viewport position uv, in cells.
+fn clip_of(uv: vec2<f32>, view: vec2<f32>) -> vec4<f32> {
+    return vec4<f32>(2.0 * uv.x / view.x - 1.0, 1.0 - 2.0 * uv.y / view.y, 0.0, 1.0);
+}
+
+// Vertex `corner` (0..6) of the rectangle [lo, hi] as two triangles: (lo, lo), (hi, lo),
+// (lo, hi), (hi, lo), (hi, hi), (lo, hi) in cells.
+fn rectangle_corner(corner: u32, lo: vec2<f32>, hi: vec2<f32>) -> vec2<f32> {
+    let pick = vec2<bool>(corner == 1u || corner == 3u || corner == 4u,
+                          corner == 2u || corner == 4u || corner == 5u);
+    return select(lo, hi, pick);
+}
+
+// Vertex `vertex` of the subregion draw's instance `instance`: its ids, and the triangle it
+// belongs to in the culling view and the viewport. Six vertices per mesh triangle.
+struct ShellInput {
+    ids: vec3<u32>,
+    tri: Triangle,
+    corner: u32,
+    // False for a VPL without a bound and a triangle wholly behind the eye: nothing to draw.
+    drawn: bool,
+}
+
+fn shell_input(vertex: u32, instance: u32) -> ShellInput {
     let s = vertex / params.mesh_vertices;
     let local = vertex % params.mesh_vertices;
     let j = sub_offsets[s] + instance;
-    let sh = shapes[order[j]];
+    var input: ShellInput;
+    input.ids = vec3<u32>(j, s, local / 6u);
+    input.corner = local % 6u;
+    if shapes[order[j]].center.w < 0.0 {
+        return input;
+    }
+    input.tri = triangle(j, s, input.ids.z);
+    let p = input.tri.p;
+    // Wholly behind the eye: nothing in front to bound.
+    input.drawn = max(p[0].z, max(p[1].z, p[2].z)) > 0.0;
+    return input;
+}
+
+// The software form: each triangle drawn as its cover, the whole cells around its
+// projection (at least one, within the viewport), or the whole viewport where it is not
+// projected; fs_main keeps the cells the triangle meets.
+@vertex
+fn vs_main(@builtin(vertex_index) vertex: u32, @builtin(instance_index) instance: u32)
+    -> ShellVertex {
+    let input = shell_input(vertex, instance);
     var out: ShellVertex;
-    out.position = vec4<f32>(0.0, 0.0, 0.0, 1.0);
-    if sh.center.w < 0.0 {
+    out.ids = input.ids;
+    out.position = NOWHERE;
+    if !input.drawn {
         return out;
     }
-    let t = local / 6u;
-    out.ids = vec3<u32>(j, s, t);
-    let tri = triangle(j, s, t);
-    let z_max = max(tri.p[0].z, max(tri.p[1].z, tri.p[2].z));
+    let tri = input.tri;
     let view = vec2<f32>(f32(params.view_w), f32(params.view_h));
     var lo = vec2<f32>(0.0);
     var hi = view;
     if tri.projected {
-        // Whole cells around the projection, at least one, within the viewport.
         lo = clamp(floor(min(tri.uv[0], min(tri.uv[1], tri.uv[2]))), vec2<f32>(0.0), view);
         hi = clamp(floor(max(tri.uv[0], max(tri.uv[1], tri.uv[2]))) + 1.0, vec2<f32>(0.0),
                    view);
     }
-    if z_max <= 0.0 {
-        // Wholly behind the eye: nothing in front to bound.
+    out.position = clip_of(rectangle_corner(input.corner, lo, hi), view);
+    return out;
+}
+
+// The hardware form (a pipeline with conservative rasterization): a projected triangle
+// drawn as itself in its first three vertices (the rasterizer's overestimating mode makes a
+// fragment in every cell it touches, and fs_main keeps the cells it meets: the same cells as
+// the software form), the other three drawing nothing; a triangle that is not projected
+// (reaching the eye plane or beyond FAR_CELLS, which clipping would cut short) drawn as the
+// whole viewport, as in the software form.
+@vertex
+fn vs_conservative(@builtin(vertex_index) vertex: u32,
+                   @builtin(instance_index) instance: u32) -> ShellVertex {
+    let input = shell_input(vertex, instance);
+    var out: ShellVertex;
+    out.ids = input.ids;
+    out.position = NOWHERE;
+    if !input.drawn {
         return out;
     }
-    // The cover's two triangles: corners (lo, lo), (hi, lo), (lo, hi), (hi, lo), (hi, hi),
-    // (lo, hi) in cells, to clip space (y up).
-    let corner = local % 6u;
-    let pick = vec2<bool>(corner == 1u || corner == 3u || corner == 4u,
-                          corner == 2u || corner == 4u || corner == 5u);
-    let uv = select(lo, hi, pick);
-    out.position = vec4<f32>(2.0 * uv.x / view.x - 1.0, 1.0 - 2.0 * uv.y / view.y, 0.0, 1.0);
+    let tri = input.tri;
+    let view = vec2<f32>(f32(params.view_w), f32(params.view_h));
+    if !tri.projected {
+        out.position = clip_of(rectangle_corner(input.corner, vec2<f32>(0.0), view), view);
+    } else if input.corner < 3u {
+        out.position = clip_of(tri.uv[input.corner], view);
+    }
     return out;
 }
 

@@ -9,6 +9,13 @@
 // masks, so nothing is counted, scanned or stored, and each pixel sums the same VPLs in the
 // same order as shade.wgsl over tiled_cull.wgsl's lists. tiles.wgsl, bound.wgsl,
 // frustum_tests.wgsl, brdf.wgsl, gsample.wgsl, gvpl.wgsl and vpl_eval.wgsl are prepended.
+//
+// Before it evaluates a VPL, a pixel tests its own point against the VPL's bound (the tile
+// tested the bound against the cluster's frustum): a point outside has p <= xi there, its
+// contribution is exactly 0 and is skipped, so the sum is the same, bit for bit. Most of a
+// tile's listed pairs are such pixels (the bound's tile-sized false positives); their test
+// costs about twenty operations where vpl_contribution costs a GGX lobe. The test is
+// conservative for f32 rounding: see unit_ball and inside.
 
 @group(0) @binding(0) var<uniform> params: CullParams;
 @group(0) @binding(1) var<uniform> shading: ShadeParams;
@@ -33,8 +40,67 @@ var<workgroup> near_bits: array<atomic<u32>, 8>;
 var<workgroup> far_bits: array<atomic<u32>, 8>;
 // The VPL index of each entry of the batch.
 var<workgroup> batch: array<u32, 256>;
+// Each hit entry's bound as a unit ball (unit_ball): the columns of M, C in their w.
+var<workgroup> ball_x: array<vec4<f32>, 256>;
+var<workgroup> ball_y: array<vec4<f32>, 256>;
+var<workgroup> ball_z: array<vec4<f32>, 256>;
+// Its rounding allowances (Ball.slack).
+var<workgroup> ball_slack: array<vec2<f32>, 256>;
 var<workgroup> tile_mask: u32;
 var<workgroup> sub_range: vec2<u32>;
+
+// Relative error allowed for the f32 rounding of the pixel test's operands and operations,
+// about 34 ulps: the columns of M and C carry a few roundings each (bounds.wgsl), the view
+// point R (x - eye) a few more, and each component of M p - C three fma roundings.
+const BALL_ROUNDING: f32 = 4e-6;
+
+// A bound as the unit ball |M p - C| <= 1 of view-space points p (bound.wgsl): an ellipsoid
+// as it is stored (M = BS, C = BS c), a sphere of squared radius r2 around c as M = I / r,
+// C = c / r. slack: allowances for rounding, x for C and y per unit of the point's size
+// (inside). A sphere too small or too large for 1 / r in f32 gets M = 0, C = 0 and an
+// allowance no point exceeds: every pixel is then evaluated.
+struct Ball {
+    m: mat3x3<f32>,
+    c: vec3<f32>,
+    slack: vec2<f32>,
+}
+
+fn l1(v: vec3<f32>) -> f32 {
+    return abs(v.x) + abs(v.y) + abs(v.z);
+}
+
+fn unit_ball(b: Bound) -> Ball {
+    var m = mat3x3<f32>(b.bs[0].xyz, b.bs[1].xyz, b.bs[2].xyz);
+    var c = b.center.xyz;
+    if b.kind == BOUND_SPHERE {
+        let inv_r = 1.0 / sqrt(b.center.w);
+        m = mat3x3<f32>(vec3<f32>(inv_r, 0.0, 0.0), vec3<f32>(0.0, inv_r, 0.0),
+                        vec3<f32>(0.0, 0.0, inv_r));
+        c = b.center.xyz * inv_r;
+    }
+    let norm = max(l1(m[0]), max(l1(m[1]), l1(m[2])));
+    let slack = BALL_ROUNDING * vec2<f32>(l1(c), norm);
+    if !(finite3(c) && abs(norm) <= F32_MAX && abs(slack.x) <= F32_MAX
+         && abs(slack.y) <= F32_MAX) {
+        return Ball(mat3x3<f32>(vec3<f32>(0.0), vec3<f32>(0.0), vec3<f32>(0.0)), vec3<f32>(0.0),
+                    vec2<f32>(F32_MAX, 0.0));
+    }
+    return Ball(m, c, slack);
+}
+
+// Whether view-space point p (of size: |p|_1 + |x|_1 + |eye|_1 for the world point x it was
+// mapped from) may lie in entry e's bound: |M p - C|^2 against (1 + its allowances)^2, and
+// always where the square is not finite (an overflow says nothing).
+fn inside(e: u32, p: vec3<f32>, size: f32) -> bool {
+    let mx = ball_x[e];
+    let my = ball_y[e];
+    let mz = ball_z[e];
+    let q = mx.xyz * p.x + my.xyz * p.y + mz.xyz * p.z - vec3<f32>(mx.w, my.w, mz.w);
+    let d2 = dot(q, q);
+    let slack = ball_slack[e];
+    let t = 1.0 + BALL_ROUNDING + slack.x + slack.y * size;
+    return !(d2 > t * t && d2 <= F32_MAX);
+}
 
 @compute @workgroup_size(256)
 fn main(
@@ -62,12 +128,19 @@ fn main(
     var cluster = 2u;
     var s: Sample;
     var x = vec3<f32>(0.0);
+    // The pixel's point in the culling view and its size (inside).
+    var view = vec3<f32>(0.0);
+    var size = 0.0;
     if has_pixel {
         let list = pixel_list[pixel];
         s = samples[pixel];
         if list != NO_LIST && sample_present(s) {
             cluster = list - 2u * t;
             x = positions[pixel].xyz;
+            let rot = mat3x3<f32>(params.rotation[0].xyz, params.rotation[1].xyz,
+                                  params.rotation[2].xyz);
+            view = rot * (x - params.eye.xyz);
+            size = l1(view) + l1(x) + l1(params.eye.xyz);
         }
     }
     var sum = vec3<f32>(0.0);
@@ -84,7 +157,15 @@ fn main(
             if j < range.y {
                 let i = order[j];
                 batch[lid] = i;
-                hit = tile_hits(bounds[i], f, mask);
+                let b = bounds[i];
+                hit = tile_hits(b, f, mask);
+                if any(hit != vec2<u32>(0u)) {
+                    let ball = unit_ball(b);
+                    ball_x[lid] = vec4<f32>(ball.m[0], ball.c.x);
+                    ball_y[lid] = vec4<f32>(ball.m[1], ball.c.y);
+                    ball_z[lid] = vec4<f32>(ball.m[2], ball.c.z);
+                    ball_slack[lid] = ball.slack;
+                }
             }
             mark_hits(lid, hit);
             workgroupBarrier();
@@ -95,9 +176,11 @@ fn main(
                     while bits != 0u {
                         let e = 32u * w + firstTrailingBit(bits);
                         bits &= bits - 1u;
-                        let c = vpl_contribution(s, x, vpls[batch[e]], shading.delta);
-                        if any(c != vec3<f32>(0.0)) {
-                            sum += c * shading.scale;
+                        if inside(e, view, size) {
+                            let c = vpl_contribution(s, x, vpls[batch[e]], shading.delta);
+                            if any(c != vec3<f32>(0.0)) {
+                                sum += c * shading.scale;
+                            }
                         }
                     }
                 }

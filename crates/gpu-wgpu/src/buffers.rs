@@ -1,7 +1,9 @@
 //! Upload and readback helpers (plain `create_buffer` + `write_buffer`: unlike
 //! `create_buffer_init` they do not panic on a lost device), the storage-binding size check and the 2-D dispatch grid.
-use crate::context::{GpuContext, GpuError};
+use crate::context::{GpuContext, GpuError, WAIT_TIMEOUT};
 use bytemuck::Pod;
+use std::sync::mpsc::RecvTimeoutError;
+use std::time::{Duration, Instant};
 
 /// The smallest buffer for elements of `T`: WGSL runtime-sized arrays bind at least one
 /// element (and never zero bytes), even for empty inputs.
@@ -103,10 +105,21 @@ pub fn read_back<T: Pod>(
         label: label.to_owned(),
         message,
     };
-    receiver
-        .try_recv()
-        .map_err(|_| failed("the map callback did not run".into()))?
-        .map_err(|e| failed(e.to_string()))?;
+    // On a device other threads poll too (a host's, or contexts made by
+    // `GpuContext::share`), one of them may be delivering the callback while this wait
+    // returns: wait for it, polling, as long as a wait may take.
+    let start = Instant::now();
+    let mapped = loop {
+        match receiver.recv_timeout(Duration::from_millis(5)) {
+            Ok(mapped) => break mapped,
+            Err(RecvTimeoutError::Timeout) if start.elapsed() < WAIT_TIMEOUT => {
+                ctx.check_lost()?;
+                let _ = ctx.device.poll(wgpu::PollType::Poll);
+            }
+            Err(_) => return Err(failed("the map callback did not run".into())),
+        }
+    };
+    mapped.map_err(|e| failed(e.to_string()))?;
     let view = staging
         .get_mapped_range(..)
         .map_err(|e| failed(e.to_string()))?;

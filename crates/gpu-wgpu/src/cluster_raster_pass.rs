@@ -4,9 +4,10 @@
 //! ([`ClusteredCuller::prepare`](crate::clustered_cull_pass::ClusteredCuller::prepare): 32
 //! exponential slices of the G-buffer's depth range per 16 x 16 tile of each subregion), then
 //! - the shell pass (`shaders/cluster_shell.wgsl`): each VPL's 20-triangle mesh rasterized at
-//!   tile resolution into its subregion's viewport, conservatively (each triangle drawn as the
-//!   cells around it and kept where it meets them, as the hardware's overestimating mode,
-//!   which wgpu's lavapipe lacks), marking per VPL and tile the slices its surface spans;
+//!   tile resolution into its subregion's viewport, conservatively (in hardware where the
+//!   adapter has `Features::CONSERVATIVE_RASTERIZATION`, else each triangle drawn as the
+//!   cells around it; either way a cell is kept where the triangle meets it: lavapipe has
+//!   only the software form), marking per VPL and tile the slices its surface spans;
 //! - the fill pass (`shaders/cluster_fill.wgsl`): each VPL joins the linked list of every
 //!   occupied slice between its nearest and farthest mark, in a node buffer (`node_lists`);
 //! - shading (`shaders/node_shade.wgsl`): each pixel walks its cluster's list.
@@ -26,11 +27,12 @@ use crate::gpu_lists::GpuLightLists;
 use crate::gpu_types::GpuShadeParams;
 use crate::list_room::ListRoom;
 use crate::node_lists::NodeLists;
-use crate::raster_draw::{atlas, bind, render_pipeline, SubregionDraws};
+use crate::raster_draw::{atlas, bind, render_pipeline, Rasterization, SubregionDraws};
 use crate::shade_pass::vpl_eval_source;
 use slc_core::TILE_SIZE;
 use slc_cull::GlossyBound;
 use std::cell::RefCell;
+use std::sync::atomic::{AtomicBool, Ordering};
 
 /// The mesh mapping, then the shell pass.
 pub(crate) const SHELL_SOURCE: &str = concat!(
@@ -66,7 +68,13 @@ pub struct ClusterRasterizer {
     mesh: wgpu::Buffer,
     mesh_triangles: u32,
     draws: SubregionDraws,
+    /// The shell pass with conservative rasterization in software (`vs_main`).
     shell: wgpu::RenderPipeline,
+    /// The shell pass with the adapter's conservative rasterization (`vs_conservative`),
+    /// where it has it.
+    hardware_shell: Option<wgpu::RenderPipeline>,
+    /// Whether the shell pass draws with `hardware_shell`.
+    hardware: AtomicBool,
     fill: wgpu::ComputePipeline,
     shade: wgpu::ComputePipeline,
     /// The largest node count seen: the next frame's buffer.
@@ -88,29 +96,53 @@ impl ClusterRasterizer {
     pub fn new(ctx: &GpuContext) -> Result<Self, GpuError> {
         let mesh = BoundMesh::icosphere(0);
         let args = ArgsPass::new(ctx)?;
+        let shell = |label, raster| {
+            let target = wgpu::ColorTargetState {
+                format: SHELL_TARGET,
+                blend: None,
+                write_mask: wgpu::ColorWrites::empty(),
+            };
+            render_pipeline(ctx, label, SHELL_SOURCE, "fs_main", target, raster)
+        };
         ctx.scoped("cluster raster pipelines", || {
             Ok(Self {
                 mesh: mesh.upload(ctx)?,
                 mesh_triangles: mesh.triangle_count(),
                 draws: SubregionDraws::new(ctx),
-                shell: render_pipeline(
-                    ctx,
-                    "cluster shell",
-                    SHELL_SOURCE,
-                    "fs_main",
-                    wgpu::ColorTargetState {
-                        format: SHELL_TARGET,
-                        blend: None,
-                        write_mask: wgpu::ColorWrites::empty(),
-                    },
-                    None,
-                ),
+                shell: shell("cluster shell", Rasterization::PLAIN),
+                hardware_shell: ctx.conservative_raster.then(|| {
+                    shell(
+                        "cluster shell (hardware conservative)",
+                        Rasterization {
+                            vertex: "vs_conservative",
+                            conservative: true,
+                            ..Rasterization::PLAIN
+                        },
+                    )
+                }),
+                hardware: AtomicBool::new(ctx.conservative_raster),
                 fill: ctx.compute_pipeline("cluster fill", FILL_SOURCE),
                 shade: ctx.compute_pipeline("node shade", SHADE_SOURCE),
                 room: ListRoom::new(),
                 args,
             })
         })
+    }
+
+    /// Whether the shell pass rasterizes conservatively in hardware: by default where the
+    /// adapter can (`GpuContext::conservative_raster`). Same cells either way (the fragment
+    /// keeps the cells its triangle meets); `false` measures the software form on such an
+    /// adapter.
+    pub fn hardware(&self) -> bool {
+        self.hardware.load(Ordering::Relaxed)
+    }
+
+    /// Chooses the hardware form (`true`, where the adapter has it; returns whether it is
+    /// used) or the software form (`false`) for the next frames.
+    pub fn set_hardware(&self, hardware: bool) -> bool {
+        let on = hardware && self.hardware_shell.is_some();
+        self.hardware.store(on, Ordering::Relaxed);
+        on
     }
 
     /// The culling step of a frame: depth slices, shell and fill passes, encoded and
@@ -158,13 +190,17 @@ impl ClusterRasterizer {
             SHELL_TARGET,
         )?;
         let count = &clusters.bounds.count;
+        let shell = match &self.hardware_shell {
+            Some(hardware) if self.hardware() => hardware,
+            _ => &self.shell,
+        };
         ctx.submit("cluster shell", |encoder| {
             let params_buffer =
                 count.uniform(ctx, encoder, "cluster shell params", &params, VPL_COUNT_AT);
             let group = bind(
                 ctx,
                 "cluster shell",
-                &self.shell.get_bind_group_layout(0),
+                &shell.get_bind_group_layout(0),
                 &[
                     (0, params_buffer.as_entire_binding()),
                     (1, self.mesh.as_entire_binding()),
@@ -182,7 +218,7 @@ impl ClusterRasterizer {
                 "cluster shell",
                 (&params, &params_buffer),
                 &clusters.partition.sub_offsets,
-                (&self.shell, &group),
+                (shell, &group),
                 &target,
                 |_, _| [tx, ty],
             )

@@ -70,6 +70,10 @@ pub struct GpuContext {
     /// Whether the device has subgroup operations (`Features::SUBGROUP`; the one-pass tiled
     /// kernel combines a subgroup's hits with them, `tiled_shade_pass`).
     pub subgroups: bool,
+    /// Whether the device rasterizes conservatively in hardware
+    /// (`Features::CONSERVATIVE_RASTERIZATION`; the shell pass of `clustered-raster` draws
+    /// its triangles with it, `cluster_raster_pass`).
+    pub conservative_raster: bool,
     /// Whether those timestamps measure execution: false on CPU adapters, where lavapipe's
     /// stop bracketing the work of compute passes once a render pass has run (measured: 0.09
     /// ms of timestamp time for 1.1 s of compute, `tests/gpu/profile.rs`). Callers report
@@ -133,11 +137,14 @@ impl GpuContext {
         let timestamps = adapter.features().contains(wgpu::Features::TIMESTAMP_QUERY);
         let timestamps_trusted = timestamps && info.device_type != wgpu::DeviceType::Cpu;
         // Timestamps for the profiles; f32 blending for splatting's sums (`splat_pass`);
-        // subgroup operations for the one-pass tiled kernel (`tiled_shade_pass`).
+        // subgroup operations for the one-pass tiled kernel (`tiled_shade_pass`);
+        // conservative rasterization for clustered-raster's shell pass
+        // (`cluster_raster_pass`).
         let required_features = adapter.features()
             & (wgpu::Features::TIMESTAMP_QUERY
                 | wgpu::Features::FLOAT32_BLENDABLE
-                | wgpu::Features::SUBGROUP);
+                | wgpu::Features::SUBGROUP
+                | wgpu::Features::CONSERVATIVE_RASTERIZATION);
         let limits = adapter.limits();
         let (device, queue) = adapter
             .request_device(&wgpu::DeviceDescriptor {
@@ -160,6 +167,9 @@ impl GpuContext {
         });
         Ok(Self {
             subgroups: device.features().contains(wgpu::Features::SUBGROUP),
+            conservative_raster: device
+                .features()
+                .contains(wgpu::Features::CONSERVATIVE_RASTERIZATION),
             device,
             queue,
             adapter_name,
@@ -178,13 +188,17 @@ impl GpuContext {
     /// adapter's own limits, `adapter.limits()`, always do; too small a limit is reported as
     /// [`GpuError::Wgpu`] when the passes are built) and, for per-pass GPU times,
     /// `Features::TIMESTAMP_QUERY`, for the one-pass tiled kernel's subgroup operations
-    /// `Features::SUBGROUP`. The host keeps its device-lost callback: a lost device
+    /// `Features::SUBGROUP`, for clustered-raster's hardware conservative rasterization
+    /// `Features::CONSERVATIVE_RASTERIZATION`. The host keeps its device-lost callback: a lost device
     /// shows here as errors of the passes and waits, not through [`GpuError::DeviceLost`].
     pub fn from_device(device: wgpu::Device, queue: wgpu::Queue, info: &wgpu::AdapterInfo) -> Self {
         let timestamps = device.features().contains(wgpu::Features::TIMESTAMP_QUERY);
         Self {
             limits: device.limits(),
             subgroups: device.features().contains(wgpu::Features::SUBGROUP),
+            conservative_raster: device
+                .features()
+                .contains(wgpu::Features::CONSERVATIVE_RASTERIZATION),
             device,
             queue,
             adapter_name: adapter_label(info),
@@ -192,6 +206,27 @@ impl GpuContext {
             timestamps_trusted: timestamps && info.device_type != wgpu::DeviceType::Cpu,
             software: is_software_adapter(info),
             lost: Arc::new(Mutex::new(None)),
+            profiler: Mutex::new(None),
+            readback: Mutex::new(BTreeMap::new()),
+        }
+    }
+
+    /// A second context on the same device and queue: its own timestamp profile
+    /// ([`Self::start_profiling`]) and readback counts ([`Self::readback_bytes`]), the same
+    /// device-lost record. Threads that each hold one share a device without sharing that
+    /// state (the GPU tests of one binary do; wgpu's error scopes are per thread).
+    pub fn share(&self) -> Self {
+        Self {
+            device: self.device.clone(),
+            queue: self.queue.clone(),
+            adapter_name: self.adapter_name.clone(),
+            timestamps: self.timestamps,
+            subgroups: self.subgroups,
+            conservative_raster: self.conservative_raster,
+            timestamps_trusted: self.timestamps_trusted,
+            software: self.software,
+            limits: self.limits.clone(),
+            lost: Arc::clone(&self.lost),
             profiler: Mutex::new(None),
             readback: Mutex::new(BTreeMap::new()),
         }

@@ -16,15 +16,34 @@ pub(crate) const ARGS_SOURCE: &str = concat!(
 /// Largest interleaving factor the raster baselines draw with: one draw per subregion.
 pub const MAX_RASTER_K: u32 = 64;
 
-/// A render pipeline of `source` (`vs_main` and `fragment`) drawing triangle lists into one
-/// colour target of `format`, without depth.
+/// How a raster baseline's pipeline rasterizes its triangles.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) struct Rasterization {
+    /// The vertex entry point.
+    pub vertex: &'static str,
+    pub cull_mode: Option<wgpu::Face>,
+    /// Conservative rasterization in hardware (`Features::CONSERVATIVE_RASTERIZATION`).
+    pub conservative: bool,
+}
+
+impl Rasterization {
+    /// `vs_main`, every fragment whose centre a triangle covers.
+    pub const PLAIN: Self = Self {
+        vertex: "vs_main",
+        cull_mode: None,
+        conservative: false,
+    };
+}
+
+/// A render pipeline of `source` (the vertex entry point of `raster` and `fragment`) drawing
+/// triangle lists into one colour target of `format`, without depth.
 pub(crate) fn render_pipeline(
     ctx: &GpuContext,
     label: &'static str,
     source: &str,
     fragment: &str,
     target: wgpu::ColorTargetState,
-    cull_mode: Option<wgpu::Face>,
+    raster: Rasterization,
 ) -> wgpu::RenderPipeline {
     let module = ctx
         .device
@@ -38,14 +57,15 @@ pub(crate) fn render_pipeline(
             layout: None,
             vertex: wgpu::VertexState {
                 module: &module,
-                entry_point: Some("vs_main"),
+                entry_point: Some(raster.vertex),
                 compilation_options: Default::default(),
                 buffers: &[],
             },
             primitive: wgpu::PrimitiveState {
                 topology: wgpu::PrimitiveTopology::TriangleList,
                 front_face: wgpu::FrontFace::Ccw,
-                cull_mode,
+                cull_mode: raster.cull_mode,
+                conservative: raster.conservative,
                 ..Default::default()
             },
             depth_stencil: None,

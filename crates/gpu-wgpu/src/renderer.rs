@@ -23,7 +23,7 @@ use crate::gbuffer_pass::{GbufferPass, GpuGBuffer};
 use crate::gpu_lists::read_lists;
 use crate::ism_pass::{caster_points, GpuCaster, IsmPass, IsmSettings};
 use crate::renderer_notes::{
-    frame_notes, one_pass_note, vsgl_note, CLUSTER_RASTER_NOTE, METRICS_NOTE, SPLAT_NOTE,
+    cluster_raster_note, frame_notes, one_pass_note, vsgl_note, METRICS_NOTE, SPLAT_NOTE,
 };
 use crate::rsm_pass::{GpuRsm, RsmPass};
 use crate::scene_upload::GpuScene;
@@ -34,7 +34,8 @@ use crate::vsgl_build_pass::{VsglBuildPass, VsglSampling};
 use crate::vsgl_readback::cpu_rsm;
 use crate::vsgl_shade_pass::VsglShadePass;
 use slc_core::frame::{
-    Importance, LightSampling, LobeSelection, Method, RenderError, RenderSettings, Shaded, Timings,
+    Importance, LightSampling, LobeSelection, Method, PassTime, RenderError, RenderSettings,
+    Shaded, Timings,
 };
 use slc_core::render::pass_seed;
 use slc_core::rng::{stream, uniform};
@@ -47,7 +48,7 @@ use slc_cpu_ref::{CpuFrames, CpuPrepared, Tracer};
 use std::borrow::Cow;
 use std::cell::{OnceCell, RefCell};
 use std::collections::BTreeMap;
-use std::sync::Arc;
+use std::sync::{Arc, Mutex};
 
 fn gpu(e: GpuError) -> RenderError {
     RenderError::backend(e)
@@ -141,6 +142,8 @@ pub struct GpuRenderer {
     /// Whether the tiled strategies are culled and shaded in one pass
     /// ([`GpuCuller::one_pass`]); else into light lists, shaded by a second pass.
     one_pass: bool,
+    /// The passes of the last profiled run ([`Renderer::last_pass_times`]).
+    last_passes: Mutex<Option<Vec<PassTime>>>,
 }
 
 impl GpuRenderer {
@@ -166,6 +169,7 @@ impl GpuRenderer {
             denoiser: DenoisePass::new(&ctx)?,
             ctx: Arc::new(ctx),
             one_pass: true,
+            last_passes: Mutex::new(None),
         })
     }
 
@@ -181,6 +185,15 @@ impl GpuRenderer {
     /// [`Self::with_one_pass`] on a renderer kept between frames.
     pub fn set_one_pass(&mut self, one_pass: bool) {
         self.one_pass = one_pass;
+    }
+
+    /// The same renderer with clustered-raster's shell pass rasterized conservatively in
+    /// hardware (`true`, the default, where the adapter has it) or in software (`false`):
+    /// the same lists and image, at another cost
+    /// ([`ClusterRasterizer::set_hardware`](crate::cluster_raster_pass::ClusterRasterizer::set_hardware)).
+    pub fn with_hardware_conservative(self, hardware: bool) -> Self {
+        self.culler.rasterizer().set_hardware(hardware);
+        self
     }
 
     /// Sets the room the list cullers leave for the next frames' lists
@@ -254,7 +267,9 @@ impl Renderer for GpuRenderer {
             }
             match s.strategy {
                 Strategy::Splatting => notes.push(SPLAT_NOTE.into()),
-                Strategy::ClusteredRaster => notes.push(CLUSTER_RASTER_NOTE.into()),
+                Strategy::ClusteredRaster => {
+                    notes.push(cluster_raster_note(self.culler.rasterizer().hardware()))
+                }
                 _ => {}
             }
             if s.metrics {
@@ -273,6 +288,10 @@ impl Renderer for GpuRenderer {
 
     fn readback_bytes(&self) -> Option<BTreeMap<String, u64>> {
         Some(self.ctx.readback_bytes())
+    }
+
+    fn last_pass_times(&self) -> Option<Vec<PassTime>> {
+        self.last_passes.lock().ok().and_then(|p| p.clone())
     }
 
     fn load(&self, scene: &Scene) -> Result<GpuLoadedScene, RenderError> {
@@ -546,6 +565,20 @@ impl Renderer for GpuRenderer {
         let profiling = ctx.timestamps_trusted && ctx.start_profiling();
         let out = f();
         let profile = ctx.finish_profiling().map_err(gpu)?;
+        if let Ok(mut last) = self.last_passes.lock() {
+            *last = profiling.then(|| {
+                profile
+                    .passes
+                    .iter()
+                    .map(|&(stage, pass, ms, count)| PassTime {
+                        stage,
+                        pass,
+                        ms,
+                        count,
+                    })
+                    .collect()
+            });
+        }
         Ok((out?, profiling.then_some(Timings(profile.stages))))
     }
 }

@@ -61,12 +61,21 @@ pub const SPLAT_NOTE: &str = "splatting [DS06]: 'culling' times the bounds, part
      the pixels each mesh covers";
 
 /// The note of frames culled by rasterized clusters (`cluster_raster_pass`).
-pub const CLUSTER_RASTER_NOTE: &str = "clustered shading by rasterized bounding meshes [OP16]: \
-     'culling' times the bounds, partition and depth-slice passes, the shell pass (each VPL's \
-     20-triangle mesh at tile resolution, conservatively: every cell a triangle meets, marked \
-     with its depth range there) and the fill pass into a linked-list node buffer; 'shading' \
-     walks each pixel's cluster list (and, where the node buffer was too small, fills and \
-     shades again)";
+pub fn cluster_raster_note(hardware: bool) -> String {
+    let form = if hardware {
+        "in hardware (the adapter's conservative rasterization draws each triangle)"
+    } else {
+        "in software (each triangle drawn as the whole cells around it)"
+    };
+    format!(
+        "clustered shading by rasterized bounding meshes [OP16]: 'culling' times the bounds, \
+         partition and depth-slice passes, the shell pass (each VPL's 20-triangle mesh at \
+         tile resolution, conservatively {form}: every cell a triangle meets, marked with its \
+         depth range there) and the fill pass into a linked-list node buffer; 'shading' walks \
+         each pixel's cluster list (and, where the node buffer was too small, fills and \
+         shades again)"
+    )
+}
 
 /// The note of frames whose culling metrics were measured.
 pub const METRICS_NOTE: &str = "metrics were measured by brute force on the CPU against the \

@@ -21,11 +21,17 @@ use crate::gpu_lists::GpuLightLists;
 use crate::gpu_types::GpuCullStatus;
 use crate::list_room::ListRoom;
 use crate::node_lists::NodeLists;
-use crate::raster_draw::{atlas, bind, render_pipeline, SubregionDraws};
+use crate::raster_draw::{atlas, bind, render_pipeline, Rasterization, SubregionDraws};
 use crate::shade_pass::vpl_eval_source;
 use crate::tiled_cull_pass::TiledFrame;
 use slc_core::Interleaving;
 use std::mem::offset_of;
+
+/// The bounding meshes' back faces only: each pixel's ray meets a mesh's back face once.
+const FRONT_CULLED: Rasterization = Rasterization {
+    cull_mode: Some(wgpu::Face::Front),
+    ..Rasterization::PLAIN
+};
 
 /// The mesh mapping and one VPL's contribution, then the splatting shaders.
 pub(crate) const SOURCE: &str = concat!(
@@ -82,14 +88,7 @@ impl Splatter {
                         }),
                         write_mask: wgpu::ColorWrites::ALL,
                     };
-                    render_pipeline(
-                        ctx,
-                        "splat",
-                        SOURCE,
-                        "fs_shade",
-                        target,
-                        Some(wgpu::Face::Front),
-                    )
+                    render_pipeline(ctx, "splat", SOURCE, "fs_shade", target, FRONT_CULLED)
                 }),
                 list: render_pipeline(
                     ctx,
@@ -101,7 +100,7 @@ impl Splatter {
                         blend: None,
                         write_mask: wgpu::ColorWrites::empty(),
                     },
-                    Some(wgpu::Face::Front),
+                    FRONT_CULLED,
                 ),
                 resolve: ctx.compute_pipeline("splat resolve", RESOLVE_SOURCE),
                 room: ListRoom::new(),

@@ -14,4 +14,4 @@ pub use settings::{
     DiffuseEmission, Importance, LightSampling, LobeSelection, Method, RenderSettings, Stochastic,
     MAX_IMAGE_SIDE, MAX_RSM_SIDE, MAX_SAMPLED_LIGHTS,
 };
-pub use timings::{merge_optional, Timings};
+pub use timings::{merge_optional, PassTime, Timings};

@@ -14,6 +14,10 @@
 //! (`|ωi + ωo|² α² <= 1e-6`: grazing opposition with a smooth lobe; the GPU emulates it in
 //! compensated f32, see `shaders/brdf.wgsl`) are held to the same tolerance and their largest
 //! error is reported separately (lavapipe: 2.2e-7; a naive f32 half vector gave 2.5e-2).
+//! There the value hangs on the last bits of ω = d / sqrt(l²), which a GPU may round 2.5
+//! ulps off (an NVIDIA H100 put six such pixels 1.3e-4 to 2e-2 away): a pixel beyond the
+//! tolerance there is reported, not failed, where it lies within the CPU's own spread over
+//! turns of ω by a few ulps ([`conditioned`]).
 use crate::common::gpu;
 use crate::tiled::frame;
 use glam::Vec3;
@@ -22,7 +26,7 @@ use slc_bounds::{Anisotropy, Brdf, Fresnel};
 use slc_core::{
     builtin, CullInput, GBuffer, GSample, Image, Interleaving, LightLists, Vpl, VplLobe, NO_LIST,
 };
-use slc_cpu_ref::vpl_shading::shade_lists;
+use slc_cpu_ref::vpl_shading::{received, shade_lists};
 use slc_cpu_ref::Tracer;
 use slc_cull::GlossyBound;
 use slc_gpu_wgpu::shade_pass::ShadePass;
@@ -68,13 +72,68 @@ fn cpu_probability(g: &GSample, vpl: &Vpl, delta: f32) -> Option<f32> {
     Some(r.probability(scalar_intensity(vpl.intensity(omega)), l2))
 }
 
+/// Ulps by which [`conditioned`] turns the directions from a pixel's VPLs: the GPU's `d /
+/// sqrt(l²)` may round its division and square root 2.5 ulps each (WGSL's bound), the CPU's
+/// correctly.
+const TURN_ULPS: f32 = 4.0;
+
+/// Whether `gpu` lies within the CPU's own spread at pixel `p` (each channel between the
+/// least and largest, plus the tolerance) when every direction ω from a VPL of its list to
+/// the receiver turns by [`TURN_ULPS`] ulps along each axis, the turns the GPU's rounding of
+/// ω may make. Where the CPU forms the GGX half vector in f64 (`|ωi + ωo| ≈ 1e-5`), one ulp
+/// of ω moves the half vector by about 1e-2 of its angle: that is conditioning, not a wrong
+/// formula (a formula off by 1e-3 still fails outside this domain).
+fn conditioned(input: &CullInput, lists: &LightLists, p: usize, gpu: Vec3, floor: f32) -> bool {
+    let Some(g) = input.gbuffer.samples[p].as_ref() else {
+        return false;
+    };
+    let turn = TURN_ULPS * f32::EPSILON / 2.0;
+    let turns = [
+        Vec3::ZERO,
+        Vec3::X,
+        -Vec3::X,
+        Vec3::Y,
+        -Vec3::Y,
+        Vec3::Z,
+        -Vec3::Z,
+    ];
+    let sums: Vec<Vec3> = turns
+        .iter()
+        .map(|&t| {
+            let sum: Vec3 = lists
+                .for_pixel(p)
+                .iter()
+                .map(|&k| {
+                    let vpl = &input.vpls[k as usize];
+                    let d = g.position - vpl.position;
+                    let l2 = d.length_squared();
+                    if l2 <= 0.0 {
+                        return Vec3::ZERO;
+                    }
+                    let omega = d / l2.sqrt() + turn * t;
+                    let roulette = StochasticParams::new(input.delta, vpl.xi).unwrap();
+                    received(g, omega, l2, || vpl.intensity(omega), Some(&roulette))
+                })
+                .sum();
+            sum * input.interleaving.scale()
+        })
+        .collect();
+    let lo = sums.iter().fold(Vec3::INFINITY, |a, b| a.min(*b));
+    let hi = sums.iter().fold(Vec3::NEG_INFINITY, |a, b| a.max(*b));
+    let slack = TOLERANCE * hi.abs().max_element().max(floor);
+    gpu.cmpge(lo - slack).all() && gpu.cmple(hi + slack).all()
+}
+
 /// The comparison of one GPU image with the CPU's.
 struct Agreement {
     /// Largest `max_c |gpu − cpu| / max(max_c |cpu|, floor)` over the pixels not excused.
     worst: f32,
     worst_pixel: usize,
-    /// Pixels beyond the tolerance with a borderline VPL (reported), and without (failures).
+    /// Pixels beyond the tolerance with a borderline VPL (reported), in the f64 half-vector
+    /// domain within the CPU's spread over turns of ω (reported, [`conditioned`]), and
+    /// neither (failures).
     borderline: Vec<String>,
+    conditioned: Vec<String>,
     failures: Vec<String>,
     /// Largest relative error of the pixels in the CPU's f64 half-vector domain, and their
     /// number.
@@ -91,6 +150,7 @@ fn compare(input: &CullInput, lists: &LightLists, cpu: &Image, gpu: &Image) -> A
         worst: 0.0,
         worst_pixel: 0,
         borderline: Vec::new(),
+        conditioned: Vec::new(),
         failures: Vec::new(),
         f64_worst: 0.0,
         f64_pixels: 0,
@@ -132,8 +192,16 @@ fn compare(input: &CullInput, lists: &LightLists, cpu: &Image, gpu: &Image) -> A
                     .is_some_and(|q| (q - v.xi).abs() <= BORDERLINE * v.xi)
             })
         });
+        let f64_domain = sample.is_some_and(|g| {
+            lists
+                .for_pixel(p)
+                .iter()
+                .any(|&k| in_f64_domain(g, &input.vpls[k as usize]))
+        });
         if near_xi {
             out.borderline.push(text);
+        } else if f64_domain && conditioned(input, lists, p, *a, floor) {
+            out.conditioned.push(text);
         } else {
             out.failures.push(text);
         }
@@ -169,6 +237,9 @@ fn check(
     );
     for b in a.borderline.iter().take(5) {
         eprintln!("  borderline roulette: {b}");
+    }
+    for c in a.conditioned.iter().take(10) {
+        eprintln!("  within the CPU's spread over {TURN_ULPS}-ulp turns of ω: {c}");
     }
     assert!(
         a.failures.is_empty(),

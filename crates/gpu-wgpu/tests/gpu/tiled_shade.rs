@@ -84,6 +84,92 @@ fn one_pass_shades_exactly_the_lists() {
     }
 }
 
+/// The pixel test of the one-pass kernel (a pixel skips a VPL whose bound its point lies
+/// outside) never skips a contributing pair: the same image as the lists at the extremes of
+/// the bounds' shapes and sizes and of f32 rounding. Sharp and rough lobes (α 1e-3 and 1,
+/// needle-like spheroids and spheres), ranges far below a pixel's footprint and far above the
+/// frame (δ 1e-9 to 1e3), ξ near 0 and 1, and the whole frame moved 3e4 from the origin (the
+/// view points' rounding then grows with their distance from the origin, not from the eye).
+#[test]
+fn one_pass_pixel_test_keeps_every_contributing_pair_at_the_extremes() {
+    let Some(ctx) = gpu() else { return };
+    let scene = builtin("default").unwrap();
+    let camera = scene.camera_or_default();
+    let (gbuffer, vpls) = frame(&scene, &camera, (64, 40), 16);
+    let with = |f: &dyn Fn(&mut Vpl)| -> Vec<Vpl> {
+        vpls.iter()
+            .map(|v| {
+                let mut v = *v;
+                f(&mut v);
+                v
+            })
+            .collect()
+    };
+    let far = glam::Vec3::new(3e4, -2e4, 1.5e4);
+    let moved_gbuffer = slc_core::GBuffer {
+        samples: gbuffer
+            .samples
+            .iter()
+            .map(|s| {
+                s.map(|s| slc_core::GSample {
+                    position: s.position + far,
+                    ..s
+                })
+            })
+            .collect(),
+        ..gbuffer.clone()
+    };
+    let moved_camera = slc_core::Camera {
+        position: camera.position + far,
+        ..camera.clone()
+    };
+    let cases: Vec<(&str, Vec<Vpl>, f32, bool)> = vec![
+        ("alpha 1e-3", with(&|v| v.brdf.alpha = 1e-3), 1e-3, false),
+        ("alpha 1", with(&|v| v.brdf.alpha = 1.0), 1e-3, false),
+        ("delta 1e-9", vpls.clone(), 1e-9, false),
+        ("delta 1e3", vpls.clone(), 1e3, false),
+        ("xi near 0", with(&|v| v.xi = 1e-7), 1e-2, false),
+        ("xi near 1", with(&|v| v.xi = 1.0 - 1e-7), 1e-4, false),
+        ("moved 3e4", vpls.clone(), 1e-3, true),
+        (
+            "moved 3e4, alpha 1e-3",
+            with(&|v| v.brdf.alpha = 1e-3),
+            1e-4,
+            true,
+        ),
+    ];
+    let mut lit_cases = 0;
+    for (name, case_vpls, delta, moved) in &cases {
+        let moved_vpls: Vec<Vpl> = case_vpls
+            .iter()
+            .map(|v| Vpl {
+                position: v.position + far,
+                ..*v
+            })
+            .collect();
+        let input = CullInput {
+            gbuffer: if *moved { &moved_gbuffer } else { &gbuffer },
+            camera: if *moved { &moved_camera } else { &camera },
+            vpls: if *moved { &moved_vpls } else { case_vpls },
+            delta: *delta,
+            interleaving: Interleaving { k: 2, seed: 9 },
+        };
+        for glossy in [
+            GlossyBound::Sphere,
+            GlossyBound::EnclosingSphere,
+            GlossyBound::Ellipsoid,
+        ] {
+            let (one, want) = both(&ctx, &input, glossy);
+            assert_eq!(one.pixels, want.pixels, "{name}, {glossy:?}");
+            if want.pixels.iter().any(|p| p.max_element() > 0.0) {
+                lit_cases += 1;
+            }
+        }
+    }
+    // Every case but the tiny ranges of δ 1e3 lights something.
+    assert!(lit_cases >= 3 * (cases.len() - 1), "{lit_cases} lit");
+}
+
 /// VPLs whose bounds reach no tile (flux zero, or far behind the camera) shade nothing; no
 /// VPL at all, the same.
 #[test]
