@@ -237,6 +237,7 @@ impl OnBackend for Bench<'_> {
                         "seconds": warm.seconds,
                         "stable": warm.stable,
                         "last_culling_plus_shading_ms": warm.last_ms,
+                        "culling_plus_shading_ms": warm.times,
                     }));
                 }
                 for &strategy in &strategies {
@@ -450,6 +451,8 @@ struct WarmUp {
     seconds: f64,
     stable: bool,
     last_ms: f64,
+    /// Culling + shading of every warm-up frame, in order (ms).
+    times: Vec<f64>,
 }
 
 /// Runs `run` for at least `seconds`, then on until the culling + shading times of the last
@@ -470,6 +473,7 @@ fn warm_up(
                 seconds: elapsed,
                 stable,
                 last_ms: times[times.len() - 1],
+                times,
             });
         }
     }

@@ -88,6 +88,18 @@ fn rectangle_corner(corner: u32, lo: vec2<f32>, hi: vec2<f32>) -> vec2<f32> {
     return select(lo, hi, pick);
 }
 
+// The cover of a triangle in a viewport of `view` cells, (lo, hi): the whole cells around its
+// projection (at least one, within the viewport), or the whole viewport where it is not
+// projected.
+fn cover(tri: Triangle, view: vec2<f32>) -> vec4<f32> {
+    if !tri.projected {
+        return vec4<f32>(vec2<f32>(0.0), view);
+    }
+    let lo = clamp(floor(min(tri.uv[0], min(tri.uv[1], tri.uv[2]))), vec2<f32>(0.0), view);
+    let hi = clamp(floor(max(tri.uv[0], max(tri.uv[1], tri.uv[2]))) + 1.0, vec2<f32>(0.0), view);
+    return vec4<f32>(lo, hi);
+}
+
 // Vertex `vertex` of the subregion draw's instance `instance`: its ids, and the triangle it
 // belongs to in the culling view and the viewport. Six vertices per mesh triangle.
 struct ShellInput {
@@ -115,9 +127,8 @@ fn shell_input(vertex: u32, instance: u32) -> ShellInput {
     return input;
 }
 
-// The software form: each triangle drawn as its cover, the whole cells around its
-// projection (at least one, within the viewport), or the whole viewport where it is not
-// projected; fs_main keeps the cells the triangle meets.
+// The software form: each triangle drawn as its cover; fs_main keeps the cells the triangle
+// meets.
 @vertex
 fn vs_main(@builtin(vertex_index) vertex: u32, @builtin(instance_index) instance: u32)
     -> ShellVertex {
@@ -128,25 +139,19 @@ fn vs_main(@builtin(vertex_index) vertex: u32, @builtin(instance_index) instance
     if !input.drawn {
         return out;
     }
-    let tri = input.tri;
     let view = vec2<f32>(f32(params.view_w), f32(params.view_h));
-    var lo = vec2<f32>(0.0);
-    var hi = view;
-    if tri.projected {
-        lo = clamp(floor(min(tri.uv[0], min(tri.uv[1], tri.uv[2]))), vec2<f32>(0.0), view);
-        hi = clamp(floor(max(tri.uv[0], max(tri.uv[1], tri.uv[2]))) + 1.0, vec2<f32>(0.0),
-                   view);
-    }
-    out.position = clip_of(rectangle_corner(input.corner, lo, hi), view);
+    let c = cover(input.tri, view);
+    out.position = clip_of(rectangle_corner(input.corner, c.xy, c.zw), view);
     return out;
 }
 
 // The hardware form (a pipeline with conservative rasterization): a projected triangle
-// drawn as itself in its first three vertices (the rasterizer's overestimating mode makes a
-// fragment in every cell it touches, and fs_main keeps the cells it meets: the same cells as
-// the software form), the other three drawing nothing; a triangle that is not projected
-// (reaching the eye plane or beyond FAR_CELLS, which clipping would cut short) drawn as the
-// whole viewport, as in the software form.
+// drawn as itself in its first three vertices, the other three drawing nothing; the
+// rasterizer's overestimating mode makes a fragment in every cell the triangle touches and
+// in cells just beyond (its dilation), and fs_main keeps the cells of its cover that it meets:
+// the cells of the software form. A triangle that is not projected (reaching the eye plane or
+// beyond FAR_CELLS, which clipping would cut short) is drawn as its cover, the whole
+// viewport, as in the software form.
 @vertex
 fn vs_conservative(@builtin(vertex_index) vertex: u32,
                    @builtin(instance_index) instance: u32) -> ShellVertex {
@@ -160,7 +165,8 @@ fn vs_conservative(@builtin(vertex_index) vertex: u32,
     let tri = input.tri;
     let view = vec2<f32>(f32(params.view_w), f32(params.view_h));
     if !tri.projected {
-        out.position = clip_of(rectangle_corner(input.corner, vec2<f32>(0.0), view), view);
+        let c = cover(tri, view);
+        out.position = clip_of(rectangle_corner(input.corner, c.xy, c.zw), view);
     } else if input.corner < 3u {
         out.position = clip_of(tri.uv[input.corner], view);
     }
@@ -252,6 +258,12 @@ fn fs_main(in: ShellVertex) -> @location(0) vec4<f32> {
     let cell = vec2<u32>(in.position.xy) - ij * vec2<u32>(params.view_w, params.view_h);
     let lo = vec2<f32>(cell);
     let tri = triangle(in.ids.x, in.ids.y, in.ids.z);
+    // Cells outside the cover come only from the hardware form's dilation (meets_cell tests
+    // the triangle's edges, not its bounding box).
+    let c = cover(tri, vec2<f32>(f32(params.view_w), f32(params.view_h)));
+    if any(lo < c.xy) || any(lo >= c.zw) {
+        discard;
+    }
     if tri.projected && !meets_cell(tri.uv[0], tri.uv[1], tri.uv[2], lo) {
         discard;
     }

@@ -30,11 +30,11 @@ fn main(
     let list = pixel_list[pixel];
     var sum = vec3<f32>(0.0);
     if sample_present(s) && list != END && list < params.list_count {
-        let x = positions[pixel].xyz;
+        let r = receiver(s, positions[pixel].xyz);
         var n = heads[list];
         while n != END {
             let node = nodes[n];
-            let c = vpl_contribution(s, x, vpls[node.x], params.delta);
+            let c = vpl_contribution(r, vpls[node.x], params.delta);
             if any(c != vec3<f32>(0.0)) {
                 sum += c * params.scale;
             }

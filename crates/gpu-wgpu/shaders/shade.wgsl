@@ -36,11 +36,12 @@ fn main(
     var sum = vec3<f32>(0.0);
     let list = pixel_list[pixel];
     if sample_present(s) && list != NO_LIST && list < params.list_count {
+        let r = receiver(s, x);
         let end = offsets[list + 1u];
         for (var e = offsets[list]; e < end; e++) {
             let k = indices[e];
             if k < params.vpl_count {
-                let c = vpl_contribution(s, x, vpls[k], params.delta);
+                let c = vpl_contribution(r, vpls[k], params.delta);
                 if any(c != vec3<f32>(0.0)) {
                     sum += c * params.scale;
                 }

@@ -90,7 +90,7 @@ fn fs_shade(in: SplatVertex) -> @location(0) vec4<f32> {
     if !sample_present(s) {
         discard;
     }
-    let c = vpl_contribution(s, positions[pixel].xyz, vpls[in.ids.x], params.delta);
+    let c = vpl_contribution(receiver(s, positions[pixel].xyz), vpls[in.ids.x], params.delta);
     return vec4<f32>(c * params.scale, 0.0);
 }
 

@@ -126,17 +126,17 @@ fn main(
         + tile.sx + params.k * (tile.fx + a);
     // 0 near, 1 far, 2 nothing to shade.
     var cluster = 2u;
-    var s: Sample;
-    var x = vec3<f32>(0.0);
+    var r: Receiver;
     // The pixel's point in the culling view and its size (inside).
     var view = vec3<f32>(0.0);
     var size = 0.0;
     if has_pixel {
         let list = pixel_list[pixel];
-        s = samples[pixel];
+        let s = samples[pixel];
         if list != NO_LIST && sample_present(s) {
             cluster = list - 2u * t;
-            x = positions[pixel].xyz;
+            let x = positions[pixel].xyz;
+            r = receiver(s, x);
             let rot = mat3x3<f32>(params.rotation[0].xyz, params.rotation[1].xyz,
                                   params.rotation[2].xyz);
             view = rot * (x - params.eye.xyz);
@@ -177,7 +177,7 @@ fn main(
                         let e = 32u * w + firstTrailingBit(bits);
                         bits &= bits - 1u;
                         if inside(e, view, size) {
-                            let c = vpl_contribution(s, x, vpls[batch[e]], shading.delta);
+                            let c = vpl_contribution(r, vpls[batch[e]], shading.delta);
                             if any(c != vec3<f32>(0.0)) {
                                 sum += c * shading.scale;
                             }

@@ -66,17 +66,30 @@ fn probability(intensity: f32, delta: f32, distance_sq: f32) -> f32 {
     return 0.0;
 }
 
+// A receiving pixel as the shading loops hold it: its position, its shading normal, the
+// direction to the camera and its BRDF, formed once per pixel (sample_material turns the
+// tangent's angle into a vector with a sine and a cosine) rather than once per VPL.
+struct Receiver {
+    x: vec3<f32>,
+    n: vec3<f32>,
+    omega_o: vec3<f32>,
+    material: Material,
+}
+
+fn receiver(s: Sample, x: vec3<f32>) -> Receiver {
+    return Receiver(x, s.normal_alpha.xyz, s.omega_o_phi.xyz, sample_material(s));
+}
+
 // One VPL's contribution to the radiance towards the camera, weighted by the estimator of
 // eq. (3) (1/p if p > xi, else 0): vpl_contribution of vpl_shading.rs.
-fn vpl_contribution(s: Sample, x: vec3<f32>, v: Vpl, delta: f32) -> vec3<f32> {
-    let d = x - v.position_xi.xyz;
+fn vpl_contribution(r: Receiver, v: Vpl, delta: f32) -> vec3<f32> {
+    let d = r.x - v.position_xi.xyz;
     let l2 = length_sq(d);
     if l2 <= 0.0 {
         return vec3<f32>(0.0);
     }
     let omega = d / sqrt(l2);
-    let n = s.normal_alpha.xyz;
-    let cos_x = -dot(n, omega);
+    let cos_x = -dot(r.n, omega);
     if cos_x <= 0.0 {
         return vec3<f32>(0.0);
     }
@@ -89,6 +102,5 @@ fn vpl_contribution(s: Sample, x: vec3<f32>, v: Vpl, delta: f32) -> vec3<f32> {
     if weight == 0.0 {
         return vec3<f32>(0.0);
     }
-    return brdf_eval(sample_material(s), n, -omega, s.omega_o_phi.xyz) * intensity
-        * (weight * cos_x / l2);
+    return brdf_eval(r.material, r.n, -omega, r.omega_o) * intensity * (weight * cos_x / l2);
 }

@@ -346,9 +346,13 @@ pub struct GpuPartitionParams {
     pub subregions: u32,
     /// [`CULL_COUNT`] or [`CULL_WRITE`].
     pub mode: u32,
-    pub pad: u32,
+    /// The VPLs are split into `chunks` runs of `chunk` (a multiple of 256): one workgroup
+    /// per subregion and run.
+    pub chunks: u32,
+    pub chunk: u32,
+    pub pad: [u32; 3],
 }
-const _: () = assert!(std::mem::size_of::<GpuPartitionParams>() == 16);
+const _: () = assert!(std::mem::size_of::<GpuPartitionParams>() == 32);
 
 /// `GpuSample::present`: whether the pixel holds a G-buffer sample (0: empty, e.g. sky).
 /// `GpuSample::flags`: bit 0 set where the pixel has a sample, bit 1 for a dielectric Fresnel.

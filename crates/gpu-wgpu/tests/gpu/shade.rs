@@ -14,10 +14,11 @@
 //! (`|ωi + ωo|² α² <= 1e-6`: grazing opposition with a smooth lobe; the GPU emulates it in
 //! compensated f32, see `shaders/brdf.wgsl`) are held to the same tolerance and their largest
 //! error is reported separately (lavapipe: 2.2e-7; a naive f32 half vector gave 2.5e-2).
-//! There the value hangs on the last bits of ω = d / sqrt(l²), which a GPU may round 2.5
-//! ulps off (an NVIDIA H100 put six such pixels 1.3e-4 to 2e-2 away): a pixel beyond the
-//! tolerance there is reported, not failed, where it lies within the CPU's own spread over
-//! turns of ω by a few ulps ([`conditioned`]).
+//! There, and at grazing opposition with rougher lobes, the value hangs on the last bits of
+//! ω = d / sqrt(l²), which a GPU may round a few ulps off (an NVIDIA H100 and an H200 put
+//! four to six such pixels 1.5e-4 to 2e-2 away): a pixel beyond the tolerance is reported,
+//! not failed, where it lies within the CPU's own spread over ω moved by up to 8 ulps per
+//! component ([`conditioned`]; at most 16 per image).
 use crate::common::gpu;
 use crate::tiled::frame;
 use glam::Vec3;
@@ -72,34 +73,35 @@ fn cpu_probability(g: &GSample, vpl: &Vpl, delta: f32) -> Option<f32> {
     Some(r.probability(scalar_intensity(vpl.intensity(omega)), l2))
 }
 
-/// Ulps by which [`conditioned`] turns the directions from a pixel's VPLs: the GPU's `d /
-/// sqrt(l²)` may round its division and square root 2.5 ulps each (WGSL's bound), the CPU's
-/// correctly.
-const TURN_ULPS: f32 = 4.0;
+/// The most ulps [`conditioned`] moves each component of ω by: the GPU's ω = d / sqrt(l²)
+/// may round its square root and division 2.5 ulps each (WGSL's bounds) and contract
+/// `dot(d, d)` into fused multiply-adds, where the CPU rounds each correctly.
+const TURN_ULPS: [f32; 4] = [1.0, 2.0, 4.0, 8.0];
+
+/// Pixels an image may excuse by [`conditioned`] (an NVIDIA H100 and an H200 showed six).
+const MAX_CONDITIONED: usize = 16;
 
 /// Whether `gpu` lies within the CPU's own spread at pixel `p` (each channel between the
 /// least and largest, plus the tolerance) when every direction ω from a VPL of its list to
-/// the receiver turns by [`TURN_ULPS`] ulps along each axis, the turns the GPU's rounding of
-/// ω may make. Where the CPU forms the GGX half vector in f64 (`|ωi + ωo| ≈ 1e-5`), one ulp
-/// of ω moves the half vector by about 1e-2 of its angle: that is conditioning, not a wrong
-/// formula (a formula off by 1e-3 still fails outside this domain).
+/// the receiver moves by up to [`TURN_ULPS`] ulps per component (every sign pattern), the
+/// rounding the GPU's ω may carry. At grazing opposition (`|ωi + ωo|` of 1e-2 to 1e-5, a
+/// smooth lobe) one ulp of ω moves the half vector by 1e-5 to 1e-2 of its angle and D near its
+/// peak by as much relative: that is conditioning, not a wrong formula (a pixel that is well
+/// conditioned has no spread to hide in).
 fn conditioned(input: &CullInput, lists: &LightLists, p: usize, gpu: Vec3, floor: f32) -> bool {
     let Some(g) = input.gbuffer.samples[p].as_ref() else {
         return false;
     };
-    let turn = TURN_ULPS * f32::EPSILON / 2.0;
-    let turns = [
-        Vec3::ZERO,
-        Vec3::X,
-        -Vec3::X,
-        Vec3::Y,
-        -Vec3::Y,
-        Vec3::Z,
-        -Vec3::Z,
-    ];
-    let sums: Vec<Vec3> = turns
+    let mut moves = vec![Vec3::ZERO];
+    for k in TURN_ULPS {
+        for signs in 1..27 {
+            let sign = |d: i32| ((signs / 3i32.pow(d as u32)) % 3 - 1) as f32;
+            moves.push(k * f32::EPSILON * Vec3::new(sign(0), sign(1), sign(2)));
+        }
+    }
+    let sums: Vec<Vec3> = moves
         .iter()
-        .map(|&t| {
+        .map(|&m| {
             let sum: Vec3 = lists
                 .for_pixel(p)
                 .iter()
@@ -110,7 +112,7 @@ fn conditioned(input: &CullInput, lists: &LightLists, p: usize, gpu: Vec3, floor
                     if l2 <= 0.0 {
                         return Vec3::ZERO;
                     }
-                    let omega = d / l2.sqrt() + turn * t;
+                    let omega = d / l2.sqrt() * (Vec3::ONE + m);
                     let roulette = StochasticParams::new(input.delta, vpl.xi).unwrap();
                     received(g, omega, l2, || vpl.intensity(omega), Some(&roulette))
                 })
@@ -129,9 +131,8 @@ struct Agreement {
     /// Largest `max_c |gpu − cpu| / max(max_c |cpu|, floor)` over the pixels not excused.
     worst: f32,
     worst_pixel: usize,
-    /// Pixels beyond the tolerance with a borderline VPL (reported), in the f64 half-vector
-    /// domain within the CPU's spread over turns of ω (reported, [`conditioned`]), and
-    /// neither (failures).
+    /// Pixels beyond the tolerance with a borderline VPL (reported), within the CPU's spread
+    /// over ulps of ω (reported, [`conditioned`]), and neither (failures).
     borderline: Vec<String>,
     conditioned: Vec<String>,
     failures: Vec<String>,
@@ -192,15 +193,9 @@ fn compare(input: &CullInput, lists: &LightLists, cpu: &Image, gpu: &Image) -> A
                     .is_some_and(|q| (q - v.xi).abs() <= BORDERLINE * v.xi)
             })
         });
-        let f64_domain = sample.is_some_and(|g| {
-            lists
-                .for_pixel(p)
-                .iter()
-                .any(|&k| in_f64_domain(g, &input.vpls[k as usize]))
-        });
         if near_xi {
             out.borderline.push(text);
-        } else if f64_domain && conditioned(input, lists, p, *a, floor) {
+        } else if conditioned(input, lists, p, *a, floor) {
             out.conditioned.push(text);
         } else {
             out.failures.push(text);
@@ -238,9 +233,14 @@ fn check(
     for b in a.borderline.iter().take(5) {
         eprintln!("  borderline roulette: {b}");
     }
-    for c in a.conditioned.iter().take(10) {
-        eprintln!("  within the CPU's spread over {TURN_ULPS}-ulp turns of ω: {c}");
+    for c in a.conditioned.iter().take(MAX_CONDITIONED) {
+        eprintln!("  within the CPU's spread over ulps of ω: {c}");
     }
+    assert!(
+        a.conditioned.len() <= MAX_CONDITIONED,
+        "{what}: {} pixels excused by conditioning",
+        a.conditioned.len()
+    );
     assert!(
         a.failures.is_empty(),
         "{what}: {} pixels differ:\n{}",
