@@ -14,7 +14,7 @@ use slc_app::provenance::Provenance;
 use slc_app::repeat::{repeated, Spread};
 use slc_core::frame::PassTime;
 use slc_core::frame::{Method, Stochastic};
-use slc_core::shader::{frame_timings, Shader as _};
+use slc_core::shader::frame_timings_of;
 use slc_core::{PreparedFrame, Scene, Strategy, Timings};
 use slc_cpu_ref::CpuFrames;
 use std::fmt::Write;
@@ -198,9 +198,13 @@ impl OnBackend for Bench<'_> {
                     .map_err(message)?;
                 let input = frame.input(&scene, &loaded, &p);
                 let vpl_count = p.vpl_count().map_err(message)?;
+                // The passes alone, nothing read back between frames: a GPU that idles while
+                // an image travels back lowers its clocks (an H200 fell from 1980 to 345-600
+                // MHz between such frames, and every pass took 3-4 times as long).
                 let time = |s: Stochastic| -> Result<TimedRun, String> {
-                    let out = s.shade(r, input, &|_| {}).map_err(message)?;
-                    let (mut t, gpu_timings) = frame_timings(&p, &out);
+                    let out = s.passes(r, input, &|_| {}).map_err(message)?;
+                    let (mut t, gpu_timings) =
+                        frame_timings_of(&p, &out.timings, out.gpu_timings.as_ref());
                     // The GPU's own times of its passes replace the wall clock where the
                     // adapter has timestamp queries.
                     if let Some(g) = &gpu_timings {
@@ -213,7 +217,7 @@ impl OnBackend for Bench<'_> {
                         timings: t,
                         timestamps: gpu_timings.is_some(),
                         passes: r.last_pass_times().unwrap_or_default(),
-                        listed_pairs: out.listed_pairs,
+                        listed_pairs: r.listed_pairs(&out.lists),
                     })
                 };
                 if args.warmup > 0.0 {

@@ -15,10 +15,11 @@
 //! compensated f32, see `shaders/brdf.wgsl`) are held to the same tolerance and their largest
 //! error is reported separately (lavapipe: 2.2e-7; a naive f32 half vector gave 2.5e-2).
 //! There, and at grazing opposition with rougher lobes, the value hangs on the last bits of
-//! ω = d / sqrt(l²), which a GPU may round a few ulps off (an NVIDIA H100 and an H200 put
-//! four to six such pixels 1.5e-4 to 2e-2 away): a pixel beyond the tolerance is reported,
-//! not failed, where it lies within the CPU's own spread over ω moved by up to 8 ulps per
-//! component ([`conditioned`]; at most 16 per image).
+//! ω = d / sqrt(l²) and ωo, which a GPU may round a few ulps off, or whose distance from unit
+//! length its compiler may let through by fusing the compensated sums (an NVIDIA H100 and an
+//! H200 put four to six such pixels 1.3e-4 to 2e-2 away): a pixel beyond the tolerance is
+//! reported, not failed, where it lies within the CPU's own spread over ω or ωo moved by up
+//! to 8 ulps ([`conditioned`]; at most 16 per image).
 use crate::common::gpu;
 use crate::tiled::frame;
 use glam::Vec3;
@@ -73,35 +74,46 @@ fn cpu_probability(g: &GSample, vpl: &Vpl, delta: f32) -> Option<f32> {
     Some(r.probability(scalar_intensity(vpl.intensity(omega)), l2))
 }
 
-/// The most ulps [`conditioned`] moves each component of ω by: the GPU's ω = d / sqrt(l²)
-/// may round its square root and division 2.5 ulps each (WGSL's bounds) and contract
-/// `dot(d, d)` into fused multiply-adds, where the CPU rounds each correctly.
-const TURN_ULPS: [f32; 4] = [1.0, 2.0, 4.0, 8.0];
+/// The most ulps (of a unit vector's components, 2^-24) by which [`conditioned`] moves the
+/// directions ω and ωo: the GPU's ω = d / sqrt(l²) may round its square root and division 2.5
+/// ulps each (WGSL's bounds), and a GPU compiler may fuse the compensated f32 sums that stand
+/// in for the CPU's f64 half vector (`shaders/brdf.wgsl`) so that the f32 inputs' own distance
+/// from unit length, about an ulp, turns the half vector as if they had moved.
+const MOVE_ULPS: [f32; 4] = [1.0, 2.0, 4.0, 8.0];
 
 /// Pixels an image may excuse by [`conditioned`] (an NVIDIA H100 and an H200 showed six).
 const MAX_CONDITIONED: usize = 16;
 
 /// Whether `gpu` lies within the CPU's own spread at pixel `p` (each channel between the
-/// least and largest, plus the tolerance) when every direction ω from a VPL of its list to
-/// the receiver moves by up to [`TURN_ULPS`] ulps per component (every sign pattern), the
-/// rounding the GPU's ω may carry. At grazing opposition (`|ωi + ωo|` of 1e-2 to 1e-5, a
-/// smooth lobe) one ulp of ω moves the half vector by 1e-5 to 1e-2 of its angle and D near its
-/// peak by as much relative: that is conditioning, not a wrong formula (a pixel that is well
-/// conditioned has no spread to hide in).
+/// least and largest, plus the tolerance) when the direction ω from each VPL of its list, or
+/// the receiver's ωo, moves by up to [`MOVE_ULPS`] ulps along every sign pattern of the axes.
+/// At grazing opposition (`|ωi + ωo|` of 1e-1 to 1e-5, a smooth lobe) such a move turns the
+/// half vector by 1e-6 to 1e-2 of a radian and D near its peak by as much relative: that is
+/// conditioning, not a wrong formula (a pixel that is well conditioned has no spread to hide
+/// in).
 fn conditioned(input: &CullInput, lists: &LightLists, p: usize, gpu: Vec3, floor: f32) -> bool {
     let Some(g) = input.gbuffer.samples[p].as_ref() else {
         return false;
     };
-    let mut moves = vec![Vec3::ZERO];
-    for k in TURN_ULPS {
-        for signs in 1..27 {
-            let sign = |d: i32| ((signs / 3i32.pow(d as u32)) % 3 - 1) as f32;
-            moves.push(k * f32::EPSILON * Vec3::new(sign(0), sign(1), sign(2)));
+    let ulp = f32::EPSILON / 2.0;
+    let mut moves = Vec::new();
+    for k in MOVE_ULPS {
+        for signs in 0..27 {
+            let sign = |d: u32| ((signs / 3u32.pow(d)) % 3) as f32 - 1.0;
+            moves.push(k * ulp * Vec3::new(sign(0), sign(1), sign(2)));
         }
     }
-    let sums: Vec<Vec3> = moves
+    // (move of ω, move of ωo): each alone.
+    let pairs = moves
         .iter()
-        .map(|&m| {
+        .map(|&m| (m, Vec3::ZERO))
+        .chain(moves.iter().map(|&m| (Vec3::ZERO, m)));
+    let sums: Vec<Vec3> = pairs
+        .map(|(m, mo)| {
+            let g = GSample {
+                omega_o: g.omega_o + mo,
+                ..*g
+            };
             let sum: Vec3 = lists
                 .for_pixel(p)
                 .iter()
@@ -112,9 +124,9 @@ fn conditioned(input: &CullInput, lists: &LightLists, p: usize, gpu: Vec3, floor
                     if l2 <= 0.0 {
                         return Vec3::ZERO;
                     }
-                    let omega = d / l2.sqrt() * (Vec3::ONE + m);
+                    let omega = d / l2.sqrt() + m;
                     let roulette = StochasticParams::new(input.delta, vpl.xi).unwrap();
-                    received(g, omega, l2, || vpl.intensity(omega), Some(&roulette))
+                    received(&g, omega, l2, || vpl.intensity(omega), Some(&roulette))
                 })
                 .sum();
             sum * input.interleaving.scale()
