@@ -14,12 +14,12 @@
 //! (`|ωi + ωo|² α² <= 1e-6`: grazing opposition with a smooth lobe; the GPU emulates it in
 //! compensated f32, see `shaders/brdf.wgsl`) are held to the same tolerance and their largest
 //! error is reported separately (lavapipe: 2.2e-7; a naive f32 half vector gave 2.5e-2).
-//! There, and at grazing opposition with rougher lobes, the value hangs on the last bits of
-//! ω = d / sqrt(l²) and ωo, which a GPU may round a few ulps off, or whose distance from unit
-//! length its compiler may let through by fusing the compensated sums (an NVIDIA H100 and an
-//! H200 put four to six such pixels 1.3e-4 to 2e-2 away): a pixel beyond the tolerance is
-//! reported, not failed, where it lies within the CPU's own spread over ω or ωo moved by up
-//! to 8 ulps ([`conditioned`]; at most 16 per image).
+//! The compensated sums hold only where the device rounds each operation as written; a GPU
+//! compiler may fuse or reorder them (WGSL allows it), and then that domain gets plain f32:
+//! an NVIDIA H100 and an H200 put six pixels 1.3e-4 to 2.0e-2 away, the size of the naive
+//! form's error. On such a device (any but a software adapter) a pixel of that domain beyond
+//! the tolerance is reported, not failed, within [`F64_DOMAIN_FUSED`] (at most 16 per image);
+//! on lavapipe, as in CI, the tolerance holds there too.
 use crate::common::gpu;
 use crate::tiled::frame;
 use glam::Vec3;
@@ -28,7 +28,7 @@ use slc_bounds::{Anisotropy, Brdf, Fresnel};
 use slc_core::{
     builtin, CullInput, GBuffer, GSample, Image, Interleaving, LightLists, Vpl, VplLobe, NO_LIST,
 };
-use slc_cpu_ref::vpl_shading::{received, shade_lists};
+use slc_cpu_ref::vpl_shading::shade_lists;
 use slc_cpu_ref::Tracer;
 use slc_cull::GlossyBound;
 use slc_gpu_wgpu::shade_pass::ShadePass;
@@ -74,79 +74,27 @@ fn cpu_probability(g: &GSample, vpl: &Vpl, delta: f32) -> Option<f32> {
     Some(r.probability(scalar_intensity(vpl.intensity(omega)), l2))
 }
 
-/// The most ulps (of a unit vector's components, 2^-24) by which [`conditioned`] moves the
-/// directions ω and ωo: the GPU's ω = d / sqrt(l²) may round its square root and division 2.5
-/// ulps each (WGSL's bounds), and a GPU compiler may fuse the compensated f32 sums that stand
-/// in for the CPU's f64 half vector (`shaders/brdf.wgsl`) so that the f32 inputs' own distance
-/// from unit length, about an ulp, turns the half vector as if they had moved.
-const MOVE_ULPS: [f32; 4] = [1.0, 2.0, 4.0, 8.0];
+/// The relative error allowed in the f64 half-vector domain on a device whose compiler may
+/// fuse or reorder operations: there the compensated f32 sums that stand in for the CPU's f64
+/// half vector (`shaders/brdf.wgsl`) fall back to plain f32, whose error in this frame is
+/// 2.5e-2 (lavapipe, the naive form); an NVIDIA H100 and an H200 put six pixels 1.3e-4 to
+/// 2.0e-2 away. A device that rounds every operation as written (lavapipe) is held to
+/// [`TOLERANCE`] there too.
+const F64_DOMAIN_FUSED: f32 = 5e-2;
 
-/// Pixels an image may excuse by [`conditioned`] (an NVIDIA H100 and an H200 showed six).
-const MAX_CONDITIONED: usize = 16;
-
-/// Whether `gpu` lies within the CPU's own spread at pixel `p` (each channel between the
-/// least and largest, plus the tolerance) when the direction ω from each VPL of its list, or
-/// the receiver's ωo, moves by up to [`MOVE_ULPS`] ulps along every sign pattern of the axes.
-/// At grazing opposition (`|ωi + ωo|` of 1e-1 to 1e-5, a smooth lobe) such a move turns the
-/// half vector by 1e-6 to 1e-2 of a radian and D near its peak by as much relative: that is
-/// conditioning, not a wrong formula (a pixel that is well conditioned has no spread to hide
-/// in).
-fn conditioned(input: &CullInput, lists: &LightLists, p: usize, gpu: Vec3, floor: f32) -> bool {
-    let Some(g) = input.gbuffer.samples[p].as_ref() else {
-        return false;
-    };
-    let ulp = f32::EPSILON / 2.0;
-    let mut moves = Vec::new();
-    for k in MOVE_ULPS {
-        for signs in 0..27 {
-            let sign = |d: u32| ((signs / 3u32.pow(d)) % 3) as f32 - 1.0;
-            moves.push(k * ulp * Vec3::new(sign(0), sign(1), sign(2)));
-        }
-    }
-    // (move of ω, move of ωo): each alone.
-    let pairs = moves
-        .iter()
-        .map(|&m| (m, Vec3::ZERO))
-        .chain(moves.iter().map(|&m| (Vec3::ZERO, m)));
-    let sums: Vec<Vec3> = pairs
-        .map(|(m, mo)| {
-            let g = GSample {
-                omega_o: g.omega_o + mo,
-                ..*g
-            };
-            let sum: Vec3 = lists
-                .for_pixel(p)
-                .iter()
-                .map(|&k| {
-                    let vpl = &input.vpls[k as usize];
-                    let d = g.position - vpl.position;
-                    let l2 = d.length_squared();
-                    if l2 <= 0.0 {
-                        return Vec3::ZERO;
-                    }
-                    let omega = d / l2.sqrt() + m;
-                    let roulette = StochasticParams::new(input.delta, vpl.xi).unwrap();
-                    received(&g, omega, l2, || vpl.intensity(omega), Some(&roulette))
-                })
-                .sum();
-            sum * input.interleaving.scale()
-        })
-        .collect();
-    let lo = sums.iter().fold(Vec3::INFINITY, |a, b| a.min(*b));
-    let hi = sums.iter().fold(Vec3::NEG_INFINITY, |a, b| a.max(*b));
-    let slack = TOLERANCE * hi.abs().max_element().max(floor);
-    gpu.cmpge(lo - slack).all() && gpu.cmple(hi + slack).all()
-}
+/// Pixels an image may excuse in the f64 half-vector domain.
+const MAX_F64_EXCUSED: usize = 16;
 
 /// The comparison of one GPU image with the CPU's.
 struct Agreement {
     /// Largest `max_c |gpu − cpu| / max(max_c |cpu|, floor)` over the pixels not excused.
     worst: f32,
     worst_pixel: usize,
-    /// Pixels beyond the tolerance with a borderline VPL (reported), within the CPU's spread
-    /// over ulps of ω (reported, [`conditioned`]), and neither (failures).
+    /// Pixels beyond the tolerance with a borderline VPL (reported), in the f64 half-vector
+    /// domain within [`F64_DOMAIN_FUSED`] on a device that may fuse (reported), and neither
+    /// (failures).
     borderline: Vec<String>,
-    conditioned: Vec<String>,
+    f64_excused: Vec<String>,
     failures: Vec<String>,
     /// Largest relative error of the pixels in the CPU's f64 half-vector domain, and their
     /// number.
@@ -156,14 +104,22 @@ struct Agreement {
     identical: usize,
 }
 
-fn compare(input: &CullInput, lists: &LightLists, cpu: &Image, gpu: &Image) -> Agreement {
+/// `fused`: whether the device may fuse or reorder floating-point operations (any but a
+/// software adapter).
+fn compare(
+    input: &CullInput,
+    lists: &LightLists,
+    cpu: &Image,
+    gpu: &Image,
+    fused: bool,
+) -> Agreement {
     assert_eq!((cpu.width, cpu.height), (gpu.width, gpu.height));
     let floor = FLOOR_OF_MEAN * cpu.mean().max_element();
     let mut out = Agreement {
         worst: 0.0,
         worst_pixel: 0,
         borderline: Vec::new(),
-        conditioned: Vec::new(),
+        f64_excused: Vec::new(),
         failures: Vec::new(),
         f64_worst: 0.0,
         f64_pixels: 0,
@@ -182,12 +138,13 @@ fn compare(input: &CullInput, lists: &LightLists, cpu: &Image, gpu: &Image) -> A
         };
         out.identical += usize::from(a == b);
         let sample = input.gbuffer.samples[p].as_ref();
-        if sample.is_some_and(|g| {
+        let f64_domain = sample.is_some_and(|g| {
             lists
                 .for_pixel(p)
                 .iter()
                 .any(|&k| in_f64_domain(g, &input.vpls[k as usize]))
-        }) {
+        });
+        if f64_domain {
             out.f64_pixels += 1;
             out.f64_worst = out.f64_worst.max(rel);
         }
@@ -207,8 +164,8 @@ fn compare(input: &CullInput, lists: &LightLists, cpu: &Image, gpu: &Image) -> A
         });
         if near_xi {
             out.borderline.push(text);
-        } else if conditioned(input, lists, p, *a, floor) {
-            out.conditioned.push(text);
+        } else if fused && f64_domain && rel <= F64_DOMAIN_FUSED {
+            out.f64_excused.push(text);
         } else {
             out.failures.push(text);
         }
@@ -227,7 +184,7 @@ fn check(
 ) -> f32 {
     let cpu = shade_lists(tracer, input, lists, false, &|_| ()).unwrap();
     let gpu = shader.shade(ctx, input, lists).unwrap();
-    let a = compare(input, lists, &cpu, &gpu);
+    let a = compare(input, lists, &cpu, &gpu, !ctx.software);
     eprintln!(
         "{what}: {} entries, mean {:.4e}, {} of {} pixels bit-identical, max relative error \
          {:.2e} (pixel {}), {} borderline; {} pixels in the f64 half-vector domain, max \
@@ -245,13 +202,13 @@ fn check(
     for b in a.borderline.iter().take(5) {
         eprintln!("  borderline roulette: {b}");
     }
-    for c in a.conditioned.iter().take(MAX_CONDITIONED) {
-        eprintln!("  within the CPU's spread over ulps of ω: {c}");
+    for c in &a.f64_excused {
+        eprintln!("  f64 half-vector domain, within {F64_DOMAIN_FUSED:e} on a fusing device: {c}");
     }
     assert!(
-        a.conditioned.len() <= MAX_CONDITIONED,
-        "{what}: {} pixels excused by conditioning",
-        a.conditioned.len()
+        a.f64_excused.len() <= MAX_F64_EXCUSED,
+        "{what}: {} pixels of the f64 half-vector domain beyond the tolerance",
+        a.f64_excused.len()
     );
     assert!(
         a.failures.is_empty(),
