@@ -160,16 +160,17 @@ pub fn shade_lists_into(
         )));
     }
     lists.check(gbuffer.samples.len(), vpls.len())?;
-    // Only the listed VPLs' exits are read.
-    let mut listed = vec![false; vpls.len()];
-    for &v in &lists.indices {
-        listed[v as usize] = true;
-    }
+    // Only the listed VPLs' exits are formed, in a compact table: the listed VPLs in
+    // ascending order (`listed`), the lists' entries renumbered to their place in it (an
+    // order-preserving map, so every pixel still sums its VPLs in its list's order).
+    let (listed, indices) = compact(lists, vpls.len());
     let (roulette, reach) = VplReach::of_frame(vpls, input.delta, Some(&listed))?;
     let shading = ListShading {
         tracer,
         gbuffer,
         lists,
+        indices: &indices,
+        listed: &listed,
         vpls,
         roulette: &roulette,
         reach: &reach,
@@ -203,11 +204,32 @@ pub fn shade_lists_into(
     Ok(image)
 }
 
-/// What [`shade_lists`] shades every pixel with.
+/// The VPLs `lists` hold, ascending, and the lists' entries renumbered to their places among
+/// them. `lists` must be checked for `vpls` VPLs.
+fn compact(lists: &LightLists, vpls: usize) -> (Vec<u32>, Vec<u32>) {
+    let mut place = vec![0u32; vpls];
+    for &v in &lists.indices {
+        place[v as usize] = 1;
+    }
+    let mut listed = Vec::new();
+    for (v, p) in place.iter_mut().enumerate() {
+        if *p != 0 {
+            *p = listed.len() as u32;
+            listed.push(v as u32);
+        }
+    }
+    let indices = lists.indices.iter().map(|&v| place[v as usize]).collect();
+    (listed, indices)
+}
+
+/// What [`shade_lists`] shades every pixel with. The VPLs of `indices` (the lists' entries)
+/// are places in `listed`, whose entries index `vpls`; `roulette` and `reach` are per place.
 struct ListShading<'a> {
     tracer: &'a Tracer,
     gbuffer: &'a GBuffer,
     lists: &'a LightLists,
+    indices: &'a [u32],
+    listed: &'a [u32],
     vpls: &'a [Vpl],
     roulette: &'a [StochasticParams],
     reach: &'a [VplReach],
@@ -317,11 +339,11 @@ impl<'a> ListShading<'a> {
         scratch.starts = starts;
     }
 
-    /// The VPL indices of list `l`.
+    /// The entries of list `l`: places in `listed`.
     #[inline]
     fn list(&self, l: u32) -> &'a [u32] {
         let l = l as usize;
-        &self.lists.indices[self.lists.offsets[l] as usize..self.lists.offsets[l + 1] as usize]
+        &self.indices[self.lists.offsets[l] as usize..self.lists.offsets[l + 1] as usize]
     }
 
     /// Shades the pixels `run` (rank, slot, pixel) whose lists are `lists` (ranks `first..`,
@@ -373,7 +395,7 @@ impl<'a> ListShading<'a> {
         let mut values = [F8([0.0; 8]); 3];
         for chunk in &scratch.passing {
             let k = chunk.vpl as usize;
-            let (vpl, params) = (&self.vpls[k], &self.roulette[k]);
+            let (vpl, params) = (&self.vpls[self.listed[k] as usize], &self.roulette[k]);
             if !scratch.formed[chunk.chunk] {
                 let receivers = samples[chunk.chunk * 8..].iter().take(8).map(|s| s.1);
                 scratch.brdfs[chunk.chunk] = ReceiverBrdfs::of_chunk(receivers);
@@ -415,7 +437,7 @@ impl<'a> ListShading<'a> {
             scratch.members.extend(self.list(l).iter().map(|&v| (v, 1)));
             return;
         }
-        scratch.stamps.resize(self.vpls.len(), 0);
+        scratch.stamps.resize(self.listed.len(), 0);
         scratch.union.clear();
         for (s, &l) in lists.iter().enumerate() {
             for &v in self.list(l) {

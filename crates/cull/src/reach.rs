@@ -208,31 +208,39 @@ impl VplReach {
         box_bound: BoxBoundLanes::ALWAYS,
     };
 
-    /// Every VPL's roulette (δ and its ξ) and, in parallel, its early exits: those of the
-    /// VPLs `listed` marks (all with `None`), and for the others exits that reject every pair
-    /// (for a caller that tests only listed pairs). Errors as [`Self::new`] and
-    /// `StochasticParams::new`, or when `listed` is not one flag per VPL.
+    /// The roulette (δ and its ξ) and, in parallel, the early exits of every VPL (`None`) or
+    /// of the VPLs `listed` (ascending indices into `vpls`, for a caller that tests only
+    /// listed pairs: entry j is VPL `listed[j]`'s, so that a million VPLs of which a few
+    /// thousand are listed cost a few thousand exits). Every VPL's ξ is checked either way.
+    /// Errors as [`Self::new`] and `StochasticParams::new`, or on an index past the VPLs.
     pub fn of_frame(
         vpls: &[Vpl],
         delta: f32,
-        listed: Option<&[bool]>,
+        listed: Option<&[u32]>,
     ) -> Result<(Vec<StochasticParams>, Vec<Self>), CullError> {
-        if let Some(l) = listed.filter(|l| l.len() != vpls.len()) {
+        for v in vpls {
+            StochasticParams::new(delta, v.xi)?;
+        }
+        let every: Vec<u32>;
+        let listed = match listed {
+            Some(listed) => listed,
+            None => {
+                every = (0..vpls.len() as u32).collect();
+                &every
+            }
+        };
+        if let Some(&i) = listed.iter().find(|&&i| i as usize >= vpls.len()) {
             return Err(CullError::Input(format!(
-                "{} listed flags for {} VPLs",
-                l.len(),
+                "listed VPL {i} of {} VPLs",
                 vpls.len()
             )));
         }
-        let roulette = vpls
+        let roulette = listed
             .iter()
-            .map(|v| StochasticParams::new(delta, v.xi))
+            .map(|&i| StochasticParams::new(delta, vpls[i as usize].xi))
             .collect::<Result<Vec<_>, _>>()?;
-        let reach = crate::par::try_map(vpls, Self::NONE, |i, v| {
-            if listed.is_some_and(|l| !l[i]) {
-                return Ok(Self::NONE);
-            }
-            Self::new(v, &roulette[i])
+        let reach = crate::par::try_map(listed, Self::NONE, |j, &i| {
+            Self::new(&vpls[i as usize], &roulette[j])
         })?;
         Ok((roulette, reach))
     }
@@ -300,7 +308,7 @@ fn stretched(stretch: DMat3, center: DVec3, extent: f64) -> (DMat3, DVec3, f64) 
 /// Whether the shader's own tests give every pair of `vpl` exactly 0: ωi·n <= 0 (the one-sided
 /// BRDF of eq. 6 and the diffuse lobe, the same f32 dot product the BRDF forms), no flux, or
 /// for a diffuse VPL no channel with both flux and kd.
-fn reflects_nothing(vpl: &Vpl) -> bool {
+pub(crate) fn reflects_nothing(vpl: &Vpl) -> bool {
     let dark = match vpl.lobe {
         VplLobe::Diffuse => (vpl.flux.cmpeq(Vec3::ZERO) | vpl.brdf.kd.cmpeq(Vec3::ZERO)).all(),
         VplLobe::Glossy => vpl.flux.cmpeq(Vec3::ZERO).all(),
