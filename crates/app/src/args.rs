@@ -251,6 +251,12 @@ pub fn strategy(name: &str) -> Result<Strategy, String> {
         .map_err(|e: slc_core::UnknownStrategy| e.to_string())
 }
 
+/// The help of a `--culling` option: what it takes (`what`), then every strategy's name
+/// ([`Strategy::names`], the one list of them).
+pub fn culling_help(what: &str) -> String {
+    format!("{what}: {}", Strategy::names().join(", "))
+}
+
 /// The culling strategies named on the command line, in their order.
 pub fn strategies(names: &[String]) -> Result<Vec<Strategy>, String> {
     names.iter().map(|n| strategy(n)).collect()
@@ -287,9 +293,8 @@ pub struct EstimateArgs {
     /// With --shader vsgl: the number of VSGLs sampled from the RSMs.
     #[arg(long, default_value_t = 1024)]
     pub vsgls: u32,
-    /// Culling strategy: none, sphere, enclosing-sphere, ellipsoid, clustered (ellipsoids in 3-D
-    /// clusters), clustered-sphere, clustered-enclosing-sphere.
-    #[arg(long, default_value = "ellipsoid")]
+    // The help names every strategy (`culling_help`).
+    #[arg(long, default_value = "ellipsoid", help = culling_help("Culling strategy, one of"))]
     pub culling: String,
     /// δ of eq. (2), in the units of I / l² (W sr⁻¹ m⁻²): larger culls more and adds variance.
     #[arg(long, default_value_t = 1e-3)]

@@ -34,7 +34,12 @@ pub struct BenchArgs {
     /// RSM resolutions per face, comma separated (overrides --rsm).
     #[arg(long, value_delimiter = ',', default_value = "128,256")]
     pub rsms: Vec<u32>,
-    #[arg(long, value_delimiter = ',', default_value = "ellipsoid,sphere")]
+    #[arg(
+        long,
+        value_delimiter = ',',
+        default_value = "ellipsoid,sphere",
+        help = crate::args::culling_help("Strategies to time, comma separated, of")
+    )]
     pub culling: Vec<String>,
     #[arg(long, default_value_t = 1e-3)]
     pub delta: f32,

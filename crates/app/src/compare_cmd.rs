@@ -45,11 +45,12 @@ pub struct CompareArgs {
     /// Output folder.
     #[arg(long, default_value = "compare")]
     pub out: PathBuf,
-    /// Strategies to compare, comma separated.
+    // The help names every strategy (`culling_help`).
     #[arg(
         long,
         value_delimiter = ',',
-        default_value = "none,sphere,enclosing-sphere,ellipsoid,clustered"
+        default_value = "none,sphere,enclosing-sphere,ellipsoid,clustered",
+        help = crate::args::culling_help("Strategies to compare, comma separated, of")
     )]
     pub culling: Vec<String>,
     #[arg(long, default_value_t = 1e-3)]

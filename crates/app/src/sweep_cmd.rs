@@ -45,11 +45,14 @@ pub struct SweepArgs {
         default_value = "1e-4,3e-4,1e-3,3e-3,1e-2"
     )]
     pub delta: Vec<f32>,
-    /// Strategies, comma separated; the first is the equal-time reference.
+    // The help names every strategy (`culling_help`).
     #[arg(
         long,
         value_delimiter = ',',
-        default_value = "ellipsoid,sphere,enclosing-sphere,clustered"
+        default_value = "ellipsoid,sphere,enclosing-sphere,clustered",
+        help = crate::args::culling_help(
+            "Strategies, comma separated (the first is the equal-time reference), of"
+        )
     )]
     pub culling: Vec<String>,
     /// Timing repetitions per point, after one warm-up when more than one: the tables give the

@@ -13,7 +13,7 @@ use crate::frame::{LightSampling, Method, PassTime, RenderError, RenderSettings,
 use crate::framebuffer::Image;
 use crate::scene::Scene;
 use crate::shader::SampledLights;
-use crate::strategy::{GlossyBound, Strategy};
+use crate::strategy::{GlossyBound, Layout, Strategy};
 use crate::vpl::Vpl;
 use std::collections::BTreeMap;
 
@@ -47,6 +47,8 @@ pub struct Capabilities {
     pub tight_culling: bool,
     /// The rasterization baselines `splatting` and `clustered-raster` ([`Strategy::RASTER`]).
     pub raster_culling: bool,
+    /// The `binned` culling strategy ([`Strategy::CPU_ONLY`] until its GPU twin exists).
+    pub binned_culling: bool,
 }
 
 impl Capabilities {
@@ -54,6 +56,7 @@ impl Capabilities {
     pub fn runs(&self, strategy: Strategy) -> bool {
         (self.tight_culling || strategy.parts().1 != GlossyBound::Tight)
             && (self.raster_culling || !strategy.is_raster())
+            && (self.binned_culling || strategy.parts().0 != Layout::Binned)
     }
 
     /// [`RenderError::Unsupported`] naming the first thing `settings` asks for that
@@ -71,6 +74,9 @@ impl Capabilities {
             }
             Method::Stochastic(s) if !self.runs(s.strategy) && s.strategy.is_raster() => {
                 Some("the rasterization baselines (splatting, clustered-raster)")
+            }
+            Method::Stochastic(s) if !self.runs(s.strategy) && s.strategy == Strategy::Binned => {
+                Some("the binned culling strategy yet")
             }
             Method::Stochastic(s) if !self.runs(s.strategy) => {
                 Some("the tight culling strategies (tight, clustered-tight)")
@@ -306,12 +312,14 @@ mod tests {
             sampled_vpls: true,
             tight_culling: true,
             raster_culling: false,
+            binned_culling: true,
         };
         let gpu = Capabilities {
             vpl_visibility: false,
             references: false,
             sampled_vpls: false,
             raster_culling: true,
+            binned_culling: false,
             ..cpu
         };
         let hint = |caps: Capabilities, backend, settings| match caps.check(backend, &settings) {
@@ -334,5 +342,13 @@ mod tests {
             ..gpu
         };
         assert_eq!(hint(no_blending, "gpu", raster), None);
+        let binned = stochastic(Strategy::Binned, false);
+        assert!(cpu.check("cpu", &binned).is_ok());
+        assert_eq!(hint(gpu, "gpu", binned.clone()), Some("cpu"));
+        let e = gpu.check("gpu", &binned).unwrap_err().to_string();
+        assert!(
+            e.contains("binned") && e.ends_with("render on the cpu backend"),
+            "{e}"
+        );
     }
 }

@@ -40,6 +40,12 @@ pub enum Layout {
     /// mesh at tile resolution, conservatively, into a linked-list node buffer (Örtegren and
     /// Persson 2016; the paper's Table 2 baseline). GPU only.
     ClusteredRaster,
+    /// Scatter instead of gather (docs/many-vpls.md): each VPL's bound is binned, by the
+    /// rectangle of screen pixels it covers, into the 16×16 tiles of its subregion image that
+    /// rectangle overlaps, and each pixel of a tile tests its own G-buffer point against the
+    /// bounds of its tile's bin: a list per pixel, at a cost of the VPLs plus the pixels their
+    /// rectangles cover, not VPLs × tiles (the paper's open problem, section 8).
+    Binned,
 }
 
 /// A culling strategy: a [`Layout`] and, unless unculled, the [`GlossyBound`] of glossy VPLs.
@@ -56,6 +62,7 @@ pub enum Strategy {
     ClusteredTight,
     Splatting,
     ClusteredRaster,
+    Binned,
 }
 
 /// A strategy name that names no strategy.
@@ -84,9 +91,21 @@ impl Strategy {
     /// shading by conservative rasterization [OP16]): no CPU culler.
     pub const RASTER: [Strategy; 2] = [Strategy::Splatting, Strategy::ClusteredRaster];
 
-    /// [`Self::ALL`], then [`Self::RASTER`].
+    /// The strategies only the CPU culler (`slc_cull::culler`) runs so far: `binned`, whose
+    /// GPU twin is still to come (the GPU backend refuses it, pointing to `--backend cpu`).
+    pub const CPU_ONLY: [Strategy; 1] = [Strategy::Binned];
+
+    /// [`Self::ALL`], then [`Self::CPU_ONLY`], then [`Self::RASTER`].
     pub fn every() -> impl Iterator<Item = Strategy> {
-        Self::ALL.into_iter().chain(Self::RASTER)
+        Self::ALL
+            .into_iter()
+            .chain(Self::CPU_ONLY)
+            .chain(Self::RASTER)
+    }
+
+    /// Every strategy with a CPU culler: [`Self::ALL`], then [`Self::CPU_ONLY`].
+    pub fn on_cpu() -> impl Iterator<Item = Strategy> {
+        Self::ALL.into_iter().chain(Self::CPU_ONLY)
     }
 
     /// Whether the strategy rasterizes bounding meshes ([`Self::RASTER`]).
@@ -108,6 +127,7 @@ impl Strategy {
             Self::ClusteredTight => "clustered-tight",
             Self::Splatting => "splatting",
             Self::ClusteredRaster => "clustered-raster",
+            Self::Binned => "binned",
         }
     }
 
@@ -133,6 +153,7 @@ impl Strategy {
             Self::ClusteredTight => (Layout::Clustered, Tight),
             Self::Splatting => (Layout::Splatting, Ellipsoid),
             Self::ClusteredRaster => (Layout::ClusteredRaster, Ellipsoid),
+            Self::Binned => (Layout::Binned, Ellipsoid),
         }
     }
 }
@@ -165,17 +186,19 @@ mod tests {
         }
         let mut names = Strategy::names();
         names.dedup();
-        assert_eq!(names.len(), Strategy::ALL.len() + Strategy::RASTER.len());
+        assert_eq!(
+            names.len(),
+            Strategy::ALL.len() + Strategy::CPU_ONLY.len() + Strategy::RASTER.len()
+        );
         assert!(Strategy::RASTER.iter().all(|s| s.is_raster()));
-        assert!(!Strategy::ALL.iter().any(|s| s.is_raster()));
-        let parts: std::collections::HashSet<_> = Strategy::ALL
-            .iter()
+        assert!(!Strategy::on_cpu().any(|s| s.is_raster()));
+        let parts: std::collections::HashSet<_> = Strategy::on_cpu()
             .filter(|s| s.parts().0 != Layout::Unculled)
             .map(|s| s.parts())
             .collect();
         assert_eq!(
             parts.len(),
-            Strategy::ALL.len() - 1,
+            Strategy::on_cpu().count() - 1,
             "one strategy per layout and bound"
         );
     }

@@ -46,6 +46,7 @@ impl Renderer for CpuRenderer {
             sampled_vpls: true,
             tight_culling: true,
             raster_culling: false,
+            binned_culling: true,
         }
     }
 

@@ -70,7 +70,7 @@ fn run() -> Result<(), Box<dyn std::error::Error>> {
         delta: 1e-3,
         interleaving: Interleaving { k: 2, seed: 0 },
     };
-    for strategy in Strategy::ALL {
+    for strategy in Strategy::on_cpu() {
         let lists = slc_cull::culler(strategy).cull(&input)?;
         let m = slc_cull::metrics::measure(&input, &lists)?;
         println!(

@@ -50,7 +50,7 @@ fn main() {
             "K = {k} ({} VPLs per subregion)",
             vpls.len() / (k * k) as usize
         );
-        for name in Strategy::ALL {
+        for name in Strategy::on_cpu() {
             let culler = culler(name);
             let mut best = Duration::MAX;
             let mut lists = None;

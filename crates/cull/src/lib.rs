@@ -16,6 +16,11 @@
 //!   spheroid itself tested in its stretched and rotated space (eq. 16-17, section 5.2).
 //! - `clustered`, `clustered-sphere`, `clustered-enclosing-sphere` ([`BoundedCuller`]): the
 //!   same tiles cut into 32 exponential depth slices.
+//! - `tight`, `clustered-tight` ([`BoundedCuller`]): those lists cut per block by a bound of p
+//!   over the block's receivers (docs/tight-bounds.md).
+//! - `binned` ([`BinnedCuller`]): each VPL's bound binned into the tiles its screen rectangle
+//!   overlaps and tested at each pixel of it: a list per pixel, at a cost that follows the
+//!   pixels the bounds cover, not VPLs × tiles (docs/many-vpls.md).
 //!
 //! The crate needs no scene loader, BVH or GPU: it builds on `slc-core` without its
 //! `loaders` feature, so an engine can embed it with its own G-buffer and VPLs
@@ -73,8 +78,10 @@
 //! # Ok::<(), slc_core::CullError>(())
 //! ```
 mod acceptance;
+mod binned;
 mod bound_lanes;
 mod depth;
+mod footprint;
 mod frusta;
 pub mod ggx_lanes;
 mod lists;
@@ -87,6 +94,8 @@ pub mod reach;
 pub mod reach_chunks;
 pub mod receiver_chunks;
 mod refine;
+mod scatter;
+mod scatter_lanes;
 pub mod strategies;
 #[cfg(test)]
 mod test_rng;
@@ -99,6 +108,7 @@ pub use frusta::FRUSTUM_SLACK;
 pub use reach::VplReach;
 pub use reach_chunks::ReachChunks;
 pub use receiver_chunks::ReceiverChunks;
+pub use strategies::binned::BinnedCuller;
 pub use strategies::bounded::BoundedCuller;
 pub use strategies::gpu_only::GpuOnly;
 pub use strategies::none::NoCulling;
@@ -115,6 +125,7 @@ pub fn culler(strategy: Strategy) -> Box<dyn CpuCuller> {
     }
     match strategy.parts().0 {
         Layout::Unculled => Box::new(NoCulling),
+        Layout::Binned => Box::new(BinnedCuller),
         _ => Box::new(GpuOnly(strategy)),
     }
 }

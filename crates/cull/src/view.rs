@@ -103,6 +103,26 @@ impl CullView {
         };
         (map(x0, y0), map(x1, y1))
     }
+
+    /// The eye, the origin of the view (rounded to f32: the camera's own position).
+    #[inline]
+    pub(crate) fn eye(&self) -> Vec3 {
+        self.eye.as_vec3()
+    }
+
+    /// The map from the image plane at unit depth to screen pixels of
+    /// [`Self::to_screen`], `X = u scale + offset` per axis: (scale, offset).
+    pub(crate) fn screen_map(&self) -> ([f64; 2], [f64; 2]) {
+        let half = self.size * 0.5;
+        ((half / self.half_extent).to_array(), half.to_array())
+    }
+
+    /// The screen position (in pixels, pixel (i, j) covering `[i, i + 1) x [j, j + 1)`) of the
+    /// image-plane point `uv` at unit depth: the inverse of [`Self::image_rect`]'s map.
+    #[inline]
+    pub(crate) fn to_screen(&self, uv: DVec2) -> DVec2 {
+        (uv / self.half_extent + 1.0) * self.size * 0.5
+    }
 }
 
 /// The world-to-view rotation (rows right, down, forward) of a camera whose basis is

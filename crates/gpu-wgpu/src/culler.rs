@@ -81,6 +81,9 @@ impl GpuCuller {
                 let lists = self.prepare_frame(ctx, frame, strategy)?;
                 self.frame_lists(ctx, frame, &lists)
             }
+            (Layout::Binned, _) => Err(GpuError::Input(format!(
+                "culling strategy '{strategy}' has no GPU twin yet; render with --backend cpu"
+            ))),
         }
     }
 

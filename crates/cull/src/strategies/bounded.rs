@@ -25,7 +25,9 @@ impl BoundedCuller {
     /// baselines.
     pub fn new(strategy: Strategy) -> Option<Self> {
         let clustering = match strategy.parts().0 {
-            Layout::Unculled | Layout::Splatting | Layout::ClusteredRaster => return None,
+            Layout::Unculled | Layout::Splatting | Layout::ClusteredRaster | Layout::Binned => {
+                return None
+            }
             Layout::Tiled => Clustering::HalfZ,
             Layout::Clustered => Clustering::ExponentialSlices,
         };

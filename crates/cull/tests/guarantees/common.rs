@@ -207,9 +207,10 @@ pub fn room_vpls(rng: &mut Rng, n: u32) -> Vec<Vpl> {
 /// Every strategy's lists for `input` and their metrics, after checking what every strategy
 /// must guarantee: no contributing pair missed, well-formed ascending lists without repeats,
 /// only the pixel's own subregion's VPLs, no list for a pixel without a sample, finite
-/// metrics. Returns (name, metrics) in the order of `Strategy::ALL`.
+/// metrics. Returns (name, metrics) in the order of `Strategy::on_cpu`.
 pub fn check_all(input: &CullInput, label: &str) -> Vec<(&'static str, CullMetrics)> {
-    let lists: Vec<LightLists> = Strategy::ALL
+    let strategies: Vec<Strategy> = Strategy::on_cpu().collect();
+    let lists: Vec<LightLists> = strategies
         .iter()
         .map(|&name| {
             let culler = culler(name);
@@ -227,7 +228,7 @@ pub fn check_all(input: &CullInput, label: &str) -> Vec<(&'static str, CullMetri
         "{label}: the metrics' early exits dropped accepted pairs"
     );
     let w = input.gbuffer.width.max(1);
-    for ((name, l), m) in Strategy::ALL.iter().zip(&lists).zip(&metrics) {
+    for ((name, l), m) in strategies.iter().zip(&lists).zip(&metrics) {
         assert_eq!(
             m.missed_pairs, 0,
             "{label}: {name} culled {} contributing pairs",
@@ -259,7 +260,7 @@ pub fn check_all(input: &CullInput, label: &str) -> Vec<(&'static str, CullMetri
         }
     }
     // A tight strategy only cuts its base strategy's lists: pixel by pixel a subset.
-    let lists_of = |s: Strategy| &lists[Strategy::ALL.iter().position(|&t| t == s).unwrap()];
+    let lists_of = |s: Strategy| &lists[strategies.iter().position(|&t| t == s).unwrap()];
     for (tight, base) in [
         (Strategy::Tight, Strategy::Ellipsoid),
         (Strategy::ClusteredTight, Strategy::Clustered),
@@ -275,11 +276,7 @@ pub fn check_all(input: &CullInput, label: &str) -> Vec<(&'static str, CullMetri
             );
         }
     }
-    Strategy::ALL
-        .iter()
-        .map(|s| s.name())
-        .zip(metrics)
-        .collect()
+    strategies.iter().map(|s| s.name()).zip(metrics).collect()
 }
 
 /// The pairs the roulette of eq. (3) accepts, p(ωo, l) > ξ with p of eq. (2) evaluated for

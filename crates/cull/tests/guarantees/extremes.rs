@@ -35,7 +35,7 @@ fn sky_and_empty_tiles() {
         samples: vec![None; gbuffer.samples.len()],
         ..gbuffer
     };
-    for name in Strategy::ALL {
+    for name in Strategy::on_cpu() {
         let lists = culler(name)
             .cull(&input(&all_sky, &camera, &vpls, 1e-3, 2))
             .unwrap();
@@ -86,7 +86,7 @@ fn vpls_behind_the_camera_are_never_listed_unless_they_reach() {
     }
     let far = input(&gbuffer, &camera, &vpls, 1e-2, 1);
     check_all(&far, "far behind");
-    for &name in &Strategy::ALL[1..] {
+    for name in Strategy::on_cpu().skip(1) {
         let lists = culler(name).cull(&far).unwrap();
         assert!(
             lists.indices.is_empty(),
@@ -118,7 +118,7 @@ fn zero_flux_and_unlit_vpls_are_never_listed() {
     }
     let dark = input(&gbuffer, &camera, &vpls, 1e-6, 1);
     check_all(&dark, "dark");
-    for &name in &Strategy::ALL[1..] {
+    for name in Strategy::on_cpu().skip(1) {
         let lists = culler(name).cull(&dark).unwrap();
         assert!(lists.indices.is_empty(), "{name} listed a dark VPL");
     }
@@ -181,7 +181,7 @@ fn tiny_and_odd_images_and_no_vpls() {
         height: 0,
         samples: Vec::new(),
     };
-    for name in Strategy::ALL {
+    for name in Strategy::on_cpu() {
         let lists = culler(name)
             .cull(&input(&empty, &camera, &vpls, 1e-3, 4))
             .unwrap();
@@ -196,9 +196,8 @@ fn invalid_inputs_are_errors_not_panics() {
     let gbuffer = floor_gbuffer(&camera, 20, 20, &mut rng);
     let vpls = room_vpls(&mut rng, 50);
     let cull = |input: &CullInput| -> Vec<bool> {
-        Strategy::ALL
-            .iter()
-            .map(|&n| culler(n).cull(input).is_err())
+        Strategy::on_cpu()
+            .map(|n| culler(n).cull(input).is_err())
             .collect()
     };
     let bounded = |errs: Vec<bool>| errs[1..].iter().all(|&e| e);
@@ -242,4 +241,44 @@ fn invalid_inputs_are_errors_not_panics() {
     assert!(slc_cull::metrics::measure(&ok, &lists).is_ok());
     lists.pixel_list.pop();
     assert!(slc_cull::metrics::measure(&ok, &lists).is_err());
+}
+
+/// Every strategy at the extremes of the roulette (issue 42's conformance range): δ from
+/// 1e-9 to 1e3, α from 1e-4 to 1, ξ within 1e-6 of 0 and of 1, so that the random ranges lie
+/// far below a pixel (δ 1e3, ξ near 1: the binned strategy places most VPLs on no pixel) and
+/// far beyond the frame (δ 1e-9, ξ near 0: every VPL covers every tile), with VPLs in the
+/// room, just above the floor and near the camera.
+#[test]
+fn extremes_of_delta_alpha_xi_and_range() {
+    let mut rng = Rng::new(42);
+    let camera = horizon_camera();
+    let gbuffer = floor_gbuffer(&camera, 72, 40, &mut rng);
+    let mut vpls = room_vpls(&mut rng, 160);
+    for (i, v) in vpls.iter_mut().enumerate() {
+        v.brdf.alpha = [1e-4, 1e-3, 0.02, 0.3, 1.0][i % 5];
+        v.xi = match i % 3 {
+            0 => 1e-6,
+            1 => 1.0 - 1e-6,
+            _ => v.xi,
+        };
+        if i % 7 == 0 {
+            v.position = camera.position + 0.2 * rng.unit() - 0.3 * camera.forward;
+        }
+    }
+    let mut contributing = [0; 2];
+    for (j, delta) in [1e-9, 1e-3, 1e3].into_iter().enumerate() {
+        for k in [1, 3] {
+            let label = format!("extremes, delta {delta:e}, K {k}");
+            let all = check_all(&input(&gbuffer, &camera, &vpls, delta, k), &label);
+            println!("{label}: {}", line("binned", of(&all, "binned")));
+            if j != 1 {
+                contributing[j / 2] += of(&all, "none").true_positive_pairs;
+            }
+        }
+    }
+    // The test has teeth at both ends: pairs contribute at δ 1e-9, some still at δ 1e3.
+    assert!(
+        contributing[0] > 10_000 && contributing[1] > 0,
+        "{contributing:?}"
+    );
 }

@@ -49,6 +49,8 @@ fn compare(
     // The tight strategies only remove VPLs from the lists of the ellipsoid's.
     assert!(fp("tight") <= fp("ellipsoid"), "{label}");
     assert!(fp("clustered-tight") <= fp("clustered"), "{label}");
+    // Binning tests each pixel's own point against the spheroid the ellipsoid tests per tile.
+    assert!(fp("binned") <= fp("ellipsoid"), "{label}");
     all
 }
 

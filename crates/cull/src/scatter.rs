@@ -1,0 +1,244 @@
+//! One VPL of the `binned` strategy: its own bound (the section-6 sphere, or the GGX spheroid
+//! of eq. 12-15, grown by `BOUND_SLACK`: the bound every strategy culls with), the pixels of
+//! its subregion's image it may cover ([`crate::footprint`]) and the test each of those
+//! pixels makes.
+use crate::footprint::{footprint, Bound, Footprint, ScreenMap};
+use crate::reach::{reflects_nothing, SIGN_MARGIN};
+use crate::view::CullView;
+use crate::vpl_bounds::{GlossyBound, LocalBound};
+use glam::{DVec3, Vec3};
+use slc_bounds::StochasticParams;
+use slc_core::{CullError, Interleaving, Vpl};
+
+/// The largest value of a pixel's coordinates in the bound's unit ball that still counts
+/// as inside: 1 plus 1e-6 for the f64 rounding of the test (about 1e-16 of its terms, which
+/// the eccentricity 1/(2α) of the sharpest spheroid raises at most 10^6-fold).
+const LIMIT: f64 = 1.0 + 1e-6;
+
+/// A VPL's bound as a pixel tests it, in world axes relative to q, in f64: the sign of ωo·n
+/// at the VPL (eq. 4: I(ωo) = 0 behind its surface), then the spheroid `{c + R diag(r_u, r,
+/// r) w : |w| <= 1}` (or sphere) through its axis ω_u: with e = x − c and t = e·ω_u,
+/// |e − t ω_u|²/r² + t²/r_u² <= 1.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct PixelTest {
+    pub position: DVec3,
+    pub normal: DVec3,
+    pub center: DVec3,
+    pub axis: DVec3,
+    pub inv_along_sq: f64,
+    pub inv_across_sq: f64,
+}
+
+impl PixelTest {
+    /// Whether the pixel whose G-buffer point is `x` may hold a pair with p > ξ: not behind
+    /// the VPL by more than [`SIGN_MARGIN`] (where the shader's own f32 cosine, from the
+    /// correctly rounded x − q, is negative too) and inside the bound.
+    #[inline]
+    pub(crate) fn contains(&self, x: Vec3) -> bool {
+        let d = x.as_dvec3() - self.position;
+        let cos = self.normal.dot(d);
+        if cos < 0.0 && cos * cos > f64::from(SIGN_MARGIN * SIGN_MARGIN) * d.length_squared() {
+            return false;
+        }
+        let e = d - self.center;
+        let t = e.dot(self.axis);
+        (e - t * self.axis).length_squared() * self.inv_across_sq + t * t * self.inv_along_sq
+            <= LIMIT
+    }
+}
+
+/// A VPL that may cover pixels: its number, its subregion, its test and the rectangle of
+/// its subregion image's pixels `[i0, i1] x [j0, j1]` (inclusive) where its bound may lie.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Scattered {
+    pub index: u32,
+    pub subregion: [u32; 2],
+    pub test: PixelTest,
+    pub pixels: [u32; 4],
+}
+
+/// What the scatter reads besides the VPLs: the view as the footprint maps it, the image
+/// and the G-buffer samples' extremes.
+pub(crate) struct Screen {
+    pub map: ScreenMap<f32>,
+    pub width: u32,
+    pub height: u32,
+    pub interleaving: Interleaving,
+    /// The eye, from which the bounds' centres are taken.
+    pub eye: Vec3,
+    /// How far (in screen pixels) any sample's projection lies outside its own pixel.
+    pub stray: f64,
+}
+
+impl Screen {
+    /// The scatter of a `width` x `height` image seen by `view` whose samples stray up to
+    /// `stray` pixels outside their own and lie no nearer than `near`.
+    pub(crate) fn new(
+        view: &CullView,
+        width: u32,
+        height: u32,
+        interleaving: Interleaving,
+        stray: f64,
+        near: f64,
+    ) -> Self {
+        let rotation = view.rotation();
+        let (scale, offset) = view.screen_map();
+        Self {
+            map: ScreenMap {
+                rows: [0, 1, 2].map(|i| rotation.row(i).to_array()),
+                scale: scale.map(|v| v as f32),
+                offset: offset.map(|v| v as f32),
+                // Rounded down: no sample lies nearer.
+                near: round_down(near),
+            },
+            width,
+            height,
+            interleaving,
+            eye: view.eye(),
+            stray,
+        }
+    }
+
+    /// VPL `index` for the roulette's δ, `None` where it covers no pixel (it reflects
+    /// nothing, lies nearer than every sample or outside the image). Errors on a VPL outside
+    /// the domain of slc-bounds, as every bound-based strategy does. The bound is slc-bounds'
+    /// own (`LocalBound`): this is the path of every VPL the lanes do not take
+    /// (`crate::scatter_lanes::plain`).
+    pub(crate) fn scatter(
+        &self,
+        vpl: &Vpl,
+        index: u32,
+        delta: f32,
+    ) -> Result<Option<Scattered>, CullError> {
+        if !(vpl.position.is_finite() && vpl.omega_i.is_finite()) {
+            return Err(CullError::Input(format!(
+                "VPL {index} has a non-finite position or incoming direction"
+            )));
+        }
+        let params = StochasticParams::new(delta, vpl.xi)?;
+        let local = LocalBound::new(vpl, &params, GlossyBound::Ellipsoid)?;
+        let (center, axis, along, across) = match local {
+            _ if reflects_nothing(vpl) => return Ok(None),
+            LocalBound::Empty => return Ok(None),
+            LocalBound::Sphere { center, radius_sq } => {
+                let r = radius_sq.sqrt();
+                (center, DVec3::X, r, r)
+            }
+            LocalBound::Spheroid {
+                center,
+                rotation,
+                semi_axes,
+            } => (
+                center,
+                rotation.x_axis.as_dvec3().normalize(),
+                f64::from(semi_axes.x),
+                f64::from(semi_axes.y.max(semi_axes.z)),
+            ),
+        };
+        let relative = vpl.position - self.eye;
+        let bound = Bound {
+            center: (relative.as_dvec3() + center).as_vec3().to_array(),
+            axis: axis.as_vec3().to_array(),
+            along: along as f32,
+            across: across as f32,
+            size: (f64::from(relative.length()) + center.length() + along) as f32,
+        };
+        let test = PixelTest {
+            position: vpl.position.as_dvec3(),
+            normal: vpl.normal.as_dvec3(),
+            center,
+            axis,
+            inv_along_sq: (along * along).recip(),
+            inv_across_sq: (across * across).recip(),
+        };
+        Ok(self.place(vpl, index, test, &footprint(&bound, &self.map)))
+    }
+
+    /// VPL `index` with its `test` where its `footprint` covers pixels of its subregion's
+    /// image.
+    pub(crate) fn place(
+        &self,
+        vpl: &Vpl,
+        index: u32,
+        test: PixelTest,
+        footprint: &Footprint<f32>,
+    ) -> Option<Scattered> {
+        if footprint.nowhere {
+            return None;
+        }
+        let k = self.interleaving.k;
+        let sub = self.interleaving.vpl_subregion(vpl.id);
+        let subregion = [sub % k, sub / k];
+        let [sw, sh] = self
+            .interleaving
+            .subregion_size(self.width, self.height, subregion);
+        let pixels = if footprint.everywhere {
+            (sw > 0 && sh > 0).then(|| [0, 0, sw - 1, sh - 1])
+        } else {
+            self.subregion_pixels(footprint, subregion, [sw, sh])
+        }?;
+        Some(Scattered {
+            index,
+            subregion,
+            test,
+            pixels,
+        })
+    }
+
+    /// The pixels `[i0, j0, i1, j1]` (inclusive) of subregion `[sx, sy]`'s image (of size
+    /// `[sw, sh]`) whose samples may project into the footprint's rectangle; `None` if none.
+    ///
+    /// Pixel x covers the screen's `[x, x + 1]` and its sample lies at most `stray` outside
+    /// it, so a sample at screen position X in `[X0, X1]` has x in
+    /// `[⌈X0 − stray − 1⌉, ⌊X1 + stray⌋]`; subregion pixel i is screen pixel sx + K i, and
+    /// ⌈(⌈X⌉ − s)/K⌉ = ⌈(X − s)/K⌉ for integers s and K (the same for the floor).
+    fn subregion_pixels(
+        &self,
+        footprint: &Footprint<f32>,
+        [sx, sy]: [u32; 2],
+        [sw, sh]: [u32; 2],
+    ) -> Option<[u32; 4]> {
+        let k = f64::from(self.interleaving.k);
+        let axis = |a: f32, b: f32, s: u32, n: u32| -> Option<[u32; 2]> {
+            let s = f64::from(s);
+            let i0 = first_index((f64::from(a) - self.stray - 1.0 - s) / k, n);
+            let i1 = last_index((f64::from(b) + self.stray - s) / k, n);
+            (i0 <= i1).then_some([i0 as u32, i1 as u32])
+        };
+        let [i0, i1] = axis(footprint.lo[0], footprint.hi[0], sx, sw)?;
+        let [j0, j1] = axis(footprint.lo[1], footprint.hi[1], sy, sh)?;
+        Some([i0, j0, i1, j1])
+    }
+}
+
+/// `x` rounded to an `f32` no larger than it.
+fn round_down(x: f64) -> f32 {
+    let y = x as f32;
+    if f64::from(y) > x {
+        y.next_down()
+    } else {
+        y
+    }
+}
+
+/// ⌈x⌉ clamped to `[0, n]` (NaN: 0), without a call into libm.
+#[inline]
+fn first_index(x: f64, n: u32) -> i64 {
+    if x.is_nan() {
+        return 0;
+    }
+    let x = x.clamp(0.0, f64::from(n));
+    let t = x as i64;
+    t + i64::from((t as f64) < x)
+}
+
+/// ⌊x⌋ clamped to `[-1, n - 1]` (NaN: n − 1), without a call into libm.
+#[inline]
+fn last_index(x: f64, n: u32) -> i64 {
+    if x.is_nan() {
+        return i64::from(n) - 1;
+    }
+    let x = x.clamp(-1.0, f64::from(n) - 1.0);
+    let t = x as i64;
+    t - i64::from((t as f64) > x)
+}

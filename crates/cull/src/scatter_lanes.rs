@@ -1,0 +1,428 @@
+//! The `binned` strategy's bounds of plain VPLs, eight at a time: the radius r of eq. (12)
+//! and the spheroid of eq. (13)-(15) of a glossy VPL, the sphere of section 6 of a diffuse
+//! one, formed with slc-bounds' own operations (`GlossyLobe::radius`, `Spheroid::new`,
+//! `Sphere::diffuse`) in f32 lanes, then their footprints ([`crate::footprint`]). At a
+//! million VPLs the bounds are most of the culling, and one VPL at a time they wait on their
+//! chains of square roots and divisions; eight lanes share them.
+//!
+//! The lanes round differently from slc-bounds in a few places (r in f32 rather than f64,
+//! the fifth power as three products): a few ulps, which the radius's extra 1e-5 covers
+//! before `BOUND_SLACK` (1e-3) grows the bound as it grows every strategy's. Lobes sharper
+//! than [`MIN_ALPHA`] are left to slc-bounds: there the f32 rounding of the axis, tilted by
+//! the eccentricity 1/(2α), would eat into that slack.
+use crate::footprint::{footprint, Bound, Footprint, ScreenMap};
+use crate::scatter::{PixelTest, Scattered, Screen};
+use crate::vpl_bounds::BOUND_SLACK;
+use glam::{DVec3, Vec3};
+use slc_bounds::lanes::{
+    clamp01, cross, dot, gather, gather3, gather_flags, max, Lanes8, Real, F8,
+};
+use slc_bounds::Fresnel;
+use slc_core::{Vpl, VplLobe};
+
+/// The smallest α whose glossy VPLs the lanes bound.
+const MIN_ALPHA: f32 = 0.01;
+
+/// The radius's growth over its f32 rounding in the lanes.
+const LANE_SLACK: f32 = 1e-5;
+
+/// Whether the lanes bound `vpl`: diffuse, or glossy with Schlick's Fresnel factor and α of
+/// at least [`MIN_ALPHA`]; isotropic, its shading normal its geometric one; every input in
+/// the domain slc-bounds accepts (finite, unit vectors within 1e-3, F0, kd and flux
+/// non-negative, α in (0, 1], ξ in (0, 1)). The others go through slc-bounds one at a time,
+/// which bounds them or names what is wrong.
+pub(crate) fn plain(vpl: &Vpl) -> bool {
+    let unit = |v: Vec3| v.is_finite() && (v.length() - 1.0).abs() <= 1e-3;
+    let non_negative = |v: Vec3| v.is_finite() && v.min_element() >= 0.0;
+    let common = vpl.position.is_finite()
+        && vpl.omega_i.is_finite()
+        && vpl.normal == vpl.geometric_normal
+        && vpl.brdf.anisotropy.is_none()
+        && unit(vpl.normal)
+        && non_negative(vpl.flux)
+        && vpl.xi.is_normal()
+        && vpl.xi > 0.0
+        && vpl.xi < 1.0;
+    common
+        && match (vpl.lobe, vpl.brdf.fresnel) {
+            (VplLobe::Glossy, Fresnel::Schlick(f0)) => {
+                unit(vpl.omega_i)
+                    && (MIN_ALPHA..=1.0).contains(&vpl.brdf.alpha)
+                    && non_negative(f0)
+                    && f0.max_element() <= 1.0
+            }
+            (VplLobe::Glossy, Fresnel::Dielectric(_)) => false,
+            (VplLobe::Diffuse, _) => {
+                non_negative(vpl.brdf.kd)
+                    && (vpl.flux.as_dvec3() * vpl.brdf.kd.as_dvec3()).max_element()
+                        <= f64::from(f32::MAX)
+            }
+        }
+}
+
+/// Scatters up to eight plain VPLs ([`plain`]) numbered `indices` for the roulette's δ (a
+/// valid one): each one's entry of `out`, `None` where it covers no pixel. Returns the lanes
+/// left to slc-bounds (bit k: `vpls[k]`): those whose radius under- or overflows the range
+/// the lanes keep exact.
+pub(crate) fn scatter_plain(
+    screen: &Screen,
+    vpls: &[&Vpl],
+    indices: &[u32],
+    delta: f32,
+    out: &mut [Option<Scattered>],
+) -> u8 {
+    #[cfg(target_arch = "x86_64")]
+    if std::arch::is_x86_feature_detected!("avx2") {
+        // SAFETY: the CPU supports AVX2, checked just above.
+        return unsafe { scatter_avx2(screen, vpls, indices, delta, out) };
+    }
+    scatter_in::<F8>(screen, vpls, indices, delta, out)
+}
+
+/// [`scatter_in`] in AVX registers.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+fn scatter_avx2(
+    screen: &Screen,
+    vpls: &[&Vpl],
+    indices: &[u32],
+    delta: f32,
+    out: &mut [Option<Scattered>],
+) -> u8 {
+    scatter_in::<slc_bounds::lanes_avx::A8>(screen, vpls, indices, delta, out)
+}
+
+/// [`scatter_plain`] in lanes of `L`.
+#[inline(always)]
+fn scatter_in<L: Lanes8>(
+    screen: &Screen,
+    vpls: &[&Vpl],
+    indices: &[u32],
+    delta: f32,
+    out: &mut [Option<Scattered>],
+) -> u8 {
+    let last = vpls.len() - 1;
+    let group: [&Vpl; 8] = core::array::from_fn(|k| vpls[k.min(last)]);
+    let lanes = Lanes::<L>::of(&group, screen.eye, delta);
+    let [x, y, z] = screen.map.rows;
+    let [sx, sy] = screen.map.scale;
+    let [ox, oy] = screen.map.offset;
+    let screen_map = ScreenMap {
+        rows: [splat3(x), splat3(y), splat3(z)],
+        scale: [L::splat(sx), L::splat(sy)],
+        offset: [L::splat(ox), L::splat(oy)],
+        near: L::splat(screen.map.near),
+    };
+    let f = footprint(&lanes.bound, &screen_map);
+    let (lo, hi) = (store2(f.lo), store2(f.hi));
+    let (center, axis) = (store3(lanes.offset), store3(lanes.bound.axis));
+    let (along, across) = (lanes.bound.along.store(), lanes.bound.across.store());
+    let (nowhere, everywhere, empty, left) = (
+        L::bits(f.nowhere),
+        L::bits(f.everywhere),
+        L::bits(lanes.empty),
+        L::bits(lanes.left),
+    );
+    for (k, (vpl, slot)) in vpls.iter().zip(out.iter_mut()).enumerate() {
+        *slot = None;
+        if (empty | nowhere | left) >> k & 1 == 1 {
+            continue;
+        }
+        let lane = |v: &F8| v.0[k];
+        let (along, across) = (f64::from(lane(&along)), f64::from(lane(&across)));
+        let test = PixelTest {
+            position: vpl.position.as_dvec3(),
+            normal: vpl.normal.as_dvec3(),
+            center: DVec3::from(center.each_ref().map(|c| f64::from(lane(c)))),
+            axis: DVec3::from(axis.each_ref().map(|c| f64::from(lane(c)))).normalize(),
+            inv_along_sq: (along * along).recip(),
+            inv_across_sq: (across * across).recip(),
+        };
+        let footprint = Footprint {
+            lo: lo.each_ref().map(lane),
+            hi: hi.each_ref().map(lane),
+            nowhere: false,
+            everywhere: everywhere >> k & 1 == 1,
+        };
+        *slot = screen.place(vpl, indices[k], test, &footprint);
+    }
+    left & (u8::MAX >> (8 - vpls.len()))
+}
+
+/// Eight VPLs' bounds: for the footprint, and the centre's offset from q for the pixels'
+/// test; `empty` where a VPL reflects nothing (ωi·n <= 0, no flux), `left` where its radius
+/// lies outside [`RADII`] (left to slc-bounds, whose f64 radius and overflow checks serve
+/// the extremes).
+struct Lanes<L: Real> {
+    bound: Bound<L>,
+    offset: [L; 3],
+    empty: L::Mask,
+    left: L::Mask,
+}
+
+/// The radii the lanes bound: far from f32's underflow and from an overflow of the
+/// footprint's squares.
+const RADII: [f32; 2] = [1e-12, 1e9];
+
+impl<L: Lanes8> Lanes<L> {
+    /// The bounds of `group` (plain VPLs) for δ = `delta`, centres relative to `eye`.
+    #[inline(always)]
+    fn of(group: &[&Vpl; 8], eye: Vec3, delta: f32) -> Self {
+        let relative: [L; 3] = load3(gather3(group, |v| (v.position - eye).to_array()));
+        let raw_normal: [L; 3] = load3(gather3(group, |v| v.normal.to_array()));
+        let raw_omega: [L; 3] = load3(gather3(group, |v| v.omega_i.to_array()));
+        let flux: [L; 3] = load3(gather3(group, |v| v.flux.to_array()));
+        // Per channel F(c) = a + b (1 − c)⁵: Schlick (F0, 1 − F0); diffuse (kd, 0).
+        let (fa, fb): ([L; 3], [L; 3]) = (
+            load3(gather3(group, |v| fresnel(v).0.to_array())),
+            load3(gather3(group, |v| fresnel(v).1.to_array())),
+        );
+        let alpha = L::load(&gather(group, |v| v.brdf.alpha));
+        let xi = L::load(&gather(group, |v| v.xi));
+        let glossy = L::load_mask(&gather_flags(group, |v| v.lobe == VplLobe::Glossy));
+        let (zero, one) = (L::splat(0.0), L::splat(1.0));
+        let (n, wi) = (normalize(raw_normal), normalize(raw_omega));
+        let cos_i = dot(n, wi);
+        let sin_i = {
+            let c = cross(n, wi);
+            dot(c, c).sqrt()
+        };
+        // F_max at θh_max (supplemental eq. 2): cos θh_max = cos θi / sqrt(2 (1 + sin θi)).
+        let cos_h = clamp01(cos_i) / (L::splat(2.0) * (one + clamp01(sin_i))).sqrt();
+        let t = one - clamp01(cos_h);
+        let t2 = t * t;
+        let m = t2 * t2 * t;
+        let peak: L = max(
+            max(flux[0] * (fa[0] + fb[0] * m), flux[1] * (fa[1] + fb[1] * m)),
+            flux[2] * (fa[2] + fb[2] * m),
+        );
+        // Glossy: r² = Φ F_max G1(ωi) / (4π δ ξ cos θi) (eq. 12), G1/cos in closed form;
+        // diffuse: the peak range² = Φ kd / (π δ ξ) (section 6).
+        let alpha_sq = alpha * alpha;
+        let c = max(cos_i, -cos_i);
+        let g1_over_cos = L::splat(2.0) / (c + ((one - alpha_sq) * c * c + alpha_sq).sqrt());
+        let factor = L::select(glossy, g1_over_cos * L::splat(0.25), one);
+        let pi_delta = L::splat(core::f32::consts::PI * delta);
+        let r = L::sqrt(peak * factor / (pi_delta * xi)) * L::splat(1.0 + LANE_SLACK);
+        // Nothing reflected: ωi·n <= 0 as the shader forms it (reach::reflects_nothing), or no
+        // flux.
+        let empty = !(dot(raw_normal, raw_omega).gt(zero) & peak.gt(zero));
+        let left = !empty & !(r.gt(L::splat(RADII[0])) & r.le(L::splat(RADII[1])));
+        // Glossy: the spheroid along ω_u = normalize(2 cos θi n − ωi), semi-axes
+        // ((1 + α²)/(2α) r, r, r), centre q + (1 − α²)/(2α) r ω_u (eq. 13-15).
+        let two_cos = L::splat(2.0) * cos_i;
+        let reflected = normalize([
+            two_cos * n[0] - wi[0],
+            two_cos * n[1] - wi[1],
+            two_cos * n[2] - wi[2],
+        ]);
+        let half_over_alpha = L::splat(0.5) / alpha;
+        let along_glossy = (one + alpha_sq) * half_over_alpha * r;
+        let offset_glossy = (one - alpha_sq) * half_over_alpha * r;
+        // Diffuse (Sphere::diffuse): centre q + r (1/27)^(1/4) n, radius r (4/27)^(1/4).
+        let (offset_diffuse, radius_diffuse) = (
+            r * L::splat((1.0f32 / 27.0).powf(0.25)),
+            r * L::splat((4.0f32 / 27.0).powf(0.25)),
+        );
+        let grown = L::splat((1.0 + BOUND_SLACK) as f32);
+        let along = L::select(glossy, along_glossy, radius_diffuse) * grown;
+        let across = L::select(glossy, r, radius_diffuse) * grown;
+        let length = L::select(glossy, offset_glossy, offset_diffuse);
+        let axis = [
+            L::select(glossy, reflected[0], n[0]),
+            L::select(glossy, reflected[1], n[1]),
+            L::select(glossy, reflected[2], n[2]),
+        ];
+        let offset = [axis[0] * length, axis[1] * length, axis[2] * length];
+        let center = [
+            relative[0] + offset[0],
+            relative[1] + offset[1],
+            relative[2] + offset[2],
+        ];
+        let size = dot(relative, relative).sqrt() + length + along;
+        Self {
+            bound: Bound {
+                center,
+                axis,
+                along,
+                across,
+                size,
+            },
+            offset,
+            empty,
+            left,
+        }
+    }
+}
+
+/// Three lanes loaded. (The lanes' helpers are functions, not closures: in the AVX2 kernel a
+/// closure is a function of its own, compiled without its target features.)
+#[inline(always)]
+fn load3<L: Lanes8>(v: [F8; 3]) -> [L; 3] {
+    [L::load(&v[0]), L::load(&v[1]), L::load(&v[2])]
+}
+
+/// Three lanes stored.
+#[inline(always)]
+fn store3<L: Lanes8>(v: [L; 3]) -> [F8; 3] {
+    [v[0].store(), v[1].store(), v[2].store()]
+}
+
+/// Two lanes stored.
+#[inline(always)]
+fn store2<L: Lanes8>(v: [L; 2]) -> [F8; 2] {
+    [v[0].store(), v[1].store()]
+}
+
+/// Three values in every lane.
+#[inline(always)]
+fn splat3<L: Real>(v: [f32; 3]) -> [L; 3] {
+    [L::splat(v[0]), L::splat(v[1]), L::splat(v[2])]
+}
+
+/// `v` over its length (`check::unit`'s renormalisation).
+#[inline(always)]
+fn normalize<L: Real>(v: [L; 3]) -> [L; 3] {
+    let len = dot(v, v).sqrt();
+    [v[0] / len, v[1] / len, v[2] / len]
+}
+
+/// A plain VPL's F(c) = a + b (1 − c)⁵ per channel as (a, b): Schlick's (F0, 1 − F0) for a
+/// glossy VPL, (kd, 0) for a diffuse one (Φ kd is its reflected flux).
+fn fresnel(vpl: &Vpl) -> (Vec3, Vec3) {
+    match (vpl.lobe, vpl.brdf.fresnel) {
+        (VplLobe::Glossy, Fresnel::Schlick(f0)) => (f0, Vec3::ONE - f0),
+        _ => (vpl.brdf.kd, Vec3::ZERO),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::test_rng::Rng;
+    use crate::view::CullView;
+    use crate::vpl_bounds::LocalBound;
+    use slc_bounds::{Brdf, StochasticParams};
+    use slc_core::{Camera, Interleaving};
+
+    fn random_vpl(rng: &mut Rng, id: u32) -> Vpl {
+        let unit = |rng: &mut Rng| loop {
+            let v = Vec3::new(
+                rng.range(-1.0, 1.0),
+                rng.range(-1.0, 1.0),
+                rng.range(-1.0, 1.0),
+            );
+            if v.length_squared() > 1e-3 && v.length_squared() <= 1.0 {
+                break v.normalize();
+            }
+        };
+        let normal = unit(rng);
+        let mut omega_i = unit(rng);
+        if omega_i.dot(normal) < 0.0 && rng.f32() < 0.9 {
+            omega_i = -omega_i;
+        }
+        Vpl {
+            position: Vec3::new(
+                rng.range(-5.0, 5.0),
+                rng.range(-5.0, 5.0),
+                rng.range(-20.0, 2.0),
+            ),
+            normal,
+            geometric_normal: normal,
+            omega_i,
+            flux: Vec3::new(rng.f32(), rng.f32(), rng.f32()) * 10f32.powf(rng.range(-6.0, 6.0)),
+            brdf: Brdf {
+                kd: Vec3::new(rng.f32(), rng.f32(), rng.f32()),
+                fresnel: Fresnel::Schlick(Vec3::new(rng.f32(), rng.f32(), rng.f32())),
+                alpha: 10f32.powf(rng.range(-2.0, 0.0)),
+                anisotropy: None,
+            },
+            lobe: if rng.f32() < 0.7 {
+                VplLobe::Glossy
+            } else {
+                VplLobe::Diffuse
+            },
+            id,
+            xi: if rng.f32() < 0.2 {
+                [1e-6, 1.0 - 1e-6][rng.f32().round() as usize]
+            } else {
+                rng.range(1e-4, 1.0)
+            },
+        }
+    }
+
+    /// The lanes bound plain VPLs (δ from 1e-9 to 1e3, flux from 1e-6 to 1e6, α from 0.01
+    /// to 1, ξ near 0 and 1) at least as far as slc-bounds does: every point of slc-bounds'
+    /// bound (its `LocalBound`, grown by `BOUND_SLACK`) passes the lanes' pixel test, where it
+    /// is not behind the VPL, and every pixel the scalar path places the VPL on the lanes
+    /// place it on too.
+    #[test]
+    fn lanes_contain_the_scalar_bounds() {
+        let cam = Camera::look_at(Vec3::new(0.0, 0.0, 3.0), Vec3::ZERO, Vec3::Y, 1.2).unwrap();
+        let (w, h) = (96, 64);
+        let view = CullView::new(&cam, w, h).unwrap();
+        let screen = Screen::new(&view, w, h, Interleaving { k: 2, seed: 1 }, 0.0, 0.05);
+        let mut rng = Rng(0x0B14_ED42);
+        let (mut placed, mut points) = (0, 0);
+        for case in 0..3000 {
+            let delta = 10f32.powf(rng.range(-9.0, 3.0));
+            let vpls: Vec<Vpl> = (0..8).map(|k| random_vpl(&mut rng, case * 8 + k)).collect();
+            assert!(vpls.iter().all(plain));
+            let group: Vec<&Vpl> = vpls.iter().collect();
+            let indices: Vec<u32> = (0..8).collect();
+            let mut out = [None; 8];
+            let left = scatter_plain(&screen, &group, &indices, delta, &mut out);
+            for (k, vpl) in vpls.iter().enumerate() {
+                let scalar = screen.scatter(vpl, k as u32, delta).unwrap();
+                if left >> k & 1 == 1 {
+                    continue;
+                }
+                let lanes = out[k];
+                let (Some(s), Some(l)) = (scalar, lanes) else {
+                    assert!(scalar.is_none(), "case {case}, lane {k}: {vpl:?}");
+                    continue;
+                };
+                placed += 1;
+                let [a0, b0, a1, b1] = s.pixels;
+                let [c0, d0, c1, d1] = l.pixels;
+                assert!(
+                    c0 <= a0 && d0 <= b0 && c1 >= a1 && d1 >= b1,
+                    "case {case}: {s:?} {l:?}"
+                );
+                let params = StochasticParams::new(delta, vpl.xi).unwrap();
+                let local = LocalBound::new(vpl, &params, crate::GlossyBound::Ellipsoid).unwrap();
+                let (center, rotation, semi) = match local {
+                    LocalBound::Sphere { center, radius_sq } => (
+                        center,
+                        glam::DMat3::IDENTITY,
+                        glam::DVec3::splat(radius_sq.sqrt()),
+                    ),
+                    LocalBound::Spheroid {
+                        center,
+                        rotation,
+                        semi_axes,
+                    } => (center, rotation.as_dmat3(), semi_axes.as_dvec3()),
+                    LocalBound::Empty => unreachable!("placed"),
+                };
+                for _ in 0..40 {
+                    let u = glam::DVec3::new(
+                        rng.range64(-1.0, 1.0),
+                        rng.range64(-1.0, 1.0),
+                        rng.range64(-1.0, 1.0),
+                    );
+                    let Some(u) = u.try_normalize() else { continue };
+                    let d = center + rotation * (semi * u * rng.range64(0.99, 1.0));
+                    let x = (vpl.position.as_dvec3() + d).as_vec3();
+                    if s.test.contains(x) {
+                        points += 1;
+                        assert!(l.test.contains(x), "case {case}: {d} in {local:?}");
+                    }
+                }
+            }
+        }
+        assert!(
+            placed > 1000 && points > 10_000,
+            "{placed} placed, {points} points"
+        );
+    }
+}
