@@ -47,6 +47,7 @@ pub mod material;
 pub mod mesh;
 #[cfg(feature = "loaders")]
 pub mod obj_loader;
+pub mod progress;
 pub mod render;
 pub mod renderer;
 pub mod rng;
@@ -81,8 +82,9 @@ pub use light::{Incident, Light, MAX_RADIOMETRIC};
 pub use load::{load_scene, load_scene_file, MAX_DROPPED_SHARE};
 pub use material::{AlphaMask, Material, MaterialAnisotropy, MaterialModel, NormalMap, ALPHA_MIN};
 pub use mesh::Mesh;
+pub use progress::{Cancel, Monitor, Progress};
 pub use render::{render, render_loaded};
-pub use renderer::{BackendInfo, Capabilities, PreparedFrame, Progress, Renderer};
+pub use renderer::{BackendInfo, Capabilities, PreparedFrame, Renderer};
 pub use scene::{LoadReport, Scene};
 #[cfg(feature = "loaders")]
 pub use settings::{load_settings, MaterialOverride, Settings};

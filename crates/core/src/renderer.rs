@@ -11,14 +11,12 @@ use crate::camera::Camera;
 use crate::culling::{CullMetrics, Interleaving};
 use crate::frame::{LightSampling, Method, RenderError, RenderSettings, Shaded, Timings};
 use crate::framebuffer::Image;
+use crate::progress::Progress;
 use crate::scene::Scene;
 use crate::shader::SampledLights;
 use crate::strategy::{GlossyBound, Strategy};
 use crate::vpl::Vpl;
 use std::collections::BTreeMap;
-
-/// Called with the number of pixel-passes finished.
-pub type Progress<'a> = &'a (dyn Fn(u64) + Sync);
 
 /// What a report says about the backend that rendered.
 #[derive(Clone, Debug, PartialEq)]
@@ -120,7 +118,9 @@ pub trait PreparedFrame {
 }
 
 /// A rendering backend: the steps of one frame. Steps a backend does not have return
-/// [`RenderError::Unsupported`]; [`Renderer::capabilities`] says which those are.
+/// [`RenderError::Unsupported`]; [`Renderer::capabilities`] says which those are. Steps that
+/// take a [`Progress`] report their finished pixels to it and check it between their tiles
+/// (or rows, or dispatches): once it is cancelled they return [`RenderError::Cancelled`].
 pub trait Renderer {
     /// The scene as this backend keeps it between frames (its BVH, its uploaded buffers).
     type Scene;

@@ -4,7 +4,8 @@ use crate::culling::Interleaving;
 use crate::frame::{
     merge_optional, LightSampling, Method, RenderError, Shaded, Stochastic, Timings,
 };
-use crate::renderer::{PreparedFrame, Progress, Renderer};
+use crate::progress::Progress;
+use crate::renderer::{PreparedFrame, Renderer};
 use crate::scene::Scene;
 
 /// What a shader reads: the scene, what the backend keeps of it, and a prepared frame.
@@ -41,6 +42,7 @@ pub trait Shader {
 
 /// The stochastic estimate of eq. (3): cull (`culling`), shade the lists (`shading`), filter
 /// (`denoise`), each timed on the wall clock; metrics by brute force after the timed passes.
+/// `progress` is checked between the passes (and by the backend between its tiles).
 impl Shader for Stochastic {
     fn name(&self) -> &'static str {
         self.strategy.name()
@@ -59,9 +61,11 @@ impl Shader for Stochastic {
         };
         let mut timings = Timings::default();
         let ((lists, image), gpu_timings) = r.profiled(|| {
+            progress.check()?;
             let lists = timings.time("culling", || {
                 r.cull(p, self.strategy, self.delta, interleaving)
             })?;
+            progress.check()?;
             let mut image = timings.time("shading", || {
                 r.shade_lists(
                     input.loaded,
@@ -74,15 +78,21 @@ impl Shader for Stochastic {
                 )
             })?;
             if self.denoise {
+                progress.check()?;
                 image = timings.time("denoise", || r.denoise(p, image))?;
             }
             Ok((lists, image))
         })?;
+        progress.check()?;
         let indirect = r.read_image(p, image)?;
         let metrics = self
             .metrics
-            .then(|| r.measure(p, &lists, self.delta, interleaving))
+            .then(|| {
+                progress.check()?;
+                r.measure(p, &lists, self.delta, interleaving)
+            })
             .transpose()?;
+        progress.check()?;
         Ok(Shaded {
             indirect,
             timings,
@@ -146,6 +156,7 @@ impl Shader for SampledShader {
     ) -> Result<Shaded, RenderError> {
         // Profiled as the stochastic shader's passes are: a GPU with trusted timestamps gives
         // the VSGL passes' own times beside the wall clock.
+        progress.check()?;
         let (mut shaded, gpu_timings) = r.profiled(|| {
             r.shade_sampled(
                 input.scene,
@@ -159,6 +170,7 @@ impl Shader for SampledShader {
             )
         })?;
         shaded.gpu_timings = gpu_timings;
+        progress.check()?;
         Ok(shaded)
     }
 }
@@ -179,9 +191,11 @@ impl Shader for AllVplShader {
         progress: Progress,
     ) -> Result<Shaded, RenderError> {
         let mut timings = Timings::default();
+        progress.check()?;
         let indirect = timings.time("vpl_shading", || {
             r.shade_all_vpls(input.loaded, input.prepared, input.visibility, progress)
         })?;
+        progress.check()?;
         Ok(Shaded::new(indirect, timings))
     }
 }

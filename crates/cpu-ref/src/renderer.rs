@@ -93,9 +93,9 @@ impl Renderer for CpuRenderer {
     ) -> Result<Image, RenderError> {
         let input = p.cull_input(delta, interleaving);
         let spare = self.spare.take();
-        Ok(shade_lists_into(
-            &p.tracer, &input, lists, visibility, progress, spare,
-        )?)
+        let image = shade_lists_into(&p.tracer, &input, lists, visibility, progress, spare)?;
+        progress.check()?;
+        Ok(image)
     }
 
     fn listed_pairs(&self, lists: &LightLists) -> Option<u64> {
@@ -140,7 +140,10 @@ impl Renderer for CpuRenderer {
             SampledLights::Vsgl => shade_vsgl,
             SampledLights::Vpl => shade_sampled_vpls,
         };
-        shade(p, sampling, seed, visibility, progress).map_err(RenderError::backend)
+        let shaded =
+            shade(p, sampling, seed, visibility, progress).map_err(RenderError::backend)?;
+        progress.check()?;
+        Ok(shaded)
     }
 
     fn shade_all_vpls(
@@ -150,14 +153,16 @@ impl Renderer for CpuRenderer {
         visibility: bool,
         progress: Progress,
     ) -> Result<Image, RenderError> {
-        Ok(shade_vpls(
+        let image = shade_vpls(
             &p.tracer,
             &p.gbuffer,
             &p.vpls,
             VplEstimator::Exact,
             visibility,
             progress,
-        )?)
+        )?;
+        progress.check()?;
+        Ok(image)
     }
 
     fn path_trace(
@@ -173,6 +178,10 @@ impl Renderer for CpuRenderer {
         let pixels: Vec<_> = (0..h)
             .into_par_iter()
             .flat_map_iter(|j| {
+                // Once cancelled, the rows left are black and the pass an error.
+                if progress.cancelled() {
+                    return vec![Default::default(); w as usize];
+                }
                 let row: Vec<_> = (0..w)
                     .map(|i| {
                         trace_pixel_sample(
@@ -186,10 +195,11 @@ impl Renderer for CpuRenderer {
                         )
                     })
                     .collect();
-                progress(w as u64);
+                progress.advance(w as u64);
                 row
             })
             .collect();
+        progress.check()?;
         let (mut direct, mut indirect) = (Image::new(w, h), Image::new(w, h));
         for (k, (d, i)) in pixels.into_iter().enumerate() {
             direct.pixels[k] = d;

@@ -413,7 +413,8 @@ impl Renderer for GpuRenderer {
             }
         })?;
         // One dispatch shades every pixel: they are done together.
-        progress(u64::from(p.gbuffer.width) * u64::from(p.gbuffer.height));
+        progress.advance(u64::from(p.gbuffer.width) * u64::from(p.gbuffer.height));
+        progress.check()?;
         Ok(image)
     }
 
@@ -491,9 +492,12 @@ impl Renderer for GpuRenderer {
             sigma2_floor: loaded.epsilon * loaded.epsilon,
             diffuse: s.diffuse,
         };
+        // Checked between the dispatches.
+        progress.check()?;
         let mut mip = timings.time("vsgl_mip", || {
             self.step("vsgl_mip", || build.mip(ctx, &p.maps))
         })?;
+        progress.check()?;
         timings.time("importance_map", || {
             self.step("importance_map", || match s.importance {
                 Importance::Flux => Ok(()),
@@ -502,6 +506,7 @@ impl Renderer for GpuRenderer {
                 }
             })
         })?;
+        progress.check()?;
         let vsgls = timings.time("light_sampling", || {
             self.step("light_sampling", || build.sample(ctx, mip, &sampling))
         })?;
@@ -523,6 +528,7 @@ impl Renderer for GpuRenderer {
         } else {
             None
         };
+        progress.check()?;
         let (rgb, lights) = timings.time("light_shading", || {
             self.step("light_shading", || {
                 self.vsgl_shader
@@ -530,7 +536,8 @@ impl Renderer for GpuRenderer {
             })
         })?;
         let indirect = read_image(ctx, &rgb, g.width, g.height).map_err(gpu)?;
-        progress(u64::from(g.width) * u64::from(g.height));
+        progress.advance(u64::from(g.width) * u64::from(g.height));
+        progress.check()?;
         Ok(Shaded {
             sampled_lights: Some(lights as usize),
             listed_pairs: None,
