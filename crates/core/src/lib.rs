@@ -54,6 +54,8 @@ pub mod rng;
 pub mod scene;
 #[cfg(feature = "loaders")]
 pub mod settings;
+#[cfg(feature = "loaders")]
+pub mod settings_tables;
 pub mod shader;
 pub mod shapes;
 pub mod strategy;

@@ -1,6 +1,7 @@
 //! One entry point for every scene source: built-in names, scene files and scene settings.
 use crate::builtin::{builtin, BUILTIN_NAMES};
 use crate::error::SceneError;
+use crate::file_read::recording;
 use crate::gltf_loader::load_gltf;
 use crate::obj_loader::load_obj;
 use crate::scene::Scene;
@@ -47,14 +48,16 @@ pub fn load_scene(spec: &str) -> Result<Scene, SceneError> {
 /// [`MAX_DROPPED_SHARE`] of its triangles to non-finite vertices or bad indices is refused
 /// ([`SceneError::Invalid`]): what is left would be a different scene.
 pub fn load_scene_file(path: &Path) -> Result<Scene, SceneError> {
-    let mut scene = match extension(path).as_deref() {
+    let (loaded, files) = recording(|| match extension(path).as_deref() {
         Some("gltf" | "glb") => load_gltf(path),
         Some("obj") => load_obj(path),
         _ => Err(SceneError::UnsupportedFormat {
             path: path.to_path_buf(),
         }),
-    }?;
+    });
+    let mut scene = loaded?;
     scene.source = Some(path.to_path_buf());
+    scene.report.files = files;
     scene.report.summarize_ignored();
     check_dropped(&mut scene)?;
     Ok(scene)

@@ -8,6 +8,8 @@
 //! ```toml
 //! # Relative to this file (an absolute path is used as is): a .gltf, .glb or .obj file.
 //! scene = "../../shared/scenes/sponza/sponza.obj"
+//! # Optional: what the scene file is and where to get it, said when it is missing.
+//! scene_source = "the Dabrovic Sponza atrium (Marko Dabrovic, 2002); see scenes/README.md"
 //! # Optional. Default: the [[lights]] below replace the file's lights if any are given,
 //! # else the file's lights are kept. false: add them to the file's lights.
 //! replace_lights = true
@@ -103,6 +105,8 @@ pub struct Settings {
     pub path: PathBuf,
     /// The scene file, resolved against the settings file's folder.
     pub scene: PathBuf,
+    /// What the scene file is and where to get it, for the error when it is missing.
+    pub scene_source: Option<String>,
     /// The camera that replaces the scene file's, if given.
     pub camera: Option<Camera>,
     /// Lights in the order of the file.
@@ -129,16 +133,24 @@ pub struct MaterialOverride {
 }
 
 /// Loads the scene a settings file names and applies the settings to it.
+/// The scene's files ([`crate::LoadReport::files`]) start with the settings file. A scene
+/// file that is not there is an error that says what it is and where to get it, where the
+/// settings file's `scene_source` tells.
 pub fn load_settings(path: &Path) -> Result<Scene, SceneError> {
     let settings = Settings::read(path)?;
     if !settings.scene.is_file() {
+        let source = settings
+            .scene_source
+            .as_ref()
+            .map_or_else(String::new, |s| format!(": {s}"));
         return Err(SceneError::Settings {
             path: path.to_path_buf(),
-            message: format!("scene file {} not found", settings.scene.display()),
+            message: format!("scene file {} not found{source}", settings.scene.display()),
         });
     }
     let mut scene = load_scene_file(&settings.scene)?;
     settings.apply(&mut scene)?;
+    scene.report.files.insert(0, path.to_path_buf());
     Ok(scene)
 }
 
@@ -188,6 +200,7 @@ impl Settings {
         Ok(Self {
             path: path.to_path_buf(),
             scene,
+            scene_source: raw.scene_source,
             camera,
             lights,
             replace_lights,
@@ -409,6 +422,7 @@ fn numbered<R, T>(
 #[serde(deny_unknown_fields)]
 struct RawSettings {
     scene: String,
+    scene_source: Option<String>,
     replace_lights: Option<bool>,
     camera: Option<RawCamera>,
     #[serde(default)]
@@ -419,7 +433,7 @@ struct RawSettings {
 
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
-struct RawCamera {
+pub(crate) struct RawCamera {
     position: [f32; 3],
     target: [f32; 3],
     up: Option<[f32; 3]>,
@@ -430,7 +444,7 @@ struct RawCamera {
 
 #[derive(Deserialize)]
 #[serde(tag = "type", rename_all = "lowercase", deny_unknown_fields)]
-enum RawLight {
+pub(crate) enum RawLight {
     Point {
         position: [f32; 3],
         intensity: Rgb,
@@ -523,7 +537,7 @@ fn in_unit_interval(key: &str, v: f32) -> Result<f32, String> {
 }
 
 impl RawCamera {
-    fn validate(self) -> Result<Camera, String> {
+    pub(crate) fn validate(self) -> Result<Camera, String> {
         let position = finite("position", self.position)?;
         let target = finite("target", self.target)?;
         let up = unit("up", self.up.unwrap_or([0.0, 1.0, 0.0]))?;
@@ -547,7 +561,7 @@ impl RawCamera {
 impl RawLight {
     /// The light, refused where [`Light::problem`] finds a problem (e.g. an intensity whose
     /// products overflow f32).
-    fn validate(self) -> Result<Light, String> {
+    pub(crate) fn validate(self) -> Result<Light, String> {
         let light = self.build()?;
         match light.problem() {
             Some(problem) => Err(problem),

@@ -482,6 +482,11 @@ fn files_that_are_missing_or_broken_are_errors_naming_them() {
             "nowhere/room.obj not found",
         ),
         (
+            "described.toml",
+            "scene = \"nowhere/room.obj\"\nscene_source = \"the room of X (CC BY); get it at Y\"\n",
+            "nowhere/room.obj not found: the room of X (CC BY); get it at Y",
+        ),
+        (
             "broken.toml",
             "scene = \"room.obj\"\n[camera\n",
             "TOML parse error",
@@ -502,6 +507,33 @@ fn files_that_are_missing_or_broken_are_errors_naming_them() {
         }
     }
     std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// Every file a scene was read from is listed once, in the order read: the settings file,
+/// the OBJ, its material library and the textures it names.
+#[test]
+fn a_scene_lists_every_file_it_was_read_from() {
+    let settings = Path::new(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../../scenes/sponza.toml"
+    ));
+    let scene = load_scene(settings.to_str().unwrap()).unwrap();
+    let files = &scene.report.files;
+    assert_eq!(files[0], settings);
+    assert!(files[1].ends_with("sponza/sponza.obj") && files[2].ends_with("sponza/sponza.mtl"));
+    let textures = &files[3..];
+    assert!(
+        textures.len() >= 10
+            && textures
+                .iter()
+                .all(|f| f.extension().is_some_and(|e| e.eq_ignore_ascii_case("jpg"))),
+        "{files:?}"
+    );
+    let mut unique = files.clone();
+    unique.sort();
+    unique.dedup();
+    assert_eq!(unique.len(), files.len());
+    assert!(builtin("default").unwrap().report.files.is_empty());
 }
 
 #[test]
