@@ -117,7 +117,7 @@ impl OnBackend for Bench<'_> {
         let first = args.frame.settings(Method::Stochastic(base), 1);
         r.check(&first).map_err(message)?;
         let device = r.info(&first);
-        let provenance = Provenance::new(args.frame.scene.as_deref(), &scene);
+        let provenance = Provenance::new(&scene);
         // The listed pairs, and so the ceiling, are counted by the CPU only. The ceiling is
         // measured right before every run: this machine's speed drifts from minute to minute,
         // and a share against a ceiling measured once at the start drifts with it.
@@ -173,7 +173,7 @@ impl OnBackend for Bench<'_> {
                 let settings = frame.settings(Method::Stochastic(base), 1);
                 eprintln!("{w}x{h}, RSM {rsm}²");
                 let p = r
-                    .prepare(&scene, &loaded, &settings, None)
+                    .prepare(&scene, &loaded, &settings, None, &|_| {})
                     .map_err(message)?;
                 let input = frame.input(&scene, &loaded, &p);
                 let vpl_count = p.vpl_count().map_err(message)?;

@@ -20,7 +20,7 @@ use slc_app::limits::check_memory;
 use slc_app::out_dir::OutDir;
 use slc_app::progress::bar;
 use slc_app::provenance::Provenance;
-use slc_app::reference::{all_vpl_reference, cpu_input};
+use slc_app::reference::{all_vpl_reference_with_bar, cpu_input};
 use slc_app::repeat::repeated;
 use slc_app::report::{FrameFacts, Report};
 use slc_core::frame::{Method, RenderSettings, Stochastic, Timings};
@@ -121,7 +121,7 @@ impl OnBackend for Compare<'_> {
         let loaded = r.load(&scene).map_err(message)?;
         let before_prepare = r.readback_bytes();
         let p = r
-            .prepare(&scene, &loaded, &settings, None)
+            .prepare(&scene, &loaded, &settings, None, &|_| {})
             .map_err(message)?;
         let prepare_readback = readback_since(r, before_prepare);
         // The CPU's reference and unculled estimate read the backend's frame (back).
@@ -132,7 +132,7 @@ impl OnBackend for Compare<'_> {
         let cpu_device = CpuRenderer::default().info(&settings);
 
         let reference = (!args.no_reference)
-            .then(|| all_vpl_reference(cpu, true))
+            .then(|| all_vpl_reference_with_bar(cpu))
             .transpose()?;
         let reference_total = reference.as_ref().map(|r| p.direct().add(r));
         if let (Some(r), Some(total)) = (&reference, &reference_total) {
@@ -141,7 +141,6 @@ impl OnBackend for Compare<'_> {
             let facts = FrameFacts {
                 device: &cpu_device,
                 scene: &scene,
-                spec: f.scene.as_deref(),
                 settings: &settings,
                 method: Method::VplReference,
                 spp: 1,
@@ -166,7 +165,7 @@ impl OnBackend for Compare<'_> {
         .map_err(message)?
         .indirect;
         let input = f.input(&scene, &loaded, &p);
-        let provenance = Provenance::new(f.scene.as_deref(), &scene);
+        let provenance = Provenance::new(&scene);
         let mut rows = Vec::new();
         for strategy in strategies {
             let s = Stochastic { strategy, ..base };
@@ -238,7 +237,6 @@ impl OnBackend for Compare<'_> {
             let facts = FrameFacts {
                 device: &device,
                 scene: &scene,
-                spec: f.scene.as_deref(),
                 settings: &settings,
                 method: Method::Stochastic(s),
                 spp: 1,
@@ -339,7 +337,6 @@ fn sampled_lights<R: Renderer>(
         let facts = FrameFacts {
             device: &device,
             scene: cpu.scene,
-            spec: f.scene.as_deref(),
             settings: &settings,
             method,
             spp: 1,

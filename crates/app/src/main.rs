@@ -8,8 +8,6 @@ mod compare_summary;
 mod figure;
 mod flip;
 mod heatmap;
-mod layers_exr;
-mod output;
 mod page;
 mod plot;
 mod render_cmd;
@@ -21,6 +19,8 @@ mod view;
 mod vsgl_sweep;
 
 use clap::{Parser, Subcommand};
+// Shared with the Python package (`slc_app`), named here as the command's own modules.
+use slc_app::{layers_exr, output};
 
 #[derive(Parser)]
 #[command(

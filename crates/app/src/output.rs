@@ -1,5 +1,5 @@
 //! Writing images: linear float EXR and sRGB PNG.
-use slc_app::out_dir::OutDir;
+use crate::out_dir::OutDir;
 use slc_core::Image;
 use std::path::Path;
 

@@ -145,15 +145,18 @@ impl<'a> Page<'a> {
         let p = self.provenance;
         let _ = writeln!(
             html,
-            "<h2>Provenance</h2>\n<p class=\"provenance\">slc {} ({}), started {} on {} ({} threads), {}.<br>\
-             Command: <code>{}</code><br>Scene files: {}</p>\n</body></html>",
+            "<h2>Provenance</h2>\n<p class=\"provenance\">slc {} ({}), built by {} ({}), started {} on {} ({} threads), {}.<br>\
+             Command: <code>{}</code><br>Scene (SHA-256 of its whole description) <code>{}</code>; files: {}</p>\n</body></html>",
             p.slc_version,
             xml_escape(p.git_commit.unwrap_or("not built from git")),
+            xml_escape(p.rustc),
+            xml_escape(p.build_profile),
             xml_escape(&p.started_at),
             xml_escape(p.cpu.as_deref().unwrap_or("an unknown CPU")),
             p.cpu_threads,
             xml_escape(&p.os),
             xml_escape(&p.command_line.join(" ")),
+            p.scene_sha256,
             if p.scene_files.is_empty() {
                 "none (a built-in scene)".to_string()
             } else {
@@ -201,7 +204,7 @@ mod tests {
         Provenance {
             // Other tests of this process may have hashed a scene file first.
             scene_files: Vec::new(),
-            ..Provenance::new(None, &slc_core::builtin("default").unwrap())
+            ..Provenance::new(&slc_core::builtin("default").unwrap())
         }
     }
 

@@ -1,15 +1,6 @@
 //! The progress bar of long commands.
 use indicatif::{ProgressBar, ProgressStyle};
 
-/// [`bar`] when `show`, else a hidden bar (the Python package shows progress only when asked).
-pub fn bar_if(show: bool, total: u64, message: String) -> ProgressBar {
-    if show {
-        bar(total, message)
-    } else {
-        ProgressBar::hidden()
-    }
-}
-
 /// A bar over `total` pixel-passes with a message. It ticks on its own, showing the time
 /// spent, so a backend that reports work only at the end of a pass (the GPU's dispatches)
 /// still shows that it runs.

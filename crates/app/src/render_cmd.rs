@@ -123,12 +123,11 @@ impl OnBackend for Render<'_> {
             &frame.indirect,
             &total,
         )?;
-        let provenance = Provenance::new(f.scene.as_deref(), &scene);
+        let provenance = Provenance::new(&scene);
         write_layers(&mut out, "", &images, frame.metrics.as_ref(), &provenance)?;
         let facts = FrameFacts {
             device: &device,
             scene: &scene,
-            spec: f.scene.as_deref(),
             settings: &settings,
             method: settings.method,
             spp: args.spp,

@@ -104,9 +104,6 @@ impl From<Option<&CullMetrics>> for Metrics {
 pub struct FrameFacts<'a> {
     pub device: &'a BackendInfo,
     pub scene: &'a Scene,
-    /// What the scene was named by (a file, a settings file or a built-in name), for the
-    /// provenance.
-    pub spec: Option<&'a str>,
     /// The frame's size, RSM, seed and visibility (its method is `method`).
     pub settings: &'a RenderSettings,
     pub method: Method,
@@ -170,7 +167,7 @@ impl Report {
             _ => None,
         };
         Report {
-            provenance: Provenance::new(f.spec, f.scene),
+            provenance: Provenance::new(f.scene),
             scene: f.scene.name.clone(),
             backend: f.device.backend,
             adapter: f.device.adapter.clone(),

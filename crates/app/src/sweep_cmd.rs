@@ -21,7 +21,7 @@ use slc_app::limits::check_memory;
 use slc_app::out_dir::OutDir;
 use slc_app::progress::bar;
 use slc_app::provenance::Provenance;
-use slc_app::reference::{all_vpl_reference, cpu_input};
+use slc_app::reference::{all_vpl_reference_with_bar, cpu_input};
 use slc_app::repeat::{repeated, Spread};
 use slc_core::frame::{Method, Stochastic};
 use slc_core::shader::{ShadeInput, Shader as _};
@@ -137,13 +137,14 @@ impl OnBackend for Sweep<'_> {
         check_memory(&settings, &scene)?;
         let loaded = r.load(&scene).map_err(message)?;
         let p = r
-            .prepare(&scene, &loaded, &settings, None)
+            .prepare(&scene, &loaded, &settings, None, &|_| {})
             .map_err(message)?;
         let cpu_p = r.cpu_frame(&scene, &loaded, &p).map_err(message)?;
-        let reference = all_vpl_reference(cpu_input(&scene, &cpu_p, f.seed, f.visibility), true)?;
+        let reference =
+            all_vpl_reference_with_bar(cpu_input(&scene, &cpu_p, f.seed, f.visibility))?;
         let input = f.input(&scene, &loaded, &p);
         let points = sweep(args, r, input, &strategies, base, &reference)?;
-        let provenance = Provenance::new(f.scene.as_deref(), &scene);
+        let provenance = Provenance::new(&scene);
         let device = r.info(&settings);
         let columns = SettingsColumns::new(
             &provenance,

@@ -22,7 +22,7 @@ use slc_app::limits::check_memory;
 use slc_app::out_dir::OutDir;
 use slc_app::progress::bar;
 use slc_app::provenance::Provenance;
-use slc_app::reference::{all_vpl_reference, cpu_input};
+use slc_app::reference::{all_vpl_reference_with_bar, cpu_input};
 use slc_app::repeat::{repeated, Spread};
 use slc_core::frame::{Importance, LightSampling, Method, Timings};
 use slc_core::shader::{SampledLights, ShadeInput};
@@ -80,7 +80,13 @@ impl OnBackend for VsglSweep<'_> {
         }
         let loaded = r.load(&scene).map_err(message)?;
         let p = r
-            .prepare(&scene, &loaded, &f.settings(Method::VplReference, 1), None)
+            .prepare(
+                &scene,
+                &loaded,
+                &f.settings(Method::VplReference, 1),
+                None,
+                &|_| {},
+            )
             .map_err(message)?;
         let cpu_p = r.cpu_frame(&scene, &loaded, &p).map_err(message)?;
         let texels: usize = cpu_p
@@ -89,7 +95,8 @@ impl OnBackend for VsglSweep<'_> {
             .map(|m| m.texels.iter().flatten().count())
             .sum();
         let start = Instant::now();
-        let reference = all_vpl_reference(cpu_input(&scene, &cpu_p, f.seed, f.visibility), true)?;
+        let reference =
+            all_vpl_reference_with_bar(cpu_input(&scene, &cpu_p, f.seed, f.visibility))?;
         let reference_ms = start.elapsed().as_secs_f64() * 1e3;
         // With a warm-up run before each point's measured ones when `--repeat` > 1.
         let per_point = args.seeds * (args.repeat + u32::from(args.repeat > 1));
@@ -136,7 +143,7 @@ impl OnBackend for VsglSweep<'_> {
             }
         }
         progress.finish_and_clear();
-        let provenance = Provenance::new(f.scene.as_deref(), &scene);
+        let provenance = Provenance::new(&scene);
         let settings = f.settings(Method::VplReference, 1);
         let vpl_count = p.vpl_count().map_err(message)?;
         let columns = SettingsColumns::new(

@@ -483,7 +483,7 @@ struct RawMaterial {
     untagged,
     expecting = "a number or an array of three numbers [r, g, b]"
 )]
-enum Rgb {
+pub(crate) enum Rgb {
     Grey(f32),
     Rgb([f32; 3]),
 }
