@@ -104,7 +104,7 @@ pub fn render_loaded<R: Renderer>(
             continue;
         }
         let jitter = (settings.spp > 1).then_some(pass);
-        let p = r.prepare(scene, loaded, settings, jitter)?;
+        let p = r.prepare(scene, loaded, settings, jitter, progress)?;
         progress.check()?;
         timings.merge(p.timings());
         merge_optional(&mut gpu_timings, p.gpu_timings());

@@ -155,13 +155,15 @@ pub trait Renderer {
 
     /// The G-buffer, the RSMs, the VPLs (ξ from the seed of `settings` and `pass`) and the
     /// direct light. `pass` = `None` samples pixel and texel centres; `Some(p)` jitters
-    /// them for pass p of several.
+    /// them for pass p of several. `progress` is only checked (the frame's pixel-passes are
+    /// counted by its shading).
     fn prepare(
         &self,
         scene: &Scene,
         loaded: &Self::Scene,
         settings: &RenderSettings,
         pass: Option<u32>,
+        progress: Progress,
     ) -> Result<Self::Prepared, RenderError>;
 
     /// The light lists of `strategy` (section 5-7): never without a VPL whose p(ωo, l) > ξ.
@@ -192,8 +194,14 @@ pub trait Renderer {
         None
     }
 
-    /// The cross bilateral filter guided by depth and normal (section 6).
-    fn denoise(&self, p: &Self::Prepared, image: Self::Image) -> Result<Self::Image, RenderError>;
+    /// The cross bilateral filter guided by depth and normal (section 6); `progress` is only
+    /// checked.
+    fn denoise(
+        &self,
+        p: &Self::Prepared,
+        image: Self::Image,
+        progress: Progress,
+    ) -> Result<Self::Image, RenderError>;
 
     /// `image` where the CPU can read it.
     fn read_image(&self, p: &Self::Prepared, image: Self::Image) -> Result<Image, RenderError>;

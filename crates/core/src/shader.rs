@@ -79,7 +79,7 @@ impl Shader for Stochastic {
             })?;
             if self.denoise {
                 progress.check()?;
-                image = timings.time("denoise", || r.denoise(p, image))?;
+                image = timings.time("denoise", || r.denoise(p, image, progress))?;
             }
             Ok((lists, image))
         })?;

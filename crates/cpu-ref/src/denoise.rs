@@ -7,7 +7,7 @@
 //! is not blurred.
 use glam::Vec3;
 use rayon::prelude::*;
-use slc_core::{GBuffer, GSample, Image};
+use slc_core::{GBuffer, GSample, Image, Progress};
 
 /// Parameters of the cross bilateral filter.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -43,14 +43,25 @@ fn reflectance(g: &GSample) -> Vec3 {
 /// 2r + 1 taps by the spatial Gaussian, the relative depth difference and the normals: 4r + 2
 /// taps per pixel instead of (2r + 1)², the usual real-time approximation of the 2-D filter.
 pub fn cross_bilateral(image: &Image, gbuffer: &GBuffer, params: BilateralParams) -> Image {
+    cross_bilateral_watched(image, gbuffer, params, &|_| {})
+}
+
+/// [`cross_bilateral`] that stops once `progress` is cancelled: the pixels not yet filtered
+/// keep wrong values (the caller checks `progress`).
+pub fn cross_bilateral_watched(
+    image: &Image,
+    gbuffer: &GBuffer,
+    params: BilateralParams,
+    progress: Progress,
+) -> Image {
     let demodulated: Vec<Vec3> = image
         .pixels
         .iter()
         .zip(&gbuffer.samples)
         .map(|(p, g)| g.as_ref().map_or(*p, |g| *p / reflectance(g)))
         .collect();
-    let horizontal = filter_1d(&demodulated, gbuffer, params, (1, 0));
-    let vertical = filter_1d(&horizontal, gbuffer, params, (0, 1));
+    let horizontal = filter_1d(&demodulated, gbuffer, params, (1, 0), progress);
+    let vertical = filter_1d(&horizontal, gbuffer, params, (0, 1), progress);
     let pixels = vertical
         .iter()
         .zip(&gbuffer.samples)
@@ -70,6 +81,7 @@ fn filter_1d(
     gbuffer: &GBuffer,
     params: BilateralParams,
     step: (i64, i64),
+    progress: Progress,
 ) -> Vec<Vec3> {
     let (w, h) = (gbuffer.width as i64, gbuffer.height as i64);
     let r = params.radius as i64;
@@ -84,6 +96,9 @@ fn filter_1d(
             let Some(g) = &gbuffer.samples[p as usize] else {
                 return values[p as usize];
             };
+            if progress.cancelled() {
+                return values[p as usize];
+            }
             let (x, y) = (p % w, p / w);
             let mut sum = Vec3::ZERO;
             let mut weight = 0.0f32;

@@ -2,7 +2,7 @@
 use crate::tracer::Tracer;
 use glam::Vec3;
 use rayon::prelude::*;
-use slc_core::{GBuffer, GSample, Image, Light};
+use slc_core::{GBuffer, GSample, Image, Light, Progress};
 
 /// Radiance towards the camera reflected from every light at one surface point:
 /// `Σ f(ωl, ωo) E cos θl V` with E = I / d² (or the directional irradiance).
@@ -30,12 +30,23 @@ pub fn direct_radiance(tracer: &Tracer, lights: &[Light], g: &GSample) -> Vec3 {
 
 /// The direct-light image of a G-buffer.
 pub fn shade_direct(tracer: &Tracer, lights: &[Light], gbuffer: &GBuffer) -> Image {
+    shade_direct_watched(tracer, lights, gbuffer, &|_| {})
+}
+
+/// [`shade_direct`] that stops once `progress` is cancelled: the pixels not yet shaded are
+/// black (the caller checks `progress`).
+pub fn shade_direct_watched(
+    tracer: &Tracer,
+    lights: &[Light],
+    gbuffer: &GBuffer,
+    progress: Progress,
+) -> Image {
     let pixels = gbuffer
         .samples
         .par_iter()
-        .map(|g| {
-            g.as_ref()
-                .map_or(Vec3::ZERO, |g| direct_radiance(tracer, lights, g))
+        .map(|g| match g {
+            Some(g) if !progress.cancelled() => direct_radiance(tracer, lights, g),
+            _ => Vec3::ZERO,
         })
         .collect();
     Image {

@@ -3,7 +3,7 @@ use crate::tracer::Tracer;
 use glam::Vec3;
 use rayon::prelude::*;
 use slc_core::rng::{stream, Sequence};
-use slc_core::{Camera, GBuffer, GSample, Scene};
+use slc_core::{Camera, GBuffer, GSample, Progress, Scene};
 
 /// Where inside each pixel the primary ray goes.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -39,9 +39,25 @@ pub fn trace_gbuffer(
     height: u32,
     sample: PixelSample,
 ) -> GBuffer {
+    trace_gbuffer_watched(scene, tracer, camera, (width, height), sample, &|_| {})
+}
+
+/// [`trace_gbuffer`] that stops once `progress` is cancelled: the pixels not yet traced are
+/// misses (the caller checks `progress`).
+pub fn trace_gbuffer_watched(
+    scene: &Scene,
+    tracer: &Tracer,
+    camera: &Camera,
+    (width, height): (u32, u32),
+    sample: PixelSample,
+    progress: Progress,
+) -> GBuffer {
     let samples = (0..width * height)
         .into_par_iter()
         .map(|pixel| {
+            if progress.cancelled() {
+                return None;
+            }
             let (i, j) = (pixel % width, pixel / width);
             let (s, t) = sample.offset(pixel);
             let dir = camera.ray_direction(i, j, s, t, width, height);

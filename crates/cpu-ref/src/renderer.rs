@@ -2,10 +2,10 @@
 //! `slc_core::Renderer` with this crate's ray-traced passes and `slc_cull`'s cullers, and
 //! has every method, the references and shadow rays included. [`CpuFrames`] is how other
 //! backends hand a frame to what only the CPU computes.
-use crate::denoise::{cross_bilateral, BilateralParams};
+use crate::denoise::{cross_bilateral_watched, BilateralParams};
 use crate::frame_images::SpareImage;
 use crate::path::trace_pixel_sample;
-use crate::prepare::{prepare, CpuPrepared};
+use crate::prepare::{prepare_watched, CpuPrepared};
 use crate::sampled_lights::{shade_sampled_vpls, shade_vsgl};
 use crate::tracer::Tracer;
 use crate::vpl_shading::{shade_lists_into, shade_vpls, VplEstimator};
@@ -67,8 +67,11 @@ impl Renderer for CpuRenderer {
         loaded: &Arc<Tracer>,
         settings: &RenderSettings,
         pass: Option<u32>,
+        progress: Progress,
     ) -> Result<CpuPrepared, RenderError> {
-        Ok(prepare(scene, settings, Arc::clone(loaded), pass))
+        let p = prepare_watched(scene, settings, Arc::clone(loaded), pass, progress);
+        progress.check()?;
+        Ok(p)
     }
 
     fn cull(
@@ -102,9 +105,16 @@ impl Renderer for CpuRenderer {
         Some(lists.listed_pairs())
     }
 
-    fn denoise(&self, p: &CpuPrepared, image: Image) -> Result<Image, RenderError> {
-        let filtered = cross_bilateral(&image, &p.gbuffer, BilateralParams::default());
+    fn denoise(
+        &self,
+        p: &CpuPrepared,
+        image: Image,
+        progress: Progress,
+    ) -> Result<Image, RenderError> {
+        let params = BilateralParams::default();
+        let filtered = cross_bilateral_watched(&image, &p.gbuffer, params, progress);
         self.spare.keep(image);
+        progress.check()?;
         Ok(filtered)
     }
 

@@ -96,3 +96,35 @@ fn a_flag_raised_before_stops_at_once_and_one_never_raised_changes_nothing() {
     assert_eq!(watched.direct, plain.direct);
     assert_eq!(watched.metrics, plain.metrics);
 }
+
+/// A monitor cancelled after a number of checks, whatever thread makes them.
+struct CancelledAfter {
+    checks_left: std::sync::atomic::AtomicI64,
+    advanced: AtomicU64,
+}
+
+impl slc_core::Monitor for CancelledAfter {
+    fn advance(&self, done: u64) {
+        self.advanced.fetch_add(done, Ordering::Relaxed);
+    }
+
+    fn cancelled(&self) -> bool {
+        self.checks_left.fetch_sub(1, Ordering::Relaxed) <= 0
+    }
+}
+
+/// Cancelled while the G-buffer is traced (it checks every pixel), the frame stops before any
+/// pixel is shaded.
+#[test]
+fn a_frame_cancelled_while_it_is_prepared_shades_nothing() {
+    let scene = builtin("default").unwrap();
+    let monitor = CancelledAfter {
+        checks_left: 500.into(),
+        advanced: AtomicU64::new(0),
+    };
+    let result = render(&scene, &settings(methods()[0]), &monitor);
+    assert!(matches!(result, Err(RenderError::Cancelled)));
+    assert_eq!(monitor.advanced.load(Ordering::Relaxed), 0);
+    // The G-buffer's pixels are far more than the checks it was allowed.
+    assert!(monitor.checks_left.load(Ordering::Relaxed) < -1000);
+}

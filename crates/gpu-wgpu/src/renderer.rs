@@ -287,12 +287,14 @@ impl Renderer for GpuRenderer {
     /// The twin of `slc_cpu_ref::prepare`. `pass` = `Some(p)` shifts every pixel's sample by
     /// one offset for pass p (a rasterizer has one sub-pixel offset per frame, where the CPU
     /// jitters each pixel) and keeps texel centres, with the CPU's per-pass VPL seed.
+    /// `progress` is checked between the passes.
     fn prepare(
         &self,
         scene: &Scene,
         loaded: &GpuLoadedScene,
         settings: &RenderSettings,
         pass: Option<u32>,
+        progress: Progress,
     ) -> Result<GpuPrepared, RenderError> {
         let (w, h) = (settings.width, settings.height);
         let camera = scene.camera_or_default();
@@ -317,6 +319,7 @@ impl Renderer for GpuRenderer {
                     self.gbuffer.render(ctx, scene_gpu, &camera, w, h, offset)
                 })
             })?;
+            progress.check()?;
             let maps = t.time("rsm", || {
                 self.step("rsm", || {
                     scene
@@ -326,11 +329,13 @@ impl Renderer for GpuRenderer {
                         .collect::<Result<Vec<_>, _>>()
                 })
             })?;
+            progress.check()?;
             let vpls = t.time("vpl_generation", || {
                 self.step("vpl_generation", || {
                     self.vpl_gen.generate(ctx, &maps, seed, lobes)
                 })
             })?;
+            progress.check()?;
             let direct = t.time("direct", || {
                 self.step("direct", || {
                     self.direct.render(ctx, scene_gpu, &gbuffer, &maps)
@@ -418,7 +423,13 @@ impl Renderer for GpuRenderer {
         Ok(image)
     }
 
-    fn denoise(&self, p: &GpuPrepared, image: wgpu::Buffer) -> Result<wgpu::Buffer, RenderError> {
+    fn denoise(
+        &self,
+        p: &GpuPrepared,
+        image: wgpu::Buffer,
+        progress: Progress,
+    ) -> Result<wgpu::Buffer, RenderError> {
+        progress.check()?;
         let g = &p.gbuffer;
         self.step("denoise", || {
             let guide = Guide {

@@ -408,7 +408,9 @@ fn gpu_vsgl_frames_match_the_cpu_and_read_back_no_rsm() {
             spp: 1,
             lobes: slc_core::frame::LobeSelection::Both,
         };
-        let p = renderer.prepare(&scene, &loaded, &settings, None).unwrap();
+        let p = renderer
+            .prepare(&scene, &loaded, &settings, None, &|_| {})
+            .unwrap();
         let before = renderer.readback_bytes().unwrap();
         let gpu = renderer
             .shade_sampled(
