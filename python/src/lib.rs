@@ -7,13 +7,15 @@ mod backend;
 mod frame;
 mod options;
 mod scene;
+mod tables;
+mod watch;
 
 use pyo3::create_exception;
 use pyo3::exceptions::PyException;
 use pyo3::prelude::*;
 
 create_exception!(
-    _slc,
+    slc,
     SlcError,
     PyException,
     "An error of slc: a scene that cannot be loaded or rendered, settings out of their domain."
@@ -26,6 +28,9 @@ pub(crate) fn error(e: impl std::fmt::Display) -> PyErr {
 
 #[pymodule]
 fn _slc(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    // numpy's C API is fetched on first use; fetched here, at import, a Ctrl-C during a
+    // render cannot interrupt the fetch (it raised a PanicException there).
+    numpy::PyArray1::<f32>::zeros(m.py(), 0, false);
     m.add_class::<scene::PyScene>()?;
     m.add_class::<frame::PyFrame>()?;
     m.add("SlcError", m.py().get_type::<SlcError>())?;
@@ -36,5 +41,17 @@ fn _slc(m: &Bound<'_, PyModule>) -> PyResult<()> {
             .map(|s| s.name())
             .collect::<Vec<_>>(),
     )?;
+    m.add("BUILTIN_SCENES", slc_core::BUILTIN_NAMES.to_vec())?;
+    let methods = pyo3::types::PyDict::new(m.py());
+    for (method, names) in [
+        ("render", options::RENDER),
+        ("compare", options::COMPARE),
+        ("vpls", options::FRAME),
+        ("light_lists", options::LISTS),
+    ] {
+        methods.set_item(method, names.to_vec())?;
+    }
+    // What the native methods take, checked against `slc/_options.py` by the tests.
+    m.add("OPTION_NAMES", methods)?;
     Ok(())
 }

@@ -34,7 +34,7 @@ def test_render_gives_hxwx3_float32_images_and_the_report():
     assert (r["width"], r["height"], r["scene"]) == (64, 48, "cornell-glossy")
     assert r["culling"] == "ellipsoid" and r["delta"] == pytest.approx(1e-3)
     assert r["interleave"] == 8 and r["backend"] == "cpu" and r["shader"] == "vpl"
-    assert r["provenance"]["schema_version"] == 4
+    assert r["provenance"]["schema_version"] == 5
     assert r["timings_ms"]["shading"] > 0
     assert f.lights is None and f.fdr is None, "no metrics unless asked"
 

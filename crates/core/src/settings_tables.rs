@@ -24,15 +24,23 @@ use toml::{Table, Value};
 /// A camera from the keys of a settings file's `[camera]` table, checked as there.
 pub fn camera_from_table(table: Table) -> Result<Camera, String> {
     RawCamera::deserialize(Value::Table(table))
-        .map_err(|e| e.to_string())?
+        .map_err(one_line)?
         .validate()
 }
 
 /// A light from the keys of a settings file's `[[lights]]` table, checked as there.
 pub fn light_from_table(table: Table) -> Result<Light, String> {
     RawLight::deserialize(Value::Table(table))
-        .map_err(|e| e.to_string())?
+        .map_err(one_line)?
         .validate()
+}
+
+/// A deserialization error as one line.
+fn one_line(e: toml::de::Error) -> String {
+    e.to_string()
+        .split_whitespace()
+        .collect::<Vec<_>>()
+        .join(" ")
 }
 
 /// `camera` as a `[camera]` table (`target` one unit ahead), which
@@ -42,7 +50,7 @@ pub fn camera_table(camera: &Camera) -> Table {
         ("position".into(), vec3(camera.position)),
         ("target".into(), vec3(camera.position + camera.forward)),
         ("up".into(), vec3(camera.up)),
-        ("yfov_deg".into(), float(camera.yfov.to_degrees())),
+        ("yfov_deg".into(), float(degrees(camera.yfov))),
         ("znear".into(), float(camera.znear)),
         ("zfar".into(), float(camera.zfar)),
     ])
@@ -68,7 +76,7 @@ pub fn light_table(light: &Light) -> Table {
             inner_cone_angle,
             outer_cone_angle,
         } => {
-            let outer = outer_cone_angle.to_degrees().min(90.0);
+            let outer = degrees(*outer_cone_angle).min(90.0);
             Table::from_iter([
                 kind("spot"),
                 ("position".into(), vec3(*position)),
@@ -76,7 +84,7 @@ pub fn light_table(light: &Light) -> Table {
                 ("intensity".into(), vec3(*intensity)),
                 (
                     "inner_cone_deg".into(),
-                    float(inner_cone_angle.to_degrees().min(outer)),
+                    float(degrees(*inner_cone_angle).min(outer)),
                 ),
                 ("outer_cone_deg".into(), float(outer)),
             ])
@@ -92,8 +100,14 @@ pub fn light_table(light: &Light) -> Table {
     }
 }
 
+/// `v` as the shortest decimal that reads back to it (0.1, not 0.10000000149011612).
 fn float(v: f32) -> Value {
-    Value::Float(f64::from(v))
+    Value::Float(v.to_string().parse().unwrap_or(f64::from(v)))
+}
+
+/// Radians as degrees, rounded to f32 (30, not 30.000002).
+fn degrees(radians: f32) -> f32 {
+    f64::from(radians).to_degrees() as f32
 }
 
 fn vec3(v: Vec3) -> Value {
