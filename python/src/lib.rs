@@ -1,8 +1,9 @@
 //! `slc._slc`, the native module of the Python package: scenes loaded once and rendered many
-//! times ([`scene::PyScene`]), frames as numpy arrays with their `report.json` as a dict
-//! ([`frame::PyFrame`]), options from keyword arguments ([`options::Options`]). It wraps the
-//! library (the renderer API of `slc-core` on `slc-cpu-ref` and `slc-gpu-wgpu`), not the
-//! command line.
+//! times (`scene`), frames as numpy arrays with their `report.json` as a dict (`frame`),
+//! options from keyword arguments (`options`), camera and lights as settings-file tables
+//! (`tables`), work off the calling thread that Ctrl-C stops (`watch`). It wraps the library
+//! (the renderer API of `slc-core` on `slc-cpu-ref` and `slc-gpu-wgpu`), not the command
+//! line; the Python layer (`slc/*.py`) documents the options and fills in their defaults.
 mod backend;
 mod frame;
 mod options;

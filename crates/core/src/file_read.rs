@@ -1,5 +1,5 @@
 //! Reading input files with a size cap: scene files, material libraries, buffers, textures.
-//! What a load read is recorded ([`recording`]), so a report can name and hash every file
+//! What a load read is recorded (`recording`), so a report can name and hash every file
 //! that went into a scene.
 use std::cell::RefCell;
 use std::io::{Error, ErrorKind, Read};

@@ -7,7 +7,7 @@
 //! - **Required extensions** (`extensionsRequired`) must be ones slc reads
 //!   ([`SUPPORTED_EXTENSIONS`]); any other (Draco, meshopt, KTX2 textures, ...) is an
 //!   `unsupported: NAME` error. Other used extensions are ignored and listed
-//!   ([`Parsed::ignored_extensions`]).
+//!   (`Parsed::ignored_extensions`).
 //! - **Animations** are dropped with a note (slc renders the rest pose); their channels need
 //!   not target a node.
 //! - **Textures** whose image comes only through an extension (`EXT_texture_webp`,

@@ -29,7 +29,7 @@
 //! The file is parsed leniently ([`crate::gltf_document`]): parts slc does not use may be
 //! anything the specification allows; a required extension slc does not read is an
 //! `unsupported: NAME` error. Accessors may be quantized, sparse or without a buffer view
-//! ([`crate::gltf_accessor`]). Malformed files (unreadable JSON, missing or short buffers,
+//! (the `gltf_accessor` module). Malformed files (unreadable JSON, missing or short buffers,
 //! accessors of the wrong type or outside their buffer) are errors naming the file;
 //! unsupported features are warnings.
 use crate::camera::Camera;

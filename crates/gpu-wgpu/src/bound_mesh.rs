@@ -1,6 +1,6 @@
 //! The bounding meshes the raster baselines draw around each VPL's bound (the paper's
-//! Table 2): an icosahedron (20 triangles, [OP16]'s light shape) or its first subdivision
-//! (80 triangles, the splatted ellipsoid of [DS06]), scaled so that it contains the unit
+//! Table 2): an icosahedron (20 triangles, \[OP16\]'s light shape) or its first subdivision
+//! (80 triangles, the splatted ellipsoid of \[DS06\]), scaled so that it contains the unit
 //! sphere: every face plane lies at distance ≥ 1 from the centre, with a small margin for the
 //! rasterizer's sub-pixel snapping. `shaders/bound_mesh.wgsl` maps the unit sphere onto a
 //! VPL's spheroid or sphere, so the mapped mesh contains the bound (an affine map keeps

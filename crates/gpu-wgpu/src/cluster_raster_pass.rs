@@ -1,4 +1,4 @@
-//! Clustered shading by conservative rasterization of bounding meshes [OP16], the paper's
+//! Clustered shading by conservative rasterization of bounding meshes \[OP16\], the paper's
 //! Table 2 baseline (`--culling clustered-raster`): the clustered culler's bounds (written as
 //! shapes too), partition and depth slices
 //! ([`ClusteredCuller::prepare`](crate::clustered_cull_pass::ClusteredCuller::prepare): 32

@@ -163,7 +163,7 @@ pub struct GpuView {
     pub count: u32,
     /// Relative growth of radii and semi-axes (`slc_cull`'s `BOUND_SLACK`, 1e-3).
     pub slack: f32,
-    /// Interleaving factor K and seed ([`Interleaving`]): each bound records its VPL's
+    /// Interleaving factor K and seed ([`slc_core::Interleaving`]): each bound records its VPL's
     /// subregion.
     pub k: u32,
     pub seed: u32,
@@ -454,7 +454,7 @@ pub struct GpuShadeParams {
     pub list_count: u32,
     /// δ of eq. (2).
     pub delta: f32,
-    /// K² of the interleaved sampling (section 6, [`Interleaving::scale`]).
+    /// K² of the interleaved sampling (section 6, [`slc_core::Interleaving::scale`]).
     pub scale: f32,
     pub pad: u32,
 }

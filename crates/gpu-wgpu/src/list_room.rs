@@ -39,8 +39,8 @@ impl ListRoom {
 
     /// Entries of `T` in the next buffer for `frame`'s lists, `lists_per_subregion` in each
     /// of its K² subregions: what the most demanding earlier frame needed with a quarter
-    /// more, before any frame [`FIRST_ROOM`] or one per pixel; never more than the lists can
-    /// hold ([`most_entries`]) or the storage-binding limit allows, never less than an
+    /// more, before any frame `FIRST_ROOM` or one per pixel; never more than the lists can
+    /// hold (`most_entries`) or the storage-binding limit allows, never less than an
     /// earlier frame's total.
     pub fn entries<T>(&self, ctx: &GpuContext, frame: &CullFrame, lists_per_subregion: u64) -> u32 {
         let size = std::mem::size_of::<T>().max(1) as u64;

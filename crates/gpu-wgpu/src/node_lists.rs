@@ -1,5 +1,5 @@
 //! Light lists as linked lists in a node buffer, as the raster baselines build them
-//! ([OP16]'s node buffer; splatting's metrics): one head per list (`END`: empty) and nodes
+//! (\[OP16\]'s node buffer; splatting's metrics): one head per list (`END`: empty) and nodes
 //! `(VPL, next)` taken from one counter, the `total` of the frame's `GpuCullStatus`. A
 //! buffer that was too small is seen in the count afterwards; the caller refills with
 //! [`NodeLists::new`] at that capacity.

@@ -1,4 +1,4 @@
-//! Splatting [DS06], the paper's Table 2 baseline (`--culling splatting`): after the tiled
+//! Splatting \[DS06\], the paper's Table 2 baseline (`--culling splatting`): after the tiled
 //! culler's bounds (written as shapes too), partition and tile depth passes
 //! ([`TiledCuller::prepare`](crate::tiled_cull_pass::TiledCuller::prepare), which also check
 //! the G-buffer), each VPL's bounding mesh (80 triangles around its spheroid or sphere,
