@@ -10,9 +10,11 @@ use crate::args::{strategies, FrameArgs, ImportanceArgs, PipelineArgs, Shader};
 use crate::backend::{message, run_on, OnBackend};
 use crate::compare_summary::{side_by_side, table, write_page, CompareRow, Row};
 use crate::flip::flip;
-use crate::heatmap::heat_map;
+use crate::heatmap::{heat_map, HeatScale};
 use crate::layers_exr::write_layers;
 use crate::output::{write_frame, write_rgb8};
+use crate::pdf::write_figure;
+use crate::print::PrintWidth;
 use crate::sampled::{shade_sampled, PASSES};
 use crate::table::{write_table, SettingsColumns};
 use clap::Args;
@@ -54,9 +56,14 @@ pub struct CompareArgs {
     pub culling: Vec<String>,
     #[arg(long, default_value_t = 1e-3)]
     pub delta: f32,
-    /// Heat-map brightness saturates at this many VPLs per pixel (256 in the paper's figures).
-    #[arg(long, default_value_t = 256)]
-    pub heat_max: u32,
+    /// Heat-map brightness saturates at this many VPLs per pixel in every heat map (256 in the
+    /// paper's figures); default: at each heat map's own maximum, which its caption gives.
+    #[arg(long)]
+    pub heat_max: Option<u32>,
+    /// Size the figures for print: 3.5in (one column) or 7in (a page) wide, text of 8 pt or
+    /// more; screen: for a browser.
+    #[arg(long, value_enum, default_value_t = PrintWidth::Screen)]
+    pub print_width: PrintWidth,
     /// Skip the all-VPL reference (it costs every VPL at every pixel).
     #[arg(long)]
     pub no_reference: bool,
@@ -204,12 +211,13 @@ impl OnBackend for Compare<'_> {
                 &out.indirect,
                 &total,
             )?;
+            let heat_full = HeatScale::of(args.heat_max).full_at(&m.lights_per_pixel);
             let heat = heat_map(
                 f.width,
                 f.height,
                 &m.lights_per_pixel,
                 &m.fdr_per_pixel,
-                args.heat_max,
+                heat_full,
             );
             write_rgb8(&mut dir_out, &format!("{dir}/heatmap.png"), &heat)?;
             write_layers(&mut dir_out, dir, &images, Some(m), &provenance)?;
@@ -262,6 +270,7 @@ impl OnBackend for Compare<'_> {
                 runs,
                 total,
                 heat,
+                heat_full,
                 flip_map,
             });
             eprintln!("{strategy}: done");
@@ -278,7 +287,7 @@ impl OnBackend for Compare<'_> {
         let md = table(args, &device, &scene.name, vpl_count, &rows, &sampled);
         dir_out.write("report.md", md.as_bytes())?;
         let figure = side_by_side(args, &scene.name, &rows)?;
-        dir_out.write("side_by_side.svg", figure.as_bytes())?;
+        write_figure(&mut dir_out, "side_by_side", &figure)?;
         write_page(&mut dir_out, &scene.name, &provenance, &rows, tables)?;
         dir_out.commit()?;
         println!("wrote {}", args.out.display());

@@ -13,7 +13,9 @@ use crate::backend::{message, run_on, OnBackend};
 use crate::figure::{Figure, FigureRow};
 use crate::output::to_srgb8;
 use crate::page::{Block, Page};
-use crate::plot::{log_log_plot_svg, Series};
+use crate::pdf::write_figure;
+use crate::plot::{log_log_plot_svg, tick_label, PlotPoint, Series};
+use crate::print::PrintWidth;
 use crate::table::{write_table, SettingsColumns, TextTable};
 use clap::Args;
 use serde::Serialize;
@@ -66,6 +68,10 @@ pub struct SweepArgs {
     /// averaged per N.
     #[arg(long, default_value_t = 1)]
     pub seeds: u32,
+    /// Size the figures for print: 3.5in (one column) or 7in (a page) wide, text of 8 pt or
+    /// more; screen: for a browser.
+    #[arg(long, value_enum, default_value_t = PrintWidth::Screen)]
+    pub print_width: PrintWidth,
 }
 
 struct Point {
@@ -254,21 +260,29 @@ fn write_outputs(
             points: points
                 .iter()
                 .filter(|p| p.strategy == n)
-                .map(|p| (p.time_ms(), p.rmse as f64))
+                .map(|p| PlotPoint {
+                    x: p.time_ms(),
+                    y: f64::from(p.rmse),
+                    label: Some(format!("δ={}", tick_label(f64::from(p.delta)))),
+                    x_range: (p.runs > 1).then_some((p.time.min, p.time.max)),
+                })
                 .collect(),
         })
         .collect();
-    let title = format!(
-        "{}: RMSE vs culling + shading time, δ in {:?}",
-        scene.name, args.delta
-    );
+    let spread = if args.repeat > 1 {
+        format!(", bars: min–max of {} runs", args.repeat)
+    } else {
+        String::new()
+    };
+    let title = format!("{}: RMSE vs time, each point a δ{spread}", scene.name);
     let svg = log_log_plot_svg(
         &title,
         "culling + shading (ms, median)",
         "RMSE of indirect vs all VPLs",
         &series,
+        &args.print_width.style(),
     )?;
-    out.write("sweep.svg", svg.as_bytes())?;
+    write_figure(out, "sweep", &svg)?;
     equal_time(args, out, &scene.name, names, points)?;
     write_page(out, &scene.name, &table.0, tables)
 }
@@ -286,12 +300,15 @@ fn write_page(
         vec![
             Block::Figure {
                 src: "sweep.svg".into(),
+                pdf: out.has("sweep.pdf").then(|| "sweep.pdf".into()),
                 caption: "RMSE of the indirect image against every VPL with p = 1, against \
-                          the median culling + shading time, one point per δ."
+                          the median culling + shading time, one point per δ (labelled), \
+                          bars from the fastest to the slowest of --repeat runs."
                     .into(),
             },
             Block::Figure {
                 src: "equal_time.svg".into(),
+                pdf: out.has("equal_time.pdf").then(|| "equal_time.pdf".into()),
                 caption: "Each strategy at the δ whose time is closest to the first \
                           strategy's median run."
                     .into(),
@@ -361,6 +378,7 @@ fn equal_time(
             images: totals.iter().collect(),
         }],
         heat_legend: None,
+        style: args.print_width.style(),
     };
-    out.write("equal_time.svg", figure.svg()?.as_bytes())
+    write_figure(out, "equal_time", &figure.svg()?).map(drop)
 }

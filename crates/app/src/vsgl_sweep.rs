@@ -13,7 +13,8 @@
 use crate::args::PipelineArgs;
 use crate::backend::{message, run_on, OnBackend};
 use crate::page::{Block, Page};
-use crate::plot::{log_log_plot_svg, Series};
+use crate::pdf::write_figure;
+use crate::plot::{log_log_plot_svg, PlotPoint, Series};
 use crate::sampled::{shade_sampled, PASSES};
 use crate::sweep_cmd::SweepArgs;
 use crate::table::{write_table, SettingsColumns, TextTable};
@@ -206,7 +207,7 @@ fn write_outputs(
             points: points
                 .iter()
                 .filter(|p| p.estimator == e)
-                .map(|p| (f64::from(p.count), f64::from(p.rmse)))
+                .map(|p| PlotPoint::at(f64::from(p.count), f64::from(p.rmse)))
                 .collect(),
         })
         .collect();
@@ -215,8 +216,14 @@ fn write_outputs(
         facts.scene,
         args.importance.sampling(0).importance.name()
     );
-    let svg = log_log_plot_svg(&title, "lights N", "RMSE of indirect vs all VPLs", &series)?;
-    out.write("vsgl_sweep.svg", svg.as_bytes())
+    let svg = log_log_plot_svg(
+        &title,
+        "lights N",
+        "RMSE of indirect vs all VPLs",
+        &series,
+        &args.print_width.style(),
+    )?;
+    write_figure(out, "vsgl_sweep", &svg).map(drop)
 }
 
 /// One point of `vsgl_sweep.json` / `vsgl_sweep.csv`: the pass times (ms) of the median run
@@ -280,6 +287,7 @@ fn write_page(
         provenance,
         vec![Block::Figure {
             src: "vsgl_sweep.svg".into(),
+            pdf: out.has("vsgl_sweep.pdf").then(|| "vsgl_sweep.pdf".into()),
             caption: "RMSE of the indirect image against every VPL with p = 1, against the \
                       light count N: N VSGLs and N VPLs sampled by the same importance."
                 .into(),

@@ -104,11 +104,19 @@ fn compare_writes_a_folder_per_strategy_a_table_and_heat_maps() {
         3 * 4,
         "three rows of four panels"
     );
-    assert!(svg.contains(">ellipsoid<") && svg.contains("full brightness at 256"));
+    // Each heat map at its own frame's maximum, given under its column, and the legend says so.
+    assert!(svg.contains(">ellipsoid<") && svg.contains("maximum (under its column)"));
+    assert_eq!(svg.matches(">heat full at ").count(), 4);
+    // The PDF beside the SVG, linked from the page.
+    let pdf = std::fs::read(out.join("side_by_side.pdf")).unwrap();
+    assert!(pdf.starts_with(b"%PDF-"));
     let html = std::fs::read_to_string(out.join("index.html")).unwrap();
     assert!(
         html.contains("src=\"side_by_side.svg\"") && html.contains("src=\"clustered/heatmap.png\"")
     );
+    assert!(html.contains("href=\"side_by_side.pdf\""));
+    let md = std::fs::read_to_string(out.join("report.md")).unwrap();
+    assert!(md.contains("full at each frame's own maximum"), "{md}");
     let json: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(out.join("compare.json")).unwrap()).unwrap();
     let table_rows = json["rows"].as_array().unwrap();
