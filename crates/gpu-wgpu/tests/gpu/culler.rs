@@ -3,11 +3,11 @@
 use crate::common::gpu;
 use crate::tiled::frame;
 use slc_core::{builtin, CullInput, Culler, GlossyBound, Interleaving, Strategy};
-use slc_gpu_wgpu::context::GpuError;
-use slc_gpu_wgpu::cull_frame::CullFrame;
-use slc_gpu_wgpu::culler::GpuCuller;
-use slc_gpu_wgpu::gpu_lists::read_lists;
-use slc_gpu_wgpu::shade_pass::ShadePass;
+use slc_gpu_wgpu::cull::frame::CullFrame;
+use slc_gpu_wgpu::cull::lists::read_lists;
+use slc_gpu_wgpu::cull::GpuCuller;
+use slc_gpu_wgpu::device::context::GpuError;
+use slc_gpu_wgpu::shade::lists::ShadePass;
 use std::cell::RefCell;
 
 /// The built-in default scene and its camera.

@@ -7,12 +7,12 @@ use crate::tiled::{frame, frame_sampled};
 use slc_core::{builtin, CullInput, Interleaving, Strategy};
 use slc_cpu_ref::gbuffer::PixelSample;
 use slc_cull::GlossyBound;
-use slc_gpu_wgpu::cull_frame::CullFrame;
-use slc_gpu_wgpu::culler::GpuCuller;
-use slc_gpu_wgpu::gbuffer_pass::GbufferPass;
-use slc_gpu_wgpu::scene_upload::GpuScene;
-use slc_gpu_wgpu::shade_pass::ShadePass;
-use slc_gpu_wgpu::tiled_cull_pass::TiledCuller;
+use slc_gpu_wgpu::cull::frame::CullFrame;
+use slc_gpu_wgpu::cull::tiled::TiledCuller;
+use slc_gpu_wgpu::cull::GpuCuller;
+use slc_gpu_wgpu::frame::raster::gbuffer::GbufferPass;
+use slc_gpu_wgpu::frame::raster::scene::GpuScene;
+use slc_gpu_wgpu::shade::lists::ShadePass;
 use std::time::Instant;
 
 #[test]

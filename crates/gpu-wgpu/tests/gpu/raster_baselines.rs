@@ -10,7 +10,7 @@ use crate::tiled::frame_sampled;
 use slc_core::render::render;
 use slc_core::{builtin, CullInput, Interleaving, Strategy, Vpl};
 use slc_cpu_ref::gbuffer::PixelSample;
-use slc_gpu_wgpu::culler::GpuCuller;
+use slc_gpu_wgpu::cull::GpuCuller;
 use slc_gpu_wgpu::GpuRenderer;
 
 #[test]

@@ -25,12 +25,12 @@ use slc_core::{Camera, CullInput, GBuffer, GSample, Interleaving, Mesh, Scene};
 use slc_cpu_ref::gbuffer::{trace_gbuffer, PixelSample};
 use slc_cpu_ref::prepare;
 use slc_cpu_ref::Tracer;
-use slc_gpu_wgpu::cull_frame::CullFrame;
-use slc_gpu_wgpu::culler::GpuCuller;
-use slc_gpu_wgpu::gbuffer_pass::GbufferPass;
-use slc_gpu_wgpu::gpu_lists::read_lists;
-use slc_gpu_wgpu::scene_upload::GpuScene;
-use slc_gpu_wgpu::shade_pass::ShadePass;
+use slc_gpu_wgpu::cull::frame::CullFrame;
+use slc_gpu_wgpu::cull::lists::read_lists;
+use slc_gpu_wgpu::cull::GpuCuller;
+use slc_gpu_wgpu::frame::raster::gbuffer::GbufferPass;
+use slc_gpu_wgpu::frame::raster::scene::GpuScene;
+use slc_gpu_wgpu::shade::lists::ShadePass;
 use slc_gpu_wgpu::{GpuContext, GpuError};
 
 const POSITION_TOLERANCE: f32 = 1e-4;

@@ -31,8 +31,8 @@ use slc_core::{
 use slc_cpu_ref::vpl_shading::shade_lists;
 use slc_cpu_ref::Tracer;
 use slc_cull::GlossyBound;
-use slc_gpu_wgpu::shade_pass::ShadePass;
-use slc_gpu_wgpu::tiled_cull_pass::TiledCuller;
+use slc_gpu_wgpu::cull::tiled::TiledCuller;
+use slc_gpu_wgpu::shade::lists::ShadePass;
 use slc_gpu_wgpu::GpuError;
 
 const TOLERANCE: f32 = 1e-4;

@@ -9,7 +9,7 @@ use crate::tiled::frame;
 use slc_bounds::{Anisotropy, Fresnel};
 use slc_core::rng::Sequence;
 use slc_core::{builtin, CullInput, Interleaving, LightLists, Strategy, Vpl, VplLobe};
-use slc_gpu_wgpu::culler::GpuCuller;
+use slc_gpu_wgpu::cull::GpuCuller;
 use slc_gpu_wgpu::GpuContext;
 
 /// The tight strategies and the base strategy each refines.
