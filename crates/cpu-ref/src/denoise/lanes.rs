@@ -82,7 +82,7 @@ fn vertical_in<L: Lanes8>(
                 let centre = Centre::<L>::load(centre_row, s, r + x0);
                 // Tap k reads image row y + k − r, padded row y + k.
                 let v = filter(kernel, &centre, HORIZONTAL, s, |k| (padded(y + k), r + x0));
-                let v = v.map(|c| c.store());
+                let v = [v[0].store(), v[1].store(), v[2].store()];
                 let lanes = (w - x0).min(8);
                 let samples = &gbuffer.samples[y * w + x0..y * w + x0 + lanes];
                 for (i, g) in samples.iter().enumerate() {

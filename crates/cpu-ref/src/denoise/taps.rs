@@ -25,6 +25,16 @@ pub(super) fn load<L: Lanes8>(plane: &[f32], at: usize) -> L {
     L::load(&v)
 }
 
+/// Eight floats at `at` of each of the three planes from `first` on.
+#[inline(always)]
+fn load3<L: Lanes8>(row: &[f32], first: usize, stride: usize, at: usize) -> [L; 3] {
+    [
+        load(&row[first * stride..], at),
+        load(&row[(first + 1) * stride..], at),
+        load(&row[(first + 2) * stride..], at),
+    ]
+}
+
 /// The guide of eight centre pixels.
 #[derive(Clone, Copy)]
 pub(super) struct Centre<L: Real> {
@@ -42,7 +52,7 @@ impl<L: Lanes8> Centre<L> {
         Self {
             depth,
             scale: max(depth, L::splat(1e-6)),
-            normal: [0, 1, 2].map(|c| load(&row[(NORMAL + c) * stride..], at)),
+            normal: load3(row, NORMAL, stride, at),
         }
     }
 }
@@ -64,7 +74,7 @@ pub(super) fn filter<'a, L: Lanes8>(
     for (k, &spatial) in kernel.spatial.iter().enumerate() {
         let (row, at) = tap(k);
         let depth: L = load(&row[DEPTH * stride..], at);
-        let normal = [0, 1, 2].map(|c| load::<L>(&row[(NORMAL + c) * stride..], at));
+        let normal = load3::<L>(row, NORMAL, stride, at);
         // NaN where the tap has no surface (or lies in the padding): weight 0.
         let surface = depth.le(L::splat(f32::INFINITY));
         let dz = (depth - centre.depth) / centre.scale;
@@ -74,12 +84,11 @@ pub(super) fn filter<'a, L: Lanes8>(
         }
         let wq = L::splat(spatial) * wn * exp(-dz * dz * inv_2sd);
         let wq = L::select(surface, wq, L::splat(0.0));
-        for (c, s) in sum.iter_mut().enumerate() {
-            *s = *s + load::<L>(&row[(values + c) * stride..], at) * wq;
-        }
+        let v = load3::<L>(row, values, stride, at);
+        sum = [sum[0] + v[0] * wq, sum[1] + v[1] * wq, sum[2] + v[2] * wq];
         weight = weight + wq;
     }
-    sum.map(|s| s / weight)
+    [sum[0] / weight, sum[1] / weight, sum[2] / weight]
 }
 
 #[cfg(all(test, target_arch = "x86_64"))]
