@@ -9,6 +9,7 @@ mod guide;
 mod lanes;
 mod taps;
 
+use crate::frame_memory::frame_vec;
 use guide::{fill_rows, Guide};
 use rayon::prelude::*;
 use slc_core::{GBuffer, Image};
@@ -116,7 +117,7 @@ impl CrossBilateral {
             lanes::horizontal(guide, &kernel, row)
         });
         // Pixels without a surface keep their value; the vertical pass writes the others.
-        let mut out = Vec::new();
+        let mut out = frame_vec(image.pixels.len());
         image.pixels.par_iter().copied().collect_into_vec(&mut out);
         let guide = &self.guide;
         out.par_chunks_mut(BAND * w.max(1))

@@ -1,11 +1,10 @@
 //! The ray-traced G-buffer: primary rays of 4x2 pixel blocks traced as packets
-//! ([`Tracer::intersect8`]), each pixel's sample written in place (no per-pixel allocation).
+//! ([`Tracer::intersect8`]), each pixel's sample written in place ([`par_blocks`]).
+use crate::blocks::par_blocks;
 use crate::tracer::{Rays8, Tracer};
 use glam::Vec3;
-use rayon::prelude::*;
 use slc_core::rng::{stream, Sequence};
 use slc_core::{Camera, GBuffer, GSample, Scene};
-use std::mem::MaybeUninit;
 
 /// Where inside each pixel the primary ray goes.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -30,9 +29,6 @@ impl PixelSample {
 
 /// Random numbers each pixel sample may draw (camera jitter first, then path sampling).
 pub const PIXEL_DIMENSIONS: u32 = 8;
-
-/// Pixels per block of primary rays traced together: 4 across, 2 down.
-const BLOCK: (u32, u32) = (4, 2);
 
 /// [`Camera::ray_direction`] for one image size, its constants formed once: the same
 /// operations per pixel, so the same directions bit for bit.
@@ -80,71 +76,33 @@ pub fn trace_gbuffer(
     sample: PixelSample,
 ) -> GBuffer {
     let rays = PrimaryRays::new(camera, width, height);
-    let n = width as usize * height as usize;
-    let mut samples = Vec::with_capacity(n);
-    let band = BLOCK.1 as usize * width.max(1) as usize;
-    samples.spare_capacity_mut()[..n]
-        .par_chunks_mut(band)
-        .enumerate()
-        .for_each(|(b, out)| {
-            let j0 = b as u32 * BLOCK.1;
-            for i0 in (0..width).step_by(BLOCK.0 as usize) {
-                trace_block(scene, tracer, camera, &rays, sample, (i0, j0), width, out);
-            }
-        });
-    // SAFETY: the bands cover the first n elements, and `trace_block` writes every pixel of
-    // its block, so every element is initialized.
-    unsafe { samples.set_len(n) };
-    GBuffer {
-        width,
-        height,
-        samples,
-    }
-}
-
-/// The samples of the block whose top-left pixel is (i0, j0), into `out` (the band of rows
-/// from j0 on).
-#[allow(clippy::too_many_arguments)]
-fn trace_block(
-    scene: &Scene,
-    tracer: &Tracer,
-    camera: &Camera,
-    rays: &PrimaryRays,
-    sample: PixelSample,
-    (i0, j0): (u32, u32),
-    width: u32,
-    out: &mut [MaybeUninit<Option<GSample>>],
-) {
-    let rows = (out.len() / width as usize) as u32;
-    let mut packet = Rays8::default();
-    let mut pixels = [None; 8];
-    for lane in 0..8u32 {
-        let (i, j) = (i0 + lane % BLOCK.0, j0 + lane / BLOCK.0);
-        if i >= width || j - j0 >= rows {
-            continue;
-        }
-        let pixel = j * width + i;
-        let (s, t) = sample.offset(pixel);
-        packet.dir[lane as usize] = rays.direction(i, j, s, t);
-        packet.used |= 1 << lane;
-        pixels[lane as usize] = Some(((j - j0) * width + i) as usize);
-    }
-    let hits = tracer.intersect8(scene, camera.position, &packet);
-    for ((hit, at), dir) in hits.iter().zip(pixels).zip(packet.dir) {
-        let Some(at) = at else {
-            continue;
+    let samples = par_blocks(width, height, |block| {
+        let mut packet = Rays8 {
+            used: block.used,
+            ..Rays8::default()
         };
-        let sample = hit.and_then(|hit| {
+        for lane in block.lanes() {
+            let (i, j) = block.pixel(lane);
+            let (s, t) = sample.offset(block.index(lane) as u32);
+            packet.dir[lane] = rays.direction(i, j, s, t);
+        }
+        let hits = tracer.intersect8(scene, camera.position, &packet);
+        std::array::from_fn(|lane| {
+            let hit = hits[lane]?;
             hit.front.then(|| GSample {
                 position: hit.position,
                 normal: hit.shading_normal,
                 geometric_normal: hit.geometric_normal,
-                omega_o: -dir,
+                omega_o: -packet.dir[lane],
                 depth: camera.view_depth(hit.position),
                 brdf: hit.brdf,
             })
-        });
-        out[at].write(sample);
+        })
+    });
+    GBuffer {
+        width,
+        height,
+        samples,
     }
 }
 

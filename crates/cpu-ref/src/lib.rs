@@ -45,9 +45,11 @@
 //! assert!(frame.indirect.mean().max_element() > 0.0);
 //! # Ok::<(), slc_core::RenderError>(())
 //! ```
+mod blocks;
 pub mod denoise;
 pub mod direct;
 mod frame_images;
+mod frame_memory;
 pub mod gbuffer;
 pub mod path;
 pub mod prepare;
