@@ -1,7 +1,6 @@
 //! Images computed 4x2 pixel block by block, the eight pixels of a block as the lanes of a
 //! ray packet ([`crate::tracer::Rays8`]): bands of two rows in parallel, every pixel written
 //! in place once (no per-pixel allocation, no clear).
-use crate::frame_memory::frame_vec;
 use rayon::prelude::*;
 
 /// Pixels per block: 4 across, 2 down; lane `l` is pixel (l % 4, l / 4) of the block.
@@ -49,7 +48,7 @@ pub fn par_blocks<T: Send>(
     block: impl Fn(Block) -> [T; 8] + Sync,
 ) -> Vec<T> {
     let n = width as usize * height as usize;
-    let mut pixels = frame_vec(n);
+    let mut pixels = Vec::with_capacity(n);
     let band_len = BLOCK.1 as usize * width.max(1) as usize;
     pixels.spare_capacity_mut()[..n]
         .par_chunks_mut(band_len)

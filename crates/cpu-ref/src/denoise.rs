@@ -9,7 +9,6 @@ mod guide;
 mod lanes;
 mod taps;
 
-use crate::frame_memory::frame_vec;
 use guide::{fill_rows, Guide};
 use rayon::prelude::*;
 use slc_core::{GBuffer, Image};
@@ -117,7 +116,7 @@ impl CrossBilateral {
             lanes::horizontal(guide, &kernel, row)
         });
         // Pixels without a surface keep their value; the vertical pass writes the others.
-        let mut out = frame_vec(image.pixels.len());
+        let mut out = Vec::new();
         image.pixels.par_iter().copied().collect_into_vec(&mut out);
         let guide = &self.guide;
         out.par_chunks_mut(BAND * w.max(1))

@@ -49,7 +49,6 @@ mod blocks;
 pub mod denoise;
 pub mod direct;
 mod frame_images;
-mod frame_memory;
 pub mod gbuffer;
 pub mod path;
 pub mod prepare;
