@@ -183,8 +183,9 @@ impl Tracer {
         })
     }
 
-    /// The distance and BVH primitive of the closest hit in (tmin, tmax).
-    fn closest(&self, origin: Vec3, dir: Vec3, tmin: f32, tmax: f32) -> Option<(f32, u32)> {
+    /// The distance and BVH primitive of the closest hit in (tmin, tmax): the traversal of
+    /// [`Tracer::intersect`] without the surface at the hit.
+    pub fn closest(&self, origin: Vec3, dir: Vec3, tmin: f32, tmax: f32) -> Option<(f32, u32)> {
         let ray = Ray::new(origin.into(), dir.into(), tmin, tmax);
         let sheared = ShearedRay::new(origin, dir);
         let mut hit = RayHit::none();

@@ -56,15 +56,16 @@ pub struct FrameRenderer {
 }
 
 enum ViewBackend {
+    /// Both boxed: the GPU renderer's passes are some 900 bytes, a device's limits 300.
     Gpu {
-        gpu: GpuRenderer,
+        gpu: Box<GpuRenderer>,
         loaded: GpuLoadedScene,
     },
     Cpu {
         cpu: CpuRenderer,
         loaded: Arc<Tracer>,
         /// The display's device (the CPU renderer has none).
-        display: GpuContext,
+        display: Box<GpuContext>,
     },
 }
 
@@ -76,7 +77,10 @@ impl FrameRenderer {
             Backend::Gpu => {
                 let gpu = GpuRenderer::from_context(ctx).map_err(|e| e.to_string())?;
                 let loaded = gpu.load(scene).map_err(message)?;
-                ViewBackend::Gpu { gpu, loaded }
+                ViewBackend::Gpu {
+                    gpu: Box::new(gpu),
+                    loaded,
+                }
             }
             Backend::Cpu => {
                 let cpu = CpuRenderer::default();
@@ -84,7 +88,7 @@ impl FrameRenderer {
                 ViewBackend::Cpu {
                     cpu,
                     loaded,
-                    display: ctx,
+                    display: Box::new(ctx),
                 }
             }
         };
@@ -126,7 +130,7 @@ impl FrameRenderer {
     /// library's frame loop on the scene loaded once ([`slc_core::render_loaded`]).
     pub fn render(&self, scene: &Scene, settings: &RenderSettings) -> Result<ViewFrame, String> {
         match &self.backend {
-            ViewBackend::Gpu { gpu, loaded } => render_on(gpu, loaded, scene, settings),
+            ViewBackend::Gpu { gpu, loaded } => render_on(gpu.as_ref(), loaded, scene, settings),
             ViewBackend::Cpu { cpu, loaded, .. } => render_on(cpu, loaded, scene, settings),
         }
     }

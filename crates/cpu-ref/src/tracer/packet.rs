@@ -125,9 +125,9 @@ fn lanes_of<L: Lanes8>(v: [f32; 8]) -> L {
 }
 
 impl Tracer {
-    /// The closest hit of each ray in use: its distance and BVH primitive (what
-    /// [`Tracer::intersect`] finds for the ray alone).
-    pub(crate) fn closest8(&self, rays: &Rays8) -> [Option<(f32, u32)>; 8] {
+    /// The closest hit of each ray in use within (tmin, tmax): its distance and BVH
+    /// primitive (what [`Tracer::closest`] finds for the ray alone).
+    pub fn closest8(&self, rays: &Rays8) -> [Option<(f32, u32)>; 8] {
         let mut q = Closest { hits: [None; 8] };
         if !self.traverse8(rays, &mut q) {
             q.hits = [None; 8];
