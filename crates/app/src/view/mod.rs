@@ -1,7 +1,9 @@
-//! `slc view`: an interactive window on the GPU renderer. A fly camera, movable lights and
+//! `slc view`: an interactive window on the GPU renderer, or with `--backend cpu` on the CPU
+//! reference renderer (for machines without a GPU). A fly camera, movable lights and
 //! a side panel (egui) with the render controls, overlays (heat map of lights per pixel and
 //! FDR, tile grid), per-pass times and lights per pixel; screenshots (PNG) and the current
-//! settings as a `.toml` scene that `slc render` accepts.
+//! settings as a `.toml` scene that `slc render` accepts. The window is drawn with wgpu on
+//! either backend (on a machine without a GPU, Mesa's software adapters draw it).
 //!
 //! For tests and scripts, `--frames N` renders N frames (with `--camera-script`, one scripted
 //! input per frame), writes `--screenshot` and `--save-settings`, prints the per-pass times
@@ -9,7 +11,7 @@
 //!
 //! Files: [`window`] runs the event loop with [`input`] and [`ui`], [`session`] holds what the
 //! view shows and renders, [`camera`] and [`script`] move the view, [`controls`], [`panel`] and [`light_edit`] are the
-//! side panel, [`frame`] renders on the GPU, [`overlay`] makes the picture, [`display`] puts it
+//! side panel, [`frame`] renders on the chosen backend, [`overlay`] makes the picture, [`display`] puts it
 //! in the window, [`screenshot`] and [`scene_toml`] save it.
 mod camera;
 mod controls;
@@ -26,7 +28,7 @@ mod session;
 mod ui;
 mod window;
 
-use crate::args::{stops, EstimateArgs, ImportanceArgs, Lobes, PipelineArgs, Shader};
+use crate::args::{stops, Backend, EstimateArgs, ImportanceArgs, Lobes, PipelineArgs, Shader};
 use clap::Args;
 use controls::{Controls, Layer, Overlay};
 use session::Session;
@@ -42,8 +44,9 @@ pub enum ViewError {
     NoDisplay(String),
     #[error(
         "no GPU adapter can draw into the window ({0}); install a Vulkan driver (on Debian: \
-         apt-get install mesa-vulkan-drivers libvulkan1); slc view needs the GPU, slc render \
-         --backend cpu does not"
+         apt-get install mesa-vulkan-drivers libvulkan1, whose lavapipe draws on the CPU); \
+         slc view draws its window with wgpu also with --backend cpu, slc render --backend \
+         cpu needs no adapter"
     )]
     NoAdapter(String),
     #[error("cannot open a window: {0}")]
@@ -72,6 +75,10 @@ pub struct ViewArgs {
     /// Height of the rendered view in pixels.
     #[arg(long, default_value_t = 480)]
     pub height: u32,
+    /// Who renders the frames: the GPU (wgpu), or the CPU reference renderer (rayon) for
+    /// machines without a GPU; the window is drawn with wgpu either way.
+    #[arg(long, value_enum, default_value_t = Backend::Gpu)]
+    pub backend: Backend,
     #[arg(long, value_enum, default_value_t = Shader::Vpl)]
     pub shader: Shader,
     /// Reflective-shadow-map resolution per face.

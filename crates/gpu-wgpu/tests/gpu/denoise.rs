@@ -82,7 +82,7 @@ fn filter_both(
     let mut worst = 0.0f32;
     for s in settings() {
         let gpu = pass.filter(ctx, image, g, camera, &s).unwrap();
-        let cpu = cross_bilateral(image, g, params(&s));
+        let cpu = cross_bilateral(image, g, params(&s)).unwrap();
         worst = worst.max(compare(&format!("{label} {s:?}"), g, image, &gpu, &cpu));
     }
     worst
@@ -120,7 +120,7 @@ fn filter_matches_the_cpu_on_the_default_scene() {
         let noisy = shade_lists(&tracer, &input, &lists, false, &|_| ()).unwrap();
         let worst = filter_both(&ctx, &pass, "default scene", &noisy, &gbuffer, &camera);
         // The filter did its job: most pixels changed noticeably.
-        let cpu = cross_bilateral(&noisy, &gbuffer, BilateralParams::default());
+        let cpu = cross_bilateral(&noisy, &gbuffer, BilateralParams::default()).unwrap();
         let changed = cpu
             .pixels
             .iter()
