@@ -17,7 +17,7 @@
 //! - [`vpl`]: the counter-based RNG and VPL generation;
 //! - [`cull`]: per-VPL bounds and the partition by subregion, then one folder per layout
 //!   (`tiled` Modified HalfZ tiles, `clustered` depth slices, `tight` per-block refinement,
-//!   `none`, and the `raster` baselines of the paper's Table 2), with [`cull::GpuCuller`]
+//!   `none`, and the `raster` baselines of the paper's Table 2), with [`cull::GpuCulling`]
 //!   running any `slc_core::Strategy`;
 //! - [`shade`]: stochastic shading from light lists, or culled and shaded in one pass;
 //! - [`vsgl`]: virtual spherical Gaussian lights built, sampled and shaded on the GPU, with

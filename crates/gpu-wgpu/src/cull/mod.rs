@@ -1,7 +1,7 @@
 //! One entry point for every culling strategy (`slc_core::Strategy`) on the GPU:
-//! [`GpuCuller`] holds the pipelines of the passes that implement them (`cull::none`,
+//! [`GpuCulling`] holds the pipelines of the passes that implement them (`cull::none`,
 //! `cull::tiled`, `cull::clustered`) and runs the one of a strategy's layout with its
-//! glossy bound; [`GpuCuller::culler`] binds one strategy as a `slc_core::Culler` whose lists
+//! glossy bound; [`GpuCulling::culler`] binds one strategy as a `slc_core::Culler` whose lists
 //! stay on the GPU for `shade::lists`.
 pub mod bounds;
 pub mod clustered;
@@ -28,7 +28,7 @@ use slc_core::{CullInput, Culler, GlossyBound, Layout, LightLists, Strategy};
 use std::cell::RefCell;
 
 /// The pipelines of every strategy.
-pub struct GpuCuller {
+pub struct GpuCulling {
     none: NoneCuller,
     tiled: TiledCuller,
     clustered: ClusteredCuller,
@@ -36,7 +36,7 @@ pub struct GpuCuller {
     rasterizer: ClusterRasterizer,
 }
 
-impl GpuCuller {
+impl GpuCulling {
     pub fn new(ctx: &GpuContext) -> Result<Self, GpuError> {
         Ok(Self {
             none: NoneCuller::new(ctx)?,
@@ -143,43 +143,43 @@ impl GpuCuller {
 /// the bounds splatting draws (`cull::raster::splat`), the rasterized clusters (`cull::raster::clusters`),
 /// or the lists of the others (clustered, tight, unculled) and their strategy, shaded by
 /// `shade::lists` (replaced by complete ones where they outgrew their buffer,
-/// [`GpuCuller::use_lists`]).
-pub enum FrameLists {
+/// [`GpuCulling::use_lists`]).
+pub enum Culled {
     Tiles(Box<TiledFrame>),
     Splats(Box<TiledFrame>),
     Nodes(Box<NodeFrame>),
     Lists(RefCell<GpuLightLists>, Strategy),
 }
 
-impl GpuCuller {
+impl GpuCulling {
     /// Whether a frame of `strategy` is culled and shaded in one pass: the tiled strategies
     /// but the tight one.
     pub fn one_pass(strategy: Strategy) -> bool {
         matches!(strategy.parts(), (Layout::Tiled, glossy) if glossy != GlossyBound::Tight)
     }
 
-    /// The culling step of a frame: [`FrameLists::Tiles`] where [`Self::one_pass`], the
+    /// The culling step of a frame: [`Culled::Tiles`] where [`Self::one_pass`], the
     /// raster baselines' own steps, else [`Self::cull_frame`]'s lists.
     pub fn prepare_frame(
         &self,
         ctx: &GpuContext,
         frame: &CullFrame,
         strategy: Strategy,
-    ) -> Result<FrameLists, GpuError> {
-        let no_pixels = || Ok(FrameLists::Lists(RefCell::new(no_lists(ctx)?), strategy));
+    ) -> Result<Culled, GpuError> {
+        let no_pixels = || Ok(Culled::Lists(RefCell::new(no_lists(ctx)?), strategy));
         match strategy.parts().0 {
             Layout::Splatting => {
                 return match self
                     .tiled
                     .prepare(ctx, frame, GlossyBound::Ellipsoid, true)?
                 {
-                    Some(tiles) => Ok(FrameLists::Splats(Box::new(tiles))),
+                    Some(tiles) => Ok(Culled::Splats(Box::new(tiles))),
                     None => no_pixels(),
                 };
             }
             Layout::ClusteredRaster => {
                 return match self.rasterizer.prepare(ctx, &self.clustered, frame)? {
-                    Some(nodes) => Ok(FrameLists::Nodes(Box::new(nodes))),
+                    Some(nodes) => Ok(Culled::Nodes(Box::new(nodes))),
                     None => no_pixels(),
                 };
             }
@@ -187,10 +187,10 @@ impl GpuCuller {
         }
         if !Self::one_pass(strategy) {
             let lists = self.cull_frame(ctx, frame, strategy)?;
-            return Ok(FrameLists::Lists(RefCell::new(lists), strategy));
+            return Ok(Culled::Lists(RefCell::new(lists), strategy));
         }
         match self.tiled.prepare(ctx, frame, strategy.parts().1, false)? {
-            Some(tiles) => Ok(FrameLists::Tiles(Box::new(tiles))),
+            Some(tiles) => Ok(Culled::Tiles(Box::new(tiles))),
             None => no_pixels(),
         }
     }
@@ -201,13 +201,13 @@ impl GpuCuller {
         &self,
         ctx: &GpuContext,
         frame: &CullFrame,
-        lists: &FrameLists,
+        lists: &Culled,
     ) -> Result<GpuLightLists, GpuError> {
         match lists {
-            FrameLists::Tiles(tiles) => settled(ctx, || self.tiled.lists(ctx, frame, tiles)),
-            FrameLists::Splats(tiles) => self.splatter.lists(ctx, frame, tiles),
-            FrameLists::Nodes(nodes) => self.rasterizer.lists(ctx, frame, nodes),
-            FrameLists::Lists(lists, strategy) => {
+            Culled::Tiles(tiles) => settled(ctx, || self.tiled.lists(ctx, frame, tiles)),
+            Culled::Splats(tiles) => self.splatter.lists(ctx, frame, tiles),
+            Culled::Nodes(nodes) => self.rasterizer.lists(ctx, frame, nodes),
+            Culled::Lists(lists, strategy) => {
                 self.use_lists(ctx, frame, *strategy, lists, |_| Ok(()))?;
                 Ok(lists.borrow().clone())
             }
@@ -215,9 +215,9 @@ impl GpuCuller {
     }
 }
 
-/// One strategy of a [`GpuCuller`] on one device.
+/// One strategy of a [`GpuCulling`] on one device.
 pub struct StrategyCuller<'a> {
-    passes: &'a GpuCuller,
+    passes: &'a GpuCulling,
     ctx: &'a GpuContext,
     strategy: Strategy,
 }

@@ -18,7 +18,7 @@ mod notes;
 
 use crate::cull::frame::CullFrame;
 use crate::cull::lists::read_lists;
-use crate::cull::{FrameLists, GpuCuller};
+use crate::cull::{Culled, GpuCulling};
 use crate::device::context::{GpuContext, GpuError};
 use crate::frame::denoise::{BilateralSettings, DenoisePass, Guide};
 use crate::frame::light::direct::DirectPass;
@@ -28,7 +28,7 @@ use crate::frame::raster::scene::GpuScene;
 use crate::renderer::notes::{
     cluster_raster_note, frame_notes, one_pass_note, vsgl_note, METRICS_NOTE, SPLAT_NOTE,
 };
-use crate::shade::lists::{read_image, ShadePass};
+use crate::shade::lists::{read_image, ShadePass, ShadedGBuffer};
 use crate::shade::tiled::TiledShadePass;
 use crate::vpl::generate::{GpuVpls, VplGenPass, VplLobes};
 use crate::vsgl::build::{VsglBuildPass, VsglSampling};
@@ -134,7 +134,7 @@ pub struct GpuRenderer {
     rsm: RsmPass,
     vpl_gen: VplGenPass,
     direct: DirectPass,
-    culler: GpuCuller,
+    culler: GpuCulling,
     shader: ShadePass,
     tiled_shader: TiledShadePass,
     vsgl_build: VsglBuildPass,
@@ -142,7 +142,7 @@ pub struct GpuRenderer {
     ism: IsmPass,
     denoiser: DenoisePass,
     /// Whether the tiled strategies are culled and shaded in one pass
-    /// ([`GpuCuller::one_pass`]); else into light lists, shaded by a second pass.
+    /// ([`GpuCulling::one_pass`]); else into light lists, shaded by a second pass.
     one_pass: bool,
     /// The passes of the last profiled run ([`Renderer::last_pass_times`]).
     last_passes: Mutex<Option<Vec<PassTime>>>,
@@ -162,7 +162,7 @@ impl GpuRenderer {
             rsm: RsmPass::new(&ctx)?,
             vpl_gen: VplGenPass::new(&ctx)?,
             direct: DirectPass::new(&ctx)?,
-            culler: GpuCuller::new(&ctx)?,
+            culler: GpuCulling::new(&ctx)?,
             shader: ShadePass::new(&ctx)?,
             tiled_shader: TiledShadePass::new(&ctx),
             vsgl_build: VsglBuildPass::new(&ctx)?,
@@ -199,7 +199,7 @@ impl GpuRenderer {
     }
 
     /// Sets the room the list cullers leave for the next frames' lists
-    /// ([`GpuCuller::set_list_room`]).
+    /// ([`GpuCulling::set_list_room`]).
     pub fn set_list_room(&self, entries: u32) {
         self.culler.set_list_room(entries);
     }
@@ -238,7 +238,7 @@ impl GpuRenderer {
 impl Renderer for GpuRenderer {
     type Scene = GpuLoadedScene;
     type Prepared = GpuPrepared;
-    type Lists = FrameLists;
+    type Lists = Culled;
     type Image = wgpu::Buffer;
 
     fn name(&self) -> &'static str {
@@ -264,7 +264,7 @@ impl Renderer for GpuRenderer {
     fn info(&self, settings: &RenderSettings) -> BackendInfo {
         let mut notes = frame_notes(&self.ctx);
         if let Method::Stochastic(s) = settings.method {
-            if self.one_pass && GpuCuller::one_pass(s.strategy) {
+            if self.one_pass && GpuCulling::one_pass(s.strategy) {
                 notes.push(one_pass_note(self.tiled_shader.subgroups()));
             }
             match s.strategy {
@@ -380,14 +380,14 @@ impl Renderer for GpuRenderer {
         strategy: Strategy,
         delta: f32,
         interleaving: Interleaving,
-    ) -> Result<FrameLists, RenderError> {
+    ) -> Result<Culled, RenderError> {
         self.step("culling", || {
             let frame = Self::cull_frame(p, delta, interleaving);
             if self.one_pass || strategy.is_raster() {
                 self.culler.prepare_frame(&self.ctx, &frame, strategy)
             } else {
                 let lists = self.culler.cull_frame(&self.ctx, &frame, strategy)?;
-                Ok(FrameLists::Lists(RefCell::new(lists), strategy))
+                Ok(Culled::Lists(RefCell::new(lists), strategy))
             }
         })
     }
@@ -396,7 +396,7 @@ impl Renderer for GpuRenderer {
         &self,
         _loaded: &GpuLoadedScene,
         p: &GpuPrepared,
-        lists: &FrameLists,
+        lists: &Culled,
         delta: f32,
         interleaving: Interleaving,
         visibility: bool,
@@ -408,23 +408,23 @@ impl Renderer for GpuRenderer {
         let frame = Self::cull_frame(p, delta, interleaving);
         let samples = &p.gbuffer.samples;
         let image = self.step("shading", || match lists {
-            FrameLists::Tiles(tiles) => self.tiled_shader.shade(&self.ctx, &frame, samples, tiles),
-            FrameLists::Splats(tiles) => self
+            Culled::Tiles(tiles) => self.tiled_shader.shade(&self.ctx, &frame, samples, tiles),
+            Culled::Splats(tiles) => self
                 .culler
                 .splatter()
                 .shade(&self.ctx, &frame, samples, tiles),
-            FrameLists::Nodes(nodes) => self
+            Culled::Nodes(nodes) => self
                 .culler
                 .rasterizer()
                 .shade(&self.ctx, &frame, samples, nodes),
             // The lists' totals are read after the shading; lists that outgrew their buffer
             // are culled again and shaded again (`cull::room`).
-            FrameLists::Lists(lists, strategy) => {
+            Culled::Lists(lists, strategy) => {
                 self.culler
                     .use_lists(&self.ctx, &frame, *strategy, lists, |l| {
-                        self.shader.shade_gpu_gbuffer_on_gpu(
+                        self.shader.shade_on_gpu(
                             &self.ctx,
-                            &p.gbuffer,
+                            ShadedGBuffer::Gpu(&p.gbuffer),
                             &p.vpls,
                             delta,
                             interleaving,
@@ -460,7 +460,7 @@ impl Renderer for GpuRenderer {
     fn measure(
         &self,
         p: &GpuPrepared,
-        lists: &FrameLists,
+        lists: &Culled,
         delta: f32,
         interleaving: Interleaving,
     ) -> Result<CullMetrics, RenderError> {

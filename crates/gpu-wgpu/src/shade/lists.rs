@@ -6,10 +6,11 @@
 //! eq. (2) on I's largest channel, and the BRDF of eq. (6)-(8) (`slc_bounds::Brdf`).
 //!
 //! The lists come in the CSR layout of [`LightLists`] (offsets, indices, pixel → list), either
-//! uploaded from the CPU ([`ShadePass::shade`]) or left on the GPU by the tiled culler
-//! ([`crate::cull::tiled::TiledCuller::cull_on_gpu`], [`ShadePass::shade_gpu_lists`]),
-//! whose fixed two lists per tile (empty ones included) are the same layout. The result is
-//! read back as an [`Image`]. Buffers beyond the storage-binding limit are refused
+//! uploaded from the CPU ([`ShadePass::shade`], which reads the image back as an [`Image`])
+//! or left on the GPU by a culler ([`ShadePass::shade_on_gpu`], e.g. after
+//! [`crate::cull::tiled::TiledCuller::cull_on_gpu`], whose fixed two lists per tile, empty
+//! ones included, are the same layout), for a G-buffer uploaded or rendered on the GPU
+//! ([`ShadedGBuffer`]). Buffers beyond the storage-binding limit are refused
 //! ([`GpuError::BufferTooLarge`]); more than 65535 workgroups are split into a 2-D grid.
 //!
 //! f32 throughout, with the CPU's operation order, so results agree to a few ulps (bit for
@@ -24,14 +25,23 @@ use crate::frame::raster::gbuffer::GpuGBuffer;
 use crate::frame::raster::records::{gpu_position, GpuSample};
 use crate::shade::records::GpuShadeParams;
 use glam::Vec3;
-use slc_core::{CullInput, Image, Interleaving, LightLists};
+use slc_core::{CullInput, GBuffer, Image, Interleaving, LightLists};
 
 /// The kernel of `shade.wesl`, linked with what it imports (build.rs).
 pub(crate) const SOURCE: &str = kernel!("shade");
 const WORKGROUP: u32 = 64;
 
+/// The G-buffer a shading pass reads: one on the CPU, uploaded as [`GpuSample`]s and
+/// positions, or one rendered on the GPU ([`crate::frame::raster::gbuffer::GbufferPass`]),
+/// read where it lies.
+#[derive(Clone, Copy)]
+pub enum ShadedGBuffer<'a> {
+    Cpu(&'a GBuffer),
+    Gpu(&'a GpuGBuffer),
+}
+
 /// What shading needs besides the G-buffer samples.
-struct Frame<'a> {
+struct ShadeInput<'a> {
     width: u32,
     height: u32,
     vpls: FrameVpls<'a>,
@@ -53,10 +63,10 @@ impl ShadePass {
         })
     }
 
-    /// Shades `input` (G-buffer, VPLs, δ, K) with `lists` uploaded from the CPU: the GPU twin
-    /// of `shade_lists(…, visibility = false, …)`. Errors on invalid input (δ, ξ or a VPL as
-    /// the culler validates them, lists that do not fit the input), on buffers beyond the
-    /// device's limits and on device faults.
+    /// Shades `input` (G-buffer, VPLs, δ, K) with `lists` uploaded from the CPU and reads the
+    /// image back: the GPU twin of `shade_lists(…, visibility = false, …)`. Errors on invalid
+    /// input (δ, ξ or a VPL as the culler validates them, lists that do not fit the input), on
+    /// buffers beyond the device's limits and on device faults.
     pub fn shade(
         &self,
         ctx: &GpuContext,
@@ -64,109 +74,81 @@ impl ShadePass {
         lists: &LightLists,
     ) -> Result<Image, GpuError> {
         let gpu = GpuLightLists::upload(ctx, lists, input.gbuffer.samples.len(), input.vpls.len())?;
-        self.shade_gpu_lists(ctx, input, &gpu)
-    }
-
-    /// Shades `input` with lists already on the GPU (e.g. from
-    /// [`crate::cull::tiled::TiledCuller::cull_on_gpu`] for the same input), without
-    /// reading them back.
-    pub fn shade_gpu_lists(
-        &self,
-        ctx: &GpuContext,
-        input: &CullInput,
-        lists: &GpuLightLists,
-    ) -> Result<Image, GpuError> {
         let g = input.gbuffer;
-        let pixels = u64::from(g.width) * u64::from(g.height);
-        if pixels != g.samples.len() as u64 || u32::try_from(pixels).is_err() {
-            return Err(GpuError::Input(format!(
-                "G-buffer of {}x{} pixels has {} samples",
-                g.width,
-                g.height,
-                g.samples.len()
-            )));
-        }
-        let samples: Vec<GpuSample> = g
-            .samples
-            .iter()
-            .map(|s| GpuSample::new(s.as_ref()))
-            .collect();
-        let samples = upload(ctx, "gbuffer samples", &samples)?;
-        let positions: Vec<[f32; 4]> = g.samples.iter().map(|s| gpu_position(s.as_ref())).collect();
-        let positions = upload(ctx, "gbuffer positions", &positions)?;
-        let frame = Frame {
-            width: g.width,
-            height: g.height,
-            vpls: FrameVpls::Cpu(input.vpls),
-            delta: input.delta,
-            interleaving: input.interleaving,
-        };
-        self.shade_samples(ctx, (&samples, &positions), &frame, lists)
+        let rgb = self.shade_on_gpu(
+            ctx,
+            ShadedGBuffer::Cpu(g),
+            input.vpls,
+            input.delta,
+            input.interleaving,
+            &gpu,
+        )?;
+        read_image(ctx, &rgb, g.width, g.height)
     }
 
-    /// [`Self::shade_gpu_lists`] for a G-buffer rendered on the GPU
-    /// ([`crate::frame::raster::gbuffer::GbufferPass`]), read where it lies.
-    pub fn shade_gpu_gbuffer<'a>(
+    /// Shades `gbuffer` with `vpls`, δ and K from `lists` on the GPU (uploaded, or left
+    /// there by a culler, e.g. [`crate::cull::tiled::TiledCuller::cull_on_gpu`], without a
+    /// readback), into an image left on the GPU as RGB, 3 f32 per pixel row-major (what
+    /// `frame::denoise::DenoisePass::filter_on_gpu` reads; [`read_image`] reads it back).
+    pub fn shade_on_gpu<'a>(
         &self,
         ctx: &GpuContext,
-        gbuffer: &GpuGBuffer,
-        vpls: impl Into<FrameVpls<'a>>,
-        delta: f32,
-        interleaving: Interleaving,
-        lists: &GpuLightLists,
-    ) -> Result<Image, GpuError> {
-        let frame = Frame {
-            width: gbuffer.width,
-            height: gbuffer.height,
-            vpls: vpls.into(),
-            delta,
-            interleaving,
-        };
-        self.shade_samples(ctx, (&gbuffer.samples, &gbuffer.positions), &frame, lists)
-    }
-
-    /// [`Self::shade_gpu_gbuffer`] without the readback: the image stays on the GPU as RGB,
-    /// 3 f32 per pixel row-major (what `frame::denoise::DenoisePass::filter_on_gpu` reads; see
-    /// [`read_image`]).
-    pub fn shade_gpu_gbuffer_on_gpu<'a>(
-        &self,
-        ctx: &GpuContext,
-        gbuffer: &GpuGBuffer,
+        gbuffer: ShadedGBuffer,
         vpls: impl Into<FrameVpls<'a>>,
         delta: f32,
         interleaving: Interleaving,
         lists: &GpuLightLists,
     ) -> Result<wgpu::Buffer, GpuError> {
-        let frame = Frame {
-            width: gbuffer.width,
-            height: gbuffer.height,
-            vpls: vpls.into(),
-            delta,
-            interleaving,
-        };
-        self.shade_samples_on_gpu(ctx, (&gbuffer.samples, &gbuffer.positions), &frame, lists)
-    }
-
-    /// Shades the [`GpuSample`]s and positions in `g` (one per pixel of the frame) and reads
-    /// the image back.
-    fn shade_samples(
-        &self,
-        ctx: &GpuContext,
-        g: (&wgpu::Buffer, &wgpu::Buffer),
-        input: &Frame,
-        lists: &GpuLightLists,
-    ) -> Result<Image, GpuError> {
-        let out = self.shade_samples_on_gpu(ctx, g, input, lists)?;
-        read_image(ctx, &out, input.width, input.height)
+        let vpls = vpls.into();
+        match gbuffer {
+            ShadedGBuffer::Gpu(g) => {
+                let input = ShadeInput {
+                    width: g.width,
+                    height: g.height,
+                    vpls,
+                    delta,
+                    interleaving,
+                };
+                self.shade_samples(ctx, (&g.samples, &g.positions), &input, lists)
+            }
+            ShadedGBuffer::Cpu(g) => {
+                let pixels = u64::from(g.width) * u64::from(g.height);
+                if pixels != g.samples.len() as u64 || u32::try_from(pixels).is_err() {
+                    return Err(GpuError::Input(format!(
+                        "G-buffer of {}x{} pixels has {} samples",
+                        g.width,
+                        g.height,
+                        g.samples.len()
+                    )));
+                }
+                let samples: Vec<GpuSample> = g
+                    .samples
+                    .iter()
+                    .map(|s| GpuSample::new(s.as_ref()))
+                    .collect();
+                let samples = upload(ctx, "gbuffer samples", &samples)?;
+                let positions: Vec<[f32; 4]> =
+                    g.samples.iter().map(|s| gpu_position(s.as_ref())).collect();
+                let positions = upload(ctx, "gbuffer positions", &positions)?;
+                let input = ShadeInput {
+                    width: g.width,
+                    height: g.height,
+                    vpls,
+                    delta,
+                    interleaving,
+                };
+                self.shade_samples(ctx, (&samples, &positions), &input, lists)
+            }
+        }
     }
 
     /// Shades the [`GpuSample`]s and positions in `(samples, positions)` into an RGB buffer
     /// left on the GPU.
-    fn shade_samples_on_gpu(
+    fn shade_samples(
         &self,
         ctx: &GpuContext,
         (samples, positions): (&wgpu::Buffer, &wgpu::Buffer),
-        input: &Frame,
+        input: &ShadeInput,
         lists: &GpuLightLists,
     ) -> Result<wgpu::Buffer, GpuError> {
         let pixels = u64::from(input.width) * u64::from(input.height);

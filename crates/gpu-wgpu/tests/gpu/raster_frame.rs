@@ -229,10 +229,17 @@ fn frame_matches(
             GlossyBound::Ellipsoid,
         )
         .unwrap();
-    let indirect = ShadePass::new(ctx)
-        .unwrap()
-        .shade_gpu_gbuffer(ctx, &gbuffer, &vpls, stochastic.delta, interleaving, &lists)
-        .unwrap();
+    let shader = ShadePass::new(ctx).unwrap();
+    let indirect = crate::common::shade_gpu_gbuffer(
+        ctx,
+        &shader,
+        &gbuffer,
+        &vpls,
+        stochastic.delta,
+        interleaving,
+        &lists,
+    )
+    .unwrap();
     let direct = DirectPass::new(ctx)
         .unwrap()
         .render(ctx, &gpu_scene, &gbuffer, &maps)

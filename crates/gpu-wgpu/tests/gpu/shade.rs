@@ -275,7 +275,7 @@ fn shading_straight_from_gpu_lists() {
     let on_gpu = culler
         .cull_on_gpu(&ctx, &input, GlossyBound::Ellipsoid)
         .unwrap();
-    let chained = shader.shade_gpu_lists(&ctx, &input, &on_gpu).unwrap();
+    let chained = crate::common::shade_gpu_lists(&ctx, &shader, &input, &on_gpu).unwrap();
     let lists = culler.cull(&ctx, &input, GlossyBound::Ellipsoid).unwrap();
     let uploaded = shader.shade(&ctx, &input, &lists).unwrap();
     assert_eq!(chained, uploaded);

@@ -95,10 +95,8 @@ fn both(
     }
     let one = images[0].clone();
     let lists = culler.cull_frame(ctx, &frame, glossy).unwrap();
-    let want = ShadePass::new(ctx)
-        .unwrap()
-        .shade_gpu_lists(ctx, input, &lists)
-        .unwrap();
+    let shader = ShadePass::new(ctx).unwrap();
+    let want = crate::common::shade_gpu_lists(ctx, &shader, input, &lists).unwrap();
     (one, want)
 }
 

@@ -6,7 +6,7 @@
 //!
 //! The result stays on the GPU ([`GpuGBuffer`]) in the [`GpuSample`] layout the tile depth,
 //! tiled culling and shading passes read
-//! (`CullFrame::on_gpu` for the cullers, `ShadePass::shade_gpu_gbuffer`), and can be read back
+//! (`CullFrame::on_gpu` for the cullers, `ShadePass::shade_on_gpu`), and can be read back
 //! as a `slc_core::GBuffer` ([`GpuGBuffer::read_back`]).
 //!
 //! The CPU's `PixelSample::Jittered` draws a different offset per pixel, which a rasterizer

@@ -6,13 +6,13 @@ use glam::Vec3;
 
 /// A right-handed orthonormal basis (x, y, z), x × y = z, around a given unit vector z.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Frame {
+pub struct Basis {
     pub x: Vec3,
     pub y: Vec3,
     pub z: Vec3,
 }
 
-impl Frame {
+impl Basis {
     /// The frame around `z` of Duff et al. 2017, "Building an Orthonormal Basis, Revisited"
     /// (JCGT 6(1)): branch-free, accurate for every direction including z = −e_z, and
     /// continuous except where z.z changes sign. `z` must be finite and of unit length (within 1e-3; it is renormalised).
@@ -20,7 +20,7 @@ impl Frame {
         Ok(Self::from_unit(check::unit(z, "frame axis")?))
     }
 
-    /// [`Frame::new`] for an already validated unit vector.
+    /// [`Basis::new`] for an already validated unit vector.
     #[inline]
     pub(crate) fn from_unit(z: Vec3) -> Self {
         let sign = 1.0f32.copysign(z.z);
@@ -51,7 +51,7 @@ mod tests {
     use super::*;
     use crate::test_util::Rng;
 
-    fn assert_orthonormal(f: &Frame) {
+    fn assert_orthonormal(f: &Basis) {
         for (a, b) in [(f.x, f.y), (f.y, f.z), (f.z, f.x)] {
             assert!(a.dot(b).abs() < 1e-6, "{f:?}");
         }
@@ -73,22 +73,22 @@ mod tests {
         axes.push(Vec3::new(0.0, 1e-7, -1.0).normalize());
         axes.push(Vec3::new(3e-4, -2e-4, 1.0).normalize());
         for z in axes {
-            let f = Frame::new(z).unwrap();
+            let f = Basis::new(z).unwrap();
             assert_orthonormal(&f);
             let v = Vec3::new(0.3, -0.5, 0.8);
             assert!((f.to_local(f.to_world(v)) - v).length() < 1e-6);
         }
-        assert_orthonormal(&Frame::new(Vec3::new(1.0, 0.0, -0.0)).unwrap());
+        assert_orthonormal(&Basis::new(Vec3::new(1.0, 0.0, -0.0)).unwrap());
     }
 
     #[test]
     fn invalid_axis_is_an_error() {
         assert_eq!(
-            Frame::new(Vec3::ZERO),
+            Basis::new(Vec3::ZERO),
             Err(BoundsError::NotUnit("frame axis"))
         );
         assert_eq!(
-            Frame::new(Vec3::NAN),
+            Basis::new(Vec3::NAN),
             Err(BoundsError::NotFinite("frame axis"))
         );
     }
