@@ -149,6 +149,13 @@ fn read_mesh(
                 scene.materials.len() - 1
             }),
         };
+        if primitive.get(&gltf::Semantic::Positions).is_none() {
+            // The specification: such a primitive is not rendered.
+            scene.report.warnings.push(format!(
+                "{name}: a primitive with no POSITION attribute is skipped (nothing to render)"
+            ));
+            continue;
+        }
         let warnings = &mut scene.report.warnings;
         let m = primitive_mesh(&primitive, buffers, world, name, material, warnings)?;
         add_mesh(scene, m);
@@ -173,15 +180,21 @@ fn root_nodes(document: &gltf::Document) -> Vec<gltf::Node<'_>> {
     document.nodes().filter(|n| !is_child[n.index()]).collect()
 }
 
-/// Reads every buffer: the GLB binary chunk, embedded `data:` URIs, or files relative to `base`.
+/// Reads the buffers something reads ([`used_buffers`]): the GLB binary chunk, embedded
+/// `data:` URIs, or files relative to `base`. The others are left empty, unread (a buffer
+/// nothing uses cannot fail a file).
 fn load_buffers(
     document: &gltf::Document,
     base: &Path,
     mut blob: Option<Vec<u8>>,
 ) -> Result<Vec<Vec<u8>>, String> {
+    let used = used_buffers(document);
     document
         .buffers()
         .map(|buffer| {
+            if !used[buffer.index()] {
+                return Ok(Vec::new());
+            }
             let what = format!("buffer {}", buffer.index());
             let data = match buffer.source() {
                 gltf::buffer::Source::Bin => blob
@@ -201,6 +214,38 @@ fn load_buffers(
             Ok(data)
         })
         .collect()
+}
+
+/// Which buffers are read: those of the buffer views that accessors of mesh primitives
+/// (with their sparse parts and morph targets) and images use.
+fn used_buffers(document: &gltf::Document) -> Vec<bool> {
+    let accessors = crate::gltf_document::used_accessors(document.as_json());
+    let mut views = vec![false; document.views().len()];
+    for a in document.accessors().filter(|a| accessors[a.index()]) {
+        let sparse = a
+            .sparse()
+            .into_iter()
+            .flat_map(|s| [s.indices().view().index(), s.values().view().index()]);
+        for v in a.view().map(|v| v.index()).into_iter().chain(sparse) {
+            views[v] = true;
+        }
+    }
+    // From the JSON: `Image::source` panics on a view without a MIME type.
+    for view in document
+        .as_json()
+        .images
+        .iter()
+        .filter_map(|i| i.buffer_view)
+    {
+        if let Some(v) = views.get_mut(view.value()) {
+            *v = true;
+        }
+    }
+    let mut used = vec![false; document.buffers().len()];
+    for v in document.views().filter(|v| views[v.index()]) {
+        used[v.buffer().index()] = true;
+    }
+    used
 }
 
 /// The bytes a URI refers to: a relative (percent-encoded) path from `base`, or anything the

@@ -20,8 +20,9 @@
 
 struct DirectParams {
     light: vec4<f32>,
+    // spot axis (xyz), SpotCone::h_outer (w)
     spot: vec4<f32>,
-    // intensity or irradiance (rgb), max(cos inner - cos outer, 1e-3) (w)
+    // intensity or irradiance (rgb), SpotCone::h_width (w)
     radiometry: vec4<f32>,
     // shadow-map origin (xyz), face extent (w)
     origin: vec4<f32>,
@@ -75,9 +76,8 @@ fn incident(x: vec3<f32>) -> Incident {
     inc.omega_i = to_light / sqrt(d2);
     inc.irradiance = params.radiometry.xyz / d2;
     if params.info.x == LIGHT_SPOT {
-        let t = clamp((-dot(inc.omega_i, params.spot.xyz) - params.spot.w) / params.radiometry.w,
-                      0.0, 1.0);
-        let falloff = t * t;
+        let falloff = spot_falloff(-inc.omega_i, params.spot.xyz, params.spot.w,
+                                   params.radiometry.w);
         inc.valid = falloff > 0.0;
         inc.irradiance = inc.irradiance * falloff;
     }

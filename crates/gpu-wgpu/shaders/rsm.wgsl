@@ -19,11 +19,11 @@ struct RsmParams {
     up: vec4<f32>,
     // intensity (pinhole) or per-texel flux (orthographic)
     light: vec4<f32>,
-    // spot axis (xyz), cos outer (w)
+    // spot axis (xyz), SpotCone::h_outer (w)
     spot: vec4<f32>,
     // kind, n, first texel of the face, unused
     info: vec4<u32>,
-    // max(cos inner - cos outer, 1e-3) (x)
+    // SpotCone::h_width (x)
     falloff: vec4<f32>,
 }
 
@@ -39,12 +39,6 @@ struct ShadowTexel {
 
 const RSM_SPOT: u32 = 1u;
 const RSM_DIRECTIONAL: u32 = 2u;
-
-// Light::spot_falloff: clamp((cos - cos_outer) / max(cos_inner - cos_outer, 1e-3), 0, 1)^2.
-fn spot_falloff(cos_axis: f32) -> f32 {
-    let t = clamp((cos_axis - params.spot.w) / params.falloff.x, 0.0, 1.0);
-    return t * t;
-}
 
 @compute @workgroup_size(8, 8)
 fn main(@builtin(global_invocation_id) gid: vec3<u32>) {
@@ -66,7 +60,8 @@ fn main(@builtin(global_invocation_id) gid: vec3<u32>) {
         dir = normalize(params.forward.xyz + x * params.right.xyz + y * params.up.xyz);
         var intensity = params.light.xyz;
         if params.info.x == RSM_SPOT {
-            intensity = intensity * spot_falloff(dot(dir, params.spot.xyz));
+            intensity = intensity * spot_falloff(dir, params.spot.xyz, params.spot.w,
+                                                 params.falloff.x);
         }
         flux = intensity * texel_solid_angle(x, y, ts * e);
     }

@@ -17,7 +17,7 @@ use crate::raster_types::{GpuDirectParams, LIGHT_DIRECTIONAL, LIGHT_POINT, LIGHT
 use crate::rsm_pass::GpuRsm;
 use crate::scene_upload::GpuScene;
 use glam::Vec3;
-use slc_core::{Image, Light};
+use slc_core::{Image, Light, SpotCone};
 
 /// `shaders/fresnel_ggx.wgsl` and `shaders/brdf.wgsl` followed by the direct-light kernel.
 pub(crate) const SOURCE: &str = concat!(
@@ -25,6 +25,7 @@ pub(crate) const SOURCE: &str = concat!(
     include_str!("../shaders/frame.wgsl"),
     include_str!("../shaders/brdf.wgsl"),
     include_str!("../shaders/gsample.wgsl"),
+    include_str!("../shaders/spot_falloff.wgsl"),
     include_str!("../shaders/direct.wgsl")
 );
 const WORKGROUP: u32 = 64;
@@ -124,12 +125,12 @@ fn light_params(map: &GpuRsm, pixels: u32, extent: f32) -> Result<GpuDirectParam
             inner_cone_angle,
             outer_cone_angle,
         } => {
-            let (ci, co) = (inner_cone_angle.cos(), outer_cone_angle.cos());
+            let cone = SpotCone::new(inner_cone_angle, outer_cone_angle);
             (
                 LIGHT_SPOT,
                 position,
-                direction.extend(co).to_array(),
-                intensity.extend((ci - co).max(1e-3)),
+                direction.extend(cone.h_outer).to_array(),
+                intensity.extend(cone.h_width),
             )
         }
         Light::Directional {

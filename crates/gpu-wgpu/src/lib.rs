@@ -83,6 +83,7 @@ pub mod culler;
 pub mod denoise_pass;
 pub mod denoise_types;
 pub mod direct_pass;
+pub mod frame_limits;
 pub mod gbuffer_pass;
 pub mod gpu_count;
 pub mod gpu_lists;

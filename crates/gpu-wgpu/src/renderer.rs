@@ -246,6 +246,11 @@ impl Renderer for GpuRenderer {
         }
     }
 
+    fn check(&self, settings: &RenderSettings) -> Result<(), RenderError> {
+        self.capabilities().check(self.name(), settings)?;
+        crate::frame_limits::check_frame_size(&self.ctx, settings)
+    }
+
     fn info(&self, settings: &RenderSettings) -> BackendInfo {
         let mut notes = frame_notes(&self.ctx);
         if let Method::Stochastic(s) = settings.method {

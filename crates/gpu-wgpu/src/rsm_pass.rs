@@ -19,7 +19,7 @@ use crate::raster_types::{
 use crate::scene_upload::GpuScene;
 use crate::visibility_pass::{RasterView, Resolve, VisibilityPass, VisibilityTarget};
 use glam::Vec3;
-use slc_core::Light;
+use slc_core::{Light, SpotCone};
 
 /// `shaders/scene_types.wgsl` and `shaders/scene.wgsl` followed by the RSM resolve.
 pub(crate) const SOURCE: &str = concat!(
@@ -27,6 +27,7 @@ pub(crate) const SOURCE: &str = concat!(
     include_str!("../shaders/scene.wgsl"),
     include_str!("../shaders/rsm_texel.wgsl"),
     include_str!("../shaders/solid_angle.wgsl"),
+    include_str!("../shaders/spot_falloff.wgsl"),
     include_str!("../shaders/rsm.wgsl")
 );
 
@@ -266,12 +267,12 @@ fn face_params(
             outer_cone_angle,
             ..
         } => {
-            let (ci, co) = (inner_cone_angle.cos(), outer_cone_angle.cos());
+            let cone = SpotCone::new(inner_cone_angle, outer_cone_angle);
             (
                 RSM_SPOT,
                 intensity,
-                direction.extend(co).to_array(),
-                (ci - co).max(1e-3),
+                direction.extend(cone.h_outer).to_array(),
+                cone.h_width,
             )
         }
         Light::Directional { irradiance, .. } => {
