@@ -1,15 +1,16 @@
 //! `slc render`.
-use crate::args::{EstimateArgs, FrameArgs, ImportanceArgs, PipelineArgs, Shader};
+use crate::args::{count, EstimateArgs, FrameArgs, ImportanceArgs, PipelineArgs, Shader};
 use crate::backend::{message, run_on, OnBackend};
 use crate::layers_exr::write_layers;
-use crate::output::write_frame;
+use crate::output::{frame_files, write_frame};
 use clap::{Args, ValueEnum};
-use slc_app::limits::check_memory;
+use slc_app::limits::check_frames;
 use slc_app::out_dir::OutDir;
 use slc_app::progress::bar;
 use slc_app::provenance::Provenance;
 use slc_app::repeat::{repeated, Spread};
-use slc_app::report::{FrameFacts, Report};
+use slc_app::report::{frame_warnings, FrameFacts, Report};
+use slc_core::frame::counts::{REPEAT, SPP};
 use slc_core::frame::{Method, RenderSettings};
 use slc_core::Scene;
 use slc_cpu_ref::CpuFrames;
@@ -42,17 +43,17 @@ pub struct RenderArgs {
     /// Render a reference instead of the stochastic estimate.
     #[arg(long, value_enum)]
     pub reference: Option<Reference>,
-    /// Passes (path samples per pixel, or jittered VPL passes) averaged.
-    #[arg(long, default_value_t = 1)]
+    #[arg(long, default_value_t = 1, value_parser = count(SPP),
+          help = SPP.help("Passes (path samples per pixel, or jittered VPL passes) averaged"))]
     pub spp: u32,
-    /// Render this many times after a warm-up (when more than one): report.json gives each
-    /// pass's median, min and max (`timings_spread_ms`); the images are the last run's.
-    #[arg(long, default_value_t = 1)]
+    #[arg(long, default_value_t = 1, value_parser = count(REPEAT),
+          help = REPEAT.help("Render this many times after a warm-up (when more than one): report.json gives each pass's median, min and max (`timings_spread_ms`); the images are the last run's"))]
     pub repeat: u32,
 }
 
 pub fn run(args: &RenderArgs) -> Result<(), String> {
     let out = OutDir::open(&args.out)?;
+    out.expect(frame_files(""))?;
     let scene = args.frame.load()?;
     let method = match (args.reference, args.frame.shader) {
         (Some(_), Shader::Vsgl) => {
@@ -68,8 +69,7 @@ pub fn run(args: &RenderArgs) -> Result<(), String> {
         }
     };
     let settings = args.frame.settings(method, args.spp);
-    settings.validate().map_err(message)?;
-    check_memory(&settings, &scene)?;
+    check_frames(&scene, std::slice::from_ref(&settings))?;
     run_on(
         args.frame.backend_choice()?,
         Render {
@@ -140,6 +140,9 @@ impl OnBackend for Render<'_> {
             images: &images,
             readback_bytes: frame.readback_bytes.as_ref(),
         };
+        for w in frame_warnings(&facts) {
+            eprintln!("warning: {w}");
+        }
         Report::new(&facts).write(&mut out, "")?;
         out.commit()?;
         let m = total.mean();

@@ -1,76 +1,98 @@
-//! A run's output folder: locked for the whole run, written through a staging folder and
-//! committed by renames, so the folder holds one run's complete result or the previous one's.
+//! A run's output folder: locked for the whole run, its result written whole into a hidden
+//! version folder and made visible at every final name at once by one rename.
 //!
 //! - [`OutDir::open`] runs before any work: it creates the folder, takes an exclusive lock on
-//!   `.slc.lock` (released by the OS when the process ends, however it ends) and makes the
-//!   staging folder `.slc-staging-<pid>`. A second run into a locked folder fails at once with
-//!   the holder's pid, command line and start time.
-//! - Every result is written at a [`OutDir::stage`]d path inside the staging folder.
-//! - [`OutDir::commit`] checks that no final name is a folder, then renames the files into
-//!   place, every `report.json` last (the top-level one very last), and removes what the
-//!   previous run wrote (its list is `.slc-manifest`) that this run did not write again.
-//! - A run that fails or is dropped before committing removes its staging folder; one that is
-//!   killed leaves only the hidden staging folder, which the next run removes.
+//!   `.slc.lock` (released by the OS when the process ends, however it ends; a second run into
+//!   a locked folder fails at once with the holder's pid, command line and start time),
+//!   removes what killed runs left, and makes the new version folder `.slc-result-N`.
+//! - Every result is written into the version folder ([`OutDir::write`],
+//!   [`OutDir::write_with`]); [`OutDir::expect`] checks before the work that nothing a user put
+//!   in the folder is where a result will go.
+//! - [`OutDir::commit`] (the layout: [`layout`]): (1) checks every final name is free or
+//!   already slc's link, (2) syncs the new files, (3) makes the links of names the previous
+//!   result lacked (they resolve to nothing until (4)), (4) renames a link to the new version
+//!   over `.slc-result`: the one step that changes what every final name shows, (5) removes
+//!   the links of names only the previous result had, the folders that leaves empty, and the
+//!   previous version.
+//! - A failure before (4) undoes (3) and removes the version folder: the previous result is
+//!   untouched. A run killed at any instant leaves the previous result at every final name
+//!   (before (4) the names still resolve through the old link; (3)'s links resolve to
+//!   nothing) or the new one (after (4); names only the previous result had resolve to
+//!   nothing); the next run removes what it left. Files slc did not write stay as they are.
+//!
+//! Every change to the file system is a step of [`faults`], so the tests make each one fail,
+//! or kill the run there, and check the folder.
+mod faults;
+mod layout;
+mod legacy;
+mod lock;
+#[cfg(test)]
+mod tests;
+
+use faults::Faults;
+use layout::{
+    check_relative, current_version, files_under, is_our_link, link_target, version_name,
+    version_of, CURRENT, LEGACY_STAGING_PREFIX, LINK_TMP, NEXT,
+};
+use std::fmt::Display;
 use std::fs::{self, File};
-use std::io::{Read, Write};
+use std::io;
 use std::path::{Path, PathBuf};
 
-const LOCK: &str = ".slc.lock";
-const MANIFEST: &str = ".slc-manifest";
-const STAGING_PREFIX: &str = ".slc-staging-";
-
-/// A locked output folder with the files staged so far.
+/// A locked output folder with the files written so far into its new version.
 pub struct OutDir {
     root: PathBuf,
+    /// The version the folder showed when the run began.
+    previous: Option<u64>,
+    /// The new version's folder.
+    version: u64,
     staging: PathBuf,
-    /// Staged files, relative to the root, in the order they were staged.
+    /// Files written, relative to the root.
     files: Vec<PathBuf>,
     committed: bool,
+    faults: Faults,
     _lock: File,
 }
 
+/// What a commit made before its rename, undone if it fails.
+#[derive(Default)]
+struct Made {
+    dirs: Vec<PathBuf>,
+    links: Vec<PathBuf>,
+}
+
 impl OutDir {
-    /// Creates and locks `root` and prepares an empty staging folder in it.
+    /// Creates and locks `root`, removes what killed runs left there and makes an empty
+    /// version folder for this run's result.
     pub fn open(root: &Path) -> Result<Self, String> {
-        let at = |what: &str, e: std::io::Error| format!("{}: {what}: {e}", root.display());
-        if root.exists() && !root.is_dir() {
+        Self::open_with(root, Faults::default())
+    }
+
+    fn open_with(root: &Path, faults: Faults) -> Result<Self, String> {
+        let at = |what: &str, e: io::Error| format!("{}: {what}: {e}", root.display());
+        if root.symlink_metadata().is_ok() && !root.is_dir() {
             return Err(format!(
                 "{}: the output path exists and is not a folder",
                 root.display()
             ));
         }
         fs::create_dir_all(root).map_err(|e| at("cannot create the output folder", e))?;
-        let lock_path = root.join(LOCK);
-        let mut lock = File::options()
-            .read(true)
-            .write(true)
-            .create(true)
-            .truncate(false)
-            .open(&lock_path)
-            .map_err(|e| at("cannot write in the output folder", e))?;
-        if let Err(e) = lock.try_lock() {
-            let mut holder = String::new();
-            lock.read_to_string(&mut holder).ok();
-            return Err(match e {
-                fs::TryLockError::WouldBlock => format!(
-                    "{}: the output folder is in use by another slc run ({}); wait for it or choose another --out",
-                    root.display(),
-                    holder_text(&holder)
-                ),
-                fs::TryLockError::Error(e) => at("cannot lock the output folder", e),
-            });
-        }
-        lock.set_len(0)
-            .and_then(|()| lock.write_all(holder_line().as_bytes()))
-            .map_err(|e| at("cannot write the lock file", e))?;
-        remove_stale_staging(root).map_err(|e| at("cannot remove an old staging folder", e))?;
-        let staging = root.join(format!("{STAGING_PREFIX}{}", std::process::id()));
-        fs::create_dir(&staging).map_err(|e| at("cannot create the staging folder", e))?;
+        let lock = lock::lock(root)?;
+        let previous = current_version(root)?;
+        tidy(root, previous).map_err(|e| at("cannot remove what an earlier run left", e))?;
+        legacy::migrate(root)?;
+        let previous = current_version(root)?;
+        let version = previous.map_or(1, |n| n + 1);
+        let staging = root.join(version_name(version));
+        fs::create_dir(&staging).map_err(|e| at("cannot create the result folder", e))?;
         Ok(Self {
             root: root.to_path_buf(),
+            previous,
+            version,
             staging,
             files: Vec::new(),
             committed: false,
+            faults,
             _lock: lock,
         })
     }
@@ -80,246 +102,272 @@ impl OutDir {
         &self.root
     }
 
-    /// Where to write the file that will be committed as `root/relative` (its parent folders
-    /// are created in the staging folder).
-    pub fn stage(&mut self, relative: impl AsRef<Path>) -> Result<PathBuf, String> {
-        let relative = relative.as_ref().to_path_buf();
-        let path = self.staging.join(&relative);
-        if let Some(parent) = path.parent() {
-            fs::create_dir_all(parent)
-                .map_err(|e| format!("{}: cannot create folder: {e}", parent.display()))?;
+    /// Checks, before any work, that the results `relatives` (files, relative to the root)
+    /// can take their final names: nothing slc did not write lies at one of them or at a
+    /// folder above one.
+    pub fn expect<P: AsRef<Path>>(
+        &self,
+        relatives: impl IntoIterator<Item = P>,
+    ) -> Result<(), String> {
+        for relative in relatives {
+            let relative = relative.as_ref();
+            check_relative(relative)?;
+            if let Some(e) = in_the_way(&self.root, relative) {
+                return Err(format!("{e}; nothing was written"));
+            }
         }
+        Ok(())
+    }
+
+    /// Writes the result `relative` by calling `write` with the path to write it at (in the
+    /// version folder, its parent folders made). An error names the final name.
+    pub fn write_with<E: Display>(
+        &mut self,
+        relative: impl AsRef<Path>,
+        write: impl FnOnce(&Path) -> Result<(), E>,
+    ) -> Result<(), String> {
+        let relative = relative.as_ref().to_path_buf();
+        check_relative(&relative)?;
+        let path = self.staging.join(&relative);
+        let shown = self.root.join(&relative);
+        let failed = |e: &dyn Display| {
+            let e = e
+                .to_string()
+                .replace(&path.display().to_string(), &shown.display().to_string());
+            format!(
+                "{}: cannot write: {e}; {} keeps its previous result",
+                shown.display(),
+                self.root.display()
+            )
+        };
+        self.faults.step().map_err(|e| failed(&e))?;
+        if let Some(parent) = path.parent() {
+            fs::create_dir_all(parent).map_err(|e| failed(&e))?;
+        }
+        write(&path).map_err(|e| failed(&e))?;
         if !self.files.contains(&relative) {
             self.files.push(relative);
         }
-        Ok(path)
+        Ok(())
     }
 
-    /// Whether `relative` has been staged.
+    /// Writes the result `relative` with the given contents.
+    pub fn write(&mut self, relative: impl AsRef<Path>, contents: &[u8]) -> Result<(), String> {
+        self.write_with(relative, |path| fs::write(path, contents))
+    }
+
+    /// Whether `relative` has been written.
     pub fn has(&self, relative: impl AsRef<Path>) -> bool {
         self.files.iter().any(|f| f == relative.as_ref())
     }
 
-    /// Stages a file with the given contents.
-    pub fn write(&mut self, relative: impl AsRef<Path>, contents: &[u8]) -> Result<(), String> {
-        let relative = relative.as_ref();
-        let path = self.stage(relative)?;
-        fs::write(&path, contents)
-            .map_err(|e| format!("{}: cannot write: {e}", self.root.join(relative).display()))
+    /// Makes the written files the folder's result, at once (see the module doc).
+    pub fn commit(mut self) -> Result<(), String> {
+        self.commit_in_place()
     }
 
-    /// Moves every staged file to its final name, `report.json` files last.
-    pub fn commit(mut self) -> Result<(), String> {
-        self.files.sort_by_key(|f| commit_rank(f));
+    fn commit_in_place(&mut self) -> Result<(), String> {
+        self.files.sort();
+        let mut made = Made::default();
+        match self.publish(&mut made) {
+            Ok(()) => {
+                self.committed = true;
+                self.remove_previous();
+                Ok(())
+            }
+            Err(e) => {
+                self.undo(made);
+                Err(e)
+            }
+        }
+    }
+
+    /// Steps (1) to (4) of the commit.
+    fn publish(&mut self, made: &mut Made) -> Result<(), String> {
+        let root = self.root.clone();
         for f in &self.files {
-            let target = self.root.join(f);
-            if target.is_dir() {
-                return Err(format!(
-                    "{}: a folder is in the way of a result file; nothing was replaced",
-                    target.display()
-                ));
+            if let Some(e) = in_the_way(&root, f) {
+                return Err(format!("{e}; nothing was replaced"));
             }
         }
-        let previous = fs::read_to_string(self.root.join(MANIFEST)).unwrap_or_default();
+        let failed = |what: &str, e: io::Error| {
+            format!(
+                "{}: cannot commit the result ({what}): {e}; the folder keeps its previous result",
+                root.display()
+            )
+        };
         for f in &self.files {
-            let target = self.root.join(f);
-            if let Some(parent) = target.parent() {
-                fs::create_dir_all(parent)
-                    .map_err(|e| format!("{}: cannot create folder: {e}", parent.display()))?;
-            }
-            fs::rename(self.staging.join(f), &target)
-                .map_err(|e| format!("{}: cannot move into place: {e}", target.display()))?;
+            self.faults.step().map_err(|e| failed("sync", e))?;
+            File::open(self.staging.join(f))
+                .and_then(|file| file.sync_all())
+                .map_err(|e| failed("sync", e))?;
         }
-        for old in previous.lines().map(Path::new) {
-            if !self.files.iter().any(|f| f == old) && is_plain_relative(old) {
-                fs::remove_file(self.root.join(old)).ok();
+        for f in &self.files {
+            if is_our_link(&root, f) {
+                continue;
             }
+            let mut folder = PathBuf::new();
+            for c in f.parent().into_iter().flat_map(Path::components) {
+                folder.push(c);
+                if root.join(&folder).symlink_metadata().is_err() {
+                    self.faults.step().map_err(|e| failed("folder", e))?;
+                    fs::create_dir(root.join(&folder)).map_err(|e| failed("folder", e))?;
+                    made.dirs.push(folder.clone());
+                }
+            }
+            self.faults.step().map_err(|e| failed("link", e))?;
+            std::os::unix::fs::symlink(link_target(f), root.join(f))
+                .map_err(|e| failed("link", e))?;
+            made.links.push(f.clone());
         }
-        let manifest: String = self
-            .files
+        self.faults.step().map_err(|e| failed("new version", e))?;
+        std::os::unix::fs::symlink(version_name(self.version), root.join(NEXT))
+            .map_err(|e| failed("new version", e))?;
+        self.faults.step().map_err(|e| failed("switch", e))?;
+        fs::rename(root.join(NEXT), root.join(CURRENT)).map_err(|e| failed("switch", e))
+    }
+
+    /// Removes what a failed commit made before its rename.
+    fn undo(&mut self, made: Made) {
+        let root = self.root.clone();
+        let mut steps = made
+            .links
             .iter()
-            .map(|f| format!("{}\n", f.display()))
-            .collect();
-        let staged_manifest = self.staging.join(MANIFEST);
-        fs::write(&staged_manifest, manifest)
-            .and_then(|()| fs::rename(&staged_manifest, self.root.join(MANIFEST)))
-            .map_err(|e| format!("{}: cannot write the manifest: {e}", self.root.display()))?;
-        self.committed = true;
-        fs::remove_dir_all(&self.staging).ok();
-        Ok(())
+            .rev()
+            .map(|l| (l, false))
+            .chain(made.dirs.iter().rev().map(|d| (d, true)))
+            .collect::<Vec<_>>();
+        let next = PathBuf::from(NEXT);
+        steps.push((&next, false));
+        for (path, folder) in steps {
+            if self.faults.step().is_ok() {
+                match folder {
+                    true => fs::remove_dir(root.join(path)).ok(),
+                    false => fs::remove_file(root.join(path)).ok(),
+                };
+            }
+        }
+    }
+
+    /// Step (5): the previous version and the links of names only it had. The result is
+    /// committed whatever fails here (the next run removes what is left).
+    fn remove_previous(&mut self) {
+        let Some(previous) = self.previous else {
+            return;
+        };
+        let folder = self.root.join(version_name(previous));
+        let mut result = Ok(());
+        for f in files_under(&folder) {
+            if !self.files.contains(&f) && is_our_link(&self.root, &f) && result.is_ok() {
+                result = self
+                    .faults
+                    .step()
+                    .and_then(|()| remove_link(&self.root, &f));
+            }
+        }
+        result = result
+            .and_then(|()| self.faults.step())
+            .and_then(|()| fs::remove_dir_all(&folder));
+        if let Err(e) = result {
+            eprintln!(
+                "warning: {}: the previous result was replaced but not all of it removed ({e}); the next run into this folder removes it",
+                self.root.display()
+            );
+        }
     }
 }
 
 impl Drop for OutDir {
     fn drop(&mut self) {
-        if !self.committed {
+        if !self.committed && self.faults.step().is_ok() {
             fs::remove_dir_all(&self.staging).ok();
         }
     }
 }
 
-/// The order of commit: other files first, then nested `report.json`, the top one last.
-fn commit_rank(f: &Path) -> (u8, std::cmp::Reverse<usize>) {
-    let depth = f.components().count();
-    match f.file_name().is_some_and(|n| n == "report.json") {
-        false => (0, std::cmp::Reverse(0)),
-        true => (1, std::cmp::Reverse(depth)),
-    }
-}
-
-/// A manifest entry that stays inside the folder (no `..`, not absolute).
-fn is_plain_relative(p: &Path) -> bool {
-    p.components()
-        .all(|c| matches!(c, std::path::Component::Normal(_)))
-}
-
-/// Removes staging folders left by runs that were killed (we hold the lock, so none is live).
-fn remove_stale_staging(root: &Path) -> std::io::Result<()> {
-    for entry in fs::read_dir(root)? {
-        let entry = entry?;
-        if entry
-            .file_name()
-            .to_string_lossy()
-            .starts_with(STAGING_PREFIX)
-        {
-            fs::remove_dir_all(entry.path())?;
+/// Why the final name of `relative` cannot be slc's: something slc did not write is there
+/// or at a folder above it.
+fn in_the_way(root: &Path, relative: &Path) -> Option<String> {
+    let what = |meta: &fs::Metadata| match meta {
+        m if m.is_symlink() => "link",
+        m if m.is_dir() => "folder",
+        m if m.is_file() => "file",
+        _ => "special file",
+    };
+    let mut folder = PathBuf::new();
+    for c in relative.parent().into_iter().flat_map(Path::components) {
+        folder.push(c);
+        match root.join(&folder).symlink_metadata() {
+            Err(_) => return None,
+            Ok(m) if m.is_dir() => {}
+            Ok(m) => {
+                return Some(format!(
+                    "{}: a {} slc did not write is where the result folder {}/ goes; move it away",
+                    root.join(&folder).display(),
+                    what(&m),
+                    root.join(&folder).display()
+                ))
+            }
         }
     }
+    match root.join(relative).symlink_metadata() {
+        Err(_) => None,
+        Ok(_) if is_our_link(root, relative) => None,
+        Ok(m) => Some(format!(
+            "{}: a {} slc did not write is where this result goes; move it away",
+            root.join(relative).display(),
+            what(&m)
+        )),
+    }
+}
+
+/// Removes slc's link at `relative` and the folders above it that this leaves empty.
+fn remove_link(root: &Path, relative: &Path) -> io::Result<()> {
+    fs::remove_file(root.join(relative))?;
+    remove_empty_folders(root, relative);
     Ok(())
 }
 
-/// What the lock file says about its holder.
-fn holder_line() -> String {
-    let secs = std::time::SystemTime::now()
-        .duration_since(std::time::UNIX_EPOCH)
-        .map_or(0, |d| d.as_secs());
-    let args: Vec<String> = std::env::args().collect();
-    format!(
-        "pid {}, started at unix time {secs}: {}",
-        std::process::id(),
-        args.join(" ")
-    )
-}
-
-fn holder_text(holder: &str) -> &str {
-    match holder.trim() {
-        "" => "holder unknown",
-        h => h,
+/// Removes the folders above `relative` that are empty, from the deepest up (those that do
+/// not exist are passed over).
+fn remove_empty_folders(root: &Path, relative: &Path) {
+    let mut folder = relative.parent();
+    while let Some(f) = folder.filter(|f| !f.as_os_str().is_empty()) {
+        match fs::remove_dir(root.join(f)) {
+            Err(e) if e.kind() != io::ErrorKind::NotFound => break,
+            _ => folder = f.parent(),
+        }
     }
 }
 
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    fn temp(name: &str) -> PathBuf {
-        let d = std::env::temp_dir().join(format!("slc-outdir-{name}-{}", std::process::id()));
-        fs::remove_dir_all(&d).ok();
-        d
+/// Removes what killed runs left in `root` (whose lock we hold, so no other run is live):
+/// versions other than the `current` one (after the links to them that resolve to nothing),
+/// the half-made links of a commit or migration, and the staging folders of slc's earlier
+/// layout.
+fn tidy(root: &Path, current: Option<u64>) -> io::Result<()> {
+    for entry in fs::read_dir(root)? {
+        let entry = entry?;
+        let name = entry.file_name();
+        let path = entry.path();
+        let stale_version = version_of(&name).is_some_and(|n| Some(n) != current);
+        if stale_version {
+            // Its links that resolve to nothing, and the folders a killed commit made for
+            // them (empty, or emptied).
+            for f in files_under(&path) {
+                if is_our_link(root, &f) && fs::metadata(root.join(&f)).is_err() {
+                    remove_link(root, &f)?;
+                } else if root.join(&f).symlink_metadata().is_err() {
+                    remove_empty_folders(root, &f);
+                }
+            }
+        }
+        let legacy = name.to_string_lossy().starts_with(LEGACY_STAGING_PREFIX);
+        if stale_version || legacy || name == NEXT || name == LINK_TMP {
+            match entry.file_type()?.is_dir() {
+                true => fs::remove_dir_all(&path)?,
+                false => fs::remove_file(&path)?,
+            }
+        }
     }
-
-    fn listing(root: &Path) -> Vec<String> {
-        let mut v: Vec<String> = fs::read_dir(root)
-            .unwrap()
-            .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
-            .collect();
-        v.sort();
-        v
-    }
-
-    #[test]
-    fn commit_moves_files_and_removes_the_previous_runs_leftovers() {
-        let root = temp("commit");
-        let mut out = OutDir::open(&root).unwrap();
-        out.write("a.txt", b"1").unwrap();
-        out.write("sub/report.json", b"{}").unwrap();
-        out.write("report.json", b"{}").unwrap();
-        // Nothing at a final name before the commit.
-        assert_eq!(listing(&root).len(), 2, "{:?}", listing(&root));
-        out.commit().unwrap();
-        assert_eq!(fs::read(root.join("a.txt")).unwrap(), b"1");
-        assert!(root.join("sub/report.json").is_file());
-        // A second run that writes less removes what the first wrote and it did not.
-        fs::write(root.join("mine.txt"), "user file").unwrap();
-        let mut out = OutDir::open(&root).unwrap();
-        out.write("report.json", b"{\"run\": 2}").unwrap();
-        out.commit().unwrap();
-        assert!(!root.join("a.txt").exists() && !root.join("sub/report.json").exists());
-        assert!(
-            root.join("mine.txt").is_file(),
-            "files slc did not write stay"
-        );
-        assert_eq!(
-            listing(&root),
-            [
-                ".slc-manifest",
-                ".slc.lock",
-                "mine.txt",
-                "report.json",
-                "sub"
-            ]
-        );
-        fs::remove_dir_all(&root).unwrap();
-    }
-
-    #[test]
-    fn a_second_run_is_refused_while_the_first_holds_the_folder() {
-        let root = temp("lock");
-        let first = OutDir::open(&root).unwrap();
-        let e = OutDir::open(&root).err().unwrap();
-        let pid = format!("pid {}", std::process::id());
-        assert!(
-            e.contains("in use by another slc run") && e.contains(&pid),
-            "{e}"
-        );
-        drop(first);
-        OutDir::open(&root).unwrap();
-        fs::remove_dir_all(&root).unwrap();
-    }
-
-    #[test]
-    fn a_dropped_run_leaves_the_previous_result() {
-        let root = temp("drop");
-        let mut out = OutDir::open(&root).unwrap();
-        out.write("report.json", b"old").unwrap();
-        out.commit().unwrap();
-        let mut out = OutDir::open(&root).unwrap();
-        out.write("report.json", b"new").unwrap();
-        drop(out);
-        assert_eq!(fs::read(root.join("report.json")).unwrap(), b"old");
-        assert!(!listing(&root).iter().any(|f| f.starts_with(STAGING_PREFIX)));
-        fs::remove_dir_all(&root).unwrap();
-    }
-
-    #[test]
-    fn a_folder_in_the_way_replaces_nothing() {
-        let root = temp("inway");
-        let mut out = OutDir::open(&root).unwrap();
-        out.write("a.txt", b"old").unwrap();
-        out.commit().unwrap();
-        fs::create_dir_all(root.join("b.txt")).unwrap();
-        let mut out = OutDir::open(&root).unwrap();
-        out.write("a.txt", b"new").unwrap();
-        out.write("b.txt", b"new").unwrap();
-        let e = out.commit().unwrap_err();
-        assert!(
-            e.contains("b.txt") && e.contains("nothing was replaced"),
-            "{e}"
-        );
-        assert_eq!(fs::read(root.join("a.txt")).unwrap(), b"old");
-        fs::remove_dir_all(&root).unwrap();
-    }
-
-    #[test]
-    fn stale_staging_is_removed_and_a_file_is_not_a_folder() {
-        let root = temp("stale");
-        fs::create_dir_all(root.join(".slc-staging-1/x")).unwrap();
-        let out = OutDir::open(&root).unwrap();
-        assert!(!root.join(".slc-staging-1").exists());
-        drop(out);
-        let file = root.join("file");
-        fs::write(&file, "").unwrap();
-        assert!(OutDir::open(&file).err().unwrap().contains("not a folder"));
-        fs::remove_dir_all(&root).unwrap();
-    }
+    Ok(())
 }
