@@ -149,8 +149,14 @@ impl OnBackend for Compare<'_> {
             out: mut dir_out,
         } = self;
         let f = &args.frame;
+        // Each frame on the backend that renders it: sampled VPLs always on the CPU
+        // (`shade_sampled`), everything else on `r`.
         for planned in planned(args, &settings) {
-            r.check(&planned).map_err(message)?;
+            match planned.method {
+                Method::SampledVpls(_) => CpuRenderer::default().check(&planned),
+                _ => r.check(&planned),
+            }
+            .map_err(message)?;
         }
         let device = r.info(&settings);
         let pixels = f.width as u64 * f.height as u64;

@@ -1,5 +1,6 @@
 //! The checks every front end runs before any work: each frame's settings in their domains,
 //! the scene renderable, and the largest frame within this machine's memory.
+use slc_core::frame::memory::available_memory;
 use slc_core::{RenderSettings, Scene};
 
 /// Checks every frame a run will render ([`RenderSettings::validate`]), that the scene can
@@ -29,11 +30,13 @@ pub fn check_memory(settings: &RenderSettings, scene: &Scene) -> Result<(), Stri
     }
     let gib = |b: u64| b as f64 / f64::from(1u32 << 30);
     Err(format!(
-        "{}x{} with RSM {}² needs about {:.1} GiB (G-buffer {:.1}, images {:.1}, RSM {:.1}, VPLs {:.1}, metrics {:.1}), more than the {:.1} GiB of memory available: lower the width, height or RSM resolution",
+        "{}x{} with RSM {}² needs about {:.1} GiB (scene {:.1}, BVH {:.1}, G-buffer {:.1}, images {:.1}, RSM {:.1}, VPLs {:.1}, metrics {:.1}), more than the {:.1} GiB of memory available: lower the width, height or RSM resolution",
         settings.width,
         settings.height,
         settings.rsm_resolution,
         gib(estimate.total()),
+        gib(estimate.scene),
+        gib(estimate.bvh),
         gib(estimate.gbuffer),
         gib(estimate.images),
         gib(estimate.rsm),
@@ -41,14 +44,6 @@ pub fn check_memory(settings: &RenderSettings, scene: &Scene) -> Result<(), Stri
         gib(estimate.metrics),
         gib(available)
     ))
-}
-
-/// Bytes of memory available to a new allocation, from `/proc/meminfo`.
-fn available_memory() -> Option<u64> {
-    let info = std::fs::read_to_string("/proc/meminfo").ok()?;
-    let line = info.lines().find(|l| l.starts_with("MemAvailable:"))?;
-    let kib: u64 = line.split_whitespace().nth(1)?.parse().ok()?;
-    Some(kib * 1024)
 }
 
 /// The most memory this process has held so far (`VmHWM` of `/proc/self/status`), in bytes.

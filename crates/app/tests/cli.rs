@@ -302,7 +302,7 @@ fn vsgl_options_that_do_not_fit_are_clear_errors() {
         ("bench --shader vsgl", "sweep --shader vsgl"),
         (
             "render --shader vsgl --vsgls 0",
-            "sampled lights must be in 1..",
+            "must be in 1..=16777216 (got 0)",
         ),
     ] {
         let o = slc()

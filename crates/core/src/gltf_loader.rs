@@ -35,6 +35,7 @@
 use crate::camera::Camera;
 use crate::error::SceneError;
 use crate::file_read::read_capped;
+use crate::frame::memory::{available_memory, geometry_bytes};
 use crate::gltf_document::{parse, Parsed};
 use crate::gltf_material::{default_material, load_materials};
 use crate::gltf_mesh::primitive_mesh;
@@ -61,6 +62,7 @@ pub fn load_gltf(path: &Path) -> Result<Scene, SceneError> {
         blob,
         ignored_extensions,
     } = parse(&bytes, &mut warnings).map_err(error)?;
+    check_placed_size(&document).map_err(error)?;
     let base = path.parent().unwrap_or(Path::new("."));
     let buffers = load_buffers(&document, base, blob).map_err(error)?;
 
@@ -161,6 +163,43 @@ fn read_mesh(
         add_mesh(scene, m);
     }
     Ok(())
+}
+
+/// Refuses, before any buffer is read, a file whose node hierarchy places more geometry than
+/// this machine's memory holds: every placement of a mesh is a copy of its vertices and
+/// triangles, and the BVH is built over all of them ([`geometry_bytes`]), so a small file
+/// that instances a large mesh many times can ask for tens of GB.
+fn check_placed_size(document: &gltf::Document) -> Result<(), String> {
+    let (mut vertices, mut triangles, mut placements) = (0u64, 0u64, 0u64);
+    let mut visited = vec![false; document.nodes().len()];
+    let mut stack = root_nodes(document);
+    while let Some(node) = stack.pop() {
+        if std::mem::replace(&mut visited[node.index()], true) {
+            continue;
+        }
+        if let Some(mesh) = node.mesh() {
+            placements += 1;
+            for p in mesh.primitives() {
+                let count = |a: Option<gltf::Accessor>| a.map_or(0, |a| a.count() as u64);
+                let v = count(p.get(&gltf::Semantic::Positions));
+                vertices += v;
+                triangles += p.indices().map_or(v, |i| i.count() as u64) / 3;
+            }
+        }
+        stack.extend(node.children());
+    }
+    let need = geometry_bytes(vertices, triangles);
+    match available_memory() {
+        Some(available) if need > available => {
+            let gib = |b: u64| b as f64 / f64::from(1u32 << 30);
+            Err(format!(
+                "its {placements} mesh placement(s) make {triangles} triangles of {vertices} vertices, which need about {:.1} GiB (meshes and BVH), more than the {:.1} GiB of memory available",
+                gib(need),
+                gib(available)
+            ))
+        }
+        _ => Ok(()),
+    }
 }
 
 /// The nodes to walk: the default scene's, else the first scene's, else every node that is

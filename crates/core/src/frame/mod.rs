@@ -3,7 +3,7 @@
 //! ([`RenderError`]).
 pub mod counts;
 mod error;
-mod memory;
+pub mod memory;
 mod output;
 mod settings;
 mod timings;
