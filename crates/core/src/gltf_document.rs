@@ -49,14 +49,22 @@ pub(crate) struct Parsed {
     pub ignored_extensions: Vec<String>,
 }
 
-/// Parses a `.gltf` or `.glb` file's bytes as the module documentation says.
-pub(crate) fn parse(bytes: &[u8], warnings: &mut Vec<String>) -> Result<Parsed, String> {
-    let (json, blob) = if bytes.starts_with(b"glTF") {
-        split_glb(bytes, warnings)?
-    } else {
-        (bytes, None)
+/// Parses a `.gltf` or `.glb` file's bytes as the module documentation says. A GLB's binary
+/// chunk becomes [`Parsed::blob`] in the file's own allocation (moved to its front, not
+/// copied: a large GLB is held once).
+pub(crate) fn parse(bytes: Vec<u8>, warnings: &mut Vec<String>) -> Result<Parsed, String> {
+    let within = |part: &[u8]| {
+        let start = part.as_ptr() as usize - bytes.as_ptr() as usize;
+        start..start + part.len()
     };
-    let mut root: Value = serde_json::from_slice(json).map_err(|e| format!("invalid JSON: {e}"))?;
+    let (json, blob) = if bytes.starts_with(b"glTF") {
+        let (json, blob) = split_glb(&bytes, warnings)?;
+        (within(json), blob.map(within))
+    } else {
+        (0..bytes.len(), None)
+    };
+    let mut root: Value =
+        serde_json::from_slice(&bytes[json]).map_err(|e| format!("invalid JSON: {e}"))?;
     let object = root.as_object_mut().ok_or("the JSON is not an object")?;
     check_version(object)?;
     let ignored_extensions = check_extensions(object)?;
@@ -88,7 +96,12 @@ pub(crate) fn parse(bytes: &[u8], warnings: &mut Vec<String>) -> Result<Parsed, 
     validate(&document, &left_out)?;
     Ok(Parsed {
         document,
-        blob: blob.map(<[u8]>::to_vec),
+        blob: blob.map(|range| {
+            let mut bytes = bytes;
+            bytes.truncate(range.end);
+            bytes.drain(..range.start);
+            bytes
+        }),
         ignored_extensions,
     })
 }

@@ -61,7 +61,7 @@ pub fn load_gltf(path: &Path) -> Result<Scene, SceneError> {
         document,
         blob,
         ignored_extensions,
-    } = parse(&bytes, &mut warnings).map_err(error)?;
+    } = parse(bytes, &mut warnings).map_err(error)?;
     check_placed_size(&document).map_err(error)?;
     let base = path.parent().unwrap_or(Path::new("."));
     let buffers = load_buffers(&document, base, blob).map_err(error)?;

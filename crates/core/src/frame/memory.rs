@@ -15,15 +15,16 @@ use std::mem::size_of;
 pub const BASELINE_BYTES: u64 = 24 << 20;
 /// Per pixel besides the G-buffer: the direct, indirect and total images, the filter's
 /// buffers, the per-pixel lists' heads, the images written (PNG and EXR encoders, the
-/// multi-layer EXR) — 20 RGB `f32` values (measured: 200–230 bytes a pixel with the G-buffer).
-pub const IMAGE_BYTES_PER_PIXEL: u64 = 20 * size_of::<Vec3>() as u64;
+/// multi-layer EXR) — 14 RGB `f32` values (measured: 200–232 bytes a pixel with the 104 of the
+/// G-buffer; estimated: 272).
+pub const IMAGE_BYTES_PER_PIXEL: u64 = 14 * size_of::<Vec3>() as u64;
 /// Per RSM texel: the traced surface and its flux, and the VSGL shader's mipmaps of them
 /// (measured: about 115 bytes).
-pub const RSM_BYTES_PER_TEXEL: u64 = 160;
+pub const RSM_BYTES_PER_TEXEL: u64 = 128;
 /// Per VPL: the VPL, its culling bound in the test space, its place in the lists and the
 /// sort that builds them (measured: 440 bytes a diffuse VPL, 550 a glossy one, 610 with the
 /// clustered strategy).
-pub const VPL_BYTES: u64 = 768;
+pub const VPL_BYTES: u64 = 640;
 /// Per vertex a mesh holds at most (position, normal, texture coordinate, tangent) and per
 /// triangle (three indices).
 pub const MESH_BYTES_PER_VERTEX: u64 =
@@ -31,7 +32,8 @@ pub const MESH_BYTES_PER_VERTEX: u64 =
 pub const MESH_BYTES_PER_TRIANGLE: u64 = 3 * 4;
 /// Per triangle, what the CPU backend builds of the scene: its copy of the triangle
 /// (obvhs `Triangle`, 48 bytes), the reference back to the mesh, and the BVH with what its
-/// build holds at once (measured on Sponza: about 260 bytes).
+/// build holds at once, with the loader's copies (measured: up to 370 bytes, on a generated
+/// OBJ of 320,000 triangles).
 pub const BVH_BYTES_PER_TRIANGLE: u64 = 384;
 
 /// Bytes of `vertices` and `triangles` placed in a scene, with the BVH over them.
