@@ -149,25 +149,6 @@ fn medians(runs: &[Timings]) -> BTreeMap<String, f64> {
         .collect()
 }
 
-/// What makes a frame's result degenerate, as warnings (the command prints them, and
-/// `report.json` lists them after the scene's): a stochastic estimate whose indirect image
-/// is black although the frame has VPLs, which a δ so large that no pair's p = I/(δ l²)
-/// (eq. 2) reaches its ξ gives.
-pub fn frame_warnings(f: &FrameFacts) -> Vec<String> {
-    let indirect = f.images.iter().find(|(name, _)| *name == "indirect");
-    match (f.method, indirect) {
-        (Method::Stochastic(s), Some((_, image)))
-            if f.vpl_count > 0 && image.pixels.iter().all(|p| *p == glam::Vec3::ZERO) =>
-        {
-            vec![format!(
-                "the indirect image is black although the frame has {} VPLs: with δ = {:e} no pair's p = I/(δ l²) reached its ξ; lower --delta (the default is 1e-3)",
-                f.vpl_count, s.delta
-            )]
-        }
-        _ => Vec::new(),
-    }
-}
-
 /// Each pass (and the `total`) over the runs.
 fn spread_per_pass(runs: &[Timings]) -> BTreeMap<String, Spread> {
     let mut out: BTreeMap<String, Spread> = runs[0]
@@ -239,14 +220,7 @@ impl Report {
                 .collect(),
             skipped_triangles: f.scene.report.skipped.total(),
             skipped_by_defect: Skipped::from(f.scene.report.skipped),
-            warnings: f
-                .scene
-                .report
-                .warnings
-                .iter()
-                .cloned()
-                .chain(frame_warnings(f))
-                .collect(),
+            warnings: f.scene.report.warnings.clone(),
             memory: Memory {
                 estimate_bytes: f.settings.memory_estimate(f.scene).total(),
                 peak_rss_bytes: crate::limits::peak_rss(),

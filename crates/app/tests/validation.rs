@@ -7,7 +7,7 @@ use std::process::Output;
 use std::time::{Duration, Instant};
 
 mod common;
-use common::{out_dir, slc};
+use common::{gpu_available, out_dir, slc};
 
 fn run(args: &str, out: &Path) -> Output {
     slc()
@@ -183,8 +183,44 @@ fn a_delta_that_culls_every_pair_is_a_warning() {
     );
     let report = std::fs::read_to_string(out.join("report.json")).unwrap();
     assert!(report.contains("the indirect image is black"), "{report}");
-    // The default δ gives no such warning.
+    // The default δ gives no such warning, and nor does a scene whose indirect light is
+    // black whatever δ is (a single plane cannot light itself).
     let o = run("render --width 16 --height 12 --rsm 4", &out);
     assert!(!String::from_utf8_lossy(&o.stderr).contains("black"));
+    let plane =
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("../../scenes/narrow-spot/narrow-spot.gltf");
+    let o = run(
+        &format!("render {} --width 16 --height 16 --rsm 4", plane.display()),
+        &out,
+    );
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(o.status.success() && !err.contains("black"), "{err}");
     std::fs::remove_dir_all(&out).ok();
+}
+
+#[test]
+fn a_frame_beyond_the_adapters_binding_is_refused_before_work_naming_what_fits() {
+    if !gpu_available() {
+        return;
+    }
+    let out = out_dir("gpu-binding");
+    // One face of RSM 1024² holds 2 x 1024² VPLs of 144 bytes (302 MB): beyond lavapipe's
+    // 128 MiB binding (the case); an adapter with room renders it.
+    let o = run(
+        "render --backend gpu --width 16 --height 16 --rsm 1024",
+        &out,
+    );
+    let err = String::from_utf8_lossy(&o.stderr);
+    if !o.status.success() {
+        assert!(
+            err.contains("RSM 1024²")
+                && err.contains("at most --rsm")
+                && err.contains("--backend cpu"),
+            "{err}"
+        );
+        assert!(
+            !err.contains("smaller batches") && !err.contains("VPLs"),
+            "{err}"
+        );
+    }
 }
