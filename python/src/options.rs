@@ -6,6 +6,7 @@ use crate::error;
 use pyo3::exceptions::{PyTypeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::{PyBool, PyDict, PyInt};
+use slc_core::frame::counts::CAMERA_VSGLS;
 use slc_core::frame::{
     DiffuseEmission, Importance, LightSampling, LobeSelection, Method, RenderSettings, Stochastic,
 };
@@ -241,7 +242,10 @@ impl Options {
     /// The sampled lights' options (`shader="vsgl"`).
     fn sampling(options: Option<&Bound<'_, PyDict>>) -> PyResult<LightSampling> {
         let importance: String = option!(options, "importance", String, "flux".into());
-        let camera_vsgls = option!(options, "camera_vsgls", u32, 1024);
+        // Checked whatever the importance, as the command line's --camera-vsgls is.
+        let camera_vsgls = CAMERA_VSGLS
+            .check(option!(options, "camera_vsgls", u32, 1024))
+            .map_err(error)?;
         let diffuse: String = option!(options, "vsgl_diffuse", String, "clamped".into());
         Ok(LightSampling {
             count: option!(options, "vsgls", u32, 1024),

@@ -236,8 +236,8 @@ impl PyScene {
     where
         J::Output: Send,
     {
-        self.scene.validate_for_render().map_err(error)?;
-        slc_app::limits::check_memory(&options.settings, &self.scene).map_err(error)?;
+        slc_app::limits::check_frames(&self.scene, std::slice::from_ref(&options.settings))
+            .map_err(error)?;
         py.detach(|| {
             let mut loaded = self.loaded.lock().unwrap_or_else(PoisonError::into_inner);
             loaded.run(options, &self.scene, job)
@@ -261,7 +261,7 @@ impl PyScene {
     #[staticmethod]
     fn load(path: std::path::PathBuf) -> PyResult<Self> {
         let spec = path.to_string_lossy().into_owned();
-        let scene = load_scene(&spec).map_err(error)?;
+        let scene = load_scene(&path).map_err(error)?;
         Ok(Self::new(scene, Some(spec)))
     }
 

@@ -16,7 +16,6 @@ pub fn write_layers(
     provenance: &Provenance,
 ) -> std::result::Result<(), String> {
     let relative = std::path::Path::new(dir).join("layers.exr");
-    let shown = out.root().join(&relative);
     let (w, h) = images
         .first()
         .map_or((1, 1), |(_, i)| (i.width as usize, i.height as usize));
@@ -49,10 +48,7 @@ pub fn write_layers(
         .other
         .insert(Text::from("slc.provenance"), AttributeValue::Text(text));
     let image = exr::image::Image::from_layers(attributes, layers);
-    image
-        .write()
-        .to_file(out.stage(&relative)?)
-        .map_err(|e| format!("{}: cannot write EXR: {e}", shown.display()))
+    out.write_with(&relative, |path| image.write().to_file(path))
 }
 
 fn layer(

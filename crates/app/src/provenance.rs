@@ -54,7 +54,9 @@ impl Provenance {
             schema_version: SCHEMA_VERSION,
             slc_version: env!("CARGO_PKG_VERSION"),
             git_commit: Some(env!("SLC_GIT_COMMIT")).filter(|c| !c.is_empty()),
-            command_line: std::env::args().collect(),
+            command_line: std::env::args_os()
+                .map(|a| a.to_string_lossy().into_owned())
+                .collect(),
             started_at: rfc3339(started),
             cpu: cpu_model(),
             cpu_threads: std::thread::available_parallelism().map_or(1, |n| n.get()),

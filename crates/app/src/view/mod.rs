@@ -28,10 +28,13 @@ mod session;
 mod ui;
 mod window;
 
-use crate::args::{stops, Backend, EstimateArgs, ImportanceArgs, Lobes, PipelineArgs, Shader};
+use crate::args::{
+    count, stops, Backend, EstimateArgs, ImportanceArgs, Lobes, PipelineArgs, SceneSpec, Shader,
+};
 use clap::Args;
 use controls::{Controls, Layer, Overlay};
 use session::Session;
+use slc_core::frame::counts::{Count, HEAT_MAX, HEIGHT, MAX_IMAGE_SIDE, RSM};
 use std::path::PathBuf;
 
 /// Everything that stops the view.
@@ -63,17 +66,26 @@ pub enum ViewError {
     Write { path: PathBuf, message: String },
 }
 
+/// The view's width: the window adds the side panel ([`window::PANEL_WIDTH`]) beside it, and
+/// the window's surface is at most [`MAX_IMAGE_SIDE`] wide.
+pub const VIEW_WIDTH: Count = Count {
+    what: "the view's width (the window adds the side panel)",
+    min: 1,
+    max: MAX_IMAGE_SIDE - window::PANEL_WIDTH,
+};
+
 /// `slc view`'s options.
 #[derive(Args, Debug)]
 pub struct ViewArgs {
     /// A .gltf/.glb/.obj file, a .toml scene-settings file, or a built-in scene name; none
     /// opens the built-in default (settings can be saved for scene files only).
-    pub scene: Option<String>,
-    /// Width of the rendered view in pixels (the window adds the side panel).
-    #[arg(long, default_value_t = 640)]
+    #[arg(value_parser = SceneSpec::parser())]
+    pub scene: Option<SceneSpec>,
+    #[arg(long, default_value_t = 640, value_parser = count(VIEW_WIDTH),
+          help = VIEW_WIDTH.help("Width of the rendered view in pixels (the window adds the side panel)"))]
     pub width: u32,
-    /// Height of the rendered view in pixels.
-    #[arg(long, default_value_t = 480)]
+    #[arg(long, default_value_t = 480, value_parser = count(HEIGHT),
+          help = HEIGHT.help("Height of the rendered view in pixels"))]
     pub height: u32,
     /// Who renders the frames: the GPU (wgpu), or the CPU reference renderer (rayon) for
     /// machines without a GPU; the window is drawn with wgpu either way.
@@ -81,8 +93,8 @@ pub struct ViewArgs {
     pub backend: Backend,
     #[arg(long, value_enum, default_value_t = Shader::Vpl)]
     pub shader: Shader,
-    /// Reflective-shadow-map resolution per face.
-    #[arg(long, default_value_t = 64)]
+    #[arg(long, default_value_t = 64, value_parser = count(RSM),
+          help = RSM.help("Reflective-shadow-map resolution per face"))]
     pub rsm: u32,
     /// Seed of ξ, interleaving and sampling.
     #[arg(long, default_value_t = 0)]
@@ -105,8 +117,8 @@ pub struct ViewArgs {
     /// What is drawn over the picture.
     #[arg(long, value_enum, default_value_t = Overlay::None)]
     pub overlay: Overlay,
-    /// Heat-map brightness saturates at this many lights per pixel.
-    #[arg(long, default_value_t = 256)]
+    #[arg(long, default_value_t = 256, value_parser = count(HEAT_MAX),
+          help = HEAT_MAX.help("Heat-map brightness saturates at this many lights per pixel"))]
     pub heat_max: u32,
     /// Measure lights per pixel and FDR every frame (brute force on the CPU), also without
     /// the heat map.
@@ -160,10 +172,7 @@ fn view(args: &ViewArgs) -> Result<(), ViewError> {
         .and_then(|s| s.validate().map_err(crate::backend::message))
         .map_err(ViewError::Input)?;
     let spec = args.scene.as_deref().unwrap_or("default");
-    let scene = slc_core::load_scene(spec).map_err(|e| ViewError::Input(e.to_string()))?;
-    for w in &scene.report.warnings {
-        eprintln!("warning: {}: {w}", scene.label());
-    }
+    let scene = SceneSpec::load(args.scene.as_ref()).map_err(ViewError::Input)?;
     scene
         .validate_for_render()
         .map_err(|e| ViewError::Input(e.to_string()))?;

@@ -38,7 +38,8 @@ pub enum GpuError {
     Timeout(Duration),
     #[error(
         "buffer {label:?} needs {size} bytes, more than the {limit} bytes one storage binding \
-         allows on this adapter; split the input into smaller batches"
+         allows on this adapter; lower the image size, --rsm or the light count, or render \
+         with --backend cpu"
     )]
     BufferTooLarge {
         label: String,

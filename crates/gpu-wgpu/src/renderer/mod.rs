@@ -14,6 +14,7 @@
 //! Pass times are wall clock around each step, its uploads, readbacks and the wait for
 //! completion included; where the adapter has trustworthy timestamp queries the GPU's
 //! execution times of the same passes come beside them.
+pub mod limits;
 mod notes;
 
 use crate::cull::frame::CullFrame;
@@ -259,6 +260,11 @@ impl Renderer for GpuRenderer {
                 .features()
                 .contains(wgpu::Features::FLOAT32_BLENDABLE),
         }
+    }
+
+    fn check(&self, settings: &RenderSettings) -> Result<(), RenderError> {
+        self.capabilities().check(self.name(), settings)?;
+        limits::check_frame_size(&self.ctx, settings)
     }
 
     fn info(&self, settings: &RenderSettings) -> BackendInfo {

@@ -17,7 +17,7 @@ use crate::frame::light::rsm::GpuRsm;
 use crate::frame::raster::gbuffer::GpuGBuffer;
 use crate::frame::raster::scene::GpuScene;
 use glam::Vec3;
-use slc_core::{Image, Light};
+use slc_core::{Image, Light, SpotCone};
 
 /// The kernel of `direct.wesl`, linked with what it imports (build.rs).
 pub(crate) const SOURCE: &str = kernel!("direct");
@@ -118,12 +118,12 @@ fn light_params(map: &GpuRsm, pixels: u32, extent: f32) -> Result<GpuDirectParam
             inner_cone_angle,
             outer_cone_angle,
         } => {
-            let (ci, co) = (inner_cone_angle.cos(), outer_cone_angle.cos());
+            let cone = SpotCone::new(inner_cone_angle, outer_cone_angle);
             (
                 LIGHT_SPOT,
                 position,
-                direction.extend(co).to_array(),
-                intensity.extend((ci - co).max(1e-3)),
+                direction.extend(cone.h_outer).to_array(),
+                intensity.extend(cone.h_width),
             )
         }
         Light::Directional {

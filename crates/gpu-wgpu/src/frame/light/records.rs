@@ -22,12 +22,12 @@ pub struct GpuRsmParams {
     pub up: [f32; 4],
     /// Radiant intensity (point, spot) or the flux of every texel (directional), rgb.
     pub light: [f32; 4],
-    /// Spot axis (xyz) and cos of the outer cone angle (w).
+    /// Spot axis (xyz) and `SpotCone::h_outer` (w).
     pub spot: [f32; 4],
     /// [`RSM_POINT`], [`RSM_SPOT`] or [`RSM_DIRECTIONAL`]; resolution n; first texel of the
     /// face; unused.
     pub info: [u32; 4],
-    /// `max(cos inner − cos outer, 1e-3)` of the spot falloff (x), unused.
+    /// `SpotCone::h_width` of the spot falloff (x), unused.
     pub falloff: [f32; 4],
 }
 const _: () = assert!(std::mem::size_of::<GpuRsmParams>() == 128);
@@ -79,9 +79,9 @@ pub const LIGHT_DIRECTIONAL: u32 = 2;
 pub struct GpuDirectParams {
     /// Light position (point, spot) or travel direction (directional), xyz.
     pub light: [f32; 4],
-    /// Spot axis (xyz) and cos of the outer cone angle (w).
+    /// Spot axis (xyz) and `SpotCone::h_outer` (w).
     pub spot: [f32; 4],
-    /// Intensity or irradiance (rgb) and `max(cos inner − cos outer, 1e-3)` (w).
+    /// Intensity or irradiance (rgb) and `SpotCone::h_width` (w).
     pub radiometry: [f32; 4],
     /// Shadow-map origin (xyz) and face extent (w).
     pub origin: [f32; 4],

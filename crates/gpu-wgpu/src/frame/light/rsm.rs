@@ -19,7 +19,7 @@ use crate::frame::light::records::{
 use crate::frame::raster::scene::GpuScene;
 use crate::frame::raster::visibility::{RasterView, Resolve, VisibilityPass, VisibilityTarget};
 use glam::Vec3;
-use slc_core::Light;
+use slc_core::{Light, SpotCone};
 
 /// The kernel of `rsm.wesl`, linked with what it imports (build.rs).
 pub(crate) const SOURCE: &str = kernel!("rsm");
@@ -260,12 +260,12 @@ fn face_params(
             outer_cone_angle,
             ..
         } => {
-            let (ci, co) = (inner_cone_angle.cos(), outer_cone_angle.cos());
+            let cone = SpotCone::new(inner_cone_angle, outer_cone_angle);
             (
                 RSM_SPOT,
                 intensity,
-                direction.extend(co).to_array(),
-                (ci - co).max(1e-3),
+                direction.extend(cone.h_outer).to_array(),
+                cone.h_width,
             )
         }
         Light::Directional { irradiance, .. } => {
