@@ -9,6 +9,7 @@ use crate::error;
 use pyo3::exceptions::{PyTypeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::{PyBool, PyDict, PyFloat, PyString};
+use slc_core::frame::counts::CAMERA_VSGLS;
 use slc_core::frame::{
     DiffuseEmission, Importance, LightSampling, LobeSelection, Method, RenderSettings, Stochastic,
 };
@@ -159,7 +160,8 @@ impl<'py> Given<'_, 'py> {
     /// A string of `key`, which must be given.
     fn required_text(&self, key: &str) -> PyResult<String> {
         let v = self.required(key)?;
-        v.extract::<String>().map_err(|_| type_error(key, "a str", &v))
+        v.extract::<String>()
+            .map_err(|_| type_error(key, "a str", &v))
     }
 }
 
@@ -354,7 +356,10 @@ impl Options {
 
     /// The sampled lights' options (`shader="vsgl"`).
     fn sampling(given: Given) -> PyResult<LightSampling> {
-        let camera_vsgls = given.count("camera_vsgls")?;
+        // Checked whatever the importance, as the command line's --camera-vsgls is.
+        let camera_vsgls = CAMERA_VSGLS
+            .check(given.count("camera_vsgls")?)
+            .map_err(error)?;
         Ok(LightSampling {
             count: given.count("vsgls")?,
             importance: choose(

@@ -243,8 +243,8 @@ impl PyScene {
     where
         J::Output: Send,
     {
-        self.scene.validate_for_render().map_err(error)?;
-        slc_app::limits::check_memory(&options.settings, &self.scene).map_err(error)?;
+        slc_app::limits::check_frames(&self.scene, std::slice::from_ref(&options.settings))
+            .map_err(error)?;
         let reporter = Reporter {
             callback: options.progress.as_ref(),
             total,
@@ -278,7 +278,7 @@ impl PyScene {
     /// A scene from a file (`.gltf`, `.glb`, `.obj` or a `.toml` scene-settings file).
     #[staticmethod]
     fn load(path: std::path::PathBuf) -> PyResult<Self> {
-        let scene = load_scene(&path.to_string_lossy()).map_err(error)?;
+        let scene = load_scene(&path).map_err(error)?;
         Ok(Self::new(scene))
     }
 

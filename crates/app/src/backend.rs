@@ -15,15 +15,16 @@ pub trait OnBackend {
 pub fn run_on(on: BackendChoice, command: impl OnBackend) -> Result<(), String> {
     match on.backend {
         Backend::Cpu => command.run(&CpuRenderer::default()),
-        Backend::Gpu => run_on_gpu(on.one_pass, command),
+        Backend::Gpu => run_on_gpu(on, command),
     }
 }
 
 #[cfg(feature = "gpu")]
-fn run_on_gpu(one_pass: bool, command: impl OnBackend) -> Result<(), String> {
+fn run_on_gpu(on: BackendChoice, command: impl OnBackend) -> Result<(), String> {
     let gpu = slc_gpu_wgpu::GpuRenderer::new()
         .map_err(|e| e.to_string())?
-        .with_one_pass(one_pass);
+        .with_one_pass(on.one_pass)
+        .with_hardware_conservative(on.hardware_conservative);
     warn_if_software(gpu.context());
     command.run(&gpu)
 }
@@ -37,7 +38,7 @@ pub fn warn_if_software(ctx: &slc_gpu_wgpu::GpuContext) {
 }
 
 #[cfg(not(feature = "gpu"))]
-fn run_on_gpu(_one_pass: bool, _command: impl OnBackend) -> Result<(), String> {
+fn run_on_gpu(_on: BackendChoice, _command: impl OnBackend) -> Result<(), String> {
     Err(
         "this slc was built without the `gpu` feature; rebuild with it (the default) or use \
          --backend cpu"

@@ -2,18 +2,20 @@
 //! each culling strategy, in one run (so ratios are measured on the same machine state).
 //! Writes `bench.json` / `bench.csv` (every setting a column; medians over `--repeat` runs with
 //! the min and max of culling + shading) and `bench.md`.
-use crate::args::{strategies, FrameArgs, PipelineArgs, Shader};
+use crate::args::{count, positive, strategies, FrameArgs, PipelineArgs, Shader};
 use crate::backend::{message, run_on, OnBackend};
 use crate::ceiling;
 use crate::table::{write_csv, SettingsColumns};
 use clap::Args;
 use serde::Serialize;
-use slc_app::limits::check_memory;
+use slc_app::limits::check_frames;
 use slc_app::out_dir::OutDir;
 use slc_app::provenance::Provenance;
 use slc_app::repeat::{repeated, Spread};
+use slc_core::frame::counts::{HEIGHT, REPEAT, RSM, WIDTH};
+use slc_core::frame::PassTime;
 use slc_core::frame::{Method, Stochastic};
-use slc_core::shader::{frame_timings, Shader as _};
+use slc_core::shader::frame_timings_of;
 use slc_core::{PreparedFrame, Scene, Strategy, Timings};
 use slc_cpu_ref::CpuFrames;
 use std::fmt::Write;
@@ -30,29 +32,41 @@ pub struct BenchArgs {
     /// Resolutions WxH, comma separated (overrides --width/--height).
     #[arg(long, value_delimiter = ',', default_value = "1280x720,1920x1080")]
     pub resolutions: Vec<String>,
-    /// RSM resolutions per face, comma separated (overrides --rsm).
-    #[arg(long, value_delimiter = ',', default_value = "128,256")]
+    #[arg(long, value_delimiter = ',', default_value = "128,256", value_parser = count(RSM),
+          help = RSM.help("RSM resolutions per face, comma separated (overrides --rsm)"))]
     pub rsms: Vec<u32>,
     #[arg(long, value_delimiter = ',', default_value = "ellipsoid,sphere")]
     pub culling: Vec<String>,
-    #[arg(long, default_value_t = 1e-3)]
+    /// δ of eq. (2) (a finite number above 0).
+    #[arg(long, default_value_t = 1e-3, value_parser = positive)]
     pub delta: f32,
-    /// Timing repetitions per strategy and frame, after one warm-up when more than one: the
-    /// tables give the median of each pass and the min and max of culling + shading.
-    #[arg(long, default_value_t = 1)]
+    #[arg(long, default_value_t = 1, value_parser = count(REPEAT),
+          help = REPEAT.help("Timing repetitions per strategy and frame, after one warm-up when more than one: the tables give the median of each pass and the min and max of culling + shading"))]
     pub repeat: u32,
+    /// Seconds of frames rendered before the first timed run of each frame (the first
+    /// strategy), then on until the last five culling + shading times lie within 3% of their
+    /// median or twice as long has passed: a GPU raises its clocks under load, and times taken
+    /// while it does are not the GPU's (`warmup` in bench.json says how it ended).
+    #[arg(long, default_value_t = 0.0, value_parser = warmup_seconds)]
+    pub warmup: f64,
+}
+
+/// `--warmup`: finite seconds from 0 to an hour.
+fn warmup_seconds(s: &str) -> Result<f64, String> {
+    let v: f64 = s.parse().map_err(|e| format!("{e}"))?;
+    if (0.0..=3600.0).contains(&v) {
+        Ok(v)
+    } else {
+        Err(format!("{v} is not between 0 and 3600 seconds"))
+    }
 }
 
 fn parse_resolution(s: &str) -> Result<(u32, u32), String> {
     let (w, h) = s
         .split_once('x')
         .ok_or_else(|| format!("resolution '{s}' is not WxH"))?;
-    let p = |v: &str| {
-        v.trim()
-            .parse::<u32>()
-            .map_err(|e| format!("resolution '{s}': {e}"))
-    };
-    Ok((p(w)?, p(h)?))
+    let at = |e: String| format!("resolution '{s}': {e}");
+    Ok((count(WIDTH)(w).map_err(at)?, count(HEIGHT)(h).map_err(at)?))
 }
 
 const PASSES: [&str; 7] = [
@@ -74,6 +88,7 @@ pub fn run(args: &BenchArgs) -> Result<(), String> {
         );
     }
     let out = OutDir::open(&args.out)?;
+    out.expect(["bench.json", "bench.csv", "bench.md"])?;
     let scene = args.frame.load_renderable()?;
     let strategies = strategies(&args.culling)?;
     let resolutions = args
@@ -125,8 +140,12 @@ impl OnBackend for Bench<'_> {
         let mut rows = Vec::new();
         // (frame, strategy, culling + shading ms) for the paper's Table 2 layout.
         let mut table2 = Vec::new();
+        let mut warmups = Vec::new();
+        // The GPU passes under each row: markdown lines, and (row, pass) for bench.json.
+        let mut passes = Vec::new();
+        let mut pass_json: Vec<(usize, PassRow)> = Vec::new();
         let mut md = format!(
-            "# slc bench: {}\n\nBackend {}, adapter {}, {} rayon threads, δ = {}, K = {}, lobes {:?}, median (min–max) of {} runs. Milliseconds per pass; M pairs/s: the pixel-VPL pairs the lists hold over the shading time (the CPU counts them; n/a on the GPU, whose lists stay there); ceiling: {}.\n\n{}| resolution | VPLs | strategy | {} | culling + shading | M pairs/s | ceiling M pairs/s | of ceiling |\n|---|---|---|{}---|---|---|---|\n",
+            "# slc bench: {}\n\nBackend {}, adapter {}, {} rayon threads, δ = {}, K = {}, lobes {:?}, median (min–max) of {} runs. Milliseconds per pass; M pairs/s: the pixel-VPL pairs the lists hold over the shading time (the CPU counts them; n/a on the GPU, whose lists stay there); ceiling: {}.\n\n{}| resolution | VPLs | strategy | {} | culling + shading | M pairs/s | ceiling M pairs/s | of ceiling | timed by |\n|---|---|---|{}---|---|---|---|---|\n",
             scene.name,
             device.backend,
             device.adapter,
@@ -158,12 +177,14 @@ impl OnBackend for Bench<'_> {
             rsm,
             ..args.frame.clone()
         };
-        for &res in &resolutions {
-            for &rsm in &args.rsms {
-                let settings = frame(res, rsm).settings(Method::Stochastic(base), 1);
-                settings.validate().map_err(message)?;
-                check_memory(&settings, &scene)?;
-            }
+        let frames: Vec<_> = resolutions
+            .iter()
+            .flat_map(|&res| args.rsms.iter().map(move |&rsm| (res, rsm)))
+            .map(|(res, rsm)| frame(res, rsm).settings(Method::Stochastic(base), 1))
+            .collect();
+        check_frames(&scene, &frames)?;
+        for settings in &frames {
+            r.check(settings).map_err(message)?;
         }
         // One BVH or scene upload for every frame.
         let loaded = r.load(&scene).map_err(message)?;
@@ -177,33 +198,66 @@ impl OnBackend for Bench<'_> {
                     .map_err(message)?;
                 let input = frame.input(&scene, &loaded, &p);
                 let vpl_count = p.vpl_count().map_err(message)?;
+                // The passes alone, nothing read back between frames: a GPU that idles while
+                // an image travels back lowers its clocks (an H200 fell from 1980 to 345-600
+                // MHz between such frames, and every pass took 3-4 times as long).
+                let time = |s: Stochastic| -> Result<TimedRun, String> {
+                    let out = s.passes(r, input, &|_| {}).map_err(message)?;
+                    let (mut t, gpu_timings) =
+                        frame_timings_of(&p, &out.timings, out.gpu_timings.as_ref());
+                    // The GPU's own times of its passes replace the wall clock where the
+                    // adapter has timestamp queries.
+                    if let Some(g) = &gpu_timings {
+                        for (name, ms) in &g.0 {
+                            t.0.retain(|(n, _)| n != name);
+                            t.add(name, *ms);
+                        }
+                    }
+                    Ok(TimedRun {
+                        timings: t,
+                        timestamps: gpu_timings.is_some(),
+                        passes: r.last_pass_times().unwrap_or_default(),
+                        listed_pairs: r.listed_pairs(&out.lists),
+                    })
+                };
+                if args.warmup > 0.0 {
+                    let s = Stochastic {
+                        strategy: strategies[0],
+                        ..base
+                    };
+                    let warm = warm_up(args.warmup, || time(s))?;
+                    eprintln!(
+                        "  warm-up: {} frames of {} in {:.1} s, {}",
+                        warm.runs,
+                        strategies[0],
+                        warm.seconds,
+                        if warm.stable { "stable" } else { "not stable" }
+                    );
+                    warmups.push(serde_json::json!({
+                        "resolution": format!("{w}x{h}"),
+                        "rsm": rsm,
+                        "strategy": strategies[0].name(),
+                        "frames": warm.runs,
+                        "seconds": warm.seconds,
+                        "stable": warm.stable,
+                        "last_culling_plus_shading_ms": warm.last_ms,
+                        "culling_plus_shading_ms": warm.times,
+                    }));
+                }
                 for &strategy in &strategies {
                     let s = Stochastic { strategy, ..base };
-                    // Every run lists the same pairs (same VPLs, ξ and lists).
-                    let mut listed_pairs = None;
                     let mut ceilings = Vec::new();
                     let runs = repeated(args.repeat, || {
                         ceilings.push(measure_ceiling.then(ceiling::exit_test_mpairs_per_s));
-                        let out = s.shade(r, input, &|_| {}).map_err(message)?;
-                        listed_pairs = out.listed_pairs;
-                        let (mut t, gpu_timings) = frame_timings(&p, &out);
-                        // The GPU's own times of its passes replace the wall clock where the
-                        // adapter has timestamp queries.
-                        if let Some(g) = &gpu_timings {
-                            for (name, ms) in &g.0 {
-                                t.0.retain(|(n, _)| n != name);
-                                t.add(name, *ms);
-                            }
-                        }
-                        Ok(t)
+                        time(s)
                     })?;
                     // `repeated` runs one warm-up first where it repeats: its ceiling goes too.
                     let ceilings = &ceilings[ceilings.len() - runs.len()..];
-                    let row = BenchRow::of(s, &runs, listed_pairs, ceilings);
+                    let row = BenchRow::of(s, &runs, ceilings);
                     let cs = row.culling_plus_shading_ms;
                     let _ = writeln!(
                         md,
-                        "| {w}x{h} | {vpl_count} | {strategy} | {} | {} | {} | {} | {} |",
+                        "| {w}x{h} | {vpl_count} | {strategy} | {} | {} | {} | {} | {} | {} |",
                         row.pass_medians().map(|ms| format!("{ms:.1}")).join(" | "),
                         row.culling_plus_shading().text(row.runs),
                         row.shading_mpairs_per_s
@@ -211,8 +265,16 @@ impl OnBackend for Bench<'_> {
                         row.ceiling_mpairs_per_s
                             .map_or("n/a".into(), |v| format!("{v:.0}")),
                         row.ceiling_share
-                            .map_or("n/a".into(), |v| format!("{:.1}%", 100.0 * v))
+                            .map_or("n/a".into(), |v| format!("{:.1}%", 100.0 * v)),
+                        row.timed_by
                     );
+                    for p in pass_rows(&runs) {
+                        passes.push(format!(
+                            "| {w}x{h} | {vpl_count} | {strategy} | {} | {} | {} | {:.3} |",
+                            p.stage, p.pass, p.count, p.ms
+                        ));
+                        pass_json.push((rows.len(), p));
+                    }
                     let settings = SettingsColumns::new(
                         &provenance,
                         &scene,
@@ -228,11 +290,26 @@ impl OnBackend for Bench<'_> {
             }
         }
         md.push_str(&paper_layout(&table2, &format!("{:?}", args.frame.lobes)));
+        if !passes.is_empty() {
+            let _ = write!(
+                md,
+                "\n## GPU passes\n\nEach pass label's timestamp time summed over its passes \
+                 in one frame, median over the runs (ms).\n\n| resolution | VPLs | strategy | \
+                 stage | pass | passes | ms |\n|---|---|---|---|---|---|---|\n{}\n",
+                passes.join("\n")
+            );
+        }
         let json = serde_json::json!({
             "provenance": provenance,
+            "warmup": warmups,
             "rows": rows
                 .iter()
-                .map(|(settings, row)| serde_json::json!({ "settings": settings, "times": row }))
+                .enumerate()
+                .map(|(i, (settings, row))| {
+                    let gpu_passes: Vec<&PassRow> =
+                        pass_json.iter().filter(|(r, _)| *r == i).map(|(_, p)| p).collect();
+                    serde_json::json!({ "settings": settings, "times": row, "gpu_passes": gpu_passes })
+                })
                 .collect::<Vec<_>>(),
         });
         let json = serde_json::to_string_pretty(&json).map_err(|e| e.to_string())?;
@@ -321,18 +398,120 @@ struct BenchRow {
     /// The median over the runs of each run's listed pairs per second over the ceiling
     /// measured right before it.
     ceiling_share: Option<f64>,
+    /// `timestamps` where every run's passes were timed by the GPU's timestamp queries, else
+    /// `wall clock`.
+    timed_by: &'static str,
+}
+
+/// One timed frame of a strategy: its pass times (the GPU's where it has timestamps), the
+/// GPU passes under them and the pairs its lists hold.
+struct TimedRun {
+    timings: Timings,
+    timestamps: bool,
+    passes: Vec<PassTime>,
+    listed_pairs: Option<u64>,
+}
+
+/// One GPU pass label of a row in `bench.json`: the median over the runs of its summed
+/// timestamp milliseconds.
+#[derive(Serialize)]
+struct PassRow {
+    stage: &'static str,
+    pass: &'static str,
+    ms: f64,
+    /// Passes of this label in one frame.
+    count: u32,
+}
+
+/// The median time of each GPU pass label over `runs` (labels in the order of the first run;
+/// a label missing from a run counts 0 there).
+fn pass_rows(runs: &[TimedRun]) -> Vec<PassRow> {
+    let Some(first) = runs.first() else {
+        return Vec::new();
+    };
+    first
+        .passes
+        .iter()
+        .map(|p| {
+            let of = |r: &TimedRun| {
+                r.passes
+                    .iter()
+                    .find(|q| q.stage == p.stage && q.pass == p.pass)
+                    .map_or(0.0, |q| q.ms)
+            };
+            PassRow {
+                stage: p.stage,
+                pass: p.pass,
+                ms: Spread::of(&runs.iter().map(of).collect::<Vec<_>>()).median,
+                count: p.count,
+            }
+        })
+        .collect()
+}
+
+/// How a warm-up ended ([`warm_up`]).
+struct WarmUp {
+    runs: usize,
+    seconds: f64,
+    stable: bool,
+    last_ms: f64,
+    /// Culling + shading of every warm-up frame, in order (ms).
+    times: Vec<f64>,
+}
+
+/// Runs `run` for at least `seconds`, then on until the culling + shading times of the last
+/// five runs lie within 3% of their median, or `2 seconds` have passed.
+fn warm_up(
+    seconds: f64,
+    mut run: impl FnMut() -> Result<TimedRun, String>,
+) -> Result<WarmUp, String> {
+    let start = std::time::Instant::now();
+    let mut times = Vec::new();
+    loop {
+        let t = run()?.timings;
+        times.push(t.get("culling") + t.get("shading"));
+        let elapsed = start.elapsed().as_secs_f64();
+        if let Some(stable) = warmed(&times, elapsed, seconds) {
+            return Ok(WarmUp {
+                runs: times.len(),
+                seconds: elapsed,
+                stable,
+                last_ms: times[times.len() - 1],
+                times,
+            });
+        }
+    }
+}
+
+/// Whether a warm-up of `seconds` that took `times` in `elapsed` seconds is over: `Some(true)`
+/// once its time is up and the last five times lie within 3% of their median, `Some(false)`
+/// at twice its time without that, `None` while it goes on.
+fn warmed(times: &[f64], elapsed: f64, seconds: f64) -> Option<bool> {
+    let stable = times.len() >= 5 && within(&times[times.len() - 5..], 0.03);
+    if elapsed >= seconds && stable {
+        Some(true)
+    } else if elapsed >= 2.0 * seconds {
+        Some(false)
+    } else {
+        None
+    }
+}
+
+/// Whether every value lies within `tolerance` (relative) of the values' median.
+fn within(values: &[f64], tolerance: f64) -> bool {
+    let median = Spread::of(values).median;
+    values
+        .iter()
+        .all(|v| (v - median).abs() <= tolerance * median.abs())
 }
 
 impl BenchRow {
-    fn of(
-        s: Stochastic,
-        runs: &[Timings],
-        listed_pairs: Option<u64>,
-        ceilings: &[Option<f64>],
-    ) -> Self {
+    fn of(s: Stochastic, runs: &[TimedRun], ceilings: &[Option<f64>]) -> Self {
+        let listed_pairs = runs.last().and_then(|r| r.listed_pairs);
+        let timings: Vec<Timings> = runs.iter().map(|r| r.timings.clone()).collect();
         let [gbuffer_ms, rsm_ms, vpl_generation_ms, direct_ms, culling_ms, shading_ms, denoise_ms] =
-            PASSES.map(|n| Spread::of_passes(runs, &[n]).median);
-        let cs = Spread::of_passes(runs, &["culling", "shading"]);
+            PASSES.map(|n| Spread::of_passes(&timings, &[n]).median);
+        let cs = Spread::of_passes(&timings, &["culling", "shading"]);
         let shading_mpairs_per_s = listed_pairs
             .filter(|_| shading_ms > 0.0)
             .map(|pairs| pairs as f64 / (shading_ms * 1e3));
@@ -353,11 +532,16 @@ impl BenchRow {
             listed_pairs,
             shading_mpairs_per_s,
             ceiling_mpairs_per_s: median_of(ceilings.iter().copied()),
-            ceiling_share: median_of(runs.iter().zip(ceilings).map(|(t, c)| {
+            ceiling_share: median_of(timings.iter().zip(ceilings).map(|(t, c)| {
                 let shading_ms = t.get("shading");
                 let pairs = listed_pairs.filter(|_| shading_ms > 0.0)?;
                 Some(pairs as f64 / (shading_ms * 1e3) / (*c)?)
             })),
+            timed_by: if !runs.is_empty() && runs.iter().all(|r| r.timestamps) {
+                "timestamps"
+            } else {
+                "wall clock"
+            },
         }
     }
 
@@ -399,10 +583,15 @@ mod tests {
     /// machine slowing down between runs slows both and leaves the share where it was.
     #[test]
     fn each_runs_share_is_against_its_own_ceiling() {
-        let run = |shading_ms: f64| {
+        let run = |shading_ms: f64, listed_pairs: Option<u64>| {
             let mut t = Timings::default();
             t.add("shading", shading_ms);
-            t
+            TimedRun {
+                timings: t,
+                timestamps: false,
+                passes: Vec::new(),
+                listed_pairs,
+            }
         };
         let s = Stochastic {
             delta: 1e-3,
@@ -412,18 +601,99 @@ mod tests {
             metrics: false,
         };
         // 1e6 pairs in 1 ms is 1,000 M pairs/s; in 2 ms, 500.
-        let runs = [run(1.0), run(2.0), run(2.0)];
+        let runs = [1.0, 2.0, 2.0].map(|ms| run(ms, Some(1_000_000)));
         let ceilings = [Some(4000.0), Some(2000.0), Some(2000.0)];
-        let row = BenchRow::of(s, &runs, Some(1_000_000), &ceilings);
+        let row = BenchRow::of(s, &runs, &ceilings);
         assert_eq!(row.ceiling_share, Some(0.25));
         assert_eq!(row.ceiling_mpairs_per_s, Some(2000.0));
         assert_eq!(row.shading_mpairs_per_s, Some(500.0));
+        assert_eq!(row.timed_by, "wall clock");
         // No share without a ceiling (a GPU run) or without the listed pairs.
+        assert_eq!(BenchRow::of(s, &runs, &[None; 3]).ceiling_share, None);
+        let unlisted = [1.0, 2.0, 2.0].map(|ms| run(ms, None));
+        assert_eq!(BenchRow::of(s, &unlisted, &ceilings).ceiling_share, None);
+    }
+
+    /// A row is timed by timestamps only where every run was; each GPU pass label gets its
+    /// median over the runs, 0 in a run that lacks it.
+    #[test]
+    fn rows_say_how_they_were_timed_and_give_each_pass_its_median() {
+        let run = |timestamps: bool, tiled: f64, bounds: Option<f64>| {
+            let mut passes = vec![PassTime {
+                stage: "shading",
+                pass: "tiled shade",
+                ms: tiled,
+                count: 1,
+            }];
+            passes.extend(bounds.map(|ms| PassTime {
+                stage: "culling",
+                pass: "bounds",
+                ms,
+                count: 2,
+            }));
+            TimedRun {
+                timings: Timings::default(),
+                timestamps,
+                passes,
+                listed_pairs: None,
+            }
+        };
+        let s = Stochastic {
+            delta: 1e-3,
+            strategy: Strategy::Ellipsoid,
+            interleave: 8,
+            denoise: false,
+            metrics: false,
+        };
+        let runs = [
+            run(true, 3.0, Some(0.5)),
+            run(true, 1.0, None),
+            run(true, 2.0, Some(0.25)),
+        ];
+        assert_eq!(BenchRow::of(s, &runs, &[None; 3]).timed_by, "timestamps");
+        let rows = pass_rows(&runs);
+        assert_eq!(rows.len(), 2);
+        assert_eq!((rows[0].pass, rows[0].ms), ("tiled shade", 2.0));
         assert_eq!(
-            BenchRow::of(s, &runs, Some(1), &[None; 3]).ceiling_share,
-            None
+            (rows[1].stage, rows[1].ms, rows[1].count),
+            ("culling", 0.25, 2)
         );
-        assert_eq!(BenchRow::of(s, &runs, None, &ceilings).ceiling_share, None);
+        let mixed = [run(true, 1.0, None), run(false, 1.0, None)];
+        assert_eq!(BenchRow::of(s, &mixed, &[None; 2]).timed_by, "wall clock");
+    }
+
+    /// The warm-up runs until its time is up and the last five times agree within 3%, or
+    /// gives up, not stable, at twice its time.
+    #[test]
+    fn warm_up_waits_for_stable_times() {
+        // Falling like clocks rising, then flat.
+        let times: Vec<f64> = (1..=14)
+            .map(|i| if i < 10 { 100.0 / i as f64 } else { 5.0 })
+            .collect();
+        assert_eq!(warmed(&times[..13], 1.5, 1.0), None);
+        assert_eq!(warmed(&times, 1.5, 1.0), Some(true));
+        // Stable early, but its time is not up.
+        assert_eq!(warmed(&times, 0.5, 1.0), None);
+        // Never stable: given up at twice its time.
+        let alternating = [1.0, 1.1, 1.0, 1.1, 1.0, 1.1];
+        assert_eq!(warmed(&alternating, 1.5, 1.0), None);
+        assert_eq!(warmed(&alternating, 2.0, 1.0), Some(false));
+        assert!(within(&[1.0, 1.02, 0.98], 0.03) && !within(&[1.0, 1.1, 1.0], 0.03));
+        // The loop: a run a time, stopping where `warmed` says.
+        let mut i = 0.0;
+        let w = warm_up(0.0, || {
+            i += 1.0;
+            let mut t = Timings::default();
+            t.add("culling", i);
+            Ok(TimedRun {
+                timings: t,
+                timestamps: true,
+                passes: Vec::new(),
+                listed_pairs: None,
+            })
+        })
+        .unwrap();
+        assert!(!w.stable && w.runs == 1 && w.last_ms == 1.0);
     }
 
     /// Rows under the paper's names, one column per frame, ratios to the ellipsoid's time,

@@ -6,32 +6,33 @@
 //! `index.html` ([`crate::compare_summary`]). With
 //! `--shader vsgl` also `vsgl/` and `vpl_sampled/`: `--vsgls N` VSGLs and N VPLs sampled by the
 //! same importance, with their own table in `report.md`.
-use crate::args::{strategies, FrameArgs, ImportanceArgs, PipelineArgs, Shader};
+use crate::args::{count, positive, strategies, FrameArgs, ImportanceArgs, PipelineArgs, Shader};
 use crate::backend::{message, run_on, OnBackend};
 use crate::compare_summary::{side_by_side, table, write_page, CompareRow, Row};
 use crate::flip::flip;
 use crate::heatmap::{heat_map, HeatScale};
 use crate::layers_exr::write_layers;
-use crate::output::{write_frame, write_rgb8};
+use crate::output::{frame_files, write_frame, write_rgb8};
 use crate::pdf::write_figure;
 use crate::print::PrintWidth;
 use crate::sampled::{shade_sampled, PASSES};
 use crate::table::{write_table, SettingsColumns};
 use clap::Args;
-use slc_app::limits::check_memory;
+use slc_app::limits::check_frames;
 use slc_app::out_dir::OutDir;
 use slc_app::progress::bar;
 use slc_app::provenance::Provenance;
 use slc_app::reference::{all_vpl_reference_with_bar, cpu_input};
 use slc_app::repeat::repeated;
 use slc_app::report::{FrameFacts, Report};
+use slc_core::frame::counts::{HEAT_MAX, REPEAT, SAMPLED_LIGHTS};
 use slc_core::frame::{Method, RenderSettings, Stochastic, Timings};
 use slc_core::render::readback_since;
 use slc_core::shader::{frame_timings, SampledLights, ShadeInput, Shader as _};
 use slc_core::{Image, PreparedFrame, Renderer, Scene, Strategy};
 use slc_cpu_ref::{CpuFrames, CpuPrepared, CpuRenderer};
 use std::fmt::Write;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 #[derive(Args, Debug)]
 pub struct CompareArgs {
@@ -41,8 +42,8 @@ pub struct CompareArgs {
     pub pipeline: PipelineArgs,
     #[command(flatten)]
     pub importance: ImportanceArgs,
-    /// With --shader vsgl: the number of VSGLs, and of VPLs sampled at equal count.
-    #[arg(long, default_value_t = 1024)]
+    #[arg(long, default_value_t = 1024, value_parser = count(SAMPLED_LIGHTS),
+          help = SAMPLED_LIGHTS.help("With --shader vsgl: the number of VSGLs, and of VPLs sampled at equal count"))]
     pub vsgls: u32,
     /// Output folder.
     #[arg(long, default_value = "compare")]
@@ -54,11 +55,11 @@ pub struct CompareArgs {
         default_value = "none,sphere,enclosing-sphere,ellipsoid,clustered"
     )]
     pub culling: Vec<String>,
-    #[arg(long, default_value_t = 1e-3)]
+    /// δ of eq. (2) (a finite number above 0).
+    #[arg(long, default_value_t = 1e-3, value_parser = positive)]
     pub delta: f32,
-    /// Heat-map brightness saturates at this many VPLs per pixel in every heat map (256 in the
-    /// paper's figures); default: at each heat map's own maximum, which its caption gives.
-    #[arg(long)]
+    #[arg(long, value_parser = count(HEAT_MAX),
+          help = HEAT_MAX.help("Heat-map brightness saturates at this many VPLs per pixel in every heat map (256 in the paper's figures); default: at each heat map's own maximum, which its caption gives"))]
     pub heat_max: Option<u32>,
     /// Size the figures for print: 3.5in (one column) or 7in (a page) wide, text of 8 pt or
     /// more; screen: for a browser.
@@ -67,20 +68,19 @@ pub struct CompareArgs {
     /// Skip the all-VPL reference (it costs every VPL at every pixel).
     #[arg(long)]
     pub no_reference: bool,
-    /// Time each strategy's culling and shading this many times (after the run that measures
-    /// the metrics, which is then the warm-up): the tables give median, min and max.
-    #[arg(long, default_value_t = 1)]
+    #[arg(long, default_value_t = 1, value_parser = count(REPEAT),
+          help = REPEAT.help("Time each strategy's culling and shading this many times (after the run that measures the metrics, which is then the warm-up): the tables give median, min and max"))]
     pub repeat: u32,
 }
 
 pub fn run(args: &CompareArgs) -> Result<(), String> {
     let out = OutDir::open(&args.out)?;
-    let scene = args.frame.load_renderable()?;
     let strategies = strategies(&args.culling)?;
+    out.expect(result_files(args, &strategies))?;
+    let scene = args.frame.load_renderable()?;
     let base = args.pipeline.stochastic(args.delta, Strategy::None, true);
     let settings = args.frame.settings(Method::Stochastic(base), 1);
-    settings.validate().map_err(message)?;
-    check_memory(&settings, &scene)?;
+    check_frames(&scene, &planned(args, &settings))?;
     run_on(
         args.frame.backend_choice()?,
         Compare {
@@ -92,6 +92,47 @@ pub fn run(args: &CompareArgs) -> Result<(), String> {
             out,
         },
     )
+}
+
+/// Every frame compare renders: the strategies' (and the reference's, on the same prepared
+/// frame) and, with `--shader vsgl`, the sampled lights'.
+fn planned(args: &CompareArgs, settings: &RenderSettings) -> Vec<RenderSettings> {
+    let mut frames = vec![settings.clone()];
+    if args.frame.shader == Shader::Vsgl {
+        let sampling = args.importance.sampling(args.vsgls);
+        frames.extend(
+            SampledLights::ALL
+                .iter()
+                .map(|e| args.frame.settings(e.method(sampling), 1)),
+        );
+    }
+    frames
+}
+
+/// Every file compare writes with these arguments.
+fn result_files(args: &CompareArgs, strategies: &[Strategy]) -> Vec<PathBuf> {
+    let mut folders: Vec<&str> = strategies.iter().map(|s| s.name()).collect();
+    if !args.no_reference {
+        folders.push("reference_vpl");
+    }
+    if args.frame.shader == Shader::Vsgl {
+        folders.extend(SampledLights::ALL.iter().map(|e| e.name()));
+    }
+    let mut files: Vec<PathBuf> = folders.iter().flat_map(|d| frame_files(d)).collect();
+    for s in strategies {
+        files.extend(["heatmap.png", "flip.png"].map(|f| Path::new(s.name()).join(f)));
+    }
+    files.extend(
+        [
+            "report.md",
+            "compare.json",
+            "compare.csv",
+            "side_by_side.svg",
+            "index.html",
+        ]
+        .map(PathBuf::from),
+    );
+    files
 }
 
 struct Compare<'a> {
@@ -114,7 +155,15 @@ impl OnBackend for Compare<'_> {
             out: mut dir_out,
         } = self;
         let f = &args.frame;
-        r.check(&settings).map_err(message)?;
+        // Each frame on the backend that renders it: sampled VPLs always on the CPU
+        // (`shade_sampled`), everything else on `r`.
+        for planned in planned(args, &settings) {
+            match planned.method {
+                Method::SampledVpls(_) => CpuRenderer::default().check(&planned),
+                _ => r.check(&planned),
+            }
+            .map_err(message)?;
+        }
         let device = r.info(&settings);
         let pixels = f.width as u64 * f.height as u64;
         eprintln!(

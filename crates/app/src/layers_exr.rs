@@ -33,11 +33,11 @@ pub fn write_layers(
     provenance: &Provenance,
 ) -> std::result::Result<(), String> {
     let relative = Path::new(dir).join("layers.exr");
-    let shown = out.root().join(&relative);
     let json = serde_json::to_string(provenance).map_err(|e| e.to_string())?;
     let metrics = metrics.map(PixelMetrics::from);
-    write_layers_file(&out.stage(&relative)?, images, metrics, &json)
-        .map_err(|e| format!("{}: {e}", shown.display()))
+    out.write_with(&relative, |path| {
+        write_layers_file(path, images, metrics, &json)
+    })
 }
 
 /// Writes the layered EXR of `images` (and `metrics`) to `path`, with `provenance` (JSON) in

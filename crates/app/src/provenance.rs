@@ -71,7 +71,9 @@ impl Provenance {
             git_commit: Some(env!("SLC_GIT_COMMIT")).filter(|c| !c.is_empty()),
             rustc: env!("SLC_RUSTC_VERSION"),
             build_profile: env!("SLC_BUILD_PROFILE"),
-            command_line: std::env::args().collect(),
+            command_line: std::env::args_os()
+                .map(|a| a.to_string_lossy().into_owned())
+                .collect(),
             started_at: rfc3339(started),
             cpu: cpu_model(),
             cpu_threads: std::thread::available_parallelism().map_or(1, |n| n.get()),

@@ -8,7 +8,7 @@
 //! strategy's median run, and `index.html` showing it all.
 //! Culling and shading run on the command's backend, the reference on the CPU (from the frame
 //! read back). With `--shader vsgl` it sweeps light counts instead ([`crate::vsgl_sweep`]).
-use crate::args::{strategies, FrameArgs, ImportanceArgs, PipelineArgs, Shader};
+use crate::args::{count, positive, strategies, FrameArgs, ImportanceArgs, PipelineArgs, Shader};
 use crate::backend::{message, run_on, OnBackend};
 use crate::figure::{Figure, FigureRow};
 use crate::output::to_srgb8;
@@ -19,12 +19,13 @@ use crate::print::PrintWidth;
 use crate::table::{write_table, SettingsColumns, TextTable};
 use clap::Args;
 use serde::Serialize;
-use slc_app::limits::check_memory;
+use slc_app::limits::check_frames;
 use slc_app::out_dir::OutDir;
 use slc_app::progress::bar;
 use slc_app::provenance::Provenance;
 use slc_app::reference::{all_vpl_reference_with_bar, cpu_input};
 use slc_app::repeat::{repeated, Spread};
+use slc_core::frame::counts::{REPEAT, SAMPLED_LIGHTS, SEEDS};
 use slc_core::frame::{Method, Stochastic};
 use slc_core::shader::{ShadeInput, Shader as _};
 use slc_core::{Image, PreparedFrame, Renderer, Scene, Strategy};
@@ -40,11 +41,12 @@ pub struct SweepArgs {
     pub pipeline: PipelineArgs,
     #[arg(long, default_value = "sweep")]
     pub out: PathBuf,
-    /// Values of δ, comma separated.
+    /// Values of δ, comma separated (each a finite number above 0).
     #[arg(
         long,
         value_delimiter = ',',
-        default_value = "1e-4,3e-4,1e-3,3e-3,1e-2"
+        default_value = "1e-4,3e-4,1e-3,3e-3,1e-2",
+        value_parser = positive
     )]
     pub delta: Vec<f32>,
     /// Strategies, comma separated; the first is the equal-time reference.
@@ -54,19 +56,17 @@ pub struct SweepArgs {
         default_value = "ellipsoid,sphere,enclosing-sphere,clustered"
     )]
     pub culling: Vec<String>,
-    /// Timing repetitions per point, after one warm-up when more than one: the tables give the
-    /// median, min and max of culling + shading (VSGL sweep: the median run's passes and the
-    /// min and max of its total, over the repetitions of every seed).
-    #[arg(long, default_value_t = 1)]
+    #[arg(long, default_value_t = 1, value_parser = count(REPEAT),
+          help = REPEAT.help("Timing repetitions per point, after one warm-up when more than one: the tables give the median, min and max of culling + shading (VSGL sweep: the median run's passes and the min and max of its total, over the repetitions of every seed)"))]
     pub repeat: u32,
     #[command(flatten)]
     pub importance: ImportanceArgs,
-    /// With --shader vsgl: light counts N, comma separated (N VSGLs against N sampled VPLs).
-    #[arg(long, value_delimiter = ',', default_value = "256,1024,4096,16384")]
+    #[arg(long, value_delimiter = ',', default_value = "256,1024,4096,16384",
+          value_parser = count(SAMPLED_LIGHTS),
+          help = SAMPLED_LIGHTS.help("With --shader vsgl: light counts N, comma separated (N VSGLs against N sampled VPLs)"))]
     pub vsgls: Vec<u32>,
-    /// With --shader vsgl: point sets (seeds seed, seed + 1, ...) whose squared errors are
-    /// averaged per N.
-    #[arg(long, default_value_t = 1)]
+    #[arg(long, default_value_t = 1, value_parser = count(SEEDS),
+          help = SEEDS.help("With --shader vsgl: point sets (seeds seed, seed + 1, ...) whose squared errors are averaged per N"))]
     pub seeds: u32,
     /// Size the figures for print: 3.5in (one column) or 7in (a page) wide, text of 8 pt or
     /// more; screen: for a browser.
@@ -96,6 +96,24 @@ impl Point {
 
 pub fn run(args: &SweepArgs) -> Result<(), String> {
     let out = OutDir::open(&args.out)?;
+    let files: &[&str] = match args.frame.shader {
+        Shader::Vsgl => &[
+            "vsgl_sweep.json",
+            "vsgl_sweep.csv",
+            "vsgl_sweep.md",
+            "vsgl_sweep.svg",
+            "index.html",
+        ],
+        Shader::Vpl => &[
+            "sweep.json",
+            "sweep.csv",
+            "sweep.svg",
+            "equal_time.md",
+            "equal_time.svg",
+            "index.html",
+        ],
+    };
+    out.expect(files)?;
     if args.frame.shader == Shader::Vsgl {
         return crate::vsgl_sweep::run(args, out);
     }
@@ -134,13 +152,16 @@ impl OnBackend for Sweep<'_> {
         let base = args
             .pipeline
             .stochastic(args.delta[0], strategies[0], false);
-        for &delta in &args.delta {
-            let settings = f.settings(Method::Stochastic(Stochastic { delta, ..base }), 1);
-            settings.validate().map_err(message)?;
-            r.check(&settings).map_err(message)?;
+        let frames: Vec<_> = args
+            .delta
+            .iter()
+            .map(|&delta| f.settings(Method::Stochastic(Stochastic { delta, ..base }), 1))
+            .collect();
+        check_frames(&scene, &frames)?;
+        for settings in &frames {
+            r.check(settings).map_err(message)?;
         }
         let settings = f.settings(Method::Stochastic(base), 1);
-        check_memory(&settings, &scene)?;
         let loaded = r.load(&scene).map_err(message)?;
         let p = r
             .prepare(&scene, &loaded, &settings, None, &|_| {})

@@ -19,7 +19,7 @@ use crate::sampled::{shade_sampled, PASSES};
 use crate::sweep_cmd::SweepArgs;
 use crate::table::{write_table, SettingsColumns, TextTable};
 use serde::Serialize;
-use slc_app::limits::check_memory;
+use slc_app::limits::check_frames;
 use slc_app::out_dir::OutDir;
 use slc_app::progress::bar;
 use slc_app::provenance::Provenance;
@@ -53,11 +53,12 @@ pub fn run(args: &SweepArgs, out: OutDir) -> Result<(), String> {
         );
     }
     let scene = f.load_renderable()?;
-    for &n in &args.vsgls {
-        let settings = f.settings(Method::Vsgl(args.importance.sampling(n)), 1);
-        settings.validate().map_err(|e| e.to_string())?;
-        check_memory(&settings, &scene)?;
-    }
+    let frames: Vec<_> = args
+        .vsgls
+        .iter()
+        .map(|&n| f.settings(Method::Vsgl(args.importance.sampling(n)), 1))
+        .collect();
+    check_frames(&scene, &frames)?;
     run_on(f.backend_choice()?, VsglSweep { args, scene, out })
 }
 

@@ -2,7 +2,7 @@
 use std::path::Path;
 
 mod common;
-use common::{gpu_available, out_dir, run_ok, slc};
+use common::{gpu_available, out_dir, read_exr, run_ok, slc};
 
 #[test]
 fn render_writes_images_and_report() {
@@ -313,7 +313,7 @@ fn vsgl_options_that_do_not_fit_are_clear_errors() {
         ("bench --shader vsgl", "sweep --shader vsgl"),
         (
             "render --shader vsgl --vsgls 0",
-            "sampled lights must be in 1..",
+            "must be in 1..=16777216 (got 0)",
         ),
     ] {
         let o = slc()
@@ -382,18 +382,6 @@ fn bench_writes_a_row_per_resolution_vpl_count_and_strategy() {
         "{md}"
     );
     std::fs::remove_dir_all(&out).ok();
-}
-
-/// The RGB pixels of the first layer of an EXR file.
-fn read_exr(path: &std::path::Path) -> Vec<[f32; 3]> {
-    use exr::prelude::*;
-    let img = read_first_rgba_layer_from_file(
-        path,
-        |res, _| (res.width(), vec![[0.0; 3]; res.width() * res.height()]),
-        |(w, px), pos, (r, g, b, _a): (f32, f32, f32, f32)| px[pos.y() * *w + pos.x()] = [r, g, b],
-    )
-    .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
-    img.layer_data.channel_data.pixels.1
 }
 
 /// The `report.json` of an output folder.

@@ -43,8 +43,32 @@ fn note_read(path: &Path) {
 /// such as `/dev/zero` given a scene file's name) are refused before they are read.
 pub const MAX_INPUT_FILE_BYTES: u64 = 4 << 30;
 
-/// The bytes of a regular file of at most [`MAX_INPUT_FILE_BYTES`].
-pub(crate) fn read_capped(path: &Path) -> std::io::Result<Vec<u8>> {
+/// A regular file of at most [`MAX_INPUT_FILE_BYTES`], opened to be read as a stream (one
+/// that grows past the cap while it is read ends there: [`capped_at_end`] tells).
+pub(crate) fn open_capped(path: &Path) -> std::io::Result<std::io::Take<std::fs::File>> {
+    check_regular(path)?;
+    Ok(std::fs::File::open(path)?.take(MAX_INPUT_FILE_BYTES + 1))
+}
+
+/// An error if a stream from [`open_capped`] went past the cap.
+pub(crate) fn capped_at_end(stream: &std::io::Take<std::fs::File>) -> std::io::Result<()> {
+    match stream.limit() {
+        0 => Err(too_big(MAX_INPUT_FILE_BYTES + 1)),
+        _ => Ok(()),
+    }
+}
+
+fn too_big(n: u64) -> Error {
+    Error::new(
+        ErrorKind::InvalidData,
+        format!(
+            "{n} bytes or more, above the {MAX_INPUT_FILE_BYTES} bytes slc reads from one file"
+        ),
+    )
+}
+
+/// Refuses what is not a regular file of at most [`MAX_INPUT_FILE_BYTES`].
+fn check_regular(path: &Path) -> std::io::Result<u64> {
     let meta = std::fs::metadata(path)?;
     if !meta.is_file() {
         let what = if meta.is_dir() {
@@ -54,18 +78,16 @@ pub(crate) fn read_capped(path: &Path) -> std::io::Result<Vec<u8>> {
         };
         return Err(Error::new(ErrorKind::InvalidInput, what));
     }
-    let too_big = |n: u64| {
-        Error::new(
-            ErrorKind::InvalidData,
-            format!(
-                "{n} bytes or more, above the {MAX_INPUT_FILE_BYTES} bytes slc reads from one file"
-            ),
-        )
-    };
     if meta.len() > MAX_INPUT_FILE_BYTES {
         return Err(too_big(meta.len()));
     }
-    let mut bytes = Vec::with_capacity(meta.len() as usize);
+    Ok(meta.len())
+}
+
+/// The bytes of a regular file of at most [`MAX_INPUT_FILE_BYTES`].
+pub(crate) fn read_capped(path: &Path) -> std::io::Result<Vec<u8>> {
+    let len = check_regular(path)?;
+    let mut bytes = Vec::with_capacity(len as usize);
     // A file that grows while it is read stops at the cap too.
     std::fs::File::open(path)?
         .take(MAX_INPUT_FILE_BYTES + 1)

@@ -47,6 +47,8 @@ pub mod material;
 pub mod mesh;
 #[cfg(feature = "loaders")]
 pub mod obj_loader;
+#[cfg(feature = "loaders")]
+mod obj_stream;
 pub mod progress;
 pub mod render;
 pub mod renderer;
@@ -79,7 +81,7 @@ pub use error::SceneError;
 pub use file_read::MAX_INPUT_FILE_BYTES;
 pub use frame::{RenderError, RenderSettings, RenderedFrame, Shaded, Timings};
 pub use framebuffer::{GBuffer, GSample, Image};
-pub use light::{Incident, Light, MAX_RADIOMETRIC};
+pub use light::{one_minus_cos, Incident, Light, SpotCone, MAX_RADIOMETRIC};
 #[cfg(feature = "loaders")]
 pub use load::{load_scene, load_scene_file, MAX_DROPPED_SHARE};
 pub use material::{AlphaMask, Material, MaterialAnisotropy, MaterialModel, NormalMap, ALPHA_MIN};

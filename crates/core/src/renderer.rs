@@ -9,7 +9,7 @@
 //! frame stays on the device until [`Renderer::read_image`].
 use crate::camera::Camera;
 use crate::culling::{CullMetrics, Interleaving};
-use crate::frame::{LightSampling, Method, RenderError, RenderSettings, Shaded, Timings};
+use crate::frame::{LightSampling, Method, PassTime, RenderError, RenderSettings, Shaded, Timings};
 use crate::framebuffer::Image;
 use crate::progress::Progress;
 use crate::scene::Scene;
@@ -260,6 +260,13 @@ pub trait Renderer {
         f: impl FnOnce() -> Result<T, RenderError>,
     ) -> Result<(T, Option<Timings>), RenderError> {
         Ok((f()?, None))
+    }
+
+    /// The GPU's timestamp times of each pass of the last [`Renderer::profiled`] run (where
+    /// [`Renderer::profiled`] returned times): finer than its stages, for profiling a
+    /// kernel. `None` for a backend without them.
+    fn last_pass_times(&self) -> Option<Vec<PassTime>> {
+        None
     }
 
     /// The error of a step this backend does not have.

@@ -45,7 +45,7 @@
 //! kd = 0.8                      # diffuse albedo in [0, 1] (one number or [r, g, b])
 //! f0 = 0.04                     # specular reflectance at normal incidence, in [0, 1]
 //! alpha = 0.1                   # GGX alpha in (0, 1]; or roughness = 0.316 (alpha = roughness^2)
-//! eta = 1.5                     # relative index of refraction > 0: exact dielectric Fresnel
+//! eta = 1.5                     # relative index of refraction in (0, 1e4]: exact dielectric Fresnel
 //! double_sided = true
 //! anisotropy_strength = 0.8     # KHR_materials_anisotropy strength in [0, 1] (0: isotropic)
 //! anisotropy_rotation = 0.5     # its rotation in radians from the tangent (default 0)
@@ -138,14 +138,21 @@ pub struct MaterialOverride {
 /// settings file's `scene_source` tells.
 pub fn load_settings(path: &Path) -> Result<Scene, SceneError> {
     let settings = Settings::read(path)?;
-    if !settings.scene.is_file() {
+    let problem = match std::fs::metadata(&settings.scene) {
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => Some("not found".to_string()),
+        Err(e) => Some(format!("cannot be read: {e}")),
+        Ok(m) if m.is_dir() => Some("is a folder, not a file".into()),
+        Ok(m) if !m.is_file() => Some("is not a regular file (a device, pipe or socket)".into()),
+        Ok(_) => None,
+    };
+    if let Some(problem) = problem {
         let source = settings
             .scene_source
             .as_ref()
             .map_or_else(String::new, |s| format!(": {s}"));
         return Err(SceneError::Settings {
             path: path.to_path_buf(),
-            message: format!("scene file {} not found{source}", settings.scene.display()),
+            message: format!("scene file {} {problem}{source}", settings.scene.display()),
         });
     }
     let mut scene = load_scene_file(&settings.scene)?;
@@ -301,7 +308,7 @@ impl Scene {
 impl MaterialOverride {
     /// A validated override of the materials `pattern` matches, as a settings file's
     /// `[[materials]]` entry: kd and f0 in [0, 1] per channel, alpha or roughness (not both)
-    /// in (0, 1], eta finite and above 0, and at least one value set.
+    /// in (0, 1], eta in (0, [`crate::material::MAX_ETA`]], and at least one value set.
     #[allow(clippy::too_many_arguments)]
     pub fn new(
         pattern: &str,
@@ -640,12 +647,11 @@ impl RawMaterial {
         };
         let kd = self.kd.map(|c| c.checked("kd", true)).transpose();
         let f0 = self.f0.map(|c| c.checked("f0", true)).transpose();
-        let eta = match self.eta {
-            Some(eta) if !(eta > 0.0 && eta.is_finite()) => {
-                return Err(with_name(format!("eta {eta} must be finite and above 0")))
-            }
-            eta => eta,
-        };
+        let eta = self
+            .eta
+            .map(crate::material::check_eta)
+            .transpose()
+            .map_err(with_name)?;
         let anisotropy = match (self.anisotropy_strength, self.anisotropy_rotation) {
             (None, None) => None,
             (None, Some(_)) => {

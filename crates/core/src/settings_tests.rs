@@ -254,7 +254,10 @@ fn invalid_settings_are_errors_naming_the_file() {
         (material("name = \"floor\"\nalpha = 0.1\nroughness = 0.3"), "not both"),
         (material("name = \"floor\"\nkd = 1.5"), "kd [1.5, 1.5, 1.5] is outside [0, 1]"),
         (material("name = \"floor\"\nf0 = [0.1, -0.1, 0.1]"), "f0 [0.1, -0.1, 0.1]"),
-        (material("name = \"floor\"\neta = 0"), "eta 0 must be finite and above 0"),
+        (material("name = \"floor\"\neta = 0"), "eta 0 must be above 0 and at most 1e4"),
+        // The case: 1e20 passed, then the direct pass failed blaming the light.
+        (material("name = \"floor\"\neta = 1e20"), "eta 100000000000000000000 must be above 0 and at most 1e4"),
+        (material("name = \"floor\"\neta = inf"), "eta inf must be"),
         (material("name = \"floor\"\ndouble_sided = 1"), "invalid type"),
     ];
     for (text, expected) in cases {

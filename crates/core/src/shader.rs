@@ -40,20 +40,29 @@ pub trait Shader {
     ) -> Result<Shaded, RenderError>;
 }
 
-/// The stochastic estimate of eq. (3): cull (`culling`), shade the lists (`shading`), filter
-/// (`denoise`), each timed on the wall clock; metrics by brute force after the timed passes.
-/// `progress` is checked between the passes (and by the backend between its tiles).
-impl Shader for Stochastic {
-    fn name(&self) -> &'static str {
-        self.strategy.name()
-    }
+/// What [`Stochastic::passes`] leaves: the lists and the image where the backend keeps them,
+/// and the passes' times.
+pub struct StochasticPasses<R: Renderer> {
+    pub lists: R::Lists,
+    pub image: R::Image,
+    /// Wall-clock milliseconds of `culling`, `shading` and (when filtered) `denoise`.
+    pub timings: Timings,
+    /// The GPU's timestamp times of the same passes, where the backend has trustworthy ones.
+    pub gpu_timings: Option<Timings>,
+}
 
-    fn shade<R: Renderer>(
+impl Stochastic {
+    /// The timed passes of the estimate of eq. (3): cull (`culling`), shade the lists
+    /// (`shading`), filter (`denoise`), each timed on the wall clock; nothing is read back.
+    /// [`Shader::shade`] is this, then the image read back and the metrics; a benchmark that
+    /// times frame after frame calls this alone, so a GPU is not left idle while images
+    /// travel back (its clocks fall when it idles, and the times with them).
+    pub fn passes<R: Renderer>(
         &self,
         r: &R,
         input: ShadeInput<'_, R>,
         progress: Progress,
-    ) -> Result<Shaded, RenderError> {
+    ) -> Result<StochasticPasses<R>, RenderError> {
         let p = input.prepared;
         let interleaving = Interleaving {
             k: self.interleave,
@@ -83,23 +92,52 @@ impl Shader for Stochastic {
             }
             Ok((lists, image))
         })?;
+        Ok(StochasticPasses {
+            lists,
+            image,
+            timings,
+            gpu_timings,
+        })
+    }
+}
+
+/// The stochastic estimate of eq. (3): [`Stochastic::passes`], then the image read back and,
+/// with `metrics`, the metrics by brute force after the timed passes. `progress` is checked
+/// between the passes (and by the backend between its tiles).
+impl Shader for Stochastic {
+    fn name(&self) -> &'static str {
+        self.strategy.name()
+    }
+
+    fn shade<R: Renderer>(
+        &self,
+        r: &R,
+        input: ShadeInput<'_, R>,
+        progress: Progress,
+    ) -> Result<Shaded, RenderError> {
+        let p = input.prepared;
+        let interleaving = Interleaving {
+            k: self.interleave,
+            seed: input.seed,
+        };
+        let passes = self.passes(r, input, progress)?;
         progress.check()?;
-        let indirect = r.read_image(p, image)?;
+        let indirect = r.read_image(p, passes.image)?;
         let metrics = self
             .metrics
             .then(|| {
                 progress.check()?;
-                r.measure(p, &lists, self.delta, interleaving)
+                r.measure(p, &passes.lists, self.delta, interleaving)
             })
             .transpose()?;
         progress.check()?;
         Ok(Shaded {
             indirect,
-            timings,
-            gpu_timings,
+            timings: passes.timings,
+            gpu_timings: passes.gpu_timings,
             metrics,
             sampled_lights: None,
-            listed_pairs: r.listed_pairs(&lists),
+            listed_pairs: r.listed_pairs(&passes.lists),
         })
     }
 }
@@ -202,10 +240,20 @@ impl Shader for AllVplShader {
 
 /// `prepared`'s own times followed by `shaded`'s: the whole frame's wall-clock and GPU times.
 pub fn frame_timings(prepared: &impl PreparedFrame, shaded: &Shaded) -> (Timings, Option<Timings>) {
-    let mut timings = prepared.timings().clone();
-    timings.merge(&shaded.timings);
-    let mut gpu = None;
-    merge_optional(&mut gpu, prepared.gpu_timings());
-    merge_optional(&mut gpu, shaded.gpu_timings.as_ref());
-    (timings, gpu)
+    frame_timings_of(prepared, &shaded.timings, shaded.gpu_timings.as_ref())
+}
+
+/// `prepared`'s own times followed by the wall-clock `timings` and GPU times `gpu` of the
+/// passes after it ([`frame_timings`] of a shaded frame, or of [`Stochastic::passes`]).
+pub fn frame_timings_of(
+    prepared: &impl PreparedFrame,
+    timings: &Timings,
+    gpu: Option<&Timings>,
+) -> (Timings, Option<Timings>) {
+    let mut all = prepared.timings().clone();
+    all.merge(timings);
+    let mut all_gpu = None;
+    merge_optional(&mut all_gpu, prepared.gpu_timings());
+    merge_optional(&mut all_gpu, gpu);
+    (all, all_gpu)
 }

@@ -49,3 +49,14 @@ pub fn merge_optional(into: &mut Option<Timings>, more: Option<&Timings>) {
         into.get_or_insert_with(Timings::default).merge(t);
     }
 }
+
+/// One kind of GPU pass in a timestamp profile: the stage it ran in ("culling", "shading",
+/// ...), its label ("tiled shade", "bounds", ...), the summed milliseconds of its passes and
+/// how many passes there were.
+#[derive(Clone, Debug, PartialEq)]
+pub struct PassTime {
+    pub stage: &'static str,
+    pub pass: &'static str,
+    pub ms: f64,
+    pub count: u32,
+}

@@ -2,23 +2,51 @@
 //! the renderer tests compare strategies on.
 use slc_core::frame::{LobeSelection, Method, RenderSettings, Stochastic};
 use slc_core::Strategy;
+use slc_core::{CullInput, Image, Interleaving};
+use slc_gpu_wgpu::cull::frame::FrameVpls;
+use slc_gpu_wgpu::cull::lists::GpuLightLists;
+use slc_gpu_wgpu::frame::raster::gbuffer::GpuGBuffer;
+use slc_gpu_wgpu::shade::lists::{read_image, ShadePass, ShadedGBuffer};
 use slc_gpu_wgpu::{GpuContext, GpuError};
+use std::sync::OnceLock;
 
-/// A device for one test. No adapter: with `CI` set the test fails (CI installs lavapipe, so
-/// a missing adapter is a broken setup); otherwise a notice is printed and `None` returned,
-/// and the test passes without checking anything. Any other device error fails the test.
-/// (lavapipe warns when `XDG_RUNTIME_DIR` is unset; harmless, `.ci/run` sets it.)
+/// The device of this test binary, opened once: every test shares it (the suite runs with
+/// as many test threads as cores; a device per test hung a GPU driver with 16 threads).
+static DEVICE: OnceLock<Result<Option<GpuContext>, String>> = OnceLock::new();
+
+/// A context for one test on the binary's shared device ([`GpuContext::share`]: its own
+/// timestamp profile and readback counts). No adapter: with `CI` set the test fails (CI
+/// installs lavapipe, so a missing adapter is a broken setup); otherwise a notice is printed
+/// and `None` returned, and the test passes without checking anything. Any other device
+/// error fails the test. (lavapipe warns when `XDG_RUNTIME_DIR` is unset; harmless, `.ci/run`
+/// sets it.)
 pub fn gpu() -> Option<GpuContext> {
-    match GpuContext::new() {
-        Ok(ctx) => Some(ctx),
+    let shared = DEVICE.get_or_init(|| opened(GpuContext::new()).map_err(|e| e.to_string()));
+    match shared {
+        Ok(Some(ctx)) => Some(ctx.share()),
+        Ok(None) => None,
+        Err(e) => panic!("GPU device could not be created: {e}"),
+    }
+}
+
+/// A device of its own, for a test that breaks it (device loss): the same policy as
+/// [`gpu`].
+pub fn own_gpu() -> Option<GpuContext> {
+    opened(GpuContext::new()).unwrap_or_else(|e| panic!("GPU device could not be created: {e}"))
+}
+
+/// The no-adapter policy of [`gpu`] applied to an opened device.
+fn opened(ctx: Result<GpuContext, GpuError>) -> Result<Option<GpuContext>, GpuError> {
+    match ctx {
+        Ok(ctx) => Ok(Some(ctx)),
         Err(e @ GpuError::NoAdapter(_)) => {
             if std::env::var_os("CI").is_some() {
                 panic!("CI is set but no GPU adapter was found: {e}");
             }
             eprintln!("notice: GPU test skipped, no adapter ({e})");
-            None
+            Ok(None)
         }
-        Err(e) => panic!("GPU device could not be created: {e}"),
+        Err(e) => Err(e),
     }
 }
 
@@ -40,4 +68,45 @@ pub fn small_frame(strategy: Strategy, denoise: bool) -> RenderSettings {
         spp: 1,
         lobes: LobeSelection::Both,
     }
+}
+
+/// `ShadePass::shade_on_gpu` of a CPU G-buffer with lists on the GPU, read back: the image of
+/// `input` shaded from lists a GPU culler left there.
+pub fn shade_gpu_lists(
+    ctx: &GpuContext,
+    shader: &ShadePass,
+    input: &CullInput,
+    lists: &GpuLightLists,
+) -> Result<Image, GpuError> {
+    let g = input.gbuffer;
+    let rgb = shader.shade_on_gpu(
+        ctx,
+        ShadedGBuffer::Cpu(g),
+        input.vpls,
+        input.delta,
+        input.interleaving,
+        lists,
+    )?;
+    read_image(ctx, &rgb, g.width, g.height)
+}
+
+/// `ShadePass::shade_on_gpu` of a G-buffer rendered on the GPU, read back.
+pub fn shade_gpu_gbuffer<'a>(
+    ctx: &GpuContext,
+    shader: &ShadePass,
+    gbuffer: &GpuGBuffer,
+    vpls: impl Into<FrameVpls<'a>>,
+    delta: f32,
+    interleaving: Interleaving,
+    lists: &GpuLightLists,
+) -> Result<Image, GpuError> {
+    let rgb = shader.shade_on_gpu(
+        ctx,
+        ShadedGBuffer::Gpu(gbuffer),
+        vpls,
+        delta,
+        interleaving,
+        lists,
+    )?;
+    read_image(ctx, &rgb, gbuffer.width, gbuffer.height)
 }

@@ -1,8 +1,8 @@
 //! Limits and faults: clear errors, no panics.
-use crate::common::gpu;
-use slc_gpu_wgpu::buffers::{check_storage_size, output};
-use slc_gpu_wgpu::gpu_types::RngSample;
-use slc_gpu_wgpu::rng_pass::{RngPass, RngQuery};
+use crate::common::{gpu, own_gpu};
+use slc_gpu_wgpu::device::buffers::{check_storage_size, output};
+use slc_gpu_wgpu::vpl::records::RngSample;
+use slc_gpu_wgpu::vpl::rng::{RngPass, RngQuery};
 use slc_gpu_wgpu::GpuError;
 
 #[test]
@@ -51,7 +51,8 @@ fn adapter_is_named_and_device_is_alive() {
 /// A destroyed device reports itself lost: later work is an error, not a hang.
 #[test]
 fn device_loss_is_an_error() {
-    let Some(ctx) = gpu() else { return };
+    // Its own device: the binary's shared one must survive.
+    let Some(ctx) = own_gpu() else { return };
     ctx.device.destroy();
     let pass = RngPass::new(&ctx);
     let run = pass.and_then(|p| {

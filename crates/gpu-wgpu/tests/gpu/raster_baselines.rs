@@ -10,13 +10,13 @@ use crate::tiled::frame_sampled;
 use slc_core::render::render;
 use slc_core::{builtin, CullInput, Interleaving, Strategy, Vpl};
 use slc_cpu_ref::gbuffer::PixelSample;
-use slc_gpu_wgpu::culler::GpuCuller;
+use slc_gpu_wgpu::cull::GpuCulling;
 use slc_gpu_wgpu::GpuRenderer;
 
 #[test]
 fn raster_baselines_miss_no_pair() {
     let Some(ctx) = gpu() else { return };
-    let culler = GpuCuller::new(&ctx).unwrap();
+    let culler = GpuCulling::new(&ctx).unwrap();
     let scene = builtin("default").unwrap();
     let camera = scene.camera_or_default();
     // Pixel centres: splatting rasterizes the rays through them.
@@ -65,6 +65,67 @@ fn raster_baselines_miss_no_pair() {
     }
 }
 
+/// clustered-raster's shell pass rasterized conservatively by the adapter (where it can:
+/// `Features::CONSERVATIVE_RASTERIZATION`) lists exactly what the software form lists, on the
+/// scene's VPLs and on extreme ones (bounds that hold the camera, which the hardware form
+/// draws as the whole viewport, as the software form does). Without the feature the
+/// hardware form cannot be chosen.
+#[test]
+fn hardware_conservative_rasterization_lists_the_software_forms_cells() {
+    let Some(ctx) = gpu() else { return };
+    let culler = GpuCulling::new(&ctx).unwrap();
+    let rasterizer = culler.rasterizer();
+    if !ctx.conservative_raster {
+        eprintln!(
+            "notice: {} has no conservative rasterization; only the software form runs",
+            ctx.adapter_name
+        );
+        assert!(!rasterizer.hardware() && !rasterizer.set_hardware(true));
+        return;
+    }
+    assert!(
+        rasterizer.hardware(),
+        "hardware is the default where the adapter has it"
+    );
+    let scene = builtin("default").unwrap();
+    let camera = scene.camera_or_default();
+    let (gbuffer, vpls) = frame_sampled(&scene, &camera, (96, 64), 16, PixelSample::Centre);
+    let wild = extreme(&vpls, 5);
+    for (name, vpls, delta, k) in [
+        ("scene", &vpls, 1e-3, 1),
+        ("scene", &vpls, 1e-3, 4),
+        ("extreme", &wild, 1e-9, 1),
+        ("extreme", &wild, 1e-3, 3),
+    ] {
+        let input = CullInput {
+            gbuffer: &gbuffer,
+            camera: &camera,
+            vpls,
+            delta,
+            interleaving: Interleaving { k, seed: 8 },
+        };
+        assert!(rasterizer.set_hardware(true));
+        let hardware = culler
+            .cull(&ctx, &input, Strategy::ClusteredRaster)
+            .unwrap();
+        assert!(!rasterizer.set_hardware(false));
+        let software = culler
+            .cull(&ctx, &input, Strategy::ClusteredRaster)
+            .unwrap();
+        assert!(rasterizer.set_hardware(true));
+        let differing = (0..input.gbuffer.samples.len())
+            .filter(|&p| hardware.for_pixel(p) != software.for_pixel(p))
+            .count();
+        println!(
+            "{name} δ {delta} K {k}: {} entries in hardware, {} in software, {differing} \
+             pixels differ",
+            hardware.indices.len(),
+            software.indices.len()
+        );
+        assert_eq!(differing, 0, "{name} δ {delta} K {k}");
+    }
+}
+
 /// Every frame of the renderer with a raster baseline: the tiled ellipsoid's image up to the
 /// rounding of a different summation order, and its true positives.
 #[test]
@@ -107,7 +168,7 @@ fn raster_baselines_render_the_tiled_image() {
 #[test]
 fn raster_baselines_at_odd_sizes_and_without_vpls() {
     let Some(ctx) = gpu() else { return };
-    let culler = GpuCuller::new(&ctx).unwrap();
+    let culler = GpuCulling::new(&ctx).unwrap();
     let scene = builtin("default").unwrap();
     let camera = scene.camera_or_default();
     let (gbuffer, vpls) = frame_sampled(&scene, &camera, (37, 23), 8, PixelSample::Centre);
