@@ -1,5 +1,7 @@
-//! Records the git commit slc is built from (where it is built from a git checkout) for the
-//! provenance of `report.json`: `SLC_GIT_COMMIT`, with `-dirty` when tracked files differ.
+//! Records what slc is built from and with, for the provenance of `report.json`: the git
+//! commit (where it is built from a git checkout; `SLC_GIT_COMMIT`, with `-dirty` when tracked
+//! files differ), the compiler's version (`SLC_RUSTC_VERSION`) and the build profile with its
+//! optimisation level (`SLC_BUILD_PROFILE`).
 use std::process::Command;
 
 fn git(args: &[&str]) -> Option<String> {
@@ -28,5 +30,22 @@ fn main() {
     println!(
         "cargo:rustc-env=SLC_GIT_COMMIT={}",
         commit.unwrap_or_default()
+    );
+    let rustc = std::env::var("RUSTC").unwrap_or_else(|_| "rustc".into());
+    let version = Command::new(rustc)
+        .arg("--version")
+        .output()
+        .ok()
+        .filter(|o| o.status.success())
+        .map(|o| String::from_utf8_lossy(&o.stdout).trim().to_string());
+    println!(
+        "cargo:rustc-env=SLC_RUSTC_VERSION={}",
+        version.unwrap_or_else(|| "rustc (version unknown)".into())
+    );
+    let var = |name: &str| std::env::var(name).unwrap_or_else(|_| "unknown".into());
+    println!(
+        "cargo:rustc-env=SLC_BUILD_PROFILE={} (opt-level {})",
+        var("PROFILE"),
+        var("OPT_LEVEL")
     );
 }

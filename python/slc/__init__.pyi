@@ -1,7 +1,10 @@
-"""Type stubs of slc (the native module slc._slc and its wrappers)."""
+"""Type stubs of slc. The option TypedDicts and the Strategy names are checked against the
+package by python/tests/test_api.py."""
 
+import concurrent.futures
 from os import PathLike
-from typing import Any, Literal, Optional, Sequence, TypedDict, Union
+from pathlib import Path
+from typing import Any, Callable, Dict, List, Literal, Mapping, Optional, Sequence, TypedDict, Union
 
 from typing_extensions import Unpack
 
@@ -9,7 +12,7 @@ import numpy as np
 import numpy.typing as npt
 
 __version__: str
-STRATEGIES: list[str]
+STRATEGIES: tuple[str, ...]
 BUILTIN_SCENES: tuple[str, ...]
 
 Backend = Literal["cpu", "gpu"]
@@ -27,7 +30,14 @@ Strategy = Literal[
     "clustered",
     "clustered-sphere",
     "clustered-enclosing-sphere",
+    "tight",
+    "clustered-tight",
+    "splatting",
+    "clustered-raster",
 ]
+#: ``progress(done, total)``: pixel-passes (render, compare) or grid points (sweep) finished.
+ProgressCallback = Callable[[int, int], None]
+Layer = Literal["total", "direct", "indirect"]
 
 class SlcError(Exception):
     """An error of the library: a scene that cannot be loaded or rendered, settings out of
@@ -48,6 +58,13 @@ class Frame:
     """False discovery rate of each pixel's list, H×W; None unless metrics were measured."""
     report: dict[str, Any]
     """The frame's report.json as a dict (provenance, settings, timings_ms, metrics, ...)."""
+    def _repr_png_(self) -> bytes:
+        """The total image as an 8-bit sRGB PNG (what Jupyter shows)."""
+    def save(
+        self, path: Union[str, PathLike[str]], layer: Optional[Layer] = None, exposure: float = 0.0
+    ) -> None:
+        """A .png (one layer, sRGB) or .exr (every layer, metrics, provenance), written
+        completely or not at all."""
 
 class VplArrays(TypedDict):
     position: npt.NDArray[np.float32]
@@ -86,10 +103,10 @@ class ListOptions(CullingOptions, total=False):
     culling: Strategy  # "ellipsoid"
 
 class CompareOptions(CullingOptions, total=False):
-    gpu_tiled: GpuTiled  # "one-pass": backend="gpu"'s tiled strategies in one pass, or through light lists (the same image)
+    gpu_tiled: Optional[GpuTiled]  # None ("one-pass"): backend="gpu"'s tiled strategies in one pass, or through light lists (the same image)
     denoise: bool  # True
     visibility: bool  # False: shadow rays to every listed VPL
-    progress: bool  # False: progress bars on stderr
+    progress: Union[bool, None, ProgressCallback]  # False: True for a bar (tqdm's if installed), or a callback
 
 class RenderOptions(CompareOptions, total=False):
     culling: Strategy  # "ellipsoid"
@@ -102,30 +119,53 @@ class RenderOptions(CompareOptions, total=False):
     camera_vsgls: int  # 1024: for importance="bidirectional"
     vsgl_diffuse: VsglDiffuse  # "clamped"
 
+class Camera(TypedDict, total=False):
+    """A settings file's [camera] table."""
+
+    position: Sequence[float]
+    target: Sequence[float]
+    up: Sequence[float]
+    yfov_deg: float
+    znear: float
+    zfar: float
+
 class Scene:
     """A scene loaded once; what the backends build of it is kept between calls."""
 
-    def __init__(self, spec: Optional[str] = None) -> None:
+    def __init__(self, spec: Union[str, PathLike[str], None] = None) -> None:
         """A .gltf/.glb/.obj file, a .toml scene-settings file or a built-in name (None: the
         built-in default)."""
-    @staticmethod
-    def load(path: Union[str, PathLike[str]]) -> Scene: ...
-    @staticmethod
-    def builtin(name: str = "default") -> Scene: ...
+    @classmethod
+    def load(cls, path: Union[str, PathLike[str]]) -> Scene: ...
+    @classmethod
+    def builtin(cls, name: str = "default") -> Scene: ...
     @property
     def name(self) -> str: ...
     @property
     def triangles(self) -> int: ...
     @property
-    def lights(self) -> int: ...
+    def lights(self) -> List[Dict[str, Any]]:
+        """Each a settings file's [[lights]] table."""
+    @property
+    def camera(self) -> Optional[Camera]:
+        """A settings file's [camera] table, or None."""
     @property
     def materials(self) -> list[str]: ...
+    @property
+    def loads(self) -> int:
+        """Backends that built their state of the scene (BVH, GPU upload): once each."""
+    @property
+    def warnings(self) -> list[str]: ...
+    @property
+    def source(self) -> Optional[Path]: ...
+    @property
+    def files(self) -> List[Path]: ...
     def with_materials(
         self,
         pattern: str,
         *,
-        kd: Optional[tuple[float, float, float]] = None,
-        f0: Optional[tuple[float, float, float]] = None,
+        kd: Optional[Sequence[float]] = None,
+        f0: Optional[Sequence[float]] = None,
         alpha: Optional[float] = None,
         roughness: Optional[float] = None,
         eta: Optional[float] = None,
@@ -134,13 +174,8 @@ class Scene:
         anisotropy_rotation: Optional[float] = None,
     ) -> Scene:
         """A copy with the materials `pattern` (name or glob) matches overridden."""
-    @property
-    def loads(self) -> int:
-        """Backends that built their state of the scene (BVH, GPU upload): once each."""
-    @property
-    def warnings(self) -> list[str]: ...
-    @property
-    def source(self) -> Optional[PathLike[str]]: ...
+    def with_camera(self, camera: Optional[Camera] = None, **fields: Unpack[Camera]) -> Scene: ...
+    def with_lights(self, lights: Sequence[Mapping[str, Any]], *, replace: bool = True) -> Scene: ...
     def render(self, **options: Unpack[RenderOptions]) -> Frame: ...
     def compare(
         self,
@@ -160,3 +195,12 @@ def compare(
     reference: bool = True,
     **options: Unpack[CompareOptions],
 ) -> dict[str, Frame]: ...
+def sweep(
+    scene: SceneLike,
+    grid: Mapping[str, Sequence[Any]],
+    executor: Union[None, Literal["ray"], concurrent.futures.Executor] = None,
+    *,
+    images: bool = False,
+    progress: Union[bool, None, ProgressCallback] = False,
+    **options: Unpack[RenderOptions],
+) -> List[Dict[str, Any]]: ...

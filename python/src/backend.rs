@@ -2,10 +2,11 @@
 //! device with the uploaded scene, each made on first use. Work is written once as a [`Job`]
 //! over the renderer API and run on the backend the options name.
 use crate::options::{Backend, Options};
-use slc_core::{Renderer, Scene};
+use slc_core::{Progress, Renderer, Scene};
 use slc_cpu_ref::{CpuFrames, CpuRenderer};
 
-/// Work on one backend, written once for every backend.
+/// Work on one backend, written once for every backend. It reports its pixel-passes to
+/// `progress` and stops when it is cancelled.
 pub trait Job {
     type Output;
     fn run<R: CpuFrames>(
@@ -13,6 +14,7 @@ pub trait Job {
         r: &R,
         scene: &Scene,
         loaded: &R::Scene,
+        progress: Progress,
     ) -> Result<Self::Output, String>;
 }
 
@@ -46,6 +48,7 @@ impl Loaded {
         options: &Options,
         scene: &Scene,
         job: J,
+        progress: Progress,
     ) -> Result<J::Output, String> {
         match options.backend {
             Backend::Cpu => {
@@ -56,9 +59,9 @@ impl Loaded {
                     Some(l) => l,
                     slot => slot.insert(self.cpu_renderer.load(scene).map_err(|e| e.to_string())?),
                 };
-                job.run(&self.cpu_renderer, scene, loaded)
+                job.run(&self.cpu_renderer, scene, loaded, progress)
             }
-            Backend::Gpu => self.run_gpu(options, scene, job),
+            Backend::Gpu => self.run_gpu(options, scene, job, progress),
         }
     }
 
@@ -68,6 +71,7 @@ impl Loaded {
         options: &Options,
         scene: &Scene,
         job: J,
+        progress: Progress,
     ) -> Result<J::Output, String> {
         let (gpu, loaded) = match &mut self.gpu {
             Some(g) => g,
@@ -82,7 +86,7 @@ impl Loaded {
         };
         gpu.check(&options.settings).map_err(|e| e.to_string())?;
         gpu.set_one_pass(options.one_pass);
-        job.run(&*gpu, scene, loaded)
+        job.run(&*gpu, scene, loaded, progress)
     }
 
     #[cfg(not(feature = "gpu"))]
@@ -91,6 +95,7 @@ impl Loaded {
         _options: &Options,
         _scene: &Scene,
         _job: J,
+        _progress: Progress,
     ) -> Result<J::Output, String> {
         Err("this slc was built without the `gpu` feature: use backend='cpu'".into())
     }

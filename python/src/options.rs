@@ -1,11 +1,15 @@
-//! The keyword options of `render`, `compare`, `Scene.vpls` and `Scene.light_lists`, with the
-//! command line's defaults and names (`slc render --help`), parsed once here into the
-//! library's [`RenderSettings`]. An unknown name or a value of the wrong type is a
-//! `TypeError`; a value out of its domain is an `SlcError` from the library's own validation.
+//! The keyword options of `render`, `compare`, `Scene.vpls` and `Scene.light_lists`, parsed
+//! once here into the library's [`RenderSettings`]. Their names, defaults and meanings are
+//! documented in one place, `slc/_options.py`, which fills in every default before calling
+//! the native module: here every option of the method must be given (the lists below are
+//! checked against the Python table by the tests). An unknown or missing name or a value of
+//! the wrong type is a `TypeError`; a value out of its range or an unknown name of a choice
+//! a `ValueError`; a value the library refuses an `SlcError` from its own validation.
 use crate::error;
 use pyo3::exceptions::{PyTypeError, PyValueError};
 use pyo3::prelude::*;
-use pyo3::types::{PyBool, PyDict, PyInt};
+use pyo3::types::{PyBool, PyDict, PyFloat, PyString};
+use slc_core::frame::counts::CAMERA_VSGLS;
 use slc_core::frame::{
     DiffuseEmission, Importance, LightSampling, LobeSelection, Method, RenderSettings, Stochastic,
 };
@@ -18,9 +22,9 @@ pub enum Backend {
     Gpu,
 }
 
-/// What a frame is made of (the stubs' `FrameOptions`): the options of `Scene.vpls`.
+/// What a frame is made of: the options of `Scene.vpls`.
 pub const FRAME: &[&str] = &["width", "height", "backend", "seed", "rsm", "lobes"];
-/// `Scene.light_lists` (`ListOptions`).
+/// `Scene.light_lists`.
 pub const LISTS: &[&str] = &[
     "width",
     "height",
@@ -32,7 +36,7 @@ pub const LISTS: &[&str] = &[
     "delta",
     "interleave",
 ];
-/// `Scene.compare` (`CompareOptions`): one pass, the strategies and the shader its own.
+/// `Scene.compare`: one pass, the strategies and the shader its own.
 pub const COMPARE: &[&str] = &[
     "width",
     "height",
@@ -47,7 +51,7 @@ pub const COMPARE: &[&str] = &[
     "visibility",
     "progress",
 ];
-/// `Scene.render` and `slc.render` (`RenderOptions`): every option.
+/// `Scene.render` and `slc.render`: every option.
 pub const RENDER: &[&str] = &[
     "width",
     "height",
@@ -73,45 +77,101 @@ pub const RENDER: &[&str] = &[
 ];
 
 /// Parsed options.
-#[derive(Clone, Debug)]
+#[derive(Debug)]
 pub struct Options {
     pub settings: RenderSettings,
     pub backend: Backend,
     /// The GPU's tiled strategies culled and shaded in one pass (`gpu_tiled="one-pass"`, the
     /// default) or through light lists (`"lists"`), as `--gpu-tiled`.
     pub one_pass: bool,
-    /// Show progress bars on stderr.
-    pub progress: bool,
+    /// Called as `progress(done, total)` with the pixel-passes finished, if given.
+    pub progress: Option<Py<PyAny>>,
 }
 
-/// The value of `key` in `options`, if given and not `None`.
-fn given<'py>(
-    options: Option<&Bound<'py, PyDict>>,
-    key: &str,
-) -> PyResult<Option<Bound<'py, PyAny>>> {
-    Ok(options
-        .map(|d| d.get_item(key))
-        .transpose()?
-        .flatten()
-        .filter(|v| !v.is_none()))
-}
+/// The options of one call: a dict holding exactly the names of one of the lists above.
+#[derive(Clone, Copy)]
+pub struct Given<'a, 'py>(Option<&'a Bound<'py, PyDict>>);
 
-/// A typed option, with `key` named in the error: a `ValueError` for an integer out of the
-/// type's range (a negative width, a seed above 2³² − 1), a `TypeError` for another type.
-macro_rules! option {
-    ($options:expr, $key:literal, $ty:ty, $default:expr) => {
-        match given($options, $key)? {
-            Some(v) => v.extract::<$ty>().map_err(|e| {
-                let message = format!("{}: expected {}: {e}", $key, stringify!($ty));
-                if v.is_instance_of::<PyInt>() && !v.is_instance_of::<PyBool>() {
-                    PyValueError::new_err(message)
-                } else {
-                    PyTypeError::new_err(message)
-                }
-            })?,
-            None => $default,
+impl<'py> Given<'_, 'py> {
+    /// The value of `key`, `None` where it is absent or `None`.
+    fn get(&self, key: &str) -> PyResult<Option<Bound<'py, PyAny>>> {
+        Ok(self
+            .0
+            .map(|d| d.get_item(key))
+            .transpose()?
+            .flatten()
+            .filter(|v| !v.is_none()))
+    }
+
+    /// The value of `key`, which must be given and not `None`.
+    fn required(&self, key: &str) -> PyResult<Bound<'py, PyAny>> {
+        match (self.get(key)?, self.0.map(|d| d.contains(key)).transpose()?) {
+            (Some(v), _) => Ok(v),
+            (None, Some(true)) => Err(PyTypeError::new_err(format!(
+                "{key}: expected a value, got None"
+            ))),
+            (None, _) => Err(PyTypeError::new_err(format!("missing option '{key}'"))),
         }
-    };
+    }
+
+    /// A whole number of `key` in 0..=2³²−1: a `TypeError` for a bool, a float or another
+    /// type, a `ValueError` for an integer out of the range.
+    fn count(&self, key: &str) -> PyResult<u32> {
+        let v = self.required(key)?;
+        if v.is_instance_of::<PyBool>() || v.is_instance_of::<PyFloat>() {
+            return Err(type_error(key, "an int", &v));
+        }
+        v.extract::<u32>().map_err(|_| {
+            if v.hasattr("__index__").unwrap_or(false) {
+                PyValueError::new_err(format!("{key}: {v} is outside 0..={}", u32::MAX))
+            } else {
+                type_error(key, "an int", &v)
+            }
+        })
+    }
+
+    /// A real number of `key` (an int or a float, not a bool).
+    fn real(&self, key: &str) -> PyResult<f32> {
+        let v = self.required(key)?;
+        if v.is_instance_of::<PyBool>() || v.is_instance_of::<PyString>() {
+            return Err(type_error(key, "a number", &v));
+        }
+        v.extract::<f32>()
+            .map_err(|_| type_error(key, "a number", &v))
+    }
+
+    /// A bool of `key` (`True` or `False`, not another truthy value).
+    fn flag(&self, key: &str) -> PyResult<bool> {
+        let v = self.required(key)?;
+        v.extract::<bool>()
+            .map_err(|_| type_error(key, "a bool", &v))
+    }
+
+    /// A string of `key`, `None` where it is absent or `None`.
+    fn text(&self, key: &str) -> PyResult<Option<String>> {
+        self.get(key)?
+            .map(|v| {
+                v.extract::<String>()
+                    .map_err(|_| type_error(key, "a str", &v))
+            })
+            .transpose()
+    }
+
+    /// A string of `key`, which must be given.
+    fn required_text(&self, key: &str) -> PyResult<String> {
+        let v = self.required(key)?;
+        v.extract::<String>()
+            .map_err(|_| type_error(key, "a str", &v))
+    }
+}
+
+/// `TypeError`: `key` wants `what`, got `v`'s type.
+fn type_error(key: &str, what: &str, v: &Bound<'_, PyAny>) -> PyErr {
+    let got = v
+        .get_type()
+        .name()
+        .map_or_else(|_| "another type".to_string(), |n| n.to_string());
+    PyTypeError::new_err(format!("{key}: expected {what}, got {got} ({v})"))
 }
 
 /// `value` as one of `choices` (name, value), or a `ValueError` listing them.
@@ -135,10 +195,32 @@ pub fn strategy(name: &str) -> PyResult<Strategy> {
         .map_err(|e: slc_core::UnknownStrategy| PyValueError::new_err(e.to_string()))
 }
 
+/// The strategies of `compare(culling=...)`: a list (or other sequence) of names, not one
+/// string; `None` for every strategy the backend runs.
+pub fn strategies(culling: Option<&Bound<'_, PyAny>>) -> PyResult<Option<Vec<Strategy>>> {
+    let Some(culling) = culling.filter(|c| !c.is_none()) else {
+        return Ok(None);
+    };
+    if culling.is_instance_of::<PyString>() {
+        return Err(PyTypeError::new_err(format!(
+            "culling: expected a list of strategy names such as ['{culling}'], got the str \
+             '{culling}'"
+        )));
+    }
+    let names: Vec<String> = culling
+        .extract()
+        .map_err(|_| type_error("culling", "a list of strategy names", culling))?;
+    names
+        .iter()
+        .map(|n| strategy(n))
+        .collect::<PyResult<_>>()
+        .map(Some)
+}
+
 impl Options {
     /// Parses `options`, refusing names outside `allowed` ([`FRAME`], [`LISTS`], [`COMPARE`]
-    /// or [`RENDER`]: an option that would have no effect is an error, not ignored). Every
-    /// value is checked, whether or not the method uses it.
+    /// or [`RENDER`]: an option that would have no effect is an error, not ignored) and
+    /// requiring each of them. Every value is checked, whether or not the method uses it.
     pub fn parse(options: Option<&Bound<'_, PyDict>>, allowed: &[&str]) -> PyResult<Self> {
         if let Some(d) = options {
             for key in d.keys() {
@@ -151,14 +233,13 @@ impl Options {
                 }
             }
         }
-        let backend: String = option!(options, "backend", String, "cpu".into());
+        let given = Given(options);
         let backend = choose(
             "backend",
-            &backend,
+            &given.required_text("backend")?,
             &[("cpu", Backend::Cpu), ("gpu", Backend::Gpu)],
         )?;
-        let gpu_tiled: Option<String> = option!(options, "gpu_tiled", Option<String>, None);
-        let one_pass = match gpu_tiled {
+        let one_pass = match given.text("gpu_tiled")? {
             None => true,
             Some(_) if backend != Backend::Gpu => {
                 return Err(PyValueError::new_err(
@@ -167,55 +248,90 @@ impl Options {
             }
             Some(t) => choose("gpu_tiled", &t, &[("one-pass", true), ("lists", false)])?,
         };
-        let lobes: String = option!(options, "lobes", String, "both".into());
         let lobes = choose(
             "lobes",
-            &lobes,
+            &given.required_text("lobes")?,
             &[
                 ("both", LobeSelection::Both),
                 ("diffuse", LobeSelection::Diffuse),
                 ("glossy", LobeSelection::Glossy),
             ],
         )?;
+        let uses = |key| allowed.contains(&key);
         let settings = RenderSettings {
-            width: option!(options, "width", u32, 512),
-            height: option!(options, "height", u32, 512),
-            rsm_resolution: option!(options, "rsm", u32, 64),
-            seed: option!(options, "seed", u32, 0),
-            method: Self::method(options)?,
-            visibility: option!(options, "visibility", bool, false),
-            spp: option!(options, "spp", u32, 1),
+            width: given.count("width")?,
+            height: given.count("height")?,
+            rsm_resolution: given.count("rsm")?,
+            seed: given.count("seed")?,
+            method: Self::method(given, allowed)?,
+            visibility: uses("visibility") && given.flag("visibility")?,
+            spp: if uses("spp") { given.count("spp")? } else { 1 },
             lobes,
         };
         settings.validate().map_err(error)?;
+        let progress = match given.get("progress")? {
+            None => None,
+            Some(p) if p.is_instance_of::<PyBool>() && !p.is_truthy()? => None,
+            Some(p) if p.is_callable() => Some(p.unbind()),
+            Some(p) => {
+                return Err(type_error(
+                    "progress",
+                    "a callable progress(done, total), False or None",
+                    &p,
+                ))
+            }
+        };
         Ok(Self {
             settings,
             backend,
             one_pass,
-            progress: option!(options, "progress", bool, false),
+            progress,
         })
     }
 
-    /// The stochastic estimate's options (culling, δ, K, denoise, metrics).
-    pub fn stochastic(options: Option<&Bound<'_, PyDict>>) -> PyResult<Stochastic> {
-        let culling: String = option!(options, "culling", String, "ellipsoid".into());
+    /// The stochastic estimate's options (culling, δ, K, denoise, metrics) among `allowed`:
+    /// those a method does not take are the estimate's defaults (for `compare`, the strategies
+    /// come from its own argument and metrics are always measured).
+    pub fn stochastic(
+        options: Option<&Bound<'_, PyDict>>,
+        allowed: &[&str],
+    ) -> PyResult<Stochastic> {
+        let given = Given(options);
+        let uses = |key| allowed.contains(&key);
+        let strategy = match uses("culling") {
+            true => strategy(&given.required_text("culling")?)?,
+            false => Strategy::None,
+        };
         Ok(Stochastic {
-            delta: option!(options, "delta", f32, 1e-3),
-            strategy: strategy(&culling)?,
-            interleave: option!(options, "interleave", u32, 8),
-            denoise: option!(options, "denoise", bool, true),
-            metrics: option!(options, "metrics", bool, false),
+            delta: given.real("delta")?,
+            strategy,
+            interleave: given.count("interleave")?,
+            denoise: !uses("denoise") || given.flag("denoise")?,
+            metrics: uses("metrics") && given.flag("metrics")?,
         })
     }
 
     /// The method: a reference, VSGLs, or the stochastic estimate (every option of each
-    /// parsed, so a bad value is refused whichever is chosen).
-    fn method(options: Option<&Bound<'_, PyDict>>) -> PyResult<Method> {
-        let stochastic = Self::stochastic(options)?;
-        let sampling = Self::sampling(options)?;
-        let shader: String = option!(options, "shader", String, "vpl".into());
-        let reference: Option<String> = option!(options, "reference", Option<String>, None);
-        let reference = reference
+    /// parsed, so a bad value is refused whichever is chosen). Without `delta` (`vpls`, which
+    /// prepares a frame and shades nothing) the method is the unculled estimate, which every
+    /// backend runs.
+    fn method(given: Given, allowed: &[&str]) -> PyResult<Method> {
+        if !allowed.contains(&"delta") {
+            return Ok(Method::Stochastic(Stochastic {
+                delta: 1e-3,
+                strategy: Strategy::None,
+                interleave: 1,
+                denoise: false,
+                metrics: false,
+            }));
+        }
+        let stochastic = Self::stochastic(given.0, allowed)?;
+        if !allowed.contains(&"shader") {
+            return Ok(Method::Stochastic(stochastic));
+        }
+        let sampling = Self::sampling(given)?;
+        let reference = given
+            .text("reference")?
             .map(|r| {
                 choose(
                     "reference",
@@ -224,7 +340,7 @@ impl Options {
                 )
             })
             .transpose()?;
-        match (shader.as_str(), reference) {
+        match (given.required_text("shader")?.as_str(), reference) {
             ("vpl", None) => Ok(Method::Stochastic(stochastic)),
             ("vpl", Some(r)) => Ok(r),
             ("vsgl", None) => Ok(Method::Vsgl(sampling)),
@@ -239,15 +355,16 @@ impl Options {
     }
 
     /// The sampled lights' options (`shader="vsgl"`).
-    fn sampling(options: Option<&Bound<'_, PyDict>>) -> PyResult<LightSampling> {
-        let importance: String = option!(options, "importance", String, "flux".into());
-        let camera_vsgls = option!(options, "camera_vsgls", u32, 1024);
-        let diffuse: String = option!(options, "vsgl_diffuse", String, "clamped".into());
+    fn sampling(given: Given) -> PyResult<LightSampling> {
+        // Checked whatever the importance, as the command line's --camera-vsgls is.
+        let camera_vsgls = CAMERA_VSGLS
+            .check(given.count("camera_vsgls")?)
+            .map_err(error)?;
         Ok(LightSampling {
-            count: option!(options, "vsgls", u32, 1024),
+            count: given.count("vsgls")?,
             importance: choose(
                 "importance",
-                &importance,
+                &given.required_text("importance")?,
                 &[
                     ("flux", Importance::Flux),
                     ("bidirectional", Importance::Bidirectional { camera_vsgls }),
@@ -255,7 +372,7 @@ impl Options {
             )?,
             diffuse: choose(
                 "vsgl_diffuse",
-                &diffuse,
+                &given.required_text("vsgl_diffuse")?,
                 &[
                     (
                         DiffuseEmission::ClampedCosine.name(),

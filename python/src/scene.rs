@@ -1,29 +1,34 @@
-//! `slc.Scene`: a scene loaded once and rendered many times with changed settings; what each
-//! backend makes of it (the CPU's BVH, the GPU's device and buffers) is kept between calls.
-//! Every call releases the GIL while it works.
+//! The native scene behind `slc.Scene` (`slc/_scene.py`, which documents the options and
+//! fills in their defaults): a scene loaded once and rendered many times with changed
+//! settings; what each backend makes of it (the CPU's BVH, the GPU's device and buffers) is
+//! kept between calls. Every call works on a worker thread without the GIL, stops on Ctrl-C
+//! and reports its progress ([`crate::watch`]).
 use crate::backend::{Job, Loaded};
 use crate::error;
 use crate::frame::{FrameData, PyFrame};
-use crate::options::{strategy, Options, COMPARE, FRAME, LISTS, RENDER};
+use crate::options::{strategies, Options, COMPARE, FRAME, LISTS, RENDER};
+use crate::tables::{table, table_to_py};
+use crate::watch::{watched, Reporter};
 use numpy::{PyArray1, PyArray2, PyArrayMethods};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
-use pyo3::types::PyDict;
-use slc_app::progress::bar_if;
+use pyo3::types::{PyDict, PyList};
 use slc_app::reference::{all_vpl_reference, cpu_input};
 use slc_core::culling::{Interleaving, LightLists, NO_LIST};
 use slc_core::frame::{Method, RenderSettings, RenderedFrame, Stochastic};
+use slc_core::settings_tables::{camera_from_table, camera_table, light_from_table, light_table};
 use slc_core::shader::{frame_timings, ShadeInput, Shader as _};
-use slc_core::{load_scene, MaterialOverride, PreparedFrame, Renderer, Scene, Strategy, VplLobe};
-use slc_cpu_ref::{CpuFrames, CpuRenderer};
+use slc_core::{
+    load_scene, MaterialOverride, PreparedFrame, Progress, Renderer, Scene, Strategy, VplLobe,
+};
+use slc_cpu_ref::CpuFrames;
+use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::{Mutex, PoisonError};
 
 /// A scene and what the backends keep of it.
-#[pyclass(name = "Scene", module = "slc", frozen)]
+#[pyclass(name = "Scene", module = "slc._slc", frozen)]
 pub struct PyScene {
     scene: Scene,
-    /// What the scene was loaded from, for the reports' provenance.
-    spec: Option<String>,
     /// Locked for the whole of a call (without the GIL): calls on one scene from several
     /// threads wait for each other.
     loaded: Mutex<Loaded>,
@@ -31,7 +36,6 @@ pub struct PyScene {
 
 /// A whole frame (`Scene.render`).
 struct RenderJob<'a> {
-    spec: Option<&'a str>,
     options: &'a Options,
 }
 
@@ -42,29 +46,25 @@ impl Job for RenderJob<'_> {
         r: &R,
         scene: &Scene,
         loaded: &R::Scene,
+        progress: Progress,
     ) -> Result<FrameData, String> {
         let s = &self.options.settings;
-        let bar = bar_if(
-            self.options.progress,
-            s.width as u64 * s.height as u64 * s.spp as u64,
-            format!("rendering {} on the {}", scene.name, r.name()),
-        );
-        let frame = slc_core::render_loaded(r, scene, loaded, s, &|n| bar.inc(n))
-            .map_err(|e| e.to_string())?;
-        bar.finish_and_clear();
-        FrameData::new(r, scene, self.spec, s, frame)
+        let frame =
+            slc_core::render_loaded(r, scene, loaded, s, progress).map_err(|e| e.to_string())?;
+        FrameData::new(r, scene, s, frame)
     }
 }
 
 /// Every strategy on one prepared frame, with metrics, and the all-VPL reference
 /// (`Scene.compare`).
 struct CompareJob<'a> {
-    spec: Option<&'a str>,
     options: &'a Options,
     base: Stochastic,
     /// The strategies to compare; `None`: every one the backend runs.
     strategies: Option<&'a [Strategy]>,
     reference: bool,
+    /// The call's pixel-passes, set once the strategies are known.
+    total: &'a AtomicU64,
 }
 
 impl Job for CompareJob<'_> {
@@ -74,6 +74,7 @@ impl Job for CompareJob<'_> {
         r: &R,
         scene: &Scene,
         loaded: &R::Scene,
+        progress: Progress,
     ) -> Result<Self::Output, String> {
         let settings = &self.options.settings;
         let (seed, visibility) = (settings.seed, settings.visibility);
@@ -94,21 +95,26 @@ impl Job for CompareJob<'_> {
             })
         };
         let message = |e: slc_core::RenderError| e.to_string();
-        let p = r.prepare(scene, loaded, settings, None).map_err(message)?;
+        let all: Vec<Strategy> = Strategy::every()
+            .filter(|&s| r.capabilities().runs(s))
+            .collect();
+        let strategies = self.strategies.unwrap_or(&all);
+        let frames = strategies.len() + usize::from(self.reference);
+        let pixels = u64::from(settings.width) * u64::from(settings.height);
+        self.total.store(pixels * frames as u64, Ordering::Relaxed);
+        let p = r
+            .prepare(scene, loaded, settings, None, progress)
+            .map_err(message)?;
         let mut out = Vec::new();
         if self.reference {
             let cpu_p = r.cpu_frame(scene, loaded, &p).map_err(message)?;
-            let reference = all_vpl_reference(
-                cpu_input(scene, &cpu_p, seed, visibility),
-                self.options.progress,
-            )?;
+            let cpu = slc_cpu_ref::CpuRenderer::default();
+            let input = cpu_input(scene, &cpu_p, seed, visibility);
+            let reference = all_vpl_reference(input, progress)?;
             let preparation = (p.timings().clone(), p.gpu_timings().cloned());
             let f = frame(&p, reference, preparation, None)?;
             let s = with(Method::VplReference);
-            out.push((
-                "reference_vpl",
-                FrameData::new(&CpuRenderer::default(), scene, self.spec, &s, f)?,
-            ));
+            out.push(("reference_vpl", FrameData::new(&cpu, scene, &s, f)?));
         }
         let input = ShadeInput {
             scene,
@@ -117,26 +123,17 @@ impl Job for CompareJob<'_> {
             seed,
             visibility,
         };
-        let all: Vec<Strategy> = Strategy::every()
-            .filter(|&s| r.capabilities().runs(s))
-            .collect();
-        for &strategy in self.strategies.unwrap_or(&all) {
+        for &strategy in strategies {
             let st = Stochastic {
                 strategy,
                 metrics: true,
                 ..self.base
             };
-            let bar = bar_if(
-                self.options.progress,
-                settings.width as u64 * settings.height as u64,
-                strategy.name().into(),
-            );
-            let shaded = st.shade(r, input, &|n| bar.inc(n)).map_err(message)?;
-            bar.finish_and_clear();
+            let shaded = st.shade(r, input, progress).map_err(message)?;
             let timings = frame_timings(&p, &shaded);
             let f = frame(&p, shaded.indirect, timings, shaded.metrics)?;
             let s = with(Method::Stochastic(st));
-            out.push((strategy.name(), FrameData::new(r, scene, self.spec, &s, f)?));
+            out.push((strategy.name(), FrameData::new(r, scene, &s, f)?));
         }
         Ok(out)
     }
@@ -167,9 +164,10 @@ impl Job for VplsJob<'_> {
         r: &R,
         scene: &Scene,
         loaded: &R::Scene,
+        progress: Progress,
     ) -> Result<VplColumns, String> {
         let p = r
-            .prepare(scene, loaded, &self.options.settings, None)
+            .prepare(scene, loaded, &self.options.settings, None, progress)
             .map_err(|e| e.to_string())?;
         let mut c = VplColumns::default();
         for v in p.vpls().map_err(|e| e.to_string())? {
@@ -201,13 +199,16 @@ impl Job for ListsJob<'_> {
         r: &R,
         scene: &Scene,
         loaded: &R::Scene,
+        progress: Progress,
     ) -> Result<LightLists, String> {
         let message = |e: slc_core::RenderError| e.to_string();
         let settings = &self.options.settings;
-        let p = r.prepare(scene, loaded, settings, None).map_err(message)?;
+        let p = r
+            .prepare(scene, loaded, settings, None, progress)
+            .map_err(message)?;
         let cpu_p = r.cpu_frame(scene, loaded, &p).map_err(message)?;
         let s = self.stochastic;
-        CpuRenderer::default()
+        slc_cpu_ref::CpuRenderer::default()
             .cull(
                 &cpu_p,
                 s.strategy,
@@ -222,52 +223,67 @@ impl Job for ListsJob<'_> {
 }
 
 impl PyScene {
-    fn new(scene: Scene, spec: Option<String>) -> Self {
+    fn new(scene: Scene) -> Self {
         Self {
             scene,
-            spec,
             loaded: Mutex::default(),
         }
     }
 
-    /// Runs `job` on the options' backend without the GIL, after checking the scene can be
-    /// rendered and the frame fits in memory.
-    fn run<J: Job + Send>(&self, py: Python<'_>, options: &Options, job: J) -> PyResult<J::Output>
+    /// Runs `job` on the options' backend ([`watched`]: off the calling thread, stopped by
+    /// Ctrl-C, its progress reported), after checking the scene can be rendered and the frame
+    /// fits in memory; `total` is the call's pixel-passes.
+    fn run<J: Job + Send>(
+        &self,
+        py: Python<'_>,
+        options: &Options,
+        total: &AtomicU64,
+        job: J,
+    ) -> PyResult<J::Output>
     where
         J::Output: Send,
     {
-        self.scene.validate_for_render().map_err(error)?;
-        slc_app::limits::check_memory(&options.settings, &self.scene).map_err(error)?;
-        py.detach(|| {
+        slc_app::limits::check_frames(&self.scene, std::slice::from_ref(&options.settings))
+            .map_err(error)?;
+        let reporter = Reporter {
+            callback: options.progress.as_ref(),
+            total,
+        };
+        watched(py, reporter, |progress| {
             let mut loaded = self.loaded.lock().unwrap_or_else(PoisonError::into_inner);
-            loaded.run(options, &self.scene, job)
+            loaded.run(options, &self.scene, job, progress)
         })
-        .map_err(error)
+    }
+
+    /// A copy of this scene changed by `change`, which says what it set for the reports'
+    /// warnings; the copy is loaded anew on its first render.
+    fn changed(&self, change: impl FnOnce(&mut Scene) -> Result<String, String>) -> PyResult<Self> {
+        let mut scene = self.scene.clone();
+        let what = change(&mut scene).map_err(PyValueError::new_err)?;
+        // Reports say the scene is not its files' alone.
+        scene.report.warnings.push(format!("{what} from Python"));
+        Ok(Self::new(scene))
     }
 }
 
 #[pymethods]
 impl PyScene {
     /// A scene from a `.gltf`/`.glb`/`.obj` file, a `.toml` scene-settings file or a built-in
-    /// name (`None`: the built-in default).
+    /// name.
     #[new]
-    #[pyo3(signature = (spec=None))]
-    fn py_new(spec: Option<String>) -> PyResult<Self> {
-        let scene = load_scene(spec.as_deref().unwrap_or("default")).map_err(error)?;
-        Ok(Self::new(scene, spec))
+    fn py_new(spec: &str) -> PyResult<Self> {
+        Ok(Self::new(load_scene(spec).map_err(error)?))
     }
 
     /// A scene from a file (`.gltf`, `.glb`, `.obj` or a `.toml` scene-settings file).
     #[staticmethod]
     fn load(path: std::path::PathBuf) -> PyResult<Self> {
-        let spec = path.to_string_lossy().into_owned();
-        let scene = load_scene(&spec).map_err(error)?;
-        Ok(Self::new(scene, Some(spec)))
+        let scene = load_scene(&path).map_err(error)?;
+        Ok(Self::new(scene))
     }
 
-    /// A built-in scene (`slc.BUILTIN_SCENES`).
+    /// A built-in scene.
     #[staticmethod]
-    #[pyo3(signature = (name="default"))]
     fn builtin(name: &str) -> PyResult<Self> {
         let scene = slc_core::builtin(name).ok_or_else(|| {
             error(format!(
@@ -275,7 +291,7 @@ impl PyScene {
                 slc_core::BUILTIN_NAMES.join(", ")
             ))
         })?;
-        Ok(Self::new(scene, Some(name.to_string())))
+        Ok(Self::new(scene))
     }
 
     #[getter]
@@ -283,24 +299,69 @@ impl PyScene {
         &self.scene.name
     }
 
-    /// Triangles the scene has.
     #[getter]
     fn triangles(&self) -> usize {
         self.scene.triangle_count()
     }
 
-    /// Punctual lights the scene has.
+    /// The lights as settings-file tables.
     #[getter]
-    fn lights(&self) -> usize {
-        self.scene.lights.len()
+    fn lights<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyList>> {
+        let tables = self
+            .scene
+            .lights
+            .iter()
+            .map(|l| table_to_py(py, &light_table(l)))
+            .collect::<PyResult<Vec<_>>>()?;
+        PyList::new(py, tables)
     }
 
-    /// A copy of the scene with the materials `pattern` matches overridden (as a settings
-    /// file's `[[materials]]`: `pattern` is a name or a glob with `*`; kd and f0 in [0, 1],
-    /// alpha or roughness = √alpha in (0, 1], eta above 0, glTF KHR_materials_anisotropy's
-    /// strength in [0, 1] and rotation in radians). The copy is loaded anew on its first
-    /// render; this scene is unchanged.
-    #[pyo3(signature = (pattern, *, kd=None, f0=None, alpha=None, roughness=None, eta=None, double_sided=None, anisotropy_strength=None, anisotropy_rotation=None))]
+    /// The camera as a settings-file table, or `None` (the renderer frames the scene).
+    #[getter]
+    fn camera<'py>(&self, py: Python<'py>) -> PyResult<Option<Bound<'py, PyDict>>> {
+        self.scene
+            .camera
+            .as_ref()
+            .map(|c| table_to_py(py, &camera_table(c)))
+            .transpose()
+    }
+
+    #[getter]
+    fn materials(&self) -> Vec<String> {
+        self.scene
+            .materials
+            .iter()
+            .map(|m| m.name.clone())
+            .collect()
+    }
+
+    #[getter]
+    fn loads(&self) -> usize {
+        self.loaded
+            .lock()
+            .unwrap_or_else(PoisonError::into_inner)
+            .loads()
+    }
+
+    #[getter]
+    fn warnings(&self) -> Vec<String> {
+        self.scene.report.warnings.clone()
+    }
+
+    #[getter]
+    fn source(&self) -> Option<std::path::PathBuf> {
+        self.scene.source.clone()
+    }
+
+    /// Every file the scene was read from.
+    #[getter]
+    fn files(&self) -> Vec<std::path::PathBuf> {
+        self.scene.report.files.clone()
+    }
+
+    /// A copy with the materials `pattern` matches overridden, as a settings file's
+    /// `[[materials]]` entry.
+    #[pyo3(signature = (pattern, kd, f0, alpha, roughness, eta, double_sided, anisotropy_strength, anisotropy_rotation))]
     #[allow(clippy::too_many_arguments)]
     fn with_materials(
         &self,
@@ -325,105 +386,99 @@ impl PyScene {
             (anisotropy_strength, anisotropy_rotation),
         )
         .map_err(PyValueError::new_err)?;
-        let mut scene = self.scene.clone();
-        scene
-            .override_materials(std::slice::from_ref(&o))
-            .map_err(PyValueError::new_err)?;
-        // Reports say the scene is not its file's alone.
-        let set: Vec<String> = [
-            kd.map(|v| format!("kd {v:?}")),
-            f0.map(|v| format!("f0 {v:?}")),
-            o.alpha.map(|v| format!("alpha {v}")),
-            eta.map(|v| format!("eta {v}")),
-            double_sided.map(|v| format!("double_sided {v}")),
-            o.anisotropy
-                .map(|a| format!("anisotropy {} at {} rad", a.strength, a.rotation)),
-        ]
-        .into_iter()
-        .flatten()
-        .collect();
-        scene.report.warnings.push(format!(
-            "materials '{pattern}' overridden from Python: {}",
-            set.join(", ")
-        ));
-        Ok(Self::new(scene, self.spec.clone()))
+        self.changed(|scene| {
+            scene.override_materials(std::slice::from_ref(&o))?;
+            let set: Vec<String> = [
+                kd.map(|v| format!("kd {v:?}")),
+                f0.map(|v| format!("f0 {v:?}")),
+                o.alpha.map(|v| format!("alpha {v}")),
+                eta.map(|v| format!("eta {v}")),
+                double_sided.map(|v| format!("double_sided {v}")),
+                o.anisotropy
+                    .map(|a| format!("anisotropy {} at {} rad", a.strength, a.rotation)),
+            ]
+            .into_iter()
+            .flatten()
+            .collect();
+            Ok(format!(
+                "materials '{pattern}' overridden: {}",
+                set.join(", ")
+            ))
+        })
     }
 
-    /// Names of the scene's materials.
-    #[getter]
-    fn materials(&self) -> Vec<String> {
-        self.scene
-            .materials
-            .iter()
-            .map(|m| m.name.clone())
-            .collect()
+    /// A copy with the camera a settings file's `[camera]` table gives.
+    fn with_camera(&self, camera: &Bound<'_, PyDict>) -> PyResult<Self> {
+        let camera = camera_from_table(table("camera", camera.items().as_any())?)
+            .map_err(|e| PyValueError::new_err(format!("camera: {e}")))?;
+        self.changed(|scene| {
+            scene.camera = Some(camera);
+            Ok("camera set".to_string())
+        })
     }
 
-    /// How many times a backend built its state of this scene (the CPU's BVH, the GPU's
-    /// upload): once per backend used, however many frames were rendered.
-    #[getter]
-    fn loads(&self) -> usize {
-        self.loaded
-            .lock()
-            .unwrap_or_else(PoisonError::into_inner)
-            .loads()
+    /// A copy whose lights are `lights` (settings-file `[[lights]]` tables), in place of the
+    /// scene's (`replace`) or after them.
+    fn with_lights(&self, lights: &Bound<'_, PyAny>, replace: bool) -> PyResult<Self> {
+        let lights = lights
+            .try_iter()?
+            .enumerate()
+            .map(|(i, light)| {
+                let key = format!("lights[{i}]");
+                let light = light?;
+                let d = light.cast::<PyDict>().map_err(|_| {
+                    pyo3::exceptions::PyTypeError::new_err(format!("{key}: expected a dict"))
+                })?;
+                light_from_table(table(&key, d.items().as_any())?)
+                    .map_err(|e| PyValueError::new_err(format!("{key}: {e}")))
+            })
+            .collect::<PyResult<Vec<_>>>()?;
+        if replace && lights.is_empty() {
+            return Err(PyValueError::new_err(
+                "lights: replacing the lights by none would leave the scene without light",
+            ));
+        }
+        let count = lights.len();
+        self.changed(|scene| {
+            if replace {
+                scene.lights.clear();
+            }
+            scene.lights.extend(lights);
+            Ok(format!(
+                "{count} light(s) {}",
+                if replace { "set" } else { "added" }
+            ))
+        })
     }
 
-    /// What the loader dropped or ignored, as sentences.
-    #[getter]
-    fn warnings(&self) -> Vec<String> {
-        self.scene.report.warnings.clone()
-    }
-
-    /// The file the scene came from, or `None`.
-    #[getter]
-    fn source(&self) -> Option<std::path::PathBuf> {
-        self.scene.source.clone()
-    }
-
-    /// Renders a frame with the keyword options of `slc.render`.
     #[pyo3(signature = (**options))]
     fn render(&self, py: Python<'_>, options: Option<&Bound<'_, PyDict>>) -> PyResult<PyFrame> {
         let options = Options::parse(options, RENDER)?;
-        let spec = self.spec.clone();
-        let job = RenderJob {
-            spec: spec.as_deref(),
-            options: &options,
-        };
-        let data = self.run(py, &options, job)?;
+        let s = &options.settings;
+        let total = AtomicU64::new(u64::from(s.width) * u64::from(s.height) * u64::from(s.spp));
+        let data = self.run(py, &options, &total, RenderJob { options: &options })?;
         PyFrame::new(py, data)
     }
 
-    /// Every strategy of `culling` (default: every one the backend runs) on the same
-    /// G-buffer, VPLs and ξ, each with its culling metrics, and (with `reference`) every VPL with p = 1 as `"reference_vpl"`. Returns a
-    /// dict from name to `Frame`.
-    #[pyo3(signature = (culling=None, reference=true, **options))]
+    #[pyo3(signature = (culling, reference, **options))]
     fn compare<'py>(
         &self,
         py: Python<'py>,
-        culling: Option<Vec<String>>,
+        culling: Option<&Bound<'py, PyAny>>,
         reference: bool,
         options: Option<&Bound<'py, PyDict>>,
     ) -> PyResult<Bound<'py, PyDict>> {
         let parsed = Options::parse(options, COMPARE)?;
-        let strategies = culling
-            .map(|names| {
-                names
-                    .iter()
-                    .map(|n| strategy(n))
-                    .collect::<PyResult<Vec<_>>>()
-            })
-            .transpose()?;
-        let base = Options::stochastic(options)?;
-        let spec = self.spec.clone();
+        let strategies = strategies(culling)?;
+        let total = AtomicU64::new(0);
         let job = CompareJob {
-            spec: spec.as_deref(),
             options: &parsed,
-            base,
+            base: Options::stochastic(options, COMPARE)?,
             strategies: strategies.as_deref(),
             reference,
+            total: &total,
         };
-        let frames = self.run(py, &parsed, job)?;
+        let frames = self.run(py, &parsed, &total, job)?;
         let out = PyDict::new(py);
         for (name, data) in frames {
             out.set_item(name, PyFrame::new(py, data)?)?;
@@ -431,10 +486,6 @@ impl PyScene {
         Ok(out)
     }
 
-    /// The VPLs of the frame the options describe, as a dict of numpy arrays (one row per
-    /// VPL): `position`, `normal`, `omega_i` (towards where the photon came from), `flux`,
-    /// `kd` (N×3 float32), `alpha` (GGX roughness), `xi` (the Russian-roulette number)
-    /// (N float32), `glossy` (N bool: the glossy lobe, else the diffuse one), `id` (N uint32).
     #[pyo3(signature = (**options))]
     fn vpls<'py>(
         &self,
@@ -442,7 +493,8 @@ impl PyScene {
         options: Option<&Bound<'py, PyDict>>,
     ) -> PyResult<Bound<'py, PyDict>> {
         let options = Options::parse(options, FRAME)?;
-        let c = self.run(py, &options, VplsJob { options: &options })?;
+        let total = AtomicU64::new(0);
+        let c = self.run(py, &options, &total, VplsJob { options: &options })?;
         let out = PyDict::new(py);
         let n = c.alpha.len();
         for (key, column) in [
@@ -461,10 +513,6 @@ impl PyScene {
         Ok(out)
     }
 
-    /// The light lists the options' strategy (`culling`, `delta`, `interleave`) builds for the
-    /// frame, culled on the CPU: `lists` is the list of each pixel (H×W uint32, `NO_LIST`
-    /// where the pixel has none), list l holds the VPL indices (rows of `Scene.vpls`)
-    /// `indices[offsets[l]:offsets[l + 1]]`.
     #[pyo3(signature = (**options))]
     fn light_lists<'py>(
         &self,
@@ -474,9 +522,10 @@ impl PyScene {
         let parsed = Options::parse(options, LISTS)?;
         let job = ListsJob {
             options: &parsed,
-            stochastic: Options::stochastic(options)?,
+            stochastic: Options::stochastic(options, LISTS)?,
         };
-        let lists = self.run(py, &parsed, job)?;
+        let total = AtomicU64::new(0);
+        let lists = self.run(py, &parsed, &total, job)?;
         let s = &parsed.settings;
         let out = PyDict::new(py);
         out.set_item("offsets", PyArray1::from_vec(py, lists.offsets))?;
@@ -486,14 +535,5 @@ impl PyScene {
         out.set_item("lists", pixels)?;
         out.set_item("NO_LIST", NO_LIST)?;
         Ok(out)
-    }
-
-    fn __repr__(&self) -> String {
-        format!(
-            "<slc.Scene '{}': {} triangles, {} lights>",
-            self.scene.name,
-            self.scene.triangle_count(),
-            self.scene.lights.len()
-        )
     }
 }

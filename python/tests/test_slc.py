@@ -34,7 +34,7 @@ def test_render_gives_hxwx3_float32_images_and_the_report():
     assert (r["width"], r["height"], r["scene"]) == (64, 48, "cornell-glossy")
     assert r["culling"] == "ellipsoid" and r["delta"] == pytest.approx(1e-3)
     assert r["interleave"] == 8 and r["backend"] == "cpu" and r["shader"] == "vpl"
-    assert r["provenance"]["schema_version"] == 4
+    assert r["provenance"]["schema_version"] == 5
     assert r["timings_ms"]["shading"] > 0
     assert f.lights is None and f.fdr is None, "no metrics unless asked"
 
@@ -139,8 +139,17 @@ def test_bad_input_raises_clear_exceptions(scene):
         scene.compare(spp=2)
     with pytest.raises(TypeError, match="unknown option 'culling'"):
         scene.vpls(culling="sphere")
-    with pytest.raises(slc.SlcError, match="width and height"):
+    with pytest.raises(slc.SlcError, match=r"the width must be in 1\.\.=16384 \(got 0\)"):
         scene.render(width=0)
+    # The same ranges as the command line, for every count, whatever the method uses.
+    with pytest.raises(slc.SlcError, match=r"spp must be in 1\.\.=65536"):
+        scene.render(spp=4294967295)
+    with pytest.raises(slc.SlcError, match="camera VSGLs"):
+        scene.render(shader="vsgl", camera_vsgls=0)
+    with pytest.raises(slc.SlcError, match="sampled lights"):
+        scene.render(shader="vsgl", vsgls=0)
+    with pytest.raises(slc.SlcError, match="lobes must be both"):
+        scene.render(shader="vsgl", lobes="diffuse")
     with pytest.raises(slc.SlcError, match="delta"):
         scene.render(delta=float("nan"))
     with pytest.raises(slc.SlcError, match="no-such-file.gltf"):
@@ -258,6 +267,9 @@ def test_a_scene_with_overridden_materials_is_a_new_scene(scene):
         scene.with_materials("copper", alpha=0.0)
     with pytest.raises(ValueError, match="sets nothing"):
         scene.with_materials("copper")
+    # An index of refraction whose square overflows f32 is refused, not rendered as NaN.
+    with pytest.raises(ValueError, match="at most 1e4"):
+        scene.with_materials("copper", eta=1e20)
 
 
 def test_an_anisotropic_override_changes_the_image(scene):

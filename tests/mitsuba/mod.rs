@@ -164,6 +164,7 @@ pub fn render_pair(
 /// `indirect.exr` with their standard errors, box-filtered down by `factor`: the RMSE of the
 /// mean within 1.1 times what noise explains, image means within five standard errors (in
 /// [`agreement`]) and within `max_rel_mean_error` relative.
+#[allow(dead_code)] // Each test file compiles this module; the narrow spot's compares one image.
 pub fn assert_agrees(
     label: &str,
     [(da, db), (ia, ib)]: [(Image, Image); 2],
@@ -171,7 +172,20 @@ pub fn assert_agrees(
     factor: u32,
     max_rel_mean_error: f32,
 ) {
-    for (name, a, b) in [("direct", &da, &db), ("indirect", &ia, &ib)] {
+    let images = [("direct", &da, &db), ("indirect", &ia, &ib)];
+    assert_images_agree(label, &images, dir, factor, max_rel_mean_error);
+}
+
+/// [`assert_agrees`] for the images `(name, A, B)` given, each against `dir`'s `name.exr`
+/// and `name_stderr.exr`.
+pub fn assert_images_agree(
+    label: &str,
+    images: &[(&str, &Image, &Image)],
+    dir: &Path,
+    factor: u32,
+    max_rel_mean_error: f32,
+) {
+    for &(name, a, b) in images {
         let reference = downsample(&read_exr(&dir.join(format!("{name}.exr"))), factor);
         let stderr = downsample_stderr(&read_exr(&dir.join(format!("{name}_stderr.exr"))), factor);
         let r = agreement(&format!("{label} {name}"), a, b, &reference, &stderr);

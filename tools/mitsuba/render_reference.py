@@ -27,7 +27,9 @@ Scene conventions (see scenes/materials/reference/README.md):
     >= alphaCutoff else 0 (a Python texture, `CutoffTexture`; --mask-filter nearest uses a
     nearest-neighbour lookup instead);
   * KHR_lights_punctual point light: Mitsuba `point`, intensity = glTF intensity x colour in
-    W/sr per channel;
+    W/sr per channel; a hard-edged spot light (innerConeAngle = outerConeAngle): Mitsuba
+    `spot` with cutoff_angle = beam_width = the cone's angle (a smooth glTF falloff is refused:
+    Mitsuba's ramp is linear in the angle);
   * camera: `perspective`, fov_axis 'y', fov = yfov in degrees, box pixel filter.
 
 The integrator is `volpath`, not `path`: Mitsuba's `path` treats `mask` cut-outs as opaque for
@@ -250,7 +252,10 @@ class Gltf:
                         "width": extras.get("width", 256), "height": extras.get("height", 256)}
         raise ValueError("no camera")
 
-    def point_lights(self):
+    def lights(self):
+        """Point lights, and spot lights with a hard edge (innerConeAngle = outerConeAngle:
+        Mitsuba's spot falls off linearly in the angle, glTF's as the squared cosine ramp, so
+        only the hard edge is the same light in both)."""
         lights = self.doc["extensions"]["KHR_lights_punctual"]["lights"]
         out = []
         for node in self.doc["nodes"]:
@@ -258,12 +263,21 @@ class Gltf:
             if ext is None:
                 continue
             light = lights[ext["light"]]
-            assert light["type"] == "point"
-            assert "rotation" not in node and "scale" not in node and "matrix" not in node
+            assert light["type"] in ("point", "spot")
+            assert "scale" not in node and "matrix" not in node
             color = light.get("color", [1.0, 1.0, 1.0])
             intensity = light.get("intensity", 1.0)
-            out.append({"position": tuple(node["translation"]),
-                        "intensity": [intensity * c for c in color]})
+            found = {"type": light["type"], "position": tuple(node["translation"]),
+                     "intensity": [intensity * c for c in color]}
+            if light["type"] == "spot":
+                spot = light.get("spot", {})
+                outer = spot.get("outerConeAngle", math.pi / 4.0)
+                assert spot.get("innerConeAngle", 0.0) == outer, "only hard-edged spots"
+                found["direction"] = quat_rotate(node.get("rotation", [0, 0, 0, 1]), (0.0, 0.0, -1.0))
+                found["cone_deg"] = math.degrees(outer)
+            else:
+                assert "rotation" not in node
+            out.append(found)
         return out
 
     def image_path(self, texture_index):
@@ -420,9 +434,19 @@ def build_scene(g, width, height, pass_spp, max_depth, mask_filter):
                      "component_format": "float32"},
         },
     }
-    for k, light in enumerate(g.point_lights()):
-        scene["light%d" % k] = {"type": "point", "position": list(light["position"]),
-                                "intensity": {"type": "rgb", "value": light["intensity"]}}
+    for k, light in enumerate(g.lights()):
+        intensity = {"type": "rgb", "value": light["intensity"]}
+        if light["type"] == "point":
+            scene["light%d" % k] = {"type": "point", "position": list(light["position"]),
+                                    "intensity": intensity}
+        else:
+            p, d = light["position"], light["direction"]
+            up = [1.0, 0.0, 0.0] if abs(d[0]) < 0.9 else [0.0, 1.0, 0.0]
+            scene["light%d" % k] = {
+                "type": "spot", "intensity": intensity,
+                "cutoff_angle": light["cone_deg"], "beam_width": light["cone_deg"],
+                "to_world": mi.ScalarTransform4f().look_at(
+                    origin=list(p), target=[p[i] + d[i] for i in range(3)], up=up)}
     scene.update(shapes)
     return mi.load_dict(scene), triangles, cam
 

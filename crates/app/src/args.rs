@@ -1,10 +1,14 @@
 //! Command-line options shared by `render`, `compare` and `sweep`.
+use clap::builder::TypedValueParser;
 use clap::{Args, ValueEnum};
+use slc_core::frame::counts::{CAMERA_VSGLS, HEIGHT, INTERLEAVE, RSM, SAMPLED_LIGHTS, WIDTH};
 use slc_core::frame::{
-    DiffuseEmission, Importance, LightSampling, LobeSelection, Method, RenderSettings, Stochastic,
+    Count, DiffuseEmission, Importance, LightSampling, LobeSelection, Method, RenderSettings,
+    Stochastic,
 };
 use slc_core::shader::ShadeInput;
 use slc_core::{load_scene, Renderer, Scene, Strategy};
+use std::path::PathBuf;
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
 pub enum Backend {
@@ -78,8 +82,8 @@ pub struct ImportanceArgs {
     /// The importance VSGLs are sampled with.
     #[arg(long, value_enum, default_value_t = ImportanceKind::Flux)]
     pub vsgl_importance: ImportanceKind,
-    /// VSGLs generated on the G-buffer to estimate the bidirectional importance.
-    #[arg(long, default_value_t = 1024)]
+    #[arg(long, default_value_t = 1024, value_parser = count(CAMERA_VSGLS),
+          help = CAMERA_VSGLS.help("VSGLs generated on the G-buffer to estimate the bidirectional importance"))]
     pub camera_vsgls: u32,
     /// The form of a VSGL's diffuse radiant intensity.
     #[arg(long, value_enum, default_value_t = DiffuseKind::Clamped)]
@@ -115,15 +119,51 @@ pub enum Lobes {
     Glossy,
 }
 
+/// A scene as the command line names it: a path the OS takes (UTF-8 or not) or a built-in
+/// name; it reads as its text (lossy where the path is not UTF-8) in reports.
+#[derive(Debug, Clone)]
+pub struct SceneSpec {
+    pub path: PathBuf,
+    text: String,
+}
+
+impl SceneSpec {
+    /// A clap value parser: any argument the OS passes.
+    pub fn parser() -> impl clap::builder::TypedValueParser<Value = SceneSpec> {
+        clap::builder::OsStringValueParser::new().map(|s| SceneSpec {
+            text: s.to_string_lossy().into_owned(),
+            path: PathBuf::from(s),
+        })
+    }
+
+    /// The scene `spec` names (`None`: the built-in default), its loader warnings printed.
+    pub fn load(spec: Option<&SceneSpec>) -> Result<Scene, String> {
+        let name = spec.map_or(std::ffi::OsStr::new("default"), |s| s.path.as_os_str());
+        let scene = load_scene(name).map_err(|e| e.to_string())?;
+        for w in &scene.report.warnings {
+            eprintln!("warning: {}: {w}", scene.label());
+        }
+        Ok(scene)
+    }
+}
+
+impl std::ops::Deref for SceneSpec {
+    type Target = str;
+    fn deref(&self) -> &str {
+        &self.text
+    }
+}
+
 /// What a frame is made of: the scene, the image, the VPLs.
 #[derive(Args, Debug, Clone)]
 pub struct FrameArgs {
     /// A .gltf/.glb/.obj file, a .toml scene-settings file, or a built-in scene name; none
     /// renders the built-in default.
-    pub scene: Option<String>,
-    #[arg(long, default_value_t = 512)]
+    #[arg(value_parser = SceneSpec::parser())]
+    pub scene: Option<SceneSpec>,
+    #[arg(long, default_value_t = 512, value_parser = count(WIDTH), help = WIDTH.help("Image width in pixels"))]
     pub width: u32,
-    #[arg(long, default_value_t = 512)]
+    #[arg(long, default_value_t = 512, value_parser = count(HEIGHT), help = HEIGHT.help("Image height in pixels"))]
     pub height: u32,
     #[arg(long, value_enum, default_value_t = Backend::Cpu)]
     pub backend: Backend,
@@ -137,9 +177,8 @@ pub struct FrameArgs {
     pub gpu_conservative: Option<GpuConservative>,
     #[arg(long, value_enum, default_value_t = Shader::Vpl)]
     pub shader: Shader,
-    /// Reflective-shadow-map resolution per face (a point light has six faces; each texel makes
-    /// a diffuse and a glossy VPL).
-    #[arg(long, default_value_t = 64)]
+    #[arg(long, default_value_t = 64, value_parser = count(RSM),
+          help = RSM.help("Reflective-shadow-map resolution per face (a point light has six faces; each texel makes a diffuse and a glossy VPL)"))]
     pub rsm: u32,
     /// Seed of ξ, interleaving and sampling: an unsigned 32-bit integer (0..=4294967295).
     #[arg(long, default_value_t = 0)]
@@ -155,6 +194,25 @@ pub struct FrameArgs {
     /// `--backend gpu --shader vsgl`: imperfect shadow maps instead of rays).
     #[arg(long)]
     pub visibility: bool,
+}
+
+/// A clap value parser of a count: a whole number in its range.
+pub fn count(c: Count) -> impl Fn(&str) -> Result<u32, String> + Clone + Send + Sync + 'static {
+    move |s: &str| {
+        let v: u32 = s
+            .trim()
+            .parse()
+            .map_err(|e| format!("{e}: {} is a whole number in {c}", c.what))?;
+        c.check(v)
+    }
+}
+
+/// A clap value parser of δ: a finite number above 0.
+pub fn positive(s: &str) -> Result<f32, String> {
+    let v: f32 = s.trim().parse().map_err(|e| format!("{e}"))?;
+    (v.is_finite() && v > 0.0)
+        .then_some(v)
+        .ok_or_else(|| format!("{v} is not a finite number above 0"))
 }
 
 /// An exposure in stops: a number in [-64, 64].
@@ -188,12 +246,7 @@ impl FrameArgs {
 
     /// Loads the scene, printing its loader warnings.
     pub fn load(&self) -> Result<Scene, String> {
-        let scene =
-            load_scene(self.scene.as_deref().unwrap_or("default")).map_err(|e| e.to_string())?;
-        for w in &scene.report.warnings {
-            eprintln!("warning: {}: {w}", scene.label());
-        }
-        Ok(scene)
+        SceneSpec::load(self.scene.as_ref())
     }
 
     /// Loads the scene and checks it can be rendered (geometry, a valid light).
@@ -265,8 +318,8 @@ pub fn strategies(names: &[String]) -> Result<Vec<Strategy>, String> {
 /// Interleaving and denoising of the stochastic estimate, shared by every command.
 #[derive(Args, Debug, Clone)]
 pub struct PipelineArgs {
-    /// K of K x K interleaved sampling (1 turns it off).
-    #[arg(long, default_value_t = 8)]
+    #[arg(long, default_value_t = 8, value_parser = count(INTERLEAVE),
+          help = INTERLEAVE.help("K of K x K interleaved sampling (1 turns it off)"))]
     pub interleave: u32,
     /// Skip the cross bilateral filter.
     #[arg(long)]
@@ -290,14 +343,15 @@ impl PipelineArgs {
 /// count of the VSGL shader (`render` and `view`).
 #[derive(Args, Debug, Clone)]
 pub struct EstimateArgs {
-    /// With --shader vsgl: the number of VSGLs sampled from the RSMs.
-    #[arg(long, default_value_t = 1024)]
+    #[arg(long, default_value_t = 1024, value_parser = count(SAMPLED_LIGHTS),
+          help = SAMPLED_LIGHTS.help("With --shader vsgl: the number of VSGLs sampled from the RSMs"))]
     pub vsgls: u32,
     // The help names every strategy (`culling_help`).
     #[arg(long, default_value = "ellipsoid", help = culling_help("Culling strategy, one of"))]
     pub culling: String,
-    /// δ of eq. (2), in the units of I / l² (W sr⁻¹ m⁻²): larger culls more and adds variance.
-    #[arg(long, default_value_t = 1e-3)]
+    /// δ of eq. (2), in the units of I / l² (W sr⁻¹ m⁻²): larger culls more and adds variance
+    /// (a finite number above 0).
+    #[arg(long, default_value_t = 1e-3, value_parser = positive)]
     pub delta: f32,
 }
 

@@ -2,16 +2,17 @@
 //! each culling strategy, in one run (so ratios are measured on the same machine state).
 //! Writes `bench.json` / `bench.csv` (every setting a column; medians over `--repeat` runs with
 //! the min and max of culling + shading) and `bench.md`.
-use crate::args::{strategies, FrameArgs, PipelineArgs, Shader};
+use crate::args::{count, positive, strategies, FrameArgs, PipelineArgs, Shader};
 use crate::backend::{message, run_on, OnBackend};
 use crate::ceiling;
 use crate::table::{write_csv, SettingsColumns};
 use clap::Args;
 use serde::Serialize;
-use slc_app::limits::check_memory;
+use slc_app::limits::check_frames;
 use slc_app::out_dir::OutDir;
 use slc_app::provenance::Provenance;
 use slc_app::repeat::{repeated, Spread};
+use slc_core::frame::counts::{HEIGHT, REPEAT, RSM, WIDTH};
 use slc_core::frame::PassTime;
 use slc_core::frame::{Method, Stochastic};
 use slc_core::shader::frame_timings_of;
@@ -31,8 +32,8 @@ pub struct BenchArgs {
     /// Resolutions WxH, comma separated (overrides --width/--height).
     #[arg(long, value_delimiter = ',', default_value = "1280x720,1920x1080")]
     pub resolutions: Vec<String>,
-    /// RSM resolutions per face, comma separated (overrides --rsm).
-    #[arg(long, value_delimiter = ',', default_value = "128,256")]
+    #[arg(long, value_delimiter = ',', default_value = "128,256", value_parser = count(RSM),
+          help = RSM.help("RSM resolutions per face, comma separated (overrides --rsm)"))]
     pub rsms: Vec<u32>,
     #[arg(
         long,
@@ -41,11 +42,11 @@ pub struct BenchArgs {
         help = crate::args::culling_help("Strategies to time, comma separated, of")
     )]
     pub culling: Vec<String>,
-    #[arg(long, default_value_t = 1e-3)]
+    /// δ of eq. (2) (a finite number above 0).
+    #[arg(long, default_value_t = 1e-3, value_parser = positive)]
     pub delta: f32,
-    /// Timing repetitions per strategy and frame, after one warm-up when more than one: the
-    /// tables give the median of each pass and the min and max of culling + shading.
-    #[arg(long, default_value_t = 1)]
+    #[arg(long, default_value_t = 1, value_parser = count(REPEAT),
+          help = REPEAT.help("Timing repetitions per strategy and frame, after one warm-up when more than one: the tables give the median of each pass and the min and max of culling + shading"))]
     pub repeat: u32,
     /// Seconds of frames rendered before the first timed run of each frame (the first
     /// strategy), then on until the last five culling + shading times lie within 3% of their
@@ -69,12 +70,8 @@ fn parse_resolution(s: &str) -> Result<(u32, u32), String> {
     let (w, h) = s
         .split_once('x')
         .ok_or_else(|| format!("resolution '{s}' is not WxH"))?;
-    let p = |v: &str| {
-        v.trim()
-            .parse::<u32>()
-            .map_err(|e| format!("resolution '{s}': {e}"))
-    };
-    Ok((p(w)?, p(h)?))
+    let at = |e: String| format!("resolution '{s}': {e}");
+    Ok((count(WIDTH)(w).map_err(at)?, count(HEIGHT)(h).map_err(at)?))
 }
 
 const PASSES: [&str; 7] = [
@@ -96,6 +93,7 @@ pub fn run(args: &BenchArgs) -> Result<(), String> {
         );
     }
     let out = OutDir::open(&args.out)?;
+    out.expect(["bench.json", "bench.csv", "bench.md"])?;
     let scene = args.frame.load_renderable()?;
     let strategies = strategies(&args.culling)?;
     let resolutions = args
@@ -139,7 +137,7 @@ impl OnBackend for Bench<'_> {
         let first = args.frame.settings(Method::Stochastic(base), 1);
         r.check(&first).map_err(message)?;
         let device = r.info(&first);
-        let provenance = Provenance::new(args.frame.scene.as_deref(), &scene);
+        let provenance = Provenance::new(&scene);
         // The listed pairs, and so the ceiling, are counted by the CPU only. The ceiling is
         // measured right before every run: this machine's speed drifts from minute to minute,
         // and a share against a ceiling measured once at the start drifts with it.
@@ -184,12 +182,14 @@ impl OnBackend for Bench<'_> {
             rsm,
             ..args.frame.clone()
         };
-        for &res in &resolutions {
-            for &rsm in &args.rsms {
-                let settings = frame(res, rsm).settings(Method::Stochastic(base), 1);
-                settings.validate().map_err(message)?;
-                check_memory(&settings, &scene)?;
-            }
+        let frames: Vec<_> = resolutions
+            .iter()
+            .flat_map(|&res| args.rsms.iter().map(move |&rsm| (res, rsm)))
+            .map(|(res, rsm)| frame(res, rsm).settings(Method::Stochastic(base), 1))
+            .collect();
+        check_frames(&scene, &frames)?;
+        for settings in &frames {
+            r.check(settings).map_err(message)?;
         }
         // One BVH or scene upload for every frame.
         let loaded = r.load(&scene).map_err(message)?;
@@ -199,7 +199,7 @@ impl OnBackend for Bench<'_> {
                 let settings = frame.settings(Method::Stochastic(base), 1);
                 eprintln!("{w}x{h}, RSM {rsm}²");
                 let p = r
-                    .prepare(&scene, &loaded, &settings, None)
+                    .prepare(&scene, &loaded, &settings, None, &|_| {})
                     .map_err(message)?;
                 let input = frame.input(&scene, &loaded, &p);
                 let vpl_count = p.vpl_count().map_err(message)?;
@@ -675,8 +675,8 @@ mod tests {
         let times: Vec<f64> = (1..=14)
             .map(|i| if i < 10 { 100.0 / i as f64 } else { 5.0 })
             .collect();
-        assert_eq!(warmed(&times[..13], 5.0, 1.0), None);
-        assert_eq!(warmed(&times, 5.0, 1.0), Some(true));
+        assert_eq!(warmed(&times[..13], 1.5, 1.0), None);
+        assert_eq!(warmed(&times, 1.5, 1.0), Some(true));
         // Stable early, but its time is not up.
         assert_eq!(warmed(&times, 0.5, 1.0), None);
         // Never stable: given up at twice its time.

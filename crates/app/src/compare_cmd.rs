@@ -6,30 +6,33 @@
 //! `index.html` ([`crate::compare_summary`]). With
 //! `--shader vsgl` also `vsgl/` and `vpl_sampled/`: `--vsgls N` VSGLs and N VPLs sampled by the
 //! same importance, with their own table in `report.md`.
-use crate::args::{strategies, FrameArgs, ImportanceArgs, PipelineArgs, Shader};
+use crate::args::{count, positive, strategies, FrameArgs, ImportanceArgs, PipelineArgs, Shader};
 use crate::backend::{message, run_on, OnBackend};
 use crate::compare_summary::{side_by_side, table, write_page, CompareRow, Row};
 use crate::flip::flip;
-use crate::heatmap::heat_map;
+use crate::heatmap::{heat_map, HeatScale};
 use crate::layers_exr::write_layers;
-use crate::output::{write_frame, write_rgb8};
+use crate::output::{frame_files, write_frame, write_rgb8};
+use crate::pdf::write_figure;
+use crate::print::PrintWidth;
 use crate::sampled::{shade_sampled, PASSES};
 use crate::table::{write_table, SettingsColumns};
 use clap::Args;
-use slc_app::limits::check_memory;
+use slc_app::limits::check_frames;
 use slc_app::out_dir::OutDir;
 use slc_app::progress::bar;
 use slc_app::provenance::Provenance;
-use slc_app::reference::{all_vpl_reference, cpu_input};
+use slc_app::reference::{all_vpl_reference_with_bar, cpu_input};
 use slc_app::repeat::repeated;
 use slc_app::report::{FrameFacts, Report};
+use slc_core::frame::counts::{HEAT_MAX, REPEAT, SAMPLED_LIGHTS};
 use slc_core::frame::{Method, RenderSettings, Stochastic, Timings};
 use slc_core::render::readback_since;
 use slc_core::shader::{frame_timings, SampledLights, ShadeInput, Shader as _};
 use slc_core::{Image, PreparedFrame, Renderer, Scene, Strategy};
 use slc_cpu_ref::{CpuFrames, CpuPrepared, CpuRenderer};
 use std::fmt::Write;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 #[derive(Args, Debug)]
 pub struct CompareArgs {
@@ -39,8 +42,8 @@ pub struct CompareArgs {
     pub pipeline: PipelineArgs,
     #[command(flatten)]
     pub importance: ImportanceArgs,
-    /// With --shader vsgl: the number of VSGLs, and of VPLs sampled at equal count.
-    #[arg(long, default_value_t = 1024)]
+    #[arg(long, default_value_t = 1024, value_parser = count(SAMPLED_LIGHTS),
+          help = SAMPLED_LIGHTS.help("With --shader vsgl: the number of VSGLs, and of VPLs sampled at equal count"))]
     pub vsgls: u32,
     /// Output folder.
     #[arg(long, default_value = "compare")]
@@ -53,28 +56,32 @@ pub struct CompareArgs {
         help = crate::args::culling_help("Strategies to compare, comma separated, of")
     )]
     pub culling: Vec<String>,
-    #[arg(long, default_value_t = 1e-3)]
+    /// δ of eq. (2) (a finite number above 0).
+    #[arg(long, default_value_t = 1e-3, value_parser = positive)]
     pub delta: f32,
-    /// Heat-map brightness saturates at this many VPLs per pixel (256 in the paper's figures).
-    #[arg(long, default_value_t = 256)]
-    pub heat_max: u32,
+    #[arg(long, value_parser = count(HEAT_MAX),
+          help = HEAT_MAX.help("Heat-map brightness saturates at this many VPLs per pixel in every heat map (256 in the paper's figures); default: at each heat map's own maximum, which its caption gives"))]
+    pub heat_max: Option<u32>,
+    /// Size the figures for print: 3.5in (one column) or 7in (a page) wide, text of 8 pt or
+    /// more; screen: for a browser.
+    #[arg(long, value_enum, default_value_t = PrintWidth::Screen)]
+    pub print_width: PrintWidth,
     /// Skip the all-VPL reference (it costs every VPL at every pixel).
     #[arg(long)]
     pub no_reference: bool,
-    /// Time each strategy's culling and shading this many times (after the run that measures
-    /// the metrics, which is then the warm-up): the tables give median, min and max.
-    #[arg(long, default_value_t = 1)]
+    #[arg(long, default_value_t = 1, value_parser = count(REPEAT),
+          help = REPEAT.help("Time each strategy's culling and shading this many times (after the run that measures the metrics, which is then the warm-up): the tables give median, min and max"))]
     pub repeat: u32,
 }
 
 pub fn run(args: &CompareArgs) -> Result<(), String> {
     let out = OutDir::open(&args.out)?;
-    let scene = args.frame.load_renderable()?;
     let strategies = strategies(&args.culling)?;
+    out.expect(result_files(args, &strategies))?;
+    let scene = args.frame.load_renderable()?;
     let base = args.pipeline.stochastic(args.delta, Strategy::None, true);
     let settings = args.frame.settings(Method::Stochastic(base), 1);
-    settings.validate().map_err(message)?;
-    check_memory(&settings, &scene)?;
+    check_frames(&scene, &planned(args, &settings))?;
     run_on(
         args.frame.backend_choice()?,
         Compare {
@@ -86,6 +93,47 @@ pub fn run(args: &CompareArgs) -> Result<(), String> {
             out,
         },
     )
+}
+
+/// Every frame compare renders: the strategies' (and the reference's, on the same prepared
+/// frame) and, with `--shader vsgl`, the sampled lights'.
+fn planned(args: &CompareArgs, settings: &RenderSettings) -> Vec<RenderSettings> {
+    let mut frames = vec![settings.clone()];
+    if args.frame.shader == Shader::Vsgl {
+        let sampling = args.importance.sampling(args.vsgls);
+        frames.extend(
+            SampledLights::ALL
+                .iter()
+                .map(|e| args.frame.settings(e.method(sampling), 1)),
+        );
+    }
+    frames
+}
+
+/// Every file compare writes with these arguments.
+fn result_files(args: &CompareArgs, strategies: &[Strategy]) -> Vec<PathBuf> {
+    let mut folders: Vec<&str> = strategies.iter().map(|s| s.name()).collect();
+    if !args.no_reference {
+        folders.push("reference_vpl");
+    }
+    if args.frame.shader == Shader::Vsgl {
+        folders.extend(SampledLights::ALL.iter().map(|e| e.name()));
+    }
+    let mut files: Vec<PathBuf> = folders.iter().flat_map(|d| frame_files(d)).collect();
+    for s in strategies {
+        files.extend(["heatmap.png", "flip.png"].map(|f| Path::new(s.name()).join(f)));
+    }
+    files.extend(
+        [
+            "report.md",
+            "compare.json",
+            "compare.csv",
+            "side_by_side.svg",
+            "index.html",
+        ]
+        .map(PathBuf::from),
+    );
+    files
 }
 
 struct Compare<'a> {
@@ -108,7 +156,15 @@ impl OnBackend for Compare<'_> {
             out: mut dir_out,
         } = self;
         let f = &args.frame;
-        r.check(&settings).map_err(message)?;
+        // Each frame on the backend that renders it: sampled VPLs always on the CPU
+        // (`shade_sampled`), everything else on `r`.
+        for planned in planned(args, &settings) {
+            match planned.method {
+                Method::SampledVpls(_) => CpuRenderer::default().check(&planned),
+                _ => r.check(&planned),
+            }
+            .map_err(message)?;
+        }
         let device = r.info(&settings);
         let pixels = f.width as u64 * f.height as u64;
         eprintln!(
@@ -122,7 +178,7 @@ impl OnBackend for Compare<'_> {
         let loaded = r.load(&scene).map_err(message)?;
         let before_prepare = r.readback_bytes();
         let p = r
-            .prepare(&scene, &loaded, &settings, None)
+            .prepare(&scene, &loaded, &settings, None, &|_| {})
             .map_err(message)?;
         let prepare_readback = readback_since(r, before_prepare);
         // The CPU's reference and unculled estimate read the backend's frame (back).
@@ -133,7 +189,7 @@ impl OnBackend for Compare<'_> {
         let cpu_device = CpuRenderer::default().info(&settings);
 
         let reference = (!args.no_reference)
-            .then(|| all_vpl_reference(cpu, true))
+            .then(|| all_vpl_reference_with_bar(cpu))
             .transpose()?;
         let reference_total = reference.as_ref().map(|r| p.direct().add(r));
         if let (Some(r), Some(total)) = (&reference, &reference_total) {
@@ -142,7 +198,6 @@ impl OnBackend for Compare<'_> {
             let facts = FrameFacts {
                 device: &cpu_device,
                 scene: &scene,
-                spec: f.scene.as_deref(),
                 settings: &settings,
                 method: Method::VplReference,
                 spp: 1,
@@ -167,7 +222,7 @@ impl OnBackend for Compare<'_> {
         .map_err(message)?
         .indirect;
         let input = f.input(&scene, &loaded, &p);
-        let provenance = Provenance::new(f.scene.as_deref(), &scene);
+        let provenance = Provenance::new(&scene);
         let mut rows = Vec::new();
         for strategy in strategies {
             let s = Stochastic { strategy, ..base };
@@ -206,12 +261,13 @@ impl OnBackend for Compare<'_> {
                 &out.indirect,
                 &total,
             )?;
+            let heat_full = HeatScale::of(args.heat_max).full_at(&m.lights_per_pixel);
             let heat = heat_map(
                 f.width,
                 f.height,
                 &m.lights_per_pixel,
                 &m.fdr_per_pixel,
-                args.heat_max,
+                heat_full,
             );
             write_rgb8(&mut dir_out, &format!("{dir}/heatmap.png"), &heat)?;
             write_layers(&mut dir_out, dir, &images, Some(m), &provenance)?;
@@ -239,7 +295,6 @@ impl OnBackend for Compare<'_> {
             let facts = FrameFacts {
                 device: &device,
                 scene: &scene,
-                spec: f.scene.as_deref(),
                 settings: &settings,
                 method: Method::Stochastic(s),
                 spp: 1,
@@ -265,6 +320,7 @@ impl OnBackend for Compare<'_> {
                 runs,
                 total,
                 heat,
+                heat_full,
                 flip_map,
             });
             eprintln!("{strategy}: done");
@@ -281,7 +337,7 @@ impl OnBackend for Compare<'_> {
         let md = table(args, &device, &scene.name, vpl_count, &rows, &sampled);
         dir_out.write("report.md", md.as_bytes())?;
         let figure = side_by_side(args, &scene.name, &rows)?;
-        dir_out.write("side_by_side.svg", figure.as_bytes())?;
+        write_figure(&mut dir_out, "side_by_side", &figure)?;
         write_page(&mut dir_out, &scene.name, &provenance, &rows, tables)?;
         dir_out.commit()?;
         println!("wrote {}", args.out.display());
@@ -340,7 +396,6 @@ fn sampled_lights<R: Renderer>(
         let facts = FrameFacts {
             device: &device,
             scene: cpu.scene,
-            spec: f.scene.as_deref(),
             settings: &settings,
             method,
             spp: 1,

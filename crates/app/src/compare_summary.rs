@@ -3,6 +3,7 @@
 //! whole folder).
 use crate::compare_cmd::CompareArgs;
 use crate::figure::{Figure, FigureRow};
+use crate::heatmap::HeatScale;
 use crate::output::to_srgb8;
 use crate::page::{Block, Page};
 use crate::table::TextTable;
@@ -32,6 +33,8 @@ pub struct Row {
     pub flip_reference: Option<f32>,
     pub total: Image,
     pub heat: RgbImage,
+    /// The lights per pixel at which `heat` is at full brightness.
+    pub heat_full: u32,
     /// The ꟻLIP error map of the total against the reference's.
     pub flip_map: Option<RgbImage>,
 }
@@ -110,7 +113,11 @@ pub fn table(
         "\n`side_by_side.svg`, left to right: {}; totals on top, heat maps below (with their legend), then the ꟻLIP maps against the reference. `index.html` shows it all.",
         order.join(", ")
     );
-    let _ = writeln!(md, "\nHeat maps (`*/heatmap.png`; the lights and FDR per pixel as data in `*/layers.exr`): brightness = VPLs per pixel (full at {}), colour = false discovery rate from blue (0) to red (1).", args.heat_max);
+    let full: Vec<String> = rows
+        .iter()
+        .map(|r| format!("{} {}", r.strategy, r.heat_full))
+        .collect();
+    let _ = writeln!(md, "\nHeat maps (`*/heatmap.png`; the lights and FDR per pixel as data in `*/layers.exr`): brightness = VPLs per pixel, {} ({}), colour = false discovery rate from blue (0) to red (1).", HeatScale::of(args.heat_max).describe(), full.join(", "));
     md.push_str(sampled);
     md
 }
@@ -200,13 +207,14 @@ pub fn side_by_side(args: &CompareArgs, scene: &str, rows: &[Row]) -> Result<Str
             .iter()
             .map(|r| {
                 format!(
-                    "{}\n{:.1} lights/px, FDR {:.2}",
-                    r.strategy, r.lights_per_pixel, r.fdr
+                    "{}\n{:.1} lights/px, FDR {:.2}\nheat full at {}",
+                    r.strategy, r.lights_per_pixel, r.fdr, r.heat_full
                 )
             })
             .collect(),
         rows: figure_rows,
-        heat_legend: Some(args.heat_max),
+        heat_legend: Some(HeatScale::of(args.heat_max)),
+        style: args.print_width.style(),
     }
     .svg()
 }
@@ -221,6 +229,9 @@ pub fn write_page(
 ) -> Result<(), String> {
     let figure = Block::Figure {
         src: "side_by_side.svg".into(),
+        pdf: out
+            .has("side_by_side.pdf")
+            .then(|| "side_by_side.pdf".into()),
         caption: "Every strategy on the same G-buffer, VPLs and ξ: totals, heat maps \
                   (brightness = VPLs per pixel, hue = false discovery rate) and ꟻLIP maps."
             .into(),

@@ -2,10 +2,27 @@
 //! (channels R, G, B) and, where culling metrics were measured, a layer `metrics` with the
 //! per-pixel channels `lights` (list length) and `fdr` (false discovery rate); the provenance
 //! JSON is in the header attribute `slc.provenance`.
+use crate::out_dir::OutDir;
+use crate::provenance::Provenance;
 use exr::prelude::*;
-use slc_app::out_dir::OutDir;
-use slc_app::provenance::Provenance;
 use slc_core::CullMetrics;
+use std::path::Path;
+
+/// The per-pixel culling metrics of a frame, row-major: VPLs listed and false discovery rate.
+#[derive(Clone, Copy, Debug)]
+pub struct PixelMetrics<'a> {
+    pub lights: &'a [u32],
+    pub fdr: &'a [f32],
+}
+
+impl<'a> From<&'a CullMetrics> for PixelMetrics<'a> {
+    fn from(m: &'a CullMetrics) -> Self {
+        Self {
+            lights: &m.lights_per_pixel,
+            fdr: &m.fdr_per_pixel,
+        }
+    }
+}
 
 /// Stages `dir/layers.exr` in `out`.
 pub fn write_layers(
@@ -15,8 +32,22 @@ pub fn write_layers(
     metrics: Option<&CullMetrics>,
     provenance: &Provenance,
 ) -> std::result::Result<(), String> {
-    let relative = std::path::Path::new(dir).join("layers.exr");
-    let shown = out.root().join(&relative);
+    let relative = Path::new(dir).join("layers.exr");
+    let json = serde_json::to_string(provenance).map_err(|e| e.to_string())?;
+    let metrics = metrics.map(PixelMetrics::from);
+    out.write_with(&relative, |path| {
+        write_layers_file(path, images, metrics, &json)
+    })
+}
+
+/// Writes the layered EXR of `images` (and `metrics`) to `path`, with `provenance` (JSON) in
+/// the header. The error does not name the path (the caller knows where the file goes).
+pub fn write_layers_file(
+    path: &Path,
+    images: &[(&'static str, &slc_core::Image)],
+    metrics: Option<PixelMetrics>,
+    provenance: &str,
+) -> std::result::Result<(), String> {
     let (w, h) = images
         .first()
         .map_or((1, 1), |(_, i)| (i.width as usize, i.height as usize));
@@ -35,24 +66,23 @@ pub fn write_layers(
         })
         .collect();
     if let Some(m) = metrics {
-        let lights = m.lights_per_pixel.iter().map(|&n| n as f32).collect();
+        let lights = m.lights.iter().map(|&n| n as f32).collect();
         let channels = vec![
             AnyChannel::new("lights", FlatSamples::F32(lights)),
-            AnyChannel::new("fdr", FlatSamples::F32(m.fdr_per_pixel.clone())),
+            AnyChannel::new("fdr", FlatSamples::F32(m.fdr.to_vec())),
         ];
         layers.push(layer(size, "metrics", channels));
     }
-    let json = serde_json::to_string(provenance).map_err(|e| e.to_string())?;
     let mut attributes = ImageAttributes::new(IntegerBounds::from_dimensions(size));
-    let text = Text::new_or_none(ascii_escaped(&json)).ok_or("provenance is not ASCII")?;
+    let text = Text::new_or_none(ascii_escaped(provenance)).ok_or("provenance is not ASCII")?;
     attributes
         .other
         .insert(Text::from("slc.provenance"), AttributeValue::Text(text));
     let image = exr::image::Image::from_layers(attributes, layers);
     image
         .write()
-        .to_file(out.stage(&relative)?)
-        .map_err(|e| format!("{}: cannot write EXR: {e}", shown.display()))
+        .to_file(path)
+        .map_err(|e| format!("cannot write EXR: {e}"))
 }
 
 fn layer(
@@ -147,7 +177,7 @@ mod tests {
             source: Some("/tmp/scène.obj".into()),
             ..Scene::default()
         };
-        let provenance = Provenance::new(None, &scene);
+        let provenance = Provenance::new(&scene);
         let images = [("direct", &direct), ("indirect", &indirect)];
         write_layers(&mut out, "x", &images, Some(&metrics), &provenance).unwrap();
         out.commit().unwrap();
@@ -157,7 +187,7 @@ mod tests {
         assert_eq!(layers["metrics"]["lights"], [0.0, 1.0, 2.0, 3.0, 4.0, 5.0]);
         assert_eq!(layers["metrics"]["fdr"][5], 0.75);
         let p: serde_json::Value = serde_json::from_str(&json).unwrap();
-        assert_eq!(p["schema_version"], 4);
+        assert_eq!(p["schema_version"], 5);
         std::fs::remove_dir_all(&root).ok();
     }
 

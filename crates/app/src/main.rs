@@ -8,10 +8,10 @@ mod compare_summary;
 mod figure;
 mod flip;
 mod heatmap;
-mod layers_exr;
-mod output;
 mod page;
+mod pdf;
 mod plot;
+mod print;
 mod render_cmd;
 mod sampled;
 mod sweep_cmd;
@@ -21,6 +21,8 @@ mod view;
 mod vsgl_sweep;
 
 use clap::{Parser, Subcommand};
+// Shared with the Python package (`slc_app`), named here as the command's own modules.
+use slc_app::{layers_exr, output};
 
 #[derive(Parser)]
 #[command(

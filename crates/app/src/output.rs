@@ -1,5 +1,5 @@
 //! Writing images: linear float EXR and sRGB PNG.
-use slc_app::out_dir::OutDir;
+use crate::out_dir::OutDir;
 use slc_core::Image;
 use std::path::Path;
 
@@ -10,7 +10,7 @@ pub fn write_exr(path: &Path, image: &Image) -> Result<(), String> {
         let p = image.pixels[y * w + x];
         (p.x, p.y, p.z)
     })
-    .map_err(|e| format!("{}: cannot write EXR: {e}", path.display()))
+    .map_err(|e| format!("EXR: {e}"))
 }
 
 /// The sRGB opto-electronic transfer function of a linear value clamped to [0, 1].
@@ -43,7 +43,18 @@ pub fn to_srgb8(image: &Image, exposure: f32) -> image::RgbImage {
 pub fn write_png(path: &Path, image: &Image, exposure: f32) -> Result<(), String> {
     to_srgb8(image, exposure)
         .save(path)
-        .map_err(|e| format!("{}: cannot write PNG: {e}", path.display()))
+        .map_err(|e| format!("PNG: {e}"))
+}
+
+/// The files of a frame in the folder `dir` (empty: the top): [`write_frame`]'s, its
+/// `layers.exr` and its `report.json`.
+pub fn frame_files(dir: &str) -> Vec<std::path::PathBuf> {
+    ["direct", "indirect", "total"]
+        .iter()
+        .flat_map(|n| [format!("{n}.exr"), format!("{n}.png")])
+        .chain(["layers.exr".into(), "report.json".into()])
+        .map(|f| Path::new(dir).join(f))
+        .collect()
 }
 
 /// Stages a frame's files in `out` under the relative folder `dir` (empty: the top):
@@ -63,12 +74,9 @@ pub fn write_frame<'a>(
         img.check_finite(name).map_err(|e| e.to_string())?;
     }
     for (name, img) in images {
-        write_exr(&out.stage(Path::new(dir).join(format!("{name}.exr")))?, img)?;
-        write_png(
-            &out.stage(Path::new(dir).join(format!("{name}.png")))?,
-            img,
-            exposure,
-        )?;
+        let at = |ext: &str| Path::new(dir).join(format!("{name}.{ext}"));
+        out.write_with(at("exr"), |path| write_exr(path, img))?;
+        out.write_with(at("png"), |path| write_png(path, img, exposure))?;
     }
     Ok(images)
 }
@@ -79,12 +87,7 @@ pub fn write_rgb8(
     relative: &str,
     picture: &image::RgbImage,
 ) -> Result<(), String> {
-    picture.save(out.stage(relative)?).map_err(|e| {
-        format!(
-            "{}: cannot write PNG: {e}",
-            out.root().join(relative).display()
-        )
-    })
+    out.write_with(relative, |path| picture.save(path))
 }
 
 #[cfg(test)]

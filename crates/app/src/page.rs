@@ -3,7 +3,9 @@
 //! Plain HTML and CSS with relative links (the folder can be moved or served as it is); a
 //! few lines of script count the images that did not load and say so at the top of the page
 //! (and in the `data-broken-images` attribute of `<body>`, which the tests read through
-//! headless Chromium).
+//! headless Chromium, as they read `data-wide-tables`: the tables wider than the window).
+//! Table headers wrap at their underscores, so a wide table fits a 1400-pixel window; where
+//! one does not fit, its first column (the strategy) stays in view while it scrolls.
 use crate::figure::xml_escape;
 use crate::table::TextTable;
 use slc_app::out_dir::OutDir;
@@ -13,10 +15,12 @@ use std::fmt::Write;
 /// One part of the page, in order.
 pub enum Block {
     Heading(String),
-    /// A figure across the page: a file of the folder and its caption.
+    /// A figure across the page: a file of the folder and its caption; `pdf` names the same
+    /// figure as PDF where one was written.
     Figure {
         src: String,
         caption: String,
+        pdf: Option<String>,
     },
     /// Images side by side, each with a caption.
     Gallery(Vec<(String, String)>),
@@ -38,7 +42,8 @@ figure{margin:.8em 0}figure img{max-width:100%;border:1px solid #ddd}figcaption{
 .gallery{display:flex;flex-wrap:wrap;gap:.8em}.gallery figure{margin:0;flex:0 0 calc(25% - .6em)}\
 .gallery img{image-rendering:pixelated;width:100%}.scroll{overflow-x:auto}\
 table{border-collapse:collapse;font-size:.85em}td,th{border:1px solid #ccc;padding:.2em .5em;text-align:right}\
-th{background:#f2f2f2}td:first-child,th:first-child{text-align:left}\
+th{background:#f2f2f2;vertical-align:bottom;max-width:7em}td:first-child,th:first-child{text-align:left}\
+td:first-child,th:first-child{position:sticky;left:0;z-index:1;box-shadow:1px 0 0 #ccc}td:first-child{background:#fff}\
 #broken{display:none;background:#fdd;padding:.5em;border:1px solid #c00}\
 .provenance{font-size:.8em;color:#555}code{font-size:.95em}";
 
@@ -47,13 +52,16 @@ const SCRIPT: &str = "window.addEventListener('load',function(){\
 var bad=[].filter.call(document.images,function(i){return !(i.complete&&i.naturalWidth>0);});\
 document.body.setAttribute('data-broken-images',String(bad.length));\
 document.body.setAttribute('data-images',String(document.images.length));\
+var wide=[].filter.call(document.querySelectorAll('.scroll'),function(d){return d.scrollWidth>d.clientWidth+1;});\
+document.body.setAttribute('data-wide-tables',String(wide.length));\
 if(bad.length){var b=document.getElementById('broken');b.style.display='block';\
 b.textContent=bad.length+' image(s) did not load: '+bad.map(function(i){return i.getAttribute('src');}).join(', ');}});";
 
 fn table_html(t: &TextTable, html: &mut String) {
     html.push_str("<div class=\"scroll\"><table><tr>");
     for h in &t.header {
-        let _ = write!(html, "<th>{}</th>", xml_escape(h));
+        // Long column names break after their underscores.
+        let _ = write!(html, "<th>{}</th>", xml_escape(h).replace('_', "_<wbr>"));
     }
     html.push_str("</tr>\n");
     for row in &t.rows {
@@ -110,10 +118,13 @@ impl<'a> Page<'a> {
                 Block::Heading(h) => {
                     let _ = writeln!(html, "<h2>{}</h2>", xml_escape(h));
                 }
-                Block::Figure { src, caption } => {
+                Block::Figure { src, caption, pdf } => {
+                    let pdf = pdf.as_ref().map_or_else(String::new, |p| {
+                        format!(" (<a href=\"{0}\">PDF</a>)", xml_escape(p))
+                    });
                     let _ = writeln!(
                         html,
-                        "<figure><a href=\"{0}\"><img src=\"{0}\" alt=\"{1}\"></a><figcaption>{1}</figcaption></figure>",
+                        "<figure><a href=\"{0}\"><img src=\"{0}\" alt=\"{1}\"></a><figcaption>{1}{pdf}</figcaption></figure>",
                         xml_escape(src),
                         xml_escape(caption)
                     );
@@ -145,15 +156,18 @@ impl<'a> Page<'a> {
         let p = self.provenance;
         let _ = writeln!(
             html,
-            "<h2>Provenance</h2>\n<p class=\"provenance\">slc {} ({}), started {} on {} ({} threads), {}.<br>\
-             Command: <code>{}</code><br>Scene files: {}</p>\n</body></html>",
+            "<h2>Provenance</h2>\n<p class=\"provenance\">slc {} ({}), built by {} ({}), started {} on {} ({} threads), {}.<br>\
+             Command: <code>{}</code><br>Scene (SHA-256 of its whole description) <code>{}</code>; files: {}</p>\n</body></html>",
             p.slc_version,
             xml_escape(p.git_commit.unwrap_or("not built from git")),
+            xml_escape(p.rustc),
+            xml_escape(p.build_profile),
             xml_escape(&p.started_at),
             xml_escape(p.cpu.as_deref().unwrap_or("an unknown CPU")),
             p.cpu_threads,
             xml_escape(&p.os),
             xml_escape(&p.command_line.join(" ")),
+            p.scene_sha256,
             if p.scene_files.is_empty() {
                 "none (a built-in scene)".to_string()
             } else {
@@ -177,7 +191,9 @@ impl<'a> Page<'a> {
     /// staged there too.
     pub fn write(&self, out: &mut OutDir) -> Result<(), String> {
         let referenced = self.blocks.iter().flat_map(|b| match b {
-            Block::Figure { src, .. } => vec![src.as_str()],
+            Block::Figure { src, pdf, .. } => std::iter::once(src.as_str())
+                .chain(pdf.as_deref())
+                .collect(),
             Block::Gallery(items) => items.iter().map(|(s, _)| s.as_str()).collect(),
             Block::Links(files) => files.iter().map(String::as_str).collect(),
             _ => Vec::new(),
@@ -201,7 +217,7 @@ mod tests {
         Provenance {
             // Other tests of this process may have hashed a scene file first.
             scene_files: Vec::new(),
-            ..Provenance::new(None, &slc_core::builtin("default").unwrap())
+            ..Provenance::new(&slc_core::builtin("default").unwrap())
         }
     }
 
@@ -220,6 +236,7 @@ mod tests {
                 Block::Figure {
                     src: "side_by_side.svg".into(),
                     caption: "panels".into(),
+                    pdf: Some("side_by_side.pdf".into()),
                 },
                 Block::Gallery(vec![("x/total.png".into(), "total".into())]),
                 Block::Links(vec!["compare.csv".into()]),
@@ -230,6 +247,7 @@ mod tests {
         assert!(html.contains("<title>compare &lt;cornell&gt;</title>"));
         assert!(html.contains("<td>a&amp;b</td>"));
         assert_eq!(html.matches("<img ").count(), 2);
+        assert!(html.contains("(<a href=\"side_by_side.pdf\">PDF</a>)"));
         assert!(html.contains("href=\"compare.csv\""));
         assert!(html.contains("a built-in scene"));
     }

@@ -1,13 +1,39 @@
 //! Log-log line plots as SVG through `plotters`: ticks at 1, 2 and 5 × 10^k (every integer
-//! multiple where a decade holds fewer than three), axis titles, a legend. Used for the
-//! speed-versus-accuracy curves of `slc sweep` and the error-versus-count curves of the VSGL
-//! sweep.
+//! multiple where a decade holds fewer than three), axis titles, a legend, and at each point
+//! its label (which δ it is) and the spread of its x (the min–max of repeated timings). Used
+//! for the speed-versus-accuracy curves of `slc sweep` and the error-versus-count curves of
+//! the VSGL sweep; sized for the screen or for print ([`crate::print`]).
+use crate::print::Style;
 use plotters::prelude::*;
 
-/// One curve: a name and its (x, y) points in drawing order.
+/// One point of a curve.
+#[derive(Clone, Debug, PartialEq)]
+pub struct PlotPoint {
+    pub x: f64,
+    pub y: f64,
+    /// Written beside the point (e.g. `δ=1e-3`).
+    pub label: Option<String>,
+    /// The range x spans (min, max), drawn as a bar through the point.
+    pub x_range: Option<(f64, f64)>,
+}
+
+impl PlotPoint {
+    /// A point without label or spread.
+    pub fn at(x: f64, y: f64) -> Self {
+        Self {
+            x,
+            y,
+            label: None,
+            x_range: None,
+        }
+    }
+}
+
+/// One curve: a name and its points in drawing order.
+#[derive(Clone)]
 pub struct Series {
     pub name: String,
-    pub points: Vec<(f64, f64)>,
+    pub points: Vec<PlotPoint>,
 }
 
 /// Series colours (matplotlib's "tab10", readable in print and by most colour-blind readers).
@@ -23,8 +49,8 @@ pub const COLOURS: [RGBColor; 8] = [
 ];
 
 /// Whether a point can be drawn on log-log axes.
-fn drawable(&(x, y): &(f64, f64)) -> bool {
-    x.is_finite() && y.is_finite() && x > 0.0 && y > 0.0
+fn drawable(p: &&PlotPoint) -> bool {
+    p.x.is_finite() && p.y.is_finite() && p.x > 0.0 && p.y > 0.0
 }
 
 /// The axis range of positive finite `values`, widened by 5% on each side in log space
@@ -105,30 +131,34 @@ pub fn draw_error<E: std::error::Error + Send + Sync>(e: DrawingAreaErrorKind<E>
     format!("cannot draw a figure: {e}")
 }
 
-/// Renders `series` on log-log axes as an SVG document of 760 × 500 user units. Non-finite and
-/// non-positive points are left out.
+/// Renders `series` on log-log axes as an SVG document sized by `style` (760 × 500 for the
+/// screen; the print width × two thirds of it, in points, for print). Non-finite and
+/// non-positive points are left out; a spread reaches as far as its positive part.
 pub fn log_log_plot_svg(
     title: &str,
     x_label: &str,
     y_label: &str,
     series: &[Series],
+    style: &Style,
 ) -> Result<String, String> {
-    let all = || {
-        series
-            .iter()
-            .flat_map(|s| s.points.iter().filter(|p| drawable(p)))
-    };
-    let (x0, x1) = log_range(all().map(|p| p.0));
-    let (y0, y1) = log_range(all().map(|p| p.1));
+    let all = || series.iter().flat_map(|s| s.points.iter().filter(drawable));
+    let xs = all().flat_map(|p| {
+        let (lo, hi) = p.x_range.unwrap_or((p.x, p.x));
+        [p.x, lo, hi]
+    });
+    let (x0, x1) = log_range(xs.filter(|x| x.is_finite() && *x > 0.0));
+    let (y0, y1) = log_range(all().map(|p| p.y));
+    let size = (style.width as u32, (style.width * 500.0 / 760.0) as u32);
+    let font = |s: f64| ("sans-serif", Style::plotters(s));
     let mut svg = String::new();
     {
-        let root = SVGBackend::with_string(&mut svg, (760, 500)).into_drawing_area();
+        let root = SVGBackend::with_string(&mut svg, size).into_drawing_area();
         root.fill(&WHITE).map_err(draw_error)?;
         let mut chart = ChartBuilder::on(&root)
-            .caption(title, ("sans-serif", 21))
-            .margin(14)
-            .x_label_area_size(50)
-            .y_label_area_size(90)
+            .caption(title, font(style.title))
+            .margin(style.gap * 1.75)
+            .x_label_area_size(style.label * 3.0)
+            .y_label_area_size(style.small * 5.5)
             .build_cartesian_2d(
                 (x0..x1).log_scale().with_key_points(log_ticks(x0, x1)),
                 (y0..y1).log_scale().with_key_points(log_ticks(y0, y1)),
@@ -138,58 +168,93 @@ pub fn log_log_plot_svg(
             .configure_mesh()
             .x_desc(x_label)
             .y_desc(y_label)
-            .axis_desc_style(("sans-serif", 18))
-            .label_style(("sans-serif", 16))
+            .axis_desc_style(font(style.label))
+            .label_style(font(style.small))
             .x_label_formatter(&|v| tick_label(*v))
             .y_label_formatter(&|v| tick_label(*v))
             .light_line_style(WHITE)
             .bold_line_style(BLACK.mix(0.12))
             .draw()
             .map_err(draw_error)?;
+        let stroke = style.stroke as u32;
+        let marker = (style.stroke * 1.5).max(2.0) as i32;
         for (i, s) in series.iter().enumerate() {
             let colour = COLOURS[i % COLOURS.len()];
-            let points: Vec<(f64, f64)> = s.points.iter().copied().filter(drawable).collect();
+            let points: Vec<&PlotPoint> = s.points.iter().filter(drawable).collect();
             chart
-                .draw_series(LineSeries::new(points.clone(), colour.stroke_width(2)))
+                .draw_series(LineSeries::new(
+                    points.iter().map(|p| (p.x, p.y)),
+                    colour.stroke_width(stroke),
+                ))
                 .map_err(draw_error)?
                 .label(s.name.as_str())
                 .legend(move |(x, y)| {
-                    PathElement::new(vec![(x, y), (x + 22, y)], colour.stroke_width(2))
+                    PathElement::new(vec![(x, y), (x + 16, y)], colour.stroke_width(stroke))
                 });
             chart
-                .draw_series(points.iter().map(|&p| Circle::new(p, 3, colour.filled())))
+                .draw_series(
+                    points
+                        .iter()
+                        .map(|p| Circle::new((p.x, p.y), marker, colour.filled())),
+                )
                 .map_err(draw_error)?;
+            let spreads = points.iter().filter_map(|p| {
+                let (lo, hi) = p.x_range?;
+                let (lo, hi) = (lo.max(x0), hi.min(x1));
+                (lo < hi)
+                    .then(|| PathElement::new(vec![(lo, p.y), (hi, p.y)], colour.stroke_width(1)))
+            });
+            chart.draw_series(spreads).map_err(draw_error)?;
+            // Above the points of every other curve, below the others', so that the labels
+            // of two curves through nearby points do not overlap.
+            let dy = if i % 2 == 0 {
+                -(style.small as i32) - 2
+            } else {
+                3
+            };
+            let labels = points.iter().filter_map(|p| {
+                let label = p.label.clone()?;
+                let text = Text::new(label, (3, dy), font(style.small).into_font().color(&colour));
+                Some(EmptyElement::at((p.x, p.y)) + text)
+            });
+            chart.draw_series(labels).map_err(draw_error)?;
         }
         chart
             .configure_series_labels()
             .position(SeriesLabelPosition::UpperRight)
             .background_style(WHITE.mix(0.85))
             .border_style(BLACK.mix(0.4))
-            .label_font(("sans-serif", 16))
+            .label_font(font(style.small))
             .draw()
             .map_err(draw_error)?;
         root.present().map_err(draw_error)?;
     }
-    Ok(svg)
+    Ok(style.sized(&svg, size))
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::print::{PrintWidth, MIN_PRINT_POINTS};
+
+    fn points(xy: &[(f64, f64)]) -> Vec<PlotPoint> {
+        xy.iter().map(|&(x, y)| PlotPoint::at(x, y)).collect()
+    }
 
     #[test]
     fn plot_contains_every_series_and_skips_bad_points() {
         let series = vec![
             Series {
                 name: "ellipsoid".into(),
-                points: vec![(1.0, 0.1), (2.0, 0.05), (f64::NAN, 1.0)],
+                points: points(&[(1.0, 0.1), (2.0, 0.05), (f64::NAN, 1.0)]),
             },
             Series {
                 name: "sphere <1>".into(),
-                points: vec![(3.0, 0.2), (0.0, 0.3)],
+                points: points(&[(3.0, 0.2), (0.0, 0.3)]),
             },
         ];
-        let svg = log_log_plot_svg("t", "ms", "RMSE", &series).unwrap();
+        let svg =
+            log_log_plot_svg("t", "ms", "RMSE", &series, &PrintWidth::Screen.style()).unwrap();
         assert!(svg.starts_with("<svg") && svg.trim_end().ends_with("</svg>"));
         assert!(svg.contains("ellipsoid") && svg.contains("sphere &lt;1&gt;"));
         assert!(svg.contains("\nms\n</text>") && svg.contains("\nRMSE\n</text>"));
@@ -199,6 +264,50 @@ mod tests {
             "NaN and log-invalid points are dropped"
         );
         assert!(!svg.contains("NaN") && !svg.contains("inf"));
+    }
+
+    #[test]
+    fn points_carry_their_label_and_spread_and_print_text_is_8_pt_or_more() {
+        let series = vec![Series {
+            name: "tight".into(),
+            points: vec![
+                PlotPoint {
+                    x: 14.0,
+                    y: 0.1,
+                    label: Some("δ=1e-3".into()),
+                    x_range: Some((10.0, 13.0)),
+                },
+                PlotPoint {
+                    label: Some("δ=1e-2".into()),
+                    ..PlotPoint::at(8.0, 0.3)
+                },
+            ],
+        }];
+        for width in [PrintWidth::Screen, PrintWidth::Column, PrintWidth::Page] {
+            let style = width.style();
+            let svg = log_log_plot_svg("t", "ms", "RMSE", &series, &style).unwrap();
+            assert!(
+                svg.contains("\nδ=1e-3\n") && svg.contains("\nδ=1e-2\n"),
+                "{width:?}"
+            );
+            // The spread is a line of its own from 10 to 13 ms: one more polyline.
+            let mut plain = series.clone();
+            plain[0].points[0].x_range = None;
+            let without = log_log_plot_svg("t", "ms", "RMSE", &plain, &style).unwrap();
+            let lines = |svg: &str| svg.matches("<polyline").count();
+            assert_eq!(lines(&svg), lines(&without) + 1, "{width:?}");
+            let sizes: Vec<f64> = svg
+                .split("font-size=\"")
+                .skip(1)
+                .map(|s| s.split('"').next().unwrap().parse().unwrap())
+                .collect();
+            let smallest = sizes.iter().copied().fold(f64::INFINITY, f64::min);
+            assert!(smallest >= style.small, "{width:?}: {smallest}");
+            if let Some(inches) = style.inches {
+                assert!(svg.contains(&format!("width=\"{inches}in\"")), "{width:?}");
+                assert!(smallest >= MIN_PRINT_POINTS);
+            }
+        }
     }
 
     #[test]

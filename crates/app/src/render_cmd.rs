@@ -1,15 +1,16 @@
 //! `slc render`.
-use crate::args::{EstimateArgs, FrameArgs, ImportanceArgs, PipelineArgs, Shader};
+use crate::args::{count, EstimateArgs, FrameArgs, ImportanceArgs, PipelineArgs, Shader};
 use crate::backend::{message, run_on, OnBackend};
 use crate::layers_exr::write_layers;
-use crate::output::write_frame;
+use crate::output::{frame_files, write_frame};
 use clap::{Args, ValueEnum};
-use slc_app::limits::check_memory;
+use slc_app::limits::check_frames;
 use slc_app::out_dir::OutDir;
 use slc_app::progress::bar;
 use slc_app::provenance::Provenance;
 use slc_app::repeat::{repeated, Spread};
 use slc_app::report::{FrameFacts, Report};
+use slc_core::frame::counts::{REPEAT, SPP};
 use slc_core::frame::{Method, RenderSettings};
 use slc_core::Scene;
 use slc_cpu_ref::CpuFrames;
@@ -42,17 +43,17 @@ pub struct RenderArgs {
     /// Render a reference instead of the stochastic estimate.
     #[arg(long, value_enum)]
     pub reference: Option<Reference>,
-    /// Passes (path samples per pixel, or jittered VPL passes) averaged.
-    #[arg(long, default_value_t = 1)]
+    #[arg(long, default_value_t = 1, value_parser = count(SPP),
+          help = SPP.help("Passes (path samples per pixel, or jittered VPL passes) averaged"))]
     pub spp: u32,
-    /// Render this many times after a warm-up (when more than one): report.json gives each
-    /// pass's median, min and max (`timings_spread_ms`); the images are the last run's.
-    #[arg(long, default_value_t = 1)]
+    #[arg(long, default_value_t = 1, value_parser = count(REPEAT),
+          help = REPEAT.help("Render this many times after a warm-up (when more than one): report.json gives each pass's median, min and max (`timings_spread_ms`); the images are the last run's"))]
     pub repeat: u32,
 }
 
 pub fn run(args: &RenderArgs) -> Result<(), String> {
     let out = OutDir::open(&args.out)?;
+    out.expect(frame_files(""))?;
     let scene = args.frame.load()?;
     let method = match (args.reference, args.frame.shader) {
         (Some(_), Shader::Vsgl) => {
@@ -68,8 +69,7 @@ pub fn run(args: &RenderArgs) -> Result<(), String> {
         }
     };
     let settings = args.frame.settings(method, args.spp);
-    settings.validate().map_err(message)?;
-    check_memory(&settings, &scene)?;
+    check_frames(&scene, std::slice::from_ref(&settings))?;
     run_on(
         args.frame.backend_choice()?,
         Render {
@@ -79,6 +79,45 @@ pub fn run(args: &RenderArgs) -> Result<(), String> {
             out,
         },
     )
+}
+
+/// The warning for a stochastic estimate whose indirect image is black because δ culled every
+/// pair: a frame with VPLs whose indirect image is zero everywhere, while a small probe of it
+/// (at most 64 x 64 pixels and an RSM of 32², one pass) with every pair kept (δ at the least
+/// positive f32, so p = 1) is not black. (A scene whose VPLs light nothing the camera sees is
+/// black either way, and gets no warning.)
+fn culled_everything<R: CpuFrames>(
+    r: &R,
+    scene: &Scene,
+    settings: &RenderSettings,
+    frame: &slc_core::frame::RenderedFrame,
+) -> Result<Option<String>, String> {
+    let Method::Stochastic(s) = settings.method else {
+        return Ok(None);
+    };
+    let black = |image: &slc_core::Image| image.pixels.iter().all(|p| *p == glam::Vec3::ZERO);
+    if frame.vpl_count == 0 || !black(&frame.indirect) {
+        return Ok(None);
+    }
+    let probe = RenderSettings {
+        width: settings.width.min(64),
+        height: settings.height.min(64),
+        rsm_resolution: settings.rsm_resolution.min(32),
+        method: Method::Stochastic(slc_core::frame::Stochastic {
+            delta: f32::MIN_POSITIVE,
+            metrics: false,
+            ..s
+        }),
+        spp: 1,
+        ..settings.clone()
+    };
+    let probe = slc_core::render(r, scene, &probe, &|_| {}).map_err(message)?;
+    Ok((!black(&probe.indirect)).then(|| {
+        format!(
+            "the indirect image is black: δ = {:e} culls every pair (no pair's p = I/(δ l²) of eq. 2 reaches its ξ), while the same frame with every pair kept is lit; lower --delta (the default is 1e-3)",
+            s.delta
+        )
+    }))
 }
 
 struct Render<'a> {
@@ -123,12 +162,11 @@ impl OnBackend for Render<'_> {
             &frame.indirect,
             &total,
         )?;
-        let provenance = Provenance::new(f.scene.as_deref(), &scene);
+        let provenance = Provenance::new(&scene);
         write_layers(&mut out, "", &images, frame.metrics.as_ref(), &provenance)?;
         let facts = FrameFacts {
             device: &device,
             scene: &scene,
-            spec: f.scene.as_deref(),
             settings: &settings,
             method: settings.method,
             spp: args.spp,
@@ -140,7 +178,12 @@ impl OnBackend for Render<'_> {
             images: &images,
             readback_bytes: frame.readback_bytes.as_ref(),
         };
-        Report::new(&facts).write(&mut out, "")?;
+        let mut report = Report::new(&facts);
+        if let Some(w) = culled_everything(r, &scene, &settings, &frame)? {
+            eprintln!("warning: {w}");
+            report.warnings.push(w);
+        }
+        report.write(&mut out, "")?;
         out.commit()?;
         let m = total.mean();
         let lights = match frame.sampled_lights {

@@ -1,5 +1,6 @@
 //! Repeated timings (`--repeat N`): one warm-up run, then N measured runs, each timing given
 //! as its median, minimum and maximum, so noise is seen instead of landing in a table.
+use crate::progress::long_run_warning;
 use serde::Serialize;
 use slc_core::Timings;
 
@@ -53,7 +54,8 @@ impl Spread {
 }
 
 /// Runs `run` once as a warm-up when `repeat` > 1 (its result is dropped), then `repeat`
-/// times; returns the measured results in order.
+/// times; returns the measured results in order. Warns when the first runs project a run of
+/// hours ([`long_run_warning`]).
 pub fn repeated<T>(
     repeat: u32,
     mut run: impl FnMut() -> Result<T, String>,
@@ -61,10 +63,23 @@ pub fn repeated<T>(
     if repeat == 0 {
         return Err("--repeat must be at least 1".into());
     }
+    let start = std::time::Instant::now();
+    let total = u64::from(repeat) + u64::from(repeat > 1);
     if repeat > 1 {
         run()?;
     }
-    (0..repeat).map(|_| run()).collect()
+    let mut out = Vec::with_capacity(repeat as usize);
+    for _ in 0..repeat {
+        out.push(run()?);
+        let done = u64::from(repeat > 1) + out.len() as u64;
+        if done <= 2 {
+            let w = long_run_warning("--repeat", start.elapsed(), done, total);
+            if let Some(w) = w {
+                eprintln!("warning: {w}");
+            }
+        }
+    }
+    Ok(out)
 }
 
 #[cfg(test)]

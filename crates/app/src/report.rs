@@ -73,6 +73,7 @@ pub struct Report {
     /// The removed triangles by defect.
     pub skipped_by_defect: Skipped,
     pub warnings: Vec<String>,
+    pub memory: Memory,
     /// Features of the scene slc does not model (emission, alpha blending, glTF extensions
     /// such as `KHR_materials_clearcoat`, OBJ bump maps), each with the materials using it.
     pub ignored: BTreeMap<String, Vec<String>>,
@@ -104,9 +105,6 @@ impl From<Option<&CullMetrics>> for Metrics {
 pub struct FrameFacts<'a> {
     pub device: &'a BackendInfo,
     pub scene: &'a Scene,
-    /// What the scene was named by (a file, a settings file or a built-in name), for the
-    /// provenance.
-    pub spec: Option<&'a str>,
     /// The frame's size, RSM, seed and visibility (its method is `method`).
     pub settings: &'a RenderSettings,
     pub method: Method,
@@ -170,7 +168,7 @@ impl Report {
             _ => None,
         };
         Report {
-            provenance: Provenance::new(f.spec, f.scene),
+            provenance: Provenance::new(f.scene),
             scene: f.scene.name.clone(),
             backend: f.device.backend,
             adapter: f.device.adapter.clone(),
@@ -220,6 +218,10 @@ impl Report {
             skipped_triangles: f.scene.report.skipped.total(),
             skipped_by_defect: Skipped::from(f.scene.report.skipped),
             warnings: f.scene.report.warnings.clone(),
+            memory: Memory {
+                estimate_bytes: f.settings.memory_estimate(f.scene).total(),
+                peak_rss_bytes: crate::limits::peak_rss(),
+            },
             ignored: f.scene.report.ignored.clone(),
         }
     }
@@ -231,11 +233,22 @@ impl Report {
     }
 }
 
+/// What the run was estimated to need before any work ([`RenderSettings::memory_estimate`],
+/// what the memory check compares with the memory available) and what the process held at
+/// most by the time the report was made (`null` where the OS does not say).
+#[derive(Serialize, Debug)]
+pub struct Memory {
+    pub estimate_bytes: u64,
+    pub peak_rss_bytes: Option<u64>,
+}
+
 /// Triangles the loader removed, by defect.
 #[derive(Serialize, Debug)]
 pub struct Skipped {
     pub non_finite_vertex: usize,
     pub index_out_of_range: usize,
+    /// A coordinate beyond ±1e18 (`slc_core::mesh::MAX_COORDINATE`).
+    pub coordinate_out_of_range: usize,
     pub zero_area: usize,
 }
 
@@ -244,6 +257,7 @@ impl From<slc_core::mesh::DefectCounts> for Skipped {
         Self {
             non_finite_vertex: d.non_finite,
             index_out_of_range: d.index_out_of_range,
+            coordinate_out_of_range: d.out_of_range,
             zero_area: d.degenerate,
         }
     }

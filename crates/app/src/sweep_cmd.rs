@@ -8,21 +8,24 @@
 //! strategy's median run, and `index.html` showing it all.
 //! Culling and shading run on the command's backend, the reference on the CPU (from the frame
 //! read back). With `--shader vsgl` it sweeps light counts instead ([`crate::vsgl_sweep`]).
-use crate::args::{strategies, FrameArgs, ImportanceArgs, PipelineArgs, Shader};
+use crate::args::{count, positive, strategies, FrameArgs, ImportanceArgs, PipelineArgs, Shader};
 use crate::backend::{message, run_on, OnBackend};
 use crate::figure::{Figure, FigureRow};
 use crate::output::to_srgb8;
 use crate::page::{Block, Page};
-use crate::plot::{log_log_plot_svg, Series};
+use crate::pdf::write_figure;
+use crate::plot::{log_log_plot_svg, tick_label, PlotPoint, Series};
+use crate::print::PrintWidth;
 use crate::table::{write_table, SettingsColumns, TextTable};
 use clap::Args;
 use serde::Serialize;
-use slc_app::limits::check_memory;
+use slc_app::limits::check_frames;
 use slc_app::out_dir::OutDir;
 use slc_app::progress::bar;
 use slc_app::provenance::Provenance;
-use slc_app::reference::{all_vpl_reference, cpu_input};
+use slc_app::reference::{all_vpl_reference_with_bar, cpu_input};
 use slc_app::repeat::{repeated, Spread};
+use slc_core::frame::counts::{REPEAT, SAMPLED_LIGHTS, SEEDS};
 use slc_core::frame::{Method, Stochastic};
 use slc_core::shader::{ShadeInput, Shader as _};
 use slc_core::{Image, PreparedFrame, Renderer, Scene, Strategy};
@@ -38,11 +41,12 @@ pub struct SweepArgs {
     pub pipeline: PipelineArgs,
     #[arg(long, default_value = "sweep")]
     pub out: PathBuf,
-    /// Values of δ, comma separated.
+    /// Values of δ, comma separated (each a finite number above 0).
     #[arg(
         long,
         value_delimiter = ',',
-        default_value = "1e-4,3e-4,1e-3,3e-3,1e-2"
+        default_value = "1e-4,3e-4,1e-3,3e-3,1e-2",
+        value_parser = positive
     )]
     pub delta: Vec<f32>,
     // The help names every strategy (`culling_help`).
@@ -55,20 +59,22 @@ pub struct SweepArgs {
         )
     )]
     pub culling: Vec<String>,
-    /// Timing repetitions per point, after one warm-up when more than one: the tables give the
-    /// median, min and max of culling + shading (VSGL sweep: the median run's passes and the
-    /// min and max of its total, over the repetitions of every seed).
-    #[arg(long, default_value_t = 1)]
+    #[arg(long, default_value_t = 1, value_parser = count(REPEAT),
+          help = REPEAT.help("Timing repetitions per point, after one warm-up when more than one: the tables give the median, min and max of culling + shading (VSGL sweep: the median run's passes and the min and max of its total, over the repetitions of every seed)"))]
     pub repeat: u32,
     #[command(flatten)]
     pub importance: ImportanceArgs,
-    /// With --shader vsgl: light counts N, comma separated (N VSGLs against N sampled VPLs).
-    #[arg(long, value_delimiter = ',', default_value = "256,1024,4096,16384")]
+    #[arg(long, value_delimiter = ',', default_value = "256,1024,4096,16384",
+          value_parser = count(SAMPLED_LIGHTS),
+          help = SAMPLED_LIGHTS.help("With --shader vsgl: light counts N, comma separated (N VSGLs against N sampled VPLs)"))]
     pub vsgls: Vec<u32>,
-    /// With --shader vsgl: point sets (seeds seed, seed + 1, ...) whose squared errors are
-    /// averaged per N.
-    #[arg(long, default_value_t = 1)]
+    #[arg(long, default_value_t = 1, value_parser = count(SEEDS),
+          help = SEEDS.help("With --shader vsgl: point sets (seeds seed, seed + 1, ...) whose squared errors are averaged per N"))]
     pub seeds: u32,
+    /// Size the figures for print: 3.5in (one column) or 7in (a page) wide, text of 8 pt or
+    /// more; screen: for a browser.
+    #[arg(long, value_enum, default_value_t = PrintWidth::Screen)]
+    pub print_width: PrintWidth,
 }
 
 struct Point {
@@ -93,6 +99,24 @@ impl Point {
 
 pub fn run(args: &SweepArgs) -> Result<(), String> {
     let out = OutDir::open(&args.out)?;
+    let files: &[&str] = match args.frame.shader {
+        Shader::Vsgl => &[
+            "vsgl_sweep.json",
+            "vsgl_sweep.csv",
+            "vsgl_sweep.md",
+            "vsgl_sweep.svg",
+            "index.html",
+        ],
+        Shader::Vpl => &[
+            "sweep.json",
+            "sweep.csv",
+            "sweep.svg",
+            "equal_time.md",
+            "equal_time.svg",
+            "index.html",
+        ],
+    };
+    out.expect(files)?;
     if args.frame.shader == Shader::Vsgl {
         return crate::vsgl_sweep::run(args, out);
     }
@@ -131,22 +155,26 @@ impl OnBackend for Sweep<'_> {
         let base = args
             .pipeline
             .stochastic(args.delta[0], strategies[0], false);
-        for &delta in &args.delta {
-            let settings = f.settings(Method::Stochastic(Stochastic { delta, ..base }), 1);
-            settings.validate().map_err(message)?;
-            r.check(&settings).map_err(message)?;
+        let frames: Vec<_> = args
+            .delta
+            .iter()
+            .map(|&delta| f.settings(Method::Stochastic(Stochastic { delta, ..base }), 1))
+            .collect();
+        check_frames(&scene, &frames)?;
+        for settings in &frames {
+            r.check(settings).map_err(message)?;
         }
         let settings = f.settings(Method::Stochastic(base), 1);
-        check_memory(&settings, &scene)?;
         let loaded = r.load(&scene).map_err(message)?;
         let p = r
-            .prepare(&scene, &loaded, &settings, None)
+            .prepare(&scene, &loaded, &settings, None, &|_| {})
             .map_err(message)?;
         let cpu_p = r.cpu_frame(&scene, &loaded, &p).map_err(message)?;
-        let reference = all_vpl_reference(cpu_input(&scene, &cpu_p, f.seed, f.visibility), true)?;
+        let reference =
+            all_vpl_reference_with_bar(cpu_input(&scene, &cpu_p, f.seed, f.visibility))?;
         let input = f.input(&scene, &loaded, &p);
         let points = sweep(args, r, input, &strategies, base, &reference)?;
-        let provenance = Provenance::new(f.scene.as_deref(), &scene);
+        let provenance = Provenance::new(&scene);
         let device = r.info(&settings);
         let columns = SettingsColumns::new(
             &provenance,
@@ -256,21 +284,29 @@ fn write_outputs(
             points: points
                 .iter()
                 .filter(|p| p.strategy == n)
-                .map(|p| (p.time_ms(), p.rmse as f64))
+                .map(|p| PlotPoint {
+                    x: p.time_ms(),
+                    y: f64::from(p.rmse),
+                    label: Some(format!("δ={}", tick_label(f64::from(p.delta)))),
+                    x_range: (p.runs > 1).then_some((p.time.min, p.time.max)),
+                })
                 .collect(),
         })
         .collect();
-    let title = format!(
-        "{}: RMSE vs culling + shading time, δ in {:?}",
-        scene.name, args.delta
-    );
+    let spread = if args.repeat > 1 {
+        format!(", bars: min–max of {} runs", args.repeat)
+    } else {
+        String::new()
+    };
+    let title = format!("{}: RMSE vs time, each point a δ{spread}", scene.name);
     let svg = log_log_plot_svg(
         &title,
         "culling + shading (ms, median)",
         "RMSE of indirect vs all VPLs",
         &series,
+        &args.print_width.style(),
     )?;
-    out.write("sweep.svg", svg.as_bytes())?;
+    write_figure(out, "sweep", &svg)?;
     equal_time(args, out, &scene.name, names, points)?;
     write_page(out, &scene.name, &table.0, tables)
 }
@@ -288,12 +324,15 @@ fn write_page(
         vec![
             Block::Figure {
                 src: "sweep.svg".into(),
+                pdf: out.has("sweep.pdf").then(|| "sweep.pdf".into()),
                 caption: "RMSE of the indirect image against every VPL with p = 1, against \
-                          the median culling + shading time, one point per δ."
+                          the median culling + shading time, one point per δ (labelled), \
+                          bars from the fastest to the slowest of --repeat runs."
                     .into(),
             },
             Block::Figure {
                 src: "equal_time.svg".into(),
+                pdf: out.has("equal_time.pdf").then(|| "equal_time.pdf".into()),
                 caption: "Each strategy at the δ whose time is closest to the first \
                           strategy's median run."
                     .into(),
@@ -363,6 +402,7 @@ fn equal_time(
             images: totals.iter().collect(),
         }],
         heat_legend: None,
+        style: args.print_width.style(),
     };
-    out.write("equal_time.svg", figure.svg()?.as_bytes())
+    write_figure(out, "equal_time", &figure.svg()?).map(drop)
 }

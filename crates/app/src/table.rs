@@ -11,8 +11,8 @@ use slc_core::{BackendInfo, Scene};
 #[derive(Serialize, Debug, Clone)]
 pub struct SettingsColumns {
     pub scene: String,
-    /// SHA-256 of the scene's file (the last of `provenance.scene_files`); empty for built-in
-    /// scenes.
+    /// SHA-256 of the whole scene description (`provenance.scene_sha256`: every file it was
+    /// read from, the camera, lights and materials).
     pub scene_sha256: String,
     pub backend: &'static str,
     pub adapter: String,
@@ -42,11 +42,7 @@ impl SettingsColumns {
     ) -> Self {
         Self {
             scene: scene.name.clone(),
-            scene_sha256: provenance
-                .scene_files
-                .last()
-                .and_then(|s| s.sha256.clone())
-                .unwrap_or_default(),
+            scene_sha256: provenance.scene_sha256.clone(),
             backend: device.backend,
             adapter: device.adapter.clone(),
             width: f.width,
@@ -222,7 +218,7 @@ mod tests {
             name: "a, \"quoted\" scene".into(),
             ..Scene::default()
         };
-        let provenance = Provenance::new(None, &scene);
+        let provenance = Provenance::new(&scene);
         let device = BackendInfo {
             backend: "cpu",
             adapter: "CPU".into(),
@@ -251,17 +247,17 @@ mod tests {
         let lines: Vec<&str> = csv.lines().collect();
         assert!(lines[0].starts_with("scene,scene_sha256,backend,adapter,width,height"));
         assert!(lines[0].ends_with(",strategy,ms"), "{}", lines[0]);
-        assert!(
-            lines[1].starts_with("\"a, \"\"quoted\"\" scene\",,cpu,CPU,"),
-            "{}",
-            lines[1]
+        let start = format!(
+            "\"a, \"\"quoted\"\" scene\",{},cpu,CPU,",
+            provenance.scene_sha256
         );
+        assert!(lines[1].starts_with(&start), "{}", lines[1]);
         assert!(lines[1].ends_with(",ellipsoid,1.5") && lines[2].ends_with(",none,"));
         let json: serde_json::Value =
             serde_json::from_str(&std::fs::read_to_string(root.join("t.json")).unwrap()).unwrap();
         assert_eq!(json["settings"]["vpls"], 7);
         assert_eq!(json["rows"][1]["ms"], serde_json::Value::Null);
-        assert_eq!(json["provenance"]["schema_version"], 4);
+        assert_eq!(json["provenance"]["schema_version"], 5);
         std::fs::remove_dir_all(&root).ok();
     }
 }

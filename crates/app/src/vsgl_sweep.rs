@@ -13,16 +13,17 @@
 use crate::args::PipelineArgs;
 use crate::backend::{message, run_on, OnBackend};
 use crate::page::{Block, Page};
-use crate::plot::{log_log_plot_svg, Series};
+use crate::pdf::write_figure;
+use crate::plot::{log_log_plot_svg, PlotPoint, Series};
 use crate::sampled::{shade_sampled, PASSES};
 use crate::sweep_cmd::SweepArgs;
 use crate::table::{write_table, SettingsColumns, TextTable};
 use serde::Serialize;
-use slc_app::limits::check_memory;
+use slc_app::limits::check_frames;
 use slc_app::out_dir::OutDir;
 use slc_app::progress::bar;
 use slc_app::provenance::Provenance;
-use slc_app::reference::{all_vpl_reference, cpu_input};
+use slc_app::reference::{all_vpl_reference_with_bar, cpu_input};
 use slc_app::repeat::{repeated, Spread};
 use slc_core::frame::{Importance, LightSampling, Method, Timings};
 use slc_core::shader::{SampledLights, ShadeInput};
@@ -52,11 +53,12 @@ pub fn run(args: &SweepArgs, out: OutDir) -> Result<(), String> {
         );
     }
     let scene = f.load_renderable()?;
-    for &n in &args.vsgls {
-        let settings = f.settings(Method::Vsgl(args.importance.sampling(n)), 1);
-        settings.validate().map_err(|e| e.to_string())?;
-        check_memory(&settings, &scene)?;
-    }
+    let frames: Vec<_> = args
+        .vsgls
+        .iter()
+        .map(|&n| f.settings(Method::Vsgl(args.importance.sampling(n)), 1))
+        .collect();
+    check_frames(&scene, &frames)?;
     run_on(f.backend_choice()?, VsglSweep { args, scene, out })
 }
 
@@ -80,7 +82,13 @@ impl OnBackend for VsglSweep<'_> {
         }
         let loaded = r.load(&scene).map_err(message)?;
         let p = r
-            .prepare(&scene, &loaded, &f.settings(Method::VplReference, 1), None)
+            .prepare(
+                &scene,
+                &loaded,
+                &f.settings(Method::VplReference, 1),
+                None,
+                &|_| {},
+            )
             .map_err(message)?;
         let cpu_p = r.cpu_frame(&scene, &loaded, &p).map_err(message)?;
         let texels: usize = cpu_p
@@ -89,7 +97,8 @@ impl OnBackend for VsglSweep<'_> {
             .map(|m| m.texels.iter().flatten().count())
             .sum();
         let start = Instant::now();
-        let reference = all_vpl_reference(cpu_input(&scene, &cpu_p, f.seed, f.visibility), true)?;
+        let reference =
+            all_vpl_reference_with_bar(cpu_input(&scene, &cpu_p, f.seed, f.visibility))?;
         let reference_ms = start.elapsed().as_secs_f64() * 1e3;
         // With a warm-up run before each point's measured ones when `--repeat` > 1.
         let per_point = args.seeds * (args.repeat + u32::from(args.repeat > 1));
@@ -136,7 +145,7 @@ impl OnBackend for VsglSweep<'_> {
             }
         }
         progress.finish_and_clear();
-        let provenance = Provenance::new(f.scene.as_deref(), &scene);
+        let provenance = Provenance::new(&scene);
         let settings = f.settings(Method::VplReference, 1);
         let vpl_count = p.vpl_count().map_err(message)?;
         let columns = SettingsColumns::new(
@@ -199,7 +208,7 @@ fn write_outputs(
             points: points
                 .iter()
                 .filter(|p| p.estimator == e)
-                .map(|p| (f64::from(p.count), f64::from(p.rmse)))
+                .map(|p| PlotPoint::at(f64::from(p.count), f64::from(p.rmse)))
                 .collect(),
         })
         .collect();
@@ -208,8 +217,14 @@ fn write_outputs(
         facts.scene,
         args.importance.sampling(0).importance.name()
     );
-    let svg = log_log_plot_svg(&title, "lights N", "RMSE of indirect vs all VPLs", &series)?;
-    out.write("vsgl_sweep.svg", svg.as_bytes())
+    let svg = log_log_plot_svg(
+        &title,
+        "lights N",
+        "RMSE of indirect vs all VPLs",
+        &series,
+        &args.print_width.style(),
+    )?;
+    write_figure(out, "vsgl_sweep", &svg).map(drop)
 }
 
 /// One point of `vsgl_sweep.json` / `vsgl_sweep.csv`: the pass times (ms) of the median run
@@ -273,6 +288,7 @@ fn write_page(
         provenance,
         vec![Block::Figure {
             src: "vsgl_sweep.svg".into(),
+            pdf: out.has("vsgl_sweep.pdf").then(|| "vsgl_sweep.pdf".into()),
             caption: "RMSE of the indirect image against every VPL with p = 1, against the \
                       light count N: N VSGLs and N VPLs sampled by the same importance."
                 .into(),

@@ -34,18 +34,22 @@ fn spawn_render(args: &str, out: &Path) -> Child {
         .unwrap()
 }
 
-/// Every file under `dir` (hidden bookkeeping files included) with its bytes.
+/// What a user sees under `dir`: every file outside slc's own names (`.slc*` at the top),
+/// read through slc's links, with its bytes (a link that resolves to nothing is no file).
 fn snapshot(dir: &Path) -> BTreeMap<PathBuf, Vec<u8>> {
     let mut files = BTreeMap::new();
     let mut stack = vec![dir.to_path_buf()];
     while let Some(d) = stack.pop() {
         for e in std::fs::read_dir(&d).unwrap() {
             let p = e.unwrap().path();
+            let rel = p.strip_prefix(dir).unwrap().to_path_buf();
+            if rel.to_string_lossy().starts_with(".slc") {
+                continue;
+            }
             if p.is_dir() {
                 stack.push(p);
-            } else {
-                let rel = p.strip_prefix(dir).unwrap().to_path_buf();
-                files.insert(rel, std::fs::read(&p).unwrap());
+            } else if let Ok(bytes) = std::fs::read(&p) {
+                files.insert(rel, bytes);
             }
         }
     }
@@ -64,11 +68,15 @@ fn wait_for(what: &str, mut cond: impl FnMut() -> bool) {
     }
 }
 
-/// The staging folder of a live run, once it holds a file.
+/// The version folder of a live run (one `.slc-result` does not point to), once it holds a
+/// file.
 fn staged_file(out: &Path) -> bool {
+    let current = std::fs::read_link(out.join(".slc-result")).ok();
     std::fs::read_dir(out).is_ok_and(|entries| {
         entries.flatten().any(|e| {
-            e.file_name().to_string_lossy().starts_with(".slc-staging-")
+            let name = e.file_name();
+            name.to_string_lossy().starts_with(".slc-result-")
+                && current.as_deref() != Some(Path::new(&name))
                 && std::fs::read_dir(e.path()).is_ok_and(|mut d| d.next().is_some())
         })
     })
@@ -105,27 +113,23 @@ fn a_run_killed_while_writing_leaves_the_previous_result_intact() {
     wait_for("the second run's first staged file", || staged_file(&out));
     run.kill().unwrap();
     run.wait().unwrap();
-    let after: BTreeMap<_, _> = snapshot(&out)
-        .into_iter()
-        .filter(|(p, _)| {
-            !p.components()
-                .next()
-                .is_some_and(|c| c.as_os_str().to_string_lossy().starts_with(".slc-staging-"))
-        })
-        .filter(|(p, _)| p != Path::new(".slc.lock"))
-        .collect();
-    let before: BTreeMap<_, _> = before
-        .into_iter()
-        .filter(|(p, _)| p != Path::new(".slc.lock"))
-        .collect();
+    let after = snapshot(&out);
     assert_eq!(
         after.keys().collect::<Vec<_>>(),
         before.keys().collect::<Vec<_>>()
     );
     assert!(after == before, "a file at a final name changed");
-    // The next run removes the killed run's staging folder.
+    // The next run removes the killed run's version folder.
     assert!(render(small, &out).status.success());
     assert!(!staged_file(&out));
+    let versions = std::fs::read_dir(&out)
+        .unwrap()
+        .filter(|e| {
+            let name = e.as_ref().unwrap().file_name();
+            name.to_string_lossy().starts_with(".slc-result-")
+        })
+        .count();
+    assert_eq!(versions, 1);
     std::fs::remove_dir_all(&out).ok();
 }
 
@@ -162,10 +166,66 @@ fn a_result_that_cannot_be_placed_replaces_nothing() {
     assert!(!o.status.success());
     let err = String::from_utf8_lossy(&o.stderr);
     assert!(
-        err.contains("total.png") && err.contains("nothing was replaced"),
+        err.contains("total.png") && err.contains("move it away"),
         "{err}"
     );
     assert_eq!(std::fs::read(out.join("report.json")).unwrap(), before);
+    std::fs::remove_dir_all(&out).ok();
+}
+
+fn compare(args: &str, out: &Path) -> Output {
+    slc()
+        .arg("compare")
+        .args(args.split(' '))
+        .arg("--out")
+        .arg(out)
+        .output()
+        .unwrap()
+}
+
+/// The case: a plain file where compare puts a strategy folder stops the second run
+/// before any work, and every file of the first run stays as it was; a render into the
+/// folder then replaces the compare whole, leaving no strategy folder behind.
+#[test]
+fn a_file_in_the_way_of_a_strategy_folder_stops_compare_before_any_work() {
+    let out = temp("compare-inway");
+    let args = "--width 16 --height 16 --rsm 4 --no-reference --culling none,ellipsoid";
+    let first = compare(&format!("{args} --seed 1"), &out);
+    assert!(
+        first.status.success(),
+        "{}",
+        String::from_utf8_lossy(&first.stderr)
+    );
+    let before = snapshot(&out);
+    std::fs::remove_dir_all(out.join("ellipsoid")).unwrap();
+    std::fs::write(out.join("ellipsoid"), "mine").unwrap();
+    let o = compare(&format!("{args} --seed 2"), &out);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(!o.status.success());
+    assert!(
+        err.contains("ellipsoid") && err.contains("nothing was written") && !err.contains("VPLs"),
+        "{err}"
+    );
+    let after = snapshot(&out);
+    for (file, bytes) in &before {
+        if !file.starts_with("ellipsoid") {
+            assert_eq!(after.get(file), Some(bytes), "{}", file.display());
+        }
+    }
+    std::fs::remove_file(out.join("ellipsoid")).unwrap();
+    assert!(render("--width 8 --height 8 --rsm 2", &out)
+        .status
+        .success());
+    let left: Vec<String> = std::fs::read_dir(&out)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .filter(|n| !n.starts_with(".slc"))
+        .collect();
+    assert!(
+        left.iter()
+            .all(|n| !["none", "ellipsoid"].contains(&n.as_str())),
+        "{left:?}"
+    );
     std::fs::remove_dir_all(&out).ok();
 }
 

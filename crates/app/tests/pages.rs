@@ -1,7 +1,8 @@
 //! The pages of `slc compare` and `slc sweep` (`index.html`) as a person sees them: every file
 //! a page shows or links is in the folder, and headless Chromium loads the page with every
 //! image (the page's own script counts the images that did not load into `data-broken-images`).
-//! A screenshot of each page is left in the output folder to look at. `.ci/run` installs
+//! At 1400 pixels no table is wider than the window. A screenshot of each page is left in the
+//! output folder to look at. `.ci/run` installs
 //! Chromium; elsewhere, without it, the browser half prints a notice and is skipped (with `CI`
 //! set it fails instead).
 use std::path::{Path, PathBuf};
@@ -88,7 +89,11 @@ fn check_page(out: &Path, images: usize) {
         );
     }
     let Some(browser) = chromium() else { return };
-    let dom = headless(&browser, &page, &["--dump-dom".to_string()]);
+    let dom = headless(
+        &browser,
+        &page,
+        &["--dump-dom".to_string(), "--window-size=1400,900".into()],
+    );
     let loaded: Vec<&str> = attribute_values(&dom, "data-images");
     let broken: Vec<&str> = attribute_values(&dom, "data-broken-images");
     assert_eq!(
@@ -97,6 +102,12 @@ fn check_page(out: &Path, images: usize) {
         "the page's script did not run or counted differently: {dom}"
     );
     assert_eq!(broken, ["0"], "images that did not load: {dom}");
+    // At 1400 pixels every column of every table is in view (the headers wrap).
+    assert_eq!(
+        attribute_values(&dom, "data-wide-tables"),
+        ["0"],
+        "a table is wider than a 1400-pixel window: {dom}"
+    );
     let shot = out.join("page.png");
     headless(
         &browser,

@@ -108,6 +108,54 @@ fn frames_save_a_screenshot_the_overlays_and_the_camera_change() {
     assert!(changed(&plain, &back) < 0.01, "{}", changed(&plain, &back));
 }
 
+/// `--backend cpu`: the CPU reference renderer draws the frames (its passes in the table,
+/// the CPU named as the renderer), a raster baseline it lacks is a clear error, and the
+/// picture is the GPU's scene: the two backends differ only where rasterization and ray
+/// tracing do (shadow-map texels, the filter's edges).
+#[test]
+fn the_cpu_backend_renders_the_view() {
+    if !can_view() {
+        return;
+    }
+    let dir = temp("cpu");
+    let gpu = screenshot(&dir, "gpu", &[]);
+    let cpu = screenshot(&dir, "cpu", &["--backend", "cpu"]);
+    let differ = changed(&gpu, &cpu);
+    assert!(differ < 0.25, "{differ}");
+    let out = view(&[
+        "--backend",
+        "cpu",
+        "--frames",
+        "2",
+        "--width",
+        "64",
+        "--height",
+        "48",
+    ]);
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        stdout.contains("on CPU (") && stdout.contains("denoise"),
+        "{stdout}"
+    );
+    let _one = XVFB.lock().unwrap_or_else(|e| e.into_inner());
+    let refused = under_xvfb(env!("CARGO_BIN_EXE_slc"))
+        .args([
+            "view",
+            "--backend",
+            "cpu",
+            "--frames",
+            "1",
+            "--culling",
+            "splatting",
+        ])
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&refused.stderr);
+    assert!(!refused.status.success());
+    assert!(stderr.contains("--backend gpu"), "{stderr}");
+    assert!(!stderr.contains("panicked"), "{stderr}");
+}
+
 /// `scenes/cornell-gltf.toml`, whose scene file is in `../shared`; `None` (with a notice)
 /// where `../shared` is not beside the repository, which fails under `CI`.
 fn cornell_gltf() -> Option<&'static str> {

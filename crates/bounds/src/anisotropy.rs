@@ -14,7 +14,7 @@
 //! - G1(ωo) <= 1 as in eq. (9), and `G1_a(ωo) <= G1(α_min)(ωo)` where a bound keeps it (the
 //!   tight box bound, the tilt factor of [`crate::shading_normal`]), since the projected
 //!   roughness α(ωo) of eq. (86) lies between α_min and α_max.
-use crate::frame::Frame;
+use crate::basis::Basis;
 use crate::ggx;
 use glam::Vec3;
 
@@ -58,17 +58,17 @@ impl Anisotropy {
     }
 
     /// The tangent as an angle φ in the plane of the unit normal `n`: t = cos φ x + sin φ y
-    /// with (x, y) the frame of Duff et al. 2017 around n ([`Frame::new`]); a compact form for
+    /// with (x, y) the frame of Duff et al. 2017 around n ([`Basis::new`]); a compact form for
     /// G-buffers ([`Self::from_angle`] inverts it).
     pub fn angle(&self, n: Vec3) -> f32 {
-        let f = Frame::from_unit(n);
+        let f = Basis::from_unit(n);
         f.y.dot(self.tangent).atan2(f.x.dot(self.tangent))
     }
 
     /// The anisotropy whose tangent has angle `phi` around the unit normal `n`
     /// ([`Self::angle`]).
     pub fn from_angle(n: Vec3, phi: f32, alpha_t: f32) -> Self {
-        let f = Frame::from_unit(n);
+        let f = Basis::from_unit(n);
         let (sin, cos) = phi.sin_cos();
         Self {
             tangent: f.x * cos + f.y * sin,

@@ -55,12 +55,12 @@
 //! ```
 pub mod aabb;
 pub mod anisotropy;
+pub mod basis;
 pub mod box_bound;
 pub mod brdf;
 mod check;
 pub mod diffuse;
 pub mod error;
-pub mod frame;
 pub mod fresnel;
 pub mod frustum;
 pub mod ggx;
@@ -79,12 +79,12 @@ mod test_util;
 
 pub use aabb::Aabb;
 pub use anisotropy::Anisotropy;
+pub use basis::Basis;
 pub use box_bound::lanes::BoxBoundLanes;
 pub use box_bound::{BoxBound, ReceiverBox};
 pub use brdf::Brdf;
 pub use diffuse::DiffuseLobe;
 pub use error::BoundsError;
-pub use frame::Frame;
 pub use fresnel::Fresnel;
 pub use frustum::TileFrustum;
 pub use glossy::GlossyLobe;

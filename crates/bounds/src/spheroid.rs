@@ -1,12 +1,12 @@
 //! The GGX bounding spheroid of a glossy VPL, eq. (12)-(15).
+use crate::basis::Basis;
 use crate::check;
 use crate::error::BoundsError;
-use crate::frame::Frame;
 use crate::glossy::GlossyLobe;
 use crate::stochastic::StochasticParams;
 use glam::{Mat3, Vec3};
 
-/// Below this |ω_u × n|² (sin θi < 1e-3) ω_w of eq. (14) is taken from a [`Frame`] around ω_u
+/// Below this |ω_u × n|² (sin θi < 1e-3) ω_w of eq. (14) is taken from a [`Basis`] around ω_u
 /// instead of the ill-conditioned cross product: the spheroid is symmetric about ω_u
 /// (r_v = r_w), so any unit vector orthogonal to ω_u is as good.
 const MIN_CROSS_SQ: f32 = 1e-6;
@@ -95,7 +95,7 @@ fn rotation(omega_u: Vec3, normal: Vec3) -> Mat3 {
     let omega_w = if len_sq > MIN_CROSS_SQ {
         cross / len_sq.sqrt()
     } else {
-        Frame::from_unit(omega_u).x
+        Basis::from_unit(omega_u).x
     };
     let omega_v = omega_w.cross(omega_u).normalize();
     Mat3::from_cols(omega_u, omega_v, omega_u.cross(omega_v))

@@ -56,9 +56,11 @@ impl Image {
     /// Root-mean-square error against another image of the same size, over all pixels and channels.
     pub fn rmse(&self, other: &Image) -> f32 {
         assert_eq!((self.width, self.height), (other.width, other.height));
+        // In f64: the squares of f32 differences above 1.8e19 overflow f32 (a 1e20 W/sr light
+        // gave an infinite RMSE).
         let mut s = 0.0f64;
         for (a, b) in self.pixels.iter().zip(&other.pixels) {
-            s += (*a - *b).length_squared() as f64;
+            s += (a.as_dvec3() - b.as_dvec3()).length_squared();
         }
         (s / (3.0 * self.pixels.len().max(1) as f64)).sqrt() as f32
     }
@@ -129,5 +131,18 @@ mod tests {
             e.contains("indirect pass produced 3 non-finite pixel(s) of 8"),
             "{e}"
         );
+    }
+
+    #[test]
+    fn rmse_of_images_lit_by_the_largest_accepted_light_is_finite() {
+        // Radiance of 1e20 W/sr lights: the f32 square of a difference overflows.
+        let mut a = Image::new(2, 1);
+        let b = Image::new(2, 1);
+        a.pixels[0] = Vec3::new(3e20, 0.0, 0.0);
+        let e = a.rmse(&b);
+        // sqrt((3e20)² / 6)
+        assert!((e / (3e20 / 6f32.sqrt()) - 1.0).abs() < 1e-6, "{e}");
+        a.pixels[1] = Vec3::splat(f32::MAX);
+        assert!(a.rmse(&b).is_finite());
     }
 }

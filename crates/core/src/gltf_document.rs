@@ -7,13 +7,19 @@
 //! - **Required extensions** (`extensionsRequired`) must be ones slc reads
 //!   ([`SUPPORTED_EXTENSIONS`]); any other (Draco, meshopt, KTX2 textures, ...) is an
 //!   `unsupported: NAME` error. Other used extensions are ignored and listed
-//!   ([`Parsed::ignored_extensions`]).
+//!   (`Parsed::ignored_extensions`).
 //! - **Animations** are dropped with a note (slc renders the rest pose); their channels need
 //!   not target a node.
 //! - **Textures** whose image comes only through an extension (`EXT_texture_webp`,
 //!   `KHR_texture_basisu`, `MSFT_texture_dds`, `EXT_texture_avif`) use that image (decoded
 //!   where the format can be: WebP); a texture without any image is left out of the
 //!   materials that use it, with a warning.
+//! - **Versions**: `asset.version` must be 2.x and `asset.minVersion`, if given, at most 2.0.
+//! - **JSON numbers**: integers may be written as floats (`1.0`); scenes may lack `nodes`.
+//! - **What nothing reads** cannot fail a file: accessors no primitive or skin uses (of any
+//!   type, even one that is no glTF type), and buffers no used view reads (a `.gltf` buffer
+//!   without `uri`, which only a GLB's first buffer may be); primitives without `POSITION`
+//!   are skipped with a warning (the loader, `gltf_loader.rs`).
 //! - The `gltf` crate's validation then runs on what is left; errors in the textures left
 //!   out are ignored.
 use serde_json::Value;
@@ -43,16 +49,37 @@ pub(crate) struct Parsed {
     pub ignored_extensions: Vec<String>,
 }
 
-/// Parses a `.gltf` or `.glb` file's bytes as the module documentation says.
-pub(crate) fn parse(bytes: &[u8], warnings: &mut Vec<String>) -> Result<Parsed, String> {
-    let (json, blob) = if bytes.starts_with(b"glTF") {
-        split_glb(bytes, warnings)?
-    } else {
-        (bytes, None)
+/// Parses a `.gltf` or `.glb` file's bytes as the module documentation says. A GLB's binary
+/// chunk becomes [`Parsed::blob`] in the file's own allocation (moved to its front, not
+/// copied: a large GLB is held once).
+pub(crate) fn parse(bytes: Vec<u8>, warnings: &mut Vec<String>) -> Result<Parsed, String> {
+    let within = |part: &[u8]| {
+        let start = part.as_ptr() as usize - bytes.as_ptr() as usize;
+        start..start + part.len()
     };
-    let mut root: Value = serde_json::from_slice(json).map_err(|e| format!("invalid JSON: {e}"))?;
+    let (json, blob) = if bytes.starts_with(b"glTF") {
+        let (json, blob) = split_glb(&bytes, warnings)?;
+        (within(json), blob.map(within))
+    } else {
+        (0..bytes.len(), None)
+    };
+    let mut root: Value =
+        serde_json::from_slice(&bytes[json]).map_err(|e| format!("invalid JSON: {e}"))?;
     let object = root.as_object_mut().ok_or("the JSON is not an object")?;
+    check_version(object)?;
     let ignored_extensions = check_extensions(object)?;
+    for scene in object
+        .get_mut("scenes")
+        .and_then(Value::as_array_mut)
+        .into_iter()
+        .flatten()
+        .filter_map(Value::as_object_mut)
+    {
+        // `nodes` is optional (a scene may be empty); the `gltf` crate requires it.
+        scene
+            .entry("nodes")
+            .or_insert_with(|| Value::Array(Vec::new()));
+    }
     if let Some(Value::Array(a)) = object.remove("animations") {
         if !a.is_empty() {
             warnings.push(format!(
@@ -62,15 +89,107 @@ pub(crate) fn parse(bytes: &[u8], warnings: &mut Vec<String>) -> Result<Parsed, 
         }
     }
     let left_out = resolve_texture_sources(object, warnings);
+    integers_from_floats(&mut root);
     let json: gltf::json::Root =
         serde_json::from_value(root).map_err(|e| format!("invalid glTF JSON: {e}"))?;
     let document = gltf::Document::from_json_without_validation(json);
     validate(&document, &left_out)?;
     Ok(Parsed {
         document,
-        blob: blob.map(<[u8]>::to_vec),
+        blob: blob.map(|range| {
+            let mut bytes = bytes;
+            bytes.truncate(range.end);
+            bytes.drain(..range.start);
+            bytes
+        }),
         ignored_extensions,
     })
+}
+
+/// Refuses versions a glTF 2.0 loader does not know: `asset.version` of another major
+/// version, or an `asset.minVersion` above 2.0 (glTF 2.0 section 3.2: a loader reads
+/// 2.x files it does not know the minor version of, unless their minVersion exceeds its own).
+fn check_version(object: &serde_json::Map<String, Value>) -> Result<(), String> {
+    let asset = object
+        .get("asset")
+        .ok_or("no asset (its version is required)")?;
+    let version = |key: &str| -> Result<Option<(u64, u64)>, String> {
+        let Some(v) = asset.get(key) else {
+            return Ok(None);
+        };
+        let text = v.as_str().unwrap_or_default();
+        let parsed = text
+            .split_once('.')
+            .and_then(|(a, b)| Some((a.parse().ok()?, b.parse().ok()?)));
+        parsed
+            .map(Some)
+            .ok_or_else(|| format!("asset.{key} {v} is not MAJOR.MINOR"))
+    };
+    match version("version")? {
+        None => return Err("asset.version is missing".into()),
+        Some((2, _)) => {}
+        Some((major, minor)) => {
+            return Err(format!(
+                "asset.version {major}.{minor}: slc reads glTF 2.x files"
+            ))
+        }
+    }
+    match version("minVersion")? {
+        Some((major, minor)) if (major, minor) > (2, 0) => Err(format!(
+            "asset.minVersion {major}.{minor}: the file needs a loader of glTF {major}.{minor}; slc reads glTF 2.0"
+        )),
+        _ => Ok(()),
+    }
+}
+
+/// Writes every float of the document that is a whole number as an integer: JSON does not
+/// tell `1` from `1.0`, and the `gltf` crate reads indices and counts as integers only.
+/// (Float properties read integers as well.)
+fn integers_from_floats(value: &mut Value) {
+    match value {
+        Value::Number(n) if n.is_f64() => {
+            let f = n.as_f64().unwrap_or(f64::NAN);
+            let whole = f.fract() == 0.0 && f.abs() < 2f64.powi(53);
+            if whole {
+                // Exact below 2^53.
+                *value = match f < 0.0 {
+                    true => Value::from(f as i64),
+                    false => Value::from(f as u64),
+                };
+            }
+        }
+        Value::Array(a) => a.iter_mut().for_each(integers_from_floats),
+        Value::Object(o) => o.values_mut().for_each(integers_from_floats),
+        _ => {}
+    }
+}
+
+/// Which accessors something reads: those of mesh primitives (attributes, indices, morph
+/// targets) and skins. Errors inside the others do not fail a file.
+pub(crate) fn used_accessors(root: &gltf::json::Root) -> Vec<bool> {
+    let mut used = vec![false; root.accessors.len()];
+    let mut mark = |i: usize| {
+        if let Some(u) = used.get_mut(i) {
+            *u = true;
+        }
+    };
+    for primitive in root.meshes.iter().flat_map(|m| &m.primitives) {
+        primitive.attributes.values().for_each(|a| mark(a.value()));
+        primitive.indices.iter().for_each(|a| mark(a.value()));
+        for target in primitive.targets.iter().flatten() {
+            let attributes = [&target.positions, &target.normals, &target.tangents];
+            attributes
+                .into_iter()
+                .flatten()
+                .for_each(|a| mark(a.value()));
+        }
+    }
+    for skin in &root.skins {
+        skin.inverse_bind_matrices
+            .iter()
+            .for_each(|a| mark(a.value()));
+    }
+    used
 }
 
 /// The JSON chunk and the first BIN chunk of a GLB file (glTF 2.0 section 4.4).
@@ -230,8 +349,8 @@ fn strip_texture_refs(value: &mut Value, left_out: &[usize]) -> Vec<String> {
 
 /// The `gltf` crate's validation, preceded by the check it assumes (and panics without):
 /// every primitive's `POSITION` names an existing accessor. Errors inside textures that were
-/// left out are ignored, and so are accessors without a buffer view (zeros, as the
-/// specification says).
+/// left out and inside accessors nothing reads are ignored, and so are accessors without a
+/// buffer view (zeros, as the specification says).
 fn validate(document: &gltf::Document, left_out: &[usize]) -> Result<(), String> {
     use gltf::json::validation::{Checked, Validate};
     let root = document.as_json();
@@ -247,7 +366,16 @@ fn validate(document: &gltf::Document, left_out: &[usize]) -> Result<(), String>
             }
         }
     }
-    let ignored: Vec<String> = left_out.iter().map(|i| format!("textures[{i}]")).collect();
+    let unused = used_accessors(root)
+        .into_iter()
+        .enumerate()
+        .filter(|(_, used)| !used)
+        .map(|(i, _)| format!("accessors[{i}]"));
+    let ignored: Vec<String> = left_out
+        .iter()
+        .map(|i| format!("textures[{i}]"))
+        .chain(unused)
+        .collect();
     let mut errors = Vec::new();
     root.validate(root, gltf::json::Path::new, &mut |path, e| {
         let path = path().to_string();
@@ -255,7 +383,10 @@ fn validate(document: &gltf::Document, left_out: &[usize]) -> Result<(), String>
         let zeros = path.starts_with("accessors[")
             && path.ends_with("].bufferView")
             && e == gltf::json::validation::Error::Missing;
-        if !zeros && !ignored.iter().any(|t| path.starts_with(t.as_str())) {
+        // A primitive without POSITION is allowed (and skipped by the loader).
+        let no_position = path.ends_with(".attributes[\"POSITION\"]")
+            && e == gltf::json::validation::Error::Missing;
+        if !zeros && !no_position && !ignored.iter().any(|t| path.starts_with(t.as_str())) {
             errors.push(format!("{path}: {e}"));
         }
     });

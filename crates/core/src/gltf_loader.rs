@@ -29,12 +29,13 @@
 //! The file is parsed leniently ([`crate::gltf_document`]): parts slc does not use may be
 //! anything the specification allows; a required extension slc does not read is an
 //! `unsupported: NAME` error. Accessors may be quantized, sparse or without a buffer view
-//! ([`crate::gltf_accessor`]). Malformed files (unreadable JSON, missing or short buffers,
+//! (the `gltf_accessor` module). Malformed files (unreadable JSON, missing or short buffers,
 //! accessors of the wrong type or outside their buffer) are errors naming the file;
 //! unsupported features are warnings.
 use crate::camera::Camera;
 use crate::error::SceneError;
 use crate::file_read::read_capped;
+use crate::frame::memory::{available_memory, geometry_bytes};
 use crate::gltf_document::{parse, Parsed};
 use crate::gltf_material::{default_material, load_materials};
 use crate::gltf_mesh::primitive_mesh;
@@ -60,7 +61,8 @@ pub fn load_gltf(path: &Path) -> Result<Scene, SceneError> {
         document,
         blob,
         ignored_extensions,
-    } = parse(&bytes, &mut warnings).map_err(error)?;
+    } = parse(bytes, &mut warnings).map_err(error)?;
+    check_placed_size(&document).map_err(error)?;
     let base = path.parent().unwrap_or(Path::new("."));
     let buffers = load_buffers(&document, base, blob).map_err(error)?;
 
@@ -149,11 +151,55 @@ fn read_mesh(
                 scene.materials.len() - 1
             }),
         };
+        if primitive.get(&gltf::Semantic::Positions).is_none() {
+            // The specification: such a primitive is not rendered.
+            scene.report.warnings.push(format!(
+                "{name}: a primitive with no POSITION attribute is skipped (nothing to render)"
+            ));
+            continue;
+        }
         let warnings = &mut scene.report.warnings;
         let m = primitive_mesh(&primitive, buffers, world, name, material, warnings)?;
         add_mesh(scene, m);
     }
     Ok(())
+}
+
+/// Refuses, before any buffer is read, a file whose node hierarchy places more geometry than
+/// this machine's memory holds: every placement of a mesh is a copy of its vertices and
+/// triangles, and the BVH is built over all of them ([`geometry_bytes`]), so a small file
+/// that instances a large mesh many times can ask for tens of GB.
+fn check_placed_size(document: &gltf::Document) -> Result<(), String> {
+    let (mut vertices, mut triangles, mut placements) = (0u64, 0u64, 0u64);
+    let mut visited = vec![false; document.nodes().len()];
+    let mut stack = root_nodes(document);
+    while let Some(node) = stack.pop() {
+        if std::mem::replace(&mut visited[node.index()], true) {
+            continue;
+        }
+        if let Some(mesh) = node.mesh() {
+            placements += 1;
+            for p in mesh.primitives() {
+                let count = |a: Option<gltf::Accessor>| a.map_or(0, |a| a.count() as u64);
+                let v = count(p.get(&gltf::Semantic::Positions));
+                vertices += v;
+                triangles += p.indices().map_or(v, |i| i.count() as u64) / 3;
+            }
+        }
+        stack.extend(node.children());
+    }
+    let need = geometry_bytes(vertices, triangles);
+    match available_memory() {
+        Some(available) if need > available => {
+            let gib = |b: u64| b as f64 / f64::from(1u32 << 30);
+            Err(format!(
+                "its {placements} mesh placement(s) make {triangles} triangles of {vertices} vertices, which need about {:.1} GiB (meshes and BVH), more than the {:.1} GiB of memory available",
+                gib(need),
+                gib(available)
+            ))
+        }
+        _ => Ok(()),
+    }
 }
 
 /// The nodes to walk: the default scene's, else the first scene's, else every node that is
@@ -173,15 +219,21 @@ fn root_nodes(document: &gltf::Document) -> Vec<gltf::Node<'_>> {
     document.nodes().filter(|n| !is_child[n.index()]).collect()
 }
 
-/// Reads every buffer: the GLB binary chunk, embedded `data:` URIs, or files relative to `base`.
+/// Reads the buffers something reads ([`used_buffers`]): the GLB binary chunk, embedded
+/// `data:` URIs, or files relative to `base`. The others are left empty, unread (a buffer
+/// nothing uses cannot fail a file).
 fn load_buffers(
     document: &gltf::Document,
     base: &Path,
     mut blob: Option<Vec<u8>>,
 ) -> Result<Vec<Vec<u8>>, String> {
+    let used = used_buffers(document);
     document
         .buffers()
         .map(|buffer| {
+            if !used[buffer.index()] {
+                return Ok(Vec::new());
+            }
             let what = format!("buffer {}", buffer.index());
             let data = match buffer.source() {
                 gltf::buffer::Source::Bin => blob
@@ -201,6 +253,38 @@ fn load_buffers(
             Ok(data)
         })
         .collect()
+}
+
+/// Which buffers are read: those of the buffer views that accessors of mesh primitives
+/// (with their sparse parts and morph targets) and images use.
+fn used_buffers(document: &gltf::Document) -> Vec<bool> {
+    let accessors = crate::gltf_document::used_accessors(document.as_json());
+    let mut views = vec![false; document.views().len()];
+    for a in document.accessors().filter(|a| accessors[a.index()]) {
+        let sparse = a
+            .sparse()
+            .into_iter()
+            .flat_map(|s| [s.indices().view().index(), s.values().view().index()]);
+        for v in a.view().map(|v| v.index()).into_iter().chain(sparse) {
+            views[v] = true;
+        }
+    }
+    // From the JSON: `Image::source` panics on a view without a MIME type.
+    for view in document
+        .as_json()
+        .images
+        .iter()
+        .filter_map(|i| i.buffer_view)
+    {
+        if let Some(v) = views.get_mut(view.value()) {
+            *v = true;
+        }
+    }
+    let mut used = vec![false; document.buffers().len()];
+    for v in document.views().filter(|v| views[v.index()]) {
+        used[v.buffer().index()] = true;
+    }
+    used
 }
 
 /// The bytes a URI refers to: a relative (percent-encoded) path from `base`, or anything the

@@ -4,7 +4,8 @@
 //! `doubleSided` maps to [`Material::double_sided`]. Base-colour textures are decoded from sRGB,
 //! metallic-roughness textures are linear; both must use `TEXCOORD_0`. A texture that cannot
 //! be read or decoded gives a warning and the factor alone is used. `KHR_materials_ior` sets
-//! [`Material::eta`] for non-metallic materials (metallic factor 0) when `ior` >= 1; a metal's
+//! [`Material::eta`] for non-metallic materials (metallic factor 0) when `ior` >= 1 (at most
+//! [`MAX_ETA`], which reflects as any larger index does to four digits); a metal's
 //! Fresnel reflectance is its base colour, so `eta` stays `None` there (and without the
 //! extension: Schlick with F0 = 0.04, the glTF default `ior` 1.5).
 //!
@@ -17,7 +18,7 @@
 use crate::gltf_document::SUPPORTED_EXTENSIONS;
 use crate::gltf_loader::read_uri;
 use crate::import_util::small_alpha_warning;
-use crate::material::{AlphaMask, Material, MaterialAnisotropy, MaterialModel, NormalMap};
+use crate::material::{AlphaMask, Material, MaterialAnisotropy, MaterialModel, NormalMap, MAX_ETA};
 use crate::scene::{LoadReport, Scene};
 use crate::texture::TextureId;
 use crate::texture_decode::{decode_texture, Encoding};
@@ -107,7 +108,9 @@ pub(crate) fn load_materials(
             },
             eta: m
                 .ior()
-                .filter(|&ior| metallic == 0.0 && ior.is_finite() && ior >= 1.0),
+                .filter(|&ior| metallic == 0.0 && ior >= 1.0)
+                // Larger indices reflect as MAX_ETA does to four digits.
+                .map(|ior| ior.min(MAX_ETA)),
             double_sided: m.double_sided(),
             normal_map,
             alpha_mask,

@@ -47,12 +47,17 @@ pub mod material;
 pub mod mesh;
 #[cfg(feature = "loaders")]
 pub mod obj_loader;
+#[cfg(feature = "loaders")]
+mod obj_stream;
+pub mod progress;
 pub mod render;
 pub mod renderer;
 pub mod rng;
 pub mod scene;
 #[cfg(feature = "loaders")]
 pub mod settings;
+#[cfg(feature = "loaders")]
+pub mod settings_tables;
 pub mod shader;
 pub mod shapes;
 pub mod strategy;
@@ -76,13 +81,14 @@ pub use error::SceneError;
 pub use file_read::MAX_INPUT_FILE_BYTES;
 pub use frame::{RenderError, RenderSettings, RenderedFrame, Shaded, Timings};
 pub use framebuffer::{GBuffer, GSample, Image};
-pub use light::{Incident, Light, MAX_RADIOMETRIC};
+pub use light::{one_minus_cos, Incident, Light, SpotCone, MAX_RADIOMETRIC};
 #[cfg(feature = "loaders")]
 pub use load::{load_scene, load_scene_file, MAX_DROPPED_SHARE};
 pub use material::{AlphaMask, Material, MaterialAnisotropy, MaterialModel, NormalMap, ALPHA_MIN};
 pub use mesh::Mesh;
+pub use progress::{Cancel, Monitor, Progress};
 pub use render::{render, render_loaded};
-pub use renderer::{BackendInfo, Capabilities, PreparedFrame, Progress, Renderer};
+pub use renderer::{BackendInfo, Capabilities, PreparedFrame, Renderer};
 pub use scene::{LoadReport, Scene};
 #[cfg(feature = "loaders")]
 pub use settings::{load_settings, MaterialOverride, Settings};

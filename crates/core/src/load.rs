@@ -1,10 +1,12 @@
 //! One entry point for every scene source: built-in names, scene files and scene settings.
 use crate::builtin::{builtin, BUILTIN_NAMES};
 use crate::error::SceneError;
+use crate::file_read::recording;
 use crate::gltf_loader::load_gltf;
 use crate::obj_loader::load_obj;
 use crate::scene::Scene;
 use crate::settings::load_settings;
+use std::ffi::OsStr;
 use std::path::Path;
 
 /// Loads a scene: a built-in name (see [`BUILTIN_NAMES`]) or a file path chosen by its
@@ -15,8 +17,11 @@ use std::path::Path;
 /// Errors: an unknown extension is [`SceneError::UnsupportedFormat`]; a spec without
 /// extension that is neither a built-in name nor a file is [`SceneError::UnknownBuiltin`];
 /// loader errors name the file; settings errors are [`SceneError::Settings`].
-pub fn load_scene(spec: &str) -> Result<Scene, SceneError> {
-    if let Some(scene) = builtin(spec) {
+///
+/// `spec` may be any path the OS takes, UTF-8 or not.
+pub fn load_scene(spec: impl AsRef<OsStr>) -> Result<Scene, SceneError> {
+    let spec = spec.as_ref();
+    if let Some(scene) = spec.to_str().and_then(builtin) {
         return Ok(scene);
     }
     let path = Path::new(spec);
@@ -32,7 +37,7 @@ pub fn load_scene(spec: &str) -> Result<Scene, SceneError> {
     match extension(path).as_deref() {
         Some("toml") => load_settings(path),
         None if !path.is_file() => Err(SceneError::UnknownBuiltin {
-            name: spec.to_string(),
+            name: spec.to_string_lossy().into_owned(),
             available: BUILTIN_NAMES.join(", "),
         }),
         _ => load_scene_file(path),
@@ -47,14 +52,16 @@ pub fn load_scene(spec: &str) -> Result<Scene, SceneError> {
 /// [`MAX_DROPPED_SHARE`] of its triangles to non-finite vertices or bad indices is refused
 /// ([`SceneError::Invalid`]): what is left would be a different scene.
 pub fn load_scene_file(path: &Path) -> Result<Scene, SceneError> {
-    let mut scene = match extension(path).as_deref() {
+    let (loaded, files) = recording(|| match extension(path).as_deref() {
         Some("gltf" | "glb") => load_gltf(path),
         Some("obj") => load_obj(path),
         _ => Err(SceneError::UnsupportedFormat {
             path: path.to_path_buf(),
         }),
-    }?;
+    });
+    let mut scene = loaded?;
     scene.source = Some(path.to_path_buf());
+    scene.report.files = files;
     scene.report.summarize_ignored();
     check_dropped(&mut scene)?;
     Ok(scene)
@@ -72,18 +79,21 @@ fn check_dropped(scene: &mut Scene) -> Result<(), SceneError> {
     }
     let all = scene.triangle_count() + d.total();
     scene.report.warnings.push(format!(
-        "{} of {all} triangles removed: {} with a non-finite vertex, {} with an index past the end, {} of zero area",
+        "{} of {all} triangles removed: {} with a non-finite vertex, {} with a coordinate beyond ±{:e}, {} with an index past the end, {} of zero area",
         d.total(),
         d.non_finite,
+        d.out_of_range,
+        crate::mesh::MAX_COORDINATE,
         d.index_out_of_range,
         d.degenerate
     ));
-    let broken = d.non_finite + d.index_out_of_range;
+    let broken = d.non_finite + d.out_of_range + d.index_out_of_range;
     if broken as f64 > MAX_DROPPED_SHARE * all as f64 {
         return Err(SceneError::Invalid {
             scene: scene.label(),
             message: format!(
-                "{broken} of {all} triangles have non-finite vertices or indices past the end (more than {}%): the file is damaged",
+                "{broken} of {all} triangles have non-finite vertices, coordinates beyond ±{:e} or indices past the end (more than {}%): the file is damaged",
+                crate::mesh::MAX_COORDINATE,
                 MAX_DROPPED_SHARE * 100.0
             ),
         });

@@ -31,13 +31,31 @@ pub enum MaterialModel {
     },
 }
 
+/// The largest relative index of refraction a material takes. The dielectric Fresnel factor
+/// (supplemental eq. 3-5) squares η, which overflows `f32` above 1.8e19 (a NaN in every
+/// glossy pixel); at η = 1e4 it is already within 4e-4 of 1 at every angle
+/// (`((η − 1)/(η + 1))²` at normal incidence), so no larger value models anything more.
+pub const MAX_ETA: f32 = 1e4;
+
+/// `eta`, or why it cannot be a relative index of refraction: finite, above 0, at most
+/// [`MAX_ETA`].
+pub fn check_eta(eta: f32) -> Result<f32, String> {
+    if eta > 0.0 && eta <= MAX_ETA {
+        Ok(eta)
+    } else {
+        Err(format!(
+            "eta {eta} must be above 0 and at most {MAX_ETA:e} (beyond it the Fresnel factor is 1 to four digits, and eta² overflows f32 above 1.8e19)"
+        ))
+    }
+}
+
 /// A surface material.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Material {
     pub name: String,
     pub model: MaterialModel,
     /// Relative index of refraction: when set, the exact dielectric Fresnel factor replaces
-    /// Schlick's approximation for the specular layer.
+    /// Schlick's approximation for the specular layer ([`check_eta`]: in (0, [`MAX_ETA`])).
     pub eta: Option<f32>,
     /// One-sided surfaces (the default) are black and reflect nothing seen from behind; they
     /// still block light. Two-sided ones flip their normal towards the viewer.

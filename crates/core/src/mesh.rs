@@ -25,9 +25,16 @@ pub enum TriangleDefect {
     IndexOutOfRange,
     /// A position (or normal) that is NaN or infinite.
     NonFinite,
+    /// A position coordinate beyond ±[`MAX_COORDINATE`].
+    OutOfRange,
     /// Zero area (collinear or repeated vertices).
     Degenerate,
 }
+
+/// The largest position coordinate a triangle may have: 1e18. The renderer squares
+/// distances and forms cross products of edges in `f32` (largest 3.4e38); beyond 1e18 those
+/// overflow (an edge of 2e19 has an infinite squared length).
+pub const MAX_COORDINATE: f32 = 1e18;
 
 impl Mesh {
     /// The defect of a triangle, if any.
@@ -58,12 +65,21 @@ impl Mesh {
         {
             return Some(TriangleDefect::NonFinite);
         }
+        if [a, b, c]
+            .iter()
+            .any(|p| p.abs().max_element() > MAX_COORDINATE)
+        {
+            return Some(TriangleDefect::OutOfRange);
+        }
+        // In f64: the check itself must not overflow (f32 edges of 1e18 square to 1e36).
+        let (a, b, c) = (a.as_dvec3(), b.as_dvec3(), c.as_dvec3());
         let area2 = (b - a).cross(c - a).length();
         let scale = (b - a)
             .length_squared()
             .max((c - a).length_squared())
-            .max(f32::MIN_POSITIVE);
-        (area2 <= 1e-12 * scale || !area2.is_normal()).then_some(TriangleDefect::Degenerate)
+            .max(f64::from(f32::MIN_POSITIVE));
+        (area2 <= 1e-12 * scale || area2 < f64::from(f32::MIN_POSITIVE))
+            .then_some(TriangleDefect::Degenerate)
     }
 
     /// Removes defective triangles and returns how many of each kind were removed.
@@ -89,6 +105,7 @@ impl Mesh {
 pub struct DefectCounts {
     pub index_out_of_range: usize,
     pub non_finite: usize,
+    pub out_of_range: usize,
     pub degenerate: usize,
 }
 
@@ -97,6 +114,7 @@ impl DefectCounts {
         match d {
             TriangleDefect::IndexOutOfRange => self.index_out_of_range += 1,
             TriangleDefect::NonFinite => self.non_finite += 1,
+            TriangleDefect::OutOfRange => self.out_of_range += 1,
             TriangleDefect::Degenerate => self.degenerate += 1,
         }
     }
@@ -104,11 +122,12 @@ impl DefectCounts {
     pub fn merge(&mut self, o: DefectCounts) {
         self.index_out_of_range += o.index_out_of_range;
         self.non_finite += o.non_finite;
+        self.out_of_range += o.out_of_range;
         self.degenerate += o.degenerate;
     }
 
     pub fn total(&self) -> usize {
-        self.index_out_of_range + self.non_finite + self.degenerate
+        self.index_out_of_range + self.non_finite + self.out_of_range + self.degenerate
     }
 }
 
@@ -125,17 +144,29 @@ mod tests {
                 Vec3::Y,
                 Vec3::new(2.0, 0.0, 0.0),
                 Vec3::NAN,
+                Vec3::new(3e38, 0.0, 0.0),
+                Vec3::new(1e18, 0.0, 0.0),
+                Vec3::new(1e18, 1e18, 0.0),
             ],
-            triangles: vec![[0, 1, 2], [0, 1, 3], [0, 1, 4], [0, 1, 9]],
+            triangles: vec![
+                [0, 1, 2],
+                [0, 1, 3],
+                [0, 1, 4],
+                [0, 1, 9],
+                [0, 5, 2],
+                [0, 6, 7],
+            ],
             ..Default::default()
         };
         let c = m.remove_defective_triangles();
-        assert_eq!(m.triangles, vec![[0, 1, 2]]);
+        // Coordinates of 1e18 are fine (not "zero area"); 3e38 is out of range.
+        assert_eq!(m.triangles, vec![[0, 1, 2], [0, 6, 7]]);
         assert_eq!(
             c,
             DefectCounts {
                 index_out_of_range: 1,
                 non_finite: 1,
+                out_of_range: 1,
                 degenerate: 1
             }
         );

@@ -26,16 +26,17 @@
 //! - Meshes without a material (no `usemtl`, an unknown name, or an unreadable MTL file, which
 //!   gives a warning) get a grey diffuse default material (kd 0.5).
 use crate::error::SceneError;
-use crate::file_read::read_capped;
+use crate::file_read::{capped_at_end, open_capped, read_capped};
 use crate::import_util::{add_mesh, small_alpha_warning};
 use crate::material::{AlphaMask, Material, MaterialModel, ALPHA_MIN};
 use crate::mesh::Mesh;
+use crate::obj_stream::ObjLines;
 use crate::scene::Scene;
 use crate::texture::TextureId;
 use crate::texture_decode::{read_texture, Encoding};
 use glam::{Vec2, Vec3};
 use std::cell::RefCell;
-use std::collections::HashMap;
+use std::collections::{BTreeSet, HashMap};
 use std::path::{Path, PathBuf};
 
 /// A material library named by the OBJ file: its folder and how many materials it gave.
@@ -46,10 +47,11 @@ struct MtlLib {
 
 /// Loads an `.obj` file and the `.mtl` files it names. The scene is named by the file's stem.
 pub fn load_obj(path: &Path) -> Result<Scene, SceneError> {
-    let bytes = read_capped(path).map_err(|source| SceneError::Io {
+    let io = |source| SceneError::Io {
         path: path.to_path_buf(),
         source,
-    })?;
+    };
+    let mut file = std::io::BufReader::new(open_capped(path).map_err(io)?);
     let dir = path.parent().unwrap_or(Path::new("")).to_path_buf();
     let libs = RefCell::new(Vec::<MtlLib>::new());
     let warnings = RefCell::new(Vec::<String>::new());
@@ -77,19 +79,19 @@ pub fn load_obj(path: &Path) -> Result<Scene, SceneError> {
     };
     // GPU_LOAD_OPTIONS: triangulate, single index, ignore points and lines.
     let options = &tobj::GPU_LOAD_OPTIONS;
-    let (text, dropped) = drop_bad_attribute_refs(&String::from_utf8_lossy(&bytes));
+    let mut lines = ObjLines::new(&mut file);
+    let (models, materials) =
+        tobj::load_obj_buf(&mut lines, options, load_mtl).map_err(|e| SceneError::Obj {
+            path: path.to_path_buf(),
+            message: e.to_string(),
+        })?;
+    let (dropped, used_materials) = (lines.dropped, lines.materials);
+    capped_at_end(file.get_ref()).map_err(io)?;
     if dropped > 0 {
         warnings.borrow_mut().push(format!(
             "{dropped} face corner(s) name a texture coordinate or normal past the end; those references are dropped"
         ));
     }
-    let (models, materials) =
-        tobj::load_obj_buf(&mut text.as_bytes(), options, load_mtl).map_err(|e| {
-            SceneError::Obj {
-                path: path.to_path_buf(),
-                message: e.to_string(),
-            }
-        })?;
 
     let mut scene = Scene {
         name: path.file_stem().map_or_else(
@@ -109,6 +111,9 @@ pub fn load_obj(path: &Path) -> Result<Scene, SceneError> {
         scene.materials.push(material);
     }
     let material_count = scene.materials.len();
+    if let Some(w) = undefined_materials(&used_materials, &scene.materials) {
+        scene.report.warnings.push(w);
+    }
     let mut default_material = None;
     for model in models {
         let material = match model.mesh.material_id.filter(|&i| i < material_count) {
@@ -125,6 +130,23 @@ pub fn load_obj(path: &Path) -> Result<Scene, SceneError> {
         add_mesh(&mut scene, mesh);
     }
     Ok(scene)
+}
+
+/// The warning for `usemtl` names no material library defined (their faces get the grey
+/// default), if any.
+fn undefined_materials(used: &BTreeSet<String>, defined: &[Material]) -> Option<String> {
+    let missing: Vec<&str> = used
+        .iter()
+        .map(String::as_str)
+        .filter(|name| !defined.iter().any(|m| m.name == *name))
+        .collect();
+    (!missing.is_empty()).then(|| {
+        format!(
+            "{} material(s) named by usemtl are in no material library ({}): their faces get the grey diffuse default (kd 0.5), which a settings file can set as [[materials]] name = \"default grey\"",
+            missing.len(),
+            missing.join(", ")
+        )
+    })
 }
 
 /// Parses an MTL file (read leniently: invalid UTF-8 is replaced) after [`pad_colours`].
@@ -158,52 +180,6 @@ fn pad_colours(text: &str) -> String {
         out.push('\n');
     }
     out
-}
-
-/// Removes the texture-coordinate and normal references of face corners (`v/vt/vn`) that
-/// name no `vt` or `vn` defined before the face (tobj refuses the whole file for one);
-/// returns the text and how many corners lost a reference. Vertex references are left to the
-/// loader (a bad one removes its triangle, counted).
-fn drop_bad_attribute_refs(text: &str) -> (String, usize) {
-    let valid = |r: &str, count: i64| {
-        r.parse::<i64>()
-            .is_ok_and(|i| (1..=count).contains(&i) || (-count..=-1).contains(&i))
-    };
-    let (mut vt, mut vn, mut dropped) = (0i64, 0i64, 0usize);
-    let mut out = String::with_capacity(text.len());
-    for line in text.lines() {
-        let mut words = line.split_whitespace();
-        match words.next() {
-            Some("vt") => vt += 1,
-            Some("vn") => vn += 1,
-            Some("f") => {
-                let mut face = String::from("f");
-                for corner in words {
-                    let parts: Vec<&str> = corner.split('/').collect();
-                    let keep = |k: usize, count: i64| {
-                        parts.get(k).filter(|r| r.is_empty() || valid(r, count))
-                    };
-                    let (t, n) = (keep(1, vt), keep(2, vn));
-                    let lost = (parts.len() > 1 && t.is_none()) || (parts.len() > 2 && n.is_none());
-                    dropped += usize::from(lost);
-                    face.push(' ');
-                    face.push_str(parts[0]);
-                    match (t.copied().unwrap_or(""), n.copied().unwrap_or("")) {
-                        ("", "") => {}
-                        (t, "") => face.push_str(&format!("/{t}")),
-                        (t, n) => face.push_str(&format!("/{t}/{n}")),
-                    }
-                }
-                out.push_str(&face);
-                out.push('\n');
-                continue;
-            }
-            _ => {}
-        }
-        out.push_str(line);
-        out.push('\n');
-    }
-    (out, dropped)
 }
 
 /// A tobj model as a mesh (positions, optional normals and flipped-v texture coordinates).

@@ -2,7 +2,8 @@
 //! `spp` passes.
 use crate::frame::{merge_optional, Method, RenderError, RenderSettings, RenderedFrame, Timings};
 use crate::framebuffer::Image;
-use crate::renderer::{PreparedFrame, Progress, Renderer};
+use crate::progress::Progress;
+use crate::renderer::{PreparedFrame, Renderer};
 use crate::rng::pcg_hash;
 use crate::scene::Scene;
 use crate::shader::{AllVplShader, SampledLights, SampledShader, ShadeInput, Shader};
@@ -41,8 +42,10 @@ pub fn shade_method<R: Renderer>(
     }
 }
 
-/// Renders `scene` with `settings` on `r`. `progress` is called with the number of
-/// pixel-passes finished where the backend counts them; the total is `width * height * spp`.
+/// Renders `scene` with `settings` on `r`. `progress` is told the number of pixel-passes
+/// finished where the backend counts them (the total is `width * height * spp`) and checked
+/// between passes and tiles: once it is cancelled the frame stops with
+/// [`RenderError::Cancelled`].
 pub fn render<R: Renderer>(
     r: &R,
     scene: &Scene,
@@ -53,6 +56,7 @@ pub fn render<R: Renderer>(
     r.check(settings)?;
     scene.validate_for_render()?;
     let mut timings = Timings::default();
+    progress.check()?;
     let loaded = timings.time("load", || r.load(scene))?;
     let mut frame = render_loaded(r, scene, &loaded, settings, progress)?;
     timings.merge(&frame.timings);
@@ -87,10 +91,12 @@ pub fn render_loaded<R: Renderer>(
         readback_bytes: None,
     };
     for pass in 0..settings.spp {
+        progress.check()?;
         if settings.method == Method::Path {
             let (d, i) = timings.time("path", || {
                 r.path_trace(scene, loaded, settings, pass, progress)
             })?;
+            progress.check()?;
             d.check_finite("direct")?;
             i.check_finite("path")?;
             frame.direct = frame.direct.add(&d);
@@ -98,7 +104,8 @@ pub fn render_loaded<R: Renderer>(
             continue;
         }
         let jitter = (settings.spp > 1).then_some(pass);
-        let p = r.prepare(scene, loaded, settings, jitter)?;
+        let p = r.prepare(scene, loaded, settings, jitter, progress)?;
+        progress.check()?;
         timings.merge(p.timings());
         merge_optional(&mut gpu_timings, p.gpu_timings());
         let input = ShadeInput {
@@ -109,6 +116,7 @@ pub fn render_loaded<R: Renderer>(
             visibility: settings.visibility,
         };
         let shaded = shade_method(r, &settings.method, input, progress)?;
+        progress.check()?;
         timings.merge(&shaded.timings);
         merge_optional(&mut gpu_timings, shaded.gpu_timings.as_ref());
         p.direct().check_finite("direct")?;

@@ -11,14 +11,12 @@ use crate::camera::Camera;
 use crate::culling::{CullMetrics, Interleaving};
 use crate::frame::{LightSampling, Method, PassTime, RenderError, RenderSettings, Shaded, Timings};
 use crate::framebuffer::Image;
+use crate::progress::Progress;
 use crate::scene::Scene;
 use crate::shader::SampledLights;
 use crate::strategy::{GlossyBound, Layout, Strategy};
 use crate::vpl::Vpl;
 use std::collections::BTreeMap;
-
-/// Called with the number of pixel-passes finished.
-pub type Progress<'a> = &'a (dyn Fn(u64) + Sync);
 
 /// What a report says about the backend that rendered.
 #[derive(Clone, Debug, PartialEq)]
@@ -126,7 +124,9 @@ pub trait PreparedFrame {
 }
 
 /// A rendering backend: the steps of one frame. Steps a backend does not have return
-/// [`RenderError::Unsupported`]; [`Renderer::capabilities`] says which those are.
+/// [`RenderError::Unsupported`]; [`Renderer::capabilities`] says which those are. Steps that
+/// take a [`Progress`] report their finished pixels to it and check it between their tiles
+/// (or rows, or dispatches): once it is cancelled they return [`RenderError::Cancelled`].
 pub trait Renderer {
     /// The scene as this backend keeps it between frames (its BVH, its uploaded buffers).
     type Scene;
@@ -161,13 +161,15 @@ pub trait Renderer {
 
     /// The G-buffer, the RSMs, the VPLs (ξ from the seed of `settings` and `pass`) and the
     /// direct light. `pass` = `None` samples pixel and texel centres; `Some(p)` jitters
-    /// them for pass p of several.
+    /// them for pass p of several. `progress` is only checked (the frame's pixel-passes are
+    /// counted by its shading).
     fn prepare(
         &self,
         scene: &Scene,
         loaded: &Self::Scene,
         settings: &RenderSettings,
         pass: Option<u32>,
+        progress: Progress,
     ) -> Result<Self::Prepared, RenderError>;
 
     /// The light lists of `strategy` (section 5-7): never without a VPL whose p(ωo, l) > ξ.
@@ -198,8 +200,14 @@ pub trait Renderer {
         None
     }
 
-    /// The cross bilateral filter guided by depth and normal (section 6).
-    fn denoise(&self, p: &Self::Prepared, image: Self::Image) -> Result<Self::Image, RenderError>;
+    /// The cross bilateral filter guided by depth and normal (section 6); `progress` is only
+    /// checked.
+    fn denoise(
+        &self,
+        p: &Self::Prepared,
+        image: Self::Image,
+        progress: Progress,
+    ) -> Result<Self::Image, RenderError>;
 
     /// `image` where the CPU can read it.
     fn read_image(&self, p: &Self::Prepared, image: Self::Image) -> Result<Image, RenderError>;

@@ -22,6 +22,10 @@ pub struct LoadReport {
     /// materials that use it ("the file" for file-wide ones). [`LoadReport::summarize_ignored`]
     /// turns them into one warning.
     pub ignored: BTreeMap<String, Vec<String>>,
+    /// Every file the scene was read from, in the order first read, each once: the settings
+    /// file, the scene file, its material libraries, buffers and textures. Empty for built-in
+    /// and hand-made scenes.
+    pub files: Vec<PathBuf>,
 }
 
 impl LoadReport {

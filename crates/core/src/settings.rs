@@ -8,6 +8,8 @@
 //! ```toml
 //! # Relative to this file (an absolute path is used as is): a .gltf, .glb or .obj file.
 //! scene = "../../shared/scenes/sponza/sponza.obj"
+//! # Optional: what the scene file is and where to get it, said when it is missing.
+//! scene_source = "the Dabrovic Sponza atrium (Marko Dabrovic, 2002); see scenes/README.md"
 //! # Optional. Default: the [[lights]] below replace the file's lights if any are given,
 //! # else the file's lights are kept. false: add them to the file's lights.
 //! replace_lights = true
@@ -43,7 +45,7 @@
 //! kd = 0.8                      # diffuse albedo in [0, 1] (one number or [r, g, b])
 //! f0 = 0.04                     # specular reflectance at normal incidence, in [0, 1]
 //! alpha = 0.1                   # GGX alpha in (0, 1]; or roughness = 0.316 (alpha = roughness^2)
-//! eta = 1.5                     # relative index of refraction > 0: exact dielectric Fresnel
+//! eta = 1.5                     # relative index of refraction in (0, 1e4]: exact dielectric Fresnel
 //! double_sided = true
 //! anisotropy_strength = 0.8     # KHR_materials_anisotropy strength in [0, 1] (0: isotropic)
 //! anisotropy_rotation = 0.5     # its rotation in radians from the tangent (default 0)
@@ -103,6 +105,8 @@ pub struct Settings {
     pub path: PathBuf,
     /// The scene file, resolved against the settings file's folder.
     pub scene: PathBuf,
+    /// What the scene file is and where to get it, for the error when it is missing.
+    pub scene_source: Option<String>,
     /// The camera that replaces the scene file's, if given.
     pub camera: Option<Camera>,
     /// Lights in the order of the file.
@@ -129,16 +133,31 @@ pub struct MaterialOverride {
 }
 
 /// Loads the scene a settings file names and applies the settings to it.
+/// The scene's files ([`crate::LoadReport::files`]) start with the settings file. A scene
+/// file that is not there is an error that says what it is and where to get it, where the
+/// settings file's `scene_source` tells.
 pub fn load_settings(path: &Path) -> Result<Scene, SceneError> {
     let settings = Settings::read(path)?;
-    if !settings.scene.is_file() {
+    let problem = match std::fs::metadata(&settings.scene) {
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => Some("not found".to_string()),
+        Err(e) => Some(format!("cannot be read: {e}")),
+        Ok(m) if m.is_dir() => Some("is a folder, not a file".into()),
+        Ok(m) if !m.is_file() => Some("is not a regular file (a device, pipe or socket)".into()),
+        Ok(_) => None,
+    };
+    if let Some(problem) = problem {
+        let source = settings
+            .scene_source
+            .as_ref()
+            .map_or_else(String::new, |s| format!(": {s}"));
         return Err(SceneError::Settings {
             path: path.to_path_buf(),
-            message: format!("scene file {} not found", settings.scene.display()),
+            message: format!("scene file {} {problem}{source}", settings.scene.display()),
         });
     }
     let mut scene = load_scene_file(&settings.scene)?;
     settings.apply(&mut scene)?;
+    scene.report.files.insert(0, path.to_path_buf());
     Ok(scene)
 }
 
@@ -188,6 +207,7 @@ impl Settings {
         Ok(Self {
             path: path.to_path_buf(),
             scene,
+            scene_source: raw.scene_source,
             camera,
             lights,
             replace_lights,
@@ -288,7 +308,7 @@ impl Scene {
 impl MaterialOverride {
     /// A validated override of the materials `pattern` matches, as a settings file's
     /// `[[materials]]` entry: kd and f0 in [0, 1] per channel, alpha or roughness (not both)
-    /// in (0, 1], eta finite and above 0, and at least one value set.
+    /// in (0, 1], eta in (0, [`crate::material::MAX_ETA`]], and at least one value set.
     #[allow(clippy::too_many_arguments)]
     pub fn new(
         pattern: &str,
@@ -409,6 +429,7 @@ fn numbered<R, T>(
 #[serde(deny_unknown_fields)]
 struct RawSettings {
     scene: String,
+    scene_source: Option<String>,
     replace_lights: Option<bool>,
     camera: Option<RawCamera>,
     #[serde(default)]
@@ -419,7 +440,7 @@ struct RawSettings {
 
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
-struct RawCamera {
+pub(crate) struct RawCamera {
     position: [f32; 3],
     target: [f32; 3],
     up: Option<[f32; 3]>,
@@ -430,7 +451,7 @@ struct RawCamera {
 
 #[derive(Deserialize)]
 #[serde(tag = "type", rename_all = "lowercase", deny_unknown_fields)]
-enum RawLight {
+pub(crate) enum RawLight {
     Point {
         position: [f32; 3],
         intensity: Rgb,
@@ -469,7 +490,7 @@ struct RawMaterial {
     untagged,
     expecting = "a number or an array of three numbers [r, g, b]"
 )]
-enum Rgb {
+pub(crate) enum Rgb {
     Grey(f32),
     Rgb([f32; 3]),
 }
@@ -523,7 +544,7 @@ fn in_unit_interval(key: &str, v: f32) -> Result<f32, String> {
 }
 
 impl RawCamera {
-    fn validate(self) -> Result<Camera, String> {
+    pub(crate) fn validate(self) -> Result<Camera, String> {
         let position = finite("position", self.position)?;
         let target = finite("target", self.target)?;
         let up = unit("up", self.up.unwrap_or([0.0, 1.0, 0.0]))?;
@@ -547,7 +568,7 @@ impl RawCamera {
 impl RawLight {
     /// The light, refused where [`Light::problem`] finds a problem (e.g. an intensity whose
     /// products overflow f32).
-    fn validate(self) -> Result<Light, String> {
+    pub(crate) fn validate(self) -> Result<Light, String> {
         let light = self.build()?;
         match light.problem() {
             Some(problem) => Err(problem),
@@ -626,12 +647,11 @@ impl RawMaterial {
         };
         let kd = self.kd.map(|c| c.checked("kd", true)).transpose();
         let f0 = self.f0.map(|c| c.checked("f0", true)).transpose();
-        let eta = match self.eta {
-            Some(eta) if !(eta > 0.0 && eta.is_finite()) => {
-                return Err(with_name(format!("eta {eta} must be finite and above 0")))
-            }
-            eta => eta,
-        };
+        let eta = self
+            .eta
+            .map(crate::material::check_eta)
+            .transpose()
+            .map_err(with_name)?;
         let anisotropy = match (self.anisotropy_strength, self.anisotropy_rotation) {
             (None, None) => None,
             (None, Some(_)) => {

@@ -254,7 +254,10 @@ fn invalid_settings_are_errors_naming_the_file() {
         (material("name = \"floor\"\nalpha = 0.1\nroughness = 0.3"), "not both"),
         (material("name = \"floor\"\nkd = 1.5"), "kd [1.5, 1.5, 1.5] is outside [0, 1]"),
         (material("name = \"floor\"\nf0 = [0.1, -0.1, 0.1]"), "f0 [0.1, -0.1, 0.1]"),
-        (material("name = \"floor\"\neta = 0"), "eta 0 must be finite and above 0"),
+        (material("name = \"floor\"\neta = 0"), "eta 0 must be above 0 and at most 1e4"),
+        // The case: 1e20 passed, then the direct pass failed blaming the light.
+        (material("name = \"floor\"\neta = 1e20"), "eta 100000000000000000000 must be above 0 and at most 1e4"),
+        (material("name = \"floor\"\neta = inf"), "eta inf must be"),
         (material("name = \"floor\"\ndouble_sided = 1"), "invalid type"),
     ];
     for (text, expected) in cases {
@@ -482,6 +485,11 @@ fn files_that_are_missing_or_broken_are_errors_naming_them() {
             "nowhere/room.obj not found",
         ),
         (
+            "described.toml",
+            "scene = \"nowhere/room.obj\"\nscene_source = \"the room of X (CC BY); get it at Y\"\n",
+            "nowhere/room.obj not found: the room of X (CC BY); get it at Y",
+        ),
+        (
             "broken.toml",
             "scene = \"room.obj\"\n[camera\n",
             "TOML parse error",
@@ -502,6 +510,33 @@ fn files_that_are_missing_or_broken_are_errors_naming_them() {
         }
     }
     std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// Every file a scene was read from is listed once, in the order read: the settings file,
+/// the OBJ, its material library and the textures it names.
+#[test]
+fn a_scene_lists_every_file_it_was_read_from() {
+    let settings = Path::new(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../../scenes/sponza.toml"
+    ));
+    let scene = load_scene(settings.to_str().unwrap()).unwrap();
+    let files = &scene.report.files;
+    assert_eq!(files[0], settings);
+    assert!(files[1].ends_with("sponza/sponza.obj") && files[2].ends_with("sponza/sponza.mtl"));
+    let textures = &files[3..];
+    assert!(
+        textures.len() >= 10
+            && textures
+                .iter()
+                .all(|f| f.extension().is_some_and(|e| e.eq_ignore_ascii_case("jpg"))),
+        "{files:?}"
+    );
+    let mut unique = files.clone();
+    unique.sort();
+    unique.dedup();
+    assert_eq!(unique.len(), files.len());
+    assert!(builtin("default").unwrap().report.files.is_empty());
 }
 
 #[test]

@@ -4,7 +4,8 @@ use crate::culling::Interleaving;
 use crate::frame::{
     merge_optional, LightSampling, Method, RenderError, Shaded, Stochastic, Timings,
 };
-use crate::renderer::{PreparedFrame, Progress, Renderer};
+use crate::progress::Progress;
+use crate::renderer::{PreparedFrame, Renderer};
 use crate::scene::Scene;
 
 /// What a shader reads: the scene, what the backend keeps of it, and a prepared frame.
@@ -69,9 +70,11 @@ impl Stochastic {
         };
         let mut timings = Timings::default();
         let ((lists, image), gpu_timings) = r.profiled(|| {
+            progress.check()?;
             let lists = timings.time("culling", || {
                 r.cull(p, self.strategy, self.delta, interleaving)
             })?;
+            progress.check()?;
             let mut image = timings.time("shading", || {
                 r.shade_lists(
                     input.loaded,
@@ -84,7 +87,8 @@ impl Stochastic {
                 )
             })?;
             if self.denoise {
-                image = timings.time("denoise", || r.denoise(p, image))?;
+                progress.check()?;
+                image = timings.time("denoise", || r.denoise(p, image, progress))?;
             }
             Ok((lists, image))
         })?;
@@ -98,7 +102,8 @@ impl Stochastic {
 }
 
 /// The stochastic estimate of eq. (3): [`Stochastic::passes`], then the image read back and,
-/// with `metrics`, the metrics by brute force after the timed passes.
+/// with `metrics`, the metrics by brute force after the timed passes. `progress` is checked
+/// between the passes (and by the backend between its tiles).
 impl Shader for Stochastic {
     fn name(&self) -> &'static str {
         self.strategy.name()
@@ -116,11 +121,16 @@ impl Shader for Stochastic {
             seed: input.seed,
         };
         let passes = self.passes(r, input, progress)?;
+        progress.check()?;
         let indirect = r.read_image(p, passes.image)?;
         let metrics = self
             .metrics
-            .then(|| r.measure(p, &passes.lists, self.delta, interleaving))
+            .then(|| {
+                progress.check()?;
+                r.measure(p, &passes.lists, self.delta, interleaving)
+            })
             .transpose()?;
+        progress.check()?;
         Ok(Shaded {
             indirect,
             timings: passes.timings,
@@ -184,6 +194,7 @@ impl Shader for SampledShader {
     ) -> Result<Shaded, RenderError> {
         // Profiled as the stochastic shader's passes are: a GPU with trusted timestamps gives
         // the VSGL passes' own times beside the wall clock.
+        progress.check()?;
         let (mut shaded, gpu_timings) = r.profiled(|| {
             r.shade_sampled(
                 input.scene,
@@ -197,6 +208,7 @@ impl Shader for SampledShader {
             )
         })?;
         shaded.gpu_timings = gpu_timings;
+        progress.check()?;
         Ok(shaded)
     }
 }
@@ -217,9 +229,11 @@ impl Shader for AllVplShader {
         progress: Progress,
     ) -> Result<Shaded, RenderError> {
         let mut timings = Timings::default();
+        progress.check()?;
         let indirect = timings.time("vpl_shading", || {
             r.shade_all_vpls(input.loaded, input.prepared, input.visibility, progress)
         })?;
+        progress.check()?;
         Ok(Shaded::new(indirect, timings))
     }
 }

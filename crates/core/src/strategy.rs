@@ -87,8 +87,8 @@ impl Strategy {
         Strategy::ClusteredTight,
     ];
 
-    /// The GPU's rasterization baselines of the paper's Table 2 (splatting [DS06], clustered
-    /// shading by conservative rasterization [OP16]): no CPU culler.
+    /// The GPU's rasterization baselines of the paper's Table 2 (splatting \[DS06\], clustered
+    /// shading by conservative rasterization \[OP16\]): no CPU culler.
     pub const RASTER: [Strategy; 2] = [Strategy::Splatting, Strategy::ClusteredRaster];
 
     /// The strategies only the CPU culler (`slc_cull::culler`) runs so far: `binned`, whose

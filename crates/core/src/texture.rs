@@ -26,11 +26,16 @@ impl Texture {
         let y = uv.y * self.height as f32 - 0.5;
         let (x0, y0) = (x.floor(), y.floor());
         let (fx, fy) = (x - x0, y - y0);
-        let texel =
-            |ix: i64, iy: i64| self.texels[(iy.rem_euclid(h) * w + ix.rem_euclid(w)) as usize];
-        let (ix, iy) = (x0 as i64, y0 as i64);
-        let top = texel(ix, iy).lerp(texel(ix + 1, iy), fx);
-        let bottom = texel(ix, iy + 1).lerp(texel(ix + 1, iy + 1), fx);
+        // The four texels wrapped once each way (two remainders, not eight).
+        let wrap = |i: i64, n: i64| {
+            let i0 = i.rem_euclid(n);
+            (i0 as usize, if i0 + 1 == n { 0 } else { i0 as usize + 1 })
+        };
+        let ((x0, x1), (y0, y1)) = (wrap(x0 as i64, w), wrap(y0 as i64, h));
+        let row = |y: usize| &self.texels[y * w as usize..(y + 1) * w as usize];
+        let (r0, r1) = (row(y0), row(y1));
+        let top = r0[x0].lerp(r0[x1], fx);
+        let bottom = r1[x0].lerp(r1[x1], fx);
         top.lerp(bottom, fy)
     }
 }

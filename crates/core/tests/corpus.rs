@@ -81,6 +81,31 @@ const CASES: &[(&str, Outcome)] = &[
         "valid-obj-one-zero-area-triangle.obj",
         Loads(2, Some("1 of zero area")),
     ),
+    (
+        "valid-obj-usemtl-undefined.obj",
+        Loads(1, Some("in no material library (light)")),
+    ),
+    ("valid-unused-buffer-without-uri.gltf", Loads(2, None)),
+    ("valid-glb-data-uri-buffer.glb", Loads(2, None)),
+    ("valid-integers-written-as-floats.gltf", Loads(2, None)),
+    ("valid-scene-without-nodes.gltf", Loads(2, None)),
+    (
+        "valid-primitive-without-position.gltf",
+        Loads(2, Some("no POSITION")),
+    ),
+    ("valid-unused-accessor-of-unknown-type.gltf", Loads(2, None)),
+    (
+        "valid-spot-outer-cone-0.gltf",
+        Loads(2, Some("a cone of 0 emits nothing")),
+    ),
+    (
+        "unsupported-asset-version-3.0.gltf",
+        Fails("asset.version 3.0"),
+    ),
+    (
+        "unsupported-min-version-2.5.gltf",
+        Fails("asset.minVersion 2.5"),
+    ),
 ];
 
 fn corpus(name: &str) -> PathBuf {

@@ -45,6 +45,7 @@
 //! assert!(frame.indirect.mean().max_element() > 0.0);
 //! # Ok::<(), slc_core::RenderError>(())
 //! ```
+mod blocks;
 pub mod denoise;
 pub mod direct;
 mod frame_images;

@@ -2,14 +2,16 @@
 //! shadow maps, the VPLs with their ξ and the direct light, which every indirect method
 //! starts from. A comparison prepares a frame once and shades it with every culling strategy
 //! from the same G-buffer, VPLs and ξ.
-use crate::direct::shade_direct;
-use crate::gbuffer::{trace_gbuffer, PixelSample};
+use crate::direct::shade_direct_watched;
+use crate::gbuffer::{trace_gbuffer_watched, PixelSample};
 use crate::rsm::{trace_rsm, Rsm, TexelSample};
 use crate::tracer::Tracer;
 use crate::vpls::generate_vpls;
 use slc_core::frame::{RenderError, RenderSettings, Timings};
 use slc_core::render::pass_seed;
-use slc_core::{Camera, CullInput, GBuffer, Image, Interleaving, PreparedFrame, Scene, Vpl};
+use slc_core::{
+    Camera, CullInput, GBuffer, Image, Interleaving, PreparedFrame, Progress, Scene, Vpl,
+};
 use std::sync::Arc;
 
 /// A CPU frame up to its VPLs and direct light.
@@ -70,6 +72,18 @@ pub fn prepare(
     tracer: impl Into<Arc<Tracer>>,
     pass: Option<u32>,
 ) -> CpuPrepared {
+    prepare_watched(scene, settings, tracer, pass, &|_| {})
+}
+
+/// [`prepare`] that stops tracing once `progress` is cancelled: the G-buffer's and the direct
+/// light's pixels not yet begun are left empty (the caller checks `progress`).
+pub fn prepare_watched(
+    scene: &Scene,
+    settings: &RenderSettings,
+    tracer: impl Into<Arc<Tracer>>,
+    pass: Option<u32>,
+    progress: Progress,
+) -> CpuPrepared {
     let tracer = tracer.into();
     let (w, h) = (settings.width, settings.height);
     let camera = scene.camera_or_default();
@@ -88,7 +102,7 @@ pub fn prepare(
         ),
     };
     let gbuffer = timings.time("gbuffer", || {
-        trace_gbuffer(scene, &tracer, &camera, w, h, sample)
+        trace_gbuffer_watched(scene, &tracer, &camera, (w, h), sample, progress)
     });
     let maps: Vec<_> = timings.time("rsm", || {
         scene
@@ -100,7 +114,9 @@ pub fn prepare(
     let vpls = timings.time("vpl_generation", || {
         generate_vpls(&maps, pass_seed(settings.seed, pass), settings.lobes)
     });
-    let direct = timings.time("direct", || shade_direct(&tracer, &scene.lights, &gbuffer));
+    let direct = timings.time("direct", || {
+        shade_direct_watched(&tracer, &scene.lights, &gbuffer, progress)
+    });
     CpuPrepared {
         camera,
         tracer,

@@ -2,10 +2,10 @@
 //! `slc_core::Renderer` with this crate's ray-traced passes and `slc_cull`'s cullers, and
 //! has every method, the references and shadow rays included. [`CpuFrames`] is how other
 //! backends hand a frame to what only the CPU computes.
-use crate::denoise::{cross_bilateral, BilateralParams};
+use crate::denoise::{BilateralParams, CrossBilateral};
 use crate::frame_images::SpareImage;
 use crate::path::trace_pixel_sample;
-use crate::prepare::{prepare, CpuPrepared};
+use crate::prepare::{prepare_watched, CpuPrepared};
 use crate::sampled_lights::{shade_sampled_vpls, shade_vsgl};
 use crate::tracer::Tracer;
 use crate::vpl_shading::{shade_lists_into, shade_vpls, VplEstimator};
@@ -17,15 +17,44 @@ use slc_core::{
     Scene, Strategy,
 };
 use std::borrow::Cow;
-use std::sync::Arc;
+use std::sync::{Arc, Mutex, TryLockError};
 
 /// The CPU reference renderer on rayon's threads. It keeps the last noisy image its filter
 /// consumed ([`Renderer::denoise`]) and shades the next frame of the same size into it
 /// ([`shade_lists_into`]): in a loop of frames (cull, shade, filter) the shading then
-/// allocates and clears no image. A clone keeps none.
+/// allocates and clears no image. Its filter keeps its working set from frame to frame as
+/// well ([`CrossBilateral`]). A clone keeps none of them.
 #[derive(Clone, Debug, Default)]
 pub struct CpuRenderer {
     spare: SpareImage,
+    filter: KeptFilter,
+}
+
+/// The renderer's cross bilateral filter with its working set; a clone starts without.
+#[derive(Debug, Default)]
+struct KeptFilter(Mutex<CrossBilateral>);
+
+impl Clone for KeptFilter {
+    fn clone(&self) -> Self {
+        Self::default()
+    }
+}
+
+impl KeptFilter {
+    /// Filters with the kept working set, or with a fresh one while another thread holds it.
+    fn filter(&self, image: &Image, p: &CpuPrepared) -> Result<Image, RenderError> {
+        let params = BilateralParams::default();
+        let filtered = match self.0.try_lock() {
+            Ok(mut kept) => kept.filter(image, &p.gbuffer, params),
+            Err(TryLockError::Poisoned(poisoned)) => {
+                poisoned.into_inner().filter(image, &p.gbuffer, params)
+            }
+            Err(TryLockError::WouldBlock) => {
+                CrossBilateral::default().filter(image, &p.gbuffer, params)
+            }
+        };
+        filtered.map_err(RenderError::backend)
+    }
 }
 
 impl Renderer for CpuRenderer {
@@ -68,8 +97,11 @@ impl Renderer for CpuRenderer {
         loaded: &Arc<Tracer>,
         settings: &RenderSettings,
         pass: Option<u32>,
+        progress: Progress,
     ) -> Result<CpuPrepared, RenderError> {
-        Ok(prepare(scene, settings, Arc::clone(loaded), pass))
+        let p = prepare_watched(scene, settings, Arc::clone(loaded), pass, progress);
+        progress.check()?;
+        Ok(p)
     }
 
     fn cull(
@@ -94,18 +126,27 @@ impl Renderer for CpuRenderer {
     ) -> Result<Image, RenderError> {
         let input = p.cull_input(delta, interleaving);
         let spare = self.spare.take();
-        Ok(shade_lists_into(
-            &p.tracer, &input, lists, visibility, progress, spare,
-        )?)
+        let image = shade_lists_into(&p.tracer, &input, lists, visibility, progress, spare)?;
+        progress.check()?;
+        Ok(image)
     }
 
     fn listed_pairs(&self, lists: &LightLists) -> Option<u64> {
         Some(lists.listed_pairs())
     }
 
-    fn denoise(&self, p: &CpuPrepared, image: Image) -> Result<Image, RenderError> {
-        let filtered = cross_bilateral(&image, &p.gbuffer, BilateralParams::default());
+    /// The filter runs whole once begun (about 0.1 s at 1080p on 2 cores): `progress` is
+    /// checked before and after it.
+    fn denoise(
+        &self,
+        p: &CpuPrepared,
+        image: Image,
+        progress: Progress,
+    ) -> Result<Image, RenderError> {
+        progress.check()?;
+        let filtered = self.filter.filter(&image, p)?;
         self.spare.keep(image);
+        progress.check()?;
         Ok(filtered)
     }
 
@@ -141,7 +182,10 @@ impl Renderer for CpuRenderer {
             SampledLights::Vsgl => shade_vsgl,
             SampledLights::Vpl => shade_sampled_vpls,
         };
-        shade(p, sampling, seed, visibility, progress).map_err(RenderError::backend)
+        let shaded =
+            shade(p, sampling, seed, visibility, progress).map_err(RenderError::backend)?;
+        progress.check()?;
+        Ok(shaded)
     }
 
     fn shade_all_vpls(
@@ -151,14 +195,16 @@ impl Renderer for CpuRenderer {
         visibility: bool,
         progress: Progress,
     ) -> Result<Image, RenderError> {
-        Ok(shade_vpls(
+        let image = shade_vpls(
             &p.tracer,
             &p.gbuffer,
             &p.vpls,
             VplEstimator::Exact,
             visibility,
             progress,
-        )?)
+        )?;
+        progress.check()?;
+        Ok(image)
     }
 
     fn path_trace(
@@ -174,6 +220,10 @@ impl Renderer for CpuRenderer {
         let pixels: Vec<_> = (0..h)
             .into_par_iter()
             .flat_map_iter(|j| {
+                // Once cancelled, the rows left are black and the pass an error.
+                if progress.cancelled() {
+                    return vec![Default::default(); w as usize];
+                }
                 let row: Vec<_> = (0..w)
                     .map(|i| {
                         trace_pixel_sample(
@@ -187,10 +237,11 @@ impl Renderer for CpuRenderer {
                         )
                     })
                     .collect();
-                progress(w as u64);
+                progress.advance(w as u64);
                 row
             })
             .collect();
+        progress.check()?;
         let (mut direct, mut indirect) = (Image::new(w, h), Image::new(w, h));
         for (k, (d, i)) in pixels.into_iter().enumerate() {
             direct.pixels[k] = d;

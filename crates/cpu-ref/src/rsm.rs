@@ -193,11 +193,7 @@ pub fn trace_rsm(
                 };
                 let intensity = match *light {
                     Light::Point { intensity, .. } => intensity,
-                    Light::Spot {
-                        direction,
-                        intensity,
-                        ..
-                    } => intensity * light.spot_falloff(dir.dot(direction)),
+                    Light::Spot { intensity, .. } => intensity * light.spot_falloff(dir),
                     Light::Directional { .. } => {
                         unreachable!("directional lights are orthographic")
                     }

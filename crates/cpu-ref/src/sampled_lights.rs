@@ -18,7 +18,7 @@ use crate::vsgl::{
 };
 use slc_bounds::sg::MeanMap;
 use slc_core::frame::{Importance, LightSampling, Shaded, Timings};
-use slc_core::Vpl;
+use slc_core::{Progress, Vpl};
 
 /// The floor of a VSGL's positional variance `σ_v²` (a single VPL has none, where eq. 1 and
 /// 4 diverge): the square of the tracer's ray offset, the length below which the renderer
@@ -35,7 +35,7 @@ pub fn shade_vsgl(
     s: &LightSampling,
     seed: u32,
     visibility: bool,
-    progress: &(dyn Fn(u64) + Sync),
+    progress: Progress,
 ) -> Result<Shaded, VsglError> {
     let mut timings = Timings::default();
     let floor = sigma2_floor(&p.tracer);
@@ -101,7 +101,7 @@ pub fn shade_sampled_vpls(
     s: &LightSampling,
     seed: u32,
     visibility: bool,
-    progress: &(dyn Fn(u64) + Sync),
+    progress: Progress,
 ) -> Result<Shaded, VsglError> {
     let mut timings = Timings::default();
     let importance = timings.time("importance_map", || match s.importance {

@@ -1,6 +1,10 @@
 //! Ray casting against the scene's triangles with an obvhs compressed wide BVH. Triangles of
 //! alpha-masked materials are cut out where their mask says so, for every query (camera,
 //! RSM and shadow rays): a hit there is ignored and the ray goes on (any-hit test).
+mod packet;
+
+pub use packet::Rays8;
+
 use crate::watertight::{barycentric, ShearedRay};
 use glam::{Vec2, Vec3, Vec3A};
 use obvhs::cwbvh::{builder::build_cwbvh_from_tris, CwBvh};
@@ -160,36 +164,77 @@ impl Tracer {
         dir: Vec3,
         tmax: f32,
     ) -> Option<SurfaceHit> {
-        let ray = Ray::new(origin.into(), dir.into(), 0.0, tmax);
+        let (t, prim) = self.closest(origin, dir, 0.0, tmax)?;
+        Some(self.surface_at(scene, prim, origin, dir, t))
+    }
+
+    /// The closest hits of up to eight rays from `origin` along `rays.dir`, t in (0,
+    /// `rays.tmax`) (`rays.origin` and `rays.tmin` are ignored): each what
+    /// [`Tracer::intersect`] finds for the ray alone, traced together where the rays are
+    /// coherent ([`Rays8`]).
+    pub fn intersect8(&self, scene: &Scene, origin: Vec3, rays: &Rays8) -> [Option<SurfaceHit>; 8] {
+        let mut packet = *rays;
+        packet.origin = [origin; 8];
+        packet.tmin = [0.0; 8];
+        let hits = self.closest8(&packet);
+        std::array::from_fn(|i| {
+            let (t, prim) = hits[i]?;
+            Some(self.surface_at(scene, prim, origin, rays.dir[i], t))
+        })
+    }
+
+    /// The distance and BVH primitive of the closest hit in (tmin, tmax): the traversal of
+    /// [`Tracer::intersect`] without the surface at the hit.
+    pub fn closest(&self, origin: Vec3, dir: Vec3, tmin: f32, tmax: f32) -> Option<(f32, u32)> {
+        let ray = Ray::new(origin.into(), dir.into(), tmin, tmax);
         let sheared = ShearedRay::new(origin, dir);
         let mut hit = RayHit::none();
-        if !self.bvh.ray_traverse(ray, &mut hit, |r, id| {
-            self.hit_distance(&sheared, id, r.tmin, r.tmax)
-        }) {
-            return None;
-        }
-        Some(self.surface(
-            scene,
-            hit.primitive_id as usize,
-            origin + dir * hit.t,
-            dir,
-            hit.t,
-        ))
+        self.bvh
+            .ray_traverse(ray, &mut hit, |r, id| {
+                self.hit_distance(&sheared, id, r.tmin, r.tmax)
+            })
+            .then_some((hit.t, hit.primitive_id))
+    }
+
+    /// The surface at distance `t` along the ray from `origin` along `dir` on BVH primitive
+    /// `prim`.
+    fn surface_at(&self, scene: &Scene, prim: u32, origin: Vec3, dir: Vec3, t: f32) -> SurfaceHit {
+        self.surface(scene, prim as usize, origin + dir * t, dir, t)
     }
 
     /// Whether the segment from `from` to `to` is free of geometry (ends excluded by epsilon).
     pub fn unoccluded(&self, from: Vec3, to: Vec3) -> bool {
+        match self.segment_ray(from, to) {
+            Some((dir, tmin, tmax)) => self.segment_is_free(from, dir, tmin, tmax),
+            None => true,
+        }
+    }
+
+    /// The ray [`Tracer::unoccluded`] traces from `from` to `to`: its unit direction and its
+    /// range (tmin, tmax], the ends excluded by epsilon; `None` where the ends lie within two
+    /// epsilons (free without a ray).
+    pub fn segment_ray(&self, from: Vec3, to: Vec3) -> Option<(Vec3, f32, f32)> {
         let d = to - from;
         let len = d.length();
-        if len <= 2.0 * self.epsilon {
-            return true;
-        }
-        self.segment_is_free(from, d / len, self.epsilon, len - self.epsilon)
+        (len > 2.0 * self.epsilon).then(|| (d / len, self.epsilon, len - self.epsilon))
+    }
+
+    /// The ray [`Tracer::escapes`] traces from `from` along `dir`: its range (tmin, tmax].
+    pub fn escape_range(&self) -> (f32, f32) {
+        (self.epsilon, f32::INFINITY)
+    }
+
+    /// The rays of `rays` in use that meet geometry within their ranges: each ray what
+    /// `Tracer::segment_is_free` says for it alone, negated, traced together where the rays
+    /// are coherent ([`Rays8`]).
+    pub fn occluded8(&self, rays: &Rays8) -> u8 {
+        self.blocked8(rays)
     }
 
     /// Whether the ray from `from` along `dir` escapes the scene (for directional lights).
     pub fn escapes(&self, from: Vec3, dir: Vec3) -> bool {
-        self.segment_is_free(from, dir, self.epsilon, f32::INFINITY)
+        let (tmin, tmax) = self.escape_range();
+        self.segment_is_free(from, dir, tmin, tmax)
     }
 
     fn segment_is_free(&self, from: Vec3, dir: Vec3, tmin: f32, tmax: f32) -> bool {

@@ -8,7 +8,7 @@ use rayon::prelude::*;
 use slc_bounds::lanes::F8;
 use slc_bounds::stochastic::{scalar_intensity, StochasticParams};
 use slc_bounds::BoundsError;
-use slc_core::{CullError, CullInput, GBuffer, GSample, Image, LightLists, Vpl, NO_LIST};
+use slc_core::{CullError, CullInput, GBuffer, GSample, Image, LightLists, Progress, Vpl, NO_LIST};
 use slc_cull::prefetch::prefetch;
 use slc_cull::receiver_chunks::{Passing, MAX_SETS};
 use slc_cull::tiles::{Band, Tile, TileOrder};
@@ -65,15 +65,16 @@ pub fn received(
 }
 
 /// Indirect radiance at every pixel from every VPL; with `visibility`, each VPL-pixel pair
-/// is tested with a shadow ray. `progress` is called with the number of pixels finished.
-/// Fails only when δ or a VPL's ξ is out of its domain.
+/// is tested with a shadow ray. `progress` is told the number of pixels finished; once it is
+/// cancelled the rows not yet begun are left black (the caller checks `progress`). Fails
+/// only when δ or a VPL's ξ is out of its domain.
 pub fn shade_vpls(
     tracer: &Tracer,
     gbuffer: &GBuffer,
     vpls: &[Vpl],
     estimator: VplEstimator,
     visibility: bool,
-    progress: &(dyn Fn(u64) + Sync),
+    progress: Progress,
 ) -> Result<Image, BoundsError> {
     let roulette = match estimator {
         VplEstimator::Exact => None,
@@ -90,6 +91,9 @@ pub fn shade_vpls(
         .par_chunks_mut(w)
         .zip(gbuffer.samples.par_chunks(w))
         .for_each(|(out, row)| {
+            if progress.cancelled() {
+                return;
+            }
             for (o, g) in out.iter_mut().zip(row) {
                 let Some(g) = g else { continue };
                 let from = tracer.lift(g.position, g.geometric_normal);
@@ -104,7 +108,7 @@ pub fn shade_vpls(
                     }
                 }
             }
-            progress(w as u64);
+            progress.advance(w as u64);
         });
     Ok(image)
 }
@@ -127,13 +131,15 @@ pub fn shade_vpls(
 /// ([`SHARED_WINDOW_PIXELS`]). Where those lanes accepted a pair with the shader's own
 /// operations, their ωo, l² and I(ωo) are used as they are, and the receiver's BRDF is
 /// formed eight receivers at a time as well (`received_lanes`, else [`received`]). Every
-/// pixel sums its VPLs in its list's order either way.
+/// pixel sums its VPLs in its list's order either way. `progress` is told the pixels of each
+/// tile shaded; once it is cancelled the tiles not yet begun are left unshaded (the caller
+/// checks `progress`).
 pub fn shade_lists(
     tracer: &Tracer,
     input: &CullInput,
     lists: &LightLists,
     visibility: bool,
-    progress: &(dyn Fn(u64) + Sync),
+    progress: Progress,
 ) -> Result<Image, CullError> {
     shade_lists_into(tracer, input, lists, visibility, progress, None)
 }
@@ -147,7 +153,7 @@ pub fn shade_lists_into(
     input: &CullInput,
     lists: &LightLists,
     visibility: bool,
-    progress: &(dyn Fn(u64) + Sync),
+    progress: Progress,
     spare: Option<Image>,
 ) -> Result<Image, CullError> {
     let (gbuffer, vpls) = (input.gbuffer, input.vpls);
@@ -193,11 +199,14 @@ pub fn shade_lists_into(
             |(scratch, out), band| {
                 let Band { tiles, mut rows } = band;
                 for tile in tiles {
+                    if progress.cancelled() {
+                        return;
+                    }
                     out.clear();
                     out.resize(tile.pixel_count(), Vec3::ZERO);
                     shading.tile(tile, k, out, scratch);
                     rows.put(tile, out);
-                    progress(out.len() as u64);
+                    progress.advance(out.len() as u64);
                 }
             },
         );

@@ -37,6 +37,16 @@ impl ShearedRay {
         }
     }
 
+    /// The permuted axes (kx, ky, kz): kz is the direction's dominant axis.
+    pub fn axes(&self) -> [usize; 3] {
+        self.k
+    }
+
+    /// The shear constants (Sx, Sy, Sz).
+    pub fn shear(&self) -> Vec3 {
+        self.s
+    }
+
     /// Distance t to the triangle in units of the ray's direction, if hit with tmin < t <= tmax.
     #[inline]
     pub fn intersect(&self, tri: &Triangle, tmin: f32, tmax: f32) -> f32 {

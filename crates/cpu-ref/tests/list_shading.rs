@@ -251,7 +251,7 @@ fn the_renderer_shades_frame_after_frame_into_the_filtered_image() {
         let noisy = r
             .shade_lists(&p.tracer, p, &lists, 1e-3, k, false, &|_| {})
             .unwrap();
-        let filtered = r.denoise(p, noisy.clone()).unwrap();
+        let filtered = r.denoise(p, noisy.clone(), &|_| {}).unwrap();
         (noisy, filtered)
     };
     let first: Vec<_> = frames.iter().map(frame).collect();

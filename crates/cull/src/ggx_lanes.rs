@@ -1,5 +1,5 @@
 //! The GGX microfacet terms of paper eq. (6)-(8) in lanes ([`slc_bounds::lanes`]), shared by the
-//! roulette (the VPL's lobe, [`crate::acceptance`]) and the shading of the receivers' BRDF:
+//! roulette (the VPL's lobe, the `acceptance` module) and the shading of the receivers' BRDF:
 //! each lane performs the IEEE operations of `slc_bounds::brdf::microfacet` (isotropic, the
 //! half vector formed in f32) in the same order, so the two agree bit for bit there.
 use core::f32::consts::PI;

@@ -16,11 +16,16 @@
 //!   spheroid itself tested in its stretched and rotated space (eq. 16-17, section 5.2).
 //! - `clustered`, `clustered-sphere`, `clustered-enclosing-sphere` ([`BoundedCuller`]): the
 //!   same tiles cut into 32 exponential depth slices.
-//! - `tight`, `clustered-tight` ([`BoundedCuller`]): those lists cut per block by a bound of p
-//!   over the block's receivers (docs/tight-bounds.md).
-//! - `binned` ([`BinnedCuller`]): each VPL's bound binned into the tiles its screen rectangle
-//!   overlaps and tested at each pixel of it: a list per pixel, at a cost that follows the
-//!   pixels the bounds cover, not VPLs × tiles (docs/many-vpls.md).
+//! - `tight`, `clustered-tight` ([`BoundedCuller`]): the `ellipsoid` and `clustered` lists
+//!   cut once more per 8×8 block of each tile, keeping a VPL only where a bound of p(ωo, l)
+//!   over the box of the block's receivers ([`slc_bounds::BoxBound`]: D, Fresnel, G1 and the
+//!   VPL's tangent plane over the cone of directions to them) may exceed its ξ: far fewer
+//!   false positives than the paper's bounds, still none missed (`docs/tight-bounds.md`).
+//! - `splatting`, `clustered-raster` ([`GpuOnly`]): the GPU's rasterization baselines; the
+//!   CPU culler refuses them with an error.
+//! - `binned` ([`BinnedCuller`]): each VPL's bound mapped once to the rectangle of pixels it
+//!   may cover and tested at each pixel of it: a list per pixel, at a cost that follows the
+//!   pixels the bounds cover, not VPLs × tiles (docs/many-vpls.md). CPU only for now.
 //!
 //! The crate needs no scene loader, BVH or GPU: it builds on `slc-core` without its
 //! `loaders` feature, so an engine can embed it with its own G-buffer and VPLs

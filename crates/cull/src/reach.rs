@@ -2,7 +2,7 @@
 //! receiver's BRDF: the VPL's own bound (outside it p <= ξ, so eq. (3) weights the pair 0)
 //! and the sign of the cosine at either end (eq. 1 and the max(ωo·n, 0) of eq. 4), each with
 //! a margin well above float rounding; then, for the pairs those pass, the roulette itself
-//! (p(ωo, l) > ξ of eq. 2-3, [`crate::acceptance`]) formed as the shader forms it. No exit
+//! (p(ωo, l) > ξ of eq. 2-3, the `acceptance` module) formed as the shader forms it. No exit
 //! rejects a pair that the full evaluation accepts: the estimate stays bit for bit the same,
 //! only cheaper.
 use crate::acceptance::Acceptance;
@@ -125,7 +125,7 @@ fn behind<R: Real>(t: R, margin_sq: R) -> R::Mask {
 
 /// What one VPL needs for the early exits: its own bound (the tightest one: the spheroid for
 /// a glossy VPL, whatever the culling strategy, since every strategy's bound contains every
-/// pair with p > ξ), its normal, its roulette ([`Acceptance`]) and its bound over boxes of
+/// pair with p > ξ), its normal, its roulette (`Acceptance`) and its bound over boxes of
 /// receivers ([`Self::box_may_exceed_xi`]).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct VplReach {
@@ -249,7 +249,7 @@ impl VplReach {
     /// in f32 as the shader forms it). False only where p(ωo, l) <= ξ for sure: outside the
     /// VPL's own bound (beyond a margin for the f32 rounding of the test), behind the VPL
     /// (ωo·n below −[`SIGN_MARGIN`]: I(ωo) = 0 by eq. 4), or where the shader's own p is
-    /// not above ξ ([`crate::acceptance`]).
+    /// not above ξ (the `acceptance` module).
     #[inline]
     pub fn may_accept(&self, d: Vec3) -> bool {
         let d = d.to_array();

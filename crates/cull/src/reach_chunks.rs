@@ -3,7 +3,7 @@
 //! metrics test one VPL against eight pixels instead, [`crate::ReceiverChunks`]): eight pairs per
 //! test in 256-bit lanes where the CPU has AVX2, the same arithmetic as [`VplReach`] lane for
 //! lane (so the same pairs pass), and only the VPLs that pass are handed on. The roulette
-//! (p > ξ, [`crate::acceptance`]) is evaluated for a chunk only when one of its lanes
+//! (p > ξ, the `acceptance` module) is evaluated for a chunk only when one of its lanes
 //! passes the bound and sign tests.
 use crate::acceptance::Acceptance;
 use crate::reach::{Reach, VplReach};

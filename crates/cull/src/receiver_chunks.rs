@@ -2,7 +2,7 @@
 //! light lists in the shading, every pixel of a tile in the metrics), eight receivers per
 //! test: the transpose of [`crate::ReachChunks`]. The VPL's constants are broadcast to every
 //! lane once and each lane is a pixel, so a VPL whose bound covers a patch of the tile fills
-//! whole chunks with passing receivers, and the roulette ([`crate::acceptance`]) runs on far
+//! whole chunks with passing receivers, and the roulette (the `acceptance` module) runs on far
 //! fewer chunks than when the lanes are VPLs. Each lane performs the same IEEE operations as
 //! [`VplReach::may_contribute`], so the same pairs pass.
 //!

@@ -27,7 +27,7 @@ pub(crate) enum Clustering {
 }
 
 /// What every tile reads.
-struct Frame {
+struct TileInputs {
     width: u32,
     /// The G-buffer's positions, packed ([`positions`]).
     positions: Vec<Option<Vec3>>,
@@ -71,7 +71,7 @@ pub(crate) fn cull(
         Clustering::ExponentialSlices => depth_range(&positions, &view)
             .map_or(DepthSplit::HalfZ, |(lo, hi)| DepthSplit::slices(lo, hi)),
     };
-    let frame = Frame {
+    let frame = TileInputs {
         width,
         positions,
         view,
@@ -114,7 +114,7 @@ struct Worker {
 }
 
 impl Worker {
-    fn cull_tile(&mut self, tile: &Tile, frame: &Frame) -> Result<(), CullError> {
+    fn cull_tile(&mut self, tile: &Tile, frame: &TileInputs) -> Result<(), CullError> {
         let Some((lo, hi)) = self.gather(tile, frame)? else {
             return Ok(());
         };
@@ -204,7 +204,11 @@ impl Worker {
     /// covered); `None` if no pixel has a sample. Errors on a sample not in front of the
     /// camera. The depth is the sample's `GSample::depth` recomputed from its position in the
     /// culling view (f64), so the tile frusta and the VPL bounds see the same geometry.
-    fn gather(&mut self, tile: &Tile, frame: &Frame) -> Result<Option<(DVec2, DVec2)>, CullError> {
+    fn gather(
+        &mut self,
+        tile: &Tile,
+        frame: &TileInputs,
+    ) -> Result<Option<(DVec2, DVec2)>, CullError> {
         let [x0, y0, x1, y1] = tile.screen_rect(frame.k);
         let (mut lo, mut hi) = frame.view.image_rect(x0, y0, x1, y1);
         self.samples.clear();

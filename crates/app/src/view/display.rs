@@ -2,7 +2,7 @@
 //! canvas, which is blitted to the window's surface and read back for screenshots, so a
 //! screenshot is exactly what the window shows.
 use super::ViewError;
-use slc_gpu_wgpu::{GpuContext, GpuRenderer};
+use slc_gpu_wgpu::GpuContext;
 use std::sync::Arc;
 use winit::window::Window;
 
@@ -29,8 +29,8 @@ pub struct Display {
 
 impl Display {
     /// Opens the adapter that can present to `window`, a device with its limits (and
-    /// timestamp queries where it has them), the GPU renderer on that device and the display.
-    pub fn open(window: Arc<Window>) -> Result<(Self, GpuRenderer), ViewError> {
+    /// timestamp queries where it has them) and the display on that device.
+    pub fn open(window: Arc<Window>) -> Result<(Self, GpuContext), ViewError> {
         let instance =
             wgpu::Instance::new(wgpu::InstanceDescriptor::new_without_display_handle_from_env());
         let surface = instance
@@ -54,7 +54,6 @@ impl Display {
             reason: e.to_string(),
         })?;
         let ctx = GpuContext::from_device(device.clone(), queue, &adapter.get_info());
-        let gpu = GpuRenderer::from_context(ctx)?;
         let size = window.inner_size();
         let mut config = surface
             .get_default_config(&adapter, size.width.max(1), size.height.max(1))
@@ -71,7 +70,7 @@ impl Display {
             config,
             view_format,
         };
-        Ok((display, gpu))
+        Ok((display, ctx))
     }
 
     /// Follows the window's new size in pixels.

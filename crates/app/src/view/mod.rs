@@ -1,7 +1,9 @@
-//! `slc view`: an interactive window on the GPU renderer. A fly camera, movable lights and
+//! `slc view`: an interactive window on the GPU renderer, or with `--backend cpu` on the CPU
+//! reference renderer (for machines without a GPU). A fly camera, movable lights and
 //! a side panel (egui) with the render controls, overlays (heat map of lights per pixel and
 //! FDR, tile grid), per-pass times and lights per pixel; screenshots (PNG) and the current
-//! settings as a `.toml` scene that `slc render` accepts.
+//! settings as a `.toml` scene that `slc render` accepts. The window is drawn with wgpu on
+//! either backend (on a machine without a GPU, Mesa's software adapters draw it).
 //!
 //! For tests and scripts, `--frames N` renders N frames (with `--camera-script`, one scripted
 //! input per frame), writes `--screenshot` and `--save-settings`, prints the per-pass times
@@ -9,7 +11,7 @@
 //!
 //! Files: [`window`] runs the event loop with [`input`] and [`ui`], [`session`] holds what the
 //! view shows and renders, [`camera`] and [`script`] move the view, [`controls`], [`panel`] and [`light_edit`] are the
-//! side panel, [`frame`] renders on the GPU, [`overlay`] makes the picture, [`display`] puts it
+//! side panel, [`frame`] renders on the chosen backend, [`overlay`] makes the picture, [`display`] puts it
 //! in the window, [`screenshot`] and [`scene_toml`] save it.
 mod camera;
 mod controls;
@@ -26,10 +28,13 @@ mod session;
 mod ui;
 mod window;
 
-use crate::args::{stops, EstimateArgs, ImportanceArgs, Lobes, PipelineArgs, Shader};
+use crate::args::{
+    count, stops, Backend, EstimateArgs, ImportanceArgs, Lobes, PipelineArgs, SceneSpec, Shader,
+};
 use clap::Args;
 use controls::{Controls, Layer, Overlay};
 use session::Session;
+use slc_core::frame::counts::{Count, HEAT_MAX, HEIGHT, MAX_IMAGE_SIDE, RSM};
 use std::path::PathBuf;
 
 /// Everything that stops the view.
@@ -42,8 +47,9 @@ pub enum ViewError {
     NoDisplay(String),
     #[error(
         "no GPU adapter can draw into the window ({0}); install a Vulkan driver (on Debian: \
-         apt-get install mesa-vulkan-drivers libvulkan1); slc view needs the GPU, slc render \
-         --backend cpu does not"
+         apt-get install mesa-vulkan-drivers libvulkan1, whose lavapipe draws on the CPU); \
+         slc view draws its window with wgpu also with --backend cpu, slc render --backend \
+         cpu needs no adapter"
     )]
     NoAdapter(String),
     #[error("cannot open a window: {0}")]
@@ -60,22 +66,35 @@ pub enum ViewError {
     Write { path: PathBuf, message: String },
 }
 
+/// The view's width: the window adds the side panel ([`window::PANEL_WIDTH`]) beside it, and
+/// the window's surface is at most [`MAX_IMAGE_SIDE`] wide.
+pub const VIEW_WIDTH: Count = Count {
+    what: "the view's width (the window adds the side panel)",
+    min: 1,
+    max: MAX_IMAGE_SIDE - window::PANEL_WIDTH,
+};
+
 /// `slc view`'s options.
 #[derive(Args, Debug)]
 pub struct ViewArgs {
     /// A .gltf/.glb/.obj file, a .toml scene-settings file, or a built-in scene name; none
     /// opens the built-in default (settings can be saved for scene files only).
-    pub scene: Option<String>,
-    /// Width of the rendered view in pixels (the window adds the side panel).
-    #[arg(long, default_value_t = 640)]
+    #[arg(value_parser = SceneSpec::parser())]
+    pub scene: Option<SceneSpec>,
+    #[arg(long, default_value_t = 640, value_parser = count(VIEW_WIDTH),
+          help = VIEW_WIDTH.help("Width of the rendered view in pixels (the window adds the side panel)"))]
     pub width: u32,
-    /// Height of the rendered view in pixels.
-    #[arg(long, default_value_t = 480)]
+    #[arg(long, default_value_t = 480, value_parser = count(HEIGHT),
+          help = HEIGHT.help("Height of the rendered view in pixels"))]
     pub height: u32,
+    /// Who renders the frames: the GPU (wgpu), or the CPU reference renderer (rayon) for
+    /// machines without a GPU; the window is drawn with wgpu either way.
+    #[arg(long, value_enum, default_value_t = Backend::Gpu)]
+    pub backend: Backend,
     #[arg(long, value_enum, default_value_t = Shader::Vpl)]
     pub shader: Shader,
-    /// Reflective-shadow-map resolution per face.
-    #[arg(long, default_value_t = 64)]
+    #[arg(long, default_value_t = 64, value_parser = count(RSM),
+          help = RSM.help("Reflective-shadow-map resolution per face"))]
     pub rsm: u32,
     /// Seed of ξ, interleaving and sampling.
     #[arg(long, default_value_t = 0)]
@@ -98,8 +117,8 @@ pub struct ViewArgs {
     /// What is drawn over the picture.
     #[arg(long, value_enum, default_value_t = Overlay::None)]
     pub overlay: Overlay,
-    /// Heat-map brightness saturates at this many lights per pixel.
-    #[arg(long, default_value_t = 256)]
+    #[arg(long, default_value_t = 256, value_parser = count(HEAT_MAX),
+          help = HEAT_MAX.help("Heat-map brightness saturates at this many lights per pixel"))]
     pub heat_max: u32,
     /// Measure lights per pixel and FDR every frame (brute force on the CPU), also without
     /// the heat map.
@@ -153,10 +172,7 @@ fn view(args: &ViewArgs) -> Result<(), ViewError> {
         .and_then(|s| s.validate().map_err(crate::backend::message))
         .map_err(ViewError::Input)?;
     let spec = args.scene.as_deref().unwrap_or("default");
-    let scene = slc_core::load_scene(spec).map_err(|e| ViewError::Input(e.to_string()))?;
-    for w in &scene.report.warnings {
-        eprintln!("warning: {}: {w}", scene.label());
-    }
+    let scene = SceneSpec::load(args.scene.as_ref()).map_err(ViewError::Input)?;
     scene
         .validate_for_render()
         .map_err(|e| ViewError::Input(e.to_string()))?;

@@ -5,7 +5,7 @@ use super::frame::ViewFrame;
 use super::light_edit;
 use crate::args::{Lobes, Shader};
 use egui::{DragValue, Grid, Slider, Ui};
-use slc_core::{Light, Strategy};
+use slc_core::{Capabilities, Light, Strategy};
 
 /// RSM sizes the panel offers (texels per face side).
 const RSM_SIZES: [u32; 6] = [16, 32, 64, 128, 256, 512];
@@ -13,8 +13,12 @@ const RSM_SIZES: [u32; 6] = [16, 32, 64, 128, 256, 512];
 /// What the panel shows besides the controls.
 pub struct PanelInfo<'a> {
     pub scene: &'a str,
+    /// Who renders: the GPU adapter, or the CPU and its threads.
     pub adapter: &'a str,
+    /// Whether the renderer is a software GPU.
     pub software: bool,
+    /// What the renderer runs: the strategies offered.
+    pub capabilities: Capabilities,
     pub frame: Option<&'a ViewFrame>,
     /// Wall-clock milliseconds of the view's own work in the last frame (picture upload,
     /// egui, blit, present).
@@ -60,7 +64,7 @@ pub fn show(
         ui.label(info.status);
     }
     ui.separator();
-    render_controls(ui, controls);
+    render_controls(ui, controls, &info.capabilities);
     ui.separator();
     show_controls(ui, controls);
     if let Some(note) = info.note {
@@ -81,7 +85,7 @@ pub fn show(
 }
 
 /// Strategy, δ, K, RSM size, shader and N, lobes, denoise.
-fn render_controls(ui: &mut Ui, c: &mut Controls) {
+fn render_controls(ui: &mut Ui, c: &mut Controls, capabilities: &Capabilities) {
     ui.horizontal(|ui| {
         ui.radio_value(&mut c.shader, Shader::Vpl, "VPL");
         ui.radio_value(&mut c.shader, Shader::Vsgl, "VSGL");
@@ -92,7 +96,7 @@ fn render_controls(ui: &mut Ui, c: &mut Controls) {
             egui::ComboBox::from_label("strategy")
                 .selected_text(current)
                 .show_ui(ui, |ui| {
-                    for s in Strategy::every() {
+                    for s in Strategy::every().filter(|&s| capabilities.runs(s)) {
                         if ui.selectable_label(current == s.name(), s.name()).clicked() {
                             c.estimate.culling = s.name().to_string();
                         }

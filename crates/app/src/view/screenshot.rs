@@ -2,7 +2,7 @@
 use super::display::CANVAS_FORMAT;
 use super::ViewError;
 use image::RgbImage;
-use slc_gpu_wgpu::buffers::read_back;
+use slc_gpu_wgpu::device::buffers::read_back;
 use slc_gpu_wgpu::GpuContext;
 use std::path::Path;
 

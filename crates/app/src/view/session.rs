@@ -143,9 +143,9 @@ mod tests {
         view: ViewArgs,
     }
 
-    /// The GPU renderer, or `None` (a notice; a failure with `CI` set) without an adapter.
-    fn gpu() -> Option<slc_gpu_wgpu::GpuRenderer> {
-        match slc_gpu_wgpu::GpuRenderer::new() {
+    /// A device, or `None` (a notice; a failure with `CI` set) without an adapter.
+    fn gpu() -> Option<slc_gpu_wgpu::GpuContext> {
+        match slc_gpu_wgpu::GpuContext::new() {
             Ok(g) => Some(g),
             Err(e) if std::env::var_os("CI").is_none() => {
                 eprintln!("notice: GPU test skipped ({e})");
@@ -157,13 +157,30 @@ mod tests {
 
     #[test]
     fn a_moved_light_or_camera_renders_again_and_nothing_else_does() {
-        let Some(gpu) = gpu() else {
+        for backend in ["gpu", "cpu"] {
+            moved_light_or_camera_renders_again(backend);
+        }
+    }
+
+    fn moved_light_or_camera_renders_again(backend: &str) {
+        let Some(ctx) = gpu() else {
             return;
         };
-        let args = Cli::parse_from(["slc", "--width", "48", "--height", "32", "--rsm", "8"]).view;
+        let args = Cli::parse_from([
+            "slc",
+            "--width",
+            "48",
+            "--height",
+            "32",
+            "--rsm",
+            "8",
+            "--backend",
+            backend,
+        ])
+        .view;
         let scene = slc_core::builtin("default").unwrap();
         let mut s = Session::new(&args, "default", scene, Controls::from_args(&args));
-        let r = FrameRenderer::new(gpu, &s.scene).unwrap();
+        let r = FrameRenderer::new(args.backend, ctx, &s.scene).unwrap();
         assert!(s.update(&r, false).unwrap());
         assert!(!s.update(&r, false).unwrap(), "nothing changed");
         let before = s

@@ -45,11 +45,12 @@ impl Running {
     /// The panel and the picture for this frame: what the panel asked for and what to draw.
     pub fn run_ui(&mut self, s: &mut Session) -> (Actions, Paint) {
         let raw = self.egui_state.take_egui_input(&self.window);
-        let ctx = self.renderer.gpu().context();
+        let adapter = self.renderer.renderer_label();
         let info = PanelInfo {
             scene: &s.scene.name,
-            adapter: &ctx.adapter_name,
-            software: ctx.software,
+            adapter: &adapter,
+            software: self.renderer.software_gpu(),
+            capabilities: self.renderer.capabilities(),
             frame: s.frame.as_ref(),
             display_ms: self.display_ms,
             note: self.note,

@@ -104,7 +104,7 @@ impl ApplicationHandler for App<'_> {
             WindowEvent::CloseRequested => event_loop.exit(),
             WindowEvent::Resized(size) => {
                 r.display
-                    .resize(&r.renderer.gpu().context().device, size.width, size.height)
+                    .resize(&r.renderer.context().device, size.width, size.height)
             }
             WindowEvent::RedrawRequested => {
                 if let Err(e) = self.redraw(event_loop) {
@@ -156,11 +156,14 @@ impl App<'_> {
                 .create_window(attributes)
                 .map_err(|e| ViewError::Window(e.to_string()))?,
         );
-        let (display, gpu) = Display::open(Arc::clone(&window))?;
-        warn_if_software(gpu.context());
-        let renderer = FrameRenderer::new(gpu, &s.scene).map_err(ViewError::Render)?;
+        let (display, ctx) = Display::open(Arc::clone(&window))?;
+        let renderer =
+            FrameRenderer::new(self.args.backend, ctx, &s.scene).map_err(ViewError::Render)?;
+        if renderer.software_gpu() {
+            warn_if_software(renderer.context());
+        }
         let egui = egui::Context::default();
-        let max_side = renderer.gpu().context().limits.max_texture_dimension_2d as usize;
+        let max_side = renderer.context().limits.max_texture_dimension_2d as usize;
         let egui_state = egui_winit::State::new(
             egui.clone(),
             egui::ViewportId::ROOT,
@@ -214,7 +217,7 @@ impl App<'_> {
         let start = Instant::now();
         r.update_picture(s);
         let (actions, paint) = r.run_ui(s);
-        r.display.draw(r.renderer.gpu().context(), paint)?;
+        r.display.draw(r.renderer.context(), paint)?;
         r.display_ms = start.elapsed().as_secs_f64() * 1e3;
         r.input.reset |= actions.reset_camera;
         if let (true, Some(_), Some(f)) = (rendered, self.args.frames, &s.frame) {
@@ -281,7 +284,7 @@ impl App<'_> {
                 height: bottom.saturating_sub(top),
             }
         };
-        capture(r.renderer.gpu().context(), canvas, rect)
+        capture(r.renderer.context(), canvas, rect)
     }
 
     /// The end of a `--frames` run: the screenshot, the settings, the per-pass times.
@@ -297,7 +300,7 @@ impl App<'_> {
         let adapter = self
             .running
             .as_ref()
-            .map_or("", |r| r.renderer.gpu().context().adapter_name.as_str());
+            .map_or(String::new(), |r| r.renderer.renderer_label());
         let clock = s.frame.as_ref().map_or("", |f| f.clock.label());
         println!(
             "{}: {} frames of {}x{} on {}; ms per pass, median over the frames after the first \

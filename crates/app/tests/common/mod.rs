@@ -47,3 +47,16 @@ pub fn gpu_available() -> bool {
         Err(e) => panic!("GPU device could not be created: {e}"),
     }
 }
+
+/// The RGB pixels of the first layer of an EXR file.
+#[allow(dead_code)]
+pub fn read_exr(path: &Path) -> Vec<[f32; 3]> {
+    use exr::prelude::*;
+    let img = read_first_rgba_layer_from_file(
+        path,
+        |res, _| (res.width(), vec![[0.0; 3]; res.width() * res.height()]),
+        |(w, px), pos, (r, g, b, _a): (f32, f32, f32, f32)| px[pos.y() * *w + pos.x()] = [r, g, b],
+    )
+    .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    img.layer_data.channel_data.pixels.1
+}

@@ -2,7 +2,7 @@
 //! holds a point with p > ξ passes, over random lobes at the extremes; a 1% shrink of the
 //! bound fails; and the bound rejects boxes the spheroid cannot.
 use super::*;
-use crate::frame::Frame;
+use crate::basis::Basis;
 use crate::spheroid::Spheroid;
 use crate::test_util::{random_anisotropy, Rng};
 use glam::{DQuat, DVec3};
@@ -56,7 +56,7 @@ pub(super) fn random_lobe(rng: &mut Rng) -> TestLobe {
         theta_i.sin() * phi.sin(),
         theta_i.cos(),
     );
-    let omega_i = Frame::from_unit(n).to_world(local).normalize();
+    let omega_i = Basis::from_unit(n).to_world(local).normalize();
     let flux = Vec3::new(rng.f32(), rng.f32(), rng.f32()) * 10f32.powf(rng.range(-6.0, 6.0));
     if rng.u64().is_multiple_of(4) {
         let kd = Vec3::new(rng.f32(), rng.f32(), rng.f32());
@@ -107,7 +107,7 @@ pub(super) fn direction(rng: &mut Rng, lobe: &TestLobe) -> Vec3 {
     if let TestLobe::Glossy(l) = lobe {
         if rng.u64().is_multiple_of(2) {
             let spread = 4.0 * l.alpha() * rng.f32();
-            let t = Frame::from_unit(l.reflection());
+            let t = Basis::from_unit(l.reflection());
             let phi = rng.range(0.0, core::f32::consts::TAU);
             return t
                 .to_world(Vec3::new(spread * phi.cos(), spread * phi.sin(), 1.0))

@@ -126,7 +126,7 @@ fn lobe_and_params() -> impl Strategy<Value = (GlossyLobe, StochasticParams)> {
                 let n = Vec3::new(ns * np.cos(), ns * np.sin(), nz).normalize();
                 let (s, p) = ((1.0 - cos_i * cos_i).sqrt(), iphi * core::f32::consts::TAU);
                 let omega_i =
-                    Frame::from_unit(n).to_world(Vec3::new(s * p.cos(), s * p.sin(), cos_i));
+                    Basis::from_unit(n).to_world(Vec3::new(s * p.cos(), s * p.sin(), cos_i));
                 let fresnel = if schlick {
                     Fresnel::Schlick(Vec3::from_array(f0))
                 } else {

@@ -119,7 +119,7 @@ pub(super) fn random_lobe(rng: &mut Rng, alpha: f32, theta_i: f32, fresnel: Fres
         theta_i.sin() * phi.sin(),
         theta_i.cos(),
     );
-    let omega_i = Frame::from_unit(n).to_world(local);
+    let omega_i = Basis::from_unit(n).to_world(local);
     let q = Vec3::new(
         rng.range(-1.0, 1.0),
         rng.range(-1.0, 1.0),

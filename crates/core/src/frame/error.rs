@@ -28,6 +28,10 @@ pub enum RenderError {
         count: usize,
         pixels: usize,
     },
+    /// The work was cancelled through its monitor ([`crate::progress::Cancel`]) before it was
+    /// done; nothing it made is returned.
+    #[error("cancelled")]
+    Cancelled,
     /// A failure inside a backend (a GPU fault, an invalid VSGL input, ...).
     #[error(transparent)]
     Backend(Box<dyn std::error::Error + Send + Sync + 'static>),

@@ -1,17 +1,18 @@
 //! The frame vocabulary every backend shares: what to render ([`RenderSettings`]), what it
 //! cost ([`Timings`]), what comes back ([`Shaded`], [`RenderedFrame`]) and why it failed
 //! ([`RenderError`]).
+pub mod counts;
 mod error;
-mod memory;
+pub mod memory;
 mod output;
 mod settings;
 mod timings;
 
+pub use counts::{Count, MAX_IMAGE_SIDE, MAX_RSM_SIDE, MAX_SAMPLED_LIGHTS};
 pub use error::RenderError;
 pub use memory::MemoryEstimate;
 pub use output::{RenderedFrame, Shaded};
 pub use settings::{
     DiffuseEmission, Importance, LightSampling, LobeSelection, Method, RenderSettings, Stochastic,
-    MAX_IMAGE_SIDE, MAX_RSM_SIDE, MAX_SAMPLED_LIGHTS,
 };
 pub use timings::{merge_optional, PassTime, Timings};

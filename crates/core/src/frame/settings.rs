@@ -1,5 +1,6 @@
 //! What a frame is rendered with: the method of indirect light and its parameters, shared by
 //! every backend.
+use super::counts::{CAMERA_VSGLS, HEIGHT, INTERLEAVE, RSM, SAMPLED_LIGHTS, SPP, WIDTH};
 use super::error::RenderError;
 use crate::strategy::Strategy;
 use crate::vpl::VplLobe;
@@ -113,13 +114,6 @@ pub enum Method {
     SampledVpls(LightSampling),
 }
 
-/// The largest number of sampled lights (or camera-side VSGLs) a frame accepts.
-pub const MAX_SAMPLED_LIGHTS: u32 = 1 << 24;
-
-/// The largest image side and RSM side a frame accepts.
-pub const MAX_IMAGE_SIDE: u32 = 16384;
-pub const MAX_RSM_SIDE: u32 = 4096;
-
 /// What to render.
 #[derive(Clone, Debug, PartialEq)]
 pub struct RenderSettings {
@@ -141,47 +135,32 @@ pub struct RenderSettings {
 }
 
 impl RenderSettings {
-    /// Checks every number is in its domain.
+    /// Checks every number is in its domain ([`super::counts`]): the one check of settings
+    /// every front end runs before any work.
     pub fn validate(&self) -> Result<(), RenderError> {
-        let bad = |m: String| Err(RenderError::Settings(m));
-        if self.width == 0
-            || self.height == 0
-            || self.width > MAX_IMAGE_SIDE
-            || self.height > MAX_IMAGE_SIDE
-        {
-            return bad(format!("width and height must be in 1..={MAX_IMAGE_SIDE}"));
-        }
-        if self.rsm_resolution == 0 || self.rsm_resolution > MAX_RSM_SIDE {
-            return bad(format!("the RSM resolution must be in 1..={MAX_RSM_SIDE}"));
-        }
-        if self.spp == 0 {
-            return bad("spp must be at least 1".into());
-        }
+        let bad = |m: String| RenderError::Settings(m);
+        WIDTH.check(self.width).map_err(bad)?;
+        HEIGHT.check(self.height).map_err(bad)?;
+        RSM.check(self.rsm_resolution).map_err(bad)?;
+        SPP.check(self.spp).map_err(bad)?;
         if let Method::Stochastic(s) = self.method {
             if !(s.delta.is_finite() && s.delta > 0.0) {
-                return bad("delta must be finite and positive".into());
+                return Err(bad(format!(
+                    "delta must be finite and positive (got {})",
+                    s.delta
+                )));
             }
-            if s.interleave == 0 || s.interleave > 64 {
-                return bad("the interleaving K must be in 1..=64".into());
-            }
+            INTERLEAVE.check(s.interleave).map_err(bad)?;
         }
         if let Method::Vsgl(l) | Method::SampledVpls(l) = self.method {
-            if l.count == 0 || l.count > MAX_SAMPLED_LIGHTS {
-                return bad(format!(
-                    "the number of sampled lights must be in 1..={MAX_SAMPLED_LIGHTS}"
-                ));
-            }
+            SAMPLED_LIGHTS.check(l.count).map_err(bad)?;
             if let Importance::Bidirectional { camera_vsgls } = l.importance {
-                if camera_vsgls == 0 || camera_vsgls > MAX_SAMPLED_LIGHTS {
-                    return bad(format!(
-                        "the bidirectional importance needs 1..={MAX_SAMPLED_LIGHTS} camera VSGLs"
-                    ));
-                }
+                CAMERA_VSGLS.check(camera_vsgls).map_err(bad)?;
             }
             if self.lobes != LobeSelection::Both {
-                return bad(
+                return Err(bad(
                     "sampled lights (VSGLs) carry both lobes: the lobes must be both".into(),
-                );
+                ));
             }
         }
         Ok(())

@@ -228,3 +228,82 @@ with open("damaged-obj-texcoord-index.obj", "w") as f:
     f.write(QUAD + "vt 0 0\nf 1/1 3/1 2/9\n")
 with open("valid-obj-one-zero-area-triangle.obj", "w") as f:
     f.write(QUAD + "f 1 3 2\nf 1 4 3\nf 1 2 1\n")
+
+# --- what the specification allows, and what nothing uses (issue 43) ---
+
+
+def floats_for_integers(value):
+    """Every integer of a JSON document written as a float (1 -> 1.0)."""
+    if isinstance(value, bool):
+        return value
+    if isinstance(value, int):
+        return float(value)
+    if isinstance(value, list):
+        return [floats_for_integers(v) for v in value]
+    if isinstance(value, dict):
+        return {k: floats_for_integers(v) for k, v in value.items()}
+    return value
+
+
+# A second buffer without `uri` in a .gltf: only a GLB's first buffer may lack one, but nothing
+# reads this one.
+g = plain()
+g.finish()
+g.doc["buffers"].append({"byteLength": 16})
+g.gltf("valid-unused-buffer-without-uri.gltf")
+
+# A GLB without a BIN chunk whose buffer is a data: URI.
+g = plain()
+g.finish()
+g.doc["buffers"][0]["uri"] = "data:application/octet-stream;base64," + \
+    base64.b64encode(bytes(g.bin)).decode()
+js = json.dumps(g.doc).encode()
+js += b" " * (-len(js) % 4)
+with open("valid-glb-data-uri-buffer.glb", "wb") as f:
+    f.write(struct.pack("<4sII", b"glTF", 2, 20 + len(js)) + struct.pack("<I4s", len(js), b"JSON") + js)
+
+# Every integer written as a float (JSON numbers; 1.0 is the integer 1).
+g = plain()
+g.gltf("valid-integers-written-as-floats.gltf")
+with open("valid-integers-written-as-floats.gltf") as f:
+    doc = json.load(f)
+with open("valid-integers-written-as-floats.gltf", "w") as f:
+    json.dump(floats_for_integers(doc), f, indent=1)
+
+# A scene without `nodes` (optional) beside the default scene that has them.
+g = plain()
+g.doc["scenes"] = [{"name": "empty"}, {"nodes": [0]}]
+g.doc["scene"] = 1
+g.gltf("valid-scene-without-nodes.gltf")
+
+# A primitive without POSITION (optional: it is not rendered) beside one with it.
+g = plain()
+g.doc["meshes"][0]["primitives"].append({"attributes": {}})
+g.gltf("valid-primitive-without-position.gltf")
+
+# An accessor of a type that is no glTF type, used by nothing.
+g = plain()
+g.doc["accessors"].append({"componentType": 5126, "type": "MAT5", "count": 1})
+g.gltf("valid-unused-accessor-of-unknown-type.gltf")
+
+# A spot light with outerConeAngle 0 (the schema's minimum; but the specification asks
+# innerConeAngle < outerConeAngle, and a cone of 0 emits nothing): dropped with a warning.
+g = plain()
+g.doc["extensionsUsed"] = ["KHR_lights_punctual"]
+g.doc["extensions"] = {"KHR_lights_punctual": {"lights": [
+    {"type": "spot", "spot": {"outerConeAngle": 0.0}}]}}
+g.doc["nodes"].append({"extensions": {"KHR_lights_punctual": {"light": 0}}, "translation": [0, 2, 0]})
+g.doc["scenes"][0]["nodes"].append(1)
+g.gltf("valid-spot-outer-cone-0.gltf")
+
+# Versions a glTF 2.0 loader does not know.
+g = plain()
+g.doc["asset"]["version"] = "3.0"
+g.gltf("unsupported-asset-version-3.0.gltf")
+g = plain()
+g.doc["asset"]["minVersion"] = "2.5"
+g.gltf("unsupported-min-version-2.5.gltf")
+
+# OBJ: a usemtl name no material library defines.
+with open("valid-obj-usemtl-undefined.obj", "w") as f:
+    f.write(QUAD + "usemtl light\nf 1 3 2\n")

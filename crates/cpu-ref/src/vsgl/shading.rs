@@ -10,7 +10,7 @@ use glam::Vec3;
 use rayon::prelude::*;
 use slc_bounds::SgSurface;
 use slc_core::frame::DiffuseEmission;
-use slc_core::{GBuffer, Image};
+use slc_core::{GBuffer, Image, Progress};
 
 /// The radiance reflected towards the receiver's view by one VSGL (eq. 2), without visibility:
 /// for each lobe `c_v G(ω; ξ_v, λ_v)` of the VSGL's radiant intensity, the incoming radiance of
@@ -37,15 +37,16 @@ pub fn vsgl_radiance(
 /// Indirect radiance at every pixel of `gbuffer` from every VSGL of `vsgls` (their weights
 /// already applied), by [`vsgl_radiance`] with `diffuse`; with `visibility`, each VSGL that contributes is
 /// tested with a shadow ray from the pixel to its mean position `μ_v` (VSGL eq. 3,
-/// `V(x_p, μ_v)`). Pixels without a surface stay black. `progress` is called with the number
-/// of pixels finished.
+/// `V(x_p, μ_v)`). Pixels without a surface stay black. `progress` is told the number of
+/// pixels finished; once it is cancelled the rows not yet begun stay black (the caller checks
+/// `progress`).
 pub fn shade_vsgls(
     tracer: &Tracer,
     gbuffer: &GBuffer,
     vsgls: &[Vsgl],
     diffuse: DiffuseEmission,
     visibility: bool,
-    progress: &(dyn Fn(u64) + Sync),
+    progress: Progress,
 ) -> Result<Image, VsglError> {
     let emitters = vsgls
         .iter()
@@ -59,6 +60,9 @@ pub fn shade_vsgls(
         .par_chunks_mut(w)
         .zip(gbuffer.samples.par_chunks(w))
         .try_for_each(|(out, row)| {
+            if progress.cancelled() {
+                return Ok(());
+            }
             for (o, g) in out.iter_mut().zip(row) {
                 let Some(g) = g else { continue };
                 let surface = SgSurface::new(g.normal, g.omega_o, &g.brdf)?;
@@ -70,7 +74,7 @@ pub fn shade_vsgls(
                     }
                 })?;
             }
-            progress(w as u64);
+            progress.advance(w as u64);
             Ok::<(), VsglError>(())
         })?;
     Ok(image)

@@ -55,6 +55,32 @@ fn default_scene_never_misses() {
     never_misses("default scene", (&gbuffer, &camera, &vpls), &cases);
 }
 
+/// The default scene with its spot narrowed from 10° to 0.5° (and its intensity raised by the
+/// ratio of the cones' powers, so the VPLs carry the same flux): the VPLs of a narrow cone,
+/// lit with the falloff that no longer dims it, miss nothing either.
+#[test]
+fn a_narrow_spot_never_misses() {
+    let (mut scene, camera) = default_scene();
+    let Some(slc_core::Light::Spot {
+        intensity,
+        outer_cone_angle,
+        inner_cone_angle,
+        ..
+    }) = scene.lights.first_mut()
+    else {
+        panic!("the default scene has a spot light")
+    };
+    let narrow = 0.5f32.to_radians();
+    let power = |inner: f32, outer: f32| {
+        let h = |a: f32| 1.0 - f64::from(a).cos();
+        h(inner) + (h(outer) - h(inner)) / 3.0
+    };
+    *intensity *= (power(*inner_cone_angle, *outer_cone_angle) / power(0.0, narrow)) as f32;
+    (*inner_cone_angle, *outer_cone_angle) = (0.0, narrow);
+    let (gbuffer, vpls) = frame(&scene, &camera, (96, 72), 16, LobeSelection::Both);
+    never_misses("narrow spot", (&gbuffer, &camera, &vpls), &[(4, 1e-3)]);
+}
+
 /// Dabrovic Sponza (with a point light, a camera in the atrium and glossy layers of α from
 /// 1e-3 to 1), K = 1 and 4, δ from 1e-3 to 1e-1.
 #[test]

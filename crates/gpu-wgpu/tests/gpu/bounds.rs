@@ -25,8 +25,8 @@ use slc_cpu_ref::rsm::{trace_rsm, TexelSample};
 use slc_cpu_ref::vpls::generate_vpls;
 use slc_cpu_ref::Tracer;
 use slc_cull::{CullView, GlossyBound};
-use slc_gpu_wgpu::bounds_pass::{BoundsPass, BoundsSettings};
-use slc_gpu_wgpu::gpu_types::{GpuBound, BOUND_ELLIPSOID, BOUND_EMPTY, BOUND_SPHERE};
+use slc_gpu_wgpu::cull::bounds::{BoundsPass, BoundsSettings};
+use slc_gpu_wgpu::cull::records::{GpuBound, BOUND_ELLIPSOID, BOUND_EMPTY, BOUND_SPHERE};
 use slc_gpu_wgpu::GpuContext;
 
 const SLACK: f64 = 1e-3;

@@ -13,10 +13,10 @@ use crate::common::gpu;
 use crate::tiled::{cpu_depth, cpu_tile, differences, frame, grown_range, Frustum};
 use slc_core::{builtin, CullInput, GBuffer, Interleaving, LightLists, Vpl, NO_LIST, TILE_SIZE};
 use slc_cull::{CullView, GlossyBound};
-use slc_gpu_wgpu::buffers::read_back;
-use slc_gpu_wgpu::clustered_cull_pass::ClusteredCuller;
-use slc_gpu_wgpu::cull_types::CLUSTER_SLICES;
-use slc_gpu_wgpu::gpu_lists::read_lists;
+use slc_gpu_wgpu::cull::clustered::records::CLUSTER_SLICES;
+use slc_gpu_wgpu::cull::clustered::ClusteredCuller;
+use slc_gpu_wgpu::cull::lists::read_lists;
+use slc_gpu_wgpu::device::buffers::read_back;
 use slc_gpu_wgpu::{GpuContext, GpuError};
 use std::collections::HashSet;
 
@@ -269,7 +269,7 @@ fn exact_differences(input: &CullInput, cpu: &LightLists, gpu: &LightLists) -> V
 #[test]
 fn unculled_lists_match_the_cpu() {
     let Some(ctx) = gpu() else { return };
-    let culler = slc_gpu_wgpu::none_cull_pass::NoneCuller::new(&ctx).unwrap();
+    let culler = slc_gpu_wgpu::cull::none::NoneCuller::new(&ctx).unwrap();
     let scene = builtin("default").unwrap();
     let camera = scene.camera_or_default();
     for (size, k, sky, no_vpls) in [
@@ -316,7 +316,7 @@ fn unculled_lists_match_the_cpu() {
 fn clustered_and_unculled_reject_bad_input() {
     let Some(ctx) = gpu() else { return };
     let clustered = ClusteredCuller::new(&ctx).unwrap();
-    let none = slc_gpu_wgpu::none_cull_pass::NoneCuller::new(&ctx).unwrap();
+    let none = slc_gpu_wgpu::cull::none::NoneCuller::new(&ctx).unwrap();
     let scene = builtin("default").unwrap();
     let camera = scene.camera_or_default();
     let (gbuffer, vpls) = frame(&scene, &camera, (16, 16), 4);

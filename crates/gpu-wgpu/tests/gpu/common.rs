@@ -2,6 +2,11 @@
 //! the renderer tests compare strategies on.
 use slc_core::frame::{LobeSelection, Method, RenderSettings, Stochastic};
 use slc_core::Strategy;
+use slc_core::{CullInput, Image, Interleaving};
+use slc_gpu_wgpu::cull::frame::FrameVpls;
+use slc_gpu_wgpu::cull::lists::GpuLightLists;
+use slc_gpu_wgpu::frame::raster::gbuffer::GpuGBuffer;
+use slc_gpu_wgpu::shade::lists::{read_image, ShadePass, ShadedGBuffer};
 use slc_gpu_wgpu::{GpuContext, GpuError};
 use std::sync::OnceLock;
 
@@ -63,4 +68,45 @@ pub fn small_frame(strategy: Strategy, denoise: bool) -> RenderSettings {
         spp: 1,
         lobes: LobeSelection::Both,
     }
+}
+
+/// `ShadePass::shade_on_gpu` of a CPU G-buffer with lists on the GPU, read back: the image of
+/// `input` shaded from lists a GPU culler left there.
+pub fn shade_gpu_lists(
+    ctx: &GpuContext,
+    shader: &ShadePass,
+    input: &CullInput,
+    lists: &GpuLightLists,
+) -> Result<Image, GpuError> {
+    let g = input.gbuffer;
+    let rgb = shader.shade_on_gpu(
+        ctx,
+        ShadedGBuffer::Cpu(g),
+        input.vpls,
+        input.delta,
+        input.interleaving,
+        lists,
+    )?;
+    read_image(ctx, &rgb, g.width, g.height)
+}
+
+/// `ShadePass::shade_on_gpu` of a G-buffer rendered on the GPU, read back.
+pub fn shade_gpu_gbuffer<'a>(
+    ctx: &GpuContext,
+    shader: &ShadePass,
+    gbuffer: &GpuGBuffer,
+    vpls: impl Into<FrameVpls<'a>>,
+    delta: f32,
+    interleaving: Interleaving,
+    lists: &GpuLightLists,
+) -> Result<Image, GpuError> {
+    let rgb = shader.shade_on_gpu(
+        ctx,
+        ShadedGBuffer::Gpu(gbuffer),
+        vpls,
+        delta,
+        interleaving,
+        lists,
+    )?;
+    read_image(ctx, &rgb, gbuffer.width, gbuffer.height)
 }

@@ -1,13 +1,13 @@
-//! `GpuCuller`: every strategy of `slc_core::Strategy::ALL`, also bound as a
+//! `GpuCulling`: every strategy of `slc_core::Strategy::ALL`, also bound as a
 //! `slc_core::Culler`, and its lists left on the GPU read by the shading pass.
 use crate::common::gpu;
 use crate::tiled::frame;
 use slc_core::{builtin, CullInput, Culler, GlossyBound, Interleaving, Strategy};
-use slc_gpu_wgpu::context::GpuError;
-use slc_gpu_wgpu::cull_frame::CullFrame;
-use slc_gpu_wgpu::culler::GpuCuller;
-use slc_gpu_wgpu::gpu_lists::read_lists;
-use slc_gpu_wgpu::shade_pass::ShadePass;
+use slc_gpu_wgpu::cull::frame::CullFrame;
+use slc_gpu_wgpu::cull::lists::read_lists;
+use slc_gpu_wgpu::cull::GpuCulling;
+use slc_gpu_wgpu::device::context::GpuError;
+use slc_gpu_wgpu::shade::lists::ShadePass;
 use std::cell::RefCell;
 
 /// The built-in default scene and its camera.
@@ -39,7 +39,7 @@ fn input_k2<'a>(
 #[test]
 fn every_strategy_by_name_matches_the_cpu_strategy_of_that_name() {
     let Some(ctx) = gpu() else { return };
-    let culler = GpuCuller::new(&ctx).unwrap();
+    let culler = GpuCulling::new(&ctx).unwrap();
     let (scene, camera) = default_scene();
     let (gbuffer, vpls) = frame(&scene, &camera, (72, 50), 16);
     let input = input_k2(&gbuffer, &camera, &vpls);
@@ -86,7 +86,7 @@ fn every_strategy_by_name_matches_the_cpu_strategy_of_that_name() {
 #[test]
 fn shading_reads_every_strategys_lists_on_the_gpu() {
     let Some(ctx) = gpu() else { return };
-    let culler = GpuCuller::new(&ctx).unwrap();
+    let culler = GpuCulling::new(&ctx).unwrap();
     let shade = ShadePass::new(&ctx).unwrap();
     let scene = builtin("default").unwrap();
     let camera = scene.camera_or_default();
@@ -103,7 +103,7 @@ fn shading_reads_every_strategys_lists_on_the_gpu() {
             let name = strategy.name();
             let frame = CullFrame::upload(&ctx, &input).unwrap();
             let on_gpu = culler.cull_frame(&ctx, &frame, strategy).unwrap();
-            let direct = shade.shade_gpu_lists(&ctx, &input, &on_gpu).unwrap();
+            let direct = crate::common::shade_gpu_lists(&ctx, &shade, &input, &on_gpu).unwrap();
             let lists = culler.cull(&ctx, &input, strategy).unwrap();
             let uploaded = shade.shade(&ctx, &input, &lists).unwrap();
             assert_eq!(direct.pixels, uploaded.pixels, "{name} K {k}");
@@ -127,7 +127,7 @@ fn shading_reads_every_strategys_lists_on_the_gpu() {
 #[test]
 fn outgrown_lists_are_refused_or_culled_again() {
     let Some(ctx) = gpu() else { return };
-    let culler = GpuCuller::new(&ctx).unwrap();
+    let culler = GpuCulling::new(&ctx).unwrap();
     let (scene, camera) = default_scene();
     let (gbuffer, vpls) = frame(&scene, &camera, (72, 50), 16);
     let input = input_k2(&gbuffer, &camera, &vpls);

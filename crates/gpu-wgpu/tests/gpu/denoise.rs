@@ -12,8 +12,8 @@ use slc_core::{builtin, Camera, CullInput, GBuffer, GSample, Image, Interleaving
 use slc_cpu_ref::denoise::{cross_bilateral, BilateralParams};
 use slc_cpu_ref::vpl_shading::shade_lists;
 use slc_cpu_ref::Tracer;
-use slc_gpu_wgpu::buffers::{output, upload};
-use slc_gpu_wgpu::denoise_pass::{BilateralSettings, DenoisePass, Guide};
+use slc_gpu_wgpu::device::buffers::{output, upload};
+use slc_gpu_wgpu::frame::denoise::{BilateralSettings, DenoisePass, Guide};
 use slc_gpu_wgpu::{GpuContext, GpuError};
 
 const TOLERANCE: f32 = 1e-4;
@@ -82,7 +82,7 @@ fn filter_both(
     let mut worst = 0.0f32;
     for s in settings() {
         let gpu = pass.filter(ctx, image, g, camera, &s).unwrap();
-        let cpu = cross_bilateral(image, g, params(&s));
+        let cpu = cross_bilateral(image, g, params(&s)).unwrap();
         worst = worst.max(compare(&format!("{label} {s:?}"), g, image, &gpu, &cpu));
     }
     worst
@@ -120,7 +120,7 @@ fn filter_matches_the_cpu_on_the_default_scene() {
         let noisy = shade_lists(&tracer, &input, &lists, false, &|_| ()).unwrap();
         let worst = filter_both(&ctx, &pass, "default scene", &noisy, &gbuffer, &camera);
         // The filter did its job: most pixels changed noticeably.
-        let cpu = cross_bilateral(&noisy, &gbuffer, BilateralParams::default());
+        let cpu = cross_bilateral(&noisy, &gbuffer, BilateralParams::default()).unwrap();
         let changed = cpu
             .pixels
             .iter()
@@ -282,7 +282,7 @@ fn filter_rejects_bad_input() {
     let samples = upload(
         &ctx,
         "samples",
-        &[slc_gpu_wgpu::gpu_types::GpuSample::EMPTY; 29],
+        &[slc_gpu_wgpu::frame::raster::records::GpuSample::EMPTY; 29],
     )
     .unwrap();
     let rgb = output::<f32>(&ctx, "image", 90).unwrap();

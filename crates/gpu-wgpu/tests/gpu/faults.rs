@@ -1,8 +1,8 @@
 //! Limits and faults: clear errors, no panics.
 use crate::common::{gpu, own_gpu};
-use slc_gpu_wgpu::buffers::{check_storage_size, output};
-use slc_gpu_wgpu::gpu_types::RngSample;
-use slc_gpu_wgpu::rng_pass::{RngPass, RngQuery};
+use slc_gpu_wgpu::device::buffers::{check_storage_size, output};
+use slc_gpu_wgpu::vpl::records::RngSample;
+use slc_gpu_wgpu::vpl::rng::{RngPass, RngQuery};
 use slc_gpu_wgpu::GpuError;
 
 #[test]

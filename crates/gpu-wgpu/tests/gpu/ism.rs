@@ -4,7 +4,7 @@
 use crate::common::gpu;
 use glam::Vec3;
 use slc_core::builtin;
-use slc_gpu_wgpu::ism_pass::{caster_points, IsmPass, IsmSettings};
+use slc_gpu_wgpu::vsgl::ism::{caster_points, IsmPass, IsmSettings};
 use slc_gpu_wgpu::GpuContext;
 
 /// The maps about `centres` of the default scene's caster points under `settings`.

@@ -7,12 +7,12 @@ use crate::tiled::{frame, frame_sampled};
 use slc_core::{builtin, CullInput, Interleaving, Strategy};
 use slc_cpu_ref::gbuffer::PixelSample;
 use slc_cull::GlossyBound;
-use slc_gpu_wgpu::cull_frame::CullFrame;
-use slc_gpu_wgpu::culler::GpuCuller;
-use slc_gpu_wgpu::gbuffer_pass::GbufferPass;
-use slc_gpu_wgpu::scene_upload::GpuScene;
-use slc_gpu_wgpu::shade_pass::ShadePass;
-use slc_gpu_wgpu::tiled_cull_pass::TiledCuller;
+use slc_gpu_wgpu::cull::frame::CullFrame;
+use slc_gpu_wgpu::cull::tiled::TiledCuller;
+use slc_gpu_wgpu::cull::GpuCulling;
+use slc_gpu_wgpu::frame::raster::gbuffer::GbufferPass;
+use slc_gpu_wgpu::frame::raster::scene::GpuScene;
+use slc_gpu_wgpu::shade::lists::ShadePass;
 use std::time::Instant;
 
 #[test]
@@ -36,7 +36,7 @@ fn stages_sum_their_passes_within_the_wall_clock() {
     let lists = culler
         .cull_on_gpu(&ctx, &input, GlossyBound::Ellipsoid)
         .unwrap();
-    shader.shade_gpu_lists(&ctx, &input, &lists).unwrap();
+    crate::common::shade_gpu_lists(&ctx, &shader, &input, &lists).unwrap();
 
     if !ctx.start_profiling() {
         eprintln!("notice: {} has no timestamp queries", ctx.adapter_name);
@@ -49,7 +49,7 @@ fn stages_sum_their_passes_within_the_wall_clock() {
         .cull_on_gpu(&ctx, &input, GlossyBound::Ellipsoid)
         .unwrap();
     ctx.set_stage("shading");
-    let image = shader.shade_gpu_lists(&ctx, &input, &lists).unwrap();
+    let image = crate::common::shade_gpu_lists(&ctx, &shader, &input, &lists).unwrap();
     let wall_ms = wall.elapsed().as_secs_f64() * 1e3;
     let profile = ctx.finish_profiling().unwrap();
     assert!(image.mean().max_element() > 0.0);
@@ -91,7 +91,7 @@ fn stages_sum_their_passes_within_the_wall_clock() {
     assert!(gpu_ms >= wall_ms * 1e-3, "{gpu_ms} ms GPU in {wall_ms} ms");
 
     // Outside a profile nothing is recorded.
-    shader.shade_gpu_lists(&ctx, &input, &lists).unwrap();
+    crate::common::shade_gpu_lists(&ctx, &shader, &input, &lists).unwrap();
     assert_eq!(ctx.finish_profiling().unwrap(), Default::default());
 }
 
@@ -122,9 +122,7 @@ fn timestamps_after_a_render_pass() {
                 GlossyBound::Ellipsoid,
             )
             .unwrap();
-        shader
-            .shade_gpu_gbuffer(&ctx, &gbuffer, &vpls, 1e-3, k, &lists)
-            .unwrap()
+        crate::common::shade_gpu_gbuffer(&ctx, &shader, &gbuffer, &vpls, 1e-3, k, &lists).unwrap()
     };
     run(); // warm up
     if !ctx.start_profiling() {
@@ -164,7 +162,7 @@ fn timestamps_after_a_render_pass() {
 #[test]
 fn raster_baseline_draws_are_timed() {
     let Some(ctx) = gpu() else { return };
-    let culler = GpuCuller::new(&ctx).unwrap();
+    let culler = GpuCulling::new(&ctx).unwrap();
     let scene = builtin("default").unwrap();
     let camera = scene.camera_or_default();
     let (gbuffer, vpls) = frame_sampled(&scene, &camera, (64, 48), 16, PixelSample::Centre);

@@ -10,13 +10,13 @@ use crate::tiled::frame_sampled;
 use slc_core::render::render;
 use slc_core::{builtin, CullInput, Interleaving, Strategy, Vpl};
 use slc_cpu_ref::gbuffer::PixelSample;
-use slc_gpu_wgpu::culler::GpuCuller;
+use slc_gpu_wgpu::cull::GpuCulling;
 use slc_gpu_wgpu::GpuRenderer;
 
 #[test]
 fn raster_baselines_miss_no_pair() {
     let Some(ctx) = gpu() else { return };
-    let culler = GpuCuller::new(&ctx).unwrap();
+    let culler = GpuCulling::new(&ctx).unwrap();
     let scene = builtin("default").unwrap();
     let camera = scene.camera_or_default();
     // Pixel centres: splatting rasterizes the rays through them.
@@ -73,7 +73,7 @@ fn raster_baselines_miss_no_pair() {
 #[test]
 fn hardware_conservative_rasterization_lists_the_software_forms_cells() {
     let Some(ctx) = gpu() else { return };
-    let culler = GpuCuller::new(&ctx).unwrap();
+    let culler = GpuCulling::new(&ctx).unwrap();
     let rasterizer = culler.rasterizer();
     if !ctx.conservative_raster {
         eprintln!(
@@ -168,7 +168,7 @@ fn raster_baselines_render_the_tiled_image() {
 #[test]
 fn raster_baselines_at_odd_sizes_and_without_vpls() {
     let Some(ctx) = gpu() else { return };
-    let culler = GpuCuller::new(&ctx).unwrap();
+    let culler = GpuCulling::new(&ctx).unwrap();
     let scene = builtin("default").unwrap();
     let camera = scene.camera_or_default();
     let (gbuffer, vpls) = frame_sampled(&scene, &camera, (37, 23), 8, PixelSample::Centre);

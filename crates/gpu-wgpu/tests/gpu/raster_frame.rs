@@ -32,14 +32,14 @@ use slc_cpu_ref::direct::shade_direct;
 use slc_cpu_ref::Tracer;
 use slc_cpu_ref::{prepare, CpuRenderer};
 use slc_cull::GlossyBound;
-use slc_gpu_wgpu::cull_frame::CullFrame;
-use slc_gpu_wgpu::direct_pass::DirectPass;
-use slc_gpu_wgpu::gbuffer_pass::GbufferPass;
-use slc_gpu_wgpu::rsm_pass::RsmPass;
-use slc_gpu_wgpu::scene_upload::GpuScene;
-use slc_gpu_wgpu::shade_pass::ShadePass;
-use slc_gpu_wgpu::tiled_cull_pass::TiledCuller;
-use slc_gpu_wgpu::vpl_gen_pass::{VplGenPass, VplLobes};
+use slc_gpu_wgpu::cull::frame::CullFrame;
+use slc_gpu_wgpu::cull::tiled::TiledCuller;
+use slc_gpu_wgpu::frame::light::direct::DirectPass;
+use slc_gpu_wgpu::frame::light::rsm::RsmPass;
+use slc_gpu_wgpu::frame::raster::gbuffer::GbufferPass;
+use slc_gpu_wgpu::frame::raster::scene::GpuScene;
+use slc_gpu_wgpu::shade::lists::ShadePass;
+use slc_gpu_wgpu::vpl::generate::{VplGenPass, VplLobes};
 use slc_gpu_wgpu::GpuContext;
 
 const FLOOR: f32 = 1e-2;
@@ -229,10 +229,17 @@ fn frame_matches(
             GlossyBound::Ellipsoid,
         )
         .unwrap();
-    let indirect = ShadePass::new(ctx)
-        .unwrap()
-        .shade_gpu_gbuffer(ctx, &gbuffer, &vpls, stochastic.delta, interleaving, &lists)
-        .unwrap();
+    let shader = ShadePass::new(ctx).unwrap();
+    let indirect = crate::common::shade_gpu_gbuffer(
+        ctx,
+        &shader,
+        &gbuffer,
+        &vpls,
+        stochastic.delta,
+        interleaving,
+        &lists,
+    )
+    .unwrap();
     let direct = DirectPass::new(ctx)
         .unwrap()
         .render(ctx, &gpu_scene, &gbuffer, &maps)

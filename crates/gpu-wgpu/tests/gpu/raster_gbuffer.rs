@@ -25,12 +25,12 @@ use slc_core::{Camera, CullInput, GBuffer, GSample, Interleaving, Mesh, Scene};
 use slc_cpu_ref::gbuffer::{trace_gbuffer, PixelSample};
 use slc_cpu_ref::prepare;
 use slc_cpu_ref::Tracer;
-use slc_gpu_wgpu::cull_frame::CullFrame;
-use slc_gpu_wgpu::culler::GpuCuller;
-use slc_gpu_wgpu::gbuffer_pass::GbufferPass;
-use slc_gpu_wgpu::gpu_lists::read_lists;
-use slc_gpu_wgpu::scene_upload::GpuScene;
-use slc_gpu_wgpu::shade_pass::ShadePass;
+use slc_gpu_wgpu::cull::frame::CullFrame;
+use slc_gpu_wgpu::cull::lists::read_lists;
+use slc_gpu_wgpu::cull::GpuCulling;
+use slc_gpu_wgpu::frame::raster::gbuffer::GbufferPass;
+use slc_gpu_wgpu::frame::raster::scene::GpuScene;
+use slc_gpu_wgpu::shade::lists::ShadePass;
 use slc_gpu_wgpu::{GpuContext, GpuError};
 
 const POSITION_TOLERANCE: f32 = 1e-4;
@@ -376,7 +376,7 @@ fn culling_and_shading_read_the_gpu_gbuffer_in_place() {
     let read = gbuffer.read_back(&ctx).unwrap();
     let interleaving = Interleaving { k: 2, seed: 9 };
     let delta = 1e-3;
-    let culler = GpuCuller::new(&ctx).unwrap();
+    let culler = GpuCulling::new(&ctx).unwrap();
     let shader = ShadePass::new(&ctx).unwrap();
     let input = CullInput {
         gbuffer: &read,
@@ -390,7 +390,7 @@ fn culling_and_shading_read_the_gpu_gbuffer_in_place() {
         let name = strategy.name();
         let frame = CullFrame::upload(&ctx, &input).unwrap();
         let uploaded = culler.cull_frame(&ctx, &frame, strategy).unwrap();
-        let want = shader.shade_gpu_lists(&ctx, &input, &uploaded).unwrap();
+        let want = crate::common::shade_gpu_lists(&ctx, &shader, &input, &uploaded).unwrap();
         let lists = culler
             .cull_frame(
                 &ctx,
@@ -404,9 +404,16 @@ fn culling_and_shading_read_the_gpu_gbuffer_in_place() {
             read_lists(&ctx, &uploaded).unwrap(),
             "{name}"
         );
-        let got = shader
-            .shade_gpu_gbuffer(&ctx, &gbuffer, &vpls, delta, interleaving, &lists)
-            .unwrap();
+        let got = crate::common::shade_gpu_gbuffer(
+            &ctx,
+            &shader,
+            &gbuffer,
+            &vpls,
+            delta,
+            interleaving,
+            &lists,
+        )
+        .unwrap();
         assert!(want.mean().max_element() > 0.0, "{name}");
         assert_eq!(got, want, "{name}");
     }

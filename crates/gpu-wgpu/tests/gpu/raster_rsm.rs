@@ -26,12 +26,12 @@ use slc_core::{GBuffer, GSample, Light, Scene, Vpl};
 use slc_cpu_ref::rsm::{trace_rsm, Rsm, TexelSample};
 use slc_cpu_ref::vpls::generate_vpls;
 use slc_cpu_ref::Tracer;
-use slc_gpu_wgpu::buffers::read_back;
-use slc_gpu_wgpu::gpu_types::{anisotropy_from_gpu, GpuVpl};
-use slc_gpu_wgpu::raster_types::GpuRsmTexel;
-use slc_gpu_wgpu::rsm_pass::RsmPass;
-use slc_gpu_wgpu::scene_upload::GpuScene;
-use slc_gpu_wgpu::vpl_gen_pass::{VplGenPass, VplLobes};
+use slc_gpu_wgpu::device::buffers::read_back;
+use slc_gpu_wgpu::frame::light::records::GpuRsmTexel;
+use slc_gpu_wgpu::frame::light::rsm::RsmPass;
+use slc_gpu_wgpu::frame::raster::scene::GpuScene;
+use slc_gpu_wgpu::vpl::generate::{VplGenPass, VplLobes};
+use slc_gpu_wgpu::vpl::records::{anisotropy_from_gpu, GpuVpl};
 use slc_gpu_wgpu::{GpuContext, GpuError};
 use std::collections::HashMap;
 

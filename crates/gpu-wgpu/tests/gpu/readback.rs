@@ -100,7 +100,9 @@ fn stochastic_frames_read_back_their_images_only() {
         // culling's fault record after its dispatch.
         let loaded = r.load(&scene).unwrap();
         let start = r.readback_bytes().unwrap();
-        let p = r.prepare(&scene, &loaded, &settings, None).unwrap();
+        let p = r
+            .prepare(&scene, &loaded, &settings, None, &|_| {})
+            .unwrap();
         assert_eq!(read_since(&start, &r), labels(&[("direct image", image)]));
         let k = Interleaving { k: 4, seed: 2 };
         let before = r.readback_bytes().unwrap();

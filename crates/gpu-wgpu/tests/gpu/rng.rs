@@ -2,7 +2,7 @@
 use crate::common::gpu;
 use slc_core::rng::{hash4, pcg_hash, stream, uniform, vpl_xi};
 use slc_core::Interleaving;
-use slc_gpu_wgpu::rng_pass::{RngPass, RngQuery};
+use slc_gpu_wgpu::vpl::rng::{RngPass, RngQuery};
 
 fn check(pass: &RngPass, ctx: &slc_gpu_wgpu::GpuContext, q: RngQuery, count: u32) {
     let samples = pass.run(ctx, q, count).unwrap();

@@ -31,8 +31,8 @@ use slc_core::{
 use slc_cpu_ref::vpl_shading::shade_lists;
 use slc_cpu_ref::Tracer;
 use slc_cull::GlossyBound;
-use slc_gpu_wgpu::shade_pass::ShadePass;
-use slc_gpu_wgpu::tiled_cull_pass::TiledCuller;
+use slc_gpu_wgpu::cull::tiled::TiledCuller;
+use slc_gpu_wgpu::shade::lists::ShadePass;
 use slc_gpu_wgpu::GpuError;
 
 const TOLERANCE: f32 = 1e-4;
@@ -275,7 +275,7 @@ fn shading_straight_from_gpu_lists() {
     let on_gpu = culler
         .cull_on_gpu(&ctx, &input, GlossyBound::Ellipsoid)
         .unwrap();
-    let chained = shader.shade_gpu_lists(&ctx, &input, &on_gpu).unwrap();
+    let chained = crate::common::shade_gpu_lists(&ctx, &shader, &input, &on_gpu).unwrap();
     let lists = culler.cull(&ctx, &input, GlossyBound::Ellipsoid).unwrap();
     let uploaded = shader.shade(&ctx, &input, &lists).unwrap();
     assert_eq!(chained, uploaded);

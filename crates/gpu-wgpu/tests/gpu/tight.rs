@@ -9,7 +9,7 @@ use crate::tiled::frame;
 use slc_bounds::{Anisotropy, Fresnel};
 use slc_core::rng::Sequence;
 use slc_core::{builtin, CullInput, Interleaving, LightLists, Strategy, Vpl, VplLobe};
-use slc_gpu_wgpu::culler::GpuCuller;
+use slc_gpu_wgpu::cull::GpuCulling;
 use slc_gpu_wgpu::GpuContext;
 
 /// The tight strategies and the base strategy each refines.
@@ -55,7 +55,7 @@ pub fn extreme(vpls: &[Vpl], seed: u32) -> Vec<Vpl> {
 /// Lists of `strategy` on the GPU for `input`, read back.
 fn gpu_lists(
     ctx: &GpuContext,
-    culler: &GpuCuller,
+    culler: &GpuCulling,
     input: &CullInput,
     strategy: Strategy,
 ) -> LightLists {
@@ -81,7 +81,7 @@ fn extra(a: &LightLists, b: &LightLists) -> usize {
 #[test]
 fn tight_lists_never_miss_a_pair_and_refine_their_base() {
     let Some(ctx) = gpu() else { return };
-    let culler = GpuCuller::new(&ctx).unwrap();
+    let culler = GpuCulling::new(&ctx).unwrap();
     let scene = builtin("default").unwrap();
     let camera = scene.camera_or_default();
     let (gbuffer, scene_vpls) = frame(&scene, &camera, (96, 64), 16);
@@ -133,7 +133,7 @@ fn tight_lists_never_miss_a_pair_and_refine_their_base() {
 #[test]
 fn a_shrunk_bound_misses_pairs() {
     let Some(ctx) = gpu() else { return };
-    let culler = GpuCuller::new(&ctx).unwrap();
+    let culler = GpuCulling::new(&ctx).unwrap();
     let scene = builtin("default").unwrap();
     let camera = scene.camera_or_default();
     let (gbuffer, vpls) = frame(&scene, &camera, (64, 48), 16);
@@ -172,7 +172,7 @@ fn dielectric(vpls: &[Vpl]) -> Vec<Vpl> {
 #[test]
 fn tight_lists_are_within_rounding_of_the_cpu() {
     let Some(ctx) = gpu() else { return };
-    let culler = GpuCuller::new(&ctx).unwrap();
+    let culler = GpuCulling::new(&ctx).unwrap();
     let scene = builtin("default").unwrap();
     let camera = scene.camera_or_default();
     let (gbuffer, scene_vpls) = frame(&scene, &camera, (72, 50), 16);

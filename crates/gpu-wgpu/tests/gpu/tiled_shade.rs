@@ -7,12 +7,12 @@ use crate::common::{gpu, small_frame};
 use crate::tiled::frame;
 use slc_core::render::render;
 use slc_core::{builtin, CullInput, GlossyBound, Interleaving, Renderer, Strategy, Vpl};
-use slc_gpu_wgpu::buffers::upload;
-use slc_gpu_wgpu::cull_frame::CullFrame;
-use slc_gpu_wgpu::gpu_types::GpuSample;
-use slc_gpu_wgpu::shade_pass::{read_image, ShadePass};
-use slc_gpu_wgpu::tiled_cull_pass::TiledCuller;
-use slc_gpu_wgpu::tiled_shade_pass::TiledShadePass;
+use slc_gpu_wgpu::cull::frame::CullFrame;
+use slc_gpu_wgpu::cull::tiled::TiledCuller;
+use slc_gpu_wgpu::device::buffers::upload;
+use slc_gpu_wgpu::frame::raster::records::GpuSample;
+use slc_gpu_wgpu::shade::lists::{read_image, ShadePass};
+use slc_gpu_wgpu::shade::tiled::TiledShadePass;
 use slc_gpu_wgpu::{GpuContext, GpuRenderer};
 
 /// Largest relative difference [`same_sums`] allows between two kernels' sums of the same
@@ -95,10 +95,8 @@ fn both(
     }
     let one = images[0].clone();
     let lists = culler.cull_frame(ctx, &frame, glossy).unwrap();
-    let want = ShadePass::new(ctx)
-        .unwrap()
-        .shade_gpu_lists(ctx, input, &lists)
-        .unwrap();
+    let shader = ShadePass::new(ctx).unwrap();
+    let want = crate::common::shade_gpu_lists(ctx, &shader, input, &lists).unwrap();
     (one, want)
 }
 

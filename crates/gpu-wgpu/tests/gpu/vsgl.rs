@@ -28,12 +28,12 @@ use slc_cpu_ref::rsm::{trace_rsm, TexelSample};
 use slc_cpu_ref::sampled_lights::{sample_vsgls, sigma2_floor};
 use slc_cpu_ref::vsgl::{bidirectional_importance, shade_vsgls, ImportanceMap, MipRsm, Vsgl};
 use slc_cpu_ref::Tracer;
-use slc_gpu_wgpu::buffers::upload;
-use slc_gpu_wgpu::gbuffer_pass::GpuGBuffer;
-use slc_gpu_wgpu::gpu_types::{gpu_position, GpuSample};
-use slc_gpu_wgpu::shade_pass::read_image;
-use slc_gpu_wgpu::vsgl_shade_pass::{GpuVsgls, VsglShadePass};
-use slc_gpu_wgpu::vsgl_types::VsglInput;
+use slc_gpu_wgpu::device::buffers::upload;
+use slc_gpu_wgpu::frame::raster::gbuffer::GpuGBuffer;
+use slc_gpu_wgpu::frame::raster::records::{gpu_position, GpuSample};
+use slc_gpu_wgpu::shade::lists::read_image;
+use slc_gpu_wgpu::vsgl::shade::records::VsglInput;
+use slc_gpu_wgpu::vsgl::shade::{GpuVsgls, VsglShadePass};
 use slc_gpu_wgpu::{GpuContext, GpuError};
 
 const TOLERANCE: f32 = 1e-4;
@@ -42,7 +42,7 @@ const FLOOR_OF_MEAN: f32 = 1e-3;
 /// Both forms of the diffuse emission, the default first.
 const EMISSIONS: [DiffuseEmission; 2] = [DiffuseEmission::ClampedCosine, DiffuseEmission::Sg];
 
-pub use slc_gpu_wgpu::vsgl_readback::vsgl_input as input;
+pub use slc_gpu_wgpu::vsgl::readback::vsgl_input as input;
 
 /// The worst pixel ratio `max_c |gpu − cpu| / max(max_c |cpu|, floor)` and its pixel; fails
 /// on a non-finite GPU value.

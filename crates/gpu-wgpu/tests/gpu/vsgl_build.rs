@@ -20,19 +20,19 @@ use slc_cpu_ref::vsgl::{
     ImportanceMap, MipRsm, Quadtree, SampleSet,
 };
 use slc_cpu_ref::CpuFrames;
-use slc_gpu_wgpu::buffers::read_back;
-use slc_gpu_wgpu::buffers::upload;
-use slc_gpu_wgpu::gbuffer_pass::{GbufferPass, GpuGBuffer};
-use slc_gpu_wgpu::raster_types::{GpuRsmTexel, GpuShadowTexel};
+use slc_gpu_wgpu::device::buffers::read_back;
+use slc_gpu_wgpu::device::buffers::upload;
+use slc_gpu_wgpu::frame::light::records::{GpuRsmTexel, GpuShadowTexel};
+use slc_gpu_wgpu::frame::light::rsm::{GpuRsm, RsmLayout, RsmPass};
+use slc_gpu_wgpu::frame::raster::gbuffer::{GbufferPass, GpuGBuffer};
+use slc_gpu_wgpu::frame::raster::scene::GpuScene;
 use slc_gpu_wgpu::renderer::GpuRenderer;
-use slc_gpu_wgpu::rsm_pass::{GpuRsm, RsmLayout, RsmPass};
-use slc_gpu_wgpu::scene_upload::GpuScene;
-use slc_gpu_wgpu::shade_pass::read_image;
-use slc_gpu_wgpu::vsgl_build_pass::{SumsBuffers, VsglBuildPass, VsglSampling};
-use slc_gpu_wgpu::vsgl_build_types::GpuSums;
-use slc_gpu_wgpu::vsgl_readback::{cpu_rsm, vsgl_input};
-use slc_gpu_wgpu::vsgl_shade_pass::{GpuVsgls, VsglShadePass};
-use slc_gpu_wgpu::vsgl_types::GpuVsgl;
+use slc_gpu_wgpu::shade::lists::read_image;
+use slc_gpu_wgpu::vsgl::build::records::GpuSums;
+use slc_gpu_wgpu::vsgl::build::{SumsBuffers, VsglBuildPass, VsglSampling};
+use slc_gpu_wgpu::vsgl::readback::{cpu_rsm, vsgl_input};
+use slc_gpu_wgpu::vsgl::shade::records::GpuVsgl;
+use slc_gpu_wgpu::vsgl::shade::{GpuVsgls, VsglShadePass};
 use slc_gpu_wgpu::{GpuContext, GpuError};
 
 /// The RSMs of every light at `resolution` and a 40x30 G-buffer from `camera`.
@@ -408,7 +408,9 @@ fn gpu_vsgl_frames_match_the_cpu_and_read_back_no_rsm() {
             spp: 1,
             lobes: slc_core::frame::LobeSelection::Both,
         };
-        let p = renderer.prepare(&scene, &loaded, &settings, None).unwrap();
+        let p = renderer
+            .prepare(&scene, &loaded, &settings, None, &|_| {})
+            .unwrap();
         let before = renderer.readback_bytes().unwrap();
         let gpu = renderer
             .shade_sampled(

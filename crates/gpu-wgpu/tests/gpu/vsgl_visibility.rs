@@ -17,9 +17,9 @@ use slc_cpu_ref::rsm::{trace_rsm, TexelSample};
 use slc_cpu_ref::sampled_lights::{sample_vsgls, sigma2_floor};
 use slc_cpu_ref::vsgl::{shade_vsgls, ImportanceMap, MipRsm, Vsgl};
 use slc_cpu_ref::Tracer;
-use slc_gpu_wgpu::ism_pass::{caster_points, IsmPass, IsmSettings};
-use slc_gpu_wgpu::vsgl_shade_pass::{GpuVsgls, VsglShadePass};
-use slc_gpu_wgpu::vsgl_types::{VsglInput, VsglLobe};
+use slc_gpu_wgpu::vsgl::ism::{caster_points, IsmPass, IsmSettings};
+use slc_gpu_wgpu::vsgl::shade::records::{VsglInput, VsglLobe};
+use slc_gpu_wgpu::vsgl::shade::{GpuVsgls, VsglShadePass};
 use slc_gpu_wgpu::GpuContext;
 
 /// Bounds on the per-pixel error against the CPU's shadow rays on the default scene (see

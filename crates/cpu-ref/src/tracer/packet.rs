@@ -1,0 +1,530 @@
+//! Eight coherent rays traced through the BVH together (a ray packet): every node's eight
+//! child boxes are tested against the eight rays in one pass of vector operations, and
+//! every triangle against the eight rays, instead of eight traversals each decoding the
+//! same nodes and testing the same triangles.
+//!
+//! Each ray gets exactly the result it gets alone, bit for bit: its lane runs obvhs's box
+//! test (`CwBvhNode::intersect_ray_simd`: the same products, sums, minima and maxima in the
+//! same order) and the watertight triangle test of [`ShearedRay::hit`] with the same
+//! operations, and the packet visits nodes and triangles in obvhs's order (a node's leaf
+//! triangles first, highest offset first, then its inner children by the priority of the
+//! rays' octant, depth first), each ray only where its own box test passed with its own
+//! closest distance so far. So a ray tests the same triangles in the same order and keeps the
+//! same closest one, ties included. The packet needs the rays to share the octant and the
+//! dominant axis (coherent primary and shadow rays of neighbouring pixels almost always do);
+//! other rays, rays against alpha-masked triangles and triangles a lane meets exactly on an
+//! edge (the f64 decision) go through the scalar code.
+use super::{Tracer, NOT_MASKED};
+use crate::watertight::ShearedRay;
+use glam::Vec3;
+use obvhs::cwbvh::node::CwBvhNode;
+use obvhs::ray::Ray;
+use slc_bounds::lanes::{max, min, Lanes8, Real, F8};
+
+/// obvhs's lower bound on a box's entry distance (`cwbvh::node::EPSILON`, crate-private).
+const BOX_EPSILON: f32 = 0.0001;
+/// Entries of the traversal stack; a deeper traversal finishes ray by ray.
+const STACK: usize = 192;
+
+/// Up to eight rays: lane i is in use where bit i of `used` is set.
+#[derive(Clone, Copy, Debug)]
+pub struct Rays8 {
+    pub origin: [Vec3; 8],
+    pub dir: [Vec3; 8],
+    /// Each ray's hits lie in (tmin, tmax].
+    pub tmin: [f32; 8],
+    pub tmax: [f32; 8],
+    pub used: u8,
+}
+
+impl Default for Rays8 {
+    fn default() -> Self {
+        Self {
+            origin: [Vec3::ZERO; 8],
+            dir: [Vec3::Z; 8],
+            tmin: [0.0; 8],
+            tmax: [f32::INFINITY; 8],
+            used: 0,
+        }
+    }
+}
+
+/// The lanes of a packet whose rays share the octant and the shear axes.
+struct Lanes<L: Real> {
+    origin: [L; 3],
+    inv: [L; 3],
+    /// The shear constants (Sx, Sy, Sz) of the watertight test.
+    shear: [L; 3],
+    tmin: L,
+    /// The closest hit so far (the query's tmax at first).
+    tmax: L,
+    /// Whether the direction is negative along x, y, z (obvhs's `rdx`, ...).
+    negative: [bool; 3],
+    /// obvhs's octant mask: the priority of inner child k is k ^ `octant`.
+    octant: u8,
+    /// The axes of the watertight test: kx, ky, kz.
+    k: [usize; 3],
+}
+
+/// What a traversal does at each triangle a lane meets.
+trait Query {
+    /// Whether `lanes` are done (an occlusion query stops at its first hit).
+    fn done(&self) -> u8;
+    /// Lanes `hit` met triangle `prim` at distances `t` (closer than their tmax).
+    fn record<L: Lanes8>(&mut self, lanes: &mut Lanes<L>, prim: u32, hit: u8, t: L);
+}
+
+/// Closest hits: per lane the distance and BVH primitive, as `ray_traverse` keeps them.
+struct Closest {
+    hits: [Option<(f32, u32)>; 8],
+}
+
+impl Query for Closest {
+    fn done(&self) -> u8 {
+        0
+    }
+    #[inline(always)]
+    fn record<L: Lanes8>(&mut self, lanes: &mut Lanes<L>, prim: u32, hit: u8, t: L) {
+        let mask = mask_of::<L>(hit);
+        lanes.tmax = L::select(mask, t, lanes.tmax);
+        let t = t.store();
+        for i in 0..8 {
+            if hit & (1 << i) != 0 {
+                self.hits[i] = Some((t.0[i], prim));
+            }
+        }
+    }
+}
+
+/// Occlusion: the lanes that met anything.
+struct Blocked(u8);
+
+impl Query for Blocked {
+    fn done(&self) -> u8 {
+        self.0
+    }
+    fn record<L: Lanes8>(&mut self, _: &mut Lanes<L>, _: u32, hit: u8, _: L) {
+        self.0 |= hit;
+    }
+}
+
+/// The lane mask with lane i set where bit i of `bits` is.
+#[inline(always)]
+fn mask_of<L: Lanes8>(bits: u8) -> L::Mask {
+    let mut m = F8([0.0; 8]);
+    for (i, v) in m.0.iter_mut().enumerate() {
+        *v = if bits & (1 << i) != 0 { 1.0 } else { 0.0 };
+    }
+    L::load(&m).gt(L::splat(0.5))
+}
+
+/// Eight floats as lanes.
+#[inline(always)]
+fn lanes_of<L: Lanes8>(v: [f32; 8]) -> L {
+    L::load(&F8(v))
+}
+
+impl Tracer {
+    /// The closest hit of each ray in use within (tmin, tmax): its distance and BVH
+    /// primitive (what [`Tracer::closest`] finds for the ray alone).
+    pub fn closest8(&self, rays: &Rays8) -> [Option<(f32, u32)>; 8] {
+        let mut q = Closest { hits: [None; 8] };
+        if !self.traverse8(rays, &mut q) {
+            q.hits = [None; 8];
+            for i in set_lanes(rays.used) {
+                q.hits[i] = self.closest(rays.origin[i], rays.dir[i], rays.tmin[i], rays.tmax[i]);
+            }
+        }
+        q.hits
+    }
+
+    /// The rays in use that meet a triangle within (tmin, tmax] (what
+    /// `Tracer::segment_is_free` says for each ray alone, negated).
+    pub(crate) fn blocked8(&self, rays: &Rays8) -> u8 {
+        let mut q = Blocked(0);
+        if !self.traverse8(rays, &mut q) {
+            q.0 = 0;
+            for i in set_lanes(rays.used) {
+                if !self.segment_is_free(rays.origin[i], rays.dir[i], rays.tmin[i], rays.tmax[i]) {
+                    q.0 |= 1 << i;
+                }
+            }
+        }
+        q.0
+    }
+
+    /// Runs `query` on the packet; false (nothing done) where the rays are not coherent.
+    fn traverse8(&self, rays: &Rays8, query: &mut impl Query) -> bool {
+        #[cfg(target_arch = "x86_64")]
+        if std::arch::is_x86_feature_detected!("avx2") {
+            // SAFETY: the CPU supports AVX2, checked just above.
+            return unsafe { self.traverse8_avx2(rays, query) };
+        }
+        self.traverse8_in::<F8>(rays, query)
+    }
+
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2")]
+    fn traverse8_avx2(&self, rays: &Rays8, query: &mut impl Query) -> bool {
+        self.traverse8_in::<slc_bounds::lanes_avx::A8>(rays, query)
+    }
+
+    #[inline(always)]
+    fn traverse8_in<L: Lanes8>(&self, rays: &Rays8, query: &mut impl Query) -> bool {
+        let Some(mut lanes) = packet_lanes::<L>(rays) else {
+            return false;
+        };
+        if self.bvh.nodes.is_empty() || rays.used == 0 {
+            return true;
+        }
+        let mut stack = [(0u32, 0u8); STACK];
+        let mut top = 1;
+        stack[0] = (0, rays.used);
+        while top > 0 {
+            top -= 1;
+            let (index, entered) = stack[top];
+            let live = entered & !query.done();
+            if live == 0 {
+                continue;
+            }
+            let node = &self.bvh.nodes[index as usize];
+            let slots = slot_hits(node, &lanes, live);
+            self.leaf_triangles(node, &slots, rays, &mut lanes, query);
+            // Inner children, pushed lowest priority first so the highest is taken next.
+            let mut inner = [(0u8, 0u32, 0u8); 8];
+            let mut count = 0;
+            for (j, &hit) in slots.iter().enumerate() {
+                let meta = node.child_meta[j];
+                if hit == 0 || !is_inner(meta) {
+                    continue;
+                }
+                let k = (meta & 0x1f) - 24;
+                let child =
+                    node.child_base_idx + (node.imask as u32 & ((1u32 << k) - 1)).count_ones();
+                inner[count] = (k ^ lanes.octant, child, hit);
+                count += 1;
+            }
+            let inner = &mut inner[..count];
+            inner.sort_unstable_by_key(|c| c.0);
+            if top + count > STACK {
+                // Deeper than any BVH slc builds: the caller traces the rays one by one.
+                return false;
+            }
+            for &(_, child, hit) in inner.iter() {
+                stack[top] = (child, hit);
+                top += 1;
+            }
+        }
+        true
+    }
+
+    /// The packet's leaf triangles at `node` for the lanes of their slots, in obvhs's order.
+    #[inline(always)]
+    fn leaf_triangles<L: Lanes8>(
+        &self,
+        node: &CwBvhNode,
+        slots: &[u8; 8],
+        rays: &Rays8,
+        lanes: &mut Lanes<L>,
+        query: &mut impl Query,
+    ) {
+        // Lanes per triangle offset (slots hold disjoint ranges of offsets 0..24).
+        let mut by_offset = [0u8; 24];
+        let mut any = 0u32;
+        for (j, &hit) in slots.iter().enumerate() {
+            let meta = node.child_meta[j];
+            if hit == 0 || is_inner(meta) {
+                continue;
+            }
+            let first = (meta & 0x1f) as usize;
+            for i in 0..(meta >> 5).count_ones() as usize {
+                by_offset[first + i] = hit;
+                any |= 1 << (first + i);
+            }
+        }
+        while any != 0 {
+            let offset = 31 - any.leading_zeros();
+            any &= !(1 << offset);
+            let hit = by_offset[offset as usize] & !query.done();
+            if hit == 0 {
+                continue;
+            }
+            let prim = node.primitive_base_idx + offset;
+            self.triangle(prim, hit, rays, lanes, query);
+        }
+    }
+
+    /// Triangle `prim` against lanes `active`.
+    #[inline(always)]
+    fn triangle<L: Lanes8>(
+        &self,
+        prim: u32,
+        active: u8,
+        rays: &Rays8,
+        lanes: &mut Lanes<L>,
+        query: &mut impl Query,
+    ) {
+        let id = prim as usize;
+        if self.prims[id].cutout != NOT_MASKED {
+            return self.triangle_alone(prim, active, rays, lanes, query);
+        }
+        let tri = &self.tris[id];
+        let (a, b, c) = (
+            relative(tri.v0, lanes),
+            relative(tri.v1, lanes),
+            relative(tri.v2, lanes),
+        );
+        let [sx, sy, sz] = lanes.shear;
+        let (ax, ay) = (a[0] - sx * a[2], a[1] - sy * a[2]);
+        let (bx, by) = (b[0] - sx * b[2], b[1] - sy * b[2]);
+        let (cx, cy) = (c[0] - sx * c[2], c[1] - sy * c[2]);
+        let u = cx * by - cy * bx;
+        let v = ax * cy - ay * cx;
+        let w = bx * ay - by * ax;
+        let zero = L::splat(0.0);
+        let edge = L::bits(is_zero(u) | is_zero(v) | is_zero(w)) & active;
+        if edge != 0 {
+            self.triangle_alone(prim, edge, rays, lanes, query);
+        }
+        let active = active & !edge & !query.done();
+        let negative = zero.gt(u) | zero.gt(v) | zero.gt(w);
+        let positive = u.gt(zero) | v.gt(zero) | w.gt(zero);
+        let det = u + v + w;
+        let t = (u * (sz * a[2]) + v * (sz * b[2]) + w * (sz * c[2])) / det;
+        let hit = !(negative & positive)
+            & (det.gt(zero) | zero.gt(det))
+            & t.gt(lanes.tmin)
+            & lanes.tmax.gt(t);
+        let hit = L::bits(hit) & active;
+        if hit != 0 {
+            query.record(lanes, prim, hit, t);
+        }
+    }
+
+    /// Triangle `prim` for lanes `which` by the scalar test (masks, edges).
+    fn triangle_alone<L: Lanes8>(
+        &self,
+        prim: u32,
+        which: u8,
+        rays: &Rays8,
+        lanes: &mut Lanes<L>,
+        query: &mut impl Query,
+    ) {
+        let tmax = lanes.tmax.store();
+        let mut t = [f32::INFINITY; 8];
+        let mut hit = 0u8;
+        for i in set_lanes(which) {
+            let sheared = ShearedRay::new(rays.origin[i], rays.dir[i]);
+            let d = self.hit_distance(&sheared, prim as usize, rays.tmin[i], tmax.0[i]);
+            if d < tmax.0[i] {
+                t[i] = d;
+                hit |= 1 << i;
+            }
+        }
+        if hit != 0 {
+            query.record(lanes, prim, hit, lanes_of(t));
+        }
+    }
+}
+
+/// A child box's near and far planes along an axis (lo, hi swapped for a negative direction).
+#[inline(always)]
+fn near_far(lo: u8, hi: u8, negative: bool) -> (f32, f32) {
+    if negative {
+        (hi as f32, lo as f32)
+    } else {
+        (lo as f32, hi as f32)
+    }
+}
+
+/// Vertex `v` relative to the lanes' origins along the shear axes (kx, ky, kz).
+#[inline(always)]
+fn relative<L: Lanes8>(v: glam::Vec3A, lanes: &Lanes<L>) -> [L; 3] {
+    let [kx, ky, kz] = lanes.k;
+    [
+        L::splat(v[kx]) - lanes.origin[kx],
+        L::splat(v[ky]) - lanes.origin[ky],
+        L::splat(v[kz]) - lanes.origin[kz],
+    ]
+}
+
+/// Lanes where `x` is 0 (either sign; not NaN).
+#[inline(always)]
+fn is_zero<L: Lanes8>(x: L) -> L::Mask {
+    let zero = L::splat(0.0);
+    x.le(zero) & !zero.gt(x)
+}
+
+/// Whether child meta `meta` is an inner node (obvhs: its low five bits are 24..32).
+#[inline(always)]
+fn is_inner(meta: u8) -> bool {
+    (meta & (meta << 1)) & 0x10 != 0
+}
+
+/// For each child slot of `node`, the lanes of `live` whose ray meets its box, as obvhs's
+/// `intersect_ray_simd` tests it for each ray.
+#[inline(always)]
+fn slot_hits<L: Lanes8>(node: &CwBvhNode, lanes: &Lanes<L>, live: u8) -> [u8; 8] {
+    let e = node.compute_extent();
+    let p = node.p;
+    // Per axis: the extent times 1/d, and (p − o) times 1/d (obvhs's adjusted ray).
+    let (ix, iy, iz) = (
+        L::splat(e.x) * lanes.inv[0],
+        L::splat(e.y) * lanes.inv[1],
+        L::splat(e.z) * lanes.inv[2],
+    );
+    let (ox, oy, oz) = (
+        (L::splat(p.x) - lanes.origin[0]) * lanes.inv[0],
+        (L::splat(p.y) - lanes.origin[1]) * lanes.inv[1],
+        (L::splat(p.z) - lanes.origin[2]) * lanes.inv[2],
+    );
+    let eps = L::splat(BOX_EPSILON);
+    let [nx, ny, nz] = lanes.negative;
+    let mut out = [0u8; 8];
+    for (j, o) in out.iter_mut().enumerate() {
+        if node.child_meta[j] == 0 {
+            continue;
+        }
+        let (x0, x1) = near_far(node.child_min_x[j], node.child_max_x[j], nx);
+        let (y0, y1) = near_far(node.child_min_y[j], node.child_max_y[j], ny);
+        let (z0, z1) = near_far(node.child_min_z[j], node.child_max_z[j], nz);
+        let (tx0, tx1) = (L::splat(x0) * ix + ox, L::splat(x1) * ix + ox);
+        let (ty0, ty1) = (L::splat(y0) * iy + oy, L::splat(y1) * iy + oy);
+        let (tz0, tz1) = (L::splat(z0) * iz + oz, L::splat(z1) * iz + oz);
+        let tmin = max(max(tx0, max(ty0, tz0)), eps);
+        let tmax = min(min(tx1, min(ty1, tz1)), lanes.tmax);
+        *o = L::bits(tmin.le(tmax)) & live;
+    }
+    out
+}
+
+/// The lanes of `rays`, or `None` where the rays in use differ in octant or shear axes.
+#[inline(always)]
+fn packet_lanes<L: Lanes8>(rays: &Rays8) -> Option<Lanes<L>> {
+    let mut first: Option<([bool; 3], [usize; 3])> = None;
+    let mut origin = [[0.0f32; 8]; 3];
+    let mut inv = [[1.0f32; 8]; 3];
+    let mut shear = [[0.0f32; 8]; 3];
+    let mut tmin = [0.0f32; 8];
+    let mut tmax = [f32::NEG_INFINITY; 8];
+    for i in set_lanes(rays.used) {
+        let (o, d) = (rays.origin[i], rays.dir[i]);
+        let ray = Ray::new(o.into(), d.into(), rays.tmin[i], rays.tmax[i]);
+        let sheared = ShearedRay::new(o, d);
+        let key = ([d.x < 0.0, d.y < 0.0, d.z < 0.0], sheared.axes());
+        if *first.get_or_insert(key) != key {
+            return None;
+        }
+        for a in 0..3 {
+            origin[a][i] = o[a];
+            inv[a][i] = ray.inv_direction[a];
+            shear[a][i] = sheared.shear()[a];
+        }
+        tmin[i] = rays.tmin[i];
+        tmax[i] = rays.tmax[i];
+    }
+    let (negative, k) = first?;
+    let octant =
+        (u8::from(!negative[0]) << 2) | (u8::from(!negative[1]) << 1) | u8::from(!negative[2]);
+    Some(Lanes {
+        origin: [
+            lanes_of(origin[0]),
+            lanes_of(origin[1]),
+            lanes_of(origin[2]),
+        ],
+        inv: [lanes_of(inv[0]), lanes_of(inv[1]), lanes_of(inv[2])],
+        shear: [lanes_of(shear[0]), lanes_of(shear[1]), lanes_of(shear[2])],
+        tmin: lanes_of(tmin),
+        tmax: lanes_of(tmax),
+        negative,
+        octant,
+        k,
+    })
+}
+
+/// The indices of the set bits of `used`, lowest first.
+fn set_lanes(used: u8) -> impl Iterator<Item = usize> {
+    (0..8).filter(move |i| used & (1 << i) != 0)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use slc_core::builtin;
+
+    /// Sponza-like coherence on the built-in scene: packets of neighbouring camera rays and
+    /// of shadow rays towards one point take the packet path and give each ray its own
+    /// answer (closest hit and primitive; occlusion), in lanes and in plain arrays; mixed
+    /// octants fall back to the rays alone.
+    #[test]
+    fn packets_give_each_ray_its_own_answer() {
+        let scene = builtin("default").unwrap();
+        let tracer = Tracer::new(&scene);
+        let camera = scene.camera_or_default();
+        let (w, h) = (64u32, 48u32);
+        let (mut packets, mut shadow_packets) = (0, 0);
+        for j0 in (0..h).step_by(2) {
+            for i0 in (0..w).step_by(4) {
+                let mut rays = Rays8 {
+                    used: 0xff,
+                    ..Rays8::default()
+                };
+                for l in 0..8 {
+                    let (i, j) = (i0 + l as u32 % 4, j0 + l as u32 / 4);
+                    rays.origin[l] = camera.position;
+                    rays.dir[l] = camera.ray_direction(i, j, 0.5, 0.5, w, h);
+                }
+                let mut lanes = Closest { hits: [None; 8] };
+                packets += usize::from(tracer.traverse8(&rays, &mut lanes));
+                let mut arrays = Closest { hits: [None; 8] };
+                let coherent = tracer.traverse8_in::<F8>(&rays, &mut arrays);
+                for l in 0..8 {
+                    let alone = tracer.closest(rays.origin[l], rays.dir[l], 0.0, f32::INFINITY);
+                    assert_eq!(tracer.closest8(&rays)[l], alone);
+                    if coherent {
+                        assert_eq!((lanes.hits[l], arrays.hits[l]), (alone, alone));
+                    }
+                }
+                // Shadow rays from the hits towards a point under the ceiling.
+                let light = glam::Vec3::new(0.1, 1.9, 0.1);
+                let mut shadow = Rays8::default();
+                for (l, hit) in lanes.hits.iter().enumerate() {
+                    let Some((t, _)) = hit else {
+                        continue;
+                    };
+                    let from = rays.origin[l] + rays.dir[l] * *t;
+                    if let Some((dir, tmin, tmax)) = tracer.segment_ray(from, light) {
+                        shadow.origin[l] = from;
+                        shadow.dir[l] = dir;
+                        shadow.tmin[l] = tmin;
+                        shadow.tmax[l] = tmax;
+                        shadow.used |= 1 << l;
+                    }
+                }
+                let mut q = Blocked(0);
+                shadow_packets += usize::from(tracer.traverse8(&shadow, &mut q));
+                let blocked = tracer.occluded8(&shadow);
+                for l in set_lanes(shadow.used) {
+                    let alone = !tracer.segment_is_free(
+                        shadow.origin[l],
+                        shadow.dir[l],
+                        shadow.tmin[l],
+                        shadow.tmax[l],
+                    );
+                    assert_eq!(blocked & (1 << l) != 0, alone, "lane {l}");
+                }
+            }
+        }
+        // Every camera block is coherent here; shadow rays towards a point inside the room
+        // change octant across the room, two blocks in three are coherent.
+        assert_eq!(packets, 16 * 24);
+        assert!(shadow_packets > 200, "{shadow_packets}");
+        let mut mixed = Rays8 {
+            used: 0b11,
+            ..Rays8::default()
+        };
+        mixed.dir[0] = glam::Vec3::new(0.1, 0.2, -1.0).normalize();
+        mixed.dir[1] = glam::Vec3::new(-0.1, 0.2, -1.0).normalize();
+        assert!(!tracer.traverse8(&mixed, &mut Closest { hits: [None; 8] }));
+    }
+}

@@ -1,0 +1,175 @@
+//! Per-VPL bounds in compute (`bounds.wesl`): for each VPL the bound the culling
+//! strategies test, in the culling view of `slc_cull::view`, as `slc_cull`'s
+//! `vpl_bounds.rs` computes it on the CPU: the sphere of section 6 for diffuse VPLs, and for
+//! glossy VPLs the sphere r/α around q, the sphere r_u around c (section 7), or the GGX
+//! spheroid of eq. (12)-(15) as its test space BS, BS·c (eq. 16-17), all grown by
+//! `BOUND_SLACK`. The CPU validates the VPLs (as `slc_cull` does) before upload; the GPU
+//! computes in f32 (the CPU in f64 where `slc_bounds` does), which the conformance test
+//! bounds at relative 1e-5.
+use crate::cull::frame::FrameVpls;
+use crate::cull::raster::records::GpuBoundShape;
+use crate::cull::records::GpuBoxBound;
+use crate::cull::records::{
+    GpuBound, GpuView, BOUND_OVERFLOW, BOUND_SLACK, GLOSSY_ELLIPSOID, GLOSSY_ENCLOSING_SPHERE,
+    GLOSSY_SPHERE, MAX_K,
+};
+use crate::device::buffers::{output, read_back};
+use crate::device::context::{GpuContext, GpuError};
+use crate::device::count::{ArgsPass, Count};
+use crate::vpl::records::vec4;
+use slc_core::{Camera, Interleaving, Vpl};
+use slc_cull::CullView;
+use slc_cull::GlossyBound;
+
+/// The kernel of `bounds.wesl`, linked with what it imports (build.rs).
+pub(crate) const SOURCE: &str = kernel!("bounds");
+const WORKGROUP: u32 = 64;
+
+/// What the bounds depend on besides the VPLs: the camera and image size of the culling
+/// view, δ of eq. (2) and the glossy bound.
+#[derive(Clone, Copy, Debug)]
+pub struct BoundsSettings<'a> {
+    pub camera: &'a Camera,
+    pub width: u32,
+    pub height: u32,
+    pub delta: f32,
+    pub glossy: GlossyBound,
+    /// The interleaved sampling of section 6: each bound records its VPL's subregion.
+    pub interleaving: Interleaving,
+    /// Whether each bound is written as a [`GpuBoundShape`] too (the raster baselines draw
+    /// meshes around them).
+    pub shapes: bool,
+}
+
+/// The bounds of a set of VPLs on the GPU, one [`GpuBound`] per VPL in input order, and for
+/// [`GlossyBound::Tight`] one [`GpuBoxBound`] (what the tight refinement tests) per VPL,
+/// with [`BoundsSettings::shapes`] one [`GpuBoundShape`] per VPL.
+pub struct GpuBounds {
+    pub buffer: wgpu::Buffer,
+    pub box_bounds: wgpu::Buffer,
+    pub shapes: wgpu::Buffer,
+    /// The VPLs as uploaded (`GpuVpl`), for the passes that shade them.
+    pub vpls: wgpu::Buffer,
+    /// How many there are (the buffers hold its capacity).
+    pub count: Count,
+}
+
+/// The compiled bounds pipeline.
+pub struct BoundsPass {
+    pipeline: wgpu::ComputePipeline,
+    args: ArgsPass,
+}
+
+impl BoundsPass {
+    pub fn new(ctx: &GpuContext) -> Result<Self, GpuError> {
+        let args = ArgsPass::new(ctx)?;
+        ctx.scoped("bounds pipeline", || {
+            Ok(Self {
+                pipeline: ctx.compute_pipeline("bounds", SOURCE),
+                args,
+            })
+        })
+    }
+
+    /// The bounds of `vpls` (left on the GPU); VPLs on the CPU are validated and uploaded
+    /// first ([`FrameVpls::records`]). VPLs generated on the GPU are bounded as many as they
+    /// are, by an indirect dispatch sized there.
+    pub fn run(
+        &self,
+        ctx: &GpuContext,
+        vpls: FrameVpls,
+        settings: &BoundsSettings,
+    ) -> Result<GpuBounds, GpuError> {
+        let capacity = vpls.capacity();
+        let count = u32::try_from(capacity)
+            .map_err(|_| GpuError::Input(format!("{capacity} VPLs exceed u32 indices")))?;
+        let vpl_buffer = vpls.records(ctx, settings.delta)?;
+        let view = GpuView::new(settings, count)?;
+        let bounds = output::<GpuBound>(ctx, "bounds", capacity)?;
+        // Only the tight strategies' refinement reads the box bounds.
+        let box_count = if settings.glossy == GlossyBound::Tight {
+            capacity
+        } else {
+            1
+        };
+        let box_bounds = output::<GpuBoxBound>(ctx, "box bounds", box_count)?;
+        let shape_count = if settings.shapes { capacity } else { 1 };
+        let shapes = output::<GpuBoundShape>(ctx, "bound shapes", shape_count)?;
+        let vpl_count = vpls.count();
+        ctx.submit("bounds", |encoder| {
+            let at = std::mem::offset_of!(GpuView, count);
+            let view_buffer = vpl_count.uniform(ctx, encoder, "bounds view", &view, at);
+            let workgroups = vpl_count.workgroups(ctx, encoder, &self.args, 1, WORKGROUP)?;
+            ctx.encode_dispatch(
+                encoder,
+                "bounds",
+                &self.pipeline,
+                &[&view_buffer, &vpl_buffer, &bounds, &box_bounds, &shapes],
+                workgroups,
+            );
+            Ok(())
+        })?;
+        Ok(GpuBounds {
+            buffer: bounds,
+            box_bounds,
+            shapes,
+            vpls: vpl_buffer,
+            count: vpl_count,
+        })
+    }
+
+    /// [`Self::run`] and read the bounds back; a bound that does not fit in f32 is an
+    /// error, as on the CPU (`BoundsError::Overflow`).
+    pub fn compute(
+        &self,
+        ctx: &GpuContext,
+        vpls: &[Vpl],
+        settings: &BoundsSettings,
+    ) -> Result<Vec<GpuBound>, GpuError> {
+        let gpu = self.run(ctx, FrameVpls::Cpu(vpls), settings)?;
+        let bounds: Vec<GpuBound> = read_back(ctx, "bounds", &gpu.buffer, vpls.len())?;
+        if let Some(b) = bounds.iter().find(|b| b.kind == BOUND_OVERFLOW) {
+            return Err(GpuError::Input(format!(
+                "the bound of VPL {} does not fit in f32 (extreme flux, delta or xi)",
+                b.index
+            )));
+        }
+        Ok(bounds)
+    }
+}
+
+impl GpuView {
+    /// The view of `settings` for `count` VPLs (the camera validated by [`CullView::new`]).
+    pub fn new(settings: &BoundsSettings, count: u32) -> Result<Self, GpuError> {
+        if !(1..=MAX_K).contains(&settings.interleaving.k) {
+            return Err(GpuError::Input(format!(
+                "interleaving factor K = {} must lie in 1..={MAX_K}",
+                settings.interleaving.k
+            )));
+        }
+        let view = CullView::new(settings.camera, settings.width, settings.height)
+            .map_err(|e| GpuError::Input(e.to_string()))?;
+        let r = view.rotation();
+        Ok(Self {
+            rotation: [
+                vec4(r.x_axis, 0.0),
+                vec4(r.y_axis, 0.0),
+                vec4(r.z_axis, 0.0),
+            ],
+            eye: vec4(settings.camera.position, 0.0),
+            delta: settings.delta,
+            glossy: match settings.glossy {
+                GlossyBound::Sphere => GLOSSY_SPHERE,
+                GlossyBound::EnclosingSphere => GLOSSY_ENCLOSING_SPHERE,
+                // The tight strategies cull with the spheroid first (`cull::tight`).
+                GlossyBound::Ellipsoid | GlossyBound::Tight => GLOSSY_ELLIPSOID,
+            },
+            count,
+            slack: BOUND_SLACK,
+            k: settings.interleaving.k,
+            seed: settings.interleaving.seed,
+            box_bounds: u32::from(settings.glossy == GlossyBound::Tight),
+            shapes: u32::from(settings.shapes),
+        })
+    }
+}

@@ -1,0 +1,50 @@
+//! Exclusive prefix sum of u32 counts into offsets (`scan.wesl`), in place, with the
+//! total appended: the light-list offsets from the per-tile list lengths.
+use crate::device::buffers::{uniform, Grid};
+use crate::device::context::GpuContext;
+use bytemuck::{Pod, Zeroable};
+
+/// Parameters of the exclusive scan (`scan.wesl`, `ScanParams`).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Pod, Zeroable)]
+pub struct GpuScanParams {
+    /// Number of values; the scan writes n + 1 offsets (the last is the total).
+    pub count: u32,
+    pub pad: [u32; 3],
+}
+const _: () = assert!(std::mem::size_of::<GpuScanParams>() == 16);
+
+pub(crate) const SOURCE: &str = kernel!("scan");
+
+/// The compiled scan pipeline.
+pub struct ScanPass {
+    pipeline: wgpu::ComputePipeline,
+}
+
+impl ScanPass {
+    pub fn new(ctx: &GpuContext) -> Self {
+        Self {
+            pipeline: ctx.compute_pipeline("scan", SOURCE),
+        }
+    }
+
+    /// Records the scan of `values[0..count]` (the buffer holds `count + 1` u32); the total
+    /// goes to `values[count]` and to `GpuCullStatus::total` in `status`.
+    pub fn encode(
+        &self,
+        ctx: &GpuContext,
+        encoder: &mut wgpu::CommandEncoder,
+        values: &wgpu::Buffer,
+        count: u32,
+        status: &wgpu::Buffer,
+    ) {
+        let params = uniform(ctx, "scan params", &GpuScanParams { count, pad: [0; 3] });
+        ctx.encode_dispatch(
+            encoder,
+            "scan",
+            &self.pipeline,
+            &[&params, values, status],
+            Grid { x: 1, y: 1 },
+        );
+    }
+}

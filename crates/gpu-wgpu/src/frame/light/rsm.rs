@@ -1,0 +1,286 @@
+//! Reflective shadow maps by rasterization, GPU twin of `slc_cpu_ref::rsm::trace_rsm` with
+//! `TexelSample::Centre` (Dachsbacher and Stamminger's RSM, the VPL source of the paper's
+//! section 4): a point light gets six cube faces, a spot light one pinhole face whose
+//! half-angle is the outer cone angle (six faces beyond 80°), a directional light one
+//! orthographic map over the scene's bounding sphere; faces, axes, texel layout
+//! (face-major, then row-major from the top) and fluxes as on the CPU. Per face the
+//! visibility pass (`frame::raster::visibility`) picks each texel's nearest triangle and
+//! `rsm.wesl` intersects the texel-centre ray with it.
+//!
+//! Each texel's solid angle is a 3 x 3 Gauss-Legendre quadrature in f32 of the exact
+//! integral the CPU evaluates in closed form in f64 (see `solid_angle.wesl`). The map's
+//! depth (the first surface of every texel's ray, either side) is kept as a shadow map for
+//! `frame::light::direct`.
+use crate::device::buffers::{output, read_back, uniform};
+use crate::device::context::{GpuContext, GpuError};
+use crate::frame::light::records::{
+    GpuRsmParams, GpuRsmTexel, GpuShadowTexel, RSM_DIRECTIONAL, RSM_POINT, RSM_SPOT,
+};
+use crate::frame::raster::scene::GpuScene;
+use crate::frame::raster::visibility::{RasterView, Resolve, VisibilityPass, VisibilityTarget};
+use glam::Vec3;
+use slc_core::{Light, SpotCone};
+
+/// The kernel of `rsm.wesl`, linked with what it imports (build.rs).
+pub(crate) const SOURCE: &str = kernel!("rsm");
+
+/// Beyond this outer cone angle a spot light gets six faces (`rsm.rs`
+/// `SPOT_SINGLE_FACE_MAX_ANGLE`).
+pub const SPOT_SINGLE_FACE_MAX_ANGLE: f32 = 80.0 * std::f32::consts::PI / 180.0;
+
+/// The largest RSM resolution per face (`RenderSettings::validate`).
+pub const MAX_RESOLUTION: u32 = 4096;
+
+/// (forward, right, up) of the six cube faces, as `rsm.rs` `CUBE_FACES`.
+const CUBE_FACES: [(Vec3, Vec3, Vec3); 6] = [
+    (Vec3::X, Vec3::Z, Vec3::Y),
+    (Vec3::NEG_X, Vec3::NEG_Z, Vec3::Y),
+    (Vec3::Y, Vec3::NEG_X, Vec3::NEG_Z),
+    (Vec3::NEG_Y, Vec3::NEG_X, Vec3::Z),
+    (Vec3::Z, Vec3::NEG_X, Vec3::Y),
+    (Vec3::NEG_Z, Vec3::X, Vec3::Y),
+];
+
+/// One face of a map: rays leave `origin` (pinhole) or the plane through it (orthographic)
+/// through `forward + x right + y up`, x and y in [−extent, extent].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RsmFace {
+    pub forward: Vec3,
+    pub right: Vec3,
+    pub up: Vec3,
+    pub extent: f32,
+}
+
+/// The faces of `light`'s map, their origin and, for a directional light, the orthographic
+/// depth range (`trace_rsm`'s set-up).
+#[derive(Clone, Debug, PartialEq)]
+pub struct RsmLayout {
+    pub faces: Vec<RsmFace>,
+    pub origin: Vec3,
+    /// `Some(depth range)` for an orthographic map.
+    pub orthographic: Option<f32>,
+}
+
+impl RsmLayout {
+    /// The layout `trace_rsm` uses for `light` in a scene with bounds `bounds`.
+    pub fn new(light: &Light, bounds: (Vec3, Vec3)) -> Self {
+        let cube = || {
+            CUBE_FACES
+                .iter()
+                .map(|&(forward, right, up)| RsmFace {
+                    forward,
+                    right,
+                    up,
+                    extent: 1.0,
+                })
+                .collect()
+        };
+        match *light {
+            Light::Point { position, .. } => Self {
+                faces: cube(),
+                origin: position,
+                orthographic: None,
+            },
+            Light::Spot {
+                position,
+                direction,
+                outer_cone_angle,
+                ..
+            } => {
+                let faces = if outer_cone_angle > SPOT_SINGLE_FACE_MAX_ANGLE {
+                    cube()
+                } else {
+                    let (right, up) = direction.any_orthonormal_pair();
+                    vec![RsmFace {
+                        forward: direction,
+                        right,
+                        up,
+                        extent: outer_cone_angle.tan(),
+                    }]
+                };
+                Self {
+                    faces,
+                    origin: position,
+                    orthographic: None,
+                }
+            }
+            Light::Directional { direction, .. } => {
+                let (lo, hi) = bounds;
+                let centre = 0.5 * (lo + hi);
+                let radius = (0.5 * (hi - lo).length()).max(1e-3) * 1.01;
+                let (right, up) = direction.any_orthonormal_pair();
+                Self {
+                    faces: vec![RsmFace {
+                        forward: direction,
+                        right,
+                        up,
+                        extent: radius,
+                    }],
+                    origin: centre - direction * (2.0 * radius),
+                    // The bounding sphere lies within [radius, 3 radius] of the origin plane.
+                    orthographic: Some(4.0 * radius),
+                }
+            }
+        }
+    }
+}
+
+/// One light's reflective shadow map on the GPU.
+pub struct GpuRsm {
+    pub light: Light,
+    pub layout: RsmLayout,
+    /// Texels per face side.
+    pub resolution: u32,
+    /// [`GpuRsmTexel`] per texel, face-major then row-major (row 0 at the top).
+    pub texels: wgpu::Buffer,
+    /// [`GpuShadowTexel`] per texel, the same layout.
+    pub shadow: wgpu::Buffer,
+}
+
+impl GpuRsm {
+    /// Number of texels (faces x resolution²).
+    pub fn texel_count(&self) -> usize {
+        self.layout.faces.len() * (self.resolution as usize).pow(2)
+    }
+
+    /// The texels, read back.
+    pub fn read_texels(&self, ctx: &GpuContext) -> Result<Vec<GpuRsmTexel>, GpuError> {
+        read_back(ctx, "rsm texels", &self.texels, self.texel_count())
+    }
+
+    /// The shadow map, read back.
+    pub fn read_shadow(&self, ctx: &GpuContext) -> Result<Vec<GpuShadowTexel>, GpuError> {
+        read_back(ctx, "shadow map", &self.shadow, self.texel_count())
+    }
+}
+
+/// The compiled RSM pipelines (visibility and resolve).
+pub struct RsmPass {
+    visibility: VisibilityPass,
+    resolve: wgpu::ComputePipeline,
+}
+
+impl RsmPass {
+    pub fn new(ctx: &GpuContext) -> Result<Self, GpuError> {
+        let visibility = VisibilityPass::new(ctx)?;
+        ctx.scoped("rsm pipeline", || {
+            Ok(Self {
+                visibility,
+                resolve: ctx.compute_pipeline("rsm resolve", SOURCE),
+            })
+        })
+    }
+
+    /// Renders `light`'s map of `resolution`² texels per face. Errors on an invalid light
+    /// (`Light::is_valid`), a resolution outside 1..=[`MAX_RESOLUTION`] or beyond the
+    /// adapter's texture or storage limits, and on device faults.
+    pub fn render(
+        &self,
+        ctx: &GpuContext,
+        scene: &GpuScene,
+        light: &Light,
+        resolution: u32,
+    ) -> Result<GpuRsm, GpuError> {
+        if !light.is_valid() {
+            return Err(GpuError::Input(format!(
+                "light {light:?} has a non-finite or negative value"
+            )));
+        }
+        if !(1..=MAX_RESOLUTION).contains(&resolution) {
+            return Err(GpuError::Input(format!(
+                "RSM resolution {resolution} is outside 1..={MAX_RESOLUTION}"
+            )));
+        }
+        let layout = RsmLayout::new(light, scene.bounds);
+        let n = resolution;
+        let count = layout.faces.len() * (n as usize).pow(2);
+        let texels = output::<GpuRsmTexel>(ctx, "rsm texels", count)?;
+        let shadow = output::<GpuShadowTexel>(ctx, "shadow map", count)?;
+        let target = VisibilityTarget::new(ctx, n, n)?;
+        ctx.scoped("rsm", || {
+            let mut encoder = ctx
+                .device
+                .create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("rsm") });
+            for (f, face) in layout.faces.iter().enumerate() {
+                let view = RasterView {
+                    origin: layout.origin,
+                    right: face.right,
+                    up: face.up,
+                    forward: face.forward,
+                    extent: (face.extent, face.extent),
+                    orthographic: layout.orthographic,
+                    offset: (0.5, 0.5),
+                };
+                self.visibility
+                    .encode(ctx, &mut encoder, scene, &view, &target);
+                let params = uniform(
+                    ctx,
+                    "rsm params",
+                    &face_params(light, &layout, face, n, f as u32 * n * n),
+                );
+                Resolve {
+                    label: "rsm resolve",
+                    pipeline: &self.resolve,
+                    params: &params,
+                    outputs: &[&texels, &shadow],
+                    groups: (n.div_ceil(8), n.div_ceil(8)),
+                }
+                .encode(ctx, &mut encoder, scene, &target);
+            }
+            ctx.queue.submit([encoder.finish()]);
+            Ok(())
+        })?;
+        Ok(GpuRsm {
+            light: light.clone(),
+            layout,
+            resolution: n,
+            texels,
+            shadow,
+        })
+    }
+}
+
+/// The resolve parameters of one face (`trace_rsm`'s per-texel constants, computed as the
+/// CPU computes them).
+fn face_params(
+    light: &Light,
+    layout: &RsmLayout,
+    face: &RsmFace,
+    n: u32,
+    first: u32,
+) -> GpuRsmParams {
+    let texel_size = 2.0 / n as f32;
+    let e = face.extent;
+    let (kind, radiometry, spot, falloff) = match *light {
+        Light::Point { intensity, .. } => (RSM_POINT, intensity, [0.0; 4], 1.0),
+        Light::Spot {
+            direction,
+            intensity,
+            inner_cone_angle,
+            outer_cone_angle,
+            ..
+        } => {
+            let cone = SpotCone::new(inner_cone_angle, outer_cone_angle);
+            (
+                RSM_SPOT,
+                intensity,
+                direction.extend(cone.h_outer).to_array(),
+                cone.h_width,
+            )
+        }
+        Light::Directional { irradiance, .. } => {
+            let area = (texel_size * e) * (texel_size * e);
+            (RSM_DIRECTIONAL, irradiance * area, [0.0; 4], 1.0)
+        }
+    };
+    GpuRsmParams {
+        origin: layout.origin.extend(e).to_array(),
+        forward: face.forward.extend(texel_size).to_array(),
+        right: face.right.extend(0.0).to_array(),
+        up: face.up.extend(0.0).to_array(),
+        light: radiometry.extend(0.0).to_array(),
+        spot,
+        info: [kind, n, first, 0],
+        falloff: [falloff, 0.0, 0.0, 0.0],
+    }
+}

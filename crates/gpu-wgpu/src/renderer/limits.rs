@@ -1,0 +1,52 @@
+//! The sizes a frame's largest storage buffers take, checked against the adapter's binding
+//! limit before any work ([`Renderer::check`](slc_core::Renderer::check)), so a frame too large
+//! for this adapter (`--rsm 1024` on lavapipe, whose bindings hold 128 MiB) is refused with
+//! what to lower and how far, not by a pass halfway through.
+use crate::device::GpuContext;
+use crate::frame::light::records::GpuRsmTexel;
+use crate::frame::raster::records::GpuSample;
+use crate::vpl::records::GpuVpl;
+use slc_core::frame::{LobeSelection, RenderError, RenderSettings};
+use std::mem::size_of;
+
+/// Refuses `settings` when the G-buffer, one RSM face or the VPLs of one single-face light
+/// (the least any scene with a light has) exceed one storage binding.
+pub fn check_frame_size(ctx: &GpuContext, settings: &RenderSettings) -> Result<(), RenderError> {
+    let limit = ctx.limits.max_storage_buffer_binding_size;
+    let lobes: u64 = match settings.lobes {
+        LobeSelection::Both => 2,
+        LobeSelection::Diffuse | LobeSelection::Glossy => 1,
+    };
+    let texels = u64::from(settings.rsm_resolution).pow(2);
+    let pixels = u64::from(settings.width) * u64::from(settings.height);
+    let per_texel = (size_of::<GpuRsmTexel>() as u64).max(lobes * size_of::<GpuVpl>() as u64);
+    let per_pixel = size_of::<GpuSample>() as u64;
+    let refuse = |what: String| {
+        Err(RenderError::Unsupported {
+            backend: "gpu",
+            what: format!(
+                "{what}, more than the {limit} bytes one storage binding holds on {}",
+                ctx.adapter_name
+            ),
+            instead: Some("cpu"),
+        })
+    };
+    if texels * per_texel > limit {
+        let most = ((limit / per_texel) as f64).sqrt().floor();
+        return refuse(format!(
+            "RSM {n}² ({texels} texels of {per_texel} bytes per face, {} bytes; at most --rsm {most} here)",
+            texels * per_texel,
+            n = settings.rsm_resolution
+        ));
+    }
+    if pixels * per_pixel > limit {
+        return refuse(format!(
+            "{}x{} ({pixels} pixels of {per_pixel} bytes, {} bytes; at most {} pixels here)",
+            settings.width,
+            settings.height,
+            pixels * per_pixel,
+            limit / per_pixel
+        ));
+    }
+    Ok(())
+}
