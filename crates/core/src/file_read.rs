@@ -47,7 +47,9 @@ pub const MAX_INPUT_FILE_BYTES: u64 = 4 << 30;
 /// that grows past the cap while it is read ends there: [`capped_at_end`] tells).
 pub(crate) fn open_capped(path: &Path) -> std::io::Result<std::io::Take<std::fs::File>> {
     check_regular(path)?;
-    Ok(std::fs::File::open(path)?.take(MAX_INPUT_FILE_BYTES + 1))
+    let file = std::fs::File::open(path)?;
+    note_read(path);
+    Ok(file.take(MAX_INPUT_FILE_BYTES + 1))
 }
 
 /// An error if a stream from [`open_capped`] went past the cap.
