@@ -1,9 +1,11 @@
 //! The backends a [`crate::scene::PyScene`] keeps between calls: the CPU's BVH, and the GPU
-//! device with the uploaded scene, each made on first use. Work is written once as a [`Job`]
+//! device with the uploaded scene (and a BVH for the CPU passes of its frames), each made on
+//! first use. Work is written once as a [`Job`]
 //! over the renderer API and run on the backend the options name.
 use crate::options::{Backend, Options};
+use slc_app::cpu_frames::{CpuFrames, SceneBvh};
 use slc_core::{Progress, Renderer, Scene};
-use slc_cpu_ref::{CpuFrames, CpuRenderer};
+use slc_cpu_ref::CpuRenderer;
 
 /// Work on one backend, written once for every backend. It reports its pixel-passes to
 /// `progress` and stops when it is cancelled.
@@ -14,6 +16,7 @@ pub trait Job {
         r: &R,
         scene: &Scene,
         loaded: &R::Scene,
+        bvh: &SceneBvh,
         progress: Progress,
     ) -> Result<Self::Output, String>;
 }
@@ -24,6 +27,8 @@ pub struct Loaded {
     cpu: Option<<CpuRenderer as Renderer>::Scene>,
     /// The CPU renderer, kept from job to job (it reuses its frames' images).
     cpu_renderer: CpuRenderer,
+    /// The scene's BVH for the CPU passes of the GPU's frames, built on first use.
+    bvh: SceneBvh,
     #[cfg(feature = "gpu")]
     gpu: Option<(
         slc_gpu_wgpu::GpuRenderer,
@@ -59,7 +64,7 @@ impl Loaded {
                     Some(l) => l,
                     slot => slot.insert(self.cpu_renderer.load(scene).map_err(|e| e.to_string())?),
                 };
-                job.run(&self.cpu_renderer, scene, loaded, progress)
+                job.run(&self.cpu_renderer, scene, loaded, &self.bvh, progress)
             }
             Backend::Gpu => self.run_gpu(options, scene, job, progress),
         }
@@ -86,7 +91,7 @@ impl Loaded {
         };
         gpu.check(&options.settings).map_err(|e| e.to_string())?;
         gpu.set_one_pass(options.one_pass);
-        job.run(&*gpu, scene, loaded, progress)
+        job.run(&*gpu, scene, loaded, &self.bvh, progress)
     }
 
     #[cfg(not(feature = "gpu"))]

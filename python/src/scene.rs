@@ -13,6 +13,7 @@ use numpy::{PyArray1, PyArray2, PyArrayMethods};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
+use slc_app::cpu_frames::{CpuFrames, SceneBvh};
 use slc_app::reference::{all_vpl_reference, cpu_input};
 use slc_core::culling::{Interleaving, LightLists, NO_LIST};
 use slc_core::frame::{Method, RenderSettings, RenderedFrame, Stochastic};
@@ -21,7 +22,6 @@ use slc_core::shader::{frame_timings, ShadeInput, Shader as _};
 use slc_core::{
     load_scene, MaterialOverride, PreparedFrame, Progress, Renderer, Scene, Strategy, VplLobe,
 };
-use slc_cpu_ref::CpuFrames;
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::{Mutex, PoisonError};
 
@@ -46,6 +46,7 @@ impl Job for RenderJob<'_> {
         r: &R,
         scene: &Scene,
         loaded: &R::Scene,
+        _bvh: &SceneBvh,
         progress: Progress,
     ) -> Result<FrameData, String> {
         let s = &self.options.settings;
@@ -74,6 +75,7 @@ impl Job for CompareJob<'_> {
         r: &R,
         scene: &Scene,
         loaded: &R::Scene,
+        bvh: &SceneBvh,
         progress: Progress,
     ) -> Result<Self::Output, String> {
         let settings = &self.options.settings;
@@ -107,7 +109,7 @@ impl Job for CompareJob<'_> {
             .map_err(message)?;
         let mut out = Vec::new();
         if self.reference {
-            let cpu_p = r.cpu_frame(scene, loaded, &p).map_err(message)?;
+            let cpu_p = r.cpu_frame(scene, bvh, &p).map_err(message)?;
             let cpu = slc_cpu_ref::CpuRenderer::default();
             let input = cpu_input(scene, &cpu_p, seed, visibility);
             let reference = all_vpl_reference(input, progress)?;
@@ -164,6 +166,7 @@ impl Job for VplsJob<'_> {
         r: &R,
         scene: &Scene,
         loaded: &R::Scene,
+        _bvh: &SceneBvh,
         progress: Progress,
     ) -> Result<VplColumns, String> {
         let p = r
@@ -199,6 +202,7 @@ impl Job for ListsJob<'_> {
         r: &R,
         scene: &Scene,
         loaded: &R::Scene,
+        bvh: &SceneBvh,
         progress: Progress,
     ) -> Result<LightLists, String> {
         let message = |e: slc_core::RenderError| e.to_string();
@@ -206,7 +210,7 @@ impl Job for ListsJob<'_> {
         let p = r
             .prepare(scene, loaded, settings, None, progress)
             .map_err(message)?;
-        let cpu_p = r.cpu_frame(scene, loaded, &p).map_err(message)?;
+        let cpu_p = r.cpu_frame(scene, bvh, &p).map_err(message)?;
         let s = self.stochastic;
         slc_cpu_ref::CpuRenderer::default()
             .cull(

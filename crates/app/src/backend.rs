@@ -1,10 +1,11 @@
 //! The one place the command opens a backend: each command is written once over the
-//! renderer API (`slc_core::Renderer`, with `slc_cpu_ref::CpuFrames` for what only the CPU
+//! renderer API (`slc_core::Renderer`, with `slc_app::cpu_frames::CpuFrames` for what only the CPU
 //! computes) and run here on the backend `--backend` names. Without the `gpu` feature the
 //! GPU backend is an error naming the feature.
 use crate::args::{Backend, BackendChoice};
+use slc_app::cpu_frames::CpuFrames;
 use slc_core::RenderError;
-use slc_cpu_ref::{CpuFrames, CpuRenderer};
+use slc_cpu_ref::CpuRenderer;
 
 /// A command written once for every backend.
 pub trait OnBackend {

@@ -8,6 +8,7 @@ use crate::ceiling;
 use crate::table::{write_csv, SettingsColumns};
 use clap::Args;
 use serde::Serialize;
+use slc_app::cpu_frames::CpuFrames;
 use slc_app::limits::check_frames;
 use slc_app::out_dir::OutDir;
 use slc_app::provenance::Provenance;
@@ -17,7 +18,6 @@ use slc_core::frame::PassTime;
 use slc_core::frame::{Method, Stochastic};
 use slc_core::shader::frame_timings_of;
 use slc_core::{PreparedFrame, Scene, Strategy, Timings};
-use slc_cpu_ref::CpuFrames;
 use std::fmt::Write;
 use std::path::PathBuf;
 

@@ -18,6 +18,7 @@ use crate::print::PrintWidth;
 use crate::sampled::{shade_sampled, PASSES};
 use crate::table::{write_table, SettingsColumns};
 use clap::Args;
+use slc_app::cpu_frames::{CpuFrames, SceneBvh};
 use slc_app::limits::check_frames;
 use slc_app::out_dir::OutDir;
 use slc_app::progress::bar;
@@ -30,7 +31,7 @@ use slc_core::frame::{Method, RenderSettings, Stochastic, Timings};
 use slc_core::render::readback_since;
 use slc_core::shader::{frame_timings, SampledLights, ShadeInput, Shader as _};
 use slc_core::{Image, PreparedFrame, Renderer, Scene, Strategy};
-use slc_cpu_ref::{CpuFrames, CpuPrepared, CpuRenderer};
+use slc_cpu_ref::{CpuPrepared, CpuRenderer};
 use std::fmt::Write;
 use std::path::{Path, PathBuf};
 
@@ -182,7 +183,9 @@ impl OnBackend for Compare<'_> {
             .map_err(message)?;
         let prepare_readback = readback_since(r, before_prepare);
         // The CPU's reference and unculled estimate read the backend's frame (back).
-        let cpu_p = r.cpu_frame(&scene, &loaded, &p).map_err(message)?;
+        let cpu_p = r
+            .cpu_frame(&scene, &SceneBvh::default(), &p)
+            .map_err(message)?;
         let cpu = cpu_input(&scene, &cpu_p, f.seed, f.visibility);
         let vpl_count = p.vpl_count().map_err(message)?;
         eprintln!("{vpl_count} VPLs");

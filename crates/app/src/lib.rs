@@ -3,6 +3,7 @@
 //! frame is written as (EXR, layered EXR, sRGB PNG), the all-VPL reference, repeated timings,
 //! progress bars. The `slc` command and the Python package (`python/`) both write and return
 //! reports and images through it.
+pub mod cpu_frames;
 pub mod layers_exr;
 pub mod limits;
 pub mod out_dir;

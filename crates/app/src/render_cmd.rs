@@ -4,6 +4,7 @@ use crate::backend::{message, run_on, OnBackend};
 use crate::layers_exr::write_layers;
 use crate::output::{frame_files, write_frame};
 use clap::{Args, ValueEnum};
+use slc_app::cpu_frames::CpuFrames;
 use slc_app::limits::check_frames;
 use slc_app::out_dir::OutDir;
 use slc_app::progress::bar;
@@ -13,7 +14,6 @@ use slc_app::report::{FrameFacts, Report};
 use slc_core::frame::counts::{REPEAT, SPP};
 use slc_core::frame::{Method, RenderSettings};
 use slc_core::Scene;
-use slc_cpu_ref::CpuFrames;
 use std::path::PathBuf;
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]

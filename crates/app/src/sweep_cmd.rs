@@ -19,6 +19,7 @@ use crate::print::PrintWidth;
 use crate::table::{write_table, SettingsColumns, TextTable};
 use clap::Args;
 use serde::Serialize;
+use slc_app::cpu_frames::{CpuFrames, SceneBvh};
 use slc_app::limits::check_frames;
 use slc_app::out_dir::OutDir;
 use slc_app::progress::bar;
@@ -29,7 +30,6 @@ use slc_core::frame::counts::{REPEAT, SAMPLED_LIGHTS, SEEDS};
 use slc_core::frame::{Method, Stochastic};
 use slc_core::shader::{ShadeInput, Shader as _};
 use slc_core::{Image, PreparedFrame, Renderer, Scene, Strategy};
-use slc_cpu_ref::CpuFrames;
 use std::fmt::Write;
 use std::path::PathBuf;
 
@@ -169,7 +169,9 @@ impl OnBackend for Sweep<'_> {
         let p = r
             .prepare(&scene, &loaded, &settings, None, &|_| {})
             .map_err(message)?;
-        let cpu_p = r.cpu_frame(&scene, &loaded, &p).map_err(message)?;
+        let cpu_p = r
+            .cpu_frame(&scene, &SceneBvh::default(), &p)
+            .map_err(message)?;
         let reference =
             all_vpl_reference_with_bar(cpu_input(&scene, &cpu_p, f.seed, f.visibility))?;
         let input = f.input(&scene, &loaded, &p);

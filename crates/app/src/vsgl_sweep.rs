@@ -19,6 +19,7 @@ use crate::sampled::{shade_sampled, PASSES};
 use crate::sweep_cmd::SweepArgs;
 use crate::table::{write_table, SettingsColumns, TextTable};
 use serde::Serialize;
+use slc_app::cpu_frames::{CpuFrames, SceneBvh};
 use slc_app::limits::check_frames;
 use slc_app::out_dir::OutDir;
 use slc_app::progress::bar;
@@ -28,7 +29,6 @@ use slc_app::repeat::{repeated, Spread};
 use slc_core::frame::{Importance, LightSampling, Method, Timings};
 use slc_core::shader::{SampledLights, ShadeInput};
 use slc_core::{PreparedFrame, Scene};
-use slc_cpu_ref::CpuFrames;
 use std::fmt::Write;
 use std::time::Instant;
 
@@ -90,7 +90,9 @@ impl OnBackend for VsglSweep<'_> {
                 &|_| {},
             )
             .map_err(message)?;
-        let cpu_p = r.cpu_frame(&scene, &loaded, &p).map_err(message)?;
+        let cpu_p = r
+            .cpu_frame(&scene, &SceneBvh::default(), &p)
+            .map_err(message)?;
         let texels: usize = cpu_p
             .maps
             .iter()

@@ -53,6 +53,7 @@ pub mod progress;
 pub mod render;
 pub mod renderer;
 pub mod rng;
+pub mod rsm;
 pub mod scene;
 #[cfg(feature = "loaders")]
 pub mod settings;
@@ -66,6 +67,7 @@ pub mod texture;
 #[cfg(feature = "loaders")]
 mod texture_decode;
 pub mod vpl;
+pub mod vsgl;
 
 #[cfg(all(test, feature = "loaders"))]
 mod loader_tests;

@@ -100,6 +100,15 @@ impl Scene {
         (lo.x <= hi.x).then_some((lo, hi))
     }
 
+    /// The offset a ray takes to leave a surface of this scene, on every backend: 2e-5 of the
+    /// largest coordinate's magnitude (at least 1).
+    pub fn ray_epsilon(&self) -> f32 {
+        let extent = self.bounds().map_or(1.0, |(lo, hi)| {
+            lo.abs().max(hi.abs()).max_element().max(1.0)
+        });
+        2e-5 * extent
+    }
+
     /// Whether any material has a specular layer (else no glossy VPL is generated).
     pub fn has_specular(&self) -> bool {
         self.meshes

@@ -64,6 +64,6 @@ pub mod vsgl;
 pub mod watertight;
 
 pub use prepare::{prepare, CpuPrepared};
-pub use renderer::{render, CpuFrames, CpuRenderer};
+pub use renderer::{render, CpuRenderer};
 pub use tracer::Tracer;
 pub use vpl_shading::VplEstimator;

@@ -7,7 +7,7 @@ use crate::gbuffer::{trace_gbuffer_watched, PixelSample};
 use crate::rsm::{trace_rsm, Rsm, TexelSample};
 use crate::tracer::Tracer;
 use crate::vpls::generate_vpls;
-use slc_core::frame::{RenderError, RenderSettings, Timings};
+use slc_core::frame::{PreparedData, RenderError, RenderSettings, Timings};
 use slc_core::render::pass_seed;
 use slc_core::{
     Camera, CullInput, GBuffer, Image, Interleaving, PreparedFrame, Progress, Scene, Vpl,
@@ -29,6 +29,27 @@ pub struct CpuPrepared {
 }
 
 impl CpuPrepared {
+    /// A frame another backend prepared ([`PreparedData`]), with `tracer`, the BVH of its scene.
+    pub fn from_data(data: PreparedData, tracer: Arc<Tracer>) -> Self {
+        let PreparedData {
+            camera,
+            gbuffer,
+            maps,
+            vpls,
+            direct,
+            timings,
+        } = data;
+        Self {
+            camera,
+            tracer,
+            gbuffer,
+            maps,
+            vpls,
+            direct,
+            timings,
+        }
+    }
+
     /// What culling and shading read of this frame: its G-buffer, camera and VPLs with the
     /// roulette's δ and the interleaving.
     pub fn cull_input(&self, delta: f32, interleaving: Interleaving) -> CullInput<'_> {

@@ -1,7 +1,7 @@
 //! The CPU backend of the renderer API: [`CpuRenderer`] runs every step of
 //! `slc_core::Renderer` with this crate's ray-traced passes and `slc_cull`'s cullers, and
-//! has every method, the references and shadow rays included. [`CpuFrames`] is how other
-//! backends hand a frame to what only the CPU computes.
+//! has every method, the references and shadow rays included. Another backend hands a frame
+//! to what only the CPU computes as [`slc_core::frame::PreparedData`] ([`CpuPrepared::from_data`]).
 use crate::denoise::{BilateralParams, CrossBilateral};
 use crate::frame_images::SpareImage;
 use crate::path::trace_pixel_sample;
@@ -16,7 +16,6 @@ use slc_core::{
     BackendInfo, Capabilities, CullMetrics, Image, Interleaving, LightLists, Progress, Renderer,
     Scene, Strategy,
 };
-use std::borrow::Cow;
 use std::sync::{Arc, Mutex, TryLockError};
 
 /// The CPU reference renderer on rayon's threads. It keeps the last noisy image its filter
@@ -258,29 +257,4 @@ pub fn render(
     progress: Progress,
 ) -> Result<RenderedFrame, RenderError> {
     slc_core::render(&CpuRenderer::default(), scene, settings, progress)
-}
-
-/// A backend whose prepared frames the CPU can read: what only the CPU computes (the
-/// all-VPL reference, the unculled estimate of a comparison, sampled VPLs) runs on the
-/// frame another backend prepared.
-pub trait CpuFrames: Renderer {
-    /// `p` as the CPU's frame: borrowed on the CPU, read back (with a BVH of `scene`, built
-    /// once per `loaded`) elsewhere.
-    fn cpu_frame<'a>(
-        &self,
-        scene: &Scene,
-        loaded: &'a Self::Scene,
-        p: &'a Self::Prepared,
-    ) -> Result<Cow<'a, CpuPrepared>, RenderError>;
-}
-
-impl CpuFrames for CpuRenderer {
-    fn cpu_frame<'a>(
-        &self,
-        _scene: &Scene,
-        _loaded: &'a Arc<Tracer>,
-        p: &'a CpuPrepared,
-    ) -> Result<Cow<'a, CpuPrepared>, RenderError> {
-        Ok(Cow::Borrowed(p))
-    }
 }

@@ -117,7 +117,7 @@ impl Tracer {
             prims,
             cutouts,
             textures,
-            epsilon: Self::scene_epsilon(scene),
+            epsilon: scene.ray_epsilon(),
         }
     }
 
@@ -142,16 +142,7 @@ impl Tracer {
         }
     }
 
-    /// The origin offset a tracer of `scene` uses to leave a surface ([`Tracer::epsilon`]),
-    /// without building one: 2e-5 of the largest coordinate's magnitude (at least 1).
-    pub fn scene_epsilon(scene: &Scene) -> f32 {
-        let extent = scene.bounds().map_or(1.0, |(lo, hi)| {
-            lo.abs().max(hi.abs()).max_element().max(1.0)
-        });
-        2e-5 * extent
-    }
-
-    /// The origin offset used to leave a surface.
+    /// The origin offset used to leave a surface ([`Scene::ray_epsilon`]).
     pub fn epsilon(&self) -> f32 {
         self.epsilon
     }

@@ -1,7 +1,8 @@
 //! The frame vocabulary every backend shares: what to render ([`RenderSettings`]), what it
-//! cost ([`Timings`]), what comes back ([`Shaded`], [`RenderedFrame`]) and why it failed
-//! ([`RenderError`]).
+//! cost ([`Timings`]), what comes back ([`Shaded`], [`RenderedFrame`], a prepared frame's
+//! [`PreparedData`]) and why it failed ([`RenderError`]).
 pub mod counts;
+mod data;
 mod error;
 pub mod memory;
 mod output;
@@ -9,6 +10,7 @@ mod settings;
 mod timings;
 
 pub use counts::{Count, MAX_IMAGE_SIDE, MAX_RSM_SIDE, MAX_SAMPLED_LIGHTS};
+pub use data::PreparedData;
 pub use error::RenderError;
 pub use memory::MemoryEstimate;
 pub use output::{RenderedFrame, Shaded};

@@ -2,10 +2,10 @@
 //! hierarchical sample warping.
 use super::error::VsglError;
 use super::mip::MipRsm;
-use super::quadtree::Quadtree;
 use super::sums::ClusterSums;
 use crate::rsm::Rsm;
 use slc_bounds::sg::MeanMap;
+use slc_core::vsgl::Quadtree;
 
 /// Unnormalized importance masses of one RSM's texels, summed up a [`Quadtree`] per face: the
 /// mass of a texel of level `l` is the importance of the cluster of VPLs it covers (VSGL section

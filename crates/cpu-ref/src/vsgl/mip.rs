@@ -1,10 +1,10 @@
 //! The mipmapped reflective shadow map of VSGL section 4.1.
 use super::light::Vsgl;
-use super::quadtree::Quadtree;
 use super::sums::ClusterSums;
 use crate::rsm::Rsm;
 use slc_bounds::sg::MeanMap;
 use slc_bounds::BoundsError;
+use slc_core::vsgl::Quadtree;
 
 /// One sum-based mip pyramid of [`ClusterSums`] per face of an [`Rsm`] (VSGL section 4.1),
 /// laid out by a [`Quadtree`]: level 0 holds the texels' own sums (zero for empty texels), and

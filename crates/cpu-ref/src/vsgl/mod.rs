@@ -28,7 +28,6 @@ mod error;
 mod importance;
 mod light;
 mod mip;
-mod quadtree;
 mod sampling;
 mod shading;
 mod sums;
@@ -39,11 +38,11 @@ pub use error::VsglError;
 pub use importance::ImportanceMap;
 pub use light::Vsgl;
 pub use mip::MipRsm;
-pub use quadtree::Quadtree;
 pub use sampling::{
     point_shift, sample_points, Cluster, FilteredSampler, Footprint, SampleSet, WeightedCluster,
 };
 pub use shading::{shade_vsgls, vsgl_radiance};
+pub use slc_core::vsgl::Quadtree;
 pub use sums::{footprint_variance, ClusterSums};
 pub use texel::TexelLobes;
 

@@ -3,10 +3,8 @@
 //! importance sampling", section 4.1) that stops at the level where the sample density matches
 //! the cluster size.
 use super::importance::ImportanceMap;
-use slc_core::rng::{stream, uniform};
-
-/// The largest `f64` below 1: a warped coordinate never reaches 1.
-const ONE_BELOW: f64 = 1.0 - f64::EPSILON / 2.0;
+use slc_core::vsgl::ONE_BELOW;
+pub use slc_core::vsgl::{point_shift, sample_points, SampleSet};
 
 /// A cluster of the mipmapped RSMs (VSGL section 4.1): texel `(x, y)` of `level` of `face` of
 /// the RSM `map` (the index of the map, one per light).
@@ -46,43 +44,6 @@ pub enum Footprint {
     /// At level 0: importance sampling of single texels (VPLs), as Ritschel et al. 2011 resample
     /// VPLs from the RSM.
     Texel,
-}
-
-/// Which independent set of sample points of a frame.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum SampleSet {
-    /// The lights: VSGLs or importance-sampled VPLs.
-    Lights = 0,
-    /// The camera-side VSGLs that estimate the bidirectional importance (VSGL section 4.3).
-    Camera = 1,
-}
-
-/// `count` points of the unit square: the 2-D Hammersley set `((k + ½)/N, φ2(k))` shifted
-/// modulo 1 by a random offset drawn from `(seed, set)` (Cranley-Patterson rotation). Each point
-/// is uniform on the square, so estimates from them are unbiased, and the set is stratified,
-/// which the hierarchical warp preserves.
-pub fn sample_points(count: u32, seed: u32, set: SampleSet) -> Vec<[f64; 2]> {
-    let shift = point_shift(seed, set).map(f64::from);
-    let n = f64::from(count.max(1));
-    (0..count)
-        .map(|k| {
-            let radical_inverse = f64::from(k.reverse_bits()) / 4_294_967_296.0;
-            [
-                fract((f64::from(k) + 0.5) / n + shift[0]),
-                fract(radical_inverse + shift[1]),
-            ]
-        })
-        .collect()
-}
-
-/// The random offset of [`sample_points`] (the Cranley-Patterson rotation) for `(seed, set)`.
-pub fn point_shift(seed: u32, set: SampleSet) -> [f32; 2] {
-    [0, 1].map(|c| uniform(seed, set as u32, stream::VSGL_POINTS, c))
-}
-
-/// `x − ⌊x⌋`, at most [`ONE_BELOW`].
-fn fract(x: f64) -> f64 {
-    (x - x.floor()).min(ONE_BELOW)
 }
 
 /// Samples clusters of one or more RSMs (all lights of a frame) in proportion to their

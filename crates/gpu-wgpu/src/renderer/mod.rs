@@ -7,7 +7,7 @@
 //! [`GpuContext::from_device`]). What comes back to the CPU: the images, the fault record of
 //! the culling or VSGL passes after the shading, the VPL count when asked (after the frame,
 //! for its report), and the G-buffer, VPLs and lists where the brute-force metrics or a CPU
-//! reference need them ([`CpuFrames`]). VSGLs are built from the RSMs where they lie
+//! reference need them ([`GpuRenderer::read_frame`]). VSGLs are built from the RSMs where they lie
 //! ([`crate::vsgl::build`]) and shaded there ([`crate::vsgl::shade`]), with visibility
 //! from imperfect shadow maps to each VSGL's `μ_v` ([`crate::vsgl::ism`]).
 //!
@@ -37,8 +37,8 @@ use crate::vsgl::ism::{caster_points, GpuCaster, IsmPass, IsmSettings};
 use crate::vsgl::readback::cpu_rsm;
 use crate::vsgl::shade::VsglShadePass;
 use slc_core::frame::{
-    Importance, LightSampling, LobeSelection, Method, PassTime, RenderError, RenderSettings,
-    Shaded, Timings,
+    Importance, LightSampling, LobeSelection, Method, PassTime, PreparedData, RenderError,
+    RenderSettings, Shaded, Timings,
 };
 use slc_core::render::pass_seed;
 use slc_core::rng::{stream, uniform};
@@ -47,8 +47,6 @@ use slc_core::{
     BackendInfo, Camera, Capabilities, CullInput, CullMetrics, GBuffer, Image, Interleaving,
     PreparedFrame, Progress, Renderer, Scene, Strategy, Vpl,
 };
-use slc_cpu_ref::{CpuFrames, CpuPrepared, Tracer};
-use std::borrow::Cow;
 use std::cell::{OnceCell, RefCell};
 use std::collections::BTreeMap;
 use std::sync::{Arc, Mutex};
@@ -61,12 +59,10 @@ fn gpu(e: GpuError) -> RenderError {
 pub struct GpuLoadedScene {
     /// Triangles, materials and textures in GPU buffers.
     pub gpu: GpuScene,
-    /// The scene's ray offset (`Tracer::scene_epsilon`).
+    /// The scene's ray offset ([`Scene::ray_epsilon`]).
     pub epsilon: f32,
     /// Caster points of the imperfect shadow maps, made when VSGL visibility first needs them.
     casters: OnceCell<(Vec<GpuCaster>, IsmSettings)>,
-    /// The CPU's BVH, built when a frame is first read back for a CPU pass.
-    tracer: OnceCell<Arc<Tracer>>,
 }
 
 /// A frame prepared on the GPU up to its VPLs and direct light, its G-buffer and RSMs left
@@ -307,9 +303,8 @@ impl Renderer for GpuRenderer {
     fn load(&self, scene: &Scene) -> Result<GpuLoadedScene, RenderError> {
         Ok(GpuLoadedScene {
             gpu: GpuScene::upload(&self.ctx, scene).map_err(gpu)?,
-            epsilon: Tracer::scene_epsilon(scene),
+            epsilon: scene.ray_epsilon(),
             casters: OnceCell::new(),
-            tracer: OnceCell::new(),
         })
     }
 
@@ -611,18 +606,12 @@ impl Renderer for GpuRenderer {
     }
 }
 
-impl CpuFrames for GpuRenderer {
-    /// The G-buffer and RSMs read back, with a BVH of `scene` built on first use.
-    fn cpu_frame<'a>(
-        &self,
-        scene: &Scene,
-        loaded: &'a GpuLoadedScene,
-        p: &'a GpuPrepared,
-    ) -> Result<Cow<'a, CpuPrepared>, RenderError> {
-        let tracer = loaded.tracer.get_or_init(|| Arc::new(Tracer::new(scene)));
-        Ok(Cow::Owned(CpuPrepared {
+impl GpuRenderer {
+    /// `p`'s data read back where the CPU can read it: the G-buffer, the RSMs, the VPLs and
+    /// the direct light (what a CPU pass takes of a GPU frame).
+    pub fn read_frame(&self, p: &GpuPrepared) -> Result<PreparedData, RenderError> {
+        Ok(PreparedData {
             camera: p.camera.clone(),
-            tracer: Arc::clone(tracer),
             gbuffer: self.cpu_gbuffer(p)?.clone(),
             maps: p
                 .maps
@@ -633,6 +622,6 @@ impl CpuFrames for GpuRenderer {
             vpls: p.vpls()?.to_vec(),
             direct: p.direct.clone(),
             timings: p.timings.clone(),
-        }))
+        })
     }
 }

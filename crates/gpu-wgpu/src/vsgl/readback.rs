@@ -1,17 +1,13 @@
-//! What the GPU frame brings to the CPU and back: a rasterized RSM ([`GpuRsm`]) read back as
-//! the CPU's [`Rsm`], which the CPU's passes take (`CpuFrames`, and the conformance tests of
-//! the GPU's own VSGL construction, `crate::vsgl::build`), and CPU VSGLs in the GPU
-//! shading pass's input form.
+//! A rasterized RSM ([`GpuRsm`]) read back as `slc_core`'s [`Rsm`], the form the CPU's
+//! passes take (a frame handed to the CPU, and the conformance tests of the GPU's own VSGL
+//! construction, `crate::vsgl::build`).
 use glam::Vec3;
 use slc_bounds::{Brdf, Fresnel};
-use slc_core::frame::DiffuseEmission;
-use slc_cpu_ref::rsm::{rectangle_solid_angle, Rsm, RsmTexel};
-use slc_cpu_ref::vsgl::Vsgl;
+use slc_core::rsm::{rectangle_solid_angle, Rsm, RsmTexel};
 
 use crate::device::context::{GpuContext, GpuError};
 use crate::frame::light::rsm::GpuRsm;
 use crate::vpl::records::{anisotropy_from_gpu, FRESNEL_SCHLICK};
-use crate::vsgl::shade::records::{VsglInput, VsglLobe};
 
 fn xyz(v: [f32; 4]) -> Vec3 {
     Vec3::new(v[0], v[1], v[2])
@@ -83,29 +79,4 @@ pub fn cpu_rsm(ctx: &GpuContext, rsm: &GpuRsm) -> Result<Rsm, GpuError> {
         faces: layout.faces.len() as u32,
         texels,
     })
-}
-
-/// A CPU VSGL as [`crate::vsgl::shade`] takes it.
-pub fn vsgl_input(v: &Vsgl, diffuse: DiffuseEmission) -> VsglInput {
-    VsglInput {
-        clamped_diffuse: match diffuse {
-            DiffuseEmission::Sg => None,
-            DiffuseEmission::ClampedCosine => Some(v.normal_concentration),
-        },
-        mu: v.mu,
-        sigma2: v.sigma2,
-        specular_normal: v.specular_normal,
-        lobes: [
-            VsglLobe {
-                c: v.c_diffuse,
-                xi: v.xi_diffuse,
-                lambda: v.lambda_diffuse,
-            },
-            VsglLobe {
-                c: v.c_specular,
-                xi: v.xi_specular,
-                lambda: v.lambda_specular,
-            },
-        ],
-    }
 }

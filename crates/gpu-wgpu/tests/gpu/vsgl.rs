@@ -32,7 +32,7 @@ use slc_gpu_wgpu::device::buffers::upload;
 use slc_gpu_wgpu::frame::raster::gbuffer::GpuGBuffer;
 use slc_gpu_wgpu::frame::raster::records::{gpu_position, GpuSample};
 use slc_gpu_wgpu::shade::lists::read_image;
-use slc_gpu_wgpu::vsgl::shade::records::VsglInput;
+use slc_gpu_wgpu::vsgl::shade::records::{VsglInput, VsglLobe};
 use slc_gpu_wgpu::vsgl::shade::{GpuVsgls, VsglShadePass};
 use slc_gpu_wgpu::{GpuContext, GpuError};
 
@@ -42,7 +42,30 @@ const FLOOR_OF_MEAN: f32 = 1e-3;
 /// Both forms of the diffuse emission, the default first.
 const EMISSIONS: [DiffuseEmission; 2] = [DiffuseEmission::ClampedCosine, DiffuseEmission::Sg];
 
-pub use slc_gpu_wgpu::vsgl::readback::vsgl_input as input;
+/// A CPU VSGL as the GPU's VSGL shading pass takes it.
+pub fn input(v: &Vsgl, diffuse: DiffuseEmission) -> VsglInput {
+    VsglInput {
+        clamped_diffuse: match diffuse {
+            DiffuseEmission::Sg => None,
+            DiffuseEmission::ClampedCosine => Some(v.normal_concentration),
+        },
+        mu: v.mu,
+        sigma2: v.sigma2,
+        specular_normal: v.specular_normal,
+        lobes: [
+            VsglLobe {
+                c: v.c_diffuse,
+                xi: v.xi_diffuse,
+                lambda: v.lambda_diffuse,
+            },
+            VsglLobe {
+                c: v.c_specular,
+                xi: v.xi_specular,
+                lambda: v.lambda_specular,
+            },
+        ],
+    }
+}
 
 /// The worst pixel ratio `max_c |gpu − cpu| / max(max_c |cpu|, floor)` and its pixel; fails
 /// on a non-finite GPU value.

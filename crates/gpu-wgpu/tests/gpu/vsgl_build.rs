@@ -8,6 +8,7 @@
 //! cluster. The tests count those lights and hold them to a small share.
 use crate::common::gpu;
 use crate::raster_common::{anisotropy, default_scene, lit_scene};
+use crate::vsgl::input as vsgl_input;
 use glam::Vec3;
 use slc_bounds::sg::MeanMap;
 use slc_core::frame::{DiffuseEmission, Importance, LightSampling, Method, RenderSettings};
@@ -19,7 +20,7 @@ use slc_cpu_ref::vsgl::{
     bidirectional_importance, sample_points, ClusterSums, FilteredSampler, Footprint,
     ImportanceMap, MipRsm, Quadtree, SampleSet,
 };
-use slc_cpu_ref::CpuFrames;
+use slc_cpu_ref::{CpuPrepared, Tracer};
 use slc_gpu_wgpu::device::buffers::read_back;
 use slc_gpu_wgpu::device::buffers::upload;
 use slc_gpu_wgpu::frame::light::records::{GpuRsmTexel, GpuShadowTexel};
@@ -30,10 +31,11 @@ use slc_gpu_wgpu::renderer::GpuRenderer;
 use slc_gpu_wgpu::shade::lists::read_image;
 use slc_gpu_wgpu::vsgl::build::records::GpuSums;
 use slc_gpu_wgpu::vsgl::build::{SumsBuffers, VsglBuildPass, VsglSampling};
-use slc_gpu_wgpu::vsgl::readback::{cpu_rsm, vsgl_input};
+use slc_gpu_wgpu::vsgl::readback::cpu_rsm;
 use slc_gpu_wgpu::vsgl::shade::records::GpuVsgl;
 use slc_gpu_wgpu::vsgl::shade::{GpuVsgls, VsglShadePass};
 use slc_gpu_wgpu::{GpuContext, GpuError};
+use std::sync::Arc;
 
 /// The RSMs of every light at `resolution` and a 40x30 G-buffer from `camera`.
 fn frame(
@@ -440,7 +442,8 @@ fn gpu_vsgl_frames_match_the_cpu_and_read_back_no_rsm() {
             "{}: what a frame read back",
             importance.name()
         );
-        let cpu_frame = renderer.cpu_frame(&scene, &loaded, &p).unwrap();
+        let data = renderer.read_frame(&p).unwrap();
+        let cpu_frame = CpuPrepared::from_data(data, Arc::new(Tracer::new(&scene)));
         let cpu = shade_vsgl(&cpu_frame, &sampling, 9, false, &|_| {}).unwrap();
         let (g, c) = (&gpu.indirect, &cpu.indirect);
         let mean = c.mean().max_element();

@@ -121,7 +121,7 @@ fn visibility_from_ism_matches_shadow_rays_on_the_default_scene() {
     let f = default_frame(256);
     let diffuse = DiffuseEmission::ClampedCosine;
     let cpu = shade_vsgls(&f.tracer, &f.gbuffer, &f.vsgls, diffuse, true, &|_| {}).unwrap();
-    let settings = IsmSettings::paper(Tracer::scene_epsilon(&f.scene));
+    let settings = IsmSettings::paper(f.scene.ray_epsilon());
     let (gpu, open) = gpu_images(&ctx, &f, &settings);
     let (mean, p99) = error_stats(&gpu, &cpu);
     let (open_mean, open_p99) = error_stats(&open, &cpu);
@@ -158,7 +158,7 @@ fn ism_settings_sweep() {
         &|_| {},
     )
     .unwrap();
-    let base = IsmSettings::paper(Tracer::scene_epsilon(&f.scene));
+    let base = IsmSettings::paper(f.scene.ray_epsilon());
     for footprint in [1.0, 1.5, 2.0] {
         for (bias_constant, bias_slope) in
             [(0.5, 0.25), (1.0, 0.5), (1.5, 0.5), (1.0, 1.0), (2.0, 1.0)]
@@ -222,7 +222,7 @@ fn ism_settings_sweep() {
         &|_| {},
     )
     .unwrap();
-    let sponza_base = IsmSettings::paper(Tracer::scene_epsilon(&sponza_frame.scene));
+    let sponza_base = IsmSettings::paper(sponza_frame.scene.ray_epsilon());
     for (name, f, cpu, eye, base) in [
         ("built-in", &f, &cpu, eye, base),
         (

@@ -9,7 +9,7 @@ use bytemuck::{Pod, Zeroable};
 pub const RSM_POINT: u32 = 0;
 pub const RSM_SPOT: u32 = 1;
 pub const RSM_DIRECTIONAL: u32 = 2;
-/// One face of a reflective shadow map (`slc_cpu_ref::rsm`'s `Face` with its light) for the
+/// One face of a reflective shadow map ([`slc_core::rsm::RsmFace`] with its light) for the
 /// RSM resolve. Keep in sync with `RsmParams` in `rsm.wesl`.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
@@ -31,7 +31,7 @@ pub struct GpuRsmParams {
     pub falloff: [f32; 4],
 }
 const _: () = assert!(std::mem::size_of::<GpuRsmParams>() == 128);
-/// What one RSM texel saw (`slc_cpu_ref::rsm::RsmTexel`, or nothing). Keep in sync with
+/// What one RSM texel saw ([`slc_core::rsm::RsmTexel`], or nothing). Keep in sync with
 /// `RsmTexel` in `rsm_texel.wesl`.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
@@ -49,7 +49,7 @@ pub struct GpuRsmTexel {
     /// Fresnel model (`vpl::records::FRESNEL_SCHLICK`, `FRESNEL_DIELECTRIC`), unused.
     pub info: [u32; 4],
     /// Unit geometric normal on the lit side (xyz), 1 where a normal map perturbed the
-    /// shading normal, 0 where not (w) (`slc_cpu_ref::rsm::RsmTexel::normal_mapped`).
+    /// shading normal, 0 where not (w) (`slc_core::rsm::RsmTexel::normal_mapped`).
     pub geometric: [f32; 4],
     /// The BRDF's anisotropy: tangent (xyz), α_t (w), zero where isotropic
     /// (`vpl::records::gpu_anisotropy`).

@@ -18,112 +18,14 @@ use crate::frame::light::records::{
 };
 use crate::frame::raster::scene::GpuScene;
 use crate::frame::raster::visibility::{RasterView, Resolve, VisibilityPass, VisibilityTarget};
-use glam::Vec3;
+pub use slc_core::rsm::{RsmFace, RsmLayout, SPOT_SINGLE_FACE_MAX_ANGLE};
 use slc_core::{Light, SpotCone};
 
 /// The kernel of `rsm.wesl`, linked with what it imports (build.rs).
 pub(crate) const SOURCE: &str = kernel!("rsm");
 
-/// Beyond this outer cone angle a spot light gets six faces (`rsm.rs`
-/// `SPOT_SINGLE_FACE_MAX_ANGLE`).
-pub const SPOT_SINGLE_FACE_MAX_ANGLE: f32 = 80.0 * std::f32::consts::PI / 180.0;
-
 /// The largest RSM resolution per face (`RenderSettings::validate`).
 pub const MAX_RESOLUTION: u32 = 4096;
-
-/// (forward, right, up) of the six cube faces, as `rsm.rs` `CUBE_FACES`.
-const CUBE_FACES: [(Vec3, Vec3, Vec3); 6] = [
-    (Vec3::X, Vec3::Z, Vec3::Y),
-    (Vec3::NEG_X, Vec3::NEG_Z, Vec3::Y),
-    (Vec3::Y, Vec3::NEG_X, Vec3::NEG_Z),
-    (Vec3::NEG_Y, Vec3::NEG_X, Vec3::Z),
-    (Vec3::Z, Vec3::NEG_X, Vec3::Y),
-    (Vec3::NEG_Z, Vec3::X, Vec3::Y),
-];
-
-/// One face of a map: rays leave `origin` (pinhole) or the plane through it (orthographic)
-/// through `forward + x right + y up`, x and y in [−extent, extent].
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct RsmFace {
-    pub forward: Vec3,
-    pub right: Vec3,
-    pub up: Vec3,
-    pub extent: f32,
-}
-
-/// The faces of `light`'s map, their origin and, for a directional light, the orthographic
-/// depth range (`trace_rsm`'s set-up).
-#[derive(Clone, Debug, PartialEq)]
-pub struct RsmLayout {
-    pub faces: Vec<RsmFace>,
-    pub origin: Vec3,
-    /// `Some(depth range)` for an orthographic map.
-    pub orthographic: Option<f32>,
-}
-
-impl RsmLayout {
-    /// The layout `trace_rsm` uses for `light` in a scene with bounds `bounds`.
-    pub fn new(light: &Light, bounds: (Vec3, Vec3)) -> Self {
-        let cube = || {
-            CUBE_FACES
-                .iter()
-                .map(|&(forward, right, up)| RsmFace {
-                    forward,
-                    right,
-                    up,
-                    extent: 1.0,
-                })
-                .collect()
-        };
-        match *light {
-            Light::Point { position, .. } => Self {
-                faces: cube(),
-                origin: position,
-                orthographic: None,
-            },
-            Light::Spot {
-                position,
-                direction,
-                outer_cone_angle,
-                ..
-            } => {
-                let faces = if outer_cone_angle > SPOT_SINGLE_FACE_MAX_ANGLE {
-                    cube()
-                } else {
-                    let (right, up) = direction.any_orthonormal_pair();
-                    vec![RsmFace {
-                        forward: direction,
-                        right,
-                        up,
-                        extent: outer_cone_angle.tan(),
-                    }]
-                };
-                Self {
-                    faces,
-                    origin: position,
-                    orthographic: None,
-                }
-            }
-            Light::Directional { direction, .. } => {
-                let (lo, hi) = bounds;
-                let centre = 0.5 * (lo + hi);
-                let radius = (0.5 * (hi - lo).length()).max(1e-3) * 1.01;
-                let (right, up) = direction.any_orthonormal_pair();
-                Self {
-                    faces: vec![RsmFace {
-                        forward: direction,
-                        right,
-                        up,
-                        extent: radius,
-                    }],
-                    origin: centre - direction * (2.0 * radius),
-                    // The bounding sphere lies within [radius, 3 radius] of the origin plane.
-                    orthographic: Some(4.0 * radius),
-                }
-            }
-        }
-    }
-}
 
 /// One light's reflective shadow map on the GPU.
 pub struct GpuRsm {

@@ -44,7 +44,7 @@ use crate::vsgl::shade::records::{GpuVsgl, GpuVsglStatus};
 use crate::vsgl::shade::specular_table;
 use crate::vsgl::shade::GpuVsgls;
 use slc_core::frame::DiffuseEmission;
-use slc_cpu_ref::vsgl::{point_shift, SampleSet};
+use slc_core::vsgl::{point_shift, SampleSet};
 
 /// The kernel of `vsgl_build.wesl`, linked with what it imports (build.rs).
 pub(crate) const SOURCE: &str = kernel!("vsgl_build");

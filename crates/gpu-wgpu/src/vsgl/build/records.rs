@@ -3,7 +3,7 @@
 //! every `records.rs`: a compile-time size check and a unit test against the layout naga
 //! computes from the shader.
 use bytemuck::{Pod, Zeroable};
-use slc_cpu_ref::vsgl::Quadtree;
+use slc_core::vsgl::Quadtree;
 
 /// The quadtree of a frame's maps ([`Quadtree`]: `faces` pyramids of resolution `n`, faces
 /// of all maps numbered map by map). Keep in sync with `Tree` in `vsgl_tree.wesl`.

@@ -66,7 +66,7 @@ pub struct IsmSettings {
     pub max_splat: u32,
     /// The seed of the caster points.
     pub seed: u32,
-    /// The tracer's surface offset (`slc_cpu_ref::Tracer::scene_epsilon`).
+    /// The tracer's surface offset (`Scene::ray_epsilon`).
     pub lift: f32,
     /// Depth bias in texel angles `π/res` times the receiver's distance, constant and times
     /// `tan θ` (see the module docs).
