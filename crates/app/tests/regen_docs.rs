@@ -75,11 +75,13 @@ fn split_blocks(text: &str) -> (String, Vec<(String, String)>) {
 fn deterministic_figures_match_the_code() {
     let (ok, text) = regen(&["--check"]);
     assert!(ok, "tools/regen-docs --check failed:\n{text}");
-    for block in ["default-render", "tight-sponza-640", "gpu-table2", "headline"] {
-        assert!(
-            text.contains(block),
-            "{block} was not checked:\n{text}"
-        );
+    for block in [
+        "default-render",
+        "tight-sponza-640",
+        "gpu-table2",
+        "headline",
+    ] {
+        assert!(text.contains(block), "{block} was not checked:\n{text}");
     }
 }
 
@@ -95,11 +97,15 @@ fn quick_regeneration_rewrites_only_its_blocks() {
         let (outside, blocks) = split_blocks(&original);
         let copy = out.join(&doc);
         if blocks.is_empty() {
-            assert!(!copy.exists(), "{} has no block but was written", doc.display());
+            assert!(
+                !copy.exists(),
+                "{} has no block but was written",
+                doc.display()
+            );
             continue;
         }
-        let new = std::fs::read_to_string(&copy)
-            .unwrap_or_else(|e| panic!("{}: {e}", copy.display()));
+        let new =
+            std::fs::read_to_string(&copy).unwrap_or_else(|e| panic!("{}: {e}", copy.display()));
         let (new_outside, new_blocks) = split_blocks(&new);
         assert_eq!(
             new_outside,
@@ -111,21 +117,30 @@ fn quick_regeneration_rewrites_only_its_blocks() {
         assert_eq!(names(&new_blocks), names(&blocks), "{}", doc.display());
         for (name, body) in &new_blocks {
             rewritten += 1;
-            // The quick runs render the built-in scene at 48x32 (compare) or 32x32 (render):
-            // a block that names a command must name the one that ran.
-            if body.contains("`slc ") {
+            // The quick runs render the built-in scene at 48x32 (compare) or 32x32 (render)
+            // and the memory grid's small cases: a block that names a command it ran must
+            // name the one that ran.
+            if body.contains("`slc ") || body.contains("`python3 tools/") {
                 measured += 1;
                 assert!(
-                    body.contains("--width 48") || body.contains("--width 32"),
+                    body.contains("--width 48")
+                        || body.contains("--width 32")
+                        || body.contains("grid.py --quick"),
                     "regen:{name} does not name the quick command:\n{body}"
                 );
                 let date = regex_lite_date(body);
                 assert!(date, "regen:{name} has no date:\n{body}");
-                assert!(body.contains("threads)"), "regen:{name} has no machine:\n{body}");
+                assert!(
+                    body.contains("threads)"),
+                    "regen:{name} has no machine:\n{body}"
+                );
             }
         }
     }
-    assert!(rewritten >= 10 && measured >= 5, "{rewritten} blocks, {measured} measured");
+    assert!(
+        rewritten >= 10 && measured >= 5,
+        "{rewritten} blocks, {measured} measured"
+    );
     std::fs::remove_dir_all(&out).unwrap();
 }
 
