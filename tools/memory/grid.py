@@ -8,7 +8,10 @@ the check before any work compares with the memory available) and `memory.peak_r
 estimate.
 
 Usage (from the repository root, after `cargo build --release -p slc-app`):
-    python3 tools/memory/grid.py [--slc target/release/slc] [--quick]
+    python3 tools/memory/grid.py [--slc target/release/slc] [--quick] [--provenance FILE]
+
+`--provenance FILE` writes the first run's provenance (slc's commit, CPU, date) as JSON to FILE
+(tools/regen-docs puts it above the table in docs/memory.md).
 """
 import argparse
 import json
@@ -54,13 +57,14 @@ def run(slc, case, out):
         raise SystemExit(f"{' '.join(cmd)}: {done.stderr}")
     with open(os.path.join(out, "report.json")) as f:
         report = json.load(f)
-    return report["memory"], report["vpl_count"]
+    return report["memory"], report["vpl_count"], report["provenance"]
 
 
 def main():
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     p.add_argument("--slc", default="target/release/slc")
     p.add_argument("--quick", action="store_true", help="the small cases only")
+    p.add_argument("--provenance", help="write the first run's provenance (JSON) here")
     args = p.parse_args()
     mib = 1 << 20
     print("| scene | size | RSM | options | VPLs | estimate MiB | peak RSS MiB | peak / estimate |")
@@ -68,7 +72,10 @@ def main():
     over = 0
     with tempfile.TemporaryDirectory() as tmp:
         for i, case in enumerate(QUICK if args.quick else FULL):
-            memory, vpls = run(args.slc, case, os.path.join(tmp, str(i)))
+            memory, vpls, provenance = run(args.slc, case, os.path.join(tmp, str(i)))
+            if i == 0 and args.provenance:
+                with open(args.provenance, "w") as f:
+                    json.dump(provenance, f)
             est, peak = memory["estimate_bytes"], memory["peak_rss_bytes"]
             over += peak > est
             scene, w, h, rsm, extra = case
