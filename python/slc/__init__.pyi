@@ -22,6 +22,8 @@ Lobes = Literal["both", "diffuse", "glossy"]
 ReferenceName = Literal["vpl", "path"]
 ImportanceName = Literal["flux", "bidirectional"]
 VsglDiffuse = Literal["clamped", "sg"]
+# "binned" runs on the CPU backend only so far, "splatting" and "clustered-raster" on the
+# GPU only.
 Strategy = Literal[
     "none",
     "sphere",
@@ -32,6 +34,7 @@ Strategy = Literal[
     "clustered-enclosing-sphere",
     "tight",
     "clustered-tight",
+    "binned",
     "splatting",
     "clustered-raster",
 ]

@@ -2,7 +2,7 @@
 use std::path::Path;
 
 mod common;
-use common::{gpu_available, out_dir, read_exr, run_ok, slc};
+use common::{gpu_available, out_dir, run_ok, slc};
 
 #[test]
 fn render_writes_images_and_report() {
@@ -32,10 +32,7 @@ fn render_writes_images_and_report() {
         "\"shader\": \"vpl\"",
         "\"total\":",
         "\"false_discovery_rate\": null",
-        "\"schema_version\": 5",
-        "\"rustc\": \"rustc ",
-        "\"build_profile\": \"release",
-        "\"scene_sha256\":",
+        "\"schema_version\": 4",
         "\"slc_version\":",
         "\"git_commit\":",
         "\"started_at\":",
@@ -104,19 +101,11 @@ fn compare_writes_a_folder_per_strategy_a_table_and_heat_maps() {
         3 * 4,
         "three rows of four panels"
     );
-    // Each heat map at its own frame's maximum, given under its column, and the legend says so.
-    assert!(svg.contains(">ellipsoid<") && svg.contains("maximum (under its column)"));
-    assert_eq!(svg.matches(">heat full at ").count(), 4);
-    // The PDF beside the SVG, linked from the page.
-    let pdf = std::fs::read(out.join("side_by_side.pdf")).unwrap();
-    assert!(pdf.starts_with(b"%PDF-"));
+    assert!(svg.contains(">ellipsoid<") && svg.contains("full brightness at 256"));
     let html = std::fs::read_to_string(out.join("index.html")).unwrap();
     assert!(
         html.contains("src=\"side_by_side.svg\"") && html.contains("src=\"clustered/heatmap.png\"")
     );
-    assert!(html.contains("href=\"side_by_side.pdf\""));
-    let md = std::fs::read_to_string(out.join("report.md")).unwrap();
-    assert!(md.contains("full at each frame's own maximum"), "{md}");
     let json: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(out.join("compare.json")).unwrap()).unwrap();
     let table_rows = json["rows"].as_array().unwrap();
@@ -313,7 +302,7 @@ fn vsgl_options_that_do_not_fit_are_clear_errors() {
         ("bench --shader vsgl", "sweep --shader vsgl"),
         (
             "render --shader vsgl --vsgls 0",
-            "must be in 1..=16777216 (got 0)",
+            "sampled lights must be in 1..",
         ),
     ] {
         let o = slc()
@@ -382,6 +371,18 @@ fn bench_writes_a_row_per_resolution_vpl_count_and_strategy() {
         "{md}"
     );
     std::fs::remove_dir_all(&out).ok();
+}
+
+/// The RGB pixels of the first layer of an EXR file.
+fn read_exr(path: &std::path::Path) -> Vec<[f32; 3]> {
+    use exr::prelude::*;
+    let img = read_first_rgba_layer_from_file(
+        path,
+        |res, _| (res.width(), vec![[0.0; 3]; res.width() * res.height()]),
+        |(w, px), pos, (r, g, b, _a): (f32, f32, f32, f32)| px[pos.y() * *w + pos.x()] = [r, g, b],
+    )
+    .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    img.layer_data.channel_data.pixels.1
 }
 
 /// The `report.json` of an output folder.
@@ -740,14 +741,45 @@ fn raster_baselines_on_the_cpu_are_refused() {
     }
 }
 
+/// `binned` has no GPU twin yet: `--backend gpu` refuses it before any work and points to
+/// the CPU backend, which renders it.
+#[test]
+fn binned_on_the_gpu_is_refused() {
+    let render = |backend: &str| {
+        slc()
+            .args(["render", "--width", "16", "--height", "12", "--rsm", "4"])
+            .args(["--backend", backend, "--culling", "binned"])
+            .arg("--out")
+            .arg(out_dir(&format!("binned-{backend}")))
+            .output()
+            .unwrap()
+    };
+    let o = render("cpu");
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    if !gpu_available() {
+        return;
+    }
+    let o = render("gpu");
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(!o.status.success(), "{err}");
+    assert!(
+        err.contains("binned") && err.contains("render on the cpu backend"),
+        "{err}"
+    );
+}
+
 #[test]
 fn gpu_compare_names_backend_and_adapter_and_misses_nothing() {
     if !gpu_available() {
         return;
     }
     let out = out_dir("compare-gpu");
-    // Every strategy, the tight ones and the raster baselines included.
-    let on_gpu: Vec<_> = slc_core::Strategy::every().map(|s| s.name()).collect();
+    // Every strategy, the tight ones and the raster baselines included; not the CPU's
+    // `binned` (no GPU twin yet: `binned_on_the_gpu_is_refused`).
+    let on_gpu: Vec<_> = slc_core::Strategy::every()
+        .filter(|s| !slc_core::Strategy::CPU_ONLY.contains(s))
+        .map(|s| s.name())
+        .collect();
     let gpu_compare = |(width, height): (&str, &str), rsm: &str, culling: &str| {
         slc()
             .args([

@@ -8,7 +8,7 @@
 //! - Every result is written into the version folder ([`OutDir::write`],
 //!   [`OutDir::write_with`]); [`OutDir::expect`] checks before the work that nothing a user put
 //!   in the folder is where a result will go.
-//! - [`OutDir::commit`] (the layout: [`layout`]): (1) checks every final name is free or
+//! - [`OutDir::commit`] (the layout: the `layout` module): (1) checks every final name is free or
 //!   already slc's link, (2) syncs the new files, (3) makes the links of names the previous
 //!   result lacked (they resolve to nothing until (4)), (4) renames a link to the new version
 //!   over `.slc-result`: the one step that changes what every final name shows, (5) removes
@@ -20,7 +20,7 @@
 //!   nothing) or the new one (after (4); names only the previous result had resolve to
 //!   nothing); the next run removes what it left. Files slc did not write stay as they are.
 //!
-//! Every change to the file system is a step of [`faults`], so the tests make each one fail,
+//! Every change to the file system is a step of the `faults` module, so the tests make each one fail,
 //! or kill the run there, and check the folder.
 mod faults;
 mod layout;
