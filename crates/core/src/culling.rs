@@ -177,7 +177,7 @@ pub enum CullError {
 /// pixel exceeds its ξ (that would bias the estimate); listing extra VPLs only costs time.
 ///
 /// The CPU cullers (`slc_cull::culler`) read a [`CullInput`] and return [`LightLists`]
-/// ([`CpuCuller`]); the GPU's (`slc_gpu_wgpu::culler`) read a frame on the device and leave
+/// ([`CpuCuller`]); the GPU's (`slc_gpu_wgpu::cull`) read a frame on the device and leave
 /// their lists there.
 pub trait Culler<Input: ?Sized> {
     /// The lists, where this backend keeps them.

@@ -1,5 +1,5 @@
 //! The culling strategies, typed: one name table for the command line, the CPU cullers
-//! (`slc_cull::culler`) and the GPU cullers (`slc_gpu_wgpu::culler`).
+//! (`slc_cull::culler`) and the GPU cullers (`slc_gpu_wgpu::cull`).
 use std::fmt;
 use std::str::FromStr;
 
