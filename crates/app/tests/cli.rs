@@ -2,7 +2,7 @@
 use std::path::Path;
 
 mod common;
-use common::{gpu_available, out_dir, run_ok, slc};
+use common::{gpu_available, out_dir, read_exr, run_ok, slc};
 
 #[test]
 fn render_writes_images_and_report() {
@@ -32,7 +32,10 @@ fn render_writes_images_and_report() {
         "\"shader\": \"vpl\"",
         "\"total\":",
         "\"false_discovery_rate\": null",
-        "\"schema_version\": 4",
+        "\"schema_version\": 5",
+        "\"rustc\": \"rustc ",
+        "\"build_profile\": \"release",
+        "\"scene_sha256\":",
         "\"slc_version\":",
         "\"git_commit\":",
         "\"started_at\":",
@@ -101,11 +104,19 @@ fn compare_writes_a_folder_per_strategy_a_table_and_heat_maps() {
         3 * 4,
         "three rows of four panels"
     );
-    assert!(svg.contains(">ellipsoid<") && svg.contains("full brightness at 256"));
+    // Each heat map at its own frame's maximum, given under its column, and the legend says so.
+    assert!(svg.contains(">ellipsoid<") && svg.contains("maximum (under its column)"));
+    assert_eq!(svg.matches(">heat full at ").count(), 4);
+    // The PDF beside the SVG, linked from the page.
+    let pdf = std::fs::read(out.join("side_by_side.pdf")).unwrap();
+    assert!(pdf.starts_with(b"%PDF-"));
     let html = std::fs::read_to_string(out.join("index.html")).unwrap();
     assert!(
         html.contains("src=\"side_by_side.svg\"") && html.contains("src=\"clustered/heatmap.png\"")
     );
+    assert!(html.contains("href=\"side_by_side.pdf\""));
+    let md = std::fs::read_to_string(out.join("report.md")).unwrap();
+    assert!(md.contains("full at each frame's own maximum"), "{md}");
     let json: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(out.join("compare.json")).unwrap()).unwrap();
     let table_rows = json["rows"].as_array().unwrap();
@@ -302,7 +313,7 @@ fn vsgl_options_that_do_not_fit_are_clear_errors() {
         ("bench --shader vsgl", "sweep --shader vsgl"),
         (
             "render --shader vsgl --vsgls 0",
-            "sampled lights must be in 1..",
+            "must be in 1..=16777216 (got 0)",
         ),
     ] {
         let o = slc()
@@ -371,18 +382,6 @@ fn bench_writes_a_row_per_resolution_vpl_count_and_strategy() {
         "{md}"
     );
     std::fs::remove_dir_all(&out).ok();
-}
-
-/// The RGB pixels of the first layer of an EXR file.
-fn read_exr(path: &std::path::Path) -> Vec<[f32; 3]> {
-    use exr::prelude::*;
-    let img = read_first_rgba_layer_from_file(
-        path,
-        |res, _| (res.width(), vec![[0.0; 3]; res.width() * res.height()]),
-        |(w, px), pos, (r, g, b, _a): (f32, f32, f32, f32)| px[pos.y() * *w + pos.x()] = [r, g, b],
-    )
-    .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
-    img.layer_data.channel_data.pixels.1
 }
 
 /// The `report.json` of an output folder.

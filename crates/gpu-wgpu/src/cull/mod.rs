@@ -27,6 +27,45 @@ use crate::device::context::{GpuContext, GpuError};
 use slc_core::{CullInput, Culler, GlossyBound, Layout, LightLists, Strategy};
 use std::cell::RefCell;
 
+/// A culling pass that writes a frame's light lists on the GPU ([`ListCulling::cull_frame`]);
+/// culling a CPU input comes with it, written once: uploaded and culled again where the lists
+/// outgrew their buffer ([`ListCulling::cull_on_gpu`]), and read back ([`ListCulling::cull`]).
+pub trait ListCulling {
+    /// What picks the lists: a strategy, or a layout's glossy bound.
+    type Choice: Copy;
+
+    /// The lists of `frame` left on the GPU in the CSR layout the shading pass reads.
+    fn cull_frame(
+        &self,
+        ctx: &GpuContext,
+        frame: &CullFrame,
+        choice: Self::Choice,
+    ) -> Result<GpuLightLists, GpuError>;
+
+    /// [`ListCulling::cull_frame`] of `input` with its G-buffer uploaded, complete: culled
+    /// again where the lists outgrew their buffer (their totals read).
+    fn cull_on_gpu(
+        &self,
+        ctx: &GpuContext,
+        input: &CullInput,
+        choice: Self::Choice,
+    ) -> Result<GpuLightLists, GpuError> {
+        let frame = CullFrame::upload(ctx, input)?;
+        settled(ctx, || self.cull_frame(ctx, &frame, choice))
+    }
+
+    /// The lists of `input`, read back. Errors on invalid input (as the CPU culler), on
+    /// buffers beyond the device's limits and on device faults.
+    fn cull(
+        &self,
+        ctx: &GpuContext,
+        input: &CullInput,
+        choice: Self::Choice,
+    ) -> Result<LightLists, GpuError> {
+        read_lists(ctx, &self.cull_on_gpu(ctx, input, choice)?)
+    }
+}
+
 /// The pipelines of every strategy.
 pub struct GpuCulling {
     none: NoneCuller,
@@ -53,49 +92,6 @@ impl GpuCulling {
             passes: self,
             ctx,
             strategy,
-        }
-    }
-
-    /// The lists of `strategy` for `input` (uploaded), read back: equal to the CPU
-    /// strategy's per pixel (up to f32-versus-f64 decisions at bound and slice boundaries;
-    /// the tight strategies' f32 bound keeps up to 1% more entries). Splatting takes the
-    /// uploaded samples to lie on the pixel centres' rays ([`CullFrame::upload`]): a G-buffer
-    /// jittered per pixel would be splatted along other rays.
-    pub fn cull(
-        &self,
-        ctx: &GpuContext,
-        input: &CullInput,
-        strategy: Strategy,
-    ) -> Result<LightLists, GpuError> {
-        let frame = CullFrame::upload(ctx, input)?;
-        read_lists(
-            ctx,
-            &settled(ctx, || self.cull_frame(ctx, &frame, strategy))?,
-        )
-    }
-
-    /// The lists of `strategy` for `frame` (a G-buffer on the GPU, uploaded or rasterized),
-    /// left on the GPU. The raster baselines, which shade without these lists, give what
-    /// they evaluate: the pixels each splat covers, the rasterized clusters' lists. The
-    /// lists' totals are read after their use ([`GpuLightLists::outgrown`],
-    /// [`Self::use_lists`]).
-    pub fn cull_frame(
-        &self,
-        ctx: &GpuContext,
-        frame: &CullFrame,
-        strategy: Strategy,
-    ) -> Result<GpuLightLists, GpuError> {
-        match strategy.parts() {
-            (Layout::Unculled, _) => self.none.cull_frame(ctx, frame),
-            (Layout::Tiled, glossy) => self.tiled.cull_frame(ctx, frame, glossy),
-            (Layout::Clustered, glossy) => self.clustered.cull_frame(ctx, frame, glossy),
-            (Layout::Splatting | Layout::ClusteredRaster, _) => {
-                let lists = self.prepare_frame(ctx, frame, strategy)?;
-                self.frame_lists(ctx, frame, &lists)
-            }
-            (Layout::Binned, _) => Err(GpuError::Input(format!(
-                "culling strategy '{strategy}' has no GPU twin yet; render with --backend cpu"
-            ))),
         }
     }
 
@@ -141,6 +137,40 @@ impl GpuCulling {
     }
 }
 
+/// Culls by `strategy`: [`ListCulling::cull`] gives lists equal to the CPU
+/// strategy's per pixel (up to f32-versus-f64 decisions at bound and slice boundaries;
+/// the tight strategies' f32 bound keeps up to 1% more entries). Splatting takes the
+/// uploaded samples to lie on the pixel centres' rays ([`CullFrame::upload`]): a G-buffer
+/// jittered per pixel would be splatted along other rays.
+impl ListCulling for GpuCulling {
+    type Choice = Strategy;
+
+    /// The lists of `strategy` for `frame` (a G-buffer on the GPU, uploaded or rasterized),
+    /// left on the GPU. The raster baselines, which shade without these lists, give what
+    /// they evaluate: the pixels each splat covers, the rasterized clusters' lists. The
+    /// lists' totals are read after their use ([`GpuLightLists::outgrown`],
+    /// [`Self::use_lists`]).
+    fn cull_frame(
+        &self,
+        ctx: &GpuContext,
+        frame: &CullFrame,
+        strategy: Strategy,
+    ) -> Result<GpuLightLists, GpuError> {
+        match strategy.parts() {
+            (Layout::Unculled, _) => self.none.cull_frame(ctx, frame),
+            (Layout::Tiled, glossy) => self.tiled.cull_frame(ctx, frame, glossy),
+            (Layout::Clustered, glossy) => self.clustered.cull_frame(ctx, frame, glossy),
+            (Layout::Splatting | Layout::ClusteredRaster, _) => {
+                let lists = self.prepare_frame(ctx, frame, strategy)?;
+                self.frame_lists(ctx, frame, &lists)
+            }
+            (Layout::Binned, _) => Err(GpuError::Input(format!(
+                "culling strategy '{strategy}' has no GPU twin yet; render with --backend cpu"
+            ))),
+        }
+    }
+}
+
 /// What a frame's culling step leaves for its shading step (`GpuRenderer`): the frusta of a
 /// tiled strategy, culled and shaded in one pass (`shade::tiled`, the paper's Fig. 2),
 /// the bounds splatting draws (`cull::raster::splat`), the rasterized clusters (`cull::raster::clusters`),
@@ -162,7 +192,7 @@ impl GpuCulling {
     }
 
     /// The culling step of a frame: [`Culled::Tiles`] where [`Self::one_pass`], the
-    /// raster baselines' own steps, else [`Self::cull_frame`]'s lists.
+    /// raster baselines' own steps, else [`ListCulling::cull_frame`]'s lists.
     pub fn prepare_frame(
         &self,
         ctx: &GpuContext,

@@ -19,7 +19,7 @@ mod notes;
 
 use crate::cull::frame::CullFrame;
 use crate::cull::lists::read_lists;
-use crate::cull::{Culled, GpuCulling};
+use crate::cull::{Culled, GpuCulling, ListCulling};
 use crate::device::context::{GpuContext, GpuError};
 use crate::frame::denoise::{BilateralSettings, DenoisePass, Guide};
 use crate::frame::light::direct::DirectPass;

@@ -8,7 +8,7 @@
 //! The lists come in the CSR layout of [`LightLists`] (offsets, indices, pixel → list), either
 //! uploaded from the CPU ([`ShadePass::shade`], which reads the image back as an [`Image`])
 //! or left on the GPU by a culler ([`ShadePass::shade_on_gpu`], e.g. after
-//! [`crate::cull::tiled::TiledCuller::cull_on_gpu`], whose fixed two lists per tile, empty
+//! the tiled culler's [`crate::cull::ListCulling::cull_on_gpu`], whose fixed two lists per tile, empty
 //! ones included, are the same layout), for a G-buffer uploaded or rendered on the GPU
 //! ([`ShadedGBuffer`]). Buffers beyond the storage-binding limit are refused
 //! ([`GpuError::BufferTooLarge`]); more than 65535 workgroups are split into a 2-D grid.
@@ -87,7 +87,7 @@ impl ShadePass {
     }
 
     /// Shades `gbuffer` with `vpls`, δ and K from `lists` on the GPU (uploaded, or left
-    /// there by a culler, e.g. [`crate::cull::tiled::TiledCuller::cull_on_gpu`], without a
+    /// there by a culler, e.g. the tiled culler's [`crate::cull::ListCulling::cull_on_gpu`], without a
     /// readback), into an image left on the GPU as RGB, 3 f32 per pixel row-major (what
     /// `frame::denoise::DenoisePass::filter_on_gpu` reads; [`read_image`] reads it back).
     pub fn shade_on_gpu<'a>(

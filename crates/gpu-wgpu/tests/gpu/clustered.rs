@@ -16,6 +16,7 @@ use slc_cull::{CullView, GlossyBound};
 use slc_gpu_wgpu::cull::clustered::records::CLUSTER_SLICES;
 use slc_gpu_wgpu::cull::clustered::ClusteredCuller;
 use slc_gpu_wgpu::cull::lists::read_lists;
+use slc_gpu_wgpu::cull::ListCulling;
 use slc_gpu_wgpu::device::buffers::read_back;
 use slc_gpu_wgpu::{GpuContext, GpuError};
 use std::collections::HashSet;

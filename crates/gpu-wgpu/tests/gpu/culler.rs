@@ -6,6 +6,7 @@ use slc_core::{builtin, CullInput, Culler, GlossyBound, Interleaving, Strategy};
 use slc_gpu_wgpu::cull::frame::CullFrame;
 use slc_gpu_wgpu::cull::lists::read_lists;
 use slc_gpu_wgpu::cull::GpuCulling;
+use slc_gpu_wgpu::cull::ListCulling;
 use slc_gpu_wgpu::device::context::GpuError;
 use slc_gpu_wgpu::shade::lists::ShadePass;
 use std::cell::RefCell;

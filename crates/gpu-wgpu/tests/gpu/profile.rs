@@ -10,6 +10,7 @@ use slc_cull::GlossyBound;
 use slc_gpu_wgpu::cull::frame::CullFrame;
 use slc_gpu_wgpu::cull::tiled::TiledCuller;
 use slc_gpu_wgpu::cull::GpuCulling;
+use slc_gpu_wgpu::cull::ListCulling;
 use slc_gpu_wgpu::frame::raster::gbuffer::GbufferPass;
 use slc_gpu_wgpu::frame::raster::scene::GpuScene;
 use slc_gpu_wgpu::shade::lists::ShadePass;

@@ -11,6 +11,7 @@ use slc_core::render::render;
 use slc_core::{builtin, CullInput, Interleaving, Strategy, Vpl};
 use slc_cpu_ref::gbuffer::PixelSample;
 use slc_gpu_wgpu::cull::GpuCulling;
+use slc_gpu_wgpu::cull::ListCulling;
 use slc_gpu_wgpu::GpuRenderer;
 
 #[test]

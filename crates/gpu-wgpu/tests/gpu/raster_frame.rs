@@ -34,6 +34,7 @@ use slc_cpu_ref::{prepare, CpuRenderer};
 use slc_cull::GlossyBound;
 use slc_gpu_wgpu::cull::frame::CullFrame;
 use slc_gpu_wgpu::cull::tiled::TiledCuller;
+use slc_gpu_wgpu::cull::ListCulling;
 use slc_gpu_wgpu::frame::light::direct::DirectPass;
 use slc_gpu_wgpu::frame::light::rsm::RsmPass;
 use slc_gpu_wgpu::frame::raster::gbuffer::GbufferPass;

@@ -28,6 +28,7 @@ use slc_cpu_ref::Tracer;
 use slc_gpu_wgpu::cull::frame::CullFrame;
 use slc_gpu_wgpu::cull::lists::read_lists;
 use slc_gpu_wgpu::cull::GpuCulling;
+use slc_gpu_wgpu::cull::ListCulling;
 use slc_gpu_wgpu::frame::raster::gbuffer::GbufferPass;
 use slc_gpu_wgpu::frame::raster::scene::GpuScene;
 use slc_gpu_wgpu::shade::lists::ShadePass;

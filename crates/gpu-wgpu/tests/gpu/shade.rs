@@ -32,6 +32,7 @@ use slc_cpu_ref::vpl_shading::shade_lists;
 use slc_cpu_ref::Tracer;
 use slc_cull::GlossyBound;
 use slc_gpu_wgpu::cull::tiled::TiledCuller;
+use slc_gpu_wgpu::cull::ListCulling;
 use slc_gpu_wgpu::shade::lists::ShadePass;
 use slc_gpu_wgpu::GpuError;
 

@@ -10,6 +10,7 @@ use slc_bounds::{Anisotropy, Fresnel};
 use slc_core::rng::Sequence;
 use slc_core::{builtin, CullInput, Interleaving, LightLists, Strategy, Vpl, VplLobe};
 use slc_gpu_wgpu::cull::GpuCulling;
+use slc_gpu_wgpu::cull::ListCulling;
 use slc_gpu_wgpu::GpuContext;
 
 /// The tight strategies and the base strategy each refines.

@@ -14,6 +14,7 @@ use slc_cpu_ref::vpls::generate_vpls;
 use slc_cpu_ref::Tracer;
 use slc_cull::{CullView, GlossyBound, FRUSTUM_SLACK};
 use slc_gpu_wgpu::cull::tiled::TiledCuller;
+use slc_gpu_wgpu::cull::ListCulling;
 use slc_gpu_wgpu::GpuError;
 
 pub fn frame(scene: &Scene, camera: &Camera, size: (u32, u32), rsm: u32) -> (GBuffer, Vec<Vpl>) {

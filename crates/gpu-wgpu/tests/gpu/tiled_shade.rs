@@ -9,6 +9,7 @@ use slc_core::render::render;
 use slc_core::{builtin, CullInput, GlossyBound, Interleaving, Renderer, Strategy, Vpl};
 use slc_gpu_wgpu::cull::frame::CullFrame;
 use slc_gpu_wgpu::cull::tiled::TiledCuller;
+use slc_gpu_wgpu::cull::ListCulling;
 use slc_gpu_wgpu::device::buffers::upload;
 use slc_gpu_wgpu::frame::raster::records::GpuSample;
 use slc_gpu_wgpu::shade::lists::{read_image, ShadePass};

@@ -20,16 +20,16 @@ pub mod records;
 use crate::cull::bounds::{BoundsPass, BoundsSettings, GpuBounds};
 use crate::cull::clustered::records::{GpuClusterFrusta, CLUSTER_SLICES, DEPTH_RANGE, DEPTH_SPLIT};
 use crate::cull::frame::{check_input, cull_params, tile_grid, CullFrame, CullSizes};
+use crate::cull::lists::no_lists;
 use crate::cull::lists::GpuLightLists;
-use crate::cull::lists::{no_lists, read_lists};
 use crate::cull::partition::{GpuPartition, PartitionPass};
 use crate::cull::records::{GpuCullParams, GpuCullStatus, CULL_COUNT, CULL_WRITE};
-use crate::cull::room::{settled, ListRoom};
+use crate::cull::room::ListRoom;
 use crate::cull::tight::{BaseLayout, TightRefiner};
+use crate::cull::ListCulling;
 use crate::device::buffers::{output, upload, Grid};
 use crate::device::context::{GpuContext, GpuError};
 use crate::device::scan::ScanPass;
-use slc_core::{CullInput, LightLists};
 use slc_cull::{CullView, GlossyBound};
 use std::mem::offset_of;
 use std::sync::Arc;
@@ -41,7 +41,7 @@ pub(crate) const DEPTH_SOURCE: &str = kernel!("cluster_depth");
 pub(crate) const CULL_SOURCE: &str = kernel!("clustered_cull");
 
 /// The clustered culler's pipelines (the four clustered strategies, by the [`GlossyBound`]
-/// passed to [`ClusteredCuller::cull`]).
+/// passed to [`ListCulling::cull`]).
 pub struct ClusteredCuller {
     bounds: BoundsPass,
     partition: PartitionPass,
@@ -67,48 +67,6 @@ impl ClusteredCuller {
                 room: Arc::new(ListRoom::new()),
             })
         })
-    }
-
-    /// Culls `input` with `glossy` bounds for glossy VPLs (the section-6 sphere for diffuse
-    /// ones) against up to 32 depth slices per tile: `slc_cull`'s `clustered` (ellipsoid),
-    /// `clustered-sphere`, `clustered-enclosing-sphere` or `clustered-tight` (each slice's
-    /// list then refined per 8 x 8 block, `cull::tight`). Errors on invalid input (as the
-    /// CPU culler), on buffers beyond the device's limits and on device faults.
-    pub fn cull(
-        &self,
-        ctx: &GpuContext,
-        input: &CullInput,
-        glossy: GlossyBound,
-    ) -> Result<LightLists, GpuError> {
-        read_lists(ctx, &self.cull_on_gpu(ctx, input, glossy)?)
-    }
-
-    /// [`Self::cull_frame`] of `input` with its G-buffer uploaded, complete: culled again
-    /// where the lists outgrew their buffer (their totals read).
-    pub fn cull_on_gpu(
-        &self,
-        ctx: &GpuContext,
-        input: &CullInput,
-        glossy: GlossyBound,
-    ) -> Result<GpuLightLists, GpuError> {
-        let frame = CullFrame::upload(ctx, input)?;
-        settled(ctx, || self.cull_frame(ctx, &frame, glossy))
-    }
-
-    /// Culls `frame` without a readback: 32 lists per tile (one per depth slice, slice s
-    /// of tile t is list 32 t + s, possibly empty) left on the GPU in the CSR layout the
-    /// shading pass reads, each pixel pointing to its slice's list
-    /// ([`slc_core::NO_LIST`] without a sample).
-    pub fn cull_frame(
-        &self,
-        ctx: &GpuContext,
-        frame: &CullFrame,
-        glossy: GlossyBound,
-    ) -> Result<GpuLightLists, GpuError> {
-        match self.prepare(ctx, frame, glossy, false)? {
-            Some(clusters) => self.lists(ctx, frame, clusters),
-            None => no_lists(ctx),
-        }
     }
 
     /// The passes before the lists: per-VPL bounds (as shapes too with `shapes`, for the
@@ -280,6 +238,30 @@ impl ClusteredCuller {
     pub fn set_list_room(&self, entries: u32) {
         self.room.set(entries);
         self.tight.set_list_room(entries);
+    }
+}
+
+/// Culls with `glossy` bounds for glossy VPLs (the section-6 sphere for diffuse ones) against
+/// up to 32 depth slices per tile: `slc_cull`'s `clustered` (ellipsoid), `clustered-sphere`,
+/// `clustered-enclosing-sphere` or `clustered-tight` (each slice's list then refined per
+/// 8 x 8 block, `cull::tight`).
+impl ListCulling for ClusteredCuller {
+    type Choice = GlossyBound;
+
+    /// Culls `frame` without a readback: 32 lists per tile (one per depth slice, slice s
+    /// of tile t is list 32 t + s, possibly empty) left on the GPU in the CSR layout the
+    /// shading pass reads, each pixel pointing to its slice's list
+    /// ([`slc_core::NO_LIST`] without a sample).
+    fn cull_frame(
+        &self,
+        ctx: &GpuContext,
+        frame: &CullFrame,
+        glossy: GlossyBound,
+    ) -> Result<GpuLightLists, GpuError> {
+        match self.prepare(ctx, frame, glossy, false)? {
+            Some(clusters) => self.lists(ctx, frame, clusters),
+            None => no_lists(ctx),
+        }
     }
 }
 

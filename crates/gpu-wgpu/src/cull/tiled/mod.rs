@@ -11,7 +11,7 @@
 //! lists needed (`cull::room`): no count is read back inside a frame; lists that outgrew
 //! their buffer are culled again with the total their fault record reports. A total beyond
 //! the storage-binding limit is refused ([`GpuError::BufferTooLarge`]).
-//! [`TiledCuller::cull_on_gpu`] leaves the lists on the GPU for `shade::lists` instead;
+//! [`ListCulling::cull_on_gpu`] leaves the lists on the GPU for `shade::lists` instead;
 //! [`TiledCuller::prepare`] stops before the lists, for the one-pass culling and shading of
 //! `shade::tiled`, and [`TiledCuller::lists`] builds them from there. With
 //! [`GlossyBound::Tight`] the lists are refined per block (`cull::tight`).
@@ -19,17 +19,17 @@ pub mod depth;
 
 use crate::cull::bounds::{BoundsPass, BoundsSettings, GpuBounds};
 use crate::cull::frame::{check_input, cull_params, tile_grid, CullFrame, CullSizes};
+use crate::cull::lists::no_lists;
 use crate::cull::lists::GpuLightLists;
-use crate::cull::lists::{no_lists, read_lists};
 use crate::cull::partition::PartitionPass;
 use crate::cull::records::{GpuCullParams, GpuCullStatus, GpuTileFrusta, CULL_COUNT, CULL_WRITE};
-use crate::cull::room::{settled, ListRoom};
+use crate::cull::room::ListRoom;
 use crate::cull::tight::{BaseLayout, TightRefiner};
 use crate::cull::tiled::depth::{TileDepthBuffers, TileDepthPass};
+use crate::cull::ListCulling;
 use crate::device::buffers::{output, upload, Grid};
 use crate::device::context::{GpuContext, GpuError};
 use crate::device::scan::ScanPass;
-use slc_core::{CullInput, LightLists};
 use slc_cull::{CullView, GlossyBound};
 use std::mem::offset_of;
 use std::sync::Arc;
@@ -38,7 +38,7 @@ use std::sync::Arc;
 pub(crate) const SOURCE: &str = kernel!("tiled_cull");
 
 /// The tiled culler's pipelines (sphere, enclosing-sphere, ellipsoid and tight strategies,
-/// by the [`GlossyBound`] passed to [`TiledCuller::cull`]).
+/// by the [`GlossyBound`] passed to [`ListCulling::cull`]).
 pub struct TiledCuller {
     bounds: BoundsPass,
     partition: PartitionPass,
@@ -64,48 +64,6 @@ impl TiledCuller {
                 room: Arc::new(ListRoom::new()),
             })
         })
-    }
-
-    /// Culls `input` with `glossy` bounds for glossy VPLs (the section-6 sphere for diffuse
-    /// ones) and two Modified HalfZ clusters per tile (with [`GlossyBound::Tight`], their
-    /// groups per 8 x 8 block, `cull::tight`). Errors on invalid input (as the CPU
-    /// culler), on buffers beyond the device's limits and on device faults.
-    pub fn cull(
-        &self,
-        ctx: &GpuContext,
-        input: &CullInput,
-        glossy: GlossyBound,
-    ) -> Result<LightLists, GpuError> {
-        read_lists(ctx, &self.cull_on_gpu(ctx, input, glossy)?)
-    }
-
-    /// [`Self::cull_frame`] of `input` with its G-buffer uploaded, complete: culled again
-    /// where the lists outgrew their buffer (their totals read).
-    pub fn cull_on_gpu(
-        &self,
-        ctx: &GpuContext,
-        input: &CullInput,
-        glossy: GlossyBound,
-    ) -> Result<GpuLightLists, GpuError> {
-        let frame = CullFrame::upload(ctx, input)?;
-        settled(ctx, || self.cull_frame(ctx, &frame, glossy))
-    }
-
-    /// Culls `frame` without reading the lists back: they stay on the GPU in the CSR layout
-    /// the shading pass reads ([`GpuLightLists`]), two per tile (near and far cluster,
-    /// possibly empty), each pixel pointing to its cluster's list ([`slc_core::NO_LIST`]
-    /// without a sample). With [`GlossyBound::Tight`] each list is then refined per block
-    /// (`cull::tight`).
-    pub fn cull_frame(
-        &self,
-        ctx: &GpuContext,
-        frame: &CullFrame,
-        glossy: GlossyBound,
-    ) -> Result<GpuLightLists, GpuError> {
-        match self.prepare(ctx, frame, glossy, false)? {
-            Some(tiles) => self.lists(ctx, frame, &tiles),
-            None => no_lists(ctx),
-        }
     }
 
     /// The passes before the lists: per-VPL bounds, the subregions' VPLs and the Modified
@@ -270,6 +228,30 @@ impl TiledCuller {
     pub fn set_list_room(&self, entries: u32) {
         self.room.set(entries);
         self.tight.set_list_room(entries);
+    }
+}
+
+/// Culls with `glossy` bounds for glossy VPLs (the section-6 sphere for diffuse ones) and two
+/// Modified HalfZ clusters per tile (with [`GlossyBound::Tight`], their groups per 8 x 8
+/// block, `cull::tight`).
+impl ListCulling for TiledCuller {
+    type Choice = GlossyBound;
+
+    /// Culls `frame` without reading the lists back: they stay on the GPU in the CSR layout
+    /// the shading pass reads ([`GpuLightLists`]), two per tile (near and far cluster,
+    /// possibly empty), each pixel pointing to its cluster's list ([`slc_core::NO_LIST`]
+    /// without a sample). With [`GlossyBound::Tight`] each list is then refined per block
+    /// (`cull::tight`).
+    fn cull_frame(
+        &self,
+        ctx: &GpuContext,
+        frame: &CullFrame,
+        glossy: GlossyBound,
+    ) -> Result<GpuLightLists, GpuError> {
+        match self.prepare(ctx, frame, glossy, false)? {
+            Some(tiles) => self.lists(ctx, frame, &tiles),
+            None => no_lists(ctx),
+        }
     }
 }
 
