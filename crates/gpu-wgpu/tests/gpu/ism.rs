@@ -1,4 +1,4 @@
-//! The imperfect shadow maps' own guarantees (`ism_pass`): the pull-push hole filling only
+//! The imperfect shadow maps' own guarantees (`vsgl::ism`): the pull-push hole filling only
 //! fills (every splatted texel keeps its depth, holes narrower than 2^levels texels close,
 //! maps without points stay empty), and per-map point subsets give each map its own points.
 use crate::common::gpu;

@@ -1,5 +1,5 @@
-//! The rasterization baselines of the paper's Table 2 (`splat_pass` [DS06],
-//! `cluster_raster_pass` [OP16]): no pair with p > ξ is ever missed (every pair counted by the
+//! The rasterization baselines of the paper's Table 2 (`cull::raster::splat` [DS06],
+//! `cull::raster::clusters` [OP16]): no pair with p > ξ is ever missed (every pair counted by the
 //! CPU's brute force), with the scene's VPLs and with VPLs at the extremes (bounds that hold
 //! the camera, α 1e-4…1, ξ near 0 and 1, δ over twelve decades), at several K; they cull
 //! (fewer pairs than no culling); and the renderer's images equal the tiled ellipsoid's up to

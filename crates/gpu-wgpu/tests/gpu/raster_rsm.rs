@@ -379,7 +379,7 @@ fn invalid_lights_and_resolutions_are_errors() {
     );
 }
 
-/// The bound factor the GPU forms for its own VPLs (`vpl_bound_factor` in gvpl.wgsl, in
+/// The bound factor the GPU forms for its own VPLs (`vpl_bound_factor` in vpl/gvpl.wesl, in
 /// f32) is never below the CPU's (`GpuVpl::new`, f64) and at most 3e-4 above it, on the
 /// normal-mapped materials scene and the anisotropy scene, where it is not 1.
 #[test]

@@ -2,8 +2,8 @@
 //! (read after the shading; two for the tight strategies, whose refinement has its own) or
 //! the 32-byte one of a VSGL frame, and the VPL count for the frame's report (12 bytes,
 //! after the frame). Nothing between VPL generation and the shaded image: the VPL count
-//! stays on the GPU (`gpu_count`), the list cullers write into a buffer sized from earlier
-//! frames (`list_room`) and the VSGLs are built there. On a GPU whose timestamps measure
+//! stays on the GPU (`device::count`), the list cullers write into a buffer sized from earlier
+//! frames (`cull::room`) and the VSGLs are built there. On a GPU whose timestamps measure
 //! execution (`GpuContext::timestamps_trusted`: not lavapipe), a frame also reads back its
 //! per-pass timestamps, two 8-byte stamps per pass.
 use crate::common::{gpu, small_frame};

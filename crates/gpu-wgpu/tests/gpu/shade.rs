@@ -12,7 +12,7 @@
 //!
 //! Pixels with a VPL in the domain where the CPU forms the GGX half vector in f64
 //! (`|ωi + ωo|² α² <= 1e-6`: grazing opposition with a smooth lobe; the GPU emulates it in
-//! compensated f32, see `shaders/brdf.wgsl`) are held to the same tolerance and their largest
+//! compensated f32, see `material/brdf.wesl`) are held to the same tolerance and their largest
 //! error is reported separately (lavapipe: 2.2e-7; a naive f32 half vector gave 2.5e-2).
 //! The compensated sums hold only where the device rounds each operation as written; a GPU
 //! compiler may fuse or reorder them (WGSL allows it), and then that domain gets plain f32:
@@ -77,7 +77,7 @@ fn cpu_probability(g: &GSample, vpl: &Vpl, delta: f32) -> Option<f32> {
 
 /// The relative error allowed in the f64 half-vector domain on a device whose compiler may
 /// fuse or reorder operations: there the compensated f32 sums that stand in for the CPU's f64
-/// half vector (`shaders/brdf.wgsl`) fall back to plain f32, whose error in this frame is
+/// half vector (`material/brdf.wesl`) fall back to plain f32, whose error in this frame is
 /// 2.5e-2 (lavapipe, the naive form); an NVIDIA H100 and an H200 put six pixels 1.3e-4 to
 /// 2.0e-2 away. A device that rounds every operation as written (lavapipe) is held to
 /// [`TOLERANCE`] there too.

@@ -1,4 +1,4 @@
-//! The tight strategies on the GPU (`tight_cull_pass`, `shaders/box_bound.wgsl`): no pair
+//! The tight strategies on the GPU (`cull::tight`, `cull/box_bound.wesl`): no pair
 //! with p > ξ is ever missed (every pair counted by the CPU's brute force), on the built-in
 //! scene and with its VPLs pushed to the extremes (α 1e-4…1, anisotropic lobes, Schlick and
 //! dielectric Fresnel, ξ near 0 and 1, flux and δ over many decades); every refined list is a

@@ -280,7 +280,7 @@ fn tiled_lists_match_the_cpu() {
             }
         }
     }
-    // Lists longer than the 1024 entries tiled_cull.wgsl keeps in workgroup memory: the
+    // Lists longer than the 1024 entries tiled_cull.wesl keeps in workgroup memory: the
     // flushes in the middle of the loop were exercised.
     assert!(longest_seen > 1024, "longest list {longest_seen}");
 }

@@ -1,5 +1,5 @@
-//! The one-pass tiled culling and shading (`tiled_shade_pass`) against the tiled culler's
-//! lists shaded by `shade_pass`: the same image, pixel for pixel (bit for bit where the
+//! The one-pass tiled culling and shading (`shade::tiled`) against the tiled culler's
+//! lists shaded by `shade::lists`: the same image, pixel for pixel (bit for bit where the
 //! device does not fuse operations differently in the two kernels), for every tiled strategy,
 //! several K and the edge cases (VPLs that reach nothing, no VPL); and the renderer's two
 //! paths (`GpuRenderer::with_one_pass`).

@@ -4,7 +4,7 @@
 //! largest channel of the CPU image's mean, and the GPU image must be finite.
 //!
 //! Both evaluate the SG algebra in f32 with series where f32 would cancel: the GPU in WGSL
-//! (`shaders/sg.wgsl`), the CPU's VSGL shading in Rust (`slc_bounds`' `sg/single.rs`, held
+//! (`vsgl/shade/sg.wesl`), the CPU's VSGL shading in Rust (`slc_bounds`' `sg/single.rs`, held
 //! to its f64 forms by its tests; before it shaded in f64, which these tests were first
 //! measured against: at most 6.2e-7 on the default scene and 1.0e-5 on the extremes).
 //! Measured on lavapipe (the worst pixel ratio `max_c |gpu − cpu| / max(max_c |cpu|,

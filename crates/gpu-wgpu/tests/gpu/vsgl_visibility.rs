@@ -1,4 +1,4 @@
-//! GPU VSGL shading with visibility from imperfect shadow maps (`ism_pass`,
+//! GPU VSGL shading with visibility from imperfect shadow maps (`vsgl::ism`,
 //! `VsglShadePass::shade_visible`) against `slc_cpu_ref::vsgl::shade_vsgls(…, visibility =
 //! true, …)`, whose shadow rays are exact: the maps are imperfect by construction (points,
 //! 64² texels, a depth bias), so the comparison is statistical. Per pixel the error is
