@@ -62,10 +62,10 @@ pub fn cross_bilateral(
     CrossBilateral::default().filter(image, gbuffer, params)
 }
 
-/// The cross bilateral filter with its working set ([`Guide`], about 40 bytes per pixel),
+/// The cross bilateral filter with its working set (`Guide`, about 40 bytes per pixel),
 /// kept from one frame to the next of the same size.
 ///
-/// Both passes run eight pixels per vector ([`taps`]; AVX2 where the CPU has it): the
+/// Both passes run eight pixels per vector (`taps`; AVX2 where the CPU has it): the
 /// horizontal pass row by row, each row's guide and demodulated values written into padded
 /// planes and filtered while they are in cache; the vertical pass in bands of [`BAND`] rows
 /// and strips of [`STRIP`] columns, so the 2r + 1 rows a strip reads stay in the L2 cache.

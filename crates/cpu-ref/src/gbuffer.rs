@@ -1,5 +1,5 @@
 //! The ray-traced G-buffer: primary rays of 4x2 pixel blocks traced as packets
-//! ([`Tracer::intersect8`]), each pixel's sample written in place ([`par_blocks`]).
+//! ([`Tracer::intersect8`]), each pixel's sample written in place (`blocks::par_blocks`).
 use crate::blocks::par_blocks;
 use crate::tracer::{Rays8, Tracer};
 use glam::Vec3;

@@ -1,7 +1,7 @@
 //! The VPLs of each interleaved subregion on the GPU (`partition.wesl`, paper
 //! section 6): a stable counting sort of the non-empty bounds by subregion, so each tile
 //! reads only its subregion's bounds, in ascending VPL order. Count per subregion and run of
-//! VPLs ([`chunks`]), scan (`device::scan`), write.
+//! VPLs (`chunks`), scan (`device::scan`), write.
 use crate::cull::records::{GpuPartitionParams, CULL_COUNT, CULL_WRITE};
 use crate::device::buffers::{output, Grid};
 use crate::device::context::{GpuContext, GpuError};

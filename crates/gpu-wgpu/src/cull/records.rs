@@ -5,7 +5,7 @@
 //! `vec4<u32>`), never vec3, so the Rust and WGSL layouts agree without hidden padding.
 use bytemuck::{Pod, Zeroable};
 
-/// `GpuView::glossy`: the bound of glossy VPLs ([`GlossyBound`]).
+/// `GpuView::glossy`: the bound of glossy VPLs ([`slc_core::GlossyBound`]).
 pub const GLOSSY_SPHERE: u32 = 0;
 pub const GLOSSY_ENCLOSING_SPHERE: u32 = 1;
 pub const GLOSSY_ELLIPSOID: u32 = 2;
@@ -14,7 +14,7 @@ pub const GLOSSY_ELLIPSOID: u32 = 2;
 #[repr(C)]
 #[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
 pub struct GpuView {
-    /// Columns of the world-to-view rotation R ([`CullView::rotation`]).
+    /// Columns of the world-to-view rotation R ([`slc_cull::CullView::rotation`]).
     pub rotation: [[f32; 4]; 3],
     /// The eye (camera position), subtracted before rotating: `R (p − eye)`.
     pub eye: [f32; 4],
@@ -26,7 +26,7 @@ pub struct GpuView {
     pub count: u32,
     /// Relative growth of radii and semi-axes (`slc_cull`'s `BOUND_SLACK`, 1e-3).
     pub slack: f32,
-    /// Interleaving factor K and seed ([`Interleaving`]): each bound records its VPL's
+    /// Interleaving factor K and seed ([`slc_core::Interleaving`]): each bound records its VPL's
     /// subregion.
     pub k: u32,
     pub seed: u32,
@@ -76,7 +76,7 @@ const _: () = assert!(std::mem::size_of::<GpuBound>() == 80);
 #[repr(C)]
 #[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
 pub struct GpuCullParams {
-    /// Columns of the world-to-view rotation R ([`CullView::rotation`]).
+    /// Columns of the world-to-view rotation R ([`slc_cull::CullView::rotation`]).
     pub rotation: [[f32; 4]; 3],
     /// The eye (camera position).
     pub eye: [f32; 4],

@@ -17,7 +17,7 @@ pub struct GpuShadeParams {
     pub list_count: u32,
     /// δ of eq. (2).
     pub delta: f32,
-    /// K² of the interleaved sampling (section 6, [`Interleaving::scale`]).
+    /// K² of the interleaved sampling (section 6, [`slc_core::Interleaving::scale`]).
     pub scale: f32,
     pub pad: u32,
 }

@@ -9,7 +9,7 @@
 //! tile's slices, their depth ranges and each pixel's slice) and `clustered_cull.wesl`
 //! twice (count and write each slice's list, with the offsets from `device::scan` in between).
 //! A slice exists where some pixel falls and is tested with the depth range of its own pixels;
-//! lists ascend in the VPL index. Read back, the result is a [`LightLists`] in the CPU's
+//! lists ascend in the VPL index. Read back, the result is a [`slc_core::LightLists`] in the CPU's
 //! convention (empty lists dropped); [`ClusteredCuller::cull_on_gpu`] leaves the lists on the
 //! GPU for `shade::lists` instead.
 //!

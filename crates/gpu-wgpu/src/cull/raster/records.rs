@@ -1,4 +1,4 @@
-//! `#[repr(C)]` twins of the WGSL structs of the raster baselines (splatting [DS06], rasterized clusters [OP16]). Each names the WGSL module whose struct
+//! `#[repr(C)]` twins of the WGSL structs of the raster baselines (splatting \[DS06\], rasterized clusters \[OP16\]). Each names the WGSL module whose struct
 //! of the same name must keep the same fields in the same order, a compile-time check holds its
 //! size, and a unit test compares it with the layout naga computes from the linked kernel. Only
 //! 4-byte scalars and `[f32; 4]` / `[u32; 4]` are used (WGSL `f32`, `u32`, `vec4<f32>`,

@@ -27,7 +27,7 @@ use std::sync::Arc;
 #[repr(C)]
 #[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
 pub struct GpuTightParams {
-    /// Lists per tile of the base strategy: 2 (Modified HalfZ) or [`CLUSTER_SLICES`].
+    /// Lists per tile of the base strategy: 2 (Modified HalfZ) or [`crate::cull::clustered::records::CLUSTER_SLICES`].
     pub clusters: u32,
     /// 2 where each block's samples of a list are split at their half depth, else 1.
     pub halves: u32,

@@ -4,7 +4,7 @@
 //! `tiled_cull.wesl` twice, counting and then writing each tile cluster's list, with
 //! the offsets from `device::scan` in between. Tiles are 16 x 16 pixels of each interleaved
 //! subregion image (section 6, Fig. 8) and test only their subregion's VPLs. The result,
-//! read back, is a [`LightLists`] in the CPU's convention: empty lists are dropped, every
+//! read back, is a [`slc_core::LightLists`] in the CPU's convention: empty lists are dropped, every
 //! list ascends in the VPL index, and each pixel with a sample points to its cluster's list.
 //!
 //! Counting and writing run in one submission, into a buffer of the room earlier frames'
