@@ -3,6 +3,7 @@
 //! the material overrides of the settings file the view was opened with; the render options
 //! (strategy, δ, K, ...) go in a comment as the `slc render` command line.
 use glam::Vec3;
+use slc_core::settings_tables::{camera_table, light_table};
 use slc_core::{Camera, Light, MaterialOverride, Scene, Settings};
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -50,54 +51,29 @@ pub fn settings_toml(
     camera: &Camera,
     lights: &[Light],
     command: &str,
-) -> String {
+) -> Result<String, String> {
     let mut t = String::new();
     let _ = writeln!(t, "# Saved by slc view. Render it with:");
     let _ = writeln!(t, "#   {command}");
     let _ = writeln!(t, "scene = {}", quoted(&origin.file.display().to_string()));
-    let _ = writeln!(t, "replace_lights = true\n\n[camera]");
-    let _ = writeln!(t, "position = {}", vec3(camera.position));
-    let _ = writeln!(t, "target = {}", vec3(camera.position + camera.forward));
-    let _ = writeln!(t, "up = {}", vec3(camera.up));
-    let _ = writeln!(t, "yfov_deg = {:?}", camera.yfov.to_degrees());
-    let _ = writeln!(t, "znear = {:?}\nzfar = {:?}", camera.znear, camera.zfar);
-    for light in lights {
-        let _ = writeln!(t, "\n[[lights]]");
-        match light {
-            Light::Point {
-                position,
-                intensity,
-            } => {
-                let _ = writeln!(t, "type = \"point\"\nposition = {}", vec3(*position));
-                let _ = writeln!(t, "intensity = {}", vec3(*intensity));
-            }
-            Light::Spot {
-                position,
-                direction,
-                intensity,
-                inner_cone_angle,
-                outer_cone_angle,
-            } => {
-                let _ = writeln!(t, "type = \"spot\"\nposition = {}", vec3(*position));
-                let _ = writeln!(t, "direction = {}", vec3(*direction));
-                let _ = writeln!(t, "intensity = {}", vec3(*intensity));
-                let outer = outer_cone_angle.to_degrees().min(90.0);
-                let inner = inner_cone_angle.to_degrees().min(outer);
-                let _ = writeln!(t, "inner_cone_deg = {inner:?}\nouter_cone_deg = {outer:?}");
-            }
-            Light::Directional {
-                direction,
-                irradiance,
-            } => {
-                let _ = writeln!(
-                    t,
-                    "type = \"directional\"\ndirection = {}",
-                    vec3(*direction)
-                );
-                let _ = writeln!(t, "irradiance = {}", vec3(*irradiance));
-            }
-        }
-    }
+    let _ = writeln!(t, "replace_lights = true\n");
+    // The camera and lights as the settings file's own tables (slc_core::settings_tables).
+    let tables = toml::Table::from_iter([
+        (
+            "camera".to_string(),
+            toml::Value::Table(camera_table(camera)),
+        ),
+        (
+            "lights".to_string(),
+            toml::Value::Array(
+                lights
+                    .iter()
+                    .map(|l| toml::Value::Table(light_table(l)))
+                    .collect(),
+            ),
+        ),
+    ]);
+    t.push_str(&toml::to_string(&tables).map_err(|e| e.to_string())?);
     for m in &origin.materials {
         let _ = writeln!(t, "\n[[materials]]\nname = {}", quoted(&m.pattern));
         if let Some(kd) = m.kd {
@@ -120,7 +96,7 @@ pub fn settings_toml(
             let _ = writeln!(t, "anisotropy_rotation = {:?}", a.rotation);
         }
     }
-    t
+    Ok(t)
 }
 
 /// A TOML array of three floats, each written so that it reads back to the same f32.
@@ -167,7 +143,7 @@ mod tests {
                 }),
             }],
         };
-        let text = settings_toml(&origin, &camera, &scene.lights, "slc render saved.toml");
+        let text = settings_toml(&origin, &camera, &scene.lights, "slc render saved.toml").unwrap();
         let read = Settings::parse(&text, &dir.join("saved.toml")).expect(&text);
         assert_eq!(read.scene, origin.file);
         assert!(read.replace_lights);

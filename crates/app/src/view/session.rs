@@ -100,7 +100,8 @@ impl Session {
                 path.display(),
                 self.controls.render_options(self.width, self.height)
             ),
-        );
+        )
+        .map_err(ViewError::Input)?;
         std::fs::write(path, text).map_err(|e| ViewError::Write {
             path: path.to_path_buf(),
             message: e.to_string(),

@@ -6,6 +6,7 @@
 pub mod bounds;
 pub mod clustered;
 pub mod frame;
+pub mod list_passes;
 pub mod lists;
 pub mod none;
 pub mod partition;

@@ -17,22 +17,20 @@
 //! tests): a sample within rounding of a slice boundary may fall in the neighbouring slice.
 pub mod records;
 
-use crate::cull::bounds::{BoundsPass, BoundsSettings, GpuBounds};
+use crate::cull::bounds::{BoundsSettings, GpuBounds};
 use crate::cull::clustered::records::{GpuClusterFrusta, CLUSTER_SLICES, DEPTH_RANGE, DEPTH_SPLIT};
 use crate::cull::frame::{check_input, cull_params, tile_grid, CullFrame, CullSizes};
+use crate::cull::list_passes::ListPasses;
 use crate::cull::lists::no_lists;
 use crate::cull::lists::GpuLightLists;
-use crate::cull::partition::{GpuPartition, PartitionPass};
+use crate::cull::partition::GpuPartition;
 use crate::cull::records::{GpuCullParams, GpuCullStatus, CULL_COUNT, CULL_WRITE};
-use crate::cull::room::ListRoom;
-use crate::cull::tight::{BaseLayout, TightRefiner};
+use crate::cull::tight::BaseLayout;
 use crate::cull::ListCulling;
 use crate::device::buffers::{output, upload, Grid};
 use crate::device::context::{GpuContext, GpuError};
-use crate::device::scan::ScanPass;
 use slc_cull::{CullView, GlossyBound};
 use std::mem::offset_of;
-use std::sync::Arc;
 
 /// The kernel of `cluster_depth.wesl`, linked with what it imports (build.rs).
 pub(crate) const DEPTH_SOURCE: &str = kernel!("cluster_depth");
@@ -43,29 +41,23 @@ pub(crate) const CULL_SOURCE: &str = kernel!("clustered_cull");
 /// The clustered culler's pipelines (the four clustered strategies, by the [`GlossyBound`]
 /// passed to [`ListCulling::cull`]).
 pub struct ClusteredCuller {
-    bounds: BoundsPass,
-    partition: PartitionPass,
-    scan: ScanPass,
-    tight: TightRefiner,
+    passes: ListPasses,
     depth: wgpu::ComputePipeline,
     cull: wgpu::ComputePipeline,
-    /// What the lists of earlier frames needed.
-    room: Arc<ListRoom>,
 }
 
 impl ClusteredCuller {
     pub fn new(ctx: &GpuContext) -> Result<Self, GpuError> {
-        let bounds = BoundsPass::new(ctx)?;
-        ctx.scoped("clustered culling pipelines", || {
-            Ok(Self {
-                bounds,
-                partition: PartitionPass::new(ctx),
-                scan: ScanPass::new(ctx),
-                tight: TightRefiner::new(ctx),
-                depth: ctx.compute_pipeline("cluster depth", DEPTH_SOURCE),
-                cull: ctx.compute_pipeline("clustered cull", CULL_SOURCE),
-                room: Arc::new(ListRoom::new()),
-            })
+        let (passes, (depth, cull)) = ListPasses::new(ctx, "clustered culling pipelines", || {
+            (
+                ctx.compute_pipeline("cluster depth", DEPTH_SOURCE),
+                ctx.compute_pipeline("clustered cull", CULL_SOURCE),
+            )
+        })?;
+        Ok(Self {
+            passes,
+            depth,
+            cull,
         })
     }
 
@@ -87,7 +79,7 @@ impl ClusteredCuller {
         let (width, height) = (frame.width, frame.height);
         let view = CullView::new(frame.camera, width, height)
             .map_err(|e| GpuError::Input(e.to_string()))?;
-        let bounds = self.bounds.run(
+        let bounds = self.passes.bounds.run(
             ctx,
             frame.vpls,
             &BoundsSettings {
@@ -112,10 +104,10 @@ impl ClusteredCuller {
         // Smallest and largest depth as f32 bits, before any sample is seen.
         let depth_range = upload(ctx, "depth range", &[u32::MAX, 0])?;
         let partition = ctx.submit("cluster depth", |encoder| {
-            let partition = self.partition.encode(
+            let partition = self.passes.partition.encode(
                 ctx,
                 encoder,
-                &self.scan,
+                &self.passes.scan,
                 &bounds.buffer,
                 &bounds.count,
                 k * k,
@@ -178,7 +170,8 @@ impl ClusteredCuller {
         let p = &clusters.params;
         let per_subregion = u64::from(CLUSTER_SLICES) * u64::from(p.tiles_x) * u64::from(p.tiles_y);
         let (entries, write) =
-            self.room
+            self.passes
+                .room
                 .buffer(ctx, frame, "light lists", per_subregion, &clusters.status)?;
         ctx.submit("clustered cull", |encoder| {
             for mode in [CULL_COUNT, CULL_WRITE] {
@@ -208,7 +201,8 @@ impl ClusteredCuller {
                     clusters.grid,
                 );
                 if mode == CULL_COUNT {
-                    self.scan
+                    self.passes
+                        .scan
                         .encode(ctx, encoder, &offsets, list_count, &clusters.status);
                 }
             }
@@ -230,14 +224,14 @@ impl ClusteredCuller {
             clusters: CLUSTER_SLICES,
             split: false,
         };
-        self.tight
+        self.passes
+            .tight
             .refine(ctx, frame, lists, &clusters.bounds, layout)
     }
 
     /// Sets the room of the next frames' lists (`cull::room`), the refinement's too.
     pub fn set_list_room(&self, entries: u32) {
-        self.room.set(entries);
-        self.tight.set_list_room(entries);
+        self.passes.set_list_room(entries);
     }
 }
 

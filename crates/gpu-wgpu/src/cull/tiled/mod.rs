@@ -17,22 +17,19 @@
 //! [`GlossyBound::Tight`] the lists are refined per block (`cull::tight`).
 pub mod depth;
 
-use crate::cull::bounds::{BoundsPass, BoundsSettings, GpuBounds};
+use crate::cull::bounds::{BoundsSettings, GpuBounds};
 use crate::cull::frame::{check_input, cull_params, tile_grid, CullFrame, CullSizes};
+use crate::cull::list_passes::ListPasses;
 use crate::cull::lists::no_lists;
 use crate::cull::lists::GpuLightLists;
-use crate::cull::partition::PartitionPass;
 use crate::cull::records::{GpuCullParams, GpuCullStatus, GpuTileFrusta, CULL_COUNT, CULL_WRITE};
-use crate::cull::room::ListRoom;
-use crate::cull::tight::{BaseLayout, TightRefiner};
+use crate::cull::tight::BaseLayout;
 use crate::cull::tiled::depth::{TileDepthBuffers, TileDepthPass};
 use crate::cull::ListCulling;
 use crate::device::buffers::{output, upload, Grid};
 use crate::device::context::{GpuContext, GpuError};
-use crate::device::scan::ScanPass;
 use slc_cull::{CullView, GlossyBound};
 use std::mem::offset_of;
-use std::sync::Arc;
 
 /// The kernel of `tiled_cull.wesl`, linked with what it imports (build.rs).
 pub(crate) const SOURCE: &str = kernel!("tiled_cull");
@@ -40,29 +37,23 @@ pub(crate) const SOURCE: &str = kernel!("tiled_cull");
 /// The tiled culler's pipelines (sphere, enclosing-sphere, ellipsoid and tight strategies,
 /// by the [`GlossyBound`] passed to [`ListCulling::cull`]).
 pub struct TiledCuller {
-    bounds: BoundsPass,
-    partition: PartitionPass,
+    passes: ListPasses,
     depth: TileDepthPass,
-    scan: ScanPass,
-    tight: TightRefiner,
     pipeline: wgpu::ComputePipeline,
-    /// What the lists of earlier frames needed.
-    room: Arc<ListRoom>,
 }
 
 impl TiledCuller {
     pub fn new(ctx: &GpuContext) -> Result<Self, GpuError> {
-        let bounds = BoundsPass::new(ctx)?;
-        ctx.scoped("tiled culling pipelines", || {
-            Ok(Self {
-                bounds,
-                partition: PartitionPass::new(ctx),
-                depth: TileDepthPass::new(ctx),
-                scan: ScanPass::new(ctx),
-                tight: TightRefiner::new(ctx),
-                pipeline: ctx.compute_pipeline("tiled cull", SOURCE),
-                room: Arc::new(ListRoom::new()),
-            })
+        let (passes, (depth, pipeline)) = ListPasses::new(ctx, "tiled culling pipelines", || {
+            (
+                TileDepthPass::new(ctx),
+                ctx.compute_pipeline("tiled cull", SOURCE),
+            )
+        })?;
+        Ok(Self {
+            passes,
+            depth,
+            pipeline,
         })
     }
 
@@ -85,7 +76,7 @@ impl TiledCuller {
         let (width, height) = (frame.width, frame.height);
         let view = CullView::new(frame.camera, width, height)
             .map_err(|e| GpuError::Input(e.to_string()))?;
-        let bounds = self.bounds.run(
+        let bounds = self.passes.bounds.run(
             ctx,
             frame.vpls,
             &BoundsSettings {
@@ -109,10 +100,10 @@ impl TiledCuller {
         let params = cull_params(frame, &view, tiles, CULL_COUNT);
         let k = frame.interleaving.k;
         let partition = ctx.submit("tile depth", |encoder| {
-            let partition = self.partition.encode(
+            let partition = self.passes.partition.encode(
                 ctx,
                 encoder,
-                &self.scan,
+                &self.passes.scan,
                 &bounds.buffer,
                 &bounds.count,
                 k * k,
@@ -170,7 +161,8 @@ impl TiledCuller {
         let p = &tiles.params;
         let per_subregion = 2 * u64::from(p.tiles_x) * u64::from(p.tiles_y);
         let (entries, write) =
-            self.room
+            self.passes
+                .room
                 .buffer(ctx, frame, "light lists", per_subregion, &tiles.status)?;
         ctx.submit("tiled cull", |encoder| {
             for mode in [CULL_COUNT, CULL_WRITE] {
@@ -199,7 +191,8 @@ impl TiledCuller {
                     tiles.grid,
                 );
                 if mode == CULL_COUNT {
-                    self.scan
+                    self.passes
+                        .scan
                         .encode(ctx, encoder, &offsets, lists_count, &tiles.status);
                 }
             }
@@ -221,13 +214,14 @@ impl TiledCuller {
             clusters: 2,
             split: true,
         };
-        self.tight.refine(ctx, frame, lists, &tiles.bounds, layout)
+        self.passes
+            .tight
+            .refine(ctx, frame, lists, &tiles.bounds, layout)
     }
 
     /// Sets the room of the next frames' lists (`cull::room`), the refinement's too.
     pub fn set_list_room(&self, entries: u32) {
-        self.room.set(entries);
-        self.tight.set_list_room(entries);
+        self.passes.set_list_room(entries);
     }
 }
 
