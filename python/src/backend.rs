@@ -1,24 +1,60 @@
 //! The backends a [`crate::scene::PyScene`] keeps between calls: the CPU's BVH, and the GPU
 //! device with the uploaded scene (and a BVH for the CPU passes of its frames), each made on
-//! first use. Work is written once as a [`Job`]
-//! over the renderer API and run on the backend the options name.
-use crate::options::{Backend, Options};
+//! first use. Work is written once as a [`Job`] over the renderer API and run on the backend
+//! the options name (`slc_app::backends`, which the `slc` command shares).
+use crate::options::Options;
+use slc_app::backends::{self, Backend};
 use slc_app::cpu_frames::{CpuFrames, SceneBvh};
-use slc_core::{Progress, Renderer, Scene};
+use slc_core::frame::RenderSettings;
+use slc_core::{Progress, RenderError, Renderer, Scene};
 use slc_cpu_ref::CpuRenderer;
 
+/// A backend with a scene loaded there: what a [`Job`] runs on.
+pub struct On<'a, R: CpuFrames> {
+    pub r: &'a R,
+    pub scene: &'a Scene,
+    pub loaded: &'a R::Scene,
+    /// The scene's BVH, for what only the CPU computes (`CpuFrames::cpu_frame`).
+    pub bvh: &'a SceneBvh,
+    pub progress: Progress<'a>,
+}
+
+impl<'a, R: CpuFrames> On<'a, R> {
+    /// `r` with `scene` loaded there (`loaded`), the scene's BVH and the call's progress.
+    fn new(
+        r: &'a R,
+        (scene, loaded): (&'a Scene, &'a R::Scene),
+        bvh: &'a SceneBvh,
+        progress: Progress<'a>,
+    ) -> Self {
+        Self {
+            r,
+            scene,
+            loaded,
+            bvh,
+            progress,
+        }
+    }
+
+    /// A frame up to its VPLs and direct light, at pixel and texel centres.
+    pub fn prepare(&self, settings: &RenderSettings) -> Result<R::Prepared, String> {
+        self.r
+            .prepare(self.scene, self.loaded, settings, None, self.progress)
+            .map_err(message)
+    }
+}
+
 /// Work on one backend, written once for every backend. It reports its pixel-passes to
-/// `progress` and stops when it is cancelled.
+/// `on.progress` and stops when it is cancelled.
 pub trait Job {
     type Output;
-    fn run<R: CpuFrames>(
-        self,
-        r: &R,
-        scene: &Scene,
-        loaded: &R::Scene,
-        bvh: &SceneBvh,
-        progress: Progress,
-    ) -> Result<Self::Output, String>;
+    fn run<R: CpuFrames>(self, on: On<'_, R>) -> Result<Self::Output, String>;
+}
+
+/// A library error as Python reports it: what a backend lacks points to the one that has it
+/// (`backend='NAME'`).
+pub fn message(e: RenderError) -> String {
+    backends::message(&e, |b| format!("backend='{}'", b.name()))
 }
 
 /// What each backend keeps of a scene.
@@ -57,14 +93,13 @@ impl Loaded {
     ) -> Result<J::Output, String> {
         match options.backend {
             Backend::Cpu => {
-                self.cpu_renderer
-                    .check(&options.settings)
-                    .map_err(|e| e.to_string())?;
+                let r = &self.cpu_renderer;
+                r.check(&options.settings).map_err(message)?;
                 let loaded = match &mut self.cpu {
                     Some(l) => l,
-                    slot => slot.insert(self.cpu_renderer.load(scene).map_err(|e| e.to_string())?),
+                    slot => slot.insert(r.load(scene).map_err(message)?),
                 };
-                job.run(&self.cpu_renderer, scene, loaded, &self.bvh, progress)
+                job.run(On::new(r, (scene, loaded), &self.bvh, progress))
             }
             Backend::Gpu => self.run_gpu(options, scene, job, progress),
         }
@@ -81,17 +116,14 @@ impl Loaded {
         let (gpu, loaded) = match &mut self.gpu {
             Some(g) => g,
             slot => {
-                let gpu = slc_gpu_wgpu::GpuRenderer::new().map_err(|e| e.to_string())?;
-                if let Some(warning) = gpu.context().software_warning() {
-                    eprintln!("warning: {warning}");
-                }
-                let loaded = gpu.load(scene).map_err(|e| e.to_string())?;
+                let gpu = backends::open_gpu()?;
+                let loaded = gpu.load(scene).map_err(message)?;
                 slot.insert((gpu, loaded))
             }
         };
-        gpu.check(&options.settings).map_err(|e| e.to_string())?;
+        gpu.check(&options.settings).map_err(message)?;
         gpu.set_one_pass(options.one_pass);
-        job.run(&*gpu, scene, loaded, &self.bvh, progress)
+        job.run(On::new(&*gpu, (scene, loaded), &self.bvh, progress))
     }
 
     #[cfg(not(feature = "gpu"))]
@@ -102,6 +134,6 @@ impl Loaded {
         _job: J,
         _progress: Progress,
     ) -> Result<J::Output, String> {
-        Err("this slc was built without the `gpu` feature: use backend='cpu'".into())
+        Err(backends::gpu_not_built("backend='cpu'"))
     }
 }

@@ -9,18 +9,12 @@ use crate::error;
 use pyo3::exceptions::{PyTypeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::{PyBool, PyDict, PyFloat, PyString};
+use slc_app::backends::Backend;
 use slc_core::frame::counts::CAMERA_VSGLS;
 use slc_core::frame::{
     DiffuseEmission, Importance, LightSampling, LobeSelection, Method, RenderSettings, Stochastic,
 };
 use slc_core::Strategy;
-
-/// Where a frame is rendered.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Backend {
-    Cpu,
-    Gpu,
-}
 
 /// What a frame is made of: the options of `Scene.vpls`.
 pub const FRAME: &[&str] = &["width", "height", "backend", "seed", "rsm", "lobes"];
@@ -237,7 +231,7 @@ impl Options {
         let backend = choose(
             "backend",
             &given.required_text("backend")?,
-            &[("cpu", Backend::Cpu), ("gpu", Backend::Gpu)],
+            &Backend::ALL.map(|b| (b.name(), b)),
         )?;
         let one_pass = match given.text("gpu_tiled")? {
             None => true,

@@ -3,7 +3,7 @@
 //! settings; what each backend makes of it (the CPU's BVH, the GPU's device and buffers) is
 //! kept between calls. Every call works on a worker thread without the GIL, stops on Ctrl-C
 //! and reports its progress ([`crate::watch`]).
-use crate::backend::{Job, Loaded};
+use crate::backend::{message, Job, Loaded, On};
 use crate::error;
 use crate::frame::{FrameData, PyFrame};
 use crate::options::{strategies, Options, COMPARE, FRAME, LISTS, RENDER};
@@ -13,15 +13,13 @@ use numpy::{PyArray1, PyArray2, PyArrayMethods};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
-use slc_app::cpu_frames::{CpuFrames, SceneBvh};
+use slc_app::cpu_frames::CpuFrames;
 use slc_app::reference::{all_vpl_reference, cpu_input};
 use slc_core::culling::{Interleaving, LightLists, NO_LIST};
 use slc_core::frame::{Method, RenderSettings, RenderedFrame, Stochastic};
 use slc_core::settings_tables::{camera_from_table, camera_table, light_from_table, light_table};
 use slc_core::shader::{frame_timings, ShadeInput, Shader as _};
-use slc_core::{
-    load_scene, MaterialOverride, PreparedFrame, Progress, Renderer, Scene, Strategy, VplLobe,
-};
+use slc_core::{load_scene, MaterialOverride, PreparedFrame, Renderer, Scene, Strategy, VplLobe};
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::{Mutex, PoisonError};
 
@@ -41,18 +39,11 @@ struct RenderJob<'a> {
 
 impl Job for RenderJob<'_> {
     type Output = FrameData;
-    fn run<R: CpuFrames>(
-        self,
-        r: &R,
-        scene: &Scene,
-        loaded: &R::Scene,
-        _bvh: &SceneBvh,
-        progress: Progress,
-    ) -> Result<FrameData, String> {
+    fn run<R: CpuFrames>(self, on: On<'_, R>) -> Result<FrameData, String> {
         let s = &self.options.settings;
         let frame =
-            slc_core::render_loaded(r, scene, loaded, s, progress).map_err(|e| e.to_string())?;
-        FrameData::new(r, scene, s, frame)
+            slc_core::render_loaded(on.r, on.scene, on.loaded, s, on.progress).map_err(message)?;
+        FrameData::new(on.r, on.scene, s, frame)
     }
 }
 
@@ -70,14 +61,8 @@ struct CompareJob<'a> {
 
 impl Job for CompareJob<'_> {
     type Output = Vec<(&'static str, FrameData)>;
-    fn run<R: CpuFrames>(
-        self,
-        r: &R,
-        scene: &Scene,
-        loaded: &R::Scene,
-        bvh: &SceneBvh,
-        progress: Progress,
-    ) -> Result<Self::Output, String> {
+    fn run<R: CpuFrames>(self, on: On<'_, R>) -> Result<Self::Output, String> {
+        let (r, scene, progress) = (on.r, on.scene, on.progress);
         let settings = &self.options.settings;
         let (seed, visibility) = (settings.seed, settings.visibility);
         let with = |method| RenderSettings {
@@ -88,7 +73,7 @@ impl Job for CompareJob<'_> {
             Ok::<_, String>(RenderedFrame {
                 direct: p.direct().clone(),
                 indirect,
-                vpl_count: p.vpl_count().map_err(|e| e.to_string())?,
+                vpl_count: p.vpl_count().map_err(message)?,
                 timings,
                 gpu_timings,
                 metrics,
@@ -96,7 +81,6 @@ impl Job for CompareJob<'_> {
                 readback_bytes: None,
             })
         };
-        let message = |e: slc_core::RenderError| e.to_string();
         let all: Vec<Strategy> = Strategy::every()
             .filter(|&s| r.capabilities().runs(s))
             .collect();
@@ -104,12 +88,10 @@ impl Job for CompareJob<'_> {
         let frames = strategies.len() + usize::from(self.reference);
         let pixels = u64::from(settings.width) * u64::from(settings.height);
         self.total.store(pixels * frames as u64, Ordering::Relaxed);
-        let p = r
-            .prepare(scene, loaded, settings, None, progress)
-            .map_err(message)?;
+        let p = on.prepare(settings)?;
         let mut out = Vec::new();
         if self.reference {
-            let cpu_p = r.cpu_frame(scene, bvh, &p).map_err(message)?;
+            let cpu_p = r.cpu_frame(scene, on.bvh, &p).map_err(message)?;
             let cpu = slc_cpu_ref::CpuRenderer::default();
             let input = cpu_input(scene, &cpu_p, seed, visibility);
             let reference = all_vpl_reference(input, progress)?;
@@ -120,7 +102,7 @@ impl Job for CompareJob<'_> {
         }
         let input = ShadeInput {
             scene,
-            loaded,
+            loaded: on.loaded,
             prepared: &p,
             seed,
             visibility,
@@ -161,19 +143,10 @@ struct VplsJob<'a> {
 
 impl Job for VplsJob<'_> {
     type Output = VplColumns;
-    fn run<R: CpuFrames>(
-        self,
-        r: &R,
-        scene: &Scene,
-        loaded: &R::Scene,
-        _bvh: &SceneBvh,
-        progress: Progress,
-    ) -> Result<VplColumns, String> {
-        let p = r
-            .prepare(scene, loaded, &self.options.settings, None, progress)
-            .map_err(|e| e.to_string())?;
+    fn run<R: CpuFrames>(self, on: On<'_, R>) -> Result<VplColumns, String> {
+        let p = on.prepare(&self.options.settings)?;
         let mut c = VplColumns::default();
-        for v in p.vpls().map_err(|e| e.to_string())? {
+        for v in p.vpls().map_err(message)? {
             c.position.extend(v.position.to_array());
             c.normal.extend(v.normal.to_array());
             c.omega_i.extend(v.omega_i.to_array());
@@ -197,20 +170,10 @@ struct ListsJob<'a> {
 
 impl Job for ListsJob<'_> {
     type Output = LightLists;
-    fn run<R: CpuFrames>(
-        self,
-        r: &R,
-        scene: &Scene,
-        loaded: &R::Scene,
-        bvh: &SceneBvh,
-        progress: Progress,
-    ) -> Result<LightLists, String> {
-        let message = |e: slc_core::RenderError| e.to_string();
+    fn run<R: CpuFrames>(self, on: On<'_, R>) -> Result<LightLists, String> {
         let settings = &self.options.settings;
-        let p = r
-            .prepare(scene, loaded, settings, None, progress)
-            .map_err(message)?;
-        let cpu_p = r.cpu_frame(scene, bvh, &p).map_err(message)?;
+        let p = on.prepare(settings)?;
+        let cpu_p = on.r.cpu_frame(on.scene, on.bvh, &p).map_err(message)?;
         let s = self.stochastic;
         slc_cpu_ref::CpuRenderer::default()
             .cull(

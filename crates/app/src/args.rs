@@ -1,6 +1,7 @@
 //! Command-line options shared by `render`, `compare` and `sweep`.
 use clap::builder::TypedValueParser;
 use clap::{Args, ValueEnum};
+use slc_app::backends::Backend;
 use slc_core::frame::counts::{CAMERA_VSGLS, HEIGHT, INTERLEAVE, RSM, SAMPLED_LIGHTS, WIDTH};
 use slc_core::frame::{
     Count, DiffuseEmission, Importance, LightSampling, LobeSelection, Method, RenderSettings,
@@ -9,15 +10,6 @@ use slc_core::frame::{
 use slc_core::shader::ShadeInput;
 use slc_core::{load_scene, Renderer, Scene, Strategy};
 use std::path::PathBuf;
-
-#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
-pub enum Backend {
-    /// The CPU reference renderer (rayon).
-    Cpu,
-    /// The whole frame on the GPU (wgpu): rasterized G-buffer and RSMs, VPLs, direct light
-    /// with shadow maps, culling, shading and the filter.
-    Gpu,
-}
 
 /// How the GPU backend runs the tiled strategies (`sphere`, `enclosing-sphere`,
 /// `ellipsoid`).

@@ -21,7 +21,7 @@ use std::collections::BTreeMap;
 /// What a report says about the backend that rendered.
 #[derive(Clone, Debug, PartialEq)]
 pub struct BackendInfo {
-    /// `cpu` or `gpu`.
+    /// The backend's name ([`Renderer::name`]).
     pub backend: &'static str,
     /// The device: the CPU backend names its thread count, the GPU backend its adapter.
     pub adapter: String,
@@ -50,60 +50,131 @@ pub struct Capabilities {
 }
 
 impl Capabilities {
+    /// Nothing beyond what every backend renders.
+    pub const NONE: Self = Self::every(false);
+
+    /// Everything.
+    pub const ALL: Self = Self::every(true);
+
+    const fn every(has: bool) -> Self {
+        Self {
+            vpl_visibility: has,
+            vsgl_visibility: has,
+            references: has,
+            sampled_vpls: has,
+            tight_culling: has,
+            raster_culling: has,
+            binned_culling: has,
+        }
+    }
+
+    /// What `settings` ask of a backend beyond what every backend renders.
+    pub fn needed(settings: &RenderSettings) -> Self {
+        let vpls = Self {
+            vpl_visibility: settings.visibility,
+            ..Self::NONE
+        };
+        match settings.method {
+            Method::VplReference => Self {
+                references: true,
+                ..vpls
+            },
+            Method::Path => Self {
+                references: true,
+                ..Self::NONE
+            },
+            Method::SampledVpls(_) => Self {
+                sampled_vpls: true,
+                ..vpls
+            },
+            Method::Vsgl(_) => Self {
+                vsgl_visibility: settings.visibility,
+                ..Self::NONE
+            },
+            Method::Stochastic(s) => Self {
+                vpl_visibility: settings.visibility,
+                ..Self::culling(s.strategy)
+            },
+        }
+    }
+
+    /// What culling with `strategy` asks of a backend.
+    pub fn culling(strategy: Strategy) -> Self {
+        let (layout, glossy) = strategy.parts();
+        Self {
+            tight_culling: glossy == GlossyBound::Tight,
+            raster_culling: strategy.is_raster(),
+            binned_culling: layout == Layout::Binned,
+            ..Self::NONE
+        }
+    }
+
+    /// What of `needs` these capabilities lack, described, most particular first.
+    fn lacking(&self, needs: &Self) -> impl Iterator<Item = &'static str> {
+        let lacks = |need: bool, have: bool| need && !have;
+        [
+            (lacks(needs.references, self.references), "the references"),
+            (lacks(needs.sampled_vpls, self.sampled_vpls), "sampled VPLs"),
+            (
+                lacks(needs.vsgl_visibility, self.vsgl_visibility),
+                "visibility for VSGLs",
+            ),
+            (
+                lacks(needs.raster_culling, self.raster_culling),
+                "the rasterization baselines (splatting, clustered-raster)",
+            ),
+            (
+                lacks(needs.binned_culling, self.binned_culling),
+                "the binned culling strategy",
+            ),
+            (
+                lacks(needs.tight_culling, self.tight_culling),
+                "the tight culling strategies (tight, clustered-tight)",
+            ),
+            (
+                lacks(needs.vpl_visibility, self.vpl_visibility),
+                "shadow rays between VPLs and pixels (visibility)",
+            ),
+        ]
+        .into_iter()
+        .filter_map(|(lacking, what)| lacking.then_some(what))
+    }
+
+    /// Whether these capabilities have everything `needs` asks for.
+    pub fn covers(&self, needs: &Self) -> bool {
+        self.lacking(needs).next().is_none()
+    }
+
     /// Whether the backend runs the culling strategy `strategy`.
     pub fn runs(&self, strategy: Strategy) -> bool {
-        (self.tight_culling || strategy.parts().1 != GlossyBound::Tight)
-            && (self.raster_culling || !strategy.is_raster())
-            && (self.binned_culling || strategy.parts().0 != Layout::Binned)
+        self.covers(&Self::culling(strategy))
     }
 
     /// [`RenderError::Unsupported`] naming the first thing `settings` asks for that
-    /// `backend` (with these capabilities) does not have.
+    /// `backend` (with these capabilities) does not have, with all they need (a front end
+    /// that knows the other backends points to the one that has it).
     pub fn check(
         &self,
         backend: &'static str,
         settings: &RenderSettings,
     ) -> Result<(), RenderError> {
-        let missing = match settings.method {
-            Method::VplReference | Method::Path if !self.references => Some("the references"),
-            Method::SampledVpls(_) if !self.sampled_vpls => Some("sampled VPLs"),
-            Method::Vsgl(_) if settings.visibility && !self.vsgl_visibility => {
-                Some("visibility for VSGLs")
-            }
-            Method::Stochastic(s) if !self.runs(s.strategy) && s.strategy.is_raster() => {
-                Some("the rasterization baselines (splatting, clustered-raster)")
-            }
-            Method::Stochastic(s) if !self.runs(s.strategy) && s.strategy == Strategy::Binned => {
-                Some("the binned culling strategy yet")
-            }
-            Method::Stochastic(s) if !self.runs(s.strategy) => {
-                Some("the tight culling strategies (tight, clustered-tight)")
-            }
-            Method::Stochastic(_) | Method::VplReference | Method::SampledVpls(_)
-                if settings.visibility && !self.vpl_visibility =>
-            {
-                Some("shadow rays between VPLs and pixels (visibility)")
-            }
-            _ => None,
-        };
-        // What is missing is on the other backend, but for a raster baseline (GPU only) with
-        // what only the CPU has (visibility), or on a GPU that cannot run it.
-        let raster = matches!(settings.method, Method::Stochastic(s) if s.strategy.is_raster());
-        let instead = match (raster, self.raster_culling) {
-            (true, false) => (backend != "gpu").then_some("gpu"),
-            (true, true) => None,
-            (false, _) => Some("cpu"),
-        };
-        match missing {
+        let needs = Self::needed(settings);
+        match self.lacking(&needs).next() {
             Some(what) => Err(RenderError::Unsupported {
                 backend,
                 what: what.into(),
-                instead,
+                needs,
             }),
             None => Ok(()),
         }
     }
 }
+
+/// What the references need.
+const REFERENCES: Capabilities = Capabilities {
+    references: true,
+    ..Capabilities::NONE
+};
 
 /// A frame up to its VPLs and direct light, as any backend leaves it.
 pub trait PreparedFrame {
@@ -137,7 +208,7 @@ pub trait Renderer {
     /// An image where shading leaves it.
     type Image;
 
-    /// `cpu` or `gpu`.
+    /// The backend's name in reports and errors.
     fn name(&self) -> &'static str;
 
     fn capabilities(&self) -> Capabilities;
@@ -244,7 +315,7 @@ pub trait Renderer {
         _visibility: bool,
         _progress: Progress,
     ) -> Result<Image, RenderError> {
-        Err(self.unsupported("the all-VPL reference"))
+        Err(self.unsupported("the all-VPL reference", REFERENCES))
     }
 
     /// One pass of the path-traced one-bounce reference: direct and indirect light.
@@ -256,7 +327,7 @@ pub trait Renderer {
         _pass: u32,
         _progress: Progress,
     ) -> Result<(Image, Image), RenderError> {
-        Err(self.unsupported("the path-traced reference"))
+        Err(self.unsupported("the path-traced reference", REFERENCES))
     }
 
     /// Runs `f`, returning with its result the GPU's timestamp times of the passes it ran,
@@ -275,12 +346,12 @@ pub trait Renderer {
         None
     }
 
-    /// The error of a step this backend does not have.
-    fn unsupported(&self, what: &str) -> RenderError {
+    /// The error of a step this backend does not have, which `needs` these capabilities.
+    fn unsupported(&self, what: &str, needs: Capabilities) -> RenderError {
         RenderError::Unsupported {
             backend: self.name(),
             what: what.into(),
-            instead: Some("cpu"),
+            needs,
         }
     }
 }
@@ -309,54 +380,57 @@ mod tests {
         }
     }
 
-    /// A refusal names the backend that has what is missing, or none where no backend has
-    /// the combination (a raster baseline, GPU only, with visibility, CPU only).
+    /// A refusal says what is missing and what the settings need in all, so that a front
+    /// end finds the backend that has it, or none where no backend has the combination (a
+    /// raster baseline, which the second capabilities below have, with visibility, which
+    /// only the first have).
     #[test]
-    fn refusals_point_to_the_backend_that_has_it() {
-        let cpu = Capabilities {
-            vpl_visibility: true,
-            vsgl_visibility: true,
-            references: true,
-            sampled_vpls: true,
-            tight_culling: true,
+    fn refusals_carry_what_the_settings_need() {
+        let first = Capabilities {
             raster_culling: false,
-            binned_culling: true,
+            ..Capabilities::ALL
         };
-        let gpu = Capabilities {
+        let second = Capabilities {
             vpl_visibility: false,
             references: false,
             sampled_vpls: false,
             raster_culling: true,
             binned_culling: false,
-            ..cpu
+            ..first
         };
-        let hint = |caps: Capabilities, backend, settings| match caps.check(backend, &settings) {
-            Err(RenderError::Unsupported { instead, .. }) => instead,
+        let refusal = |caps: Capabilities, settings| match caps.check("this", &settings) {
+            Err(RenderError::Unsupported { what, needs, .. }) => (what, needs),
             other => panic!("{other:?}"),
         };
         let raster = stochastic(Strategy::Splatting, false);
-        assert_eq!(hint(cpu, "cpu", raster.clone()), Some("gpu"));
-        assert!(gpu.check("gpu", &raster).is_ok());
-        assert_eq!(
-            hint(gpu, "gpu", stochastic(Strategy::Ellipsoid, true)),
-            Some("cpu")
-        );
-        let both = stochastic(Strategy::ClusteredRaster, true);
-        assert_eq!(hint(gpu, "gpu", both.clone()), None);
-        let e = gpu.check("gpu", &both).unwrap_err().to_string();
-        assert!(e.ends_with("no backend has it"), "{e}");
+        let (what, needs) = refusal(first, raster.clone());
+        assert!(what.contains("rasterization"), "{what}");
+        assert!(second.covers(&needs) && !first.covers(&needs));
+        assert!(second.check("that", &raster).is_ok());
+        let (what, needs) = refusal(second, stochastic(Strategy::Ellipsoid, true));
+        assert!(what.contains("visibility"), "{what}");
+        assert!(first.covers(&needs));
+        let (_, needs) = refusal(second, stochastic(Strategy::ClusteredRaster, true));
+        assert!(!first.covers(&needs) && !second.covers(&needs));
         let no_blending = Capabilities {
             raster_culling: false,
-            ..gpu
+            ..second
         };
-        assert_eq!(hint(no_blending, "gpu", raster), None);
+        let (_, needs) = refusal(no_blending, raster);
+        assert!(second.covers(&needs) && !first.covers(&needs));
         let binned = stochastic(Strategy::Binned, false);
-        assert!(cpu.check("cpu", &binned).is_ok());
-        assert_eq!(hint(gpu, "gpu", binned.clone()), Some("cpu"));
-        let e = gpu.check("gpu", &binned).unwrap_err().to_string();
-        assert!(
-            e.contains("binned") && e.ends_with("render on the cpu backend"),
-            "{e}"
+        assert!(first.check("this", &binned).is_ok());
+        let (what, needs) = refusal(second, binned);
+        assert!(what.contains("binned") && first.covers(&needs), "{what}");
+        let e = second.check("that", &stochastic(Strategy::Tight, false));
+        assert!(e.is_ok(), "{e:?}");
+        assert_eq!(
+            Capabilities::needed(&stochastic(Strategy::Tight, true)),
+            Capabilities {
+                vpl_visibility: true,
+                tight_culling: true,
+                ..Capabilities::NONE
+            }
         );
     }
 }

@@ -56,6 +56,17 @@ impl KeptFilter {
     }
 }
 
+impl CpuRenderer {
+    /// The backend's name in reports and errors ([`Renderer::name`]).
+    pub const NAME: &'static str = "cpu";
+
+    /// Everything but the rasterization baselines ([`Renderer::capabilities`]).
+    pub const CAPABILITIES: Capabilities = Capabilities {
+        raster_culling: false,
+        ..Capabilities::ALL
+    };
+}
+
 impl Renderer for CpuRenderer {
     type Scene = Arc<Tracer>;
     type Prepared = CpuPrepared;
@@ -63,24 +74,16 @@ impl Renderer for CpuRenderer {
     type Image = Image;
 
     fn name(&self) -> &'static str {
-        "cpu"
+        Self::NAME
     }
 
     fn capabilities(&self) -> Capabilities {
-        Capabilities {
-            vpl_visibility: true,
-            vsgl_visibility: true,
-            references: true,
-            sampled_vpls: true,
-            tight_culling: true,
-            raster_culling: false,
-            binned_culling: true,
-        }
+        Self::CAPABILITIES
     }
 
     fn info(&self, _settings: &RenderSettings) -> BackendInfo {
         BackendInfo {
-            backend: "cpu",
+            backend: Self::NAME,
             adapter: format!("CPU ({} rayon threads)", rayon::current_num_threads()),
             notes: Vec::new(),
         }

@@ -4,8 +4,8 @@
 //! everything from the RSMs to the filter. The window is drawn with wgpu either way: on the
 //! GPU renderer's own device, or for the CPU backend on a device of its own (any adapter that
 //! can present, Mesa's software ones included).
-use crate::args::Backend;
 use crate::backend::message;
+use slc_app::backends::Backend;
 use slc_core::frame::RenderSettings;
 use slc_core::{Capabilities, CullMetrics, Image, Renderer, Scene, Timings};
 use slc_cpu_ref::{CpuRenderer, Tracer};

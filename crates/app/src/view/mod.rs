@@ -29,11 +29,12 @@ mod ui;
 mod window;
 
 use crate::args::{
-    count, stops, Backend, EstimateArgs, ImportanceArgs, Lobes, PipelineArgs, SceneSpec, Shader,
+    count, stops, EstimateArgs, ImportanceArgs, Lobes, PipelineArgs, SceneSpec, Shader,
 };
 use clap::Args;
 use controls::{Controls, Layer, Overlay};
 use session::Session;
+use slc_app::backends::Backend;
 use slc_core::frame::counts::{Count, HEAT_MAX, HEIGHT, MAX_IMAGE_SIDE, RSM};
 use std::path::PathBuf;
 

@@ -8,7 +8,7 @@ use super::input::{Input, KeyCommand};
 use super::screenshot::{capture, save_png, PixelRect};
 use super::session::Session;
 use super::{ViewArgs, ViewError};
-use crate::backend::warn_if_software;
+use slc_app::backends::warn_if_software;
 use std::collections::VecDeque;
 use std::sync::Arc;
 use std::time::Instant;

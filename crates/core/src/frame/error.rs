@@ -1,6 +1,7 @@
 //! Why a frame could not be rendered.
 use crate::culling::CullError;
 use crate::error::SceneError;
+use crate::renderer::Capabilities;
 
 /// Errors of rendering, on any backend.
 #[derive(Debug, thiserror::Error)]
@@ -13,13 +14,14 @@ pub enum RenderError {
     Cull(#[from] CullError),
     #[error("invalid render settings: {0}")]
     Settings(String),
-    /// The backend does not have what the settings ask for; `instead` names the backend
-    /// that has it (`None`: no backend has that combination).
-    #[error("the {backend} backend does not support {what}{}", elsewhere(.instead))]
+    /// The backend does not have what the settings ask for: `what` is the first thing it
+    /// lacks, `needs` all the settings need (the backends whose capabilities cover it can
+    /// render them; `slc_app::backends::message` names one).
+    #[error("the {backend} backend does not support {what}")]
     Unsupported {
         backend: &'static str,
         what: String,
-        instead: Option<&'static str>,
+        needs: Capabilities,
     },
     /// A pass produced NaN or infinite pixels (an input whose products overflow f32).
     #[error("the {pass} pass produced {count} non-finite pixel(s) of {pixels} (NaN or infinity): some radiometric input overflows f32; lower the light's intensity or check the scene's values")]
@@ -41,13 +43,5 @@ impl RenderError {
     /// Wraps a backend's own error.
     pub fn backend(e: impl std::error::Error + Send + Sync + 'static) -> Self {
         Self::Backend(Box::new(e))
-    }
-}
-
-/// The hint of [`RenderError::Unsupported`]: the backend to render on instead, if any.
-fn elsewhere(instead: &Option<&'static str>) -> String {
-    match instead {
-        Some(backend) => format!("; render on the {backend} backend"),
-        None => "; no backend has it".into(),
     }
 }

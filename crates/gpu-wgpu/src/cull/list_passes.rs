@@ -5,17 +5,72 @@
 //! and [`ListPasses::lists`] run the rest around them.
 use crate::cull::bounds::{BoundsPass, BoundsSettings, GpuBounds};
 use crate::cull::frame::{check_input, cull_params, tile_grid, CullFrame, CullSizes};
-use crate::cull::lists::GpuLightLists;
+use crate::cull::lists::{no_lists, GpuLightLists};
 use crate::cull::partition::{GpuPartition, PartitionPass};
 use crate::cull::records::{GpuCullParams, GpuCullStatus, CULL_COUNT, CULL_WRITE};
 use crate::cull::room::ListRoom;
 use crate::cull::tight::{BaseLayout, TightRefiner};
+use crate::cull::ListCulling;
 use crate::device::buffers::{output, upload, Grid};
 use crate::device::context::{GpuContext, GpuError};
 use crate::device::scan::ScanPass;
 use slc_cull::{CullView, GlossyBound};
 use std::mem::offset_of;
 use std::sync::Arc;
+
+/// A layout of lists on the tile grid (Modified HalfZ's two clusters per tile, the clustered
+/// strategies' depth slices): its passes up to each pixel's list, then its lists, with the
+/// glossy bound a strategy picks. [`ListCulling`] comes with it.
+pub trait TileLayout {
+    /// A frame culled up to its lists.
+    type Prepared;
+
+    /// The passes this layout shares with the others.
+    fn passes(&self) -> &ListPasses;
+
+    /// The passes before the lists ([`ListPasses::prepare`] with the layout's depth pass);
+    /// `None` for a frame without pixels. With `shapes` the bounds are written as shapes
+    /// too (for the raster baselines' meshes).
+    fn prepare(
+        &self,
+        ctx: &GpuContext,
+        frame: &CullFrame,
+        glossy: GlossyBound,
+        shapes: bool,
+    ) -> Result<Option<Self::Prepared>, GpuError>;
+
+    /// The lists of a prepared frame ([`ListPasses::lists`] with the layout's kernel).
+    fn lists(
+        &self,
+        ctx: &GpuContext,
+        frame: &CullFrame,
+        prepared: &Self::Prepared,
+    ) -> Result<GpuLightLists, GpuError>;
+
+    /// Sets the room of the next frames' lists (`cull::room`), the refinement's too.
+    fn set_list_room(&self, entries: u32) {
+        self.passes().set_list_room(entries);
+    }
+}
+
+/// Culls with `glossy` bounds for glossy VPLs (the section-6 sphere for diffuse ones) into
+/// the layout's lists, left on the GPU in the CSR layout the shading pass reads, each pixel
+/// pointing to its list ([`slc_core::NO_LIST`] without a sample); empty lists are kept.
+impl<T: TileLayout> ListCulling for T {
+    type Choice = GlossyBound;
+
+    fn cull_frame(
+        &self,
+        ctx: &GpuContext,
+        frame: &CullFrame,
+        glossy: GlossyBound,
+    ) -> Result<GpuLightLists, GpuError> {
+        match self.prepare(ctx, frame, glossy, false)? {
+            Some(prepared) => self.lists(ctx, frame, &prepared),
+            None => no_lists(ctx),
+        }
+    }
+}
 
 /// The passes a list culler shares with the other layouts.
 pub struct ListPasses {

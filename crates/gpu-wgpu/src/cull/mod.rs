@@ -18,7 +18,7 @@ pub mod tiled;
 
 use crate::cull::clustered::ClusteredCuller;
 use crate::cull::frame::CullFrame;
-use crate::cull::list_passes::PreparedTiles;
+use crate::cull::list_passes::{PreparedTiles, TileLayout};
 use crate::cull::lists::{no_lists, read_lists, GpuLightLists};
 use crate::cull::none::NoneCuller;
 use crate::cull::raster::clusters::{ClusterRasterizer, NodeFrame};

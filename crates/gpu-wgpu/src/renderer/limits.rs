@@ -5,8 +5,10 @@
 use crate::device::GpuContext;
 use crate::frame::light::records::GpuRsmTexel;
 use crate::frame::raster::records::GpuSample;
+use crate::renderer::GpuRenderer;
 use crate::vpl::records::GpuVpl;
 use slc_core::frame::{LobeSelection, RenderError, RenderSettings};
+use slc_core::Capabilities;
 use std::mem::size_of;
 
 /// Refuses `settings` when the G-buffer, one RSM face or the VPLs of one single-face light
@@ -23,12 +25,12 @@ pub fn check_frame_size(ctx: &GpuContext, settings: &RenderSettings) -> Result<(
     let per_pixel = size_of::<GpuSample>() as u64;
     let refuse = |what: String| {
         Err(RenderError::Unsupported {
-            backend: "gpu",
+            backend: GpuRenderer::NAME,
             what: format!(
                 "{what}, more than the {limit} bytes one storage binding holds on {}",
                 ctx.adapter_name
             ),
-            instead: Some("cpu"),
+            needs: Capabilities::needed(settings),
         })
     };
     if texels * per_texel > limit {

@@ -232,6 +232,24 @@ impl GpuRenderer {
     }
 }
 
+impl GpuRenderer {
+    /// The backend's name in reports and errors ([`Renderer::name`]).
+    pub const NAME: &'static str = "gpu";
+
+    /// What the backend has on an adapter with every feature it uses
+    /// ([`Renderer::capabilities`] says what it has on its own): no shadow rays between VPLs
+    /// and pixels, no references, no sampled VPLs; `binned` has no GPU twin yet (issue 42).
+    pub const CAPABILITIES: Capabilities = Capabilities {
+        vpl_visibility: false,
+        vsgl_visibility: true,
+        references: false,
+        sampled_vpls: false,
+        tight_culling: true,
+        raster_culling: true,
+        binned_culling: false,
+    };
+}
+
 impl Renderer for GpuRenderer {
     type Scene = GpuLoadedScene;
     type Prepared = GpuPrepared;
@@ -239,24 +257,18 @@ impl Renderer for GpuRenderer {
     type Image = wgpu::Buffer;
 
     fn name(&self) -> &'static str {
-        "gpu"
+        Self::NAME
     }
 
     fn capabilities(&self) -> Capabilities {
         Capabilities {
-            vpl_visibility: false,
-            vsgl_visibility: true,
-            references: false,
-            sampled_vpls: false,
-            tight_culling: true,
             // Splatting sums by blending into f32 targets (`cull::raster::splat`).
             raster_culling: self
                 .ctx
                 .device
                 .features()
                 .contains(wgpu::Features::FLOAT32_BLENDABLE),
-            // `binned` has no GPU twin yet (issue 42): refused, pointing to the CPU.
-            binned_culling: false,
+            ..Self::CAPABILITIES
         }
     }
 
@@ -286,7 +298,7 @@ impl Renderer for GpuRenderer {
             notes.push(vsgl_note(settings.visibility));
         }
         BackendInfo {
-            backend: "gpu",
+            backend: Self::NAME,
             adapter: self.ctx.adapter_name.clone(),
             notes,
         }
@@ -411,7 +423,11 @@ impl Renderer for GpuRenderer {
         progress: Progress,
     ) -> Result<wgpu::Buffer, RenderError> {
         if visibility {
-            return Err(self.unsupported("shadow rays between VPLs and pixels (visibility)"));
+            let needs = Capabilities {
+                vpl_visibility: true,
+                ..Capabilities::NONE
+            };
+            return Err(self.unsupported("shadow rays between VPLs and pixels (visibility)", needs));
         }
         let frame = Self::cull_frame(p, delta, interleaving);
         let samples = &p.gbuffer.samples;
@@ -516,7 +532,11 @@ impl Renderer for GpuRenderer {
         progress: Progress,
     ) -> Result<Shaded, RenderError> {
         if lights == SampledLights::Vpl {
-            return Err(self.unsupported("sampled VPLs"));
+            let needs = Capabilities {
+                sampled_vpls: true,
+                ..Capabilities::NONE
+            };
+            return Err(self.unsupported("sampled VPLs", needs));
         }
         let ctx = &self.ctx;
         let build = &self.vsgl_build;

@@ -8,6 +8,7 @@ use crate::tiled::frame;
 use slc_core::render::render;
 use slc_core::{builtin, CullInput, GlossyBound, Interleaving, Renderer, Strategy, Vpl};
 use slc_gpu_wgpu::cull::frame::CullFrame;
+use slc_gpu_wgpu::cull::list_passes::TileLayout;
 use slc_gpu_wgpu::cull::tiled::TiledCuller;
 use slc_gpu_wgpu::cull::ListCulling;
 use slc_gpu_wgpu::device::buffers::upload;

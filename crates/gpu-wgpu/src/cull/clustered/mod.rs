@@ -19,12 +19,10 @@ pub mod records;
 
 use crate::cull::clustered::records::{GpuClusterFrusta, CLUSTER_SLICES, DEPTH_RANGE, DEPTH_SPLIT};
 use crate::cull::frame::CullFrame;
-use crate::cull::list_passes::{ListKernel, ListPasses, PreparedTiles};
-use crate::cull::lists::no_lists;
+use crate::cull::list_passes::{ListKernel, ListPasses, PreparedTiles, TileLayout};
 use crate::cull::lists::GpuLightLists;
 use crate::cull::records::GpuCullParams;
 use crate::cull::tight::BaseLayout;
-use crate::cull::ListCulling;
 use crate::device::buffers::upload;
 use crate::device::context::{GpuContext, GpuError};
 use slc_cull::GlossyBound;
@@ -37,7 +35,7 @@ pub(crate) const DEPTH_SOURCE: &str = kernel!("cluster_depth");
 pub(crate) const CULL_SOURCE: &str = kernel!("clustered_cull");
 
 /// The clustered culler's pipelines (the four clustered strategies, by the [`GlossyBound`]
-/// passed to [`ListCulling::cull`]).
+/// passed to [`ListCulling::cull`](crate::cull::ListCulling::cull)).
 pub struct ClusteredCuller {
     passes: ListPasses,
     depth: wgpu::ComputePipeline,
@@ -58,18 +56,26 @@ impl ClusteredCuller {
             cull,
         })
     }
+}
+
+impl TileLayout for ClusteredCuller {
+    type Prepared = PreparedClusters;
+
+    fn passes(&self) -> &ListPasses {
+        &self.passes
+    }
 
     /// The passes before the lists: per-VPL bounds (as shapes too with `shapes`, for the
     /// rasterized clusters), the subregions' VPLs, the G-buffer's depth range and each
     /// tile's occupied slices with each pixel's slice, encoded and submitted; `None` for a
     /// frame without pixels.
-    pub fn prepare(
+    fn prepare(
         &self,
         ctx: &GpuContext,
         frame: &CullFrame,
         glossy: GlossyBound,
         shapes: bool,
-    ) -> Result<Option<PreparedClusters>, GpuError> {
+    ) -> Result<Option<Self::Prepared>, GpuError> {
         // Smallest and largest depth as f32 bits, before any sample is seen.
         let depth_range = upload(ctx, "depth range", &[u32::MAX, 0])?;
         let tiles = self.passes.prepare::<GpuClusterFrusta>(
@@ -115,7 +121,7 @@ impl ClusteredCuller {
 
     /// The lists of a prepared frame ([`ListPasses::lists`]): one per depth slice, counted
     /// and written by `clustered_cull.wesl`; refined per block for [`GlossyBound::Tight`].
-    pub fn lists(
+    fn lists(
         &self,
         ctx: &GpuContext,
         frame: &CullFrame,
@@ -132,35 +138,6 @@ impl ClusteredCuller {
         };
         let own = [&tiles.partition.sub_offsets, &tiles.partition.order];
         self.passes.lists(ctx, frame, tiles, kernel, &own)
-    }
-
-    /// Sets the room of the next frames' lists (`cull::room`), the refinement's too.
-    pub fn set_list_room(&self, entries: u32) {
-        self.passes.set_list_room(entries);
-    }
-}
-
-/// Culls with `glossy` bounds for glossy VPLs (the section-6 sphere for diffuse ones) against
-/// up to 32 depth slices per tile: `slc_cull`'s `clustered` (ellipsoid), `clustered-sphere`,
-/// `clustered-enclosing-sphere` or `clustered-tight` (each slice's list then refined per
-/// 8 x 8 block, `cull::tight`).
-impl ListCulling for ClusteredCuller {
-    type Choice = GlossyBound;
-
-    /// Culls `frame` without a readback: 32 lists per tile (one per depth slice, slice s
-    /// of tile t is list 32 t + s, possibly empty) left on the GPU in the CSR layout the
-    /// shading pass reads, each pixel pointing to its slice's list
-    /// ([`slc_core::NO_LIST`] without a sample).
-    fn cull_frame(
-        &self,
-        ctx: &GpuContext,
-        frame: &CullFrame,
-        glossy: GlossyBound,
-    ) -> Result<GpuLightLists, GpuError> {
-        match self.prepare(ctx, frame, glossy, false)? {
-            Some(clusters) => self.lists(ctx, frame, &clusters),
-            None => no_lists(ctx),
-        }
     }
 }
 

@@ -19,6 +19,7 @@
 use crate::cull::clustered::records::CLUSTER_SLICES;
 use crate::cull::clustered::{ClusteredCuller, PreparedClusters};
 use crate::cull::frame::{read_status, CullFrame};
+use crate::cull::list_passes::TileLayout;
 use crate::cull::lists::GpuLightLists;
 use crate::cull::raster::mesh::BoundMesh;
 use crate::cull::raster::nodes::NodeLists;

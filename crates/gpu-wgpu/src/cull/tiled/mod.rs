@@ -11,20 +11,18 @@
 //! lists needed (`cull::room`): no count is read back inside a frame; lists that outgrew
 //! their buffer are culled again with the total their fault record reports. A total beyond
 //! the storage-binding limit is refused ([`GpuError::BufferTooLarge`]).
-//! [`ListCulling::cull_on_gpu`] leaves the lists on the GPU for `shade::lists` instead;
+//! [`ListCulling::cull_on_gpu`](crate::cull::ListCulling::cull_on_gpu) leaves the lists on the GPU for `shade::lists` instead;
 //! [`TiledCuller::prepare`] stops before the lists, for the one-pass culling and shading of
 //! `shade::tiled`, and [`TiledCuller::lists`] builds them from there. With
 //! [`GlossyBound::Tight`] the lists are refined per block (`cull::tight`).
 pub mod depth;
 
 use crate::cull::frame::CullFrame;
-use crate::cull::list_passes::{ListKernel, ListPasses, PreparedTiles};
-use crate::cull::lists::no_lists;
+use crate::cull::list_passes::{ListKernel, ListPasses, PreparedTiles, TileLayout};
 use crate::cull::lists::GpuLightLists;
 use crate::cull::records::{GpuCullParams, GpuTileFrusta};
 use crate::cull::tight::BaseLayout;
 use crate::cull::tiled::depth::{TileDepthBuffers, TileDepthPass};
-use crate::cull::ListCulling;
 use crate::device::context::{GpuContext, GpuError};
 use slc_cull::GlossyBound;
 use std::mem::offset_of;
@@ -33,7 +31,7 @@ use std::mem::offset_of;
 pub(crate) const SOURCE: &str = kernel!("tiled_cull");
 
 /// The tiled culler's pipelines (sphere, enclosing-sphere, ellipsoid and tight strategies,
-/// by the [`GlossyBound`] passed to [`ListCulling::cull`]).
+/// by the [`GlossyBound`] passed to [`ListCulling::cull`](crate::cull::ListCulling::cull)).
 pub struct TiledCuller {
     passes: ListPasses,
     depth: TileDepthPass,
@@ -54,19 +52,27 @@ impl TiledCuller {
             pipeline,
         })
     }
+}
+
+impl TileLayout for TiledCuller {
+    type Prepared = PreparedTiles;
+
+    fn passes(&self) -> &ListPasses {
+        &self.passes
+    }
 
     /// The passes before the lists: per-VPL bounds, the subregions' VPLs and the Modified
     /// HalfZ frusta of every tile (with each pixel's cluster), encoded and submitted; `None`
     /// for a frame without pixels. With `shapes` the bounds are written as shapes too (for
     /// splatting's meshes). Errors on invalid input and on buffers beyond the device's
     /// limits; faults on the GPU are read with the lists or the shaded image.
-    pub fn prepare(
+    fn prepare(
         &self,
         ctx: &GpuContext,
         frame: &CullFrame,
         glossy: GlossyBound,
         shapes: bool,
-    ) -> Result<Option<PreparedTiles>, GpuError> {
+    ) -> Result<Option<Self::Prepared>, GpuError> {
         self.passes.prepare::<GpuTileFrusta>(
             ctx,
             frame,
@@ -101,7 +107,7 @@ impl TiledCuller {
     /// The lists of a prepared frame ([`ListPasses::lists`]): two per tile, counted and
     /// written by `tiled_cull.wesl`; refined per block for [`GlossyBound::Tight`] (which
     /// rewrites the frame's pixel lists in place: `tiles` is spent then).
-    pub fn lists(
+    fn lists(
         &self,
         ctx: &GpuContext,
         frame: &CullFrame,
@@ -117,34 +123,5 @@ impl TiledCuller {
         };
         self.passes
             .lists(ctx, frame, tiles, kernel, &[&tiles.partition.order])
-    }
-
-    /// Sets the room of the next frames' lists (`cull::room`), the refinement's too.
-    pub fn set_list_room(&self, entries: u32) {
-        self.passes.set_list_room(entries);
-    }
-}
-
-/// Culls with `glossy` bounds for glossy VPLs (the section-6 sphere for diffuse ones) and two
-/// Modified HalfZ clusters per tile (with [`GlossyBound::Tight`], their groups per 8 x 8
-/// block, `cull::tight`).
-impl ListCulling for TiledCuller {
-    type Choice = GlossyBound;
-
-    /// Culls `frame` without reading the lists back: they stay on the GPU in the CSR layout
-    /// the shading pass reads ([`GpuLightLists`]), two per tile (near and far cluster,
-    /// possibly empty), each pixel pointing to its cluster's list ([`slc_core::NO_LIST`]
-    /// without a sample). With [`GlossyBound::Tight`] each list is then refined per block
-    /// (`cull::tight`).
-    fn cull_frame(
-        &self,
-        ctx: &GpuContext,
-        frame: &CullFrame,
-        glossy: GlossyBound,
-    ) -> Result<GpuLightLists, GpuError> {
-        match self.prepare(ctx, frame, glossy, false)? {
-            Some(tiles) => self.lists(ctx, frame, &tiles),
-            None => no_lists(ctx),
-        }
     }
 }
