@@ -256,7 +256,7 @@ impl Renderer for GpuRenderer {
                 .features()
                 .contains(wgpu::Features::FLOAT32_BLENDABLE),
             // `binned` has no GPU twin yet (issue 42): refused, pointing to the CPU.
-            binned_culling: false,
+            binned_culling: true,
         }
     }
 
