@@ -14,7 +14,7 @@ use crate::framebuffer::Image;
 use crate::progress::Progress;
 use crate::scene::Scene;
 use crate::shader::SampledLights;
-use crate::strategy::{GlossyBound, Layout, Strategy};
+use crate::strategy::{GlossyBound, Strategy};
 use crate::vpl::Vpl;
 use std::collections::BTreeMap;
 
@@ -45,8 +45,6 @@ pub struct Capabilities {
     pub tight_culling: bool,
     /// The rasterization baselines `splatting` and `clustered-raster` ([`Strategy::RASTER`]).
     pub raster_culling: bool,
-    /// The `binned` culling strategy ([`Strategy::CPU_ONLY`] until its GPU twin exists).
-    pub binned_culling: bool,
 }
 
 impl Capabilities {
@@ -54,7 +52,6 @@ impl Capabilities {
     pub fn runs(&self, strategy: Strategy) -> bool {
         (self.tight_culling || strategy.parts().1 != GlossyBound::Tight)
             && (self.raster_culling || !strategy.is_raster())
-            && (self.binned_culling || strategy.parts().0 != Layout::Binned)
     }
 
     /// [`RenderError::Unsupported`] naming the first thing `settings` asks for that
@@ -72,9 +69,6 @@ impl Capabilities {
             }
             Method::Stochastic(s) if !self.runs(s.strategy) && s.strategy.is_raster() => {
                 Some("the rasterization baselines (splatting, clustered-raster)")
-            }
-            Method::Stochastic(s) if !self.runs(s.strategy) && s.strategy == Strategy::Binned => {
-                Some("the binned culling strategy yet")
             }
             Method::Stochastic(s) if !self.runs(s.strategy) => {
                 Some("the tight culling strategies (tight, clustered-tight)")
@@ -320,14 +314,12 @@ mod tests {
             sampled_vpls: true,
             tight_culling: true,
             raster_culling: false,
-            binned_culling: true,
         };
         let gpu = Capabilities {
             vpl_visibility: false,
             references: false,
             sampled_vpls: false,
             raster_culling: true,
-            binned_culling: false,
             ..cpu
         };
         let hint = |caps: Capabilities, backend, settings| match caps.check(backend, &settings) {
@@ -352,11 +344,6 @@ mod tests {
         assert_eq!(hint(no_blending, "gpu", raster), None);
         let binned = stochastic(Strategy::Binned, false);
         assert!(cpu.check("cpu", &binned).is_ok());
-        assert_eq!(hint(gpu, "gpu", binned.clone()), Some("cpu"));
-        let e = gpu.check("gpu", &binned).unwrap_err().to_string();
-        assert!(
-            e.contains("binned") && e.ends_with("render on the cpu backend"),
-            "{e}"
-        );
+        assert!(gpu.check("gpu", &binned).is_ok());
     }
 }

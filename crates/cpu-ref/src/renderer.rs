@@ -74,7 +74,6 @@ impl Renderer for CpuRenderer {
             sampled_vpls: true,
             tight_culling: true,
             raster_culling: false,
-            binned_culling: true,
         }
     }
 

@@ -255,8 +255,6 @@ impl Renderer for GpuRenderer {
                 .device
                 .features()
                 .contains(wgpu::Features::FLOAT32_BLENDABLE),
-            // `binned` has no GPU twin yet (issue 42): refused, pointing to the CPU.
-            binned_culling: true,
         }
     }
 
