@@ -768,9 +768,7 @@ fn gpu_compare_names_backend_and_adapter_and_misses_nothing() {
     }
     let out = out_dir("compare-gpu");
     // Every strategy, the tight ones, binned and the raster baselines included.
-    let on_gpu: Vec<_> = slc_core::Strategy::every()
-        .map(|s| s.name())
-        .collect();
+    let on_gpu: Vec<_> = slc_core::Strategy::every().map(|s| s.name()).collect();
     let gpu_compare = |(width, height): (&str, &str), rsm: &str, culling: &str| {
         slc()
             .args([

@@ -180,10 +180,7 @@ mod tests {
         }
         let mut names = Strategy::names();
         names.dedup();
-        assert_eq!(
-            names.len(),
-            Strategy::ALL.len() + Strategy::RASTER.len()
-        );
+        assert_eq!(names.len(), Strategy::ALL.len() + Strategy::RASTER.len());
         assert!(Strategy::RASTER.iter().all(|s| s.is_raster()));
         assert!(!Strategy::on_cpu().any(|s| s.is_raster()));
         let parts: std::collections::HashSet<_> = Strategy::on_cpu()

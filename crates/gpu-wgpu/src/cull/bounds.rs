@@ -9,11 +9,11 @@
 //! once more in world axes relative to its VPL ([`GpuLocalBound`], for `cull::binned`).
 use crate::cull::frame::FrameVpls;
 use crate::cull::raster::records::GpuBoundShape;
-use crate::cull::records::{GpuBoxBound, GpuLocalBound};
 use crate::cull::records::{
     GpuBound, GpuView, BOUND_OVERFLOW, BOUND_SLACK, GLOSSY_ELLIPSOID, GLOSSY_ENCLOSING_SPHERE,
     GLOSSY_SPHERE, MAX_K,
 };
+use crate::cull::records::{GpuBoxBound, GpuLocalBound};
 use crate::device::buffers::{output, read_back};
 use crate::device::context::{GpuContext, GpuError};
 use crate::device::count::{ArgsPass, Count};

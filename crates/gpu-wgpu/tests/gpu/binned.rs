@@ -161,7 +161,11 @@ fn binned_shading_equals_the_unculled_estimate() {
         };
         let binned = image(Strategy::Binned);
         let unculled = image(Strategy::None);
-        let lit = binned.pixels.iter().filter(|p| p.max_element() > 0.0).count();
+        let lit = binned
+            .pixels
+            .iter()
+            .filter(|p| p.max_element() > 0.0)
+            .count();
         assert!(lit * 2 > binned.pixels.len(), "{name}: {lit} lit pixels");
         assert_eq!(binned.pixels, unculled.pixels, "{name}");
     }
@@ -205,4 +209,3 @@ fn empty_frames_give_empty_lists() {
         assert!(cpu.indices.is_empty(), "{name}");
     }
 }
-
