@@ -50,10 +50,11 @@ fn with_sky(g: &GBuffer) -> GBuffer {
 
 /// The scene's VPLs and extreme ones at δ 1e-9…1e3 and K 1…4, with and without sky: 0 missed
 /// pairs, the CPU's true positives, lists ascending; entries on the CPU only at most 1e-4 of
-/// all (decided within rounding at a bound's surface), on the GPU only at most 1e-3 of all on
-/// the scene's VPLs and 5% with the extremes' sharp lobes: the GPU's f32 test allows
+/// all or 10 (decided within rounding at a bound's surface), on the GPU only at most 1e-3 of
+/// all (or 1) on the scene's VPLs and 5% with the extremes' sharp lobes: the GPU's f32 test allows
 /// 1 + 36 ε along/across (`binned_footprint.wesl`), which at α = 1e-4 (along/across = 5000)
-/// widens the spheroid by 1%; about 97% of those entries are VPLs of α < 1e-3.
+/// widens the spheroid by 1%. Seen: a few dozen entries on either side only among millions on
+/// the scene's VPLs; up to 3% on the GPU only and none on the CPU only with the extremes.
 #[test]
 fn binned_lists_never_miss_a_pair_and_match_the_cpu_at_the_extremes() {
     let Some(ctx) = gpu() else { return };
@@ -62,9 +63,10 @@ fn binned_lists_never_miss_a_pair_and_match_the_cpu_at_the_extremes() {
     let camera = scene.camera_or_default();
     let (gbuffer, scene_vpls) = frame(&scene, &camera, (96, 64), 16);
     let sky = with_sky(&gbuffer);
-    let cases: [(&str, Vec<Vpl>, f32, u32, &GBuffer); 7] = [
+    let cases: [(&str, Vec<Vpl>, f32, u32, &GBuffer); 8] = [
         // name, VPLs, δ, K, G-buffer
         ("scene", scene_vpls.clone(), 1e-3, 1, &gbuffer),
+        ("scene, short ranges", scene_vpls.clone(), 0.3, 2, &gbuffer),
         ("scene, sky", scene_vpls.clone(), 1e-3, 2, &sky),
         ("extreme 1", extreme(&scene_vpls, 1), 1e-3, 2, &gbuffer),
         ("extreme 2", extreme(&scene_vpls, 2), 1e-9, 4, &gbuffer),
@@ -101,7 +103,8 @@ fn binned_lists_never_miss_a_pair_and_match_the_cpu_at_the_extremes() {
         assert!(ascending(&gpu), "{label}: a list out of order");
         let gpu_share = if name.starts_with("scene") { 1_000 } else { 20 };
         assert!(
-            cpu_only as u64 * 10_000 <= entries && gpu_only as u64 * gpu_share <= entries,
+            cpu_only as u64 * 10_000 <= entries.max(100_000)
+                && gpu_only as u64 * gpu_share <= entries.max(1_000),
             "{label}: {gpu_only} on the GPU only, {cpu_only} on the CPU only, of {entries}"
         );
         // Pixels without a sample have no list.
