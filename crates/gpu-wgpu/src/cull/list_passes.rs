@@ -1,12 +1,20 @@
-//! The pipelines every list culler of a tile grid runs besides its own kernels (the tiled and
+//! The passes every list culler of a tile grid runs besides its own kernels (the tiled and
 //! the clustered layout): per-VPL bounds, the subregions' VPLs, the scan of list offsets, the
-//! tight refinement, and the room the lists of earlier frames needed.
-use crate::cull::bounds::BoundsPass;
-use crate::cull::partition::PartitionPass;
+//! tight refinement, and the room the lists of earlier frames needed. A layout brings its
+//! depth pass (what decides each pixel's list) and its list kernel; [`ListPasses::prepare`]
+//! and [`ListPasses::lists`] run the rest around them.
+use crate::cull::bounds::{BoundsPass, BoundsSettings, GpuBounds};
+use crate::cull::frame::{check_input, cull_params, tile_grid, CullFrame, CullSizes};
+use crate::cull::lists::GpuLightLists;
+use crate::cull::partition::{GpuPartition, PartitionPass};
+use crate::cull::records::{GpuCullParams, GpuCullStatus, CULL_COUNT, CULL_WRITE};
 use crate::cull::room::ListRoom;
-use crate::cull::tight::TightRefiner;
+use crate::cull::tight::{BaseLayout, TightRefiner};
+use crate::device::buffers::{output, upload, Grid};
 use crate::device::context::{GpuContext, GpuError};
 use crate::device::scan::ScanPass;
+use slc_cull::{CullView, GlossyBound};
+use std::mem::offset_of;
 use std::sync::Arc;
 
 /// The passes a list culler shares with the other layouts.
@@ -17,6 +25,33 @@ pub struct ListPasses {
     pub tight: TightRefiner,
     /// What the lists of earlier frames needed.
     pub room: Arc<ListRoom>,
+}
+
+/// A culling on a tile grid up to its frusta ([`ListPasses::prepare`]): what the list passes
+/// ([`ListPasses::lists`]), the one-pass shading (`shade::tiled`) and the raster baselines read.
+pub struct PreparedTiles {
+    pub bounds: GpuBounds,
+    /// The subregions' VPLs in ascending order (`cull::partition`).
+    pub partition: GpuPartition,
+    /// The layout's frusta record per tile (`GpuTileFrusta` or `GpuClusterFrusta`).
+    pub frusta: wgpu::Buffer,
+    /// Each pixel's list (a tile's cluster or slice; `NO_LIST` without a sample).
+    pub pixel_list: wgpu::Buffer,
+    /// The fault record of the passes so far (`GpuCullStatus`).
+    pub status: wgpu::Buffer,
+    /// The tile grid and culling view.
+    pub params: GpuCullParams,
+    pub grid: Grid,
+    pub pixels: u32,
+    pub glossy: GlossyBound,
+}
+
+/// A layout's list kernel: counts, then writes each list of a tile grid, reading
+/// `params, frusta, bounds, offsets, entries` and then the layout's own buffers.
+pub(crate) struct ListKernel<'a> {
+    pub label: &'static str,
+    pub pipeline: &'a wgpu::ComputePipeline,
+    pub layout: BaseLayout,
 }
 
 impl ListPasses {
@@ -40,6 +75,139 @@ impl ListPasses {
                 own(),
             ))
         })
+    }
+
+    /// The passes before the lists, encoded and submitted as `label`: per-VPL bounds (as
+    /// shapes too with `shapes`, for the raster baselines), the subregions' VPLs, then
+    /// `depth` (the layout's frusta of `F` per tile and each pixel's list, `lists_per_tile`
+    /// of them). `None` for a frame without pixels. Errors on invalid input and on buffers
+    /// beyond the device's limits; faults on the GPU are read with the lists or the image.
+    pub fn prepare<F: bytemuck::Pod>(
+        &self,
+        ctx: &GpuContext,
+        frame: &CullFrame,
+        (glossy, shapes): (GlossyBound, bool),
+        (label, lists_per_tile): (&'static str, u32),
+        depth: impl FnOnce(&mut wgpu::CommandEncoder, &PreparedTiles) -> Result<(), GpuError>,
+    ) -> Result<Option<PreparedTiles>, GpuError> {
+        let CullSizes { pixels, k, .. } = check_input(frame)?;
+        if pixels == 0 {
+            return Ok(None);
+        }
+        let (width, height) = (frame.width, frame.height);
+        let view = CullView::new(frame.camera, width, height)
+            .map_err(|e| GpuError::Input(e.to_string()))?;
+        let bounds = self.bounds.run(
+            ctx,
+            frame.vpls,
+            &BoundsSettings {
+                camera: frame.camera,
+                width,
+                height,
+                delta: frame.delta,
+                glossy,
+                interleaving: frame.interleaving,
+                shapes,
+            },
+        )?;
+        let tiles = tile_grid(frame, lists_per_tile)?;
+        let grid = Grid::new(
+            u64::from(tiles.2),
+            ctx.limits.max_compute_workgroups_per_dimension,
+        )?;
+        let frusta = output::<F>(ctx, "tile frusta", tiles.2 as usize)?;
+        let pixel_list = output::<u32>(ctx, "pixel lists", pixels as usize)?;
+        let status = upload(ctx, "cull status", &[GpuCullStatus::CLEAR])?;
+        let params = cull_params(frame, &view, tiles, CULL_COUNT);
+        ctx.submit(label, |encoder| {
+            let partition = self.partition.encode(
+                ctx,
+                encoder,
+                &self.scan,
+                &bounds.buffer,
+                &bounds.count,
+                k * k,
+                &status,
+            )?;
+            let prepared = PreparedTiles {
+                bounds,
+                partition,
+                frusta,
+                pixel_list,
+                status,
+                params,
+                grid,
+                pixels,
+                glossy,
+            };
+            depth(encoder, &prepared)?;
+            Ok(Some(prepared))
+        })
+    }
+
+    /// The lists of a prepared frame, in one submission: counted per list by `kernel`
+    /// (reading `own` after its shared buffers), scanned, written into a buffer of the room
+    /// earlier frames needed (`cull::room`; the total is read with the work that uses them,
+    /// [`GpuLightLists::outgrown`]); refined per block for [`GlossyBound::Tight`]
+    /// (`cull::tight`, which rewrites the pixel lists in place).
+    pub(crate) fn lists(
+        &self,
+        ctx: &GpuContext,
+        frame: &CullFrame,
+        tiles: &PreparedTiles,
+        kernel: ListKernel,
+        own: &[&wgpu::Buffer],
+    ) -> Result<GpuLightLists, GpuError> {
+        let per_tile = kernel.layout.clusters;
+        let list_count = per_tile * tiles.params.tile_count;
+        let offsets = output::<u32>(ctx, "list offsets", list_count as usize + 1)?;
+        let p = &tiles.params;
+        let per_subregion = u64::from(per_tile) * u64::from(p.tiles_x) * u64::from(p.tiles_y);
+        let (entries, write) =
+            self.room
+                .buffer(ctx, frame, "light lists", per_subregion, &tiles.status)?;
+        ctx.submit(kernel.label, |encoder| {
+            for mode in [CULL_COUNT, CULL_WRITE] {
+                let params = tiles.bounds.count.uniform(
+                    ctx,
+                    encoder,
+                    kernel.label,
+                    &GpuCullParams {
+                        mode,
+                        ..tiles.params
+                    },
+                    offset_of!(GpuCullParams, vpl_count),
+                );
+                let shared = [
+                    &params,
+                    &tiles.frusta,
+                    &tiles.bounds.buffer,
+                    &offsets,
+                    &entries,
+                ];
+                let buffers: Vec<_> = shared.into_iter().chain(own.iter().copied()).collect();
+                ctx.encode_dispatch(encoder, kernel.label, kernel.pipeline, &buffers, tiles.grid);
+                if mode == CULL_COUNT {
+                    self.scan
+                        .encode(ctx, encoder, &offsets, list_count, &tiles.status);
+                }
+            }
+            Ok(())
+        })?;
+        let lists = GpuLightLists {
+            offsets,
+            indices: entries,
+            pixel_list: tiles.pixel_list.clone(),
+            list_count,
+            entries: write.held,
+            pixels: tiles.pixels,
+            writes: vec![write],
+        };
+        if tiles.glossy != GlossyBound::Tight {
+            return Ok(lists);
+        }
+        self.tight
+            .refine(ctx, frame, lists, &tiles.bounds, kernel.layout)
     }
 
     /// Sets the room of the next frames' lists (`cull::room`), the refinement's too.

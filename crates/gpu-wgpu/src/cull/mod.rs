@@ -20,12 +20,13 @@ pub mod tiled;
 use crate::cull::binned::BinnedCuller;
 use crate::cull::clustered::ClusteredCuller;
 use crate::cull::frame::CullFrame;
+use crate::cull::list_passes::PreparedTiles;
 use crate::cull::lists::{no_lists, read_lists, GpuLightLists};
 use crate::cull::none::NoneCuller;
 use crate::cull::raster::clusters::{ClusterRasterizer, NodeFrame};
 use crate::cull::raster::splat::Splatter;
 use crate::cull::room::{settled, use_settled};
-use crate::cull::tiled::{TiledCuller, TiledFrame};
+use crate::cull::tiled::TiledCuller;
 use crate::device::context::{GpuContext, GpuError};
 use slc_core::{CullInput, Culler, GlossyBound, Layout, LightLists, Strategy};
 use std::cell::RefCell;
@@ -183,8 +184,8 @@ impl ListCulling for GpuCulling {
 /// `shade::lists` (replaced by complete ones where they outgrew their buffer,
 /// [`GpuCulling::use_lists`]).
 pub enum Culled {
-    Tiles(Box<TiledFrame>),
-    Splats(Box<TiledFrame>),
+    Tiles(Box<PreparedTiles>),
+    Splats(Box<PreparedTiles>),
     Nodes(Box<NodeFrame>),
     Lists(RefCell<GpuLightLists>, Strategy),
 }

@@ -10,8 +10,8 @@
 //! the brute-force metrics, the clustered layout (32 slices per tile) and the tight
 //! strategies' per-block refinement.
 use crate::cull::frame::{read_status, CullFrame};
+use crate::cull::list_passes::PreparedTiles;
 use crate::cull::records::GpuCullParams;
-use crate::cull::tiled::TiledFrame;
 use crate::device::buffers::output;
 use crate::device::context::{GpuContext, GpuError};
 use crate::shade::records::GpuShadeParams;
@@ -59,7 +59,7 @@ impl TiledShadePass {
         ctx: &GpuContext,
         frame: &CullFrame,
         samples: &wgpu::Buffer,
-        tiles: &TiledFrame,
+        tiles: &PreparedTiles,
     ) -> Result<wgpu::Buffer, GpuError> {
         let image = output::<f32>(ctx, "indirect image", 3 * tiles.pixels as usize)?;
         let count = &tiles.bounds.count;
@@ -97,7 +97,7 @@ impl TiledShadePass {
                     &shade,
                     &tiles.frusta,
                     &tiles.bounds.buffer,
-                    &tiles.order,
+                    &tiles.partition.order,
                     &tiles.bounds.vpls,
                     samples,
                     &frame.positions,

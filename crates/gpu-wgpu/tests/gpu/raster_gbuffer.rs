@@ -144,15 +144,17 @@ fn compare(cpu: &GBuffer, gpu: &GBuffer, extent: f32, kd_tolerance: f32) -> Agre
     a
 }
 
-/// Renders `scene` on both sides at pixel centres and checks the agreement.
+/// Renders `scene` on both sides at pixel centres and checks the agreement, with `bounds`:
+/// the largest fraction of edge pixels, and of pixels that are edge pixels and differ.
 fn check_scene(
-    ctx: &GpuContext,
     name: &str,
     (scene, camera): (Scene, Camera),
     (w, h): (u32, u32),
     kd_tolerance: f32,
-    bounds: Bounds,
+    (edges, edge_mismatches): (f64, f64),
 ) {
+    let Some(ctx) = gpu() else { return };
+    let ctx = &ctx;
     let tracer = Tracer::new(&scene);
     let cpu = trace_gbuffer(&scene, &tracer, &camera, w, h, PixelSample::Centre);
     let gpu_scene = GpuScene::upload(ctx, &scene).unwrap();
@@ -165,7 +167,10 @@ fn check_scene(
     report(
         name,
         &compare(&cpu, &gpu, extent(&scene), kd_tolerance),
-        bounds,
+        Bounds {
+            edges,
+            edge_mismatches,
+        },
     );
 }
 
@@ -212,52 +217,34 @@ fn report(name: &str, a: &Agreement, bounds: Bounds) {
 
 #[test]
 fn raster_gbuffer_matches_the_traced_one_on_the_default_scene() {
-    let Some(ctx) = gpu() else { return };
-    let bounds = Bounds {
-        edges: 0.15,
-        edge_mismatches: 5e-3,
-    };
     check_scene(
-        &ctx,
         "default",
         default_scene(),
         (160, 120),
         PARAMETER_TOLERANCE,
-        bounds,
+        (0.15, 5e-3),
     );
 }
 
 #[test]
 fn raster_gbuffer_matches_the_traced_one_on_the_gltf_reference_room() {
-    let Some(ctx) = gpu() else { return };
-    let bounds = Bounds {
-        edges: 0.2,
-        edge_mismatches: 5e-3,
-    };
     check_scene(
-        &ctx,
         "cornell-a",
         cornell_a(),
         (128, 128),
         PARAMETER_TOLERANCE,
-        bounds,
+        (0.2, 5e-3),
     );
 }
 
 #[test]
 fn raster_gbuffer_matches_the_traced_one_on_textured_sponza() {
-    let Some(ctx) = gpu() else { return };
-    let bounds = Bounds {
-        edges: 0.6,
-        edge_mismatches: 1e-2,
-    };
     check_scene(
-        &ctx,
         "sponza",
         sponza(),
         (160, 100),
         TEXTURED_KD_TOLERANCE,
-        bounds,
+        (0.6, 1e-2),
     );
 }
 
@@ -265,18 +252,12 @@ fn raster_gbuffer_matches_the_traced_one_on_textured_sponza() {
 /// pixels seen through the sheet's holes agree) and the back of the double-sided sheet.
 #[test]
 fn raster_gbuffer_matches_the_traced_one_on_the_materials_scene() {
-    let Some(ctx) = gpu() else { return };
-    let bounds = Bounds {
-        edges: 0.25,
-        edge_mismatches: 1e-2,
-    };
     check_scene(
-        &ctx,
         "materials",
         materials(),
         (128, 128),
         TEXTURED_KD_TOLERANCE,
-        bounds,
+        (0.25, 1e-2),
     );
 }
 
@@ -285,18 +266,12 @@ fn raster_gbuffer_matches_the_traced_one_on_the_materials_scene() {
 /// (`GpuSample`).
 #[test]
 fn raster_gbuffer_matches_the_traced_one_on_the_anisotropy_scene() {
-    let Some(ctx) = gpu() else { return };
-    let bounds = Bounds {
-        edges: 0.25,
-        edge_mismatches: 1e-2,
-    };
     check_scene(
-        &ctx,
         "anisotropy",
         anisotropy(),
         (128, 128),
         TEXTURED_KD_TOLERANCE,
-        bounds,
+        (0.25, 1e-2),
     );
 }
 

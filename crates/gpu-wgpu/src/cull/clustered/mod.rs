@@ -17,19 +17,17 @@
 //! tests): a sample within rounding of a slice boundary may fall in the neighbouring slice.
 pub mod records;
 
-use crate::cull::bounds::{BoundsSettings, GpuBounds};
 use crate::cull::clustered::records::{GpuClusterFrusta, CLUSTER_SLICES, DEPTH_RANGE, DEPTH_SPLIT};
-use crate::cull::frame::{check_input, cull_params, tile_grid, CullFrame, CullSizes};
-use crate::cull::list_passes::ListPasses;
+use crate::cull::frame::CullFrame;
+use crate::cull::list_passes::{ListKernel, ListPasses, PreparedTiles};
 use crate::cull::lists::no_lists;
 use crate::cull::lists::GpuLightLists;
-use crate::cull::partition::GpuPartition;
-use crate::cull::records::{GpuCullParams, GpuCullStatus, CULL_COUNT, CULL_WRITE};
+use crate::cull::records::GpuCullParams;
 use crate::cull::tight::BaseLayout;
 use crate::cull::ListCulling;
-use crate::device::buffers::{output, upload, Grid};
+use crate::device::buffers::upload;
 use crate::device::context::{GpuContext, GpuError};
-use slc_cull::{CullView, GlossyBound};
+use slc_cull::GlossyBound;
 use std::mem::offset_of;
 
 /// The kernel of `cluster_depth.wesl`, linked with what it imports (build.rs).
@@ -71,162 +69,69 @@ impl ClusteredCuller {
         frame: &CullFrame,
         glossy: GlossyBound,
         shapes: bool,
-    ) -> Result<Option<ClusterFrame>, GpuError> {
-        let CullSizes { pixels, k, .. } = check_input(frame)?;
-        if pixels == 0 {
-            return Ok(None);
-        }
-        let (width, height) = (frame.width, frame.height);
-        let view = CullView::new(frame.camera, width, height)
-            .map_err(|e| GpuError::Input(e.to_string()))?;
-        let bounds = self.passes.bounds.run(
-            ctx,
-            frame.vpls,
-            &BoundsSettings {
-                camera: frame.camera,
-                width,
-                height,
-                delta: frame.delta,
-                glossy,
-                interleaving: frame.interleaving,
-                shapes,
-            },
-        )?;
-        let tiles = tile_grid(frame, CLUSTER_SLICES)?;
-        let grid = Grid::new(
-            u64::from(tiles.2),
-            ctx.limits.max_compute_workgroups_per_dimension,
-        )?;
-        let params = cull_params(frame, &view, tiles, CULL_COUNT);
-        let frusta = output::<GpuClusterFrusta>(ctx, "cluster frusta", tiles.2 as usize)?;
-        let pixel_list = output::<u32>(ctx, "pixel lists", pixels as usize)?;
-        let status = upload(ctx, "cull status", &[GpuCullStatus::CLEAR])?;
+    ) -> Result<Option<PreparedClusters>, GpuError> {
         // Smallest and largest depth as f32 bits, before any sample is seen.
         let depth_range = upload(ctx, "depth range", &[u32::MAX, 0])?;
-        let partition = ctx.submit("cluster depth", |encoder| {
-            let partition = self.passes.partition.encode(
-                ctx,
-                encoder,
-                &self.passes.scan,
-                &bounds.buffer,
-                &bounds.count,
-                k * k,
-                &status,
-            )?;
-            for (label, mode) in [
-                ("cluster depth range", DEPTH_RANGE),
-                ("cluster depth split", DEPTH_SPLIT),
-            ] {
-                let params = bounds.count.uniform(
-                    ctx,
-                    encoder,
-                    label,
-                    &GpuCullParams { mode, ..params },
-                    offset_of!(GpuCullParams, vpl_count),
-                );
-                ctx.encode_dispatch(
-                    encoder,
-                    label,
-                    &self.depth,
-                    &[
-                        &params,
-                        &frame.positions,
-                        &frusta,
-                        &pixel_list,
-                        &status,
-                        &depth_range,
-                    ],
-                    grid,
-                );
-            }
-            Ok(partition)
-        })?;
-        Ok(Some(ClusterFrame {
-            bounds,
-            partition,
-            frusta,
-            pixel_list,
-            status,
-            depth_range,
-            params,
-            grid,
-            pixels,
-            glossy,
-        }))
+        let tiles = self.passes.prepare::<GpuClusterFrusta>(
+            ctx,
+            frame,
+            (glossy, shapes),
+            ("cluster depth", CLUSTER_SLICES),
+            |encoder, tiles| {
+                for (label, mode) in [
+                    ("cluster depth range", DEPTH_RANGE),
+                    ("cluster depth split", DEPTH_SPLIT),
+                ] {
+                    let params = tiles.bounds.count.uniform(
+                        ctx,
+                        encoder,
+                        label,
+                        &GpuCullParams {
+                            mode,
+                            ..tiles.params
+                        },
+                        offset_of!(GpuCullParams, vpl_count),
+                    );
+                    ctx.encode_dispatch(
+                        encoder,
+                        label,
+                        &self.depth,
+                        &[
+                            &params,
+                            &frame.positions,
+                            &tiles.frusta,
+                            &tiles.pixel_list,
+                            &tiles.status,
+                            &depth_range,
+                        ],
+                        tiles.grid,
+                    );
+                }
+                Ok(())
+            },
+        )?;
+        Ok(tiles.map(|tiles| PreparedClusters { tiles, depth_range }))
     }
 
-    /// The lists of a prepared frame, in one submission: counted per slice, scanned,
-    /// written into a buffer of the room earlier frames needed (`cull::room`; the total is
-    /// read with the work that uses them, [`GpuLightLists::outgrown`]); refined per block for
-    /// [`GlossyBound::Tight`].
+    /// The lists of a prepared frame ([`ListPasses::lists`]): one per depth slice, counted
+    /// and written by `clustered_cull.wesl`; refined per block for [`GlossyBound::Tight`].
     pub fn lists(
         &self,
         ctx: &GpuContext,
         frame: &CullFrame,
-        clusters: ClusterFrame,
+        clusters: &PreparedClusters,
     ) -> Result<GpuLightLists, GpuError> {
-        let list_count = CLUSTER_SLICES * clusters.params.tile_count;
-        let offsets = output::<u32>(ctx, "list offsets", list_count as usize + 1)?;
-        let p = &clusters.params;
-        let per_subregion = u64::from(CLUSTER_SLICES) * u64::from(p.tiles_x) * u64::from(p.tiles_y);
-        let (entries, write) =
-            self.passes
-                .room
-                .buffer(ctx, frame, "light lists", per_subregion, &clusters.status)?;
-        ctx.submit("clustered cull", |encoder| {
-            for mode in [CULL_COUNT, CULL_WRITE] {
-                let params = clusters.bounds.count.uniform(
-                    ctx,
-                    encoder,
-                    "clustered cull",
-                    &GpuCullParams {
-                        mode,
-                        ..clusters.params
-                    },
-                    offset_of!(GpuCullParams, vpl_count),
-                );
-                ctx.encode_dispatch(
-                    encoder,
-                    "clustered cull",
-                    &self.cull,
-                    &[
-                        &params,
-                        &clusters.frusta,
-                        &clusters.bounds.buffer,
-                        &offsets,
-                        &entries,
-                        &clusters.partition.sub_offsets,
-                        &clusters.partition.order,
-                    ],
-                    clusters.grid,
-                );
-                if mode == CULL_COUNT {
-                    self.passes
-                        .scan
-                        .encode(ctx, encoder, &offsets, list_count, &clusters.status);
-                }
-            }
-            Ok(())
-        })?;
-        let lists = GpuLightLists {
-            offsets,
-            indices: entries,
-            pixel_list: clusters.pixel_list,
-            list_count,
-            entries: write.held,
-            pixels: clusters.pixels,
-            writes: vec![write],
+        let tiles = &clusters.tiles;
+        let kernel = ListKernel {
+            label: "clustered cull",
+            pipeline: &self.cull,
+            layout: BaseLayout {
+                clusters: CLUSTER_SLICES,
+                split: false,
+            },
         };
-        if clusters.glossy != GlossyBound::Tight {
-            return Ok(lists);
-        }
-        let layout = BaseLayout {
-            clusters: CLUSTER_SLICES,
-            split: false,
-        };
-        self.passes
-            .tight
-            .refine(ctx, frame, lists, &clusters.bounds, layout)
+        let own = [&tiles.partition.sub_offsets, &tiles.partition.order];
+        self.passes.lists(ctx, frame, tiles, kernel, &own)
     }
 
     /// Sets the room of the next frames' lists (`cull::room`), the refinement's too.
@@ -253,7 +158,7 @@ impl ListCulling for ClusteredCuller {
         glossy: GlossyBound,
     ) -> Result<GpuLightLists, GpuError> {
         match self.prepare(ctx, frame, glossy, false)? {
-            Some(clusters) => self.lists(ctx, frame, clusters),
+            Some(clusters) => self.lists(ctx, frame, &clusters),
             None => no_lists(ctx),
         }
     }
@@ -261,20 +166,10 @@ impl ListCulling for ClusteredCuller {
 
 /// A clustered culling up to its cluster frusta ([`ClusteredCuller::prepare`]): what the
 /// list passes and the rasterized clusters (`cull::raster::clusters`) read.
-pub struct ClusterFrame {
-    pub bounds: GpuBounds,
-    pub partition: GpuPartition,
-    /// `GpuClusterFrusta` per tile (occupied slices in `info.x`).
-    pub frusta: wgpu::Buffer,
-    /// Each pixel's cluster (32 t + slice; `NO_LIST` without a sample).
-    pub pixel_list: wgpu::Buffer,
-    /// The fault record of the passes so far (`GpuCullStatus`).
-    pub status: wgpu::Buffer,
+pub struct PreparedClusters {
+    /// The tile grid's passes; `GpuClusterFrusta` per tile (occupied slices in `info.x`),
+    /// each pixel's cluster (32 t + slice; `NO_LIST` without a sample).
+    pub tiles: PreparedTiles,
     /// The G-buffer's smallest and largest view depth as f32 bits.
     pub depth_range: wgpu::Buffer,
-    /// The tile grid and culling view.
-    pub params: GpuCullParams,
-    pub grid: Grid,
-    pub pixels: u32,
-    pub glossy: GlossyBound,
 }

@@ -17,7 +17,7 @@
 //! filled and shaded again with a buffer of that size. Sums follow the lists' order, which
 //! the GPU's scheduling sets: images equal the list shading's up to f32 rounding.
 use crate::cull::clustered::records::CLUSTER_SLICES;
-use crate::cull::clustered::{ClusterFrame, ClusteredCuller};
+use crate::cull::clustered::{ClusteredCuller, PreparedClusters};
 use crate::cull::frame::{read_status, CullFrame};
 use crate::cull::lists::GpuLightLists;
 use crate::cull::raster::mesh::BoundMesh;
@@ -74,7 +74,7 @@ pub struct ClusterRasterizer {
 /// A frame's rasterized clusters: the clustered culler's frusta and the lists in their
 /// node buffer (replaced when a refill needs a larger one).
 pub struct NodeFrame {
-    pub clusters: ClusterFrame,
+    pub clusters: PreparedClusters,
     /// Per VPL slot and tile, the slices its mesh reached (the shell pass's output).
     pub cells: wgpu::Buffer,
     pub params: GpuRasterParams,
@@ -145,7 +145,7 @@ impl ClusterRasterizer {
         let Some(clusters) = clustered.prepare(ctx, frame, GlossyBound::Ellipsoid, true)? else {
             return Ok(None);
         };
-        let p = &clusters.params;
+        let p = &clusters.tiles.params;
         let k = p.k;
         let params = GpuRasterParams {
             image: p.image,
@@ -166,11 +166,11 @@ impl ClusterRasterizer {
             scale: frame.interleaving.scale(),
             tiles_x: p.tiles_x,
             tiles_y: p.tiles_y,
-            vpl_count: clusters.bounds.count.capacity(),
+            vpl_count: clusters.tiles.bounds.count.capacity(),
             pad: 0,
         };
         let per_sub = u64::from(p.tiles_x) * u64::from(p.tiles_y);
-        let cell_count = per_sub * u64::from(clusters.bounds.count.capacity());
+        let cell_count = per_sub * u64::from(clusters.tiles.bounds.count.capacity());
         let cells = output::<u32>(ctx, "cluster cells", cell_count as usize)?;
         let target = atlas(
             ctx,
@@ -178,7 +178,7 @@ impl ClusterRasterizer {
             (k * p.tiles_x, k * p.tiles_y),
             SHELL_TARGET,
         )?;
-        let count = &clusters.bounds.count;
+        let count = &clusters.tiles.bounds.count;
         let shell = match &self.hardware_shell {
             Some(hardware) if self.hardware() => hardware,
             _ => &self.shell,
@@ -193,9 +193,9 @@ impl ClusterRasterizer {
                 &[
                     (0, params_buffer.as_entire_binding()),
                     (1, self.mesh.as_entire_binding()),
-                    (2, clusters.bounds.shapes.as_entire_binding()),
-                    (3, clusters.partition.sub_offsets.as_entire_binding()),
-                    (4, clusters.partition.order.as_entire_binding()),
+                    (2, clusters.tiles.bounds.shapes.as_entire_binding()),
+                    (3, clusters.tiles.partition.sub_offsets.as_entire_binding()),
+                    (4, clusters.tiles.partition.order.as_entire_binding()),
                     (5, clusters.depth_range.as_entire_binding()),
                     (6, cells.as_entire_binding()),
                 ],
@@ -206,7 +206,7 @@ impl ClusterRasterizer {
                 encoder,
                 "cluster shell",
                 (&params, &params_buffer),
-                &clusters.partition.sub_offsets,
+                &clusters.tiles.partition.sub_offsets,
                 (shell, &group),
                 &target,
                 |_, _| [tx, ty],
@@ -225,17 +225,17 @@ impl ClusterRasterizer {
     fn fill(
         &self,
         ctx: &GpuContext,
-        clusters: &ClusterFrame,
+        clusters: &PreparedClusters,
         cells: &wgpu::Buffer,
         params: &GpuRasterParams,
     ) -> Result<NodeLists, GpuError> {
-        let list_count = CLUSTER_SLICES * clusters.params.tile_count;
+        let list_count = CLUSTER_SLICES * clusters.tiles.params.tile_count;
         let lists = NodeLists::new(ctx, list_count, params.capacity)?;
         // The node count restarts (GpuCullStatus.total); the faults stay.
         ctx.queue
-            .write_buffer(&clusters.status, 8, bytemuck::bytes_of(&0u32));
+            .write_buffer(&clusters.tiles.status, 8, bytemuck::bytes_of(&0u32));
         let per_sub = params.tiles_x * params.tiles_y;
-        let count = &clusters.bounds.count;
+        let count = &clusters.tiles.bounds.count;
         ctx.submit("cluster fill", |encoder| {
             let params_buffer =
                 count.uniform(ctx, encoder, "cluster fill params", params, VPL_COUNT_AT);
@@ -247,12 +247,12 @@ impl ClusterRasterizer {
                 &[
                     &params_buffer,
                     cells,
-                    &clusters.partition.order,
-                    &clusters.bounds.buffer,
-                    &clusters.frusta,
+                    &clusters.tiles.partition.order,
+                    &clusters.tiles.bounds.buffer,
+                    &clusters.tiles.frusta,
                     &lists.heads,
                     &lists.nodes,
-                    &clusters.status,
+                    &clusters.tiles.status,
                 ],
                 workgroups,
             );
@@ -273,23 +273,23 @@ impl ClusterRasterizer {
         nodes: &NodeFrame,
     ) -> Result<wgpu::Buffer, GpuError> {
         let clusters = &nodes.clusters;
-        let image = output::<f32>(ctx, "indirect image", 3 * clusters.pixels as usize)?;
+        let image = output::<f32>(ctx, "indirect image", 3 * clusters.tiles.pixels as usize)?;
         let params = GpuShadeParams {
             width: frame.width,
             height: frame.height,
-            pixel_count: clusters.pixels,
+            pixel_count: clusters.tiles.pixels,
             vpl_count: nodes.params.vpl_count,
-            list_count: CLUSTER_SLICES * clusters.params.tile_count,
+            list_count: CLUSTER_SLICES * clusters.tiles.params.tile_count,
             delta: frame.delta,
             scale: frame.interleaving.scale(),
             pad: 0,
         };
-        let grid = Grid::for_items(ctx, u64::from(clusters.pixels), 64)?;
+        let grid = Grid::for_items(ctx, u64::from(clusters.tiles.pixels), 64)?;
         loop {
             {
                 let lists = nodes.lists.borrow();
                 ctx.submit("node shade", |encoder| {
-                    let params = clusters.bounds.count.uniform(
+                    let params = clusters.tiles.bounds.count.uniform(
                         ctx,
                         encoder,
                         "node shade params",
@@ -303,9 +303,9 @@ impl ClusterRasterizer {
                         &[
                             &params,
                             samples,
-                            &clusters.bounds.vpls,
+                            &clusters.tiles.bounds.vpls,
                             &frame.positions,
-                            &clusters.pixel_list,
+                            &clusters.tiles.pixel_list,
                             &lists.heads,
                             &lists.nodes,
                             &image,
@@ -315,7 +315,7 @@ impl ClusterRasterizer {
                     Ok(())
                 })?;
             }
-            let count = read_status(ctx, &clusters.status, frame.width)?;
+            let count = read_status(ctx, &clusters.tiles.status, frame.width)?;
             if count <= nodes.lists.borrow().capacity {
                 return Ok(image);
             }
@@ -333,7 +333,7 @@ impl ClusterRasterizer {
     ) -> Result<GpuLightLists, GpuError> {
         let clusters = &nodes.clusters;
         let count = loop {
-            let count = read_status(ctx, &clusters.status, frame.width)?;
+            let count = read_status(ctx, &clusters.tiles.status, frame.width)?;
             if count <= nodes.lists.borrow().capacity {
                 break count;
             }
@@ -342,12 +342,12 @@ impl ClusterRasterizer {
         let pixel_list: Vec<u32> = read_back(
             ctx,
             "pixel lists",
-            &clusters.pixel_list,
-            clusters.pixels as usize,
+            &clusters.tiles.pixel_list,
+            clusters.tiles.pixels as usize,
         )?;
         let lists = nodes.lists.borrow().read(ctx, count, &pixel_list)?;
-        let vpls = clusters.bounds.count.capacity() as usize;
-        GpuLightLists::upload(ctx, &lists, clusters.pixels as usize, vpls)
+        let vpls = clusters.tiles.bounds.count.capacity() as usize;
+        GpuLightLists::upload(ctx, &lists, clusters.tiles.pixels as usize, vpls)
     }
 
     /// Sets the room of the next frames' node buffers (`cull::room`).

@@ -13,6 +13,7 @@
 //! equal the list shading's up to f32 rounding. For the metrics, the same draws append each
 //! covered pixel's VPL to a per-pixel list in a node buffer (`cull::raster::nodes`).
 use crate::cull::frame::{read_status, CullFrame};
+use crate::cull::list_passes::PreparedTiles;
 use crate::cull::lists::GpuLightLists;
 use crate::cull::raster::mesh::BoundMesh;
 use crate::cull::raster::nodes::NodeLists;
@@ -20,7 +21,6 @@ use crate::cull::raster::records::GpuRasterParams;
 use crate::cull::raster::{atlas, bind, render_pipeline, Rasterization, SubregionDraws};
 use crate::cull::records::GpuCullStatus;
 use crate::cull::room::ListRoom;
-use crate::cull::tiled::TiledFrame;
 use crate::device::buffers::{output, upload};
 use crate::device::context::{GpuContext, GpuError};
 use slc_core::Interleaving;
@@ -100,7 +100,7 @@ impl Splatter {
         })
     }
 
-    fn params(&self, frame: &CullFrame, tiles: &TiledFrame, capacity: u32) -> GpuRasterParams {
+    fn params(&self, frame: &CullFrame, tiles: &PreparedTiles, capacity: u32) -> GpuRasterParams {
         let k = frame.interleaving.k;
         let (ox, oy) = frame.sample_offset;
         GpuRasterParams {
@@ -129,7 +129,7 @@ impl Splatter {
         ctx: &GpuContext,
         encoder: &mut wgpu::CommandEncoder,
         (params, params_buffer): (&GpuRasterParams, &wgpu::Buffer),
-        tiles: &TiledFrame,
+        tiles: &PreparedTiles,
         pipeline: &wgpu::RenderPipeline,
         bind: &wgpu::BindGroup,
     ) -> Result<wgpu::TextureView, GpuError> {
@@ -147,7 +147,7 @@ impl Splatter {
             encoder,
             "splat",
             (params, params_buffer),
-            &tiles.sub_offsets,
+            &tiles.partition.sub_offsets,
             (pipeline, bind),
             &target,
             extent,
@@ -163,7 +163,7 @@ impl Splatter {
         ctx: &GpuContext,
         frame: &CullFrame,
         samples: &wgpu::Buffer,
-        tiles: &TiledFrame,
+        tiles: &PreparedTiles,
     ) -> Result<wgpu::Buffer, GpuError> {
         let pipeline = self.shade.as_ref().ok_or_else(|| {
             GpuError::Input(
@@ -184,8 +184,8 @@ impl Splatter {
                     (0, params_buffer.as_entire_binding()),
                     (1, self.mesh.as_entire_binding()),
                     (2, tiles.bounds.shapes.as_entire_binding()),
-                    (3, tiles.sub_offsets.as_entire_binding()),
-                    (4, tiles.order.as_entire_binding()),
+                    (3, tiles.partition.sub_offsets.as_entire_binding()),
+                    (4, tiles.partition.order.as_entire_binding()),
                     (5, tiles.bounds.vpls.as_entire_binding()),
                     (6, samples.as_entire_binding()),
                     (7, frame.positions.as_entire_binding()),
@@ -229,7 +229,7 @@ impl Splatter {
         &self,
         ctx: &GpuContext,
         frame: &CullFrame,
-        tiles: &TiledFrame,
+        tiles: &PreparedTiles,
     ) -> Result<GpuLightLists, GpuError> {
         // The faults of the culling passes (a sample behind the camera, a bound beyond f32).
         read_status(ctx, &tiles.status, frame.width)?;
@@ -252,8 +252,8 @@ impl Splatter {
                         (0, params_buffer.as_entire_binding()),
                         (1, self.mesh.as_entire_binding()),
                         (2, tiles.bounds.shapes.as_entire_binding()),
-                        (3, tiles.sub_offsets.as_entire_binding()),
-                        (4, tiles.order.as_entire_binding()),
+                        (3, tiles.partition.sub_offsets.as_entire_binding()),
+                        (4, tiles.partition.order.as_entire_binding()),
                         (7, frame.positions.as_entire_binding()),
                         (8, nodes.heads.as_entire_binding()),
                         (9, nodes.nodes.as_entire_binding()),
@@ -281,7 +281,7 @@ impl Splatter {
 fn params_uniform(
     ctx: &GpuContext,
     encoder: &mut wgpu::CommandEncoder,
-    tiles: &TiledFrame,
+    tiles: &PreparedTiles,
     params: &GpuRasterParams,
 ) -> wgpu::Buffer {
     let at = offset_of!(GpuRasterParams, vpl_count);

@@ -17,18 +17,16 @@
 //! [`GlossyBound::Tight`] the lists are refined per block (`cull::tight`).
 pub mod depth;
 
-use crate::cull::bounds::{BoundsSettings, GpuBounds};
-use crate::cull::frame::{check_input, cull_params, tile_grid, CullFrame, CullSizes};
-use crate::cull::list_passes::ListPasses;
+use crate::cull::frame::CullFrame;
+use crate::cull::list_passes::{ListKernel, ListPasses, PreparedTiles};
 use crate::cull::lists::no_lists;
 use crate::cull::lists::GpuLightLists;
-use crate::cull::records::{GpuCullParams, GpuCullStatus, GpuTileFrusta, CULL_COUNT, CULL_WRITE};
+use crate::cull::records::{GpuCullParams, GpuTileFrusta};
 use crate::cull::tight::BaseLayout;
 use crate::cull::tiled::depth::{TileDepthBuffers, TileDepthPass};
 use crate::cull::ListCulling;
-use crate::device::buffers::{output, upload, Grid};
 use crate::device::context::{GpuContext, GpuError};
-use slc_cull::{CullView, GlossyBound};
+use slc_cull::GlossyBound;
 use std::mem::offset_of;
 
 /// The kernel of `tiled_cull.wesl`, linked with what it imports (build.rs).
@@ -68,155 +66,57 @@ impl TiledCuller {
         frame: &CullFrame,
         glossy: GlossyBound,
         shapes: bool,
-    ) -> Result<Option<TiledFrame>, GpuError> {
-        let CullSizes { pixels, .. } = check_input(frame)?;
-        if pixels == 0 {
-            return Ok(None);
-        }
-        let (width, height) = (frame.width, frame.height);
-        let view = CullView::new(frame.camera, width, height)
-            .map_err(|e| GpuError::Input(e.to_string()))?;
-        let bounds = self.passes.bounds.run(
+    ) -> Result<Option<PreparedTiles>, GpuError> {
+        self.passes.prepare::<GpuTileFrusta>(
             ctx,
-            frame.vpls,
-            &BoundsSettings {
-                camera: frame.camera,
-                width,
-                height,
-                delta: frame.delta,
-                glossy,
-                interleaving: frame.interleaving,
-                shapes,
+            frame,
+            (glossy, shapes),
+            ("tile depth", 2),
+            |encoder, tiles| {
+                let depth_params = tiles.bounds.count.uniform(
+                    ctx,
+                    encoder,
+                    "cull params (depth)",
+                    &tiles.params,
+                    offset_of!(GpuCullParams, vpl_count),
+                );
+                self.depth.encode(
+                    ctx,
+                    encoder,
+                    &TileDepthBuffers {
+                        params: &depth_params,
+                        positions: &frame.positions,
+                        frusta: &tiles.frusta,
+                        pixel_list: &tiles.pixel_list,
+                        status: &tiles.status,
+                        sub_offsets: &tiles.partition.sub_offsets,
+                    },
+                    tiles.grid,
+                );
+                Ok(())
             },
-        )?;
-        let tiles = tile_grid(frame, 2)?;
-        let grid = Grid::new(
-            u64::from(tiles.2),
-            ctx.limits.max_compute_workgroups_per_dimension,
-        )?;
-        let frusta = output::<GpuTileFrusta>(ctx, "tile frusta", tiles.2 as usize)?;
-        let pixel_list = output::<u32>(ctx, "pixel lists", pixels as usize)?;
-        let status = upload(ctx, "cull status", &[GpuCullStatus::CLEAR])?;
-        let params = cull_params(frame, &view, tiles, CULL_COUNT);
-        let k = frame.interleaving.k;
-        let partition = ctx.submit("tile depth", |encoder| {
-            let partition = self.passes.partition.encode(
-                ctx,
-                encoder,
-                &self.passes.scan,
-                &bounds.buffer,
-                &bounds.count,
-                k * k,
-                &status,
-            )?;
-            let depth_params = bounds.count.uniform(
-                ctx,
-                encoder,
-                "cull params (depth)",
-                &params,
-                offset_of!(GpuCullParams, vpl_count),
-            );
-            self.depth.encode(
-                ctx,
-                encoder,
-                &TileDepthBuffers {
-                    params: &depth_params,
-                    positions: &frame.positions,
-                    frusta: &frusta,
-                    pixel_list: &pixel_list,
-                    status: &status,
-                    sub_offsets: &partition.sub_offsets,
-                },
-                grid,
-            );
-            Ok(partition)
-        })?;
-        Ok(Some(TiledFrame {
-            bounds,
-            order: partition.order,
-            sub_offsets: partition.sub_offsets,
-            frusta,
-            pixel_list,
-            status,
-            params,
-            grid,
-            pixels,
-            glossy,
-        }))
+        )
     }
 
-    /// The lists of a prepared frame, in one submission: counted per cluster, scanned,
-    /// written into a buffer of the room earlier frames needed (`cull::room`; the total is
-    /// read with the work that uses them, [`GpuLightLists::outgrown`]); refined per block for
-    /// [`GlossyBound::Tight`] (which rewrites the frame's pixel lists in place: `tiles` is
-    /// spent then).
+    /// The lists of a prepared frame ([`ListPasses::lists`]): two per tile, counted and
+    /// written by `tiled_cull.wesl`; refined per block for [`GlossyBound::Tight`] (which
+    /// rewrites the frame's pixel lists in place: `tiles` is spent then).
     pub fn lists(
         &self,
         ctx: &GpuContext,
         frame: &CullFrame,
-        tiles: &TiledFrame,
+        tiles: &PreparedTiles,
     ) -> Result<GpuLightLists, GpuError> {
-        let lists_count = 2 * tiles.params.tile_count;
-        let offsets = output::<u32>(ctx, "list offsets", lists_count as usize + 1)?;
-        let p = &tiles.params;
-        let per_subregion = 2 * u64::from(p.tiles_x) * u64::from(p.tiles_y);
-        let (entries, write) =
-            self.passes
-                .room
-                .buffer(ctx, frame, "light lists", per_subregion, &tiles.status)?;
-        ctx.submit("tiled cull", |encoder| {
-            for mode in [CULL_COUNT, CULL_WRITE] {
-                let params = tiles.bounds.count.uniform(
-                    ctx,
-                    encoder,
-                    "tiled cull",
-                    &GpuCullParams {
-                        mode,
-                        ..tiles.params
-                    },
-                    offset_of!(GpuCullParams, vpl_count),
-                );
-                ctx.encode_dispatch(
-                    encoder,
-                    "tiled cull",
-                    &self.pipeline,
-                    &[
-                        &params,
-                        &tiles.frusta,
-                        &tiles.bounds.buffer,
-                        &offsets,
-                        &entries,
-                        &tiles.order,
-                    ],
-                    tiles.grid,
-                );
-                if mode == CULL_COUNT {
-                    self.passes
-                        .scan
-                        .encode(ctx, encoder, &offsets, lists_count, &tiles.status);
-                }
-            }
-            Ok(())
-        })?;
-        let lists = GpuLightLists {
-            offsets,
-            indices: entries,
-            pixel_list: tiles.pixel_list.clone(),
-            list_count: lists_count,
-            entries: write.held,
-            pixels: tiles.pixels,
-            writes: vec![write],
-        };
-        if tiles.glossy != GlossyBound::Tight {
-            return Ok(lists);
-        }
-        let layout = BaseLayout {
-            clusters: 2,
-            split: true,
+        let kernel = ListKernel {
+            label: "tiled cull",
+            pipeline: &self.pipeline,
+            layout: BaseLayout {
+                clusters: 2,
+                split: true,
+            },
         };
         self.passes
-            .tight
-            .refine(ctx, frame, lists, &tiles.bounds, layout)
+            .lists(ctx, frame, tiles, kernel, &[&tiles.partition.order])
     }
 
     /// Sets the room of the next frames' lists (`cull::room`), the refinement's too.
@@ -247,26 +147,4 @@ impl ListCulling for TiledCuller {
             None => no_lists(ctx),
         }
     }
-}
-
-/// A tiled culling up to its frusta ([`TiledCuller::prepare`]): what the list passes
-/// ([`TiledCuller::lists`]) and the one-pass shading (`shade::tiled`) read.
-pub struct TiledFrame {
-    pub bounds: GpuBounds,
-    /// The subregions' VPLs in ascending order (`cull::partition`); each tile's range is in
-    /// its frusta.
-    pub order: wgpu::Buffer,
-    /// Subregion s's VPLs are `order[sub_offsets[s]..sub_offsets[s + 1]]`.
-    pub sub_offsets: wgpu::Buffer,
-    /// `GpuTileFrusta` per tile.
-    pub frusta: wgpu::Buffer,
-    /// Each pixel's cluster list (2 t + 0 near, 2 t + 1 far; `NO_LIST` without a sample).
-    pub pixel_list: wgpu::Buffer,
-    /// The fault record of the passes so far (`GpuCullStatus`).
-    pub status: wgpu::Buffer,
-    /// The tile grid and culling view.
-    pub params: GpuCullParams,
-    pub grid: Grid,
-    pub pixels: u32,
-    pub glossy: GlossyBound,
 }
