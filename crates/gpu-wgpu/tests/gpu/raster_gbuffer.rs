@@ -33,7 +33,7 @@ use slc_gpu_wgpu::cull::ListCulling;
 use slc_gpu_wgpu::frame::raster::gbuffer::GbufferPass;
 use slc_gpu_wgpu::frame::raster::scene::GpuScene;
 use slc_gpu_wgpu::shade::lists::ShadePass;
-use slc_gpu_wgpu::{GpuContext, GpuError};
+use slc_gpu_wgpu::GpuError;
 
 const POSITION_TOLERANCE: f32 = 1e-4;
 const DIRECTION_TOLERANCE: f32 = 1e-4;
