@@ -39,6 +39,8 @@ const KERNELS: &[Kernel] = &[
     k("clustered_cull", "cull::clustered::clustered_cull"),
     k("tight_cull", "cull::tight::tight_cull"),
     k("none_cull", "cull::none::none_cull"),
+    k("binned_footprint", "cull::binned::binned_footprint"),
+    k("binned_cull", "cull::binned::binned_cull"),
     k("raster_args", "cull::raster::raster_args"),
     k("splat", "cull::raster::splat"),
     k("splat_resolve", "cull::raster::splat_resolve"),

@@ -22,8 +22,7 @@ Lobes = Literal["both", "diffuse", "glossy"]
 ReferenceName = Literal["vpl", "path"]
 ImportanceName = Literal["flux", "bidirectional"]
 VsglDiffuse = Literal["clamped", "sg"]
-# "binned" runs on the CPU backend only so far, "splatting" and "clustered-raster" on the
-# GPU only.
+# "splatting" and "clustered-raster" run on the GPU backend only; the others on both.
 Strategy = Literal[
     "none",
     "sphere",

@@ -740,10 +740,9 @@ fn raster_baselines_on_the_cpu_are_refused() {
     }
 }
 
-/// `binned` has no GPU twin yet: `--backend gpu` refuses it before any work and points to
-/// the CPU backend, which renders it.
+/// `binned` renders on both backends (its GPU twin: `slc_gpu_wgpu::cull::binned`).
 #[test]
-fn binned_on_the_gpu_is_refused() {
+fn binned_renders_on_both_backends() {
     let render = |backend: &str| {
         slc()
             .args(["render", "--width", "16", "--height", "12", "--rsm", "4"])
@@ -759,12 +758,7 @@ fn binned_on_the_gpu_is_refused() {
         return;
     }
     let o = render("gpu");
-    let err = String::from_utf8_lossy(&o.stderr);
-    assert!(!o.status.success(), "{err}");
-    assert!(
-        err.contains("binned") && err.contains("render on the cpu backend"),
-        "{err}"
-    );
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
 }
 
 #[test]
@@ -773,12 +767,8 @@ fn gpu_compare_names_backend_and_adapter_and_misses_nothing() {
         return;
     }
     let out = out_dir("compare-gpu");
-    // Every strategy, the tight ones and the raster baselines included; not the CPU's
-    // `binned` (no GPU twin yet: `binned_on_the_gpu_is_refused`).
-    let on_gpu: Vec<_> = slc_core::Strategy::every()
-        .filter(|s| !slc_core::Strategy::CPU_ONLY.contains(s))
-        .map(|s| s.name())
-        .collect();
+    // Every strategy, the tight ones, binned and the raster baselines included.
+    let on_gpu: Vec<_> = slc_core::Strategy::every().map(|s| s.name()).collect();
     let gpu_compare = |(width, height): (&str, &str), rsm: &str, culling: &str| {
         slc()
             .args([

@@ -14,7 +14,7 @@ use crate::framebuffer::Image;
 use crate::progress::Progress;
 use crate::scene::Scene;
 use crate::shader::SampledLights;
-use crate::strategy::{GlossyBound, Layout, Strategy};
+use crate::strategy::{GlossyBound, Strategy};
 use crate::vpl::Vpl;
 use std::collections::BTreeMap;
 
@@ -45,8 +45,6 @@ pub struct Capabilities {
     pub tight_culling: bool,
     /// The rasterization baselines `splatting` and `clustered-raster` ([`Strategy::RASTER`]).
     pub raster_culling: bool,
-    /// The `binned` culling strategy ([`Strategy::CPU_ONLY`] until its GPU twin exists).
-    pub binned_culling: bool,
 }
 
 impl Capabilities {
@@ -64,7 +62,6 @@ impl Capabilities {
             sampled_vpls: has,
             tight_culling: has,
             raster_culling: has,
-            binned_culling: has,
         }
     }
 
@@ -100,11 +97,9 @@ impl Capabilities {
 
     /// What culling with `strategy` asks of a backend.
     pub fn culling(strategy: Strategy) -> Self {
-        let (layout, glossy) = strategy.parts();
         Self {
-            tight_culling: glossy == GlossyBound::Tight,
+            tight_culling: strategy.parts().1 == GlossyBound::Tight,
             raster_culling: strategy.is_raster(),
-            binned_culling: layout == Layout::Binned,
             ..Self::NONE
         }
     }
@@ -122,10 +117,6 @@ impl Capabilities {
             (
                 lacks(needs.raster_culling, self.raster_culling),
                 "the rasterization baselines (splatting, clustered-raster)",
-            ),
-            (
-                lacks(needs.binned_culling, self.binned_culling),
-                "the binned culling strategy",
             ),
             (
                 lacks(needs.tight_culling, self.tight_culling),
@@ -395,7 +386,6 @@ mod tests {
             references: false,
             sampled_vpls: false,
             raster_culling: true,
-            binned_culling: false,
             ..first
         };
         let refusal = |caps: Capabilities, settings| match caps.check("this", &settings) {
@@ -418,10 +408,6 @@ mod tests {
         };
         let (_, needs) = refusal(no_blending, raster);
         assert!(second.covers(&needs) && !first.covers(&needs));
-        let binned = stochastic(Strategy::Binned, false);
-        assert!(first.check("this", &binned).is_ok());
-        let (what, needs) = refusal(second, binned);
-        assert!(what.contains("binned") && first.covers(&needs), "{what}");
         let e = second.check("that", &stochastic(Strategy::Tight, false));
         assert!(e.is_ok(), "{e:?}");
         assert_eq!(

@@ -75,7 +75,7 @@ pub struct UnknownStrategy {
 impl Strategy {
     /// Every strategy with a culler on both backends (lists the CPU culler `slc_cull::culler`
     /// and the GPU's compute cullers build), in the order tables list them.
-    pub const ALL: [Strategy; 9] = [
+    pub const ALL: [Strategy; 10] = [
         Strategy::None,
         Strategy::Sphere,
         Strategy::EnclosingSphere,
@@ -85,27 +85,21 @@ impl Strategy {
         Strategy::ClusteredEnclosingSphere,
         Strategy::Tight,
         Strategy::ClusteredTight,
+        Strategy::Binned,
     ];
 
     /// The GPU's rasterization baselines of the paper's Table 2 (splatting \[DS06\], clustered
     /// shading by conservative rasterization \[OP16\]): no CPU culler.
     pub const RASTER: [Strategy; 2] = [Strategy::Splatting, Strategy::ClusteredRaster];
 
-    /// The strategies only the CPU culler (`slc_cull::culler`) runs so far: `binned`, whose
-    /// GPU twin is still to come (the GPU backend refuses it, pointing to `--backend cpu`).
-    pub const CPU_ONLY: [Strategy; 1] = [Strategy::Binned];
-
-    /// [`Self::ALL`], then [`Self::CPU_ONLY`], then [`Self::RASTER`].
+    /// [`Self::ALL`], then [`Self::RASTER`].
     pub fn every() -> impl Iterator<Item = Strategy> {
-        Self::ALL
-            .into_iter()
-            .chain(Self::CPU_ONLY)
-            .chain(Self::RASTER)
+        Self::ALL.into_iter().chain(Self::RASTER)
     }
 
-    /// Every strategy with a CPU culler: [`Self::ALL`], then [`Self::CPU_ONLY`].
+    /// Every strategy with a CPU culler: [`Self::ALL`] (the raster baselines have none).
     pub fn on_cpu() -> impl Iterator<Item = Strategy> {
-        Self::ALL.into_iter().chain(Self::CPU_ONLY)
+        Self::ALL.into_iter()
     }
 
     /// Whether the strategy rasterizes bounding meshes ([`Self::RASTER`]).
@@ -186,10 +180,7 @@ mod tests {
         }
         let mut names = Strategy::names();
         names.dedup();
-        assert_eq!(
-            names.len(),
-            Strategy::ALL.len() + Strategy::CPU_ONLY.len() + Strategy::RASTER.len()
-        );
+        assert_eq!(names.len(), Strategy::ALL.len() + Strategy::RASTER.len());
         assert!(Strategy::RASTER.iter().all(|s| s.is_raster()));
         assert!(!Strategy::on_cpu().any(|s| s.is_raster()));
         let parts: std::collections::HashSet<_> = Strategy::on_cpu()

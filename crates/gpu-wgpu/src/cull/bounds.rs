@@ -5,14 +5,15 @@
 //! spheroid of eq. (12)-(15) as its test space BS, BS·c (eq. 16-17), all grown by
 //! `BOUND_SLACK`. The CPU validates the VPLs (as `slc_cull` does) before upload; the GPU
 //! computes in f32 (the CPU in f64 where `slc_bounds` does), which the conformance test
-//! bounds at relative 1e-5.
+//! bounds at relative 1e-5. [`BoundsPass::run_with_locals`] writes each sphere or spheroid
+//! once more in world axes relative to its VPL ([`GpuLocalBound`], for `cull::binned`).
 use crate::cull::frame::FrameVpls;
 use crate::cull::raster::records::GpuBoundShape;
-use crate::cull::records::GpuBoxBound;
 use crate::cull::records::{
     GpuBound, GpuView, BOUND_OVERFLOW, BOUND_SLACK, GLOSSY_ELLIPSOID, GLOSSY_ENCLOSING_SPHERE,
     GLOSSY_SPHERE, MAX_K,
 };
+use crate::cull::records::{GpuBoxBound, GpuLocalBound};
 use crate::device::buffers::{output, read_back};
 use crate::device::context::{GpuContext, GpuError};
 use crate::device::count::{ArgsPass, Count};
@@ -43,11 +44,13 @@ pub struct BoundsSettings<'a> {
 
 /// The bounds of a set of VPLs on the GPU, one [`GpuBound`] per VPL in input order, and for
 /// [`GlossyBound::Tight`] one [`GpuBoxBound`] (what the tight refinement tests) per VPL,
-/// with [`BoundsSettings::shapes`] one [`GpuBoundShape`] per VPL.
+/// with [`BoundsSettings::shapes`] one [`GpuBoundShape`] per VPL, from
+/// [`BoundsPass::run_with_locals`] one [`GpuLocalBound`] per VPL.
 pub struct GpuBounds {
     pub buffer: wgpu::Buffer,
     pub box_bounds: wgpu::Buffer,
     pub shapes: wgpu::Buffer,
+    pub locals: wgpu::Buffer,
     /// The VPLs as uploaded (`GpuVpl`), for the passes that shade them.
     pub vpls: wgpu::Buffer,
     /// How many there are (the buffers hold its capacity).
@@ -80,11 +83,34 @@ impl BoundsPass {
         vpls: FrameVpls,
         settings: &BoundsSettings,
     ) -> Result<GpuBounds, GpuError> {
+        self.run_for(ctx, vpls, settings, false)
+    }
+
+    /// [`Self::run`], each VPL's sphere or spheroid written as a [`GpuLocalBound`] too.
+    pub fn run_with_locals(
+        &self,
+        ctx: &GpuContext,
+        vpls: FrameVpls,
+        settings: &BoundsSettings,
+    ) -> Result<GpuBounds, GpuError> {
+        self.run_for(ctx, vpls, settings, true)
+    }
+
+    fn run_for(
+        &self,
+        ctx: &GpuContext,
+        vpls: FrameVpls,
+        settings: &BoundsSettings,
+        locals: bool,
+    ) -> Result<GpuBounds, GpuError> {
         let capacity = vpls.capacity();
         let count = u32::try_from(capacity)
             .map_err(|_| GpuError::Input(format!("{capacity} VPLs exceed u32 indices")))?;
         let vpl_buffer = vpls.records(ctx, settings.delta)?;
-        let view = GpuView::new(settings, count)?;
+        let view = GpuView {
+            locals: u32::from(locals),
+            ..GpuView::new(settings, count)?
+        };
         let bounds = output::<GpuBound>(ctx, "bounds", capacity)?;
         // Only the tight strategies' refinement reads the box bounds.
         let box_count = if settings.glossy == GlossyBound::Tight {
@@ -95,6 +121,8 @@ impl BoundsPass {
         let box_bounds = output::<GpuBoxBound>(ctx, "box bounds", box_count)?;
         let shape_count = if settings.shapes { capacity } else { 1 };
         let shapes = output::<GpuBoundShape>(ctx, "bound shapes", shape_count)?;
+        let local_count = if locals { capacity } else { 1 };
+        let local_bounds = output::<GpuLocalBound>(ctx, "local bounds", local_count)?;
         let vpl_count = vpls.count();
         ctx.submit("bounds", |encoder| {
             let at = std::mem::offset_of!(GpuView, count);
@@ -104,7 +132,14 @@ impl BoundsPass {
                 encoder,
                 "bounds",
                 &self.pipeline,
-                &[&view_buffer, &vpl_buffer, &bounds, &box_bounds, &shapes],
+                &[
+                    &view_buffer,
+                    &vpl_buffer,
+                    &bounds,
+                    &box_bounds,
+                    &shapes,
+                    &local_bounds,
+                ],
                 workgroups,
             );
             Ok(())
@@ -113,6 +148,7 @@ impl BoundsPass {
             buffer: bounds,
             box_bounds,
             shapes,
+            locals: local_bounds,
             vpls: vpl_buffer,
             count: vpl_count,
         })
@@ -170,6 +206,8 @@ impl GpuView {
             seed: settings.interleaving.seed,
             box_bounds: u32::from(settings.glossy == GlossyBound::Tight),
             shapes: u32::from(settings.shapes),
+            locals: 0,
+            pad: [0; 3],
         })
     }
 }

@@ -1,8 +1,9 @@
 //! One entry point for every culling strategy (`slc_core::Strategy`) on the GPU:
 //! [`GpuCulling`] holds the pipelines of the passes that implement them (`cull::none`,
-//! `cull::tiled`, `cull::clustered`) and runs the one of a strategy's layout with its
+//! `cull::tiled`, `cull::clustered`, `cull::binned`) and runs the one of a strategy's layout with its
 //! glossy bound; [`GpuCulling::culler`] binds one strategy as a `slc_core::Culler` whose lists
 //! stay on the GPU for `shade::lists`.
+pub mod binned;
 pub mod bounds;
 pub mod clustered;
 pub mod frame;
@@ -16,6 +17,7 @@ pub mod room;
 pub mod tight;
 pub mod tiled;
 
+use crate::cull::binned::BinnedCuller;
 use crate::cull::clustered::ClusteredCuller;
 use crate::cull::frame::CullFrame;
 use crate::cull::list_passes::{PreparedTiles, TileLayout};
@@ -73,6 +75,7 @@ pub struct GpuCulling {
     none: NoneCuller,
     tiled: TiledCuller,
     clustered: ClusteredCuller,
+    binned: BinnedCuller,
     splatter: Splatter,
     rasterizer: ClusterRasterizer,
 }
@@ -83,6 +86,7 @@ impl GpuCulling {
             none: NoneCuller::new(ctx)?,
             tiled: TiledCuller::new(ctx)?,
             clustered: ClusteredCuller::new(ctx)?,
+            binned: BinnedCuller::new(ctx)?,
             splatter: Splatter::new(ctx)?,
             rasterizer: ClusterRasterizer::new(ctx)?,
         })
@@ -127,13 +131,14 @@ impl GpuCulling {
         Ok(out)
     }
 
-    /// Sets the room the list cullers (tiled lists, clustered, the tight refinement) and
+    /// Sets the room the list cullers (tiled lists, clustered, the tight refinement, binned) and
     /// the raster baselines' node buffers leave for the next frames' lists, which grows
     /// again where a frame needs more (`cull::room`): to preallocate for a known scene, or to
     /// exercise culling again.
     pub fn set_list_room(&self, entries: u32) {
         self.tiled.set_list_room(entries);
         self.clustered.set_list_room(entries);
+        self.binned.set_list_room(entries);
         self.rasterizer.set_list_room(entries);
         self.splatter.set_list_room(entries);
     }
@@ -141,7 +146,8 @@ impl GpuCulling {
 
 /// Culls by `strategy`: [`ListCulling::cull`] gives lists equal to the CPU
 /// strategy's per pixel (up to f32-versus-f64 decisions at bound and slice boundaries;
-/// the tight strategies' f32 bound keeps up to 1% more entries). Splatting takes the
+/// the tight strategies' f32 bound keeps up to 1% more entries, `binned`'s f32 per-pixel test
+/// a few percent more with the sharpest lobes, `cull::binned`). Splatting takes the
 /// uploaded samples to lie on the pixel centres' rays ([`CullFrame::upload`]): a G-buffer
 /// jittered per pixel would be splatted along other rays.
 impl ListCulling for GpuCulling {
@@ -166,9 +172,7 @@ impl ListCulling for GpuCulling {
                 let lists = self.prepare_frame(ctx, frame, strategy)?;
                 self.frame_lists(ctx, frame, &lists)
             }
-            (Layout::Binned, _) => Err(GpuError::Input(format!(
-                "culling strategy '{strategy}' has no GPU twin yet; render with --backend cpu"
-            ))),
+            (Layout::Binned, _) => self.binned.cull_frame(ctx, frame),
         }
     }
 }
@@ -176,7 +180,7 @@ impl ListCulling for GpuCulling {
 /// What a frame's culling step leaves for its shading step (`GpuRenderer`): the frusta of a
 /// tiled strategy, culled and shaded in one pass (`shade::tiled`, the paper's Fig. 2),
 /// the bounds splatting draws (`cull::raster::splat`), the rasterized clusters (`cull::raster::clusters`),
-/// or the lists of the others (clustered, tight, unculled) and their strategy, shaded by
+/// or the lists of the others (clustered, tight, binned, unculled) and their strategy, shaded by
 /// `shade::lists` (replaced by complete ones where they outgrew their buffer,
 /// [`GpuCulling::use_lists`]).
 pub enum Culled {

@@ -34,8 +34,11 @@ pub struct GpuView {
     pub box_bounds: u32,
     /// 1 where each VPL's `GpuBoundShape` is written too (the raster baselines), else 0.
     pub shapes: u32,
+    /// 1 where each VPL's [`GpuLocalBound`] is written too (the binned strategy), else 0.
+    pub locals: u32,
+    pub pad: [u32; 3],
 }
-const _: () = assert!(std::mem::size_of::<GpuView>() == 96);
+const _: () = assert!(std::mem::size_of::<GpuView>() == 112);
 /// Largest interleaving factor K (as `slc_cull`): K² subregions fit easily in u32.
 pub const MAX_K: u32 = 1024;
 /// [`slc_cull::BOUND_SLACK`] in f32: radii and semi-axes grow by this relative amount so f32
@@ -66,6 +69,19 @@ pub struct GpuBound {
     pub pad: u32,
 }
 const _: () = assert!(std::mem::size_of::<GpuBound>() == 80);
+/// One VPL's bound in world axes relative to its position q, as `bounds.wesl` forms it (the
+/// sphere of section 6 or the GGX spheroid of eq. 12-15, grown by [`BOUND_SLACK`]): the
+/// `binned` strategy tests each pixel's offset x − q against it, as the shader forms that
+/// offset (`cull::binned`). Keep in sync with `LocalBound` in `bounds.wesl`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
+pub struct GpuLocalBound {
+    /// The centre c − q (xyz) and the semi-axis along the axis (w; 0: no bound).
+    pub center_along: [f32; 4],
+    /// The unit axis (xyz: ω_u of eq. 14 for a spheroid) and the semi-axis across it (w).
+    pub axis_across: [f32; 4],
+}
+const _: () = assert!(std::mem::size_of::<GpuLocalBound>() == 32);
 /// Interleaved-subregion tiles and the culling view for the tile passes. Keep in sync with
 /// `CullParams` in `tile_depth.wesl` and `tiled_cull.wesl`.
 ///
@@ -202,6 +218,11 @@ mod tests {
         let cases = [
             (crate::cull::bounds::SOURCE, "View", size_of::<GpuView>()),
             (crate::cull::bounds::SOURCE, "Bound", size_of::<GpuBound>()),
+            (
+                crate::cull::bounds::SOURCE,
+                "LocalBound",
+                size_of::<GpuLocalBound>(),
+            ),
             (
                 crate::cull::bounds::SOURCE,
                 "BoxBound",

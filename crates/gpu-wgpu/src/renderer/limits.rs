@@ -7,7 +7,7 @@ use crate::frame::light::records::GpuRsmTexel;
 use crate::frame::raster::records::GpuSample;
 use crate::renderer::GpuRenderer;
 use crate::vpl::records::GpuVpl;
-use slc_core::frame::{LobeSelection, RenderError, RenderSettings};
+use slc_core::frame::{RenderError, RenderSettings};
 use slc_core::Capabilities;
 use std::mem::size_of;
 
@@ -15,13 +15,11 @@ use std::mem::size_of;
 /// (the least any scene with a light has) exceed one storage binding.
 pub fn check_frame_size(ctx: &GpuContext, settings: &RenderSettings) -> Result<(), RenderError> {
     let limit = ctx.limits.max_storage_buffer_binding_size;
-    let lobes: u64 = match settings.lobes {
-        LobeSelection::Both => 2,
-        LobeSelection::Diffuse | LobeSelection::Glossy => 1,
-    };
+    // VPL generation leaves room for both lobes of every texel whatever `--lobes` selects
+    // (`vpl::generate`: two records per texel).
     let texels = u64::from(settings.rsm_resolution).pow(2);
     let pixels = u64::from(settings.width) * u64::from(settings.height);
-    let per_texel = (size_of::<GpuRsmTexel>() as u64).max(lobes * size_of::<GpuVpl>() as u64);
+    let per_texel = (size_of::<GpuRsmTexel>() as u64).max(2 * size_of::<GpuVpl>() as u64);
     let per_pixel = size_of::<GpuSample>() as u64;
     let refuse = |what: String| {
         Err(RenderError::Unsupported {

@@ -238,7 +238,7 @@ impl GpuRenderer {
 
     /// What the backend has on an adapter with every feature it uses
     /// ([`Renderer::capabilities`] says what it has on its own): no shadow rays between VPLs
-    /// and pixels, no references, no sampled VPLs; `binned` has no GPU twin yet (issue 42).
+    /// and pixels, no references, no sampled VPLs.
     pub const CAPABILITIES: Capabilities = Capabilities {
         vpl_visibility: false,
         vsgl_visibility: true,
@@ -246,7 +246,6 @@ impl GpuRenderer {
         sampled_vpls: false,
         tight_culling: true,
         raster_culling: true,
-        binned_culling: false,
     };
 }
 

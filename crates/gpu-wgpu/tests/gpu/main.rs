@@ -3,6 +3,7 @@
 //! They need a wgpu adapter (CI: Mesa's lavapipe, installed by `.ci/run`). Without one,
 //! each test fails when the `CI` environment variable is set, and otherwise prints a notice
 //! and returns (see [`common::gpu`]).
+mod binned;
 mod bounds;
 mod clustered;
 mod common;

@@ -27,6 +27,7 @@ use slc_cpu_ref::prepare;
 use slc_cpu_ref::Tracer;
 use slc_gpu_wgpu::cull::frame::CullFrame;
 use slc_gpu_wgpu::cull::lists::read_lists;
+use slc_gpu_wgpu::cull::room::settled;
 use slc_gpu_wgpu::cull::GpuCulling;
 use slc_gpu_wgpu::cull::ListCulling;
 use slc_gpu_wgpu::frame::raster::gbuffer::GbufferPass;
@@ -361,19 +362,15 @@ fn culling_and_shading_read_the_gpu_gbuffer_in_place() {
         delta,
         interleaving,
     };
-    // Every strategy: the tiled, clustered and unculled passes all read positions.
+    // Every strategy: the tiled, clustered, binned and unculled passes all read positions.
+    // Settled (culled again where they outgrew their room: binned's per-pixel lists do here).
     for strategy in slc_core::Strategy::ALL {
         let name = strategy.name();
         let frame = CullFrame::upload(&ctx, &input).unwrap();
-        let uploaded = culler.cull_frame(&ctx, &frame, strategy).unwrap();
+        let uploaded = settled(&ctx, || culler.cull_frame(&ctx, &frame, strategy)).unwrap();
         let want = crate::common::shade_gpu_lists(&ctx, &shader, &input, &uploaded).unwrap();
-        let lists = culler
-            .cull_frame(
-                &ctx,
-                &CullFrame::on_gpu(&gbuffer, &vpls, delta, interleaving),
-                strategy,
-            )
-            .unwrap();
+        let on_gpu = CullFrame::on_gpu(&gbuffer, &vpls, delta, interleaving);
+        let lists = settled(&ctx, || culler.cull_frame(&ctx, &on_gpu, strategy)).unwrap();
         assert_eq!(lists.entries, uploaded.entries, "{name}");
         assert_eq!(
             read_lists(&ctx, &lists).unwrap(),

@@ -72,9 +72,7 @@ fn stochastic_frames_read_back_their_images_only() {
     let scene = builtin("default").unwrap();
     let image = 64 * 48 * 3 * 4;
     let one_pass = [Strategy::Sphere, Strategy::Ellipsoid];
-    // Not the CPU's `binned` (no GPU twin yet, issue 42).
     let runs = Strategy::every()
-        .filter(|s| !Strategy::CPU_ONLY.contains(s))
         .map(|s| (s, true))
         .chain(one_pass.map(|s| (s, false)));
     for (strategy, one_pass) in runs {
