@@ -398,6 +398,10 @@ fn exr_mean(p: &std::path::Path) -> [f64; 3] {
     })
 }
 
+/// The VSGL frame the GPU and the CPU render in the VSGL agreement tests.
+const VSGL_FRAME: &str =
+    "render --shader vsgl --vsgls 256 --width 48 --height 32 --rsm 16 --seed 3";
+
 #[test]
 fn gpu_vsgl_render_agrees_with_the_cpu_vsgl_render() {
     /// Relative difference of the indirect images' means allowed between the GPU frame
@@ -412,29 +416,14 @@ fn gpu_vsgl_render_agrees_with_the_cpu_vsgl_render() {
     if !gpu_available() {
         return;
     }
-    let frame = [
-        "render", "--shader", "vsgl", "--vsgls", "256", "--width", "48", "--height", "32", "--rsm",
-        "16", "--seed", "3",
-    ];
     for importance in ["flux", "bidirectional"] {
         let (cpu, gpu) = (
             out_dir(&format!("render-vsgl-cpu-{importance}")),
             out_dir(&format!("render-vsgl-gpu-{importance}")),
         );
         for (backend, out) in [("cpu", &cpu), ("gpu", &gpu)] {
-            let o = slc()
-                .args(frame)
-                .args([
-                    "--vsgl-importance",
-                    importance,
-                    "--backend",
-                    backend,
-                    "--out",
-                ])
-                .arg(out)
-                .output()
-                .unwrap();
-            assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+            let args = format!("{VSGL_FRAME} --vsgl-importance {importance} --backend {backend}");
+            run_ok(&args, out);
         }
         let report: serde_json::Value = read_report(&gpu);
         assert_eq!(report["backend"], "gpu", "{report}");
@@ -489,25 +478,14 @@ fn gpu_vsgl_render_with_visibility_uses_imperfect_shadow_maps() {
     if !gpu_available() {
         return;
     }
-    let frame = [
-        "render", "--shader", "vsgl", "--vsgls", "256", "--width", "48", "--height", "32", "--rsm",
-        "16", "--seed", "3",
-    ];
     let runs = [
         ("cpu", true, out_dir("render-vsgl-vis-cpu")),
         ("gpu", true, out_dir("render-vsgl-vis-gpu")),
         ("gpu", false, out_dir("render-vsgl-novis-gpu")),
     ];
     for (backend, visibility, out) in &runs {
-        let o = slc()
-            .args(frame)
-            .args(["--backend", backend])
-            .args(visibility.then_some("--visibility"))
-            .arg("--out")
-            .arg(out)
-            .output()
-            .unwrap();
-        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        let with = if *visibility { " --visibility" } else { "" };
+        run_ok(&format!("{VSGL_FRAME} --backend {backend}{with}"), out);
     }
     let report: serde_json::Value = read_report(&runs[1].2);
     assert_eq!(report["backend"], "gpu", "{report}");

@@ -6,8 +6,8 @@ use slc_bounds::{scalar_intensity, Brdf, Fresnel, StochasticParams};
 use slc_core::frame::LobeSelection;
 use slc_core::Strategy;
 use slc_core::{
-    builtin, load_scene, Camera, CullInput, GBuffer, GSample, Interleaving, Light, LightLists,
-    Material, MaterialModel, Scene, Vpl, VplLobe, NO_LIST,
+    builtin, load_scene, Camera, CullInput, GBuffer, GSample, Interleaving, LightLists, Material,
+    MaterialModel, Scene, Vpl, VplLobe, NO_LIST,
 };
 use slc_cpu_ref::gbuffer::{trace_gbuffer, PixelSample};
 use slc_cpu_ref::rsm::{trace_rsm, TexelSample};
@@ -16,6 +16,10 @@ use slc_cpu_ref::Tracer;
 use slc_cull::culler;
 use slc_cull::metrics::{measure_all, CullMetrics};
 use std::f64::consts::PI;
+
+#[path = "../../../../tests/fixtures/scenes.rs"]
+mod scenes;
+pub use scenes::sponza;
 
 /// A small deterministic generator (xorshift64*), uniform floats in [0, 1).
 pub struct Rng(u64);
@@ -426,37 +430,6 @@ pub fn anisotropy_scene() -> (Scene, Camera) {
     let scene = load_scene(path).unwrap_or_else(|e| panic!("{path}: {e}"));
     assert!(scene.materials.iter().any(|m| m.anisotropy.is_some()));
     let camera = scene.camera_or_default();
-    (scene, camera)
-}
-
-/// Dabrovic Sponza from `shared/scenes` with what the OBJ lacks: a point light of 60 W/sr in
-/// the middle of the atrium, a camera inside it looking along its long (x) axis, and a
-/// glossy layer on every material (F0 0.04 to 0.9, α from 1e-3 to 1 by material), so both
-/// lobes of VPL are exercised.
-pub fn sponza() -> (Scene, Camera) {
-    let path = concat!(
-        env!("CARGO_MANIFEST_DIR"),
-        "/../../../shared/scenes/sponza/sponza.obj"
-    );
-    let mut scene = load_scene(path).unwrap_or_else(|e| panic!("{path}: {e}"));
-    scene.lights = vec![Light::Point {
-        position: Vec3::new(0.0, 6.0, 0.0),
-        intensity: Vec3::splat(60.0),
-    }];
-    let alphas = [1e-3, 0.02, 0.1, 0.3, 1.0];
-    for (i, m) in scene.materials.iter_mut().enumerate() {
-        if let MaterialModel::Direct { f0, alpha, .. } = &mut m.model {
-            *f0 = Vec3::splat([0.04, 0.3, 0.9][i % 3]);
-            *alpha = alphas[i % alphas.len()];
-        }
-    }
-    let camera = Camera::look_at(
-        Vec3::new(-12.0, 2.5, 0.3),
-        Vec3::new(10.0, 4.0, -0.3),
-        Vec3::Y,
-        60f32.to_radians(),
-    )
-    .unwrap();
     (scene, camera)
 }
 

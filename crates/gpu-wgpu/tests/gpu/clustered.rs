@@ -9,7 +9,7 @@
 //! t = ln(z / near) 32 / ln(far / near) lies within [`SLICE_BORDER`] of a slice boundary
 //! and the GPU put it in the neighbouring slice. Every pixel's slice is compared with the
 //! CPU's; any other slice difference fails.
-use crate::common::gpu;
+use crate::common::{cull_input, gpu};
 use crate::tiled::{cpu_depth, cpu_tile, differences, frame, grown_range, Frustum};
 use slc_core::{builtin, CullInput, GBuffer, Interleaving, LightLists, Vpl, NO_LIST, TILE_SIZE};
 use slc_cull::{CullView, GlossyBound};
@@ -201,13 +201,7 @@ fn clustered_lists_match_the_cpu() {
         let gbuffer = if sky { with_sky(&gbuffer) } else { gbuffer };
         let vpls: Vec<Vpl> = if no_vpls { Vec::new() } else { vpls };
         for delta in [1e-3f32, 1e-2] {
-            let input = CullInput {
-                gbuffer: &gbuffer,
-                camera: &camera,
-                vpls: &vpls,
-                delta,
-                interleaving: Interleaving { k, seed: 3 },
-            };
+            let input = cull_input(&gbuffer, &camera, &vpls, delta, (k, 3));
             for name in [
                 "clustered",
                 "clustered-sphere",
@@ -284,13 +278,7 @@ fn unculled_lists_match_the_cpu() {
         let (gbuffer, vpls) = frame(&scene, &camera, size, 16);
         let gbuffer = if sky { with_sky(&gbuffer) } else { gbuffer };
         let vpls: Vec<Vpl> = if no_vpls { Vec::new() } else { vpls };
-        let input = CullInput {
-            gbuffer: &gbuffer,
-            camera: &camera,
-            vpls: &vpls,
-            delta: 1e-3,
-            interleaving: Interleaving { k, seed: 9 },
-        };
+        let input = cull_input(&gbuffer, &camera, &vpls, 1e-3, (k, 9));
         let cpu = slc_cull::culler(slc_core::Strategy::None)
             .cull(&input)
             .unwrap();
@@ -321,13 +309,7 @@ fn clustered_and_unculled_reject_bad_input() {
     let scene = builtin("default").unwrap();
     let camera = scene.camera_or_default();
     let (gbuffer, vpls) = frame(&scene, &camera, (16, 16), 4);
-    let input = CullInput {
-        gbuffer: &gbuffer,
-        camera: &camera,
-        vpls: &vpls,
-        delta: 1e-3,
-        interleaving: Interleaving { k: 1, seed: 0 },
-    };
+    let input = cull_input(&gbuffer, &camera, &vpls, 1e-3, (1, 0));
     let k0 = CullInput {
         interleaving: Interleaving { k: 0, seed: 0 },
         ..input

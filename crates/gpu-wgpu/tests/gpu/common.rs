@@ -2,7 +2,7 @@
 //! the renderer tests compare strategies on.
 use slc_core::frame::{LobeSelection, Method, RenderSettings, Stochastic};
 use slc_core::Strategy;
-use slc_core::{CullInput, Image, Interleaving};
+use slc_core::{Camera, CullInput, GBuffer, Image, Interleaving, Vpl};
 use slc_gpu_wgpu::cull::frame::FrameVpls;
 use slc_gpu_wgpu::cull::lists::GpuLightLists;
 use slc_gpu_wgpu::frame::raster::gbuffer::GpuGBuffer;
@@ -47,6 +47,24 @@ fn opened(ctx: Result<GpuContext, GpuError>) -> Result<Option<GpuContext>, GpuEr
             Ok(None)
         }
         Err(e) => Err(e),
+    }
+}
+
+/// The culling input of `gbuffer` seen from `camera` with `vpls`, δ of eq. (2) and the
+/// interleaving `(k, seed)`.
+pub fn cull_input<'a>(
+    gbuffer: &'a GBuffer,
+    camera: &'a Camera,
+    vpls: &'a [Vpl],
+    delta: f32,
+    (k, seed): (u32, u32),
+) -> CullInput<'a> {
+    CullInput {
+        gbuffer,
+        camera,
+        vpls,
+        delta,
+        interleaving: Interleaving { k, seed },
     }
 }
 

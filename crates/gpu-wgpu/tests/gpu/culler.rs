@@ -1,6 +1,6 @@
 //! `GpuCulling`: every strategy of `slc_core::Strategy::ALL`, also bound as a
 //! `slc_core::Culler`, and its lists left on the GPU read by the shading pass.
-use crate::common::gpu;
+use crate::common::{cull_input, gpu};
 use crate::tiled::frame;
 use slc_core::{builtin, CullInput, Culler, GlossyBound, Interleaving, Strategy};
 use slc_gpu_wgpu::cull::frame::CullFrame;
@@ -93,13 +93,7 @@ fn shading_reads_every_strategys_lists_on_the_gpu() {
     let camera = scene.camera_or_default();
     let (gbuffer, vpls) = frame(&scene, &camera, (40, 23), 16);
     for k in [1, 3] {
-        let input = CullInput {
-            gbuffer: &gbuffer,
-            camera: &camera,
-            vpls: &vpls,
-            delta: 1e-3,
-            interleaving: Interleaving { k, seed: 2 },
-        };
+        let input = cull_input(&gbuffer, &camera, &vpls, 1e-3, (k, 2));
         for strategy in Strategy::ALL {
             let name = strategy.name();
             let frame = CullFrame::upload(&ctx, &input).unwrap();

@@ -4,11 +4,11 @@
 //! average of its taps, so a relative bound holds down to zero, where both are exactly 0);
 //! pixels without a sample must keep their value exactly. On the default scene's noisy
 //! stochastic image (interleaved sampling, K = 4) and on synthetic frames of extremes.
-use crate::common::gpu;
+use crate::common::{cull_input, gpu};
 use crate::tiled::frame;
 use glam::Vec3;
 use slc_bounds::{Brdf, Fresnel};
-use slc_core::{builtin, Camera, CullInput, GBuffer, GSample, Image, Interleaving};
+use slc_core::{builtin, Camera, GBuffer, GSample, Image};
 use slc_cpu_ref::denoise::{cross_bilateral, BilateralParams};
 use slc_cpu_ref::vpl_shading::shade_lists;
 use slc_cpu_ref::Tracer;
@@ -107,13 +107,7 @@ fn filter_matches_the_cpu_on_the_default_scene() {
     let tracer = Tracer::new(&scene);
     for (size, k) in [((96, 64), 4), ((53, 31), 3)] {
         let (gbuffer, vpls) = frame(&scene, &camera, size, 16);
-        let input = CullInput {
-            gbuffer: &gbuffer,
-            camera: &camera,
-            vpls: &vpls,
-            delta: 1e-3,
-            interleaving: Interleaving { k, seed: 1 },
-        };
+        let input = cull_input(&gbuffer, &camera, &vpls, 1e-3, (k, 1));
         let lists = slc_cull::culler(slc_core::Strategy::None)
             .cull(&input)
             .unwrap();

@@ -2,9 +2,9 @@
 //! their durations are plausible against the wall clock, and nothing is recorded outside a
 //! profile. The first test runs compute passes only, where lavapipe's timestamps do measure
 //! execution; the second shows why they are not trusted on CPU adapters after a render pass.
-use crate::common::{gpu, own_gpu};
+use crate::common::{cull_input, gpu, own_gpu};
 use crate::tiled::{frame, frame_sampled};
-use slc_core::{builtin, CullInput, Interleaving, Strategy};
+use slc_core::{builtin, Interleaving, Strategy};
 use slc_cpu_ref::gbuffer::PixelSample;
 use slc_cull::GlossyBound;
 use slc_gpu_wgpu::cull::frame::CullFrame;
@@ -26,13 +26,7 @@ fn stages_sum_their_passes_within_the_wall_clock() {
     let scene = builtin("default").unwrap();
     let camera = scene.camera_or_default();
     let (gbuffer, vpls) = frame(&scene, &camera, (160, 120), 32);
-    let input = CullInput {
-        gbuffer: &gbuffer,
-        camera: &camera,
-        vpls: &vpls,
-        delta: 1e-3,
-        interleaving: Interleaving { k: 2, seed: 3 },
-    };
+    let input = cull_input(&gbuffer, &camera, &vpls, 1e-3, (2, 3));
     // Warm up (pipeline caches, first allocations) before the timed run.
     let lists = culler
         .cull_on_gpu(&ctx, &input, GlossyBound::Ellipsoid)
@@ -167,13 +161,7 @@ fn raster_baseline_draws_are_timed() {
     let scene = builtin("default").unwrap();
     let camera = scene.camera_or_default();
     let (gbuffer, vpls) = frame_sampled(&scene, &camera, (64, 48), 16, PixelSample::Centre);
-    let input = CullInput {
-        gbuffer: &gbuffer,
-        camera: &camera,
-        vpls: &vpls,
-        delta: 1e-3,
-        interleaving: Interleaving { k: 2, seed: 1 },
-    };
+    let input = cull_input(&gbuffer, &camera, &vpls, 1e-3, (2, 1));
     if !ctx.start_profiling() {
         eprintln!("notice: {} has no timestamp queries", ctx.adapter_name);
         return;

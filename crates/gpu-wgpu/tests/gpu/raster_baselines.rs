@@ -4,7 +4,7 @@
 //! the camera, α 1e-4…1, ξ near 0 and 1, δ over twelve decades), at several K; they cull
 //! (fewer pairs than no culling); and the renderer's images equal the tiled ellipsoid's up to
 //! f32 rounding of the sums' order, with the same true positives.
-use crate::common::{gpu, small_frame};
+use crate::common::{cull_input, gpu, small_frame};
 use crate::tight::extreme;
 use crate::tiled::frame_sampled;
 use slc_core::render::render;
@@ -191,13 +191,7 @@ fn raster_baselines_at_odd_sizes_and_without_vpls() {
         }
     }
     // One draw per subregion: K beyond 64 is refused, not drawn 4,225 times.
-    let input = CullInput {
-        gbuffer: &gbuffer,
-        camera: &camera,
-        vpls: &vpls,
-        delta: 1e-3,
-        interleaving: Interleaving { k: 65, seed: 1 },
-    };
+    let input = cull_input(&gbuffer, &camera, &vpls, 1e-3, (65, 1));
     for strategy in Strategy::RASTER {
         match culler.cull(&ctx, &input, strategy) {
             Err(e) => assert!(e.to_string().contains("exceeds 64"), "{strategy}: {e}"),

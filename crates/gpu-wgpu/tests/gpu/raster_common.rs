@@ -12,7 +12,11 @@
 //! the same surface. Two coplanar triangles of one material are not an edge (either choice
 //! gives the same sample).
 use glam::Vec3;
-use slc_core::{load_scene, Camera, GBuffer, GSample, Light, MaterialModel, Scene};
+use slc_core::{load_scene, Camera, GBuffer, GSample, Light, Scene};
+
+#[path = "../../../../tests/fixtures/scenes.rs"]
+mod scenes;
+pub use scenes::sponza;
 
 /// The built-in default scene (`cornell-glossy`) and its camera.
 pub fn default_scene() -> (Scene, Camera) {
@@ -52,36 +56,6 @@ pub fn anisotropy() -> (Scene, Camera) {
 fn with_its_camera(path: &str) -> (Scene, Camera) {
     let scene = load_scene(path).unwrap_or_else(|e| panic!("{path}: {e}"));
     let camera = scene.camera_or_default();
-    (scene, camera)
-}
-
-/// Dabrovic Sponza (OBJ + MTL, JPEG diffuse textures) with what the OBJ lacks, as the
-/// culling tests set it up: a point light of 60 W/sr in the atrium, a camera along its long
-/// axis, and a glossy layer on every material (F0 0.04 to 0.9, α 1e-3 to 1 by material).
-pub fn sponza() -> (Scene, Camera) {
-    let path = concat!(
-        env!("CARGO_MANIFEST_DIR"),
-        "/../../../shared/scenes/sponza/sponza.obj"
-    );
-    let mut scene = load_scene(path).unwrap_or_else(|e| panic!("{path}: {e}"));
-    scene.lights = vec![Light::Point {
-        position: Vec3::new(0.0, 6.0, 0.0),
-        intensity: Vec3::splat(60.0),
-    }];
-    let alphas = [1e-3, 0.02, 0.1, 0.3, 1.0];
-    for (i, m) in scene.materials.iter_mut().enumerate() {
-        if let MaterialModel::Direct { f0, alpha, .. } = &mut m.model {
-            *f0 = Vec3::splat([0.04, 0.3, 0.9][i % 3]);
-            *alpha = alphas[i % alphas.len()];
-        }
-    }
-    let camera = Camera::look_at(
-        Vec3::new(-12.0, 2.5, 0.3),
-        Vec3::new(10.0, 4.0, -0.3),
-        Vec3::Y,
-        60f32.to_radians(),
-    )
-    .unwrap();
     (scene, camera)
 }
 

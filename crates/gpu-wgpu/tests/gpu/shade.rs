@@ -20,14 +20,12 @@
 //! form's error. On such a device (any but a software adapter) a pixel of that domain beyond
 //! the tolerance is reported, not failed, within [`F64_DOMAIN_FUSED`] (at most 16 per image);
 //! on lavapipe, as in CI, the tolerance holds there too.
-use crate::common::gpu;
+use crate::common::{cull_input, gpu};
 use crate::tiled::frame;
 use glam::Vec3;
 use slc_bounds::stochastic::{scalar_intensity, StochasticParams};
 use slc_bounds::{Anisotropy, Brdf, Fresnel};
-use slc_core::{
-    builtin, CullInput, GBuffer, GSample, Image, Interleaving, LightLists, Vpl, VplLobe, NO_LIST,
-};
+use slc_core::{builtin, CullInput, GBuffer, GSample, Image, LightLists, Vpl, VplLobe, NO_LIST};
 use slc_cpu_ref::vpl_shading::shade_lists;
 use slc_cpu_ref::Tracer;
 use slc_cull::GlossyBound;
@@ -237,13 +235,7 @@ fn shading_matches_the_cpu() {
     let mut worst = 0.0f32;
     for k in [1, 4] {
         for delta in [1e-3f32, 1e-2] {
-            let input = CullInput {
-                gbuffer: &gbuffer,
-                camera: &camera,
-                vpls: &vpls,
-                delta,
-                interleaving: Interleaving { k, seed: 3 },
-            };
+            let input = cull_input(&gbuffer, &camera, &vpls, delta, (k, 3));
             for name in ["ellipsoid", "none"] {
                 let lists = slc_cull::culler(name.parse().unwrap())
                     .cull(&input)
@@ -266,13 +258,7 @@ fn shading_straight_from_gpu_lists() {
     let scene = builtin("default").unwrap();
     let camera = scene.camera_or_default();
     let (gbuffer, vpls) = frame(&scene, &camera, (72, 50), 16);
-    let input = CullInput {
-        gbuffer: &gbuffer,
-        camera: &camera,
-        vpls: &vpls,
-        delta: 1e-3,
-        interleaving: Interleaving { k: 4, seed: 3 },
-    };
+    let input = cull_input(&gbuffer, &camera, &vpls, 1e-3, (4, 3));
     let on_gpu = culler
         .cull_on_gpu(&ctx, &input, GlossyBound::Ellipsoid)
         .unwrap();
@@ -468,13 +454,7 @@ fn extreme_inputs_match_the_cpu() {
     let (gbuffer, vpls, lists) = extreme_frame();
     for k in [1, 4] {
         for delta in [1e-3f32, 1.0] {
-            let input = CullInput {
-                gbuffer: &gbuffer,
-                camera: &camera,
-                vpls: &vpls,
-                delta,
-                interleaving: Interleaving { k, seed: 3 },
-            };
+            let input = cull_input(&gbuffer, &camera, &vpls, delta, (k, 3));
             check(
                 &ctx,
                 &shader,
@@ -550,13 +530,7 @@ fn tangent_angles_agree_at_negative_zero_normals() {
         indices: vec![0],
         pixel_list: vec![0, 0],
     };
-    let input = CullInput {
-        gbuffer: &gbuffer,
-        camera: &camera,
-        vpls: &vpls,
-        delta: 1e-3,
-        interleaving: Interleaving { k: 1, seed: 0 },
-    };
+    let input = cull_input(&gbuffer, &camera, &vpls, 1e-3, (1, 0));
     check(
         &ctx,
         &shader,
@@ -577,13 +551,7 @@ fn shading_rejects_bad_input() {
     let scene = builtin("default").unwrap();
     let camera = scene.camera_or_default();
     let (gbuffer, vpls, lists) = extreme_frame();
-    let input = CullInput {
-        gbuffer: &gbuffer,
-        camera: &camera,
-        vpls: &vpls,
-        delta: 1e-3,
-        interleaving: Interleaving { k: 1, seed: 0 },
-    };
+    let input = cull_input(&gbuffer, &camera, &vpls, 1e-3, (1, 0));
     let mut bad = lists.clone();
     bad.indices[3] = vpls.len() as u32;
     assert!(matches!(

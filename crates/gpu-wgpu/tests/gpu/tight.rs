@@ -4,7 +4,7 @@
 //! dielectric Fresnel, ξ near 0 and 1, flux and δ over many decades); every refined list is a
 //! subset of the pixel's list of the base strategy; and the lists stay within rounding of
 //! the CPU's.
-use crate::common::gpu;
+use crate::common::{cull_input, gpu};
 use crate::tiled::frame;
 use slc_bounds::{Anisotropy, Fresnel};
 use slc_core::rng::Sequence;
@@ -130,7 +130,8 @@ fn tight_lists_never_miss_a_pair_and_refine_their_base() {
 }
 
 /// A bound that keeps too little is caught: the same lists with δ grown tenfold on the GPU
-/// (every VPL's range shrunk) miss pairs of the true δ, so the test above can fail.
+/// (every VPL's range shrunk) miss pairs of the true δ, so the no-miss tests of the tight
+/// strategies (above) and of `binned` (`binned.rs`) can fail.
 #[test]
 fn a_shrunk_bound_misses_pairs() {
     let Some(ctx) = gpu() else { return };
@@ -145,10 +146,19 @@ fn a_shrunk_bound_misses_pairs() {
         delta,
         interleaving: Interleaving { k: 2, seed: 3 },
     };
-    for (tight, _) in TIGHT {
-        let shrunk = gpu_lists(&ctx, &culler, &input(1e-2), tight);
+    for strategy in TIGHT
+        .map(|(tight, _)| tight)
+        .into_iter()
+        .chain([Strategy::Binned])
+    {
+        let shrunk = gpu_lists(&ctx, &culler, &input(1e-2), strategy);
         let m = slc_cull::metrics::measure(&input(1e-3), &shrunk).unwrap();
-        assert!(m.missed_pairs > 100, "{}: {}", tight.name(), m.missed_pairs);
+        assert!(
+            m.missed_pairs > 100,
+            "{}: {}",
+            strategy.name(),
+            m.missed_pairs
+        );
     }
 }
 
@@ -181,13 +191,7 @@ fn tight_lists_are_within_rounding_of_the_cpu() {
         ("scene", scene_vpls.clone()),
         ("dielectric", dielectric(&scene_vpls)),
     ] {
-        let input = CullInput {
-            gbuffer: &gbuffer,
-            camera: &camera,
-            vpls: &vpls,
-            delta: 1e-3,
-            interleaving: Interleaving { k: 2, seed: 4 },
-        };
+        let input = cull_input(&gbuffer, &camera, &vpls, 1e-3, (2, 4));
         for (tight, _) in TIGHT {
             let name = format!("{} ({label})", tight.name());
             let gpu = gpu_lists(&ctx, &culler, &input, tight);

@@ -2,7 +2,7 @@
 //! VPLs uploaded): every pixel's light list must be the same; any entry that differs is
 //! reported with its pixel, subregion, tile and VPL.
 use crate::bounds::{reference, Reference};
-use crate::common::gpu;
+use crate::common::{cull_input, gpu};
 use glam::{DVec2, DVec3, Vec3};
 use slc_core::frame::LobeSelection;
 use slc_core::{
@@ -232,13 +232,7 @@ fn tiled_lists_match_the_cpu() {
     ] {
         let (gbuffer, vpls) = frame(&scene, &camera, size, rsm);
         for delta in [1e-3f32, 1e-2] {
-            let input = CullInput {
-                gbuffer: &gbuffer,
-                camera: &camera,
-                vpls: &vpls,
-                delta,
-                interleaving: Interleaving { k, seed: 3 },
-            };
+            let input = cull_input(&gbuffer, &camera, &vpls, delta, (k, 3));
             for (name, glossy) in [
                 ("sphere", GlossyBound::Sphere),
                 ("enclosing-sphere", GlossyBound::EnclosingSphere),
@@ -293,13 +287,7 @@ fn tiled_culling_rejects_bad_input() {
     let scene = builtin("default").unwrap();
     let camera = scene.camera_or_default();
     let (gbuffer, vpls) = frame(&scene, &camera, (16, 16), 4);
-    let input = CullInput {
-        gbuffer: &gbuffer,
-        camera: &camera,
-        vpls: &vpls,
-        delta: 1e-3,
-        interleaving: Interleaving { k: 1, seed: 0 },
-    };
+    let input = cull_input(&gbuffer, &camera, &vpls, 1e-3, (1, 0));
     let k0 = CullInput {
         interleaving: Interleaving { k: 0, seed: 0 },
         ..input

@@ -3,7 +3,7 @@
 //! device does not fuse operations differently in the two kernels), for every tiled strategy,
 //! several K and the edge cases (VPLs that reach nothing, no VPL); and the renderer's two
 //! paths (`GpuRenderer::with_one_pass`).
-use crate::common::{gpu, small_frame};
+use crate::common::{cull_input, gpu, small_frame};
 use crate::tiled::frame;
 use slc_core::render::render;
 use slc_core::{builtin, CullInput, GlossyBound, Interleaving, Renderer, Strategy, Vpl};
@@ -114,13 +114,7 @@ fn one_pass_shades_exactly_the_lists() {
             GlossyBound::EnclosingSphere,
             GlossyBound::Ellipsoid,
         ] {
-            let input = CullInput {
-                gbuffer: &gbuffer,
-                camera: &camera,
-                vpls: &vpls,
-                delta: 1e-3,
-                interleaving: Interleaving { k, seed: 6 },
-            };
+            let input = cull_input(&gbuffer, &camera, &vpls, 1e-3, (k, 6));
             let (one, want) = both(&ctx, &input, glossy);
             let lit = want.pixels.iter().filter(|p| p.max_element() > 0.0).count();
             assert!(lit * 2 > want.pixels.len(), "{glossy:?} K {k}: {lit} lit");
