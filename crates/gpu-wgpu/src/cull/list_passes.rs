@@ -2,7 +2,7 @@
 //! the clustered layout): per-VPL bounds, the subregions' VPLs, the scan of list offsets, the
 //! tight refinement, and the room the lists of earlier frames needed. A layout brings its
 //! depth pass (what decides each pixel's list) and its list kernel; [`ListPasses::prepare`]
-//! and [`ListPasses::lists`] run the rest around them.
+//! and `ListPasses::lists` run the rest around them.
 use crate::cull::bounds::{BoundsPass, BoundsSettings, GpuBounds};
 use crate::cull::frame::{check_input, cull_params, tile_grid, CullFrame, CullSizes};
 use crate::cull::lists::{no_lists, GpuLightLists};
@@ -39,7 +39,7 @@ pub trait TileLayout {
         shapes: bool,
     ) -> Result<Option<Self::Prepared>, GpuError>;
 
-    /// The lists of a prepared frame ([`ListPasses::lists`] with the layout's kernel).
+    /// The lists of a prepared frame (`ListPasses::lists` with the layout's kernel).
     fn lists(
         &self,
         ctx: &GpuContext,
@@ -83,7 +83,7 @@ pub struct ListPasses {
 }
 
 /// A culling on a tile grid up to its frusta ([`ListPasses::prepare`]): what the list passes
-/// ([`ListPasses::lists`]), the one-pass shading (`shade::tiled`) and the raster baselines read.
+/// (`ListPasses::lists`), the one-pass shading (`shade::tiled`) and the raster baselines read.
 pub struct PreparedTiles {
     pub bounds: GpuBounds,
     /// The subregions' VPLs in ascending order (`cull::partition`).

@@ -1,6 +1,6 @@
 //! Tiled culling and shading in one pass on the GPU (`tiled_shade.wesl`, the
 //! paper's Fig. 2): after the bounds, partition and tile-depth passes of
-//! [`TiledCuller::prepare`](crate::cull::tiled::TiledCuller::prepare), one workgroup
+//! [`TiledCuller::prepare`](crate::cull::list_passes::TileLayout::prepare), one workgroup
 //! per tile tests its subregion's VPLs 256 at a time against the tile's frusta and shades
 //! each pixel from the hits of its cluster, kept in workgroup memory. No list is counted,
 //! scanned, stored or read back; the image equals `shade::lists` over the tiled culler's lists

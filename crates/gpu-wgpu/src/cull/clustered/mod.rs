@@ -10,7 +10,7 @@
 //! twice (count and write each slice's list, with the offsets from `device::scan` in between).
 //! A slice exists where some pixel falls and is tested with the depth range of its own pixels;
 //! lists ascend in the VPL index. Read back, the result is a [`slc_core::LightLists`] in the CPU's
-//! convention (empty lists dropped); [`ClusteredCuller::cull_on_gpu`] leaves the lists on the
+//! convention (empty lists dropped); [`ListCulling::cull_on_gpu`](crate::cull::ListCulling::cull_on_gpu) leaves the lists on the
 //! GPU for `shade::lists` instead.
 //!
 //! The GPU decides in f32 what the CPU decides in f64 (view depths, slice boundaries, box
@@ -119,7 +119,7 @@ impl TileLayout for ClusteredCuller {
         Ok(tiles.map(|tiles| PreparedClusters { tiles, depth_range }))
     }
 
-    /// The lists of a prepared frame ([`ListPasses::lists`]): one per depth slice, counted
+    /// The lists of a prepared frame (`ListPasses::lists`): one per depth slice, counted
     /// and written by `clustered_cull.wesl`; refined per block for [`GlossyBound::Tight`].
     fn lists(
         &self,

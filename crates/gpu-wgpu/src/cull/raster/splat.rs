@@ -1,6 +1,6 @@
 //! Splatting \[DS06\], the paper's Table 2 baseline (`--culling splatting`): after the tiled
 //! culler's bounds (written as shapes too), partition and tile depth passes
-//! ([`TiledCuller::prepare`](crate::cull::tiled::TiledCuller::prepare), which also check
+//! ([`TiledCuller::prepare`](crate::cull::list_passes::TileLayout::prepare), which also check
 //! the G-buffer), each VPL's bounding mesh (80 triangles around its spheroid or sphere,
 //! `cull::raster::mesh`) is drawn into its interleaved subregion's viewport of a deinterleaved atlas,
 //! one indirect draw per subregion sized on the GPU (`cull::raster`), back faces only and

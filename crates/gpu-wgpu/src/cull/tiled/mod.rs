@@ -104,7 +104,7 @@ impl TileLayout for TiledCuller {
         )
     }
 
-    /// The lists of a prepared frame ([`ListPasses::lists`]): two per tile, counted and
+    /// The lists of a prepared frame (`ListPasses::lists`): two per tile, counted and
     /// written by `tiled_cull.wesl`; refined per block for [`GlossyBound::Tight`] (which
     /// rewrites the frame's pixel lists in place: `tiles` is spent then).
     fn lists(
