@@ -7,7 +7,7 @@
 //! GPU tests in f32 with a limit above its rounding, the CPU in f64); shading the lists gives
 //! the unculled estimate bit for bit; frames without pixels or VPLs give empty lists.
 use crate::common::{cull_input, gpu, shade_gpu_lists};
-use crate::tight::extreme;
+use crate::tight::{extra, extreme};
 use crate::tiled::frame;
 use slc_core::{builtin, CullInput, GBuffer, Interleaving, LightLists, Strategy, Vpl, NO_LIST};
 use slc_cull::metrics::measure;
@@ -16,19 +16,6 @@ use slc_gpu_wgpu::cull::room::settled;
 use slc_gpu_wgpu::cull::{GpuCulling, ListCulling};
 use slc_gpu_wgpu::shade::lists::ShadePass;
 use slc_gpu_wgpu::GpuError;
-
-/// Entries of `a` not in `b`, over every pixel.
-fn extra(a: &LightLists, b: &LightLists) -> usize {
-    (0..a.pixel_list.len())
-        .map(|p| {
-            let theirs = b.for_pixel(p);
-            a.for_pixel(p)
-                .iter()
-                .filter(|v| !theirs.contains(v))
-                .count()
-        })
-        .sum()
-}
 
 /// Every list ascends in the VPL index (the CPU's order; no atomics decide it).
 fn ascending(lists: &LightLists) -> bool {

@@ -11,14 +11,14 @@
 //! CPU's; any other slice difference fails.
 use crate::common::{cull_input, gpu};
 use crate::tiled::{cpu_depth, cpu_tile, differences, frame, grown_range, Frustum};
-use slc_core::{builtin, CullInput, GBuffer, Interleaving, LightLists, Vpl, NO_LIST, TILE_SIZE};
+use slc_core::{builtin, CullInput, GBuffer, LightLists, Vpl, NO_LIST, TILE_SIZE};
 use slc_cull::{CullView, GlossyBound};
 use slc_gpu_wgpu::cull::clustered::records::CLUSTER_SLICES;
 use slc_gpu_wgpu::cull::clustered::ClusteredCuller;
 use slc_gpu_wgpu::cull::lists::read_lists;
 use slc_gpu_wgpu::cull::ListCulling;
 use slc_gpu_wgpu::device::buffers::read_back;
-use slc_gpu_wgpu::{GpuContext, GpuError};
+use slc_gpu_wgpu::GpuContext;
 use std::collections::HashSet;
 
 /// Distance of the CPU's f64 slice key from a slice boundary (in slices) within which the
@@ -298,62 +298,4 @@ fn unculled_lists_match_the_cpu() {
         );
         assert_eq!(gpu.pixel_list.len(), cpu.pixel_list.len());
     }
-}
-
-/// Bad input is an error, as on the CPU.
-#[test]
-fn clustered_and_unculled_reject_bad_input() {
-    let Some(ctx) = gpu() else { return };
-    let clustered = ClusteredCuller::new(&ctx).unwrap();
-    let none = slc_gpu_wgpu::cull::none::NoneCuller::new(&ctx).unwrap();
-    let scene = builtin("default").unwrap();
-    let camera = scene.camera_or_default();
-    let (gbuffer, vpls) = frame(&scene, &camera, (16, 16), 4);
-    let input = cull_input(&gbuffer, &camera, &vpls, 1e-3, (1, 0));
-    let k0 = CullInput {
-        interleaving: Interleaving { k: 0, seed: 0 },
-        ..input
-    };
-    assert!(matches!(
-        clustered.cull(&ctx, &k0, GlossyBound::Ellipsoid),
-        Err(GpuError::Input(_))
-    ));
-    assert!(matches!(none.cull(&ctx, &k0), Err(GpuError::Input(_))));
-    let mut short = gbuffer.clone();
-    short.samples.pop();
-    let bad = CullInput {
-        gbuffer: &short,
-        ..input
-    };
-    assert!(matches!(
-        clustered.cull(&ctx, &bad, GlossyBound::Sphere),
-        Err(GpuError::Input(_))
-    ));
-    assert!(matches!(none.cull(&ctx, &bad), Err(GpuError::Input(_))));
-    // A sample behind the camera.
-    let mut behind = gbuffer.clone();
-    behind.samples[37].as_mut().unwrap().position = camera.position - camera.forward;
-    let bad = CullInput {
-        gbuffer: &behind,
-        ..input
-    };
-    assert!(slc_cull::culler(slc_core::Strategy::Clustered)
-        .cull(&bad)
-        .is_err());
-    let e = clustered
-        .cull(&ctx, &bad, GlossyBound::Ellipsoid)
-        .unwrap_err();
-    assert!(e.to_string().contains("pixel (5, 2)"), "{e}");
-    // An invalid VPL (ξ outside (0, 1)): an error on both backends.
-    let mut odd = vpls.clone();
-    odd[3].xi = 1.5;
-    let bad = CullInput {
-        vpls: &odd,
-        ..input
-    };
-    assert!(slc_cull::culler(slc_core::Strategy::ClusteredSphere)
-        .cull(&bad)
-        .is_err());
-    let e = clustered.cull(&ctx, &bad, GlossyBound::Sphere).unwrap_err();
-    assert!(e.to_string().contains("VPL 3"), "{e}");
 }

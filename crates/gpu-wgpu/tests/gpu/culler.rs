@@ -2,7 +2,8 @@
 //! `slc_core::Culler`, and its lists left on the GPU read by the shading pass.
 use crate::common::{cull_input, gpu};
 use crate::tiled::frame;
-use slc_core::{builtin, CullInput, Culler, GlossyBound, Interleaving, Strategy};
+use glam::Vec3;
+use slc_core::{builtin, CullInput, Culler, GlossyBound, Interleaving, Strategy, VplLobe};
 use slc_gpu_wgpu::cull::frame::CullFrame;
 use slc_gpu_wgpu::cull::lists::read_lists;
 use slc_gpu_wgpu::cull::GpuCulling;
@@ -157,5 +158,87 @@ fn outgrown_lists_are_refused_or_culled_again() {
         // Learnt: the next frame's lists fit at once.
         let next = culler.cull_frame(&ctx, &frame, strategy).unwrap();
         assert_eq!(read_lists(&ctx, &next).unwrap(), roomy, "{strategy}");
+    }
+}
+
+/// Bad input is an error on every list layout, as on the CPU: K = 0 and a G-buffer of the
+/// wrong size (also unculled), a sample behind the camera, a VPL with ξ outside (0, 1) and a
+/// bound beyond f32 (r/α of a huge flux at δ near the smallest normal f32), each naming
+/// the pixel or the VPL.
+#[test]
+fn list_cullers_reject_bad_input() {
+    let Some(ctx) = gpu() else { return };
+    let culler = GpuCulling::new(&ctx).unwrap();
+    let (scene, camera) = default_scene();
+    let (gbuffer, vpls) = frame(&scene, &camera, (16, 16), 4);
+    let input = cull_input(&gbuffer, &camera, &vpls, 1e-3, (1, 0));
+    let mut short = gbuffer.clone();
+    short.samples.pop();
+    let mut behind = gbuffer.clone();
+    behind.samples[37].as_mut().unwrap().position = camera.position - camera.forward;
+    let mut odd = vpls.clone();
+    odd[3].xi = 1.5;
+    let mut huge = vpls.clone();
+    let glossy = huge.iter().position(|v| v.lobe == VplLobe::Glossy).unwrap();
+    huge[glossy].flux = Vec3::splat(3e38);
+    huge[glossy].brdf.alpha = 1e-3;
+    let k0 = Interleaving { k: 0, seed: 0 };
+    let of_any_input = [
+        CullInput {
+            interleaving: k0,
+            ..input
+        },
+        CullInput {
+            gbuffer: &short,
+            ..input
+        },
+    ];
+    let bounded = [
+        Strategy::Sphere,
+        Strategy::Ellipsoid,
+        Strategy::ClusteredSphere,
+        Strategy::Clustered,
+        Strategy::Binned,
+    ];
+    for strategy in bounded.into_iter().chain([Strategy::None]) {
+        for bad in &of_any_input {
+            let e = culler.cull(&ctx, bad, strategy);
+            assert!(matches!(e, Err(GpuError::Input(_))), "{strategy:?}: {e:?}");
+        }
+    }
+    let named = format!("VPL {glossy}");
+    let of_bounds = [
+        (
+            CullInput {
+                gbuffer: &behind,
+                ..input
+            },
+            "pixel (5, 2)",
+        ),
+        (
+            CullInput {
+                vpls: &odd,
+                ..input
+            },
+            "VPL 3",
+        ),
+        (
+            CullInput {
+                vpls: &huge,
+                delta: 1e-37,
+                ..input
+            },
+            named.as_str(),
+        ),
+    ];
+    for strategy in bounded {
+        for (bad, names) in &of_bounds {
+            assert!(
+                slc_cull::culler(strategy).cull(bad).is_err(),
+                "{strategy:?}"
+            );
+            let e = culler.cull(&ctx, bad, strategy).unwrap_err();
+            assert!(e.to_string().contains(names), "{strategy:?}: {e}");
+        }
     }
 }

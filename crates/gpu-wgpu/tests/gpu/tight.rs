@@ -64,7 +64,7 @@ fn gpu_lists(
 }
 
 /// Entries of `a` not in `b`, over every pixel.
-fn extra(a: &LightLists, b: &LightLists) -> usize {
+pub fn extra(a: &LightLists, b: &LightLists) -> usize {
     (0..a.pixel_list.len())
         .map(|p| {
             let theirs = b.for_pixel(p);
