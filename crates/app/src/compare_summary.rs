@@ -227,15 +227,12 @@ pub fn write_page(
     rows: &[Row],
     tables: (TextTable, TextTable),
 ) -> Result<(), String> {
-    let figure = Block::Figure {
-        src: "side_by_side.svg".into(),
-        pdf: out
-            .has("side_by_side.pdf")
-            .then(|| "side_by_side.pdf".into()),
-        caption: "Every strategy on the same G-buffer, VPLs and ξ: totals, heat maps \
-                  (brightness = VPLs per pixel, hue = false discovery rate) and ꟻLIP maps."
-            .into(),
-    };
+    let figure = Block::figure(
+        out,
+        "side_by_side",
+        "Every strategy on the same G-buffer, VPLs and ξ: totals, heat maps \
+                  (brightness = VPLs per pixel, hue = false discovery rate) and ꟻLIP maps.",
+    );
     let mut galleries = Vec::new();
     // Every folder compare may write; those this run did not write show nothing.
     let dirs = rows

@@ -29,6 +29,18 @@ pub enum Block {
     Links(Vec<String>),
 }
 
+impl Block {
+    /// The figure `{stem}.svg` of `out` with `caption`, and its PDF where `out` has one.
+    pub fn figure(out: &OutDir, stem: &str, caption: &str) -> Self {
+        let pdf = format!("{stem}.pdf");
+        Block::Figure {
+            src: format!("{stem}.svg"),
+            pdf: out.has(&pdf).then_some(pdf),
+            caption: caption.into(),
+        }
+    }
+}
+
 /// A page of blocks under a title, with the run's provenance at its foot.
 pub struct Page<'a> {
     pub title: String,

@@ -324,21 +324,19 @@ fn write_page(
         format!("slc sweep: {scene}"),
         provenance,
         vec![
-            Block::Figure {
-                src: "sweep.svg".into(),
-                pdf: out.has("sweep.pdf").then(|| "sweep.pdf".into()),
-                caption: "RMSE of the indirect image against every VPL with p = 1, against \
+            Block::figure(
+                out,
+                "sweep",
+                "RMSE of the indirect image against every VPL with p = 1, against \
                           the median culling + shading time, one point per δ (labelled), \
-                          bars from the fastest to the slowest of --repeat runs."
-                    .into(),
-            },
-            Block::Figure {
-                src: "equal_time.svg".into(),
-                pdf: out.has("equal_time.pdf").then(|| "equal_time.pdf".into()),
-                caption: "Each strategy at the δ whose time is closest to the first \
-                          strategy's median run."
-                    .into(),
-            },
+                          bars from the fastest to the slowest of --repeat runs.",
+            ),
+            Block::figure(
+                out,
+                "equal_time",
+                "Each strategy at the δ whose time is closest to the first \
+                          strategy's median run.",
+            ),
         ],
         ("sweep", "equal_time.md"),
         tables,

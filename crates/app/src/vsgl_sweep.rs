@@ -288,13 +288,12 @@ fn write_page(
     Page::of_table(
         format!("slc sweep --shader vsgl: {scene}"),
         provenance,
-        vec![Block::Figure {
-            src: "vsgl_sweep.svg".into(),
-            pdf: out.has("vsgl_sweep.pdf").then(|| "vsgl_sweep.pdf".into()),
-            caption: "RMSE of the indirect image against every VPL with p = 1, against the \
-                      light count N: N VSGLs and N VPLs sampled by the same importance."
-                .into(),
-        }],
+        vec![Block::figure(
+            out,
+            "vsgl_sweep",
+            "RMSE of the indirect image against every VPL with p = 1, against the \
+                      light count N: N VSGLs and N VPLs sampled by the same importance.",
+        )],
         ("vsgl_sweep", "vsgl_sweep.md"),
         tables,
         Vec::new(),

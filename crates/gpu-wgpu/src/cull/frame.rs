@@ -3,6 +3,7 @@
 //! δ, interleaving), the input checks of the CPU cullers (`slc_cull`'s `pixel_count` and
 //! `partition::check`), the uniform per-subregion tile grid and its [`GpuCullParams`], the
 //! G-buffer positions the tile passes read, and the fault record they write.
+use crate::cull::bounds::BoundsSettings;
 use crate::cull::records::{GpuCullParams, GpuCullStatus, FRUSTUM_SLACK, MAX_K};
 use crate::device::buffers::{read_back, upload};
 use crate::device::context::{GpuContext, GpuError};
@@ -12,7 +13,7 @@ use crate::vpl::generate::GpuVpls;
 use crate::vpl::records::GpuVpl;
 use slc_bounds::StochasticParams;
 use slc_core::{Camera, CullInput, Interleaving, Vpl, TILE_SIZE};
-use slc_cull::CullView;
+use slc_cull::{CullView, GlossyBound};
 
 /// What every GPU culler reads: the G-buffer's world positions on the GPU and what culling
 /// needs besides, from a CPU [`CullInput`] ([`CullFrame::upload`]) or a G-buffer rasterized
@@ -33,6 +34,26 @@ pub struct CullFrame<'a> {
 }
 
 impl<'a> CullFrame<'a> {
+    /// The culling view of the frame (the rotated, stretched space of section 6).
+    pub fn view(&self) -> Result<CullView, GpuError> {
+        CullView::new(self.camera, self.width, self.height)
+            .map_err(|e| GpuError::Input(e.to_string()))
+    }
+
+    /// What the bounds of the frame's VPLs depend on, with `glossy` bounds for glossy VPLs
+    /// (and as shapes too with `shapes`).
+    pub fn bounds_settings(&self, glossy: GlossyBound, shapes: bool) -> BoundsSettings<'a> {
+        BoundsSettings {
+            camera: self.camera,
+            width: self.width,
+            height: self.height,
+            delta: self.delta,
+            glossy,
+            interleaving: self.interleaving,
+            shapes,
+        }
+    }
+
     /// `input` with its G-buffer positions uploaded; a G-buffer whose sample count does not
     /// match its size is an error (as the CPU cullers' first check). Its samples are taken
     /// to lie on the pixel centres' rays (`slc_cpu_ref::prepare` without a pass).

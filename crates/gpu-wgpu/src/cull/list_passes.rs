@@ -3,7 +3,7 @@
 //! tight refinement, and the room the lists of earlier frames needed. A layout brings its
 //! depth pass (what decides each pixel's list) and its list kernel; [`ListPasses::prepare`]
 //! and `ListPasses::lists` run the rest around them.
-use crate::cull::bounds::{BoundsPass, BoundsSettings, GpuBounds};
+use crate::cull::bounds::{BoundsPass, GpuBounds};
 use crate::cull::frame::{check_input, cull_params, tile_grid, CullFrame, CullSizes};
 use crate::cull::lists::{no_lists, GpuLightLists};
 use crate::cull::partition::{GpuPartition, PartitionPass};
@@ -14,7 +14,7 @@ use crate::cull::ListCulling;
 use crate::device::buffers::{output, upload, Grid};
 use crate::device::context::{GpuContext, GpuError};
 use crate::device::scan::ScanPass;
-use slc_cull::{CullView, GlossyBound};
+use slc_cull::GlossyBound;
 use std::mem::offset_of;
 use std::sync::Arc;
 
@@ -149,22 +149,9 @@ impl ListPasses {
         if pixels == 0 {
             return Ok(None);
         }
-        let (width, height) = (frame.width, frame.height);
-        let view = CullView::new(frame.camera, width, height)
-            .map_err(|e| GpuError::Input(e.to_string()))?;
-        let bounds = self.bounds.run(
-            ctx,
-            frame.vpls,
-            &BoundsSettings {
-                camera: frame.camera,
-                width,
-                height,
-                delta: frame.delta,
-                glossy,
-                interleaving: frame.interleaving,
-                shapes,
-            },
-        )?;
+        let view = frame.view()?;
+        let settings = frame.bounds_settings(glossy, shapes);
+        let bounds = self.bounds.run(ctx, frame.vpls, &settings)?;
         let tiles = tile_grid(frame, lists_per_tile)?;
         let grid = Grid::new(
             u64::from(tiles.2),

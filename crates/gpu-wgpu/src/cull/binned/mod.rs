@@ -17,7 +17,7 @@
 //! refused ([`GpuError::BufferTooLarge`], naming the light lists).
 pub mod records;
 
-use crate::cull::bounds::{BoundsPass, BoundsSettings};
+use crate::cull::bounds::BoundsPass;
 use crate::cull::frame::{check_input, cull_params, tile_grid, CullFrame, CullSizes};
 use crate::cull::lists::{no_lists, GpuLightLists};
 use crate::cull::partition::PartitionPass;
@@ -28,7 +28,7 @@ use crate::device::context::{GpuContext, GpuError};
 use crate::device::count::ArgsPass;
 use crate::device::scan::ScanPass;
 use records::{GpuBinnedParams, GpuBinnedVpl};
-use slc_cull::{CullView, GlossyBound};
+use slc_cull::GlossyBound;
 use std::mem::offset_of;
 use std::sync::Arc;
 
@@ -88,21 +88,9 @@ impl BinnedCuller {
             return no_lists(ctx);
         }
         let (width, height) = (frame.width, frame.height);
-        let view = CullView::new(frame.camera, width, height)
-            .map_err(|e| GpuError::Input(e.to_string()))?;
-        let bounds = self.bounds.run_with_locals(
-            ctx,
-            frame.vpls,
-            &BoundsSettings {
-                camera: frame.camera,
-                width,
-                height,
-                delta: frame.delta,
-                glossy: GlossyBound::Ellipsoid,
-                interleaving: frame.interleaving,
-                shapes: false,
-            },
-        )?;
+        let view = frame.view()?;
+        let settings = frame.bounds_settings(GlossyBound::Ellipsoid, false);
+        let bounds = self.bounds.run_with_locals(ctx, frame.vpls, &settings)?;
         // Every list id is a pixel's, which `check_input` keeps in u32.
         let tiles = tile_grid(frame, 1)?;
         let grid = Grid::new(

@@ -18,7 +18,6 @@ use crate::device::buffers::{output, uniform, upload, Grid};
 use crate::device::context::{GpuContext, GpuError};
 use crate::device::scan::ScanPass;
 use bytemuck::{Pod, Zeroable};
-use slc_cull::CullView;
 use std::sync::Arc;
 
 /// The refinement of the tight strategies (`tight_cull.wesl`): the base strategy's
@@ -95,8 +94,7 @@ impl TightRefiner {
         let slots = layout.clusters * if layout.split { 2 } else { 1 };
         let tiles = tile_grid(frame, BLOCKS_PER_TILE * slots)?;
         let list_count = BLOCKS_PER_TILE * slots * tiles.2;
-        let view = CullView::new(frame.camera, frame.width, frame.height)
-            .map_err(|e| GpuError::Input(e.to_string()))?;
+        let view = frame.view()?;
         let grid = Grid::new(
             u64::from(BLOCKS_PER_TILE) * u64::from(tiles.2),
             ctx.limits.max_compute_workgroups_per_dimension,
