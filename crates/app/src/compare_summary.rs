@@ -231,7 +231,7 @@ pub fn write_page(
         out,
         "side_by_side",
         "Every strategy on the same G-buffer, VPLs and ξ: totals, heat maps \
-                  (brightness = VPLs per pixel, hue = false discovery rate) and ꟻLIP maps.",
+        (brightness = VPLs per pixel, hue = false discovery rate) and ꟻLIP maps.",
     );
     let mut galleries = Vec::new();
     // Every folder compare may write; those this run did not write show nothing.

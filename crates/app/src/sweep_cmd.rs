@@ -328,14 +328,14 @@ fn write_page(
                 out,
                 "sweep",
                 "RMSE of the indirect image against every VPL with p = 1, against \
-                          the median culling + shading time, one point per δ (labelled), \
-                          bars from the fastest to the slowest of --repeat runs.",
+                the median culling + shading time, one point per δ (labelled), \
+                bars from the fastest to the slowest of --repeat runs.",
             ),
             Block::figure(
                 out,
                 "equal_time",
                 "Each strategy at the δ whose time is closest to the first \
-                          strategy's median run.",
+                strategy's median run.",
             ),
         ],
         ("sweep", "equal_time.md"),

@@ -292,7 +292,7 @@ fn write_page(
             out,
             "vsgl_sweep",
             "RMSE of the indirect image against every VPL with p = 1, against the \
-                      light count N: N VSGLs and N VPLs sampled by the same importance.",
+            light count N: N VSGLs and N VPLs sampled by the same importance.",
         )],
         ("vsgl_sweep", "vsgl_sweep.md"),
         tables,
