@@ -291,36 +291,34 @@ def test_an_anisotropic_override_changes_the_image(scene):
         scene.with_materials("copper", anisotropy_rotation=0.4)
 
 
-def test_the_example_sweeps_delta_and_writes_a_plot(tmp_path):
-    out = tmp_path / "sweep.png"
+def run_example(script, out, *args):
+    """Runs python/examples/SCRIPT on a small frame with ARGS, writing OUT."""
     subprocess.run(
         [
             sys.executable,
-            str(REPO / "python/examples/delta_sweep.py"),
+            str(REPO / "python/examples" / script),
             "--width", "48", "--height", "32", "--rsm", "8",
-            "--delta", "1e-3", "1e-2", "--culling", "ellipsoid", "sphere",
-            "--repeat", "1", "--out", str(out),
+            *args, "--out", str(out),
         ],
         check=True,
         env=dict(os.environ, MPLBACKEND="Agg"),
     )
     assert out.stat().st_size > 10_000
+
+
+def test_the_example_sweeps_delta_and_writes_a_plot(tmp_path):
+    run_example(
+        "delta_sweep.py", tmp_path / "sweep.png",
+        "--delta", "1e-3", "1e-2", "--culling", "ellipsoid", "sphere", "--repeat", "1",
+    )
 
 
 def test_the_roughness_example_writes_a_plot_and_a_table(tmp_path):
     out = tmp_path / "roughness.png"
-    subprocess.run(
-        [
-            sys.executable,
-            str(REPO / "python/examples/roughness_sweep.py"),
-            "--width", "48", "--height", "32", "--rsm", "8",
-            "--alpha", "0.05", "0.5", "--culling", "sphere", "ellipsoid",
-            "--out", str(out),
-        ],
-        check=True,
-        env=dict(os.environ, MPLBACKEND="Agg"),
+    run_example(
+        "roughness_sweep.py", out,
+        "--alpha", "0.05", "0.5", "--culling", "sphere", "ellipsoid",
     )
-    assert out.stat().st_size > 10_000
     rows = out.with_suffix(".csv").read_text().splitlines()
     assert rows[0].startswith("alpha,strategy,") and len(rows) == 1 + 2 * 2
     assert all(r.endswith(",0") for r in rows[1:]), "no strategy misses a pair"

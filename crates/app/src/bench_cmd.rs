@@ -584,6 +584,12 @@ fn median_of(values: impl Iterator<Item = Option<f64>>) -> Option<f64> {
 mod tests {
     use super::*;
 
+    /// The stochastic settings of the rows under test.
+    const ELLIPSOID: Stochastic = Stochastic {
+        denoise: false,
+        ..Stochastic::PAPER
+    };
+
     /// Each run's share is its own pairs per second over the ceiling measured before it: a
     /// machine slowing down between runs slows both and leaves the share where it was.
     #[test]
@@ -598,25 +604,24 @@ mod tests {
                 listed_pairs,
             }
         };
-        let s = Stochastic {
-            delta: 1e-3,
-            strategy: Strategy::Ellipsoid,
-            interleave: 8,
-            denoise: false,
-            metrics: false,
-        };
         // 1e6 pairs in 1 ms is 1,000 M pairs/s; in 2 ms, 500.
         let runs = [1.0, 2.0, 2.0].map(|ms| run(ms, Some(1_000_000)));
         let ceilings = [Some(4000.0), Some(2000.0), Some(2000.0)];
-        let row = BenchRow::of(s, &runs, &ceilings);
+        let row = BenchRow::of(ELLIPSOID, &runs, &ceilings);
         assert_eq!(row.ceiling_share, Some(0.25));
         assert_eq!(row.ceiling_mpairs_per_s, Some(2000.0));
         assert_eq!(row.shading_mpairs_per_s, Some(500.0));
         assert_eq!(row.timed_by, "wall clock");
         // No share without a ceiling (a GPU run) or without the listed pairs.
-        assert_eq!(BenchRow::of(s, &runs, &[None; 3]).ceiling_share, None);
+        assert_eq!(
+            BenchRow::of(ELLIPSOID, &runs, &[None; 3]).ceiling_share,
+            None
+        );
         let unlisted = [1.0, 2.0, 2.0].map(|ms| run(ms, None));
-        assert_eq!(BenchRow::of(s, &unlisted, &ceilings).ceiling_share, None);
+        assert_eq!(
+            BenchRow::of(ELLIPSOID, &unlisted, &ceilings).ceiling_share,
+            None
+        );
     }
 
     /// A row is timed by timestamps only where every run was; each GPU pass label gets its
@@ -643,19 +648,15 @@ mod tests {
                 listed_pairs: None,
             }
         };
-        let s = Stochastic {
-            delta: 1e-3,
-            strategy: Strategy::Ellipsoid,
-            interleave: 8,
-            denoise: false,
-            metrics: false,
-        };
         let runs = [
             run(true, 3.0, Some(0.5)),
             run(true, 1.0, None),
             run(true, 2.0, Some(0.25)),
         ];
-        assert_eq!(BenchRow::of(s, &runs, &[None; 3]).timed_by, "timestamps");
+        assert_eq!(
+            BenchRow::of(ELLIPSOID, &runs, &[None; 3]).timed_by,
+            "timestamps"
+        );
         let rows = pass_rows(&runs);
         assert_eq!(rows.len(), 2);
         assert_eq!((rows[0].pass, rows[0].ms), ("tiled shade", 2.0));
@@ -664,7 +665,10 @@ mod tests {
             ("culling", 0.25, 2)
         );
         let mixed = [run(true, 1.0, None), run(false, 1.0, None)];
-        assert_eq!(BenchRow::of(s, &mixed, &[None; 2]).timed_by, "wall clock");
+        assert_eq!(
+            BenchRow::of(ELLIPSOID, &mixed, &[None; 2]).timed_by,
+            "wall clock"
+        );
     }
 
     /// The warm-up runs until its time is up and the last five times agree within 3%, or

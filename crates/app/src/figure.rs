@@ -344,11 +344,7 @@ mod tests {
             let inches = style.inches.unwrap();
             assert!(svg.contains(&format!(r#"width="{inches}in""#)), "{width:?}");
             assert!(svg.contains(&format!(r#"viewBox="0 0 {} "#, style.width)));
-            let sizes: Vec<f64> = svg
-                .split("font-size=\"")
-                .skip(1)
-                .map(|s| s.split('"').next().unwrap().parse().unwrap())
-                .collect();
+            let sizes = crate::plot::font_sizes(&svg);
             let smallest = sizes.iter().copied().fold(f64::INFINITY, f64::min);
             assert!(
                 sizes.len() > 20 && smallest >= MIN_PRINT_POINTS,

@@ -232,6 +232,15 @@ pub fn log_log_plot_svg(
     Ok(style.sized(&svg, size))
 }
 
+/// The font sizes an SVG sets, in order (for tests of the print sizes).
+#[cfg(test)]
+pub(crate) fn font_sizes(svg: &str) -> Vec<f64> {
+    svg.split("font-size=\"")
+        .skip(1)
+        .map(|s| s.split('"').next().unwrap().parse().unwrap())
+        .collect()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -296,12 +305,7 @@ mod tests {
             let without = log_log_plot_svg("t", "ms", "RMSE", &plain, &style).unwrap();
             let lines = |svg: &str| svg.matches("<polyline").count();
             assert_eq!(lines(&svg), lines(&without) + 1, "{width:?}");
-            let sizes: Vec<f64> = svg
-                .split("font-size=\"")
-                .skip(1)
-                .map(|s| s.split('"').next().unwrap().parse().unwrap())
-                .collect();
-            let smallest = sizes.iter().copied().fold(f64::INFINITY, f64::min);
+            let smallest = font_sizes(&svg).into_iter().fold(f64::INFINITY, f64::min);
             assert!(smallest >= style.small, "{width:?}: {smallest}");
             if let Some(inches) = style.inches {
                 assert!(svg.contains(&format!("width=\"{inches}in\"")), "{width:?}");

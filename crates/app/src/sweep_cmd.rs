@@ -310,19 +310,10 @@ fn write_outputs(
     )?;
     write_figure(out, "sweep", &svg)?;
     equal_time(args, out, &scene.name, names, points)?;
-    write_page(out, &scene.name, &table.0, tables)
-}
-
-/// Stages `index.html`: the plot, the equal-time figure and the tables.
-fn write_page(
-    out: &mut OutDir,
-    scene: &str,
-    provenance: &Provenance,
-    tables: (TextTable, TextTable),
-) -> Result<(), String> {
+    // Stages `index.html`: the plot, the equal-time figure and the tables.
     Page::of_table(
-        format!("slc sweep: {scene}"),
-        provenance,
+        format!("slc sweep: {}", scene.name),
+        &table.0,
         vec![
             Block::figure(
                 out,

@@ -176,7 +176,21 @@ impl OnBackend for VsglSweep<'_> {
             .collect();
         let tables = write_table(&mut out, "vsgl_sweep", &provenance, &columns, &rows)?;
         write_outputs(args, &mut out, &facts, &points)?;
-        write_page(&mut out, &scene.name, &provenance, tables)?;
+        // Stages `index.html`: the plot and the tables.
+        Page::of_table(
+            format!("slc sweep --shader vsgl: {}", scene.name),
+            &provenance,
+            vec![Block::figure(
+                &out,
+                "vsgl_sweep",
+                "RMSE of the indirect image against every VPL with p = 1, against the \
+                light count N: N VSGLs and N VPLs sampled by the same importance.",
+            )],
+            ("vsgl_sweep", "vsgl_sweep.md"),
+            tables,
+            Vec::new(),
+        )
+        .write(&mut out)?;
         out.commit()?;
         println!("wrote {}", args.out.display());
         Ok(())
@@ -276,29 +290,6 @@ impl VsglSweepRow {
             rmse_vs_all_vpl: p.rmse,
         }
     }
-}
-
-/// Stages `index.html`: the plot and the tables.
-fn write_page(
-    out: &mut OutDir,
-    scene: &str,
-    provenance: &Provenance,
-    tables: (TextTable, TextTable),
-) -> Result<(), String> {
-    Page::of_table(
-        format!("slc sweep --shader vsgl: {scene}"),
-        provenance,
-        vec![Block::figure(
-            out,
-            "vsgl_sweep",
-            "RMSE of the indirect image against every VPL with p = 1, against the \
-            light count N: N VSGLs and N VPLs sampled by the same importance.",
-        )],
-        ("vsgl_sweep", "vsgl_sweep.md"),
-        tables,
-        Vec::new(),
-    )
-    .write(out)
 }
 
 /// `vsgl_sweep.md`.

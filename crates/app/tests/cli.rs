@@ -398,6 +398,30 @@ fn exr_mean(p: &std::path::Path) -> [f64; 3] {
     })
 }
 
+/// The channel means of `image` in the CPU's and the GPU's output folders, whose relative
+/// difference is printed and held to `tolerance`.
+fn assert_means_agree(
+    image: &str,
+    (cpu, gpu): (&Path, &Path),
+    tolerance: f64,
+) -> ([f64; 3], [f64; 3]) {
+    let (c, g) = (exr_mean(&cpu.join(image)), exr_mean(&gpu.join(image)));
+    for ch in 0..3 {
+        let rel = (c[ch] - g[ch]).abs() / c[ch];
+        eprintln!(
+            "{image} channel {ch}: cpu {} gpu {} ({rel:.2e})",
+            c[ch], g[ch]
+        );
+        assert!(
+            rel <= tolerance,
+            "{image} channel {ch}: cpu {} gpu {}",
+            c[ch],
+            g[ch]
+        );
+    }
+    (c, g)
+}
+
 /// The VSGL frame the GPU and the CPU render in the VSGL agreement tests.
 const VSGL_FRAME: &str =
     "render --shader vsgl --vsgls 256 --width 48 --height 32 --rsm 16 --seed 3";
@@ -448,18 +472,8 @@ fn gpu_vsgl_render_agrees_with_the_cpu_vsgl_render() {
         ] {
             assert!(report["timings_ms"][pass].is_number(), "{pass}: {report}");
         }
-        let (c, g) = (
-            exr_mean(&cpu.join("indirect.exr")),
-            exr_mean(&gpu.join("indirect.exr")),
-        );
-        for ch in 0..3 {
-            let rel = (c[ch] - g[ch]).abs() / c[ch];
-            eprintln!(
-                "{importance} indirect channel {ch}: cpu {} gpu {} ({rel:.2e})",
-                c[ch], g[ch]
-            );
-            assert!(rel <= TOLERANCE_OF_MEAN, "{importance} channel {ch}: {rel}");
-        }
+        eprintln!("importance {importance}:");
+        assert_means_agree("indirect.exr", (&cpu, &gpu), TOLERANCE_OF_MEAN);
         std::fs::remove_dir_all(&cpu).ok();
         std::fs::remove_dir_all(&gpu).ok();
     }
@@ -496,20 +510,15 @@ fn gpu_vsgl_render_with_visibility_uses_imperfect_shadow_maps() {
         "{report}"
     );
     assert!(report["timings_ms"]["shadow_maps"].is_number(), "{report}");
-    let [cpu, gpu, open] = [0, 1, 2].map(|i| exr_mean(&runs[i].2.join("indirect.exr")));
+    let (_, gpu) = assert_means_agree("indirect.exr", (&runs[0].2, &runs[1].2), TOLERANCE_OF_MEAN);
+    let open = exr_mean(&runs[2].2.join("indirect.exr"));
     for ch in 0..3 {
-        let rel = (cpu[ch] - gpu[ch]).abs() / cpu[ch];
-        eprintln!(
-            "visibility indirect channel {ch}: cpu {} gpu {} ({rel:.2e}), gpu without {}",
-            cpu[ch], gpu[ch], open[ch]
-        );
         assert!(
             gpu[ch] < open[ch],
             "channel {ch}: {} >= {}",
             gpu[ch],
             open[ch]
         );
-        assert!(rel <= TOLERANCE_OF_MEAN, "channel {ch}: {rel}");
     }
     for (_, _, out) in &runs {
         std::fs::remove_dir_all(out).ok();
@@ -608,20 +617,7 @@ fn gpu_render_agrees_with_the_cpu_render_and_names_its_adapter() {
     assert_eq!(report["metrics"]["missed_pairs"], 0, "{report}");
     assert!(report["metrics"]["true_positive_pairs"].as_u64().unwrap() > 0);
     for image in ["direct.exr", "indirect.exr"] {
-        let (c, g) = (exr_mean(&cpu.join(image)), exr_mean(&gpu.join(image)));
-        for ch in 0..3 {
-            let rel = (c[ch] - g[ch]).abs() / c[ch];
-            eprintln!(
-                "{image} channel {ch}: cpu {} gpu {} ({rel:.2e})",
-                c[ch], g[ch]
-            );
-            assert!(
-                rel <= TOLERANCE_OF_MEAN,
-                "{image} channel {ch}: cpu {} gpu {}",
-                c[ch],
-                g[ch]
-            );
-        }
+        assert_means_agree(image, (&cpu, &gpu), TOLERANCE_OF_MEAN);
     }
     std::fs::remove_dir_all(&cpu).ok();
     std::fs::remove_dir_all(&gpu).ok();

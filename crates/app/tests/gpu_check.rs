@@ -65,6 +65,7 @@ fn gpu_check_quick_writes_its_report() {
             "clustered-raster",
             "clustered",
             "tight",
+            "binned",
             "ellipsoid, lists",
             "clustered-raster, software",
         ] {

@@ -2,32 +2,19 @@
 //! are committed by renames, and non-finite results are errors.
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
-use std::process::{Child, Command, Output, Stdio};
+use std::process::{Child, Output, Stdio};
 use std::time::{Duration, Instant};
 
-fn slc() -> Command {
-    Command::new(env!("CARGO_BIN_EXE_slc"))
-}
-
-fn temp(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("slc-integrity-{name}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    d
-}
+mod common;
+use common::{command, out_dir, run, slc};
 
 /// `slc render ARGS --out OUT` (ARGS split at spaces).
-fn render_command(args: &str, out: &Path) -> Command {
-    let mut c = slc();
-    c.arg("render").args(args.split(' ')).arg("--out").arg(out);
-    c
-}
-
 fn render(args: &str, out: &Path) -> Output {
-    render_command(args, out).output().unwrap()
+    run(&format!("render {args}"), out)
 }
 
 fn spawn_render(args: &str, out: &Path) -> Child {
-    render_command(args, out)
+    command(&format!("render {args}"), out)
         .stdout(Stdio::null())
         .stderr(Stdio::piped())
         .spawn()
@@ -84,7 +71,7 @@ fn staged_file(out: &Path) -> bool {
 
 #[test]
 fn a_second_run_into_a_busy_folder_is_refused_naming_the_holder() {
-    let out = temp("busy");
+    let out = out_dir("busy");
     let mut first = spawn_render("--width 320 --height 240 --rsm 16 --spp 8", &out);
     let lock = out.join(".slc.lock");
     wait_for("the first run's lock", || {
@@ -104,7 +91,7 @@ fn a_second_run_into_a_busy_folder_is_refused_naming_the_holder() {
 
 #[test]
 fn a_run_killed_while_writing_leaves_the_previous_result_intact() {
-    let out = temp("killed");
+    let out = out_dir("killed");
     let small = "--width 16 --height 12 --rsm 2 --seed 1";
     assert!(render(small, &out).status.success());
     let before = snapshot(&out);
@@ -146,7 +133,7 @@ fn an_unwritable_output_fails_before_any_work() {
     assert!(err.contains("/proc/slc-no-such-folder"), "{err}");
     assert!(start.elapsed() < Duration::from_secs(10), "{err}");
     // A file where the folder should be.
-    let file = temp("file");
+    let file = out_dir("file");
     std::fs::write(&file, "").unwrap();
     let o = render("--width 8 --height 8 --rsm 2", &file);
     assert!(String::from_utf8_lossy(&o.stderr).contains("not a folder"));
@@ -155,7 +142,7 @@ fn an_unwritable_output_fails_before_any_work() {
 
 #[test]
 fn a_result_that_cannot_be_placed_replaces_nothing() {
-    let out = temp("inway");
+    let out = out_dir("inway");
     assert!(render("--width 16 --height 12 --rsm 2", &out)
         .status
         .success());
@@ -174,13 +161,7 @@ fn a_result_that_cannot_be_placed_replaces_nothing() {
 }
 
 fn compare(args: &str, out: &Path) -> Output {
-    slc()
-        .arg("compare")
-        .args(args.split(' '))
-        .arg("--out")
-        .arg(out)
-        .output()
-        .unwrap()
+    run(&format!("compare {args}"), out)
 }
 
 /// The case: a plain file where compare puts a strategy folder stops the second run
@@ -188,7 +169,7 @@ fn compare(args: &str, out: &Path) -> Output {
 /// folder then replaces the compare whole, leaving no strategy folder behind.
 #[test]
 fn a_file_in_the_way_of_a_strategy_folder_stops_compare_before_any_work() {
-    let out = temp("compare-inway");
+    let out = out_dir("compare-inway");
     let args = "--width 16 --height 16 --rsm 4 --no-reference --culling none,ellipsoid";
     let first = compare(&format!("{args} --seed 1"), &out);
     assert!(
@@ -250,7 +231,7 @@ fn floor_with_light(dir: &Path, intensity: &str) -> PathBuf {
 
 #[test]
 fn an_overflowing_light_is_refused_when_loaded() {
-    let dir = temp("overflow");
+    let dir = out_dir("overflow");
     let toml = floor_with_light(&dir, "3e38");
     let out = dir.join("out");
     let o = render(

@@ -7,16 +7,7 @@ use std::process::Output;
 use std::time::{Duration, Instant};
 
 mod common;
-use common::{gpu_available, out_dir, slc};
-
-fn run(args: &str, out: &Path) -> Output {
-    slc()
-        .args(args.split(' '))
-        .arg("--out")
-        .arg(out)
-        .output()
-        .unwrap()
-}
+use common::{gpu_available, out_dir, run, slc};
 
 #[test]
 fn counts_out_of_range_are_refused_at_once_by_every_command() {

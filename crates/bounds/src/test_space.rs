@@ -146,14 +146,17 @@ impl TestSpace {
 
 /// Whether `m` is orthonormal with determinant +1, within [`ROTATION_TOLERANCE`].
 fn is_rotation(m: Mat3) -> bool {
+    orthonormality_error(m) <= ROTATION_TOLERANCE && m.determinant() > 0.0
+}
+
+/// How far `m` is from orthonormal: the largest entry of |MᵀM − I|.
+pub fn orthonormality_error(m: Mat3) -> f32 {
     let e = m.transpose() * m - Mat3::IDENTITY;
-    let worst = e
-        .x_axis
+    e.x_axis
         .abs()
         .max(e.y_axis.abs())
         .max(e.z_axis.abs())
-        .max_element();
-    worst <= ROTATION_TOLERANCE && m.determinant() > 0.0
+        .max_element()
 }
 
 /// The stretch of eq. (16): `S = R diag(1/r_u, 1/r_v, 1/r_w) Rᵀ`, which maps the ellipsoid

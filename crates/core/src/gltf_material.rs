@@ -29,21 +29,7 @@ use std::path::Path;
 /// The glTF default material (spec: base colour 1, metallic 1, roughness 1), for primitives
 /// without a material.
 pub(crate) fn default_material() -> Material {
-    Material {
-        name: "glTF default material".into(),
-        model: MaterialModel::MetallicRoughness {
-            base_color: Vec3::ONE,
-            base_color_texture: None,
-            metallic: 1.0,
-            roughness: 1.0,
-            metallic_roughness_texture: None,
-        },
-        eta: None,
-        double_sided: false,
-        normal_map: None,
-        alpha_mask: None,
-        anisotropy: None,
-    }
+    Material::metallic_roughness("glTF default material", Vec3::ONE, 1.0, 1.0)
 }
 
 /// Appends one material per glTF material, in the document's order (so glTF material indices

@@ -75,15 +75,21 @@ impl Light {
     /// Angular falloff of a spot light in the unit direction `emitted` (1 for other
     /// lights): [`SpotCone::falloff`] of `1 − cos` of its angle to the axis.
     pub fn spot_falloff(&self, emitted: Vec3) -> f32 {
+        self.spot_cone().map_or(1.0, |(axis, cone)| {
+            cone.falloff(one_minus_cos(emitted, axis))
+        })
+    }
+
+    /// A spot light's axis and [`SpotCone`]; `None` for other lights.
+    pub fn spot_cone(&self) -> Option<(Vec3, SpotCone)> {
         match *self {
             Light::Spot {
                 direction,
                 inner_cone_angle,
                 outer_cone_angle,
                 ..
-            } => SpotCone::new(inner_cone_angle, outer_cone_angle)
-                .falloff(one_minus_cos(emitted, direction)),
-            _ => 1.0,
+            } => Some((direction, SpotCone::new(inner_cone_angle, outer_cone_angle))),
+            _ => None,
         }
     }
 

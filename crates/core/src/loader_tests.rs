@@ -330,12 +330,12 @@ fn gltf_lights_and_camera_from_nodes() {
             position,
             direction,
             intensity,
-            inner_cone_angle,
-            outer_cone_angle,
+            inner_cone_angle: inner,
+            outer_cone_angle: outer,
         } => {
             assert!(close(*position, Vec3::Y) && close(*direction, Vec3::NEG_Y));
             assert_eq!(
-                (*intensity, *inner_cone_angle, *outer_cone_angle),
+                (*intensity, *inner, *outer),
                 (Vec3::new(4.0, 2.0, 0.0), 0.0, 0.5)
             );
         }

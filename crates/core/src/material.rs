@@ -157,17 +157,49 @@ impl AlphaMask {
     }
 }
 
+/// glTF's metallic-roughness parameters as kd and F0 (glTF 2.0 specification, appendix B):
+/// the dielectric F0 of 0.04 blended towards the base colour by `metallic`, and kd the
+/// non-metallic part of the base colour.
+pub fn metallic_kd_f0(base: Vec3, metallic: f32) -> (Vec3, Vec3) {
+    (
+        base * (1.0 - metallic),
+        Vec3::splat(0.04 * (1.0 - metallic)) + base * metallic,
+    )
+}
+
 impl Material {
     /// A one-sided material with explicit kd, F0 and α.
     pub fn direct(name: &str, kd: Vec3, f0: Vec3, alpha: f32) -> Self {
-        Self {
-            name: name.to_string(),
-            model: MaterialModel::Direct {
+        Self::one_sided(
+            name,
+            MaterialModel::Direct {
                 kd,
                 kd_texture: None,
                 f0,
                 alpha: alpha.max(ALPHA_MIN),
             },
+        )
+    }
+
+    /// A one-sided, untextured glTF metallic-roughness material.
+    pub fn metallic_roughness(name: &str, base_color: Vec3, metallic: f32, roughness: f32) -> Self {
+        Self::one_sided(
+            name,
+            MaterialModel::MetallicRoughness {
+                base_color,
+                base_color_texture: None,
+                metallic,
+                roughness,
+                metallic_roughness_texture: None,
+            },
+        )
+    }
+
+    /// A one-sided material of `model`, without η, normal map, alpha mask or anisotropy.
+    fn one_sided(name: &str, model: MaterialModel) -> Self {
+        Self {
+            name: name.to_string(),
+            model,
             eta: None,
             double_sided: false,
             normal_map: None,
@@ -191,22 +223,18 @@ impl Material {
             } => (kd * lookup(kd_texture), f0, alpha),
             MaterialModel::MetallicRoughness {
                 base_color,
-                base_color_texture,
+                base_color_texture: base_texture,
                 metallic,
                 roughness,
-                metallic_roughness_texture,
+                metallic_roughness_texture: mr_texture,
             } => {
-                let base = base_color * lookup(base_color_texture);
-                let mr = lookup(metallic_roughness_texture);
+                let mr = lookup(mr_texture);
                 let (m, r) = (
                     (metallic * mr.z).clamp(0.0, 1.0),
                     (roughness * mr.y).clamp(0.0, 1.0),
                 );
-                (
-                    base * (1.0 - m),
-                    Vec3::splat(0.04 * (1.0 - m)) + base * m,
-                    r * r,
-                )
+                let (kd, f0) = metallic_kd_f0(base_color * lookup(base_texture), m);
+                (kd, f0, r * r)
             }
         };
         let fresnel = match self.eta {
@@ -281,21 +309,8 @@ mod tests {
     #[test]
     fn gltf_mapping_matches_the_reference_table() {
         // shared/reference/cornell-a: copper box, metallic 1, roughness sqrt(0.2).
-        let m = Material {
-            name: "box".into(),
-            model: MaterialModel::MetallicRoughness {
-                base_color: Vec3::new(0.95, 0.64, 0.54),
-                base_color_texture: None,
-                metallic: 1.0,
-                roughness: 0.2f32.sqrt(),
-                metallic_roughness_texture: None,
-            },
-            eta: None,
-            double_sided: false,
-            normal_map: None,
-            alpha_mask: None,
-            anisotropy: None,
-        };
+        let m =
+            Material::metallic_roughness("box", Vec3::new(0.95, 0.64, 0.54), 1.0, 0.2f32.sqrt());
         let b = m.brdf_at(None, &[]);
         assert_eq!(b.kd, Vec3::ZERO);
         assert_eq!(b.fresnel, Fresnel::Schlick(Vec3::new(0.95, 0.64, 0.54)));

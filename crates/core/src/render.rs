@@ -42,6 +42,14 @@ pub fn shade_method<R: Renderer>(
     }
 }
 
+/// The settings, the backend's support of them and the scene, checked before any work (a
+/// cheap check, repeated by [`render_loaded`] for its own callers).
+fn check<R: Renderer>(r: &R, scene: &Scene, settings: &RenderSettings) -> Result<(), RenderError> {
+    settings.validate()?;
+    r.check(settings)?;
+    Ok(scene.validate_for_render()?)
+}
+
 /// Renders `scene` with `settings` on `r`. `progress` is told the number of pixel-passes
 /// finished where the backend counts them (the total is `width * height * spp`) and checked
 /// between passes and tiles: once it is cancelled the frame stops with
@@ -52,9 +60,7 @@ pub fn render<R: Renderer>(
     settings: &RenderSettings,
     progress: Progress,
 ) -> Result<RenderedFrame, RenderError> {
-    settings.validate()?;
-    r.check(settings)?;
-    scene.validate_for_render()?;
+    check(r, scene, settings)?;
     let mut timings = Timings::default();
     progress.check()?;
     let loaded = timings.time("load", || r.load(scene))?;
@@ -73,9 +79,7 @@ pub fn render_loaded<R: Renderer>(
     settings: &RenderSettings,
     progress: Progress,
 ) -> Result<RenderedFrame, RenderError> {
-    settings.validate()?;
-    r.check(settings)?;
-    scene.validate_for_render()?;
+    check(r, scene, settings)?;
     let (w, h) = (settings.width, settings.height);
     let mut timings = Timings::default();
     let mut gpu_timings = None;

@@ -6,6 +6,7 @@
 //! outer cone angle (six faces when that angle exceeds [`SPOT_SINGLE_FACE_MAX_ANGLE`]), a
 //! directional light one orthographic map covering the scene's bounding sphere.
 use crate::light::Light;
+use crate::vpl::{Vpl, VplLobe};
 use glam::Vec3;
 use slc_bounds::Brdf;
 
@@ -32,6 +33,28 @@ pub struct RsmTexel {
     /// cosine of incidence.
     pub cross_section: f32,
     pub brdf: Brdf,
+}
+
+impl RsmTexel {
+    /// The VPL of this texel's `lobe` with the number `id` and the roulette's ξ: the
+    /// geometric normal kept beside the shading one where a normal map perturbed it, both the
+    /// shading normal elsewhere (eq. 4 as the paper evaluates it).
+    pub fn vpl(&self, lobe: VplLobe, id: u32, xi: f32) -> Vpl {
+        Vpl {
+            position: self.position,
+            normal: self.normal,
+            geometric_normal: match self.normal_mapped {
+                true => self.geometric_normal,
+                false => self.normal,
+            },
+            omega_i: self.omega_i,
+            flux: self.flux,
+            brdf: self.brdf,
+            lobe,
+            id,
+            xi,
+        }
+    }
 }
 
 /// A reflective shadow map of one light: `faces` square maps of `resolution`² texels,

@@ -91,7 +91,7 @@ use crate::file_read::read_capped;
 use crate::import_util::small_alpha_warning;
 use crate::light::Light;
 use crate::load::{extension, load_scene_file};
-use crate::material::{Material, MaterialAnisotropy, MaterialModel, ALPHA_MIN};
+use crate::material::{metallic_kd_f0, Material, MaterialAnisotropy, MaterialModel, ALPHA_MIN};
 use crate::scene::Scene;
 use crate::tangents::generate_tangents;
 use glam::Vec3;
@@ -360,24 +360,23 @@ impl MaterialOverride {
             }
             MaterialModel::MetallicRoughness {
                 base_color,
-                base_color_texture,
+                base_color_texture: texture,
                 metallic,
                 roughness,
-                metallic_roughness_texture,
+                metallic_roughness_texture: mr_map,
             } => {
                 let (metal, r) = (metallic.clamp(0.0, 1.0), roughness.clamp(0.0, 1.0));
-                if metallic_roughness_texture.is_some()
-                    || (base_color_texture.is_some() && metal > 0.0 && self.f0.is_none())
-                {
+                if mr_map.is_some() || (texture.is_some() && metal > 0.0 && self.f0.is_none()) {
                     warnings.push(format!(
                         "material '{}': the kd/f0 override turns its metallic-roughness parameters into kd, F0 and alpha; its textures now only tint kd",
                         m.name
                     ));
                 }
+                let (kd, f0) = metallic_kd_f0(*base_color, metal);
                 m.model = MaterialModel::Direct {
-                    kd: *base_color * (1.0 - metal),
-                    kd_texture: *base_color_texture,
-                    f0: Vec3::splat(0.04 * (1.0 - metal)) + *base_color * metal,
+                    kd,
+                    kd_texture: *texture,
+                    f0,
                     alpha: (r * r).max(ALPHA_MIN),
                 };
             }

@@ -3,7 +3,7 @@
 //! --example frame_passes -- SCENE WIDTH HEIGHT RSM FRAMES [OUT.exr-less prefix]`.
 //! Prints each pass's median milliseconds over the frames after the first.
 use slc_core::frame::{LobeSelection, Method, RenderSettings, Stochastic};
-use slc_core::{load_scene, Renderer, Strategy};
+use slc_core::{load_scene, Renderer};
 use slc_cpu_ref::CpuRenderer;
 use std::collections::BTreeMap;
 
@@ -16,13 +16,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         height: arg(2, "1080").parse()?,
         rsm_resolution: arg(3, "256").parse()?,
         seed: 0,
-        method: Method::Stochastic(Stochastic {
-            delta: 1e-3,
-            strategy: Strategy::Ellipsoid,
-            interleave: 8,
-            denoise: true,
-            metrics: false,
-        }),
+        method: Method::Stochastic(Stochastic::PAPER),
         visibility: false,
         spp: 1,
         lobes: LobeSelection::Glossy,

@@ -11,32 +11,9 @@ mod taps;
 
 use guide::{fill_rows, Guide};
 use rayon::prelude::*;
+pub use slc_core::frame::BilateralParams;
 use slc_core::{GBuffer, Image};
 use taps::Kernel;
-
-/// Parameters of the cross bilateral filter.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct BilateralParams {
-    /// Kernel radius in pixels (8 in the paper).
-    pub radius: u32,
-    /// Spatial standard deviation in pixels.
-    pub sigma_spatial: f32,
-    /// Standard deviation of the relative depth difference |z - z'| / z.
-    pub sigma_depth: f32,
-    /// Exponent of the normal weight max(n·n', 0)^(2^k): k squarings.
-    pub normal_squarings: u32,
-}
-
-impl Default for BilateralParams {
-    fn default() -> Self {
-        Self {
-            radius: 8,
-            sigma_spatial: 4.0,
-            sigma_depth: 0.05,
-            normal_squarings: 5,
-        }
-    }
-}
 
 /// An image whose size is not the G-buffer's.
 #[derive(Debug, thiserror::Error)]

@@ -1,8 +1,10 @@
 //! The full-frame images the CPU passes shade into: cleared on every rayon thread
-//! ([`black_image`]), or a frame the renderer is done with, reused ([`SpareImage`]).
+//! ([`black_image`]), shaded row by row ([`shade_rows`]), or a frame the renderer is done
+//! with, reused ([`SpareImage`]).
 use glam::Vec3;
 use rayon::prelude::*;
-use slc_core::Image;
+use slc_core::progress::Progress;
+use slc_core::{GBuffer, GSample, Image};
 use std::fmt;
 use std::sync::{Mutex, PoisonError};
 
@@ -18,6 +20,35 @@ pub(crate) fn black_image(width: u32, height: u32) -> Image {
         height,
         pixels,
     }
+}
+
+/// An image of `gbuffer`'s size, its rows shaded in parallel: `shade(sample, pixel)` adds
+/// to each pixel with a sample. Once `progress` is cancelled the rows not begun stay black;
+/// each finished row is counted.
+pub(crate) fn shade_rows<E: Send>(
+    gbuffer: &GBuffer,
+    progress: Progress,
+    shade: impl Fn(&GSample, &mut Vec3) -> Result<(), E> + Sync,
+) -> Result<Image, E> {
+    let mut image = black_image(gbuffer.width, gbuffer.height);
+    let w = gbuffer.width as usize;
+    image
+        .pixels
+        .par_chunks_mut(w)
+        .zip(gbuffer.samples.par_chunks(w))
+        .try_for_each(|(out, row)| {
+            if progress.cancelled() {
+                return Ok(());
+            }
+            for (o, g) in out.iter_mut().zip(row) {
+                if let Some(g) = g {
+                    shade(g, o)?;
+                }
+            }
+            progress.advance(w as u64);
+            Ok(())
+        })?;
+    Ok(image)
 }
 
 /// A frame a renderer is done with (the noisy image its filter consumed), kept for its next

@@ -1,6 +1,6 @@
 //! Shading with every VPL (no culling): the exact VPL sum, or the stochastic estimate of
 //! paper eq. (3) where each VPL is kept at a pixel only if p(ωo, l) > ξ.
-use crate::frame_images::black_image;
+use crate::frame_images::{black_image, shade_rows};
 use crate::received_lanes::{received_lanes, ReceiverBrdfs};
 use crate::tracer::Tracer;
 use glam::Vec3;
@@ -84,33 +84,19 @@ pub fn shade_vpls(
                 .collect::<Result<Vec<_>, _>>()?,
         ),
     };
-    let mut image = black_image(gbuffer.width, gbuffer.height);
-    let w = gbuffer.width as usize;
-    image
-        .pixels
-        .par_chunks_mut(w)
-        .zip(gbuffer.samples.par_chunks(w))
-        .for_each(|(out, row)| {
-            if progress.cancelled() {
-                return;
+    shade_rows(gbuffer, progress, |g, o| {
+        let from = tracer.lift(g.position, g.geometric_normal);
+        for (k, vpl) in vpls.iter().enumerate() {
+            let c = vpl_contribution(g, vpl, roulette.as_ref().map(|r| &r[k]));
+            if c != Vec3::ZERO
+                && (!visibility
+                    || tracer.unoccluded(from, tracer.lift(vpl.position, vpl.geometric_normal)))
+            {
+                *o += c;
             }
-            for (o, g) in out.iter_mut().zip(row) {
-                let Some(g) = g else { continue };
-                let from = tracer.lift(g.position, g.geometric_normal);
-                for (k, vpl) in vpls.iter().enumerate() {
-                    let c = vpl_contribution(g, vpl, roulette.as_ref().map(|r| &r[k]));
-                    if c != Vec3::ZERO
-                        && (!visibility
-                            || tracer
-                                .unoccluded(from, tracer.lift(vpl.position, vpl.geometric_normal)))
-                    {
-                        *o += c;
-                    }
-                }
-            }
-            progress.advance(w as u64);
-        });
-    Ok(image)
+        }
+        Ok(())
+    })
 }
 
 /// Indirect radiance from culled light lists (paper eq. 3 with interleaved sampling): each

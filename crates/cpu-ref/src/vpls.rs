@@ -26,20 +26,7 @@ pub fn generate_vpls(maps: &[Rsm], seed: u32, lobes: LobeSelection) -> Vec<Vpl> 
                 (VplLobe::Glossy, specular, id + 1),
             ] {
                 if present && lobes.wants(lobe) {
-                    vpls.push(Vpl {
-                        position: t.position,
-                        normal: t.normal,
-                        geometric_normal: match t.normal_mapped {
-                            true => t.geometric_normal,
-                            false => t.normal,
-                        },
-                        omega_i: t.omega_i,
-                        flux: t.flux,
-                        brdf: t.brdf,
-                        lobe,
-                        id,
-                        xi: vpl_xi(seed, id),
-                    });
+                    vpls.push(t.vpl(lobe, id, vpl_xi(seed, id)));
                 }
             }
         }

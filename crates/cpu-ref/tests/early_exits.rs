@@ -17,39 +17,11 @@ use slc_cpu_ref::received_lanes::{received_pairs, ReceiverBrdfs};
 use slc_cpu_ref::vpl_shading::{received, vpl_contribution};
 use slc_cull::{ReachChunks, ReceiverChunks, VplReach};
 
-/// xorshift64*, uniform floats in [0, 1).
-struct Rng(u64);
+#[path = "../../../tests/fixtures/rng.rs"]
+mod rng;
+use rng::Rng;
 
 impl Rng {
-    fn f32(&mut self) -> f32 {
-        self.0 ^= self.0 >> 12;
-        self.0 ^= self.0 << 25;
-        self.0 ^= self.0 >> 27;
-        ((self.0.wrapping_mul(0x2545_F491_4F6C_DD1D) >> 40) as f32) / (1u64 << 24) as f32
-    }
-
-    fn range(&mut self, a: f32, b: f32) -> f32 {
-        a + (b - a) * self.f32()
-    }
-
-    /// 10^U(lo, hi).
-    fn log(&mut self, lo: f32, hi: f32) -> f32 {
-        10f32.powf(self.range(lo, hi))
-    }
-
-    fn unit(&mut self) -> Vec3 {
-        loop {
-            let v = Vec3::new(
-                self.range(-1.0, 1.0),
-                self.range(-1.0, 1.0),
-                self.range(-1.0, 1.0),
-            );
-            if v.length_squared() > 1e-4 && v.length_squared() <= 1.0 {
-                return v.normalize();
-            }
-        }
-    }
-
     /// A unit vector whose cosine to `n` is `cos` (sign included).
     fn at_cosine(&mut self, n: Vec3, cos: f32) -> Vec3 {
         let t = n.any_orthonormal_vector();

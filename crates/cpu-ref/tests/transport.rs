@@ -1,9 +1,10 @@
 //! Light transport checks that would catch a wrong flux, solid angle, falloff or estimator.
 use glam::Vec3;
+use slc_bounds::BoundsError;
 use slc_core::frame::{LobeSelection, Method, RenderError, RenderSettings, Stochastic};
 use slc_core::shapes::{cuboid, quad};
 use slc_core::Strategy;
-use slc_core::{builtin, Light, Material, Scene};
+use slc_core::{builtin, GBuffer, Image, Light, Material, Scene, Vpl};
 use slc_cpu_ref::gbuffer::{trace_gbuffer, PixelSample};
 use slc_cpu_ref::rsm::{trace_rsm, Rsm, TexelSample};
 use slc_cpu_ref::vpl_shading::shade_vpls;
@@ -164,6 +165,23 @@ fn directional_light_power_is_irradiance_times_area() {
     assert!((got - 6.0).abs() < 0.02 * 6.0, "{got}");
 }
 
+/// [`shade_vpls`] with the stochastic estimator of δ = `delta`, without visibility.
+fn stochastic(
+    tracer: &Tracer,
+    g: &GBuffer,
+    vpls: &[Vpl],
+    delta: f32,
+) -> Result<Image, BoundsError> {
+    shade_vpls(
+        tracer,
+        g,
+        vpls,
+        VplEstimator::Stochastic { delta },
+        false,
+        &|_| {},
+    )
+}
+
 /// The estimator of eq. (3) is unbiased: over many ξ draws, the mean image converges to the
 /// exact all-VPL sum at every pixel (within 5 standard errors of the mean).
 #[test]
@@ -199,15 +217,7 @@ fn stochastic_estimate_converges_to_the_exact_sum() {
     let mut rejected_some = false;
     for seed in 0..draws {
         let vpls = generate_vpls(&maps, seed, LobeSelection::Both);
-        let est = shade_vpls(
-            &tracer,
-            &g,
-            &vpls,
-            VplEstimator::Stochastic { delta },
-            false,
-            &|_| {},
-        )
-        .unwrap();
+        let est = stochastic(&tracer, &g, &vpls, delta).unwrap();
         for (k, p) in est.pixels.iter().enumerate() {
             assert!(p.is_finite());
             let v = p.x as f64;
@@ -253,37 +263,13 @@ fn extreme_deltas() {
         PixelSample::Centre,
     );
     let exact = shade_vpls(&tracer, &g, &vpls, VplEstimator::Exact, false, &|_| {}).unwrap();
-    let tiny = shade_vpls(
-        &tracer,
-        &g,
-        &vpls,
-        VplEstimator::Stochastic { delta: 1e-9 },
-        false,
-        &|_| {},
-    )
-    .unwrap();
+    let tiny = stochastic(&tracer, &g, &vpls, 1e-9).unwrap();
     assert!(tiny.rmse(&exact) <= 1e-6 * exact.mean().max_element());
     for delta in [1e3f32, 1e30] {
-        let huge = shade_vpls(
-            &tracer,
-            &g,
-            &vpls,
-            VplEstimator::Stochastic { delta },
-            false,
-            &|_| {},
-        )
-        .unwrap();
+        let huge = stochastic(&tracer, &g, &vpls, delta).unwrap();
         assert!(huge.is_finite_non_negative());
     }
-    assert!(shade_vpls(
-        &tracer,
-        &g,
-        &vpls,
-        VplEstimator::Stochastic { delta: 0.0 },
-        false,
-        &|_| {}
-    )
-    .is_err());
+    assert!(stochastic(&tracer, &g, &vpls, 0.0).is_err());
 }
 
 /// A light of zero intensity renders black everywhere, with no NaN.

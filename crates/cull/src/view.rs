@@ -11,6 +11,7 @@
 //! G-buffer samples and the VPL bounds go through the same matrix, so culling and the
 //! brute-force truth see the same geometry up to f64 rounding.
 use glam::{Affine3A, DMat3, DVec2, DVec3, Mat3, Vec3};
+use slc_bounds::test_space::orthonormality_error;
 use slc_core::{Camera, CullError};
 
 /// Largest accepted deviation of the camera basis from orthonormal; within it the basis is
@@ -130,13 +131,7 @@ impl CullView {
 /// re-orthonormalised (Gram-Schmidt from forward, then right); `None` otherwise.
 fn orthonormal_basis(camera: &Camera) -> Option<Mat3> {
     let given = Mat3::from_cols(camera.right, -camera.up, camera.forward);
-    let e = given.transpose() * given - Mat3::IDENTITY;
-    let worst = e
-        .x_axis
-        .abs()
-        .max(e.y_axis.abs())
-        .max(e.z_axis.abs())
-        .max_element();
+    let worst = orthonormality_error(given);
     if !(camera.position.is_finite() && worst <= BASIS_TOLERANCE && given.determinant() > 0.0) {
         return None;
     }

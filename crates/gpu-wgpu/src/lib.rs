@@ -44,6 +44,24 @@ macro_rules! kernel {
     };
 }
 
+/// The test that each Rust record has the size of its WGSL twin in the kernels that read it,
+/// as the shader compiler lays the twin out: `kernel => { RustType as "WgslName", … }`.
+#[cfg(test)]
+macro_rules! wgsl_twins {
+    ($($kernel:expr => { $($ty:ty as $name:literal),+ $(,)? })+) => {
+        #[test]
+        fn sizes_match_the_wgsl_twins() {
+            $($(assert_eq!(
+                crate::device::wgsl_size($kernel, $name),
+                std::mem::size_of::<$ty>(),
+                "{} in {}",
+                $name,
+                stringify!($kernel)
+            );)+)+
+        }
+    };
+}
+
 pub mod cull;
 pub mod device;
 pub mod frame;

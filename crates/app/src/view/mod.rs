@@ -69,11 +69,10 @@ pub enum ViewError {
 
 /// The view's width: the window adds the side panel ([`window::PANEL_WIDTH`]) beside it, and
 /// the window's surface is at most [`MAX_IMAGE_SIDE`] wide.
-pub const VIEW_WIDTH: Count = Count {
-    what: "the view's width (the window adds the side panel)",
-    min: 1,
-    max: MAX_IMAGE_SIDE - window::PANEL_WIDTH,
-};
+pub const VIEW_WIDTH: Count = Count::up_to(
+    "the view's width (the window adds the side panel)",
+    MAX_IMAGE_SIDE - window::PANEL_WIDTH,
+);
 
 /// `slc view`'s options.
 #[derive(Args, Debug)]

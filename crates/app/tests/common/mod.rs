@@ -1,7 +1,7 @@
 //! Helpers shared by the integration tests of the `slc` command. Each test file compiles
 //! this module on its own and uses part of it, hence `allow(dead_code)` below.
 use std::path::{Path, PathBuf};
-use std::process::Command;
+use std::process::{Command, Output};
 
 /// The `slc` binary under test.
 #[allow(dead_code)]
@@ -9,16 +9,29 @@ pub fn slc() -> Command {
     Command::new(env!("CARGO_BIN_EXE_slc"))
 }
 
+/// `slc ARGS --out OUT` (ARGS split at spaces).
+#[allow(dead_code)]
+pub fn command(args: &str, out: &Path) -> Command {
+    let mut c = slc();
+    c.args(args.split(' ')).arg("--out").arg(out);
+    c
+}
+
+/// Runs `slc ARGS --out OUT` (ARGS split at spaces) to its end.
+#[allow(dead_code)]
+pub fn run(args: &str, out: &Path) -> Output {
+    command(args, out).output().unwrap()
+}
+
 /// Runs `slc ARGS --out OUT` (ARGS split at spaces) and asserts it succeeded.
 #[allow(dead_code)]
 pub fn run_ok(args: &str, out: &Path) {
-    let status = slc()
-        .args(args.split(' '))
-        .arg("--out")
-        .arg(out)
-        .status()
-        .unwrap();
-    assert!(status.success(), "slc {args} failed");
+    let o = run(args, out);
+    assert!(
+        o.status.success(),
+        "slc {args} failed: {}",
+        String::from_utf8_lossy(&o.stderr)
+    );
 }
 
 /// A fresh output folder for this test process (removed if a previous run left it).

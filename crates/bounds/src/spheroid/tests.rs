@@ -32,6 +32,11 @@ fn peak_touches_the_surface_at_normal_incidence() {
     }
 }
 
+/// A random lobe of `alpha` at `deg` degrees of incidence with Fresnel 1 everywhere.
+fn white_lobe(rng: &mut Rng, alpha: f32, deg: f32) -> GlossyLobe {
+    random_lobe(rng, alpha, deg.to_radians(), Fresnel::Schlick(Vec3::ONE))
+}
+
 #[test]
 fn peak_ratio_is_fresnel_times_g1_over_f_max() {
     // At ωo = ω_u the half vector is n, and s(ω_u) = r/α (eq. 12 with D(1) = 1/(πα²)):
@@ -41,12 +46,7 @@ fn peak_ratio_is_fresnel_times_g1_over_f_max() {
     for alpha in [0.01f32, 0.2, 1.0] {
         for deg in [0.0f32, 30.0, 60.0, 80.0] {
             let cos_i = f64::from(deg.to_radians().cos());
-            let lobe = random_lobe(
-                &mut rng,
-                alpha,
-                deg.to_radians(),
-                Fresnel::Schlick(Vec3::ONE),
-            );
+            let lobe = white_lobe(&mut rng, alpha, deg);
             let s = Spheroid::new(&lobe, &params).unwrap();
             let u = lobe.reflection();
             let ratio = f64::from(params.range(lobe.intensity(u)) / (s.radius() / alpha));
@@ -102,12 +102,7 @@ fn axes_follow_eq_13_to_15() {
     let params = StochasticParams::new(1e-3, 0.4).unwrap();
     for deg in [0.0f32, 1e-5, 0.05, 10.0, 60.0, 89.0] {
         let alpha = rng.range(0.01, 1.0);
-        let lobe = random_lobe(
-            &mut rng,
-            alpha,
-            deg.to_radians(),
-            Fresnel::Schlick(Vec3::ONE),
-        );
+        let lobe = white_lobe(&mut rng, alpha, deg);
         let s = Spheroid::new(&lobe, &params).unwrap();
         let (rot, r) = (s.rotation(), s.radius());
         let cols = [rot.x_axis, rot.y_axis, rot.z_axis];

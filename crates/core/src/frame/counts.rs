@@ -13,6 +13,11 @@ pub struct Count {
 }
 
 impl Count {
+    /// A count from 1 to `max`.
+    pub const fn up_to(what: &'static str, max: u32) -> Count {
+        Count { what, min: 1, max }
+    }
+
     /// `value`, or an error naming the count and its range.
     pub fn check(&self, value: u32) -> Result<u32, String> {
         if (self.min..=self.max).contains(&value) {
@@ -40,61 +45,22 @@ pub const MAX_RSM_SIDE: u32 = 4096;
 /// The largest number of sampled lights (or camera-side VSGLs) a frame accepts.
 pub const MAX_SAMPLED_LIGHTS: u32 = 1 << 24;
 
-pub const WIDTH: Count = Count {
-    what: "the width",
-    min: 1,
-    max: MAX_IMAGE_SIDE,
-};
-pub const HEIGHT: Count = Count {
-    what: "the height",
-    min: 1,
-    max: MAX_IMAGE_SIDE,
-};
-pub const RSM: Count = Count {
-    what: "the RSM resolution",
-    min: 1,
-    max: MAX_RSM_SIDE,
-};
+pub const WIDTH: Count = Count::up_to("the width", MAX_IMAGE_SIDE);
+pub const HEIGHT: Count = Count::up_to("the height", MAX_IMAGE_SIDE);
+pub const RSM: Count = Count::up_to("the RSM resolution", MAX_RSM_SIDE);
 /// Passes averaged: beyond 2^16 the f32 sum of the passes loses more than 2^-8 of each
 /// pass's weight, and the run takes days.
-pub const SPP: Count = Count {
-    what: "spp",
-    min: 1,
-    max: 1 << 16,
-};
-pub const INTERLEAVE: Count = Count {
-    what: "the interleaving K",
-    min: 1,
-    max: 64,
-};
-pub const SAMPLED_LIGHTS: Count = Count {
-    what: "the number of sampled lights (VSGLs)",
-    min: 1,
-    max: MAX_SAMPLED_LIGHTS,
-};
-pub const CAMERA_VSGLS: Count = Count {
-    what: "the number of camera VSGLs",
-    min: 1,
-    max: MAX_SAMPLED_LIGHTS,
-};
+pub const SPP: Count = Count::up_to("spp", 1 << 16);
+pub const INTERLEAVE: Count = Count::up_to("the interleaving K", 64);
+pub const SAMPLED_LIGHTS: Count =
+    Count::up_to("the number of sampled lights (VSGLs)", MAX_SAMPLED_LIGHTS);
+pub const CAMERA_VSGLS: Count = Count::up_to("the number of camera VSGLs", MAX_SAMPLED_LIGHTS);
 /// Timed repetitions (`--repeat`).
-pub const REPEAT: Count = Count {
-    what: "the number of repetitions",
-    min: 1,
-    max: 1000,
-};
+pub const REPEAT: Count = Count::up_to("the number of repetitions", 1000);
 /// Point sets of a VSGL sweep (`--seeds`).
-pub const SEEDS: Count = Count {
-    what: "the number of seeds",
-    min: 1,
-    max: 1000,
-};
+pub const SEEDS: Count = Count::up_to("the number of seeds", 1000);
 /// The heat map's saturation in lights per pixel (`--heat-max`).
-pub const HEAT_MAX: Count = Count {
-    what: "the heat map's maximum",
-    min: 1,
-    max: 1 << 24,
-};
+pub const HEAT_MAX: Count = Count::up_to("the heat map's maximum", 1 << 24);
 
 #[cfg(test)]
 mod tests {

@@ -152,7 +152,6 @@ impl RenderSettings {
 mod tests {
     use super::*;
     use crate::frame::Stochastic;
-    use crate::strategy::Strategy;
 
     fn settings(width: u32, height: u32, rsm: u32) -> RenderSettings {
         RenderSettings {
@@ -160,13 +159,7 @@ mod tests {
             height,
             rsm_resolution: rsm,
             seed: 0,
-            method: Method::Stochastic(Stochastic {
-                delta: 1e-3,
-                strategy: Strategy::Ellipsoid,
-                interleave: 8,
-                denoise: true,
-                metrics: false,
-            }),
+            method: Method::Stochastic(Stochastic::PAPER),
             visibility: false,
             spp: 1,
             lobes: LobeSelection::Both,

@@ -19,6 +19,18 @@ pub struct Stochastic {
     pub metrics: bool,
 }
 
+impl Stochastic {
+    /// The paper's setting (section 7): the ellipsoid bound with δ = 1e-3, 8 x 8
+    /// interleaving and the cross bilateral filter, without metrics.
+    pub const PAPER: Stochastic = Stochastic {
+        delta: 1e-3,
+        strategy: Strategy::Ellipsoid,
+        interleave: 8,
+        denoise: true,
+        metrics: false,
+    };
+}
+
 /// The importance `p(s)` sampled lights are drawn with (VSGL section 4.2-4.3).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Importance {

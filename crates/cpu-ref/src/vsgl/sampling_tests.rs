@@ -262,22 +262,11 @@ fn levels_follow_the_paper_formula() {
 fn sample_sets_are_deterministic_and_degenerate_inputs_are_empty() {
     let maps = two_maps();
     let sampler = FilteredSampler::new(&maps);
-    let a = sampler.sample(
-        &sample_points(64, 7, SampleSet::Lights),
-        Footprint::Filtered,
-    );
-    let b = sampler.sample(
-        &sample_points(64, 7, SampleSet::Lights),
-        Footprint::Filtered,
-    );
-    let c = sampler.sample(
-        &sample_points(64, 8, SampleSet::Lights),
-        Footprint::Filtered,
-    );
-    let d = sampler.sample(
-        &sample_points(64, 7, SampleSet::Camera),
-        Footprint::Filtered,
-    );
+    let sample = |seed, set| sampler.sample(&sample_points(64, seed, set), Footprint::Filtered);
+    let a = sample(7, SampleSet::Lights);
+    let b = sample(7, SampleSet::Lights);
+    let c = sample(8, SampleSet::Lights);
+    let d = sample(7, SampleSet::Camera);
     assert_eq!(a, b);
     assert_ne!(a, c);
     assert_ne!(a, d);

@@ -4,10 +4,9 @@ use super::emitter::Emitter;
 use super::emitter_lanes::EmitterChunks;
 use super::error::VsglError;
 use super::light::Vsgl;
-use crate::frame_images::black_image;
+use crate::frame_images::shade_rows;
 use crate::tracer::Tracer;
 use glam::Vec3;
-use rayon::prelude::*;
 use slc_bounds::SgSurface;
 use slc_core::frame::DiffuseEmission;
 use slc_core::{GBuffer, Image, Progress};
@@ -53,29 +52,15 @@ pub fn shade_vsgls(
         .map(|v| Emitter::new(v, diffuse))
         .collect::<Result<Vec<_>, _>>()?;
     let chunks = EmitterChunks::new(&emitters);
-    let mut image = black_image(gbuffer.width, gbuffer.height);
-    let w = gbuffer.width as usize;
-    image
-        .pixels
-        .par_chunks_mut(w)
-        .zip(gbuffer.samples.par_chunks(w))
-        .try_for_each(|(out, row)| {
-            if progress.cancelled() {
-                return Ok(());
+    shade_rows(gbuffer, progress, |g, o| {
+        let surface = SgSurface::new(g.normal, g.omega_o, &g.brdf)?;
+        let from = tracer.lift(g.position, g.geometric_normal);
+        chunks.each_radiance(&surface, g.position, |i, c| {
+            let mu = Vec3::from(emitters[i].mu);
+            if c != Vec3::ZERO && (!visibility || tracer.unoccluded(from, mu)) {
+                *o += c;
             }
-            for (o, g) in out.iter_mut().zip(row) {
-                let Some(g) = g else { continue };
-                let surface = SgSurface::new(g.normal, g.omega_o, &g.brdf)?;
-                let from = tracer.lift(g.position, g.geometric_normal);
-                chunks.each_radiance(&surface, g.position, |i, c| {
-                    let mu = Vec3::from(emitters[i].mu);
-                    if c != Vec3::ZERO && (!visibility || tracer.unoccluded(from, mu)) {
-                        *o += c;
-                    }
-                })?;
-            }
-            progress.advance(w as u64);
-            Ok::<(), VsglError>(())
         })?;
-    Ok(image)
+        Ok::<(), VsglError>(())
+    })
 }

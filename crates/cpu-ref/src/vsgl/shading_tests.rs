@@ -8,7 +8,7 @@ use glam::Vec3;
 use slc_bounds::sg::{sg_integral, MeanMap, COSINE_LOBE_SHARPNESS};
 use slc_bounds::{Brdf, Fresnel, SgSurface, SphericalGaussian};
 use slc_core::frame::DiffuseEmission;
-use slc_core::{GSample, Vpl, VplLobe};
+use slc_core::{GSample, VplLobe};
 
 fn texel(omega_i: Vec3, kd: Vec3, f0: f32, alpha: f32) -> RsmTexel {
     RsmTexel {
@@ -143,17 +143,7 @@ fn a_point_like_diffuse_vsgl_is_its_vpl_times_the_cosine_fits() {
         alpha: 0.5,
         anisotropy: None,
     };
-    let vpl = Vpl {
-        position: t.position,
-        normal: t.normal,
-        geometric_normal: t.normal,
-        omega_i: t.omega_i,
-        flux: t.flux,
-        brdf: t.brdf,
-        lobe: VplLobe::Diffuse,
-        id: 0,
-        xi: 0.5,
-    };
+    let vpl = t.vpl(VplLobe::Diffuse, 0, 0.5);
     let fit = |cos: f32| (COSINE_LOBE_SHARPNESS * (cos - 1.0)).exp() / cos;
     let emitter_scale = PI / sg_integral(COSINE_LOBE_SHARPNESS);
     let mut seen = Vec::new();
@@ -198,17 +188,7 @@ fn a_point_like_glossy_vsgl_follows_its_glossy_vpl() {
     for (alpha, incidence) in [(0.1f32, 20.0f32), (0.3, 30.0), (0.5, 45.0)] {
         let omega_i = rotate_y(Vec3::Z, incidence);
         let t = texel(omega_i, Vec3::ZERO, 0.9, alpha);
-        let vpl = Vpl {
-            position: t.position,
-            normal: t.normal,
-            geometric_normal: t.normal,
-            omega_i: t.omega_i,
-            flux: t.flux,
-            brdf: t.brdf,
-            lobe: VplLobe::Glossy,
-            id: 1,
-            xi: 0.5,
-        };
+        let vpl = t.vpl(VplLobe::Glossy, 1, 0.5);
         let brdf = Brdf {
             kd: Vec3::splat(0.5),
             fresnel: Fresnel::Schlick(Vec3::ZERO),
@@ -319,15 +299,7 @@ fn a_flat_cluster_does_not_light_its_own_plane_with_the_clamped_cosine() {
             Some(t)
         })
         .collect();
-    let rsm = Rsm {
-        resolution: 4,
-        faces: 1,
-        texels,
-    };
-    let v = MipRsm::build(&rsm, MeanMap::Toksvig)
-        .unwrap()
-        .vsgl(0, 2, 0, 0, 1e-6)
-        .unwrap();
+    let v = super::tests::top_vsgl(texels, 1e-6);
     assert!(v.normal_concentration > 1e6, "{v:?}");
     let brdf = Brdf {
         kd: Vec3::splat(0.5),

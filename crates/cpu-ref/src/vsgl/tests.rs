@@ -302,15 +302,7 @@ fn plane_clusters_have_the_closed_form_mean_and_variance() {
     let mut texels = vec![None; 16];
     texels[0] = Some(plane_texel(Vec3::new(1.0, 1.0, 0.0), 1.0));
     texels[15] = Some(plane_texel(Vec3::new(4.0, 1.0, 0.0), 3.0));
-    let rsm = Rsm {
-        resolution: 4,
-        faces: 1,
-        texels,
-    };
-    let top = MipRsm::build(&rsm, MeanMap::Toksvig)
-        .unwrap()
-        .vsgl(0, 2, 0, 0, 0.0)
-        .unwrap();
+    let top = top_vsgl(texels, 0.0);
     assert!(
         close3(top.mu, Vec3::new(3.25, 1.0, 0.0), 0.0, 1e-5),
         "{top:?}"
@@ -561,4 +553,17 @@ fn the_stretch_follows_the_true_lobe() {
         }
         println!("{line}");
     }
+}
+
+/// The top VSGL (level 2) of one 4 x 4 face of `texels`, σ² floored at `sigma2_floor`.
+pub(super) fn top_vsgl(texels: Vec<Option<RsmTexel>>, sigma2_floor: f32) -> Vsgl {
+    let rsm = Rsm {
+        resolution: 4,
+        faces: 1,
+        texels,
+    };
+    MipRsm::build(&rsm, MeanMap::Toksvig)
+        .unwrap()
+        .vsgl(0, 2, 0, 0, sigma2_floor)
+        .unwrap()
 }

@@ -21,51 +21,9 @@ use std::f64::consts::PI;
 mod scenes;
 pub use scenes::sponza;
 
-/// A small deterministic generator (xorshift64*), uniform floats in [0, 1).
-pub struct Rng(u64);
-
-impl Rng {
-    pub fn new(seed: u64) -> Self {
-        Self(seed.wrapping_mul(0x9E37_79B9_7F4A_7C15) | 1)
-    }
-
-    pub fn f32(&mut self) -> f32 {
-        self.0 ^= self.0 >> 12;
-        self.0 ^= self.0 << 25;
-        self.0 ^= self.0 >> 27;
-        ((self.0.wrapping_mul(0x2545_F491_4F6C_DD1D) >> 40) as f32) / (1u64 << 24) as f32
-    }
-
-    pub fn range(&mut self, a: f32, b: f32) -> f32 {
-        a + (b - a) * self.f32()
-    }
-
-    /// 10^U(lo, hi).
-    pub fn log(&mut self, lo: f32, hi: f32) -> f32 {
-        10f32.powf(self.range(lo, hi))
-    }
-
-    pub fn below(&mut self, n: u32) -> u32 {
-        ((self.f32() * n as f32) as u32).min(n - 1)
-    }
-
-    pub fn chance(&mut self, p: f32) -> bool {
-        self.f32() < p
-    }
-
-    pub fn unit(&mut self) -> Vec3 {
-        loop {
-            let v = Vec3::new(
-                self.range(-1.0, 1.0),
-                self.range(-1.0, 1.0),
-                self.range(-1.0, 1.0),
-            );
-            if v.length_squared() > 1e-4 && v.length_squared() <= 1.0 {
-                return v.normalize();
-            }
-        }
-    }
-}
+#[path = "../../../../tests/fixtures/rng.rs"]
+mod rng;
+pub use rng::Rng;
 
 /// A G-buffer of the floor plane y = 0 seen by `camera`, one ray per pixel through a random
 /// point of the pixel (often exactly on its corner or edges); rays that miss the floor see sky.

@@ -57,6 +57,13 @@ pub struct GpuBounds {
     pub count: Count,
 }
 
+impl GpuBounds {
+    /// The bounds and their count, as `cull::partition` sorts them.
+    pub fn sorted(&self) -> (&wgpu::Buffer, &Count) {
+        (&self.buffer, &self.count)
+    }
+}
+
 /// The compiled bounds pipeline.
 pub struct BoundsPass {
     pipeline: wgpu::ComputePipeline,

@@ -1,8 +1,8 @@
 //! The passes every list culler of a tile grid runs besides its own kernels (the tiled and
 //! the clustered layout): per-VPL bounds, the subregions' VPLs, the scan of list offsets, the
 //! tight refinement, and the room the lists of earlier frames needed. A layout brings its
-//! depth pass (what decides each pixel's list) and its list kernel; [`ListPasses::prepare`]
-//! and `ListPasses::lists` run the rest around them.
+//! depth pass (what decides each pixel's list) and its list kernel; [`TileLayout::prepare`]
+//! and [`TileLayout::lists`] run the rest around them.
 use crate::cull::bounds::{BoundsPass, GpuBounds};
 use crate::cull::frame::{check_input, cull_params, tile_grid, CullFrame, CullSizes};
 use crate::cull::lists::{no_lists, GpuLightLists};
@@ -19,38 +19,80 @@ use std::mem::offset_of;
 use std::sync::Arc;
 
 /// A layout of lists on the tile grid (Modified HalfZ's two clusters per tile, the clustered
-/// strategies' depth slices): its passes up to each pixel's list, then its lists, with the
-/// glossy bound a strategy picks. [`ListCulling`] comes with it.
+/// strategies' depth slices): its depth pass, which decides each tile's frusta and each
+/// pixel's list, and its list kernel; [`ListPasses`] runs the rest around them.
+/// [`ListCulling`] comes with it.
 pub trait TileLayout {
     /// A frame culled up to its lists.
     type Prepared;
+    /// The record per tile the depth pass writes.
+    type Frusta: bytemuck::Pod;
+    /// The depth pass's label, and the lists per tile.
+    const DEPTH: (&'static str, u32);
 
     /// The passes this layout shares with the others.
     fn passes(&self) -> &ListPasses;
 
-    /// The passes before the lists ([`ListPasses::prepare`] with the layout's depth pass);
-    /// `None` for a frame without pixels. With `shapes` the bounds are written as shapes
-    /// too (for the raster baselines' meshes).
+    /// Encodes the depth pass after the shared passes of `tiles`: each tile's frusta and
+    /// each pixel's list.
+    fn encode_depth(&self, on: DepthPass, tiles: PreparedTiles)
+        -> Result<Self::Prepared, GpuError>;
+
+    /// The list kernel of a prepared frame.
+    fn kernel<'a>(&'a self, prepared: &'a Self::Prepared) -> ListKernel<'a>;
+
+    /// The passes before the lists, encoded and submitted: per-VPL bounds (as shapes too
+    /// with `shapes`, for the raster baselines' meshes), the subregions' VPLs, then the depth
+    /// pass. `None` for a frame without pixels. Errors on invalid input and on buffers beyond
+    /// the device's limits; faults on the GPU are read with the lists or the shaded image.
     fn prepare(
         &self,
         ctx: &GpuContext,
         frame: &CullFrame,
         glossy: GlossyBound,
         shapes: bool,
-    ) -> Result<Option<Self::Prepared>, GpuError>;
+    ) -> Result<Option<Self::Prepared>, GpuError> {
+        self.passes().prepare::<Self::Frusta, _>(
+            ctx,
+            frame,
+            (glossy, shapes),
+            Self::DEPTH,
+            |encoder, tiles| {
+                self.encode_depth(
+                    DepthPass {
+                        ctx,
+                        frame,
+                        encoder,
+                    },
+                    tiles,
+                )
+            },
+        )
+    }
 
-    /// The lists of a prepared frame (`ListPasses::lists` with the layout's kernel).
+    /// The lists of a prepared frame, counted and written by the layout's kernel; with
+    /// [`GlossyBound::Tight`] refined per block, which rewrites the frame's pixel lists in
+    /// place (`prepared` is spent then).
     fn lists(
         &self,
         ctx: &GpuContext,
         frame: &CullFrame,
         prepared: &Self::Prepared,
-    ) -> Result<GpuLightLists, GpuError>;
+    ) -> Result<GpuLightLists, GpuError> {
+        self.passes().lists(ctx, frame, self.kernel(prepared))
+    }
 
     /// Sets the room of the next frames' lists (`cull::room`), the refinement's too.
     fn set_list_room(&self, entries: u32) {
         self.passes().set_list_room(entries);
     }
+}
+
+/// Where a layout's depth pass is encoded: the submission of the shared passes.
+pub struct DepthPass<'a, 'f> {
+    pub ctx: &'a GpuContext,
+    pub frame: &'a CullFrame<'f>,
+    pub encoder: &'a mut wgpu::CommandEncoder,
 }
 
 /// Culls with `glossy` bounds for glossy VPLs (the section-6 sphere for diffuse ones) into
@@ -82,8 +124,8 @@ pub struct ListPasses {
     pub room: Arc<ListRoom>,
 }
 
-/// A culling on a tile grid up to its frusta ([`ListPasses::prepare`]): what the list passes
-/// (`ListPasses::lists`), the one-pass shading (`shade::tiled`) and the raster baselines read.
+/// A culling on a tile grid up to its frusta ([`TileLayout::prepare`]): what the list passes
+/// ([`TileLayout::lists`]), the one-pass shading (`shade::tiled`) and the raster baselines read.
 pub struct PreparedTiles {
     pub bounds: GpuBounds,
     /// The subregions' VPLs in ascending order (`cull::partition`).
@@ -102,11 +144,13 @@ pub struct PreparedTiles {
 }
 
 /// A layout's list kernel: counts, then writes each list of a tile grid, reading
-/// `params, frusta, bounds, offsets, entries` and then the layout's own buffers.
-pub(crate) struct ListKernel<'a> {
+/// `params, frusta, bounds, offsets, entries` and then `own`, the layout's own buffers.
+pub struct ListKernel<'a> {
     pub label: &'static str,
     pub pipeline: &'a wgpu::ComputePipeline,
     pub layout: BaseLayout,
+    pub tiles: &'a PreparedTiles,
+    pub own: Vec<&'a wgpu::Buffer>,
 }
 
 impl ListPasses {
@@ -135,16 +179,15 @@ impl ListPasses {
     /// The passes before the lists, encoded and submitted as `label`: per-VPL bounds (as
     /// shapes too with `shapes`, for the raster baselines), the subregions' VPLs, then
     /// `depth` (the layout's frusta of `F` per tile and each pixel's list, `lists_per_tile`
-    /// of them). `None` for a frame without pixels. Errors on invalid input and on buffers
-    /// beyond the device's limits; faults on the GPU are read with the lists or the image.
-    pub fn prepare<F: bytemuck::Pod>(
+    /// of them). `None` for a frame without pixels.
+    fn prepare<F: bytemuck::Pod, P>(
         &self,
         ctx: &GpuContext,
         frame: &CullFrame,
         (glossy, shapes): (GlossyBound, bool),
         (label, lists_per_tile): (&'static str, u32),
-        depth: impl FnOnce(&mut wgpu::CommandEncoder, &PreparedTiles) -> Result<(), GpuError>,
-    ) -> Result<Option<PreparedTiles>, GpuError> {
+        depth: impl FnOnce(&mut wgpu::CommandEncoder, PreparedTiles) -> Result<P, GpuError>,
+    ) -> Result<Option<P>, GpuError> {
         let CullSizes { pixels, k, .. } = check_input(frame)?;
         if pixels == 0 {
             return Ok(None);
@@ -162,15 +205,9 @@ impl ListPasses {
         let status = upload(ctx, "cull status", &[GpuCullStatus::CLEAR])?;
         let params = cull_params(frame, &view, tiles, CULL_COUNT);
         ctx.submit(label, |encoder| {
-            let partition = self.partition.encode(
-                ctx,
-                encoder,
-                &self.scan,
-                &bounds.buffer,
-                &bounds.count,
-                k * k,
-                &status,
-            )?;
+            let partition =
+                self.partition
+                    .encode(ctx, encoder, &self.scan, bounds.sorted(), k * k, &status)?;
             let prepared = PreparedTiles {
                 bounds,
                 partition,
@@ -182,24 +219,22 @@ impl ListPasses {
                 pixels,
                 glossy,
             };
-            depth(encoder, &prepared)?;
-            Ok(Some(prepared))
+            depth(encoder, prepared).map(Some)
         })
     }
 
-    /// The lists of a prepared frame, in one submission: counted per list by `kernel`
-    /// (reading `own` after its shared buffers), scanned, written into a buffer of the room
+    /// The lists of a prepared frame, in one submission: counted per list by `kernel`,
+    /// scanned, written into a buffer of the room
     /// earlier frames needed (`cull::room`; the total is read with the work that uses them,
     /// [`GpuLightLists::outgrown`]); refined per block for [`GlossyBound::Tight`]
     /// (`cull::tight`, which rewrites the pixel lists in place).
-    pub(crate) fn lists(
+    fn lists(
         &self,
         ctx: &GpuContext,
         frame: &CullFrame,
-        tiles: &PreparedTiles,
         kernel: ListKernel,
-        own: &[&wgpu::Buffer],
     ) -> Result<GpuLightLists, GpuError> {
+        let tiles = kernel.tiles;
         let per_tile = kernel.layout.clusters;
         let list_count = per_tile * tiles.params.tile_count;
         let offsets = output::<u32>(ctx, "list offsets", list_count as usize + 1)?;
@@ -227,7 +262,10 @@ impl ListPasses {
                     &offsets,
                     &entries,
                 ];
-                let buffers: Vec<_> = shared.into_iter().chain(own.iter().copied()).collect();
+                let buffers: Vec<_> = shared
+                    .into_iter()
+                    .chain(kernel.own.iter().copied())
+                    .collect();
                 ctx.encode_dispatch(encoder, kernel.label, kernel.pipeline, &buffers, tiles.grid);
                 if mode == CULL_COUNT {
                     self.scan

@@ -31,17 +31,15 @@ impl PartitionPass {
     }
 
     /// Records count, scan and write for the `count` bounds of `bounds` in `subregions`
-    /// subregions.
-    /// Overflowed bounds are recorded in `status` (`GpuCullStatus::overflow_vpl`); the scan
-    /// also stores its total there, which a later scan overwrites.
-    #[allow(clippy::too_many_arguments)]
+    /// subregions. Overflowed
+    /// bounds are recorded in `status` (`GpuCullStatus::overflow_vpl`); the scan also stores
+    /// its total there, which a later scan overwrites.
     pub fn encode(
         &self,
         ctx: &GpuContext,
         encoder: &mut wgpu::CommandEncoder,
         scan: &ScanPass,
-        bounds: &wgpu::Buffer,
-        count: &Count,
+        (bounds, count): (&wgpu::Buffer, &Count),
         subregions: u32,
         status: &wgpu::Buffer,
     ) -> Result<GpuPartition, GpuError> {

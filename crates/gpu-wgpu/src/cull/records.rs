@@ -209,54 +209,27 @@ pub const BOX_GLOSSY: u32 = 2;
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::device::wgsl_size;
 
-    /// Every Rust struct has the size of its WGSL twin as the shader compiler lays it out.
-    #[test]
-    fn sizes_match_the_wgsl_twins() {
-        use std::mem::size_of;
-        let cases = [
-            (crate::cull::bounds::SOURCE, "View", size_of::<GpuView>()),
-            (crate::cull::bounds::SOURCE, "Bound", size_of::<GpuBound>()),
-            (
-                crate::cull::bounds::SOURCE,
-                "LocalBound",
-                size_of::<GpuLocalBound>(),
-            ),
-            (
-                crate::cull::bounds::SOURCE,
-                "BoxBound",
-                size_of::<GpuBoxBound>(),
-            ),
-            (
-                crate::cull::tiled::depth::SOURCE,
-                "CullParams",
-                size_of::<GpuCullParams>(),
-            ),
-            (
-                crate::cull::tiled::depth::SOURCE,
-                "TileFrusta",
-                size_of::<GpuTileFrusta>(),
-            ),
-            (
-                crate::cull::tiled::SOURCE,
-                "CullParams",
-                size_of::<GpuCullParams>(),
-            ),
-            (crate::cull::tiled::SOURCE, "Bound", size_of::<GpuBound>()),
-            (
-                crate::cull::partition::SOURCE,
-                "PartitionParams",
-                size_of::<GpuPartitionParams>(),
-            ),
-            (
-                crate::cull::tight::SOURCE,
-                "BoxBound",
-                size_of::<GpuBoxBound>(),
-            ),
-        ];
-        for (source, name, size) in cases {
-            assert_eq!(wgsl_size(source, name), size, "{name}");
+    wgsl_twins! {
+        crate::cull::bounds::SOURCE => {
+            GpuView as "View",
+            GpuBound as "Bound",
+            GpuLocalBound as "LocalBound",
+            GpuBoxBound as "BoxBound",
+        }
+        crate::cull::tiled::depth::SOURCE => {
+            GpuCullParams as "CullParams",
+            GpuTileFrusta as "TileFrusta",
+        }
+        crate::cull::tiled::SOURCE => {
+            GpuCullParams as "CullParams",
+            GpuBound as "Bound",
+        }
+        crate::cull::partition::SOURCE => {
+            GpuPartitionParams as "PartitionParams",
+        }
+        crate::cull::tight::SOURCE => {
+            GpuBoxBound as "BoxBound",
         }
     }
 }

@@ -134,9 +134,6 @@ impl GpuContext {
             .await
             .map_err(|e| GpuError::NoAdapter(e.to_string()))?;
         let info = adapter.get_info();
-        let adapter_name = adapter_label(&info);
-        let timestamps = adapter.features().contains(wgpu::Features::TIMESTAMP_QUERY);
-        let timestamps_trusted = timestamps && info.device_type != wgpu::DeviceType::Cpu;
         // Timestamps for the profiles; f32 blending for splatting's sums (`cull::raster::splat`);
         // subgroup operations for the one-pass tiled kernel (`shade::tiled`);
         // conservative rasterization for clustered-raster's shell pass
@@ -146,17 +143,16 @@ impl GpuContext {
                 | wgpu::Features::FLOAT32_BLENDABLE
                 | wgpu::Features::SUBGROUP
                 | wgpu::Features::CONSERVATIVE_RASTERIZATION);
-        let limits = adapter.limits();
         let (device, queue) = adapter
             .request_device(&wgpu::DeviceDescriptor {
                 label: Some("slc"),
                 required_features,
-                required_limits: limits.clone(),
+                required_limits: adapter.limits(),
                 ..Default::default()
             })
             .await
             .map_err(|e| GpuError::RequestDevice {
-                adapter: adapter_name.clone(),
+                adapter: adapter_label(&info),
                 reason: e.to_string(),
             })?;
         let lost = Arc::new(Mutex::new(None));
@@ -167,20 +163,8 @@ impl GpuContext {
             }
         });
         Ok(Self {
-            subgroups: device.features().contains(wgpu::Features::SUBGROUP),
-            conservative_raster: device
-                .features()
-                .contains(wgpu::Features::CONSERVATIVE_RASTERIZATION),
-            device,
-            queue,
-            adapter_name,
-            timestamps,
-            timestamps_trusted,
-            software: is_software_adapter(&info),
-            limits,
             lost,
-            profiler: Mutex::new(None),
-            readback: Mutex::new(BTreeMap::new()),
+            ..Self::from_device(device, queue, &info)
         })
     }
 

@@ -21,7 +21,7 @@ use crate::cull::frame::CullFrame;
 use crate::cull::lists::read_lists;
 use crate::cull::{Culled, GpuCulling, ListCulling};
 use crate::device::context::{GpuContext, GpuError};
-use crate::frame::denoise::{BilateralSettings, DenoisePass, Guide};
+use crate::frame::denoise::{DenoisePass, Guide};
 use crate::frame::light::direct::DirectPass;
 use crate::frame::light::rsm::{GpuRsm, RsmPass};
 use crate::frame::raster::gbuffer::{GbufferPass, GpuGBuffer};
@@ -37,8 +37,8 @@ use crate::vsgl::ism::{caster_points, GpuCaster, IsmPass, IsmSettings};
 use crate::vsgl::readback::cpu_rsm;
 use crate::vsgl::shade::VsglShadePass;
 use slc_core::frame::{
-    Importance, LightSampling, LobeSelection, Method, PassTime, PreparedData, RenderError,
-    RenderSettings, Shaded, Timings,
+    BilateralParams, Importance, LightSampling, LobeSelection, Method, PassTime, PreparedData,
+    RenderError, RenderSettings, Shaded, Timings,
 };
 use slc_core::render::pass_seed;
 use slc_core::rng::{stream, uniform};
@@ -479,7 +479,7 @@ impl Renderer for GpuRenderer {
                 camera: &g.camera,
             };
             self.denoiser
-                .filter_on_gpu(&self.ctx, &image, &guide, &BilateralSettings::default())
+                .filter_on_gpu(&self.ctx, &image, &guide, &BilateralParams::default())
         })
     }
 

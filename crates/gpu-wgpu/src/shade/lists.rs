@@ -74,6 +74,17 @@ impl ShadePass {
         lists: &LightLists,
     ) -> Result<Image, GpuError> {
         let gpu = GpuLightLists::upload(ctx, lists, input.gbuffer.samples.len(), input.vpls.len())?;
+        self.shade_read_back(ctx, input, &gpu)
+    }
+
+    /// Shades `input` with `lists` on the GPU (uploaded, or left there by a culler) and reads
+    /// the image back.
+    pub fn shade_read_back(
+        &self,
+        ctx: &GpuContext,
+        input: &CullInput,
+        lists: &GpuLightLists,
+    ) -> Result<Image, GpuError> {
         let g = input.gbuffer;
         let rgb = self.shade_on_gpu(
             ctx,
@@ -81,7 +92,7 @@ impl ShadePass {
             input.vpls,
             input.delta,
             input.interleaving,
-            &gpu,
+            lists,
         )?;
         read_image(ctx, &rgb, g.width, g.height)
     }
@@ -99,18 +110,9 @@ impl ShadePass {
         interleaving: Interleaving,
         lists: &GpuLightLists,
     ) -> Result<wgpu::Buffer, GpuError> {
-        let vpls = vpls.into();
-        match gbuffer {
-            ShadedGBuffer::Gpu(g) => {
-                let input = ShadeInput {
-                    width: g.width,
-                    height: g.height,
-                    vpls,
-                    delta,
-                    interleaving,
-                };
-                self.shade_samples(ctx, (&g.samples, &g.positions), &input, lists)
-            }
+        let uploaded;
+        let (width, height, buffers) = match gbuffer {
+            ShadedGBuffer::Gpu(g) => (g.width, g.height, (&g.samples, &g.positions)),
             ShadedGBuffer::Cpu(g) => {
                 let pixels = u64::from(g.width) * u64::from(g.height);
                 if pixels != g.samples.len() as u64 || u32::try_from(pixels).is_err() {
@@ -126,20 +128,23 @@ impl ShadePass {
                     .iter()
                     .map(|s| GpuSample::new(s.as_ref()))
                     .collect();
-                let samples = upload(ctx, "gbuffer samples", &samples)?;
                 let positions: Vec<[f32; 4]> =
                     g.samples.iter().map(|s| gpu_position(s.as_ref())).collect();
-                let positions = upload(ctx, "gbuffer positions", &positions)?;
-                let input = ShadeInput {
-                    width: g.width,
-                    height: g.height,
-                    vpls,
-                    delta,
-                    interleaving,
-                };
-                self.shade_samples(ctx, (&samples, &positions), &input, lists)
+                uploaded = (
+                    upload(ctx, "gbuffer samples", &samples)?,
+                    upload(ctx, "gbuffer positions", &positions)?,
+                );
+                (g.width, g.height, (&uploaded.0, &uploaded.1))
             }
-        }
+        };
+        let input = ShadeInput {
+            width,
+            height,
+            vpls: vpls.into(),
+            delta,
+            interleaving,
+        };
+        self.shade_samples(ctx, buffers, &input, lists)
     }
 
     /// Shades the [`GpuSample`]s and positions in `(samples, positions)` into an RGB buffer

@@ -26,19 +26,10 @@ const _: () = assert!(std::mem::size_of::<GpuShadeParams>() == 32);
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::device::wgsl_size;
 
-    /// Every Rust struct has the size of its WGSL twin as the shader compiler lays it out.
-    #[test]
-    fn sizes_match_the_wgsl_twins() {
-        use std::mem::size_of;
-        let cases = [(
-            crate::shade::lists::SOURCE,
-            "ShadeParams",
-            size_of::<GpuShadeParams>(),
-        )];
-        for (source, name, size) in cases {
-            assert_eq!(wgsl_size(source, name), size, "{name}");
+    wgsl_twins! {
+        crate::shade::lists::SOURCE => {
+            GpuShadeParams as "ShadeParams",
         }
     }
 }

@@ -154,26 +154,21 @@ const _: () = assert!(std::mem::size_of::<GpuVplGenParams>() == 32);
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::device::wgsl_size;
 
-    /// Every Rust struct has the size of its WGSL twin as the shader compiler lays it out.
-    #[test]
-    fn sizes_match_the_wgsl_twins() {
-        use std::mem::size_of;
-        let cases = [
-            (crate::vpl::rng::SOURCE, "RngParams", size_of::<RngParams>()),
-            (crate::vpl::rng::SOURCE, "RngSample", size_of::<RngSample>()),
-            (crate::cull::bounds::SOURCE, "Vpl", size_of::<GpuVpl>()),
-            (crate::shade::lists::SOURCE, "Vpl", size_of::<GpuVpl>()),
-            (crate::vpl::generate::SOURCE, "Vpl", size_of::<GpuVpl>()),
-            (
-                crate::vpl::generate::SOURCE,
-                "VplGenParams",
-                size_of::<GpuVplGenParams>(),
-            ),
-        ];
-        for (source, name, size) in cases {
-            assert_eq!(wgsl_size(source, name), size, "{name}");
+    wgsl_twins! {
+        crate::vpl::rng::SOURCE => {
+            RngParams as "RngParams",
+            RngSample as "RngSample",
+        }
+        crate::cull::bounds::SOURCE => {
+            GpuVpl as "Vpl",
+        }
+        crate::shade::lists::SOURCE => {
+            GpuVpl as "Vpl",
+        }
+        crate::vpl::generate::SOURCE => {
+            GpuVpl as "Vpl",
+            GpuVplGenParams as "VplGenParams",
         }
     }
 }

@@ -6,7 +6,7 @@
 //! lists equal the CPU's but for entries decided within rounding at a bound's surface (the
 //! GPU tests in f32 with a limit above its rounding, the CPU in f64); shading the lists gives
 //! the unculled estimate bit for bit; frames without pixels or VPLs give empty lists.
-use crate::common::{cull_input, gpu, shade_gpu_lists};
+use crate::common::{cull_input, gpu};
 use crate::tight::{extra, extreme};
 use crate::tiled::frame;
 use slc_core::{builtin, CullInput, GBuffer, Interleaving, LightLists, Strategy, Vpl, NO_LIST};
@@ -121,7 +121,7 @@ fn binned_shading_equals_the_unculled_estimate() {
         let frame = CullFrame::upload(&ctx, &input).unwrap();
         let image = |strategy| {
             let lists = settled(&ctx, || culler.cull_frame(&ctx, &frame, strategy)).unwrap();
-            shade_gpu_lists(&ctx, &shade, &input, &lists).unwrap()
+            shade.shade_read_back(&ctx, &input, &lists).unwrap()
         };
         let binned = image(Strategy::Binned);
         let unculled = image(Strategy::None);

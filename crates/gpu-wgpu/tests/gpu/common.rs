@@ -1,5 +1,7 @@
 //! The device shared by the tests and the no-adapter policy, and the small stochastic frame
 //! the renderer tests compare strategies on.
+use glam::Vec3;
+use slc_bounds::Fresnel;
 use slc_core::frame::{LobeSelection, Method, RenderSettings, Stochastic};
 use slc_core::Strategy;
 use slc_core::{Camera, CullInput, GBuffer, Image, Interleaving, Vpl};
@@ -88,26 +90,6 @@ pub fn small_frame(strategy: Strategy, denoise: bool) -> RenderSettings {
     }
 }
 
-/// `ShadePass::shade_on_gpu` of a CPU G-buffer with lists on the GPU, read back: the image of
-/// `input` shaded from lists a GPU culler left there.
-pub fn shade_gpu_lists(
-    ctx: &GpuContext,
-    shader: &ShadePass,
-    input: &CullInput,
-    lists: &GpuLightLists,
-) -> Result<Image, GpuError> {
-    let g = input.gbuffer;
-    let rgb = shader.shade_on_gpu(
-        ctx,
-        ShadedGBuffer::Cpu(g),
-        input.vpls,
-        input.delta,
-        input.interleaving,
-        lists,
-    )?;
-    read_image(ctx, &rgb, g.width, g.height)
-}
-
 /// `ShadePass::shade_on_gpu` of a G-buffer rendered on the GPU, read back.
 pub fn shade_gpu_gbuffer<'a>(
     ctx: &GpuContext,
@@ -127,4 +109,22 @@ pub fn shade_gpu_gbuffer<'a>(
         lists,
     )?;
     read_image(ctx, &rgb, gbuffer.width, gbuffer.height)
+}
+
+/// The Fresnel of a crafted G-buffer's sample: Schlick with a coloured F0, or glass (η 1.5).
+pub fn crafted_fresnel(schlick: bool) -> Fresnel {
+    if schlick {
+        Fresnel::Schlick(Vec3::new(0.04, 0.5, 0.95))
+    } else {
+        Fresnel::Dielectric(1.5)
+    }
+}
+
+/// The diffuse colour of a crafted G-buffer's sample: black or an orange.
+pub fn crafted_kd(black: bool) -> Vec3 {
+    if black {
+        Vec3::ZERO
+    } else {
+        Vec3::new(0.6, 0.4, 0.2)
+    }
 }

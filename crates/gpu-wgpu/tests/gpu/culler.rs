@@ -99,7 +99,7 @@ fn shading_reads_every_strategys_lists_on_the_gpu() {
             let name = strategy.name();
             let frame = CullFrame::upload(&ctx, &input).unwrap();
             let on_gpu = culler.cull_frame(&ctx, &frame, strategy).unwrap();
-            let direct = crate::common::shade_gpu_lists(&ctx, &shade, &input, &on_gpu).unwrap();
+            let direct = shade.shade_read_back(&ctx, &input, &on_gpu).unwrap();
             let lists = culler.cull(&ctx, &input, strategy).unwrap();
             let uploaded = shade.shade(&ctx, &input, &lists).unwrap();
             assert_eq!(direct.pixels, uploaded.pixels, "{name} K {k}");

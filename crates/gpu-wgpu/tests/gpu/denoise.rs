@@ -13,25 +13,16 @@ use slc_cpu_ref::denoise::{cross_bilateral, BilateralParams};
 use slc_cpu_ref::vpl_shading::shade_lists;
 use slc_cpu_ref::Tracer;
 use slc_gpu_wgpu::device::buffers::{output, upload};
-use slc_gpu_wgpu::frame::denoise::{BilateralSettings, DenoisePass, Guide};
+use slc_gpu_wgpu::frame::denoise::{DenoisePass, Guide};
 use slc_gpu_wgpu::{GpuContext, GpuError};
 
 const TOLERANCE: f32 = 1e-4;
 
-fn params(s: &BilateralSettings) -> BilateralParams {
-    BilateralParams {
-        radius: s.radius,
-        sigma_spatial: s.sigma_spatial,
-        sigma_depth: s.sigma_depth,
-        normal_squarings: s.normal_squarings,
-    }
-}
-
 /// Parameter sets: the defaults (the paper's radius 8) and a narrow, sharp one.
-fn settings() -> [BilateralSettings; 2] {
+fn settings() -> [BilateralParams; 2] {
     [
-        BilateralSettings::default(),
-        BilateralSettings {
+        BilateralParams::default(),
+        BilateralParams {
             radius: 3,
             sigma_spatial: 1.5,
             sigma_depth: 0.2,
@@ -82,67 +73,15 @@ fn filter_both(
     let mut worst = 0.0f32;
     for s in settings() {
         let gpu = pass.filter(ctx, image, g, camera, &s).unwrap();
-        let cpu = cross_bilateral(image, g, params(&s)).unwrap();
+        let cpu = cross_bilateral(image, g, s).unwrap();
         worst = worst.max(compare(&format!("{label} {s:?}"), g, image, &gpu, &cpu));
     }
     worst
 }
 
-#[test]
-fn settings_default_to_the_cpu_parameters() {
-    assert_eq!(
-        params(&BilateralSettings::default()),
-        BilateralParams::default()
-    );
-}
-
-/// The default scene's stochastic indirect light with interleaved sampling (K = 4, no
-/// culling), the noise the filter is for.
-#[test]
-fn filter_matches_the_cpu_on_the_default_scene() {
-    let Some(ctx) = gpu() else { return };
-    let pass = DenoisePass::new(&ctx).unwrap();
-    let scene = builtin("default").unwrap();
-    let camera = scene.camera_or_default();
-    let tracer = Tracer::new(&scene);
-    for (size, k) in [((96, 64), 4), ((53, 31), 3)] {
-        let (gbuffer, vpls) = frame(&scene, &camera, size, 16);
-        let input = cull_input(&gbuffer, &camera, &vpls, 1e-3, (k, 1));
-        let lists = slc_cull::culler(slc_core::Strategy::None)
-            .cull(&input)
-            .unwrap();
-        let noisy = shade_lists(&tracer, &input, &lists, false, &|_| ()).unwrap();
-        let worst = filter_both(&ctx, &pass, "default scene", &noisy, &gbuffer, &camera);
-        // The filter did its job: most pixels changed noticeably.
-        let cpu = cross_bilateral(&noisy, &gbuffer, BilateralParams::default()).unwrap();
-        let changed = cpu
-            .pixels
-            .iter()
-            .zip(&noisy.pixels)
-            .filter(|(a, b)| (**a - **b).abs().max_element() > 0.01 * b.max_element())
-            .count();
-        eprintln!(
-            "default scene {size:?} K {k}: largest relative error {worst:.2e}, {changed} of {} \
-             pixels changed by more than 1%",
-            noisy.pixels.len()
-        );
-        assert!(changed * 2 > noisy.pixels.len(), "{changed}");
-    }
-}
-
-/// A deterministic generator (xorshift64*).
-struct Rng(u64);
-impl Rng {
-    fn f32(&mut self) -> f32 {
-        self.0 ^= self.0 >> 12;
-        self.0 ^= self.0 << 25;
-        self.0 ^= self.0 >> 27;
-        ((self.0.wrapping_mul(0x2545_F491_4F6C_DD1D) >> 40) as f32) / (1u64 << 24) as f32
-    }
-    fn pick<T: Copy>(&mut self, of: &[T]) -> T {
-        of[((self.f32() * of.len() as f32) as usize).min(of.len() - 1)]
-    }
-}
+#[path = "../../../../tests/fixtures/rng.rs"]
+mod rng;
+use rng::Rng;
 
 /// A frame of extremes: sky pixels, depth jumps by factors of 100, normals turned away from
 /// each other, black and white surfaces, Schlick F0 of 0 and 1 and dielectrics (η 1 gives
@@ -233,26 +172,26 @@ fn filter_rejects_bad_input() {
     let pass = DenoisePass::new(&ctx).unwrap();
     let camera = Camera::look_at(Vec3::new(0.3, 1.0, 4.0), Vec3::ZERO, Vec3::Y, 0.9).unwrap();
     let (g, image) = extremes(&camera, 6, 5, 77);
-    let fine = BilateralSettings::default();
+    let fine = BilateralParams::default();
     let is_input = |r: Result<Image, GpuError>| matches!(r, Err(GpuError::Input(_)));
     for s in [
-        BilateralSettings {
+        BilateralParams {
             sigma_spatial: 0.0,
             ..fine
         },
-        BilateralSettings {
+        BilateralParams {
             sigma_depth: f32::NAN,
             ..fine
         },
-        BilateralSettings {
+        BilateralParams {
             sigma_depth: 1e-25,
             ..fine
         },
-        BilateralSettings {
+        BilateralParams {
             radius: 100_000,
             ..fine
         },
-        BilateralSettings {
+        BilateralParams {
             normal_squarings: 1000,
             ..fine
         },

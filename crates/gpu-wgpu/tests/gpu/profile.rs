@@ -31,7 +31,7 @@ fn stages_sum_their_passes_within_the_wall_clock() {
     let lists = culler
         .cull_on_gpu(&ctx, &input, GlossyBound::Ellipsoid)
         .unwrap();
-    crate::common::shade_gpu_lists(&ctx, &shader, &input, &lists).unwrap();
+    shader.shade_read_back(&ctx, &input, &lists).unwrap();
 
     if !ctx.start_profiling() {
         eprintln!("notice: {} has no timestamp queries", ctx.adapter_name);
@@ -44,7 +44,7 @@ fn stages_sum_their_passes_within_the_wall_clock() {
         .cull_on_gpu(&ctx, &input, GlossyBound::Ellipsoid)
         .unwrap();
     ctx.set_stage("shading");
-    let image = crate::common::shade_gpu_lists(&ctx, &shader, &input, &lists).unwrap();
+    let image = shader.shade_read_back(&ctx, &input, &lists).unwrap();
     let wall_ms = wall.elapsed().as_secs_f64() * 1e3;
     let profile = ctx.finish_profiling().unwrap();
     assert!(image.mean().max_element() > 0.0);
@@ -86,7 +86,7 @@ fn stages_sum_their_passes_within_the_wall_clock() {
     assert!(gpu_ms >= wall_ms * 1e-3, "{gpu_ms} ms GPU in {wall_ms} ms");
 
     // Outside a profile nothing is recorded.
-    crate::common::shade_gpu_lists(&ctx, &shader, &input, &lists).unwrap();
+    shader.shade_read_back(&ctx, &input, &lists).unwrap();
     assert_eq!(ctx.finish_profiling().unwrap(), Default::default());
 }
 

@@ -8,20 +8,26 @@ use crate::common::{cull_input, gpu, small_frame};
 use crate::tight::extreme;
 use crate::tiled::frame_sampled;
 use slc_core::render::render;
-use slc_core::{builtin, CullInput, Interleaving, Strategy, Vpl};
+use slc_core::{builtin, Camera, GBuffer, Strategy, Vpl};
 use slc_cpu_ref::gbuffer::PixelSample;
 use slc_gpu_wgpu::cull::GpuCulling;
 use slc_gpu_wgpu::cull::ListCulling;
 use slc_gpu_wgpu::GpuRenderer;
 
+/// The built-in scene's camera, G-buffer of `size` and VPLs from RSMs of `rsm`², sampled at
+/// pixel centres: splatting rasterizes the rays through them.
+fn centred_frame(size: (u32, u32), rsm: u32) -> (Camera, GBuffer, Vec<Vpl>) {
+    let scene = builtin("default").unwrap();
+    let camera = scene.camera_or_default();
+    let (gbuffer, vpls) = frame_sampled(&scene, &camera, size, rsm, PixelSample::Centre);
+    (camera, gbuffer, vpls)
+}
+
 #[test]
 fn raster_baselines_miss_no_pair() {
     let Some(ctx) = gpu() else { return };
     let culler = GpuCulling::new(&ctx).unwrap();
-    let scene = builtin("default").unwrap();
-    let camera = scene.camera_or_default();
-    // Pixel centres: splatting rasterizes the rays through them.
-    let (gbuffer, vpls) = frame_sampled(&scene, &camera, (64, 48), 16, PixelSample::Centre);
+    let (camera, gbuffer, vpls) = centred_frame((64, 48), 16);
     let wild = extreme(&vpls, 3);
     let cases: Vec<(&str, &[Vpl], f32, u32)> = vec![
         ("scene", &vpls, 1e-3, 1),
@@ -32,13 +38,7 @@ fn raster_baselines_miss_no_pair() {
         ("extreme", &wild, 1e3, 2),
     ];
     for (name, vpls, delta, k) in cases {
-        let input = CullInput {
-            gbuffer: &gbuffer,
-            camera: &camera,
-            vpls,
-            delta,
-            interleaving: Interleaving { k, seed: 4 },
-        };
+        let input = cull_input(&gbuffer, &camera, vpls, delta, (k, 4));
         let none = culler.cull(&ctx, &input, Strategy::None).unwrap();
         let all = slc_cull::metrics::measure(&input, &none).unwrap();
         for strategy in Strategy::RASTER {
@@ -98,13 +98,7 @@ fn hardware_conservative_rasterization_lists_the_software_forms_cells() {
         ("extreme", &wild, 1e-9, 1),
         ("extreme", &wild, 1e-3, 3),
     ] {
-        let input = CullInput {
-            gbuffer: &gbuffer,
-            camera: &camera,
-            vpls,
-            delta,
-            interleaving: Interleaving { k, seed: 8 },
-        };
+        let input = cull_input(&gbuffer, &camera, vpls, delta, (k, 8));
         assert!(rasterizer.set_hardware(true));
         let hardware = culler
             .cull(&ctx, &input, Strategy::ClusteredRaster)
@@ -170,17 +164,9 @@ fn raster_baselines_render_the_tiled_image() {
 fn raster_baselines_at_odd_sizes_and_without_vpls() {
     let Some(ctx) = gpu() else { return };
     let culler = GpuCulling::new(&ctx).unwrap();
-    let scene = builtin("default").unwrap();
-    let camera = scene.camera_or_default();
-    let (gbuffer, vpls) = frame_sampled(&scene, &camera, (37, 23), 8, PixelSample::Centre);
+    let (camera, gbuffer, vpls) = centred_frame((37, 23), 8);
     for (vpls, k) in [(&vpls[..], 3), (&vpls[..], 5), (&[][..], 2)] {
-        let input = CullInput {
-            gbuffer: &gbuffer,
-            camera: &camera,
-            vpls,
-            delta: 1e-3,
-            interleaving: Interleaving { k, seed: 1 },
-        };
+        let input = cull_input(&gbuffer, &camera, vpls, 1e-3, (k, 1));
         for strategy in Strategy::RASTER {
             let lists = culler.cull(&ctx, &input, strategy).unwrap();
             let m = slc_cull::metrics::measure(&input, &lists).unwrap();

@@ -368,7 +368,7 @@ fn culling_and_shading_read_the_gpu_gbuffer_in_place() {
         let name = strategy.name();
         let frame = CullFrame::upload(&ctx, &input).unwrap();
         let uploaded = settled(&ctx, || culler.cull_frame(&ctx, &frame, strategy)).unwrap();
-        let want = crate::common::shade_gpu_lists(&ctx, &shader, &input, &uploaded).unwrap();
+        let want = shader.shade_read_back(&ctx, &input, &uploaded).unwrap();
         let on_gpu = CullFrame::on_gpu(&gbuffer, &vpls, delta, interleaving);
         let lists = settled(&ctx, || culler.cull_frame(&ctx, &on_gpu, strategy)).unwrap();
         assert_eq!(lists.entries, uploaded.entries, "{name}");

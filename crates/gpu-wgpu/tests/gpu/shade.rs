@@ -20,7 +20,7 @@
 //! form's error. On such a device (any but a software adapter) a pixel of that domain beyond
 //! the tolerance is reported, not failed, within [`F64_DOMAIN_FUSED`] (at most 16 per image);
 //! on lavapipe, as in CI, the tolerance holds there too.
-use crate::common::{cull_input, gpu};
+use crate::common::{crafted_fresnel, crafted_kd, cull_input, gpu};
 use crate::tiled::frame;
 use glam::Vec3;
 use slc_bounds::stochastic::{scalar_intensity, StochasticParams};
@@ -262,7 +262,7 @@ fn shading_straight_from_gpu_lists() {
     let on_gpu = culler
         .cull_on_gpu(&ctx, &input, GlossyBound::Ellipsoid)
         .unwrap();
-    let chained = crate::common::shade_gpu_lists(&ctx, &shader, &input, &on_gpu).unwrap();
+    let chained = shader.shade_read_back(&ctx, &input, &on_gpu).unwrap();
     let lists = culler.cull(&ctx, &input, GlossyBound::Ellipsoid).unwrap();
     let uploaded = shader.shade(&ctx, &input, &lists).unwrap();
     assert_eq!(chained, uploaded);
@@ -291,16 +291,7 @@ fn extreme_frame() -> (GBuffer, Vec<Vpl>, LightLists) {
                 _ => Vec3::new(0.0, -1.0, 0.02).normalize(),
             };
             let alpha = [1e-3, 0.05, 0.3, 1.0][(y % 4) as usize];
-            let fresnel = if (x / 3) % 2 == 0 {
-                Fresnel::Schlick(Vec3::new(0.04, 0.5, 0.95))
-            } else {
-                Fresnel::Dielectric(1.5)
-            };
-            let kd = if x % 5 == 0 {
-                Vec3::ZERO
-            } else {
-                Vec3::new(0.6, 0.4, 0.2)
-            };
+            let (fresnel, kd) = (crafted_fresnel((x / 3) % 2 == 0), crafted_kd(x % 5 == 0));
             let angle = 0.37 * y as f32;
             let anisotropy = (x % 8 >= 4).then(|| Anisotropy {
                 tangent: Vec3::new(angle.cos(), angle.sin(), 0.0),

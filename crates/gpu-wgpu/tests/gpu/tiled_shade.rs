@@ -98,7 +98,7 @@ fn both(
     let one = images[0].clone();
     let lists = culler.cull_frame(ctx, &frame, glossy).unwrap();
     let shader = ShadePass::new(ctx).unwrap();
-    let want = crate::common::shade_gpu_lists(ctx, &shader, input, &lists).unwrap();
+    let want = shader.shade_read_back(ctx, input, &lists).unwrap();
     (one, want)
 }
 

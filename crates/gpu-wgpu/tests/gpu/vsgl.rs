@@ -17,7 +17,7 @@
 //! (2.9e-4 on the default scene), the specular weight without its `ωo·n` (1.9), and the naive
 //! f32 `coth λ − 1/λ` below λ = 1 instead of its series (4.7e-4 on a broad lobe, one VSGL at
 //! a time).
-use crate::common::gpu;
+use crate::common::{crafted_fresnel, crafted_kd, gpu};
 use glam::Vec3;
 use slc_bounds::sg::MeanMap;
 use slc_bounds::{Brdf, Fresnel};
@@ -179,16 +179,7 @@ fn extreme_gbuffer() -> GBuffer {
                 3 => Vec3::new(0.0, -1.0, 0.02).normalize(),
                 _ => Vec3::new(0.3, 0.0, -1.0).normalize(),
             };
-            let fresnel = if (x / 2) % 2 == 0 {
-                Fresnel::Schlick(Vec3::new(0.04, 0.5, 0.95))
-            } else {
-                Fresnel::Dielectric(1.5)
-            };
-            let kd = if y % 5 == 0 {
-                Vec3::ZERO
-            } else {
-                Vec3::new(0.6, 0.4, 0.2)
-            };
+            let (fresnel, kd) = (crafted_fresnel((x / 2) % 2 == 0), crafted_kd(y % 5 == 0));
             samples.push(Some(GSample {
                 position: Vec3::new(x as f32 * 0.25 - 3.0, y as f32 * 0.25 - 2.5, 0.0),
                 normal: Vec3::Z,

@@ -34,17 +34,15 @@ const _: () = assert!(std::mem::size_of::<GpuBinnedVpl>() == 80);
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::device::wgsl_size;
 
-    #[test]
-    fn sizes_match_the_wgsl_twins() {
-        use std::mem::size_of;
-        for source in [super::super::FOOTPRINT_SOURCE, super::super::SOURCE] {
-            assert_eq!(
-                wgsl_size(source, "BinnedParams"),
-                size_of::<GpuBinnedParams>()
-            );
-            assert_eq!(wgsl_size(source, "BinnedVpl"), size_of::<GpuBinnedVpl>());
+    wgsl_twins! {
+        super::super::FOOTPRINT_SOURCE => {
+            GpuBinnedParams as "BinnedParams",
+            GpuBinnedVpl as "BinnedVpl",
+        }
+        super::super::SOURCE => {
+            GpuBinnedParams as "BinnedParams",
+            GpuBinnedVpl as "BinnedVpl",
         }
     }
 }

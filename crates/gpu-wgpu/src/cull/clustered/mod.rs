@@ -18,14 +18,11 @@
 pub mod records;
 
 use crate::cull::clustered::records::{GpuClusterFrusta, CLUSTER_SLICES, DEPTH_RANGE, DEPTH_SPLIT};
-use crate::cull::frame::CullFrame;
-use crate::cull::list_passes::{ListKernel, ListPasses, PreparedTiles, TileLayout};
-use crate::cull::lists::GpuLightLists;
+use crate::cull::list_passes::{DepthPass, ListKernel, ListPasses, PreparedTiles, TileLayout};
 use crate::cull::records::GpuCullParams;
 use crate::cull::tight::BaseLayout;
 use crate::device::buffers::upload;
 use crate::device::context::{GpuContext, GpuError};
-use slc_cull::GlossyBound;
 use std::mem::offset_of;
 
 /// The kernel of `cluster_depth.wesl`, linked with what it imports (build.rs).
@@ -42,6 +39,70 @@ pub struct ClusteredCuller {
     cull: wgpu::ComputePipeline,
 }
 
+impl TileLayout for ClusteredCuller {
+    type Prepared = PreparedClusters;
+    type Frusta = GpuClusterFrusta;
+    const DEPTH: (&'static str, u32) = ("cluster depth", CLUSTER_SLICES);
+
+    fn passes(&self) -> &ListPasses {
+        &self.passes
+    }
+
+    /// The G-buffer's depth range, then each tile's occupied slices with each pixel's slice.
+    fn encode_depth(
+        &self,
+        on: DepthPass,
+        tiles: PreparedTiles,
+    ) -> Result<PreparedClusters, GpuError> {
+        // Smallest and largest depth as f32 bits, before any sample is seen.
+        let depth_range = upload(on.ctx, "depth range", &[u32::MAX, 0])?;
+        for (label, mode) in [
+            ("cluster depth range", DEPTH_RANGE),
+            ("cluster depth split", DEPTH_SPLIT),
+        ] {
+            let params = GpuCullParams {
+                mode,
+                ..tiles.params
+            };
+            let at = offset_of!(GpuCullParams, vpl_count);
+            let params = tiles
+                .bounds
+                .count
+                .uniform(on.ctx, on.encoder, label, &params, at);
+            on.ctx.encode_dispatch(
+                on.encoder,
+                label,
+                &self.depth,
+                &[
+                    &params,
+                    &on.frame.positions,
+                    &tiles.frusta,
+                    &tiles.pixel_list,
+                    &tiles.status,
+                    &depth_range,
+                ],
+                tiles.grid,
+            );
+        }
+        Ok(PreparedClusters { tiles, depth_range })
+    }
+
+    /// One list per depth slice, counted and written by `clustered_cull.wesl`.
+    fn kernel<'a>(&'a self, clusters: &'a PreparedClusters) -> ListKernel<'a> {
+        let tiles = &clusters.tiles;
+        ListKernel {
+            label: "clustered cull",
+            pipeline: &self.cull,
+            layout: BaseLayout {
+                clusters: CLUSTER_SLICES,
+                split: false,
+            },
+            tiles,
+            own: vec![&tiles.partition.sub_offsets, &tiles.partition.order],
+        }
+    }
+}
+
 impl ClusteredCuller {
     pub fn new(ctx: &GpuContext) -> Result<Self, GpuError> {
         let (passes, (depth, cull)) = ListPasses::new(ctx, "clustered culling pipelines", || {
@@ -55,89 +116,6 @@ impl ClusteredCuller {
             depth,
             cull,
         })
-    }
-}
-
-impl TileLayout for ClusteredCuller {
-    type Prepared = PreparedClusters;
-
-    fn passes(&self) -> &ListPasses {
-        &self.passes
-    }
-
-    /// The passes before the lists: per-VPL bounds (as shapes too with `shapes`, for the
-    /// rasterized clusters), the subregions' VPLs, the G-buffer's depth range and each
-    /// tile's occupied slices with each pixel's slice, encoded and submitted; `None` for a
-    /// frame without pixels.
-    fn prepare(
-        &self,
-        ctx: &GpuContext,
-        frame: &CullFrame,
-        glossy: GlossyBound,
-        shapes: bool,
-    ) -> Result<Option<Self::Prepared>, GpuError> {
-        // Smallest and largest depth as f32 bits, before any sample is seen.
-        let depth_range = upload(ctx, "depth range", &[u32::MAX, 0])?;
-        let tiles = self.passes.prepare::<GpuClusterFrusta>(
-            ctx,
-            frame,
-            (glossy, shapes),
-            ("cluster depth", CLUSTER_SLICES),
-            |encoder, tiles| {
-                for (label, mode) in [
-                    ("cluster depth range", DEPTH_RANGE),
-                    ("cluster depth split", DEPTH_SPLIT),
-                ] {
-                    let params = tiles.bounds.count.uniform(
-                        ctx,
-                        encoder,
-                        label,
-                        &GpuCullParams {
-                            mode,
-                            ..tiles.params
-                        },
-                        offset_of!(GpuCullParams, vpl_count),
-                    );
-                    ctx.encode_dispatch(
-                        encoder,
-                        label,
-                        &self.depth,
-                        &[
-                            &params,
-                            &frame.positions,
-                            &tiles.frusta,
-                            &tiles.pixel_list,
-                            &tiles.status,
-                            &depth_range,
-                        ],
-                        tiles.grid,
-                    );
-                }
-                Ok(())
-            },
-        )?;
-        Ok(tiles.map(|tiles| PreparedClusters { tiles, depth_range }))
-    }
-
-    /// The lists of a prepared frame (`ListPasses::lists`): one per depth slice, counted
-    /// and written by `clustered_cull.wesl`; refined per block for [`GlossyBound::Tight`].
-    fn lists(
-        &self,
-        ctx: &GpuContext,
-        frame: &CullFrame,
-        clusters: &PreparedClusters,
-    ) -> Result<GpuLightLists, GpuError> {
-        let tiles = &clusters.tiles;
-        let kernel = ListKernel {
-            label: "clustered cull",
-            pipeline: &self.cull,
-            layout: BaseLayout {
-                clusters: CLUSTER_SLICES,
-                split: false,
-            },
-        };
-        let own = [&tiles.partition.sub_offsets, &tiles.partition.order];
-        self.passes.lists(ctx, frame, tiles, kernel, &own)
     }
 }
 

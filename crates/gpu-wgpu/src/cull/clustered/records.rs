@@ -29,26 +29,13 @@ const _: () = assert!(std::mem::size_of::<GpuClusterFrusta>() == 288);
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::device::wgsl_size;
 
-    /// Every Rust struct has the size of its WGSL twin as the shader compiler lays it out.
-    #[test]
-    fn sizes_match_the_wgsl_twins() {
-        use std::mem::size_of;
-        let cases = [
-            (
-                crate::cull::clustered::DEPTH_SOURCE,
-                "ClusterFrusta",
-                size_of::<GpuClusterFrusta>(),
-            ),
-            (
-                crate::cull::clustered::CULL_SOURCE,
-                "ClusterFrusta",
-                size_of::<GpuClusterFrusta>(),
-            ),
-        ];
-        for (source, name, size) in cases {
-            assert_eq!(wgsl_size(source, name), size, "{name}");
+    wgsl_twins! {
+        crate::cull::clustered::DEPTH_SOURCE => {
+            GpuClusterFrusta as "ClusterFrusta",
+        }
+        crate::cull::clustered::CULL_SOURCE => {
+            GpuClusterFrusta as "ClusterFrusta",
         }
     }
 }

@@ -117,7 +117,7 @@ impl NoneCuller {
                 grid,
             );
             self.partition
-                .encode(ctx, encoder, &self.scan, &bounds, &count, k * k, &status)
+                .encode(ctx, encoder, &self.scan, (&bounds, &count), k * k, &status)
         })?;
         Ok(GpuLightLists {
             offsets: partition.sub_offsets,

@@ -54,19 +54,10 @@ const _: () = assert!(std::mem::size_of::<GpuRasterParams>() == 80);
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::device::wgsl_size;
 
-    /// Every Rust struct has the size of its WGSL twin as the shader compiler lays it out.
-    #[test]
-    fn sizes_match_the_wgsl_twins() {
-        use std::mem::size_of;
-        let cases = [(
-            crate::cull::raster::ARGS_SOURCE,
-            "RasterParams",
-            size_of::<GpuRasterParams>(),
-        )];
-        for (source, name, size) in cases {
-            assert_eq!(wgsl_size(source, name), size, "{name}");
+    wgsl_twins! {
+        crate::cull::raster::ARGS_SOURCE => {
+            GpuRasterParams as "RasterParams",
         }
     }
 }

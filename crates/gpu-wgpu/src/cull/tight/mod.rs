@@ -56,7 +56,7 @@ pub struct TightRefiner {
 
 /// How the base strategy grouped each tile's pixels.
 #[derive(Clone, Copy, Debug)]
-pub(crate) struct BaseLayout {
+pub struct BaseLayout {
     /// Lists per tile: 2 (Modified HalfZ) or the clustered strategies' 32 slices.
     pub clusters: u32,
     /// Whether each block's samples of a list are split at their half depth.

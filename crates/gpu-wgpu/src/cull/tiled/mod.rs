@@ -17,14 +17,11 @@
 //! [`GlossyBound::Tight`] the lists are refined per block (`cull::tight`).
 pub mod depth;
 
-use crate::cull::frame::CullFrame;
-use crate::cull::list_passes::{ListKernel, ListPasses, PreparedTiles, TileLayout};
-use crate::cull::lists::GpuLightLists;
+use crate::cull::list_passes::{DepthPass, ListKernel, ListPasses, PreparedTiles, TileLayout};
 use crate::cull::records::{GpuCullParams, GpuTileFrusta};
 use crate::cull::tight::BaseLayout;
 use crate::cull::tiled::depth::{TileDepthBuffers, TileDepthPass};
 use crate::device::context::{GpuContext, GpuError};
-use slc_cull::GlossyBound;
 use std::mem::offset_of;
 
 /// The kernel of `tiled_cull.wesl`, linked with what it imports (build.rs).
@@ -36,6 +33,51 @@ pub struct TiledCuller {
     passes: ListPasses,
     depth: TileDepthPass,
     pipeline: wgpu::ComputePipeline,
+}
+
+impl TileLayout for TiledCuller {
+    type Prepared = PreparedTiles;
+    type Frusta = GpuTileFrusta;
+    const DEPTH: (&'static str, u32) = ("tile depth", 2);
+
+    fn passes(&self) -> &ListPasses {
+        &self.passes
+    }
+
+    /// The Modified HalfZ frusta of every tile, with each pixel's cluster.
+    fn encode_depth(&self, on: DepthPass, tiles: PreparedTiles) -> Result<PreparedTiles, GpuError> {
+        let depth_params = tiles.bounds.count.uniform(
+            on.ctx,
+            on.encoder,
+            "cull params (depth)",
+            &tiles.params,
+            offset_of!(GpuCullParams, vpl_count),
+        );
+        let buffers = TileDepthBuffers {
+            params: &depth_params,
+            positions: &on.frame.positions,
+            frusta: &tiles.frusta,
+            pixel_list: &tiles.pixel_list,
+            status: &tiles.status,
+            sub_offsets: &tiles.partition.sub_offsets,
+        };
+        self.depth.encode(on.ctx, on.encoder, &buffers, tiles.grid);
+        Ok(tiles)
+    }
+
+    /// Two lists per tile, counted and written by `tiled_cull.wesl`.
+    fn kernel<'a>(&'a self, tiles: &'a PreparedTiles) -> ListKernel<'a> {
+        ListKernel {
+            label: "tiled cull",
+            pipeline: &self.pipeline,
+            layout: BaseLayout {
+                clusters: 2,
+                split: true,
+            },
+            tiles,
+            own: vec![&tiles.partition.order],
+        }
+    }
 }
 
 impl TiledCuller {
@@ -51,77 +93,5 @@ impl TiledCuller {
             depth,
             pipeline,
         })
-    }
-}
-
-impl TileLayout for TiledCuller {
-    type Prepared = PreparedTiles;
-
-    fn passes(&self) -> &ListPasses {
-        &self.passes
-    }
-
-    /// The passes before the lists: per-VPL bounds, the subregions' VPLs and the Modified
-    /// HalfZ frusta of every tile (with each pixel's cluster), encoded and submitted; `None`
-    /// for a frame without pixels. With `shapes` the bounds are written as shapes too (for
-    /// splatting's meshes). Errors on invalid input and on buffers beyond the device's
-    /// limits; faults on the GPU are read with the lists or the shaded image.
-    fn prepare(
-        &self,
-        ctx: &GpuContext,
-        frame: &CullFrame,
-        glossy: GlossyBound,
-        shapes: bool,
-    ) -> Result<Option<Self::Prepared>, GpuError> {
-        self.passes.prepare::<GpuTileFrusta>(
-            ctx,
-            frame,
-            (glossy, shapes),
-            ("tile depth", 2),
-            |encoder, tiles| {
-                let depth_params = tiles.bounds.count.uniform(
-                    ctx,
-                    encoder,
-                    "cull params (depth)",
-                    &tiles.params,
-                    offset_of!(GpuCullParams, vpl_count),
-                );
-                self.depth.encode(
-                    ctx,
-                    encoder,
-                    &TileDepthBuffers {
-                        params: &depth_params,
-                        positions: &frame.positions,
-                        frusta: &tiles.frusta,
-                        pixel_list: &tiles.pixel_list,
-                        status: &tiles.status,
-                        sub_offsets: &tiles.partition.sub_offsets,
-                    },
-                    tiles.grid,
-                );
-                Ok(())
-            },
-        )
-    }
-
-    /// The lists of a prepared frame (`ListPasses::lists`): two per tile, counted and
-    /// written by `tiled_cull.wesl`; refined per block for [`GlossyBound::Tight`] (which
-    /// rewrites the frame's pixel lists in place: `tiles` is spent then).
-    fn lists(
-        &self,
-        ctx: &GpuContext,
-        frame: &CullFrame,
-        tiles: &PreparedTiles,
-    ) -> Result<GpuLightLists, GpuError> {
-        let kernel = ListKernel {
-            label: "tiled cull",
-            pipeline: &self.pipeline,
-            layout: BaseLayout {
-                clusters: 2,
-                split: true,
-            },
-        };
-        self.passes
-            .lists(ctx, frame, tiles, kernel, &[&tiles.partition.order])
     }
 }

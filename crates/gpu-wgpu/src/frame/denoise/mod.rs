@@ -17,6 +17,7 @@ use crate::device::context::{GpuContext, GpuError};
 use crate::frame::denoise::records::{GpuBilateralParams, PASS_HORIZONTAL, PASS_VERTICAL};
 use crate::frame::raster::records::{gpu_position, GpuSample};
 use glam::Vec3;
+use slc_core::frame::BilateralParams;
 use slc_core::{Camera, GBuffer, Image};
 
 /// The kernel of `bilateral.wesl`, linked with what it imports (build.rs).
@@ -28,31 +29,6 @@ pub const MAX_RADIUS: u32 = 256;
 /// Largest k of the normal weight max(n·n', 0)^(2^k) accepted (beyond it every weight but a
 /// parallel normal's is 0 in f32 anyway).
 pub const MAX_NORMAL_SQUARINGS: u32 = 32;
-
-/// Parameters of the cross bilateral filter: the twin of
-/// `slc_cpu_ref::denoise::BilateralParams`, with the same defaults.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct BilateralSettings {
-    /// Kernel radius in pixels (8 in the paper).
-    pub radius: u32,
-    /// Spatial standard deviation in pixels.
-    pub sigma_spatial: f32,
-    /// Standard deviation of the relative depth difference |z − z'| / z.
-    pub sigma_depth: f32,
-    /// Exponent of the normal weight max(n·n', 0)^(2^k): k squarings.
-    pub normal_squarings: u32,
-}
-
-impl Default for BilateralSettings {
-    fn default() -> Self {
-        Self {
-            radius: 8,
-            sigma_spatial: 4.0,
-            sigma_depth: 0.05,
-            normal_squarings: 5,
-        }
-    }
-}
 
 /// The G-buffer that guides the filter, on the GPU.
 #[derive(Clone, Copy, Debug)]
@@ -91,7 +67,7 @@ impl DenoisePass {
         ctx: &GpuContext,
         image: &wgpu::Buffer,
         guide: &Guide,
-        settings: &BilateralSettings,
+        settings: &BilateralParams,
     ) -> Result<wgpu::Buffer, GpuError> {
         let bad = |what: String| Err(GpuError::Input(format!("cross bilateral filter: {what}")));
         let inv_2s = |sigma: f32| 1.0 / (2.0 * sigma * sigma);
@@ -192,7 +168,7 @@ impl DenoisePass {
         image: &Image,
         gbuffer: &GBuffer,
         camera: &Camera,
-        settings: &BilateralSettings,
+        settings: &BilateralParams,
     ) -> Result<Image, GpuError> {
         let bad = |what: String| Err(GpuError::Input(format!("cross bilateral filter: {what}")));
         let pixels = u64::from(gbuffer.width) * u64::from(gbuffer.height);

@@ -36,19 +36,12 @@ const _: () = assert!(std::mem::size_of::<GpuBilateralParams>() == 64);
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::device::wgsl_size;
     use crate::frame::raster::records::GpuSample;
 
-    /// The Rust structs have the sizes of their WGSL twins as the shader compiler lays them
-    /// out (the filter reads the G-buffer as `GpuSample`).
-    #[test]
-    fn sizes_match_the_wgsl_twins() {
-        use std::mem::size_of;
-        let source = crate::frame::denoise::SOURCE;
-        assert_eq!(
-            wgsl_size(source, "BilateralParams"),
-            size_of::<GpuBilateralParams>()
-        );
-        assert_eq!(wgsl_size(source, "Sample"), size_of::<GpuSample>());
+    wgsl_twins! {
+        crate::frame::denoise::SOURCE => {
+            GpuBilateralParams as "BilateralParams",
+            GpuSample as "Sample",
+        }
     }
 }

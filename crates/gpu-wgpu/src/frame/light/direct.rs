@@ -12,12 +12,14 @@
 //! within about a texel of shadow boundaries (and where an occluder is thinner than a texel).
 use crate::device::buffers::{output, read_back, uniform, Grid};
 use crate::device::context::{GpuContext, GpuError};
-use crate::frame::light::records::{GpuDirectParams, LIGHT_DIRECTIONAL, LIGHT_POINT, LIGHT_SPOT};
+use crate::frame::light::records::{
+    gpu_spot, GpuDirectParams, LIGHT_DIRECTIONAL, LIGHT_POINT, LIGHT_SPOT,
+};
 use crate::frame::light::rsm::GpuRsm;
 use crate::frame::raster::gbuffer::GpuGBuffer;
 use crate::frame::raster::scene::GpuScene;
 use glam::Vec3;
-use slc_core::{Image, Light, SpotCone};
+use slc_core::{Image, Light};
 
 /// The kernel of `direct.wesl`, linked with what it imports (build.rs).
 pub(crate) const SOURCE: &str = kernel!("direct");
@@ -106,36 +108,22 @@ fn light_params(map: &GpuRsm, pixels: u32, extent: f32) -> Result<GpuDirectParam
             map.light
         )));
     }
-    let (kind, light, spot, radiometry) = match map.light {
+    let (kind, light, radiometry) = match map.light {
         Light::Point {
             position,
             intensity,
-        } => (LIGHT_POINT, position, [0.0; 4], intensity.extend(1.0)),
+        } => (LIGHT_POINT, position, intensity),
         Light::Spot {
             position,
-            direction,
             intensity,
-            inner_cone_angle,
-            outer_cone_angle,
-        } => {
-            let cone = SpotCone::new(inner_cone_angle, outer_cone_angle);
-            (
-                LIGHT_SPOT,
-                position,
-                direction.extend(cone.h_outer).to_array(),
-                intensity.extend(cone.h_width),
-            )
-        }
+            ..
+        } => (LIGHT_SPOT, position, intensity),
         Light::Directional {
             direction,
             irradiance,
-        } => (
-            LIGHT_DIRECTIONAL,
-            direction,
-            [0.0; 4],
-            irradiance.extend(1.0),
-        ),
+        } => (LIGHT_DIRECTIONAL, direction, irradiance),
     };
+    let (spot, falloff) = gpu_spot(&map.light);
     let layout = &map.layout;
     let mut axes = [[0.0; 4]; 18];
     for (f, face) in layout.faces.iter().enumerate() {
@@ -146,7 +134,7 @@ fn light_params(map: &GpuRsm, pixels: u32, extent: f32) -> Result<GpuDirectParam
     Ok(GpuDirectParams {
         light: light.extend(0.0).to_array(),
         spot,
-        radiometry: radiometry.to_array(),
+        radiometry: radiometry.extend(falloff).to_array(),
         origin: layout.origin.extend(layout.faces[0].extent).to_array(),
         axes,
         info: [kind, layout.faces.len() as u32, map.resolution, pixels],

@@ -4,6 +4,7 @@
 //! 4-byte scalars and `[f32; 4]` / `[u32; 4]` are used (WGSL `f32`, `u32`, `vec4<f32>`,
 //! `vec4<u32>`), never vec3, so the Rust and WGSL layouts agree without hidden padding.
 use bytemuck::{Pod, Zeroable};
+use slc_core::Light;
 
 /// `GpuRsmParams::info[0]`: how a face's texels get their flux.
 pub const RSM_POINT: u32 = 0;
@@ -31,6 +32,13 @@ pub struct GpuRsmParams {
     pub falloff: [f32; 4],
 }
 const _: () = assert!(std::mem::size_of::<GpuRsmParams>() == 128);
+/// A light's spot cone as the RSM and direct-light kernels read it: the axis with
+/// `SpotCone::h_outer` (w), and `SpotCone::h_width`; zero and 1 for lights without a cone.
+pub fn gpu_spot(light: &Light) -> ([f32; 4], f32) {
+    light.spot_cone().map_or(([0.0; 4], 1.0), |(axis, cone)| {
+        (axis.extend(cone.h_outer).to_array(), cone.h_width)
+    })
+}
 /// What one RSM texel saw ([`slc_core::rsm::RsmTexel`], or nothing). Keep in sync with
 /// `RsmTexel` in `rsm_texel.wesl`.
 #[repr(C)]
@@ -98,46 +106,19 @@ const _: () = assert!(std::mem::size_of::<GpuDirectParams>() == 384);
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::device::wgsl_size;
 
-    /// Every Rust struct has the size of its WGSL twin as the shader compiler lays it out.
-    #[test]
-    fn sizes_match_the_wgsl_twins() {
-        use std::mem::size_of;
-        let cases = [
-            (
-                crate::frame::light::rsm::SOURCE,
-                "RsmParams",
-                size_of::<GpuRsmParams>(),
-            ),
-            (
-                crate::frame::light::rsm::SOURCE,
-                "RsmTexel",
-                size_of::<GpuRsmTexel>(),
-            ),
-            (
-                crate::frame::light::rsm::SOURCE,
-                "ShadowTexel",
-                size_of::<GpuShadowTexel>(),
-            ),
-            (
-                crate::vpl::generate::SOURCE,
-                "RsmTexel",
-                size_of::<GpuRsmTexel>(),
-            ),
-            (
-                crate::frame::light::direct::SOURCE,
-                "DirectParams",
-                size_of::<GpuDirectParams>(),
-            ),
-            (
-                crate::frame::light::direct::SOURCE,
-                "ShadowTexel",
-                size_of::<GpuShadowTexel>(),
-            ),
-        ];
-        for (source, name, size) in cases {
-            assert_eq!(wgsl_size(source, name), size, "{name}");
+    wgsl_twins! {
+        crate::frame::light::rsm::SOURCE => {
+            GpuRsmParams as "RsmParams",
+            GpuRsmTexel as "RsmTexel",
+            GpuShadowTexel as "ShadowTexel",
+        }
+        crate::vpl::generate::SOURCE => {
+            GpuRsmTexel as "RsmTexel",
+        }
+        crate::frame::light::direct::SOURCE => {
+            GpuDirectParams as "DirectParams",
+            GpuShadowTexel as "ShadowTexel",
         }
     }
 }

@@ -14,12 +14,12 @@
 use crate::device::buffers::{output, read_back, uniform};
 use crate::device::context::{GpuContext, GpuError};
 use crate::frame::light::records::{
-    GpuRsmParams, GpuRsmTexel, GpuShadowTexel, RSM_DIRECTIONAL, RSM_POINT, RSM_SPOT,
+    gpu_spot, GpuRsmParams, GpuRsmTexel, GpuShadowTexel, RSM_DIRECTIONAL, RSM_POINT, RSM_SPOT,
 };
 use crate::frame::raster::scene::GpuScene;
 use crate::frame::raster::visibility::{RasterView, Resolve, VisibilityPass, VisibilityTarget};
 pub use slc_core::rsm::{RsmFace, RsmLayout, SPOT_SINGLE_FACE_MAX_ANGLE};
-use slc_core::{Light, SpotCone};
+use slc_core::Light;
 
 /// The kernel of `rsm.wesl`, linked with what it imports (build.rs).
 pub(crate) const SOURCE: &str = kernel!("rsm");
@@ -153,28 +153,15 @@ fn face_params(
 ) -> GpuRsmParams {
     let texel_size = 2.0 / n as f32;
     let e = face.extent;
-    let (kind, radiometry, spot, falloff) = match *light {
-        Light::Point { intensity, .. } => (RSM_POINT, intensity, [0.0; 4], 1.0),
-        Light::Spot {
-            direction,
-            intensity,
-            inner_cone_angle,
-            outer_cone_angle,
-            ..
-        } => {
-            let cone = SpotCone::new(inner_cone_angle, outer_cone_angle);
-            (
-                RSM_SPOT,
-                intensity,
-                direction.extend(cone.h_outer).to_array(),
-                cone.h_width,
-            )
-        }
+    let (kind, radiometry) = match *light {
+        Light::Point { intensity, .. } => (RSM_POINT, intensity),
+        Light::Spot { intensity, .. } => (RSM_SPOT, intensity),
         Light::Directional { irradiance, .. } => {
             let area = (texel_size * e) * (texel_size * e);
-            (RSM_DIRECTIONAL, irradiance * area, [0.0; 4], 1.0)
+            (RSM_DIRECTIONAL, irradiance * area)
         }
     };
+    let (spot, falloff) = gpu_spot(light);
     GpuRsmParams {
         origin: layout.origin.extend(e).to_array(),
         forward: face.forward.extend(texel_size).to_array(),

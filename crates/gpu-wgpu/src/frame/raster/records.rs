@@ -209,61 +209,24 @@ pub fn gpu_position(sample: Option<&GSample>) -> [f32; 4] {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::device::wgsl_size;
 
-    /// Every Rust struct has the size of its WGSL twin as the shader compiler lays it out.
-    #[test]
-    fn sizes_match_the_wgsl_twins() {
-        use std::mem::size_of;
-        let cases = [
-            (
-                crate::frame::raster::gbuffer::SOURCE,
-                "Vertex",
-                size_of::<GpuVertex>(),
-            ),
-            (
-                crate::frame::raster::gbuffer::SOURCE,
-                "Triangle",
-                size_of::<GpuTriangle>(),
-            ),
-            (
-                crate::frame::raster::gbuffer::SOURCE,
-                "SceneMaterial",
-                size_of::<GpuMaterial>(),
-            ),
-            (
-                crate::frame::raster::gbuffer::SOURCE,
-                "TextureInfo",
-                size_of::<GpuTextureInfo>(),
-            ),
-            (
-                crate::frame::raster::gbuffer::SOURCE,
-                "GbufferParams",
-                size_of::<GpuGbufferParams>(),
-            ),
-            (
-                crate::frame::raster::gbuffer::SOURCE,
-                "Sample",
-                size_of::<GpuSample>(),
-            ),
-            (
-                crate::frame::raster::visibility::SOURCE,
-                "RasterView",
-                size_of::<GpuRasterView>(),
-            ),
-            (
-                crate::shade::lists::SOURCE,
-                "Sample",
-                size_of::<GpuSample>(),
-            ),
-            (
-                crate::frame::light::direct::SOURCE,
-                "Sample",
-                size_of::<GpuSample>(),
-            ),
-        ];
-        for (source, name, size) in cases {
-            assert_eq!(wgsl_size(source, name), size, "{name}");
+    wgsl_twins! {
+        crate::frame::raster::gbuffer::SOURCE => {
+            GpuVertex as "Vertex",
+            GpuTriangle as "Triangle",
+            GpuMaterial as "SceneMaterial",
+            GpuTextureInfo as "TextureInfo",
+            GpuGbufferParams as "GbufferParams",
+            GpuSample as "Sample",
+        }
+        crate::frame::raster::visibility::SOURCE => {
+            GpuRasterView as "RasterView",
+        }
+        crate::shade::lists::SOURCE => {
+            GpuSample as "Sample",
+        }
+        crate::frame::light::direct::SOURCE => {
+            GpuSample as "Sample",
         }
     }
 }

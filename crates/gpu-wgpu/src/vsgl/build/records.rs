@@ -97,20 +97,13 @@ const _: () = assert!(std::mem::size_of::<GpuSums>() == 80);
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::device::wgsl_size;
 
-    /// The Rust structs have the sizes of their WGSL twins as the shader compiler lays them
-    /// out.
-    #[test]
-    fn sizes_match_the_wgsl_twins() {
-        use std::mem::size_of;
-        let source = crate::vsgl::build::SOURCE;
-        assert_eq!(wgsl_size(source, "Tree"), size_of::<GpuTree>());
-        assert_eq!(
-            wgsl_size(source, "BuildParams"),
-            size_of::<GpuBuildParams>()
-        );
-        assert_eq!(wgsl_size(source, "Sums"), size_of::<GpuSums>());
+    wgsl_twins! {
+        crate::vsgl::build::SOURCE => {
+            GpuTree as "Tree",
+            GpuBuildParams as "BuildParams",
+            GpuSums as "Sums",
+        }
     }
 
     /// The tree's sizes and lengths are the CPU quadtree's.

@@ -341,12 +341,11 @@ impl IsmPass {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::device::wgsl_size;
 
-    #[test]
-    fn sizes_match_the_wgsl_twins() {
-        use std::mem::size_of;
-        assert_eq!(wgsl_size(SOURCE, "IsmParams"), size_of::<GpuIsmParams>());
-        assert_eq!(wgsl_size(SOURCE, "Caster"), size_of::<GpuCaster>());
+    wgsl_twins! {
+        SOURCE => {
+            GpuIsmParams as "IsmParams",
+            GpuCaster as "Caster",
+        }
     }
 }

@@ -253,22 +253,19 @@ impl GpuVsglStatus {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::device::wgsl_size;
     use crate::frame::raster::records::GpuSample;
 
-    /// The Rust structs have the sizes of their WGSL twins as the shader compiler lays them
-    /// out.
-    #[test]
-    fn sizes_match_the_wgsl_twins() {
-        use std::mem::size_of;
-        let source = crate::vsgl::shade::SOURCE;
-        assert_eq!(wgsl_size(source, "VsglParams"), size_of::<GpuVsglParams>());
-        assert_eq!(wgsl_size(source, "Vsgl"), size_of::<GpuVsgl>());
-        assert_eq!(wgsl_size(source, "VsglStatus"), size_of::<GpuVsglStatus>());
-        let build = crate::vsgl::build::SOURCE;
-        assert_eq!(wgsl_size(build, "Vsgl"), size_of::<GpuVsgl>());
-        assert_eq!(wgsl_size(build, "VsglStatus"), size_of::<GpuVsglStatus>());
-        assert_eq!(wgsl_size(source, "Sample"), size_of::<GpuSample>());
+    wgsl_twins! {
+        crate::vsgl::shade::SOURCE => {
+            GpuVsglParams as "VsglParams",
+            GpuVsgl as "Vsgl",
+            GpuVsglStatus as "VsglStatus",
+            GpuSample as "Sample",
+        }
+        crate::vsgl::build::SOURCE => {
+            GpuVsgl as "Vsgl",
+            GpuVsglStatus as "VsglStatus",
+        }
     }
 
     fn input(sigma2: f32) -> VsglInput {
