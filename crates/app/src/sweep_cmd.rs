@@ -16,7 +16,7 @@ use crate::page::{Block, Page};
 use crate::pdf::write_figure;
 use crate::plot::{log_log_plot_svg, tick_label, PlotPoint, Series};
 use crate::print::PrintWidth;
-use crate::table::{write_table, SettingsColumns, TextTable};
+use crate::table::{write_table, SettingsColumns};
 use clap::Args;
 use serde::Serialize;
 use slc_app::cpu_frames::{CpuFrames, SceneBvh};

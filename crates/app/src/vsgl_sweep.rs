@@ -17,7 +17,7 @@ use crate::pdf::write_figure;
 use crate::plot::{log_log_plot_svg, PlotPoint, Series};
 use crate::sampled::{shade_sampled, PASSES};
 use crate::sweep_cmd::SweepArgs;
-use crate::table::{write_table, SettingsColumns, TextTable};
+use crate::table::{write_table, SettingsColumns};
 use serde::Serialize;
 use slc_app::cpu_frames::{CpuFrames, SceneBvh};
 use slc_app::limits::check_frames;

@@ -6,7 +6,7 @@ use std::process::{Child, Output, Stdio};
 use std::time::{Duration, Instant};
 
 mod common;
-use common::{command, out_dir, run, slc};
+use common::{command, out_dir, run};
 
 /// `slc render ARGS --out OUT` (ARGS split at spaces).
 fn render(args: &str, out: &Path) -> Output {

@@ -3,7 +3,6 @@
 //! a warning where the result would otherwise mislead.
 use std::os::unix::ffi::OsStrExt;
 use std::path::{Path, PathBuf};
-use std::process::Output;
 use std::time::{Duration, Instant};
 
 mod common;

@@ -79,6 +79,40 @@ fn filter_both(
     worst
 }
 
+/// The default scene's stochastic indirect light with interleaved sampling (K = 4, no
+/// culling), the noise the filter is for.
+#[test]
+fn filter_matches_the_cpu_on_the_default_scene() {
+    let Some(ctx) = gpu() else { return };
+    let pass = DenoisePass::new(&ctx).unwrap();
+    let scene = builtin("default").unwrap();
+    let camera = scene.camera_or_default();
+    let tracer = Tracer::new(&scene);
+    for (size, k) in [((96, 64), 4), ((53, 31), 3)] {
+        let (gbuffer, vpls) = frame(&scene, &camera, size, 16);
+        let input = cull_input(&gbuffer, &camera, &vpls, 1e-3, (k, 1));
+        let lists = slc_cull::culler(slc_core::Strategy::None)
+            .cull(&input)
+            .unwrap();
+        let noisy = shade_lists(&tracer, &input, &lists, false, &|_| ()).unwrap();
+        let worst = filter_both(&ctx, &pass, "default scene", &noisy, &gbuffer, &camera);
+        // The filter did its job: most pixels changed noticeably.
+        let cpu = cross_bilateral(&noisy, &gbuffer, BilateralParams::default()).unwrap();
+        let changed = cpu
+            .pixels
+            .iter()
+            .zip(&noisy.pixels)
+            .filter(|(a, b)| (**a - **b).abs().max_element() > 0.01 * b.max_element())
+            .count();
+        eprintln!(
+            "default scene {size:?} K {k}: largest relative error {worst:.2e}, {changed} of {} \
+             pixels changed by more than 1%",
+            noisy.pixels.len()
+        );
+        assert!(changed * 2 > noisy.pixels.len(), "{changed}");
+    }
+}
+
 #[path = "../../../../tests/fixtures/rng.rs"]
 mod rng;
 use rng::Rng;

@@ -20,7 +20,7 @@
 use crate::common::{crafted_fresnel, crafted_kd, gpu};
 use glam::Vec3;
 use slc_bounds::sg::MeanMap;
-use slc_bounds::{Brdf, Fresnel};
+use slc_bounds::Brdf;
 use slc_core::frame::DiffuseEmission;
 use slc_core::{builtin, GBuffer, GSample, Image};
 use slc_cpu_ref::gbuffer::{trace_gbuffer, PixelSample};
