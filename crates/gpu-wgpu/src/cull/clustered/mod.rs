@@ -31,8 +31,8 @@ pub(crate) const DEPTH_SOURCE: &str = kernel!("cluster_depth");
 /// The kernel of `clustered_cull.wesl`, linked with what it imports (build.rs).
 pub(crate) const CULL_SOURCE: &str = kernel!("clustered_cull");
 
-/// The clustered culler's pipelines (the four clustered strategies, by the [`GlossyBound`]
-/// passed to [`ListCulling::cull`](crate::cull::ListCulling::cull)).
+/// The clustered culler's pipelines (the four clustered strategies, by the
+/// [`GlossyBound`](slc_cull::GlossyBound) passed to [`ListCulling::cull`](crate::cull::ListCulling::cull)).
 pub struct ClusteredCuller {
     passes: ListPasses,
     depth: wgpu::ComputePipeline,

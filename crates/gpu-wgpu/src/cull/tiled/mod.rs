@@ -14,7 +14,7 @@
 //! [`ListCulling::cull_on_gpu`](crate::cull::ListCulling::cull_on_gpu) leaves the lists on the GPU for `shade::lists` instead;
 //! [`TiledCuller::prepare`] stops before the lists, for the one-pass culling and shading of
 //! `shade::tiled`, and [`TiledCuller::lists`] builds them from there. With
-//! [`GlossyBound::Tight`] the lists are refined per block (`cull::tight`).
+//! [`GlossyBound::Tight`](slc_cull::GlossyBound::Tight) the lists are refined per block (`cull::tight`).
 pub mod depth;
 
 use crate::cull::list_passes::{DepthPass, ListKernel, ListPasses, PreparedTiles, TileLayout};
@@ -28,7 +28,7 @@ use std::mem::offset_of;
 pub(crate) const SOURCE: &str = kernel!("tiled_cull");
 
 /// The tiled culler's pipelines (sphere, enclosing-sphere, ellipsoid and tight strategies,
-/// by the [`GlossyBound`] passed to [`ListCulling::cull`](crate::cull::ListCulling::cull)).
+/// by the [`GlossyBound`](slc_cull::GlossyBound) passed to [`ListCulling::cull`](crate::cull::ListCulling::cull)).
 pub struct TiledCuller {
     passes: ListPasses,
     depth: TileDepthPass,
