@@ -58,8 +58,8 @@ pub struct GpuBounds {
 }
 
 impl GpuBounds {
-    /// The bounds and their count, as `cull::partition` sorts them.
-    pub fn sorted(&self) -> (&wgpu::Buffer, &Count) {
+    /// The bounds buffer with the count of bounds it holds (what `cull::partition` reads).
+    pub fn counted(&self) -> (&wgpu::Buffer, &Count) {
         (&self.buffer, &self.count)
     }
 }

@@ -35,8 +35,11 @@ pub trait TileLayout {
 
     /// Encodes the depth pass after the shared passes of `tiles`: each tile's frusta and
     /// each pixel's list.
-    fn encode_depth(&self, on: DepthPass, tiles: PreparedTiles)
-        -> Result<Self::Prepared, GpuError>;
+    fn encode_depth(
+        &self,
+        on: DepthEncoder,
+        tiles: PreparedTiles,
+    ) -> Result<Self::Prepared, GpuError>;
 
     /// The list kernel of a prepared frame.
     fn kernel<'a>(&'a self, prepared: &'a Self::Prepared) -> ListKernel<'a>;
@@ -59,7 +62,7 @@ pub trait TileLayout {
             Self::DEPTH,
             |encoder, tiles| {
                 self.encode_depth(
-                    DepthPass {
+                    DepthEncoder {
                         ctx,
                         frame,
                         encoder,
@@ -89,7 +92,7 @@ pub trait TileLayout {
 }
 
 /// Where a layout's depth pass is encoded: the submission of the shared passes.
-pub struct DepthPass<'a, 'f> {
+pub struct DepthEncoder<'a, 'f> {
     pub ctx: &'a GpuContext,
     pub frame: &'a CullFrame<'f>,
     pub encoder: &'a mut wgpu::CommandEncoder,
@@ -205,9 +208,14 @@ impl ListPasses {
         let status = upload(ctx, "cull status", &[GpuCullStatus::CLEAR])?;
         let params = cull_params(frame, &view, tiles, CULL_COUNT);
         ctx.submit(label, |encoder| {
-            let partition =
-                self.partition
-                    .encode(ctx, encoder, &self.scan, bounds.sorted(), k * k, &status)?;
+            let partition = self.partition.encode(
+                ctx,
+                encoder,
+                &self.scan,
+                bounds.counted(),
+                k * k,
+                &status,
+            )?;
             let prepared = PreparedTiles {
                 bounds,
                 partition,

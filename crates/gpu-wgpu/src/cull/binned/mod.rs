@@ -109,9 +109,14 @@ impl BinnedCuller {
                 .buffer(ctx, frame, "light lists", per_subregion, &status)?;
         let at = offset_of!(GpuCullParams, vpl_count);
         ctx.submit("binned cull", |encoder| {
-            let partition =
-                self.partition
-                    .encode(ctx, encoder, &self.scan, bounds.sorted(), k * k, &status)?;
+            let partition = self.partition.encode(
+                ctx,
+                encoder,
+                &self.scan,
+                bounds.counted(),
+                k * k,
+                &status,
+            )?;
             let params = cull_params(frame, &view, tiles, CULL_COUNT);
             let footprint_params =
                 bounds

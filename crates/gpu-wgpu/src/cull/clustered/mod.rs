@@ -18,7 +18,7 @@
 pub mod records;
 
 use crate::cull::clustered::records::{GpuClusterFrusta, CLUSTER_SLICES, DEPTH_RANGE, DEPTH_SPLIT};
-use crate::cull::list_passes::{DepthPass, ListKernel, ListPasses, PreparedTiles, TileLayout};
+use crate::cull::list_passes::{DepthEncoder, ListKernel, ListPasses, PreparedTiles, TileLayout};
 use crate::cull::records::GpuCullParams;
 use crate::cull::tight::BaseLayout;
 use crate::device::buffers::upload;
@@ -51,7 +51,7 @@ impl TileLayout for ClusteredCuller {
     /// The G-buffer's depth range, then each tile's occupied slices with each pixel's slice.
     fn encode_depth(
         &self,
-        on: DepthPass,
+        on: DepthEncoder,
         tiles: PreparedTiles,
     ) -> Result<PreparedClusters, GpuError> {
         // Smallest and largest depth as f32 bits, before any sample is seen.

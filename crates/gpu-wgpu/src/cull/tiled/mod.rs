@@ -17,7 +17,7 @@
 //! [`GlossyBound::Tight`](slc_cull::GlossyBound::Tight) the lists are refined per block (`cull::tight`).
 pub mod depth;
 
-use crate::cull::list_passes::{DepthPass, ListKernel, ListPasses, PreparedTiles, TileLayout};
+use crate::cull::list_passes::{DepthEncoder, ListKernel, ListPasses, PreparedTiles, TileLayout};
 use crate::cull::records::{GpuCullParams, GpuTileFrusta};
 use crate::cull::tight::BaseLayout;
 use crate::cull::tiled::depth::{TileDepthBuffers, TileDepthPass};
@@ -45,7 +45,11 @@ impl TileLayout for TiledCuller {
     }
 
     /// The Modified HalfZ frusta of every tile, with each pixel's cluster.
-    fn encode_depth(&self, on: DepthPass, tiles: PreparedTiles) -> Result<PreparedTiles, GpuError> {
+    fn encode_depth(
+        &self,
+        on: DepthEncoder,
+        tiles: PreparedTiles,
+    ) -> Result<PreparedTiles, GpuError> {
         let depth_params = tiles.bounds.count.uniform(
             on.ctx,
             on.encoder,
