@@ -1,10 +1,15 @@
 //! `slc bench`: per-pass times of the stochastic pipeline over resolutions and VPL counts, for
 //! each culling strategy, in one run (so ratios are measured on the same machine state).
 //! Writes `bench.json` / `bench.csv` (every setting a column; medians over `--repeat` runs with
-//! the min and max of culling + shading) and `bench.md`.
+//! the min and max of culling + shading), `bench.md`, and culling and shading against the VPL
+//! count with each strategy's slope ([`crate::scaling`]: `scaling_culling.svg`,
+//! `scaling_shading.svg`).
 use crate::args::{count, positive, strategies, FrameArgs, PipelineArgs, Shader};
 use crate::backend::{message, run_on, OnBackend};
 use crate::ceiling;
+use crate::pdf::write_figure;
+use crate::print::PrintWidth;
+use crate::scaling::{self, Sample};
 use crate::table::{write_csv, SettingsColumns};
 use clap::Args;
 use serde::Serialize;
@@ -15,7 +20,7 @@ use slc_app::provenance::Provenance;
 use slc_app::repeat::{repeated, Spread};
 use slc_core::frame::counts::{HEIGHT, REPEAT, RSM, WIDTH};
 use slc_core::frame::PassTime;
-use slc_core::frame::{Method, Stochastic};
+use slc_core::frame::{Method, RenderSettings, Stochastic};
 use slc_core::shader::frame_timings_of;
 use slc_core::{PreparedFrame, Scene, Strategy, Timings};
 use std::fmt::Write;
@@ -93,7 +98,15 @@ pub fn run(args: &BenchArgs) -> Result<(), String> {
         );
     }
     let out = OutDir::open(&args.out)?;
-    out.expect(["bench.json", "bench.csv", "bench.md"])?;
+    out.expect([
+        "bench.json",
+        "bench.csv",
+        "bench.md",
+        "scaling_culling.svg",
+        "scaling_culling.pdf",
+        "scaling_shading.svg",
+        "scaling_shading.pdf",
+    ])?;
     let scene = args.frame.load_renderable()?;
     let strategies = strategies(&args.culling)?;
     let resolutions = args
@@ -146,6 +159,7 @@ impl OnBackend for Bench<'_> {
         // (frame, strategy, culling + shading ms) for the paper's Table 2 layout.
         let mut table2 = Vec::new();
         let mut warmups = Vec::new();
+        let mut samples = Vec::new();
         // The GPU passes under each row: markdown lines, and (row, pass) for bench.json.
         let mut passes = Vec::new();
         let mut pass_json: Vec<(usize, PassRow)> = Vec::new();
@@ -188,8 +202,16 @@ impl OnBackend for Bench<'_> {
             .map(|(res, rsm)| frame(res, rsm).settings(Method::Stochastic(base), 1))
             .collect();
         check_frames(&scene, &frames)?;
+        // Every strategy on every frame, before the first is timed.
         for settings in &frames {
-            r.check(settings).map_err(message)?;
+            for &strategy in &strategies {
+                let s = Stochastic { strategy, ..base };
+                let settings = RenderSettings {
+                    method: Method::Stochastic(s),
+                    ..settings.clone()
+                };
+                r.check(&settings).map_err(message)?;
+            }
         }
         // One BVH or scene upload for every frame.
         let loaded = r.load(&scene).map_err(message)?;
@@ -288,6 +310,13 @@ impl OnBackend for Bench<'_> {
                         &args.pipeline,
                         vpl_count,
                     );
+                    samples.push(Sample {
+                        resolution: (w, h),
+                        strategy,
+                        vpls: vpl_count,
+                        culling_ms: row.culling_ms,
+                        shading_ms: row.shading_ms,
+                    });
                     rows.push((settings, row));
                     table2.push((format!("{w}x{h}, {vpl_count} VPLs"), strategy, cs));
                     eprintln!("  {strategy}: culling + shading {cs:.1} ms");
@@ -295,6 +324,12 @@ impl OnBackend for Bench<'_> {
             }
         }
         md.push_str(&paper_layout(&table2, &format!("{:?}", args.frame.lobes)));
+        let slopes = scaling::slopes(&samples);
+        md.push_str(&scaling::markdown(&slopes));
+        let style = PrintWidth::Screen.style();
+        for (name, svg) in scaling::plots(&samples, &scene.name, &device.backend, &style)? {
+            write_figure(&mut out, name, &svg)?;
+        }
         if !passes.is_empty() {
             let _ = write!(
                 md,
@@ -307,6 +342,7 @@ impl OnBackend for Bench<'_> {
         let json = serde_json::json!({
             "provenance": provenance,
             "warmup": warmups,
+            "slopes": slopes,
             "rows": rows
                 .iter()
                 .enumerate()

@@ -14,6 +14,7 @@ mod plot;
 mod print;
 mod render_cmd;
 mod sampled;
+mod scaling;
 mod sweep_cmd;
 mod table;
 #[cfg(feature = "view")]

@@ -36,8 +36,9 @@ pub struct Series {
     pub points: Vec<PlotPoint>,
 }
 
-/// Series colours (matplotlib's "tab10", readable in print and by most colour-blind readers).
-pub const COLOURS: [RGBColor; 8] = [
+/// Series colours (matplotlib's "tab10", readable in print and by most colour-blind readers,
+/// then black and navy): one for each strategy.
+pub const COLOURS: [RGBColor; 12] = [
     RGBColor(31, 119, 180),
     RGBColor(214, 39, 40),
     RGBColor(44, 160, 44),
@@ -46,6 +47,10 @@ pub const COLOURS: [RGBColor; 8] = [
     RGBColor(140, 86, 75),
     RGBColor(227, 119, 194),
     RGBColor(23, 190, 207),
+    RGBColor(127, 127, 127),
+    RGBColor(188, 189, 34),
+    RGBColor(0, 0, 0),
+    RGBColor(0, 0, 128),
 ];
 
 /// Whether a point can be drawn on log-log axes.
@@ -124,6 +129,29 @@ pub fn tick_label(v: f64) -> String {
     } else {
         s
     }
+}
+
+/// The corner of the plot the legend covers fewest points in: points are given as fractions
+/// of the axes (0 at the left and bottom, 1 at the right and top), and a legend is taken to
+/// cover the 45% of each axis next to its corner. Upper right, then upper left, lower right
+/// and lower left where they tie.
+fn emptiest_corner(points: impl Iterator<Item = (f64, f64)>) -> SeriesLabelPosition {
+    use SeriesLabelPosition::{LowerLeft, LowerRight, UpperLeft, UpperRight};
+    let corners = [
+        (UpperRight, true, true),
+        (UpperLeft, false, true),
+        (LowerRight, true, false),
+        (LowerLeft, false, false),
+    ];
+    let mut covered = [0usize; 4];
+    for (x, y) in points {
+        for (n, &(_, right, top)) in covered.iter_mut().zip(&corners) {
+            let near = |v: f64, high: bool| if high { v >= 0.55 } else { v <= 0.45 };
+            *n += usize::from(near(x, right) && near(y, top));
+        }
+    }
+    let best = (0..4).min_by_key(|&i| covered[i]).unwrap_or(0);
+    corners[best].0.clone()
 }
 
 /// A plotters error as slc reports it.
@@ -219,9 +247,13 @@ pub fn log_log_plot_svg(
             });
             chart.draw_series(labels).map_err(draw_error)?;
         }
+        let corner = emptiest_corner(all().map(|p| {
+            let at = |v: f64, lo: f64, hi: f64| (v / lo).ln() / (hi / lo).ln();
+            (at(p.x, x0, x1), at(p.y, y0, y1))
+        }));
         chart
             .configure_series_labels()
-            .position(SeriesLabelPosition::UpperRight)
+            .position(corner)
             .background_style(WHITE.mix(0.85))
             .border_style(BLACK.mix(0.4))
             .label_font(font(style.small))
@@ -334,6 +366,37 @@ mod tests {
             t,
             vec![300.0, 400.0, 500.0, 600.0, 700.0, 800.0, 900.0, 1000.0]
         );
+    }
+
+    /// The legend goes where it hides fewest points: upper left above rising curves, upper
+    /// right above falling ones and where nothing is covered.
+    #[test]
+    fn the_legend_avoids_the_points() {
+        let rising = [(0.0, 0.0), (0.5, 0.5), (1.0, 1.0), (0.9, 0.7)];
+        assert_eq!(
+            emptiest_corner(rising.into_iter()),
+            SeriesLabelPosition::UpperLeft
+        );
+        let falling = [(0.0, 1.0), (0.5, 0.5), (1.0, 0.0)];
+        assert_eq!(
+            emptiest_corner(falling.into_iter()),
+            SeriesLabelPosition::UpperRight
+        );
+        let everywhere_but_lower_right = [(0.9, 0.9), (0.1, 0.9), (0.1, 0.1)];
+        assert_eq!(
+            emptiest_corner(everywhere_but_lower_right.into_iter()),
+            SeriesLabelPosition::LowerRight
+        );
+    }
+
+    /// Every strategy's curve gets a colour of its own in one plot.
+    #[test]
+    fn a_distinct_colour_for_every_strategy() {
+        let mut colours: Vec<_> = COLOURS.iter().map(|c| (c.0, c.1, c.2)).collect();
+        colours.sort_unstable();
+        colours.dedup();
+        assert_eq!(colours.len(), COLOURS.len());
+        assert!(COLOURS.len() >= slc_core::Strategy::every().count());
     }
 
     #[test]

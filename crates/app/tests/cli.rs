@@ -2,7 +2,7 @@
 use std::path::Path;
 
 mod common;
-use common::{gpu_available, out_dir, read_exr, run_ok, slc};
+use common::{gpu_available, out_dir, read_exr, run, run_ok, slc};
 
 #[test]
 fn render_writes_images_and_report() {
@@ -381,6 +381,47 @@ fn bench_writes_a_row_per_resolution_vpl_count_and_strategy() {
         md.contains("| M pairs/s | ceiling M pairs/s | of ceiling |"),
         "{md}"
     );
+    // Against the VPL count: a curve per (resolution, strategy), each over both RSM sizes,
+    // in the table, bench.json and both plots.
+    let slopes = json["slopes"].as_array().unwrap();
+    assert_eq!(slopes.len(), 4, "{slopes:?}");
+    for s in slopes {
+        assert_eq!(s["points"], 2, "{s}");
+        assert!(s["vpls_min"].as_u64() < s["vpls_max"].as_u64(), "{s}");
+        assert!(
+            s["culling_plus_shading"].as_f64().unwrap().is_finite(),
+            "{s}"
+        );
+    }
+    assert!(md.contains("## Against the VPL count") && md.contains("| 24x16 | ellipsoid | "));
+    for plot in ["scaling_culling.svg", "scaling_shading.svg"] {
+        let svg = std::fs::read_to_string(out.join(plot)).unwrap();
+        assert!(
+            svg.contains("ellipsoid 16x16 (") && svg.contains("none 24x16"),
+            "{plot}"
+        );
+        assert_eq!(svg.matches("<circle").count(), 8, "{plot}");
+    }
+    std::fs::remove_dir_all(&out).ok();
+}
+
+/// Every strategy is checked against the backend before the first is timed: a raster
+/// baseline named last on the CPU stops the bench before it runs and writes nothing.
+#[test]
+fn bench_refuses_a_strategy_the_backend_lacks_before_timing_any() {
+    let out = out_dir("bench-refused");
+    let o = run(
+        "bench --resolutions 16x16 --rsms 2 --culling ellipsoid,splatting",
+        &out,
+    );
+    assert!(!o.status.success());
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(err.contains("--backend gpu"), "{err}");
+    assert!(
+        !err.contains("culling + shading"),
+        "nothing was timed: {err}"
+    );
+    assert!(!out.join("bench.md").exists());
     std::fs::remove_dir_all(&out).ok();
 }
 
