@@ -45,7 +45,8 @@ enum Command {
     /// Speed against accuracy over δ per strategy (CSV, SVG plot, equal-time comparison), or
     /// with --shader vsgl error against light count for VSGLs and equal-count VPLs.
     Sweep(sweep_cmd::SweepArgs),
-    /// Per-pass times over resolutions and VPL counts for each strategy: bench.md, bench.csv.
+    /// Per-pass times over resolutions and VPL counts for each strategy: bench.md, bench.csv,
+    /// and culling and shading against the VPL count with each strategy's slope (scaling_*.svg).
     Bench(bench_cmd::BenchArgs),
     /// An interactive window on the GPU renderer: fly camera, movable lights, render controls,
     /// overlays (heat map, tile grid), per-pass times; screenshots and settings (.toml).

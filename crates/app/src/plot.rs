@@ -131,6 +131,21 @@ pub fn tick_label(v: f64) -> String {
     }
 }
 
+/// Curves whose legend goes inside the plot, in its emptiest corner; more get a column of
+/// their own beside it.
+const LEGEND_INSIDE: usize = 4;
+
+/// The width of the legend column beside the plot: the key and the longest name (text about
+/// 0.6 of its size wide a character).
+fn legend_width(series: &[Series], style: &Style) -> u32 {
+    let longest = series
+        .iter()
+        .map(|s| s.name.chars().count())
+        .max()
+        .unwrap_or(0);
+    (34.0 + longest as f64 * style.small * 0.6) as u32
+}
+
 /// The corner of the plot the legend covers fewest points in: points are given as fractions
 /// of the axes (0 at the left and bottom, 1 at the right and top), and a legend is taken to
 /// cover the 45% of each axis next to its corner. Upper right, then upper left, lower right
@@ -176,14 +191,33 @@ pub fn log_log_plot_svg(
     });
     let (x0, x1) = log_range(xs.filter(|x| x.is_finite() && *x > 0.0));
     let (y0, y1) = log_range(all().map(|p| p.y));
-    let size = (style.width as u32, (style.width * 500.0 / 760.0) as u32);
+    // Many curves on the screen: the legend in a column of its own right of the plot, where
+    // it covers nothing, the figure widened by it (a printed figure keeps its width and its
+    // legend inside).
+    let beside = (series.len() > LEGEND_INSIDE && style.inches.is_none())
+        .then(|| legend_width(series, style));
+    let size = (
+        (style.width as u32) + beside.unwrap_or(0),
+        (style.width * 500.0 / 760.0) as u32,
+    );
     let font = |s: f64| ("sans-serif", Style::plotters(s));
     let mut svg = String::new();
     {
         let root = SVGBackend::with_string(&mut svg, size).into_drawing_area();
         root.fill(&WHITE).map_err(draw_error)?;
-        let mut chart = ChartBuilder::on(&root)
-            .caption(title, font(style.title))
+        let (plot_area, legend_area) = match beside {
+            Some(legend) => {
+                let below_title = root.titled(title, font(style.title)).map_err(draw_error)?;
+                let (plot, legend) = below_title.split_horizontally(size.0 - legend);
+                (plot, Some(legend))
+            }
+            None => (root.clone(), None),
+        };
+        let mut builder = ChartBuilder::on(&plot_area);
+        if beside.is_none() {
+            builder.caption(title, font(style.title));
+        }
+        let mut chart = builder
             .margin(style.gap * 1.75)
             .x_label_area_size(style.label * 3.0)
             .y_label_area_size(style.small * 5.5)
@@ -247,18 +281,40 @@ pub fn log_log_plot_svg(
             });
             chart.draw_series(labels).map_err(draw_error)?;
         }
-        let corner = emptiest_corner(all().map(|p| {
-            let at = |v: f64, lo: f64, hi: f64| (v / lo).ln() / (hi / lo).ln();
-            (at(p.x, x0, x1), at(p.y, y0, y1))
-        }));
-        chart
-            .configure_series_labels()
-            .position(corner)
-            .background_style(WHITE.mix(0.85))
-            .border_style(BLACK.mix(0.4))
-            .label_font(font(style.small))
-            .draw()
-            .map_err(draw_error)?;
+        match legend_area {
+            Some(area) => {
+                let line = style.small * 1.6;
+                let top = style.gap * 1.75 + style.small;
+                for (i, s) in series.iter().enumerate() {
+                    let colour = COLOURS[i % COLOURS.len()];
+                    let y = (top + line * i as f64) as i32;
+                    let key = PathElement::new(vec![(2, y), (20, y)], colour.stroke_width(stroke));
+                    area.draw(&key).map_err(draw_error)?;
+                    area.draw(&Circle::new((11, y), marker, colour.filled()))
+                        .map_err(draw_error)?;
+                    let text = Text::new(
+                        s.name.as_str(),
+                        (26, y - (style.small * 0.6) as i32),
+                        font(style.small),
+                    );
+                    area.draw(&text).map_err(draw_error)?;
+                }
+            }
+            None => {
+                let corner = emptiest_corner(all().map(|p| {
+                    let at = |v: f64, lo: f64, hi: f64| (v / lo).ln() / (hi / lo).ln();
+                    (at(p.x, x0, x1), at(p.y, y0, y1))
+                }));
+                chart
+                    .configure_series_labels()
+                    .position(corner)
+                    .background_style(WHITE.mix(0.85))
+                    .border_style(BLACK.mix(0.4))
+                    .label_font(font(style.small))
+                    .draw()
+                    .map_err(draw_error)?;
+            }
+        }
         root.present().map_err(draw_error)?;
     }
     Ok(style.sized(&svg, size))
@@ -387,6 +443,41 @@ mod tests {
             emptiest_corner(everywhere_but_lower_right.into_iter()),
             SeriesLabelPosition::LowerRight
         );
+    }
+
+    /// More than four curves on the screen: the legend is a column right of the plot, each
+    /// name once, none of it over the axes.
+    #[test]
+    fn many_curves_get_their_legend_beside_the_plot() {
+        let style = PrintWidth::Screen.style();
+        let series: Vec<Series> = (0..9)
+            .map(|i| Series {
+                name: format!("strategy-{i} (0.9{i})"),
+                points: points(&[(1e4, 1.0 + i as f64), (1e6, 100.0 * (1.0 + i as f64))]),
+            })
+            .collect();
+        let svg = log_log_plot_svg("t", "VPLs", "ms", &series, &style).unwrap();
+        // The plot keeps the figure's width; the legend is added right of it.
+        let width = style.width as u32 + legend_width(&series, &style);
+        assert!(svg.contains(&format!("width=\"{width}\"")), "{width}");
+        for s in &series {
+            let at = svg.find(&format!("\n{}\n</text>", s.name)).unwrap();
+            let tag = &svg[svg[..at].rfind("<text").unwrap()..at];
+            let x: f64 = tag
+                .split("x=\"")
+                .nth(1)
+                .unwrap()
+                .split('"')
+                .next()
+                .unwrap()
+                .parse()
+                .unwrap();
+            assert!(x > style.width, "{}: x {x}, plot {}", s.name, style.width);
+        }
+        // In print the figure keeps its width, the legend inside.
+        let print = PrintWidth::Column.style();
+        let svg = log_log_plot_svg("t", "VPLs", "ms", &series, &print).unwrap();
+        assert!(svg.contains("width=\"3.5in\""));
     }
 
     /// Every strategy's curve gets a colour of its own in one plot.
