@@ -327,7 +327,7 @@ impl OnBackend for Bench<'_> {
         let slopes = scaling::slopes(&samples);
         md.push_str(&scaling::markdown(&slopes));
         let style = PrintWidth::Screen.style();
-        for (name, svg) in scaling::plots(&samples, &scene.name, &device.backend, &style)? {
+        for (name, svg) in scaling::plots(&samples, &scene.name, device.backend, &style)? {
             write_figure(&mut out, name, &svg)?;
         }
         if !passes.is_empty() {
