@@ -117,14 +117,15 @@ fn quick_regeneration_rewrites_only_its_blocks() {
         assert_eq!(names(&new_blocks), names(&blocks), "{}", doc.display());
         for (name, body) in &new_blocks {
             rewritten += 1;
-            // The quick runs render the built-in scene at 48x32 (compare) or 32x32 (render)
-            // and the memory grid's small cases: a block that names a command it ran must
-            // name the one that ran.
+            // The quick runs render the built-in scene at 48x32 (compare, bench) or 32x32
+            // (render) and the memory grid's small cases: a block that names a command it
+            // ran must name the one that ran.
             if body.contains("`slc ") || body.contains("`python3 tools/") {
                 measured += 1;
                 assert!(
                     body.contains("--width 48")
                         || body.contains("--width 32")
+                        || body.contains("--resolutions 48x32")
                         || body.contains("grid.py --quick"),
                     "regen:{name} does not name the quick command:\n{body}"
                 );
