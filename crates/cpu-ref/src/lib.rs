@@ -50,6 +50,7 @@ pub mod denoise;
 pub mod direct;
 mod frame_images;
 pub mod gbuffer;
+mod list_ranks;
 pub mod path;
 pub mod prepare;
 pub mod received_lanes;

@@ -1,6 +1,7 @@
 //! Shading with every VPL (no culling): the exact VPL sum, or the stochastic estimate of
 //! paper eq. (3) where each VPL is kept at a pixel only if p(ωo, l) > ξ.
 use crate::frame_images::{black_image, shade_rows};
+use crate::list_ranks::ListRanks;
 use crate::received_lanes::{received_lanes, ReceiverBrdfs};
 use crate::tracer::Tracer;
 use glam::Vec3;
@@ -232,7 +233,7 @@ struct ListShading<'a> {
     visibility: bool,
 }
 
-/// Scratch reused from tile to tile: the tile's distinct lists, the (rank of the list, slot,
+/// Scratch reused from tile to tile: the tile's distinct lists (and their ranks), the (rank of the list, slot,
 /// pixel) triples of its pixels with a list, those grouped by list, where each group starts
 /// and the next free place while grouping; for the lists shaded together, their VPLs (each
 /// with the lists that hold it) and per VPL a stamp of those lists while merging; the
@@ -242,6 +243,7 @@ struct ListShading<'a> {
 #[derive(Default)]
 struct TileScratch<'a> {
     lists: Vec<u32>,
+    ranks: ListRanks,
     pixels: Vec<(u32, u32, u32)>,
     grouped: Vec<(u32, u32, u32)>,
     starts: Vec<usize>,
@@ -267,6 +269,7 @@ impl<'a> ListShading<'a> {
         // pixel), then grouped by rank with a counting sort, each group in Z order (compact
         // chunks of eight receivers).
         scratch.lists.clear();
+        scratch.ranks.start(tile.pixel_count());
         scratch.pixels.clear();
         // Neighbours in Z order mostly share a list: the last one found is tried first.
         let mut last = (NO_LIST, 0);
@@ -279,14 +282,7 @@ impl<'a> ListShading<'a> {
                 continue;
             }
             if l != last.0 {
-                let rank = match scratch.lists.iter().position(|&m| m == l) {
-                    Some(rank) => rank,
-                    None => {
-                        scratch.lists.push(l);
-                        scratch.lists.len() - 1
-                    }
-                };
-                last = (l, rank as u32);
+                last = (l, scratch.ranks.rank(l, &mut scratch.lists));
             }
             scratch.pixels.push((last.1, slot as u32, p));
         }
