@@ -147,8 +147,8 @@ impl OnBackend for Bench<'_> {
             mut out,
         } = self;
         let base = args.pipeline.stochastic(args.delta, strategies[0], false);
+        // The device as the first strategy sees it; every frame is checked below.
         let first = args.frame.settings(Method::Stochastic(base), 1);
-        r.check(&first).map_err(message)?;
         let device = r.info(&first);
         let provenance = Provenance::new(&scene);
         // The listed pairs, and so the ceiling, are counted by the CPU only. The ceiling is
@@ -327,7 +327,7 @@ impl OnBackend for Bench<'_> {
         let slopes = scaling::slopes(&samples);
         md.push_str(&scaling::markdown(&slopes));
         let style = PrintWidth::Screen.style();
-        for (name, svg) in scaling::plots(&samples, &scene.name, device.backend, &style)? {
+        for (name, svg) in scaling::plots(&samples, &slopes, &scene.name, device.backend, &style)? {
             write_figure(&mut out, name, &svg)?;
         }
         if !passes.is_empty() {

@@ -131,21 +131,23 @@ pub fn markdown(slopes: &[Slopes]) -> String {
 }
 
 /// The two plots, `(name, svg)`: culling and shading ms against the VPLs, one curve per
-/// strategy (and resolution, where there are several), each named with its slope.
+/// strategy (and resolution, where there are several), each named with its slope from
+/// `slopes` (the [`slopes`] of the same `samples`, curve by curve).
 pub fn plots(
     samples: &[Sample],
+    slopes: &[Slopes],
     scene: &str,
     backend: &str,
     style: &Style,
 ) -> Result<[(&'static str, String); 2], String> {
     let curves = curves(samples);
     let many_resolutions = curves.iter().any(|(r, _, _)| *r != curves[0].0);
-    let plot = |pass: &str, ms: fn(&Sample) -> f64| {
+    let plot = |pass: &str, ms: fn(&Sample) -> f64, fitted: fn(&Slopes) -> Option<f64>| {
         let series: Vec<Series> = curves
             .iter()
-            .map(|((w, h), strategy, c)| {
-                let points: Vec<(f64, f64)> = c.iter().map(|s| (s.vpls as f64, ms(s))).collect();
-                let slope = log_log_slope(&points).map_or(String::new(), |b| format!(" ({b:.2})"));
+            .zip(slopes)
+            .map(|(((w, h), strategy, c), fit)| {
+                let slope = fitted(fit).map_or(String::new(), |b| format!(" ({b:.2})"));
                 let at = if many_resolutions {
                     format!(" {w}x{h}")
                 } else {
@@ -153,7 +155,10 @@ pub fn plots(
                 };
                 Series {
                     name: format!("{}{at}{slope}", strategy.name()),
-                    points: points.iter().map(|&(x, y)| PlotPoint::at(x, y)).collect(),
+                    points: c
+                        .iter()
+                        .map(|s| PlotPoint::at(s.vpls as f64, ms(s)))
+                        .collect(),
                 }
             })
             .collect();
@@ -166,8 +171,14 @@ pub fn plots(
         )
     };
     Ok([
-        ("scaling_culling", plot("culling", |s| s.culling_ms)?),
-        ("scaling_shading", plot("shading", |s| s.shading_ms)?),
+        (
+            "scaling_culling",
+            plot("culling", |s| s.culling_ms, |f| f.culling)?,
+        ),
+        (
+            "scaling_shading",
+            plot("shading", |s| s.shading_ms, |f| f.shading)?,
+        ),
     ])
 }
 
@@ -254,8 +265,14 @@ mod tests {
             sample(Strategy::Tight, 10_000, 1.0, 2.0),
             sample(Strategy::Tight, 40_000, 4.0, 2.0),
         ];
-        let [(culling, svg), (shading, _)] =
-            plots(&samples, "sponza", "cpu", &PrintWidth::Screen.style()).unwrap();
+        let [(culling, svg), (shading, _)] = plots(
+            &samples,
+            &slopes(&samples),
+            "sponza",
+            "cpu",
+            &PrintWidth::Screen.style(),
+        )
+        .unwrap();
         assert_eq!((culling, shading), ("scaling_culling", "scaling_shading"));
         assert!(svg.contains("tight (1.00)"), "{svg}");
         assert_eq!(svg.matches("<circle").count(), 2);
@@ -263,7 +280,14 @@ mod tests {
             resolution: (960, 540),
             ..sample(Strategy::Tight, 10_000, 2.0, 4.0)
         });
-        let [(_, svg), _] = plots(&samples, "sponza", "cpu", &PrintWidth::Screen.style()).unwrap();
+        let [(_, svg), _] = plots(
+            &samples,
+            &slopes(&samples),
+            "sponza",
+            "cpu",
+            &PrintWidth::Screen.style(),
+        )
+        .unwrap();
         assert!(svg.contains("tight 480x270 (1.00)") && svg.contains("tight 960x540"));
     }
 }
