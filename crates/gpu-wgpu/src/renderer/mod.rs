@@ -37,8 +37,8 @@ use crate::vsgl::ism::{caster_points, GpuCaster, IsmPass, IsmSettings};
 use crate::vsgl::readback::cpu_rsm;
 use crate::vsgl::shade::VsglShadePass;
 use slc_core::frame::{
-    BilateralParams, Importance, LightSampling, LobeSelection, Method, PassTime, PreparedData,
-    RenderError, RenderSettings, Shaded, Timings,
+    BilateralParams, Importance, LightSampling, Method, PassTime, PreparedData, RenderError,
+    RenderSettings, Shaded, Timings,
 };
 use slc_core::render::pass_seed;
 use slc_core::rng::{stream, uniform};
@@ -341,11 +341,7 @@ impl Renderer for GpuRenderer {
             ),
         };
         let seed = pass_seed(settings.seed, pass);
-        let lobes = match settings.lobes {
-            LobeSelection::Both => VplLobes::Both,
-            LobeSelection::Diffuse => VplLobes::Diffuse,
-            LobeSelection::Glossy => VplLobes::Glossy,
-        };
+        let lobes = VplLobes::from(settings.lobes);
         let (ctx, scene_gpu) = (&self.ctx, &loaded.gpu);
         let ((gbuffer, maps, vpls, direct, timings), gpu_timings) = self.profiled(|| {
             let mut t = Timings::default();

@@ -4,7 +4,8 @@
 //! maps, ξ = `rng::vpl_xi(seed, id)` (paper eq. 3) from `rng.wesl`, compacted in the
 //! CPU's order by a count pass, an exclusive scan (`device::scan`) and a write pass, in one
 //! submission. Nothing is read back: the count stays on the GPU ([`GpuCount`], the scan's
-//! total), the VPL buffer holds the most VPLs the maps can make (two per texel), and the
+//! total), the VPL buffer holds the most VPLs the maps can make (one per texel and lobe
+//! selected: a 1024² map's glossy VPLs fill one 128 MiB binding exactly), and the
 //! passes after it take the count from there (`device::count`).
 use crate::cull::records::{GpuCullStatus, CULL_COUNT, CULL_WRITE};
 use crate::device::buffers::{output, read_back, uniform, upload, Grid};
@@ -16,6 +17,7 @@ use crate::vpl::records::GpuVplGenParams;
 use crate::vpl::records::{anisotropy_from_gpu, GpuVpl, FRESNEL_DIELECTRIC, LOBE_DIFFUSE};
 use glam::Vec3;
 use slc_bounds::{fresnel::cos_theta_h_max, Brdf, Fresnel};
+use slc_core::frame::LobeSelection;
 use slc_core::{Vpl, VplLobe};
 
 /// The kernel of `vpl_gen.wesl`, linked with what it imports (build.rs).
@@ -30,6 +32,16 @@ pub enum VplLobes {
     Glossy,
 }
 
+impl From<LobeSelection> for VplLobes {
+    fn from(lobes: LobeSelection) -> Self {
+        match lobes {
+            LobeSelection::Both => VplLobes::Both,
+            LobeSelection::Diffuse => VplLobes::Diffuse,
+            LobeSelection::Glossy => VplLobes::Glossy,
+        }
+    }
+}
+
 impl VplLobes {
     fn mask(self) -> u32 {
         match self {
@@ -37,6 +49,11 @@ impl VplLobes {
             VplLobes::Diffuse => 1,
             VplLobes::Glossy => 2,
         }
+    }
+
+    /// How many VPLs a texel makes at most: one per lobe selected.
+    pub fn per_texel(self) -> u32 {
+        self.mask().count_ones()
     }
 }
 
@@ -68,29 +85,29 @@ impl GpuVpls {
 
 fn unpack(v: &GpuVpl) -> Vpl {
     let v3 = |a: [f32; 4]| Vec3::new(a[0], a[1], a[2]);
-    let fresnel = if v.info[1] == FRESNEL_DIELECTRIC {
+    let fresnel = if v.fresnel == FRESNEL_DIELECTRIC {
         Fresnel::Dielectric(v.omega_i_eta[3])
     } else {
-        Fresnel::Schlick(v3(v.f0))
+        Fresnel::Schlick(Vec3::from(v.f0))
     };
     Vpl {
         position: v3(v.position_xi),
         normal: v3(v.normal_alpha),
         geometric_normal: v3(v.geometric_tilt),
         omega_i: v3(v.omega_i_eta),
-        flux: v3(v.flux),
+        flux: Vec3::from(v.flux),
         brdf: Brdf {
-            kd: v3(v.kd),
+            kd: Vec3::from(v.kd),
             fresnel,
             alpha: v.normal_alpha[3],
             anisotropy: anisotropy_from_gpu(v.anisotropy),
         },
-        lobe: if v.info[0] == LOBE_DIFFUSE {
+        lobe: if v.lobe == LOBE_DIFFUSE {
             VplLobe::Diffuse
         } else {
             VplLobe::Glossy
         },
-        id: v.info[2],
+        id: v.id,
         xi: v.position_xi[3],
     }
 }
@@ -153,7 +170,7 @@ impl VplGenPass {
         };
         let count_passes = passes(CULL_COUNT)?;
         let write_passes = passes(CULL_WRITE)?;
-        let capacity = 2 * total;
+        let capacity = lobes.per_texel() * total;
         let vpls = output::<GpuVpl>(ctx, "vpls", capacity as usize)?;
         let no_vpls = output::<GpuVpl>(ctx, "no vpls", 1)?;
         ctx.submit("vpl generation", |encoder| {

@@ -1,8 +1,9 @@
 //! `#[repr(C)]` twins of the WGSL structs of the RNG check, VPL generation and every pass that reads VPLs. Each names the WGSL module whose struct
 //! of the same name must keep the same fields in the same order, a compile-time check holds its
 //! size, and a unit test compares it with the layout naga computes from the linked kernel. Only
-//! 4-byte scalars and `[f32; 4]` / `[u32; 4]` are used (WGSL `f32`, `u32`, `vec4<f32>`,
-//! `vec4<u32>`), never vec3, so the Rust and WGSL layouts agree without hidden padding.
+//! 4-byte scalars, `[f32; 4]` / `[u32; 4]` (WGSL `f32`, `u32`, `vec4<f32>`, `vec4<u32>`) and
+//! `[f32; 3]` followed by a 4-byte scalar (a WGSL `vec3<f32>`, 16-byte aligned, and the scalar
+//! in its last 4 bytes) are used, so the Rust and WGSL layouts agree without hidden padding.
 use crate::device::GpuError;
 use bytemuck::{Pod, Zeroable};
 use glam::Vec3;
@@ -39,10 +40,10 @@ pub struct RngSample {
     pub subregion: u32,
 }
 const _: () = assert!(std::mem::size_of::<RngSample>() == 16);
-/// `GpuVpl::info[0]`: the VPL's lobe.
+/// `GpuVpl::lobe`: the VPL's lobe.
 pub const LOBE_DIFFUSE: u32 = 0;
 pub const LOBE_GLOSSY: u32 = 1;
-/// `GpuVpl::info[1]`: the Fresnel model of eq. (6) (supplemental eq. 1 or 3-5).
+/// `GpuVpl::fresnel`: the Fresnel model of eq. (6) (supplemental eq. 1 or 3-5).
 pub const FRESNEL_SCHLICK: u32 = 0;
 pub const FRESNEL_DIELECTRIC: u32 = 1;
 /// A VPL ([`slc_core::Vpl`]) as the shaders read it. Keep in sync with `Vpl` in
@@ -56,15 +57,18 @@ pub struct GpuVpl {
     pub normal_alpha: [f32; 4],
     /// Incoming direction ωi (xyz) and the relative index η of a dielectric Fresnel (w).
     pub omega_i_eta: [f32; 4],
-    /// RGB flux Φ (xyz).
-    pub flux: [f32; 4],
-    /// Diffuse reflectance kd (xyz).
-    pub kd: [f32; 4],
-    /// Schlick F0 (xyz).
-    pub f0: [f32; 4],
-    /// Lobe ([`LOBE_DIFFUSE`], [`LOBE_GLOSSY`]), Fresnel model ([`FRESNEL_SCHLICK`],
-    /// [`FRESNEL_DIELECTRIC`]), VPL id, unused.
-    pub info: [u32; 4],
+    /// RGB flux Φ.
+    pub flux: [f32; 3],
+    /// Lobe ([`LOBE_DIFFUSE`], [`LOBE_GLOSSY`]).
+    pub lobe: u32,
+    /// Diffuse reflectance kd.
+    pub kd: [f32; 3],
+    /// Fresnel model ([`FRESNEL_SCHLICK`], [`FRESNEL_DIELECTRIC`]).
+    pub fresnel: u32,
+    /// Schlick F0.
+    pub f0: [f32; 3],
+    /// The VPL's id.
+    pub id: u32,
     /// The geometric normal n_g (xyz) and the bound factor (w): `flux_scale` of
     /// `slc_bounds::shading_normal` for a diffuse VPL, `GlossyLobe::bound_factor` for a
     /// glossy one (tilted shading normal, anisotropy), 1 where neither applies.
@@ -73,7 +77,7 @@ pub struct GpuVpl {
     /// (`slc_bounds::Anisotropy`).
     pub anisotropy: [f32; 4],
 }
-const _: () = assert!(std::mem::size_of::<GpuVpl>() == 144);
+const _: () = assert!(std::mem::size_of::<GpuVpl>() == 128);
 pub(crate) fn vec4(v: Vec3, w: f32) -> [f32; 4] {
     [v.x, v.y, v.z, w]
 }
@@ -122,10 +126,12 @@ impl GpuVpl {
             position_xi: vec4(vpl.position, vpl.xi),
             normal_alpha: vec4(vpl.normal, vpl.brdf.alpha),
             omega_i_eta: vec4(vpl.omega_i, eta),
-            flux: vec4(vpl.flux, 0.0),
-            kd: vec4(vpl.brdf.kd, 0.0),
-            f0: vec4(f0, 0.0),
-            info: [lobe, fresnel, vpl.id, 0],
+            flux: vpl.flux.to_array(),
+            lobe,
+            kd: vpl.brdf.kd.to_array(),
+            fresnel,
+            f0: f0.to_array(),
+            id: vpl.id,
             geometric_tilt: vec4(vpl.geometric_normal, tilt),
             anisotropy: gpu_anisotropy(vpl.brdf.anisotropy),
         })

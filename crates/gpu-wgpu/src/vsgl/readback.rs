@@ -52,7 +52,7 @@ pub fn cpu_rsm(ctx: &GpuContext, rsm: &GpuRsm) -> Result<Rsm, GpuError> {
             };
             let omega_i = xyz(t.omega_i_eta);
             let g = xyz(s.normal);
-            let fresnel = if t.info[0] == FRESNEL_SCHLICK {
+            let fresnel = if t.fresnel == FRESNEL_SCHLICK {
                 Fresnel::Schlick(xyz(t.f0))
             } else {
                 Fresnel::Dielectric(t.omega_i_eta[3])
@@ -63,7 +63,7 @@ pub fn cpu_rsm(ctx: &GpuContext, rsm: &GpuRsm) -> Result<Rsm, GpuError> {
                 geometric_normal: if g.dot(omega_i) < 0.0 { -g } else { g },
                 normal_mapped: t.geometric[3] != 0.0,
                 omega_i,
-                flux: xyz(t.flux),
+                flux: Vec3::from(t.flux),
                 cross_section,
                 brdf: Brdf {
                     kd: xyz(t.kd),

@@ -103,7 +103,7 @@ fn texel_difference(
     let direction = (v(g.normal_alpha) - c.normal)
         .length()
         .max((v(g.omega_i_eta) - c.omega_i).length());
-    let flux = flux_error(v(g.flux), c.flux, flux_floor);
+    let flux = flux_error(Vec3::from(g.flux), c.flux, flux_floor);
     let (f0, eta) = match c.brdf.fresnel {
         Fresnel::Schlick(f0) => (f0, 0.0),
         Fresnel::Dielectric(eta) => (Vec3::ZERO, eta),

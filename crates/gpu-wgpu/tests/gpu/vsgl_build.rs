@@ -506,10 +506,10 @@ fn crafted_texels(n: u32, seed: u32, bad: Option<usize>) -> Vec<GpuRsmTexel> {
             position: position.extend(if present { 1.0 } else { 0.0 }).to_array(),
             normal_alpha: normal.extend(alpha).to_array(),
             omega_i_eta: omega_i.extend(1.5).to_array(),
-            flux: [flux, 0.5 * flux, 0.25 * flux, 0.0],
+            flux: [flux, 0.5 * flux, 0.25 * flux],
+            fresnel: u32::from(dielectric),
             kd: [u(k, 8), 0.5, 0.0, 0.0],
             f0: [0.04, 0.9, 1.0, 0.0],
-            info: [u32::from(dielectric), 0, 0, 0],
             geometric: normal.extend(0.0).to_array(),
             anisotropy: if k % 3 == 0 {
                 tangent.extend(10f32.powf(-4.0 * u(k, 9))).to_array()

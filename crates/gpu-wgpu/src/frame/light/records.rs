@@ -1,8 +1,9 @@
 //! `#[repr(C)]` twins of the WGSL structs of the reflective shadow maps and the direct light. Each names the WGSL module whose struct
 //! of the same name must keep the same fields in the same order, a compile-time check holds its
 //! size, and a unit test compares it with the layout naga computes from the linked kernel. Only
-//! 4-byte scalars and `[f32; 4]` / `[u32; 4]` are used (WGSL `f32`, `u32`, `vec4<f32>`,
-//! `vec4<u32>`), never vec3, so the Rust and WGSL layouts agree without hidden padding.
+//! 4-byte scalars, `[f32; 4]` / `[u32; 4]` (WGSL `f32`, `u32`, `vec4<f32>`, `vec4<u32>`) and
+//! `[f32; 3]` followed by a 4-byte scalar (a WGSL `vec3<f32>`, 16-byte aligned, and the scalar
+//! in its last 4 bytes) are used, so the Rust and WGSL layouts agree without hidden padding.
 use bytemuck::{Pod, Zeroable};
 use slc_core::Light;
 
@@ -51,11 +52,11 @@ pub struct GpuRsmTexel {
     /// ωi towards the light (xyz) and η of a dielectric Fresnel (w).
     pub omega_i_eta: [f32; 4],
     /// Flux Φ (rgb).
-    pub flux: [f32; 4],
+    pub flux: [f32; 3],
+    /// Fresnel model (`vpl::records::FRESNEL_SCHLICK`, `FRESNEL_DIELECTRIC`).
+    pub fresnel: u32,
     pub kd: [f32; 4],
     pub f0: [f32; 4],
-    /// Fresnel model (`vpl::records::FRESNEL_SCHLICK`, `FRESNEL_DIELECTRIC`), unused.
-    pub info: [u32; 4],
     /// Unit geometric normal on the lit side (xyz), 1 where a normal map perturbed the
     /// shading normal, 0 where not (w) (`slc_core::rsm::RsmTexel::normal_mapped`).
     pub geometric: [f32; 4],
@@ -63,7 +64,7 @@ pub struct GpuRsmTexel {
     /// (`vpl::records::gpu_anisotropy`).
     pub anisotropy: [f32; 4],
 }
-const _: () = assert!(std::mem::size_of::<GpuRsmTexel>() == 144);
+const _: () = assert!(std::mem::size_of::<GpuRsmTexel>() == 128);
 /// The nearest surface along one shadow-map texel's ray, whichever side it faces (the RSM's
 /// depth kept as a shadow map). Keep in sync with `ShadowTexel` in `rsm.wesl` and
 /// `direct.wesl`.
