@@ -1,7 +1,8 @@
 //! The VPLs of each interleaved subregion on the GPU (`partition.wesl`, paper
 //! section 6): a stable counting sort of the non-empty bounds by subregion, so each tile
 //! reads only its subregion's bounds, in ascending VPL order. Count per subregion and run of
-//! VPLs (`chunks`), scan (`device::scan`), write.
+//! VPLs (`chunks`; one workgroup per run reads each bound once), scan (`device::scan`),
+//! write.
 use crate::cull::records::{GpuPartitionParams, CULL_COUNT, CULL_WRITE};
 use crate::device::buffers::{output, Grid};
 use crate::device::context::{GpuContext, GpuError};
@@ -46,7 +47,7 @@ impl PartitionPass {
         let (chunks, chunk) = chunks(count.capacity(), subregions);
         let cells = subregions * chunks;
         let grid = Grid::new(
-            u64::from(cells),
+            u64::from(chunks),
             ctx.limits.max_compute_workgroups_per_dimension,
         )?;
         let counts = output::<u32>(ctx, "subregion run counts", cells as usize + 1)?;
@@ -86,12 +87,11 @@ impl PartitionPass {
 const MAX_CELLS: u32 = 1 << 20;
 
 /// The runs the partition splits `vpls` VPLs into for `subregions` subregions: (number of
-/// runs, VPLs per run, a multiple of 256). One workgroup per subregion and run, each walking
-/// its run: a run of about 1024 VPLs keeps thousands of workgroups busy where one per
-/// subregion walked every VPL (64 workgroups for K = 8, 0.47 ms for 51,468 VPLs on an H200;
-/// see docs/gpu.md), while the counts stay within [`MAX_CELLS`] (one run for K² of 2^20).
+/// runs, VPLs per run, a multiple of 256). One workgroup per run, each reading its run once:
+/// runs of about 256 VPLs keep hundreds of workgroups busy (202 for 51,468 VPLs), while the
+/// counts, one per subregion and run, stay within [`MAX_CELLS`] (one run for K² of 2^20).
 pub(crate) fn chunks(vpls: u32, subregions: u32) -> (u32, u32) {
-    const RUN: u32 = 1024;
+    const RUN: u32 = 256;
     let most = (MAX_CELLS / subregions.max(1)).max(1);
     let runs = vpls.div_ceil(RUN).clamp(1, most);
     let chunk = vpls.div_ceil(runs).div_ceil(256).max(1) * 256;
@@ -103,7 +103,7 @@ pub(crate) fn chunks(vpls: u32, subregions: u32) -> (u32, u32) {
 mod tests {
     use super::*;
 
-    /// Runs cover every VPL in multiples of 256, about 1024 each, and the counts never
+    /// Runs cover every VPL in multiples of 256, about 256 each, and the counts never
     /// exceed MAX_CELLS: one run where K² alone reaches it.
     #[test]
     fn runs_cover_the_vpls_within_the_count_budget() {
@@ -131,7 +131,7 @@ mod tests {
                 assert!(u64::from(chunks - 1) * u64::from(chunk) < u64::from(vpls).max(1));
             }
         }
-        assert_eq!(chunks(51_468, 64), (51, 1024));
+        assert_eq!(chunks(51_468, 64), (202, 256));
         assert_eq!(chunks(51_468, 1 << 20).0, 1);
     }
 }

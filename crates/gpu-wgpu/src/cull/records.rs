@@ -169,7 +169,7 @@ pub struct GpuPartitionParams {
     /// [`CULL_COUNT`] or [`CULL_WRITE`].
     pub mode: u32,
     /// The VPLs are split into `chunks` runs of `chunk` (a multiple of 256): one workgroup
-    /// per subregion and run.
+    /// per run.
     pub chunks: u32,
     pub chunk: u32,
     pub pad: [u32; 3],
