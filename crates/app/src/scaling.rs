@@ -261,18 +261,21 @@ mod tests {
     /// two resolutions each curve names its own.
     #[test]
     fn the_plots_name_each_curve_with_its_slope() {
+        let plot = |samples: &[Sample]| {
+            plots(
+                samples,
+                &slopes(samples),
+                "sponza",
+                "cpu",
+                &PrintWidth::Screen.style(),
+            )
+            .unwrap()
+        };
         let mut samples = vec![
             sample(Strategy::Tight, 10_000, 1.0, 2.0),
             sample(Strategy::Tight, 40_000, 4.0, 2.0),
         ];
-        let [(culling, svg), (shading, _)] = plots(
-            &samples,
-            &slopes(&samples),
-            "sponza",
-            "cpu",
-            &PrintWidth::Screen.style(),
-        )
-        .unwrap();
+        let [(culling, svg), (shading, _)] = plot(&samples);
         assert_eq!((culling, shading), ("scaling_culling", "scaling_shading"));
         assert!(svg.contains("tight (1.00)"), "{svg}");
         assert_eq!(svg.matches("<circle").count(), 2);
@@ -280,14 +283,7 @@ mod tests {
             resolution: (960, 540),
             ..sample(Strategy::Tight, 10_000, 2.0, 4.0)
         });
-        let [(_, svg), _] = plots(
-            &samples,
-            &slopes(&samples),
-            "sponza",
-            "cpu",
-            &PrintWidth::Screen.style(),
-        )
-        .unwrap();
+        let [(_, svg), _] = plot(&samples);
         assert!(svg.contains("tight 480x270 (1.00)") && svg.contains("tight 960x540"));
     }
 }
