@@ -141,11 +141,11 @@ fn lists(pieces: &[Vec<(u32, u32)>], pixels: usize) -> Result<LightLists, CullEr
     })
 }
 
-/// The G-buffer as the scatter reads it: per pixel its sample's world position (`None`: no
-/// sample), with how far any sample's projection strays outside its own pixel and the
+/// The G-buffer as the scatter reads it: per pixel its sample's world position (NaN where it
+/// has no sample, which fails every test), with how far any sample's projection strays outside its own pixel and the
 /// smallest view depth.
 struct Receivers {
-    positions: Vec<Option<Vec3>>,
+    positions: Vec<Vec3>,
     stray: f64,
     near: f64,
 }
@@ -178,7 +178,11 @@ impl Receivers {
             })
             .collect::<Result<Vec<_>, CullError>>()?;
         Ok(Self {
-            positions: crate::positions::positions(gbuffer),
+            positions: gbuffer
+                .samples
+                .par_iter()
+                .map(|g| g.as_ref().map_or(Vec3::NAN, |g| g.position))
+                .collect(),
             stray: per_pixel.iter().map(|s| s.1).fold(0.0, f64::max),
             near: per_pixel.iter().map(|s| s.0).fold(f64::INFINITY, f64::min),
         })
@@ -193,10 +197,8 @@ impl Receivers {
             let row = (sy + k * j) * width + sx;
             for i in i0..=i1 {
                 let p = row + k * i;
-                if let Some(x) = self.positions[p as usize] {
-                    if s.test.contains(x) {
-                        pairs.push((p, s.index));
-                    }
+                if s.test.contains(self.positions[p as usize]) {
+                    pairs.push((p, s.index));
                 }
             }
         }
