@@ -142,8 +142,8 @@ fn lists(pieces: &[Vec<(u32, u32)>], pixels: usize) -> Result<LightLists, CullEr
 }
 
 /// The G-buffer as the scatter reads it: per pixel its sample's world position (NaN where it
-/// has no sample, which fails every test), with how far any sample's projection strays outside its own pixel and the
-/// smallest view depth.
+/// has no sample, which fails every test), with how far any sample's projection strays
+/// outside its own pixel and the smallest view depth.
 struct Receivers {
     positions: Vec<Vec3>,
     stray: f64,
