@@ -11,10 +11,12 @@
 //!
 //! The VPLs are read once, in their order, and each tests the pixels of its rectangle where
 //! it is (the samples' positions, a few MB, stay in cache; the VPLs, 100+ bytes each, are
-//! streamed): the pairs that pass, in VPL order, are then sorted by pixel. A GPU twin gets
+//! streamed): the pairs that pass, in VPL order, are then sorted by pixel
+//! ([`crate::pair_lists`]). A GPU twin gets
 //! the same lists by binning each rectangle into the tiles it overlaps, then testing each
 //! tile's pixels against its bin (docs/many-vpls.md).
 use crate::lists::pixel_count;
+use crate::pair_lists::{lists, Bands};
 use crate::partition::check;
 use crate::scatter::{Scattered, Screen};
 use crate::scatter_lanes::{plain, scatter_plain};
@@ -22,10 +24,13 @@ use crate::view::CullView;
 use glam::{DVec2, Vec3};
 use rayon::prelude::*;
 use slc_bounds::StochasticParams;
-use slc_core::{CullError, CullInput, GBuffer, LightLists, Vpl, NO_LIST};
+use slc_core::{CullError, CullInput, GBuffer, LightLists, Vpl};
 
 /// VPLs scattered per piece of parallel work.
 const VPLS_PER_PIECE: usize = 4096;
+
+/// G-buffer samples read per piece of parallel work.
+const PIXELS_PER_PIECE: usize = 4096;
 
 /// The lists of `input` by binning (see the module).
 pub(crate) fn cull(input: &CullInput) -> Result<LightLists, CullError> {
@@ -36,6 +41,7 @@ pub(crate) fn cull(input: &CullInput) -> Result<LightLists, CullError> {
     if pixels == 0 {
         return Ok(LightLists::default());
     }
+    let t0 = std::time::Instant::now();
     let view = CullView::new(input.camera, width, height)?;
     let receivers = Receivers::new(input.gbuffer, &view)?;
     let screen = Screen::new(&view, width, height, il, receivers.stray, receivers.near);
@@ -43,7 +49,8 @@ pub(crate) fn cull(input: &CullInput) -> Result<LightLists, CullError> {
         // δ is checked once here for the lanes, which take it as valid.
         StochasticParams::new(input.delta, 0.5)?;
     }
-    // Per piece of VPLs (in order), the (pixel, VPL) pairs that pass, in VPL order.
+    let t1 = t0.elapsed();
+    // Per piece of VPLs (in order), the (pixel, VPL) pairs that pass, in VPL order, by band.
     let pieces = input
         .vpls
         .par_chunks(VPLS_PER_PIECE)
@@ -51,14 +58,22 @@ pub(crate) fn cull(input: &CullInput) -> Result<LightLists, CullError> {
         .map_init(Vec::new, |scattered, (piece, vpls)| {
             let first = (piece * VPLS_PER_PIECE) as u32;
             scatter(&screen, vpls, first, input.delta, scattered)?;
-            let mut pairs = Vec::new();
+            let mut pairs = Bands::new(pixels);
             for s in scattered.iter().flatten() {
                 receivers.test(s, width, il.k, &mut pairs);
             }
             Ok(pairs)
         })
-        .collect::<Result<Vec<Vec<(u32, u32)>>, CullError>>()?;
-    lists(&pieces, pixels)
+        .collect::<Result<Vec<Bands>, CullError>>()?;
+    let t2 = t0.elapsed();
+    let l = lists(&pieces, pixels);
+    eprintln!(
+        "TIMING recv {:.1} par {:.1} lists {:.1}",
+        t1.as_secs_f64() * 1e3,
+        (t2 - t1).as_secs_f64() * 1e3,
+        (t0.elapsed() - t2).as_secs_f64() * 1e3
+    );
+    l
 }
 
 /// Each of `vpls` (numbered from `first`) scattered into `out`, in their order: the plain
@@ -106,41 +121,6 @@ fn scatter(
     flush(&mut group, &mut indices, out)
 }
 
-/// One list per pixel with pairs (a counting sort of the pairs by pixel, keeping their VPL
-/// order), numbered in pixel order.
-fn lists(pieces: &[Vec<(u32, u32)>], pixels: usize) -> Result<LightLists, CullError> {
-    let total: usize = pieces.iter().map(Vec::len).sum();
-    if u32::try_from(total).is_err() {
-        return Err(CullError::Input(format!(
-            "{total} light-list entries exceed 32-bit offsets"
-        )));
-    }
-    let mut counts = vec![0u32; pixels];
-    for &(p, _) in pieces.iter().flatten() {
-        counts[p as usize] += 1;
-    }
-    let mut offsets = vec![0u32];
-    let mut pixel_list = vec![NO_LIST; pixels];
-    let mut next = vec![0u32; pixels];
-    for (p, &count) in counts.iter().enumerate() {
-        if count > 0 {
-            pixel_list[p] = (offsets.len() - 1) as u32;
-            next[p] = offsets[offsets.len() - 1];
-            offsets.push(next[p] + count);
-        }
-    }
-    let mut indices = vec![0u32; total];
-    for &(p, vpl) in pieces.iter().flatten() {
-        indices[next[p as usize] as usize] = vpl;
-        next[p as usize] += 1;
-    }
-    Ok(LightLists {
-        offsets,
-        indices,
-        pixel_list,
-    })
-}
-
 /// The G-buffer as the scatter reads it: per pixel its sample's world position (NaN where it
 /// has no sample, which fails every test), with how far any sample's projection strays
 /// outside its own pixel and the smallest view depth.
@@ -151,46 +131,54 @@ struct Receivers {
 }
 
 impl Receivers {
-    /// Errors on a sample not in front of the camera (as the other strategies do).
+    /// Errors on a sample not in front of the camera (as the other strategies do). The
+    /// samples are read once, in order.
     fn new(gbuffer: &GBuffer, view: &CullView) -> Result<Self, CullError> {
-        let width = gbuffer.width;
-        let per_pixel = gbuffer
-            .samples
-            .par_iter()
+        let width = gbuffer.width as usize;
+        let mut positions = vec![Vec3::NAN; gbuffer.samples.len()];
+        let (near, stray) = positions
+            .par_chunks_mut(PIXELS_PER_PIECE)
+            .zip(gbuffer.samples.par_chunks(PIXELS_PER_PIECE))
             .enumerate()
-            .map(|(p, g)| {
-                let Some(g) = g else {
-                    return Ok((f64::INFINITY, 0.0));
-                };
-                let v = view.to_view(g.position);
-                let (x, y) = (p as u32 % width, p as u32 / width);
-                if !(v.z > 0.0 && v.is_finite()) {
-                    return Err(CullError::Input(format!(
-                        "G-buffer sample of pixel ({x}, {y}) is not in front of the camera \
-                         (view depth {})",
-                        v.z
-                    )));
+            .map(|(piece, (positions, samples))| {
+                let (mut near, mut stray) = (f64::INFINITY, 0.0f64);
+                for (i, (position, g)) in positions.iter_mut().zip(samples).enumerate() {
+                    let Some(g) = g else {
+                        continue;
+                    };
+                    let p = piece * PIXELS_PER_PIECE + i;
+                    let (x, y) = ((p % width) as f64, (p / width) as f64);
+                    let v = view.to_view(g.position);
+                    if !(v.z > 0.0 && v.is_finite()) {
+                        return Err(CullError::Input(format!(
+                            "G-buffer sample of pixel ({x}, {y}) is not in front of the camera \
+                             (view depth {})",
+                            v.z
+                        )));
+                    }
+                    let at = view.to_screen(DVec2::new(v.x, v.y) / v.z);
+                    let corner = DVec2::new(x, y);
+                    let outside = (corner - at).max(at - corner - 1.0).max_element();
+                    *position = g.position;
+                    near = near.min(v.z);
+                    stray = stray.max(outside);
                 }
-                let at = view.to_screen(DVec2::new(v.x, v.y) / v.z);
-                let corner = DVec2::new(f64::from(x), f64::from(y));
-                let outside = (corner - at).max(at - corner - 1.0).max_element().max(0.0);
-                Ok((v.z, outside))
+                Ok((near, stray))
             })
-            .collect::<Result<Vec<_>, CullError>>()?;
+            .try_reduce(
+                || (f64::INFINITY, 0.0),
+                |a, b| Ok((a.0.min(b.0), a.1.max(b.1))),
+            )?;
         Ok(Self {
-            positions: gbuffer
-                .samples
-                .par_iter()
-                .map(|g| g.as_ref().map_or(Vec3::NAN, |g| g.position))
-                .collect(),
-            stray: per_pixel.iter().map(|s| s.1).fold(0.0, f64::max),
-            near: per_pixel.iter().map(|s| s.0).fold(f64::INFINITY, f64::min),
+            positions,
+            stray,
+            near,
         })
     }
 
     /// Appends (pixel, VPL) for every pixel of `s`'s rectangle whose sample passes its test.
     #[inline]
-    fn test(&self, s: &Scattered, width: u32, k: u32, pairs: &mut Vec<(u32, u32)>) {
+    fn test(&self, s: &Scattered, width: u32, k: u32, pairs: &mut Bands) {
         let [i0, j0, i1, j1] = s.pixels;
         let [sx, sy] = s.subregion;
         for j in j0..=j1 {
@@ -198,7 +186,7 @@ impl Receivers {
             for i in i0..=i1 {
                 let p = row + k * i;
                 if s.test.contains(self.positions[p as usize]) {
-                    pairs.push((p, s.index));
+                    pairs.push(p, s.index);
                 }
             }
         }

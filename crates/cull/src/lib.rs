@@ -91,6 +91,7 @@ mod frusta;
 pub mod ggx_lanes;
 mod lists;
 pub mod metrics;
+mod pair_lists;
 mod par;
 mod partition;
 mod positions;
