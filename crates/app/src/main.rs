@@ -22,13 +22,6 @@ mod view;
 mod vsgl_sweep;
 
 use clap::{Parser, Subcommand};
-
-/// mimalloc keeps the memory a frame frees for the next one. glibc's allocator maps every
-/// block above its threshold (32 MiB at most) fresh and unmaps it when freed, so each frame
-/// at a million VPLs paid tens of thousands of page faults on its per-frame buffers (the
-/// VPL exits, the light lists, the pairs): time a renderer reusing its memory never pays.
-#[global_allocator]
-static ALLOCATOR: mimalloc::MiMalloc = mimalloc::MiMalloc;
 // Shared with the Python package (`slc_app`), named here as the command's own modules.
 use slc_app::{layers_exr, output};
 
