@@ -41,14 +41,19 @@ impl Block {
 }
 
 /// The `width` x `height` row-major image whose pixels `block` gives, eight at a time (its
-/// lanes outside the image are dropped).
+/// lanes outside the image are dropped), written into `spare`'s memory (a previous frame's,
+/// emptied first) where it holds them all: a frame's fresh memory costs page faults, about a
+/// fifth of a second per GB on this machine, where memory written before costs none.
 pub fn par_blocks<T: Send>(
     width: u32,
     height: u32,
+    spare: Vec<T>,
     block: impl Fn(Block) -> [T; 8] + Sync,
 ) -> Vec<T> {
     let n = width as usize * height as usize;
-    let mut pixels = Vec::with_capacity(n);
+    let mut pixels = spare;
+    pixels.clear();
+    pixels.reserve(n);
     let band_len = BLOCK.1 as usize * width.max(1) as usize;
     pixels.spare_capacity_mut()[..n]
         .par_chunks_mut(band_len)
@@ -91,10 +96,16 @@ mod tests {
     #[test]
     fn blocks_cover_every_pixel_once() {
         for (w, h) in [(0, 0), (1, 1), (3, 5), (4, 2), (9, 7), (64, 3)] {
-            let image = par_blocks(w, h, |b| std::array::from_fn(|l| (b.pixel(l), b.index(l))));
-            assert_eq!(image.len(), (w * h) as usize);
-            for (k, &((i, j), index)) in image.iter().enumerate() {
-                assert_eq!((index, (j * w + i) as usize), (k, k));
+            // Fresh memory, and memory of a larger and of a smaller image before.
+            for spare in [0, 100, 2] {
+                let spare = vec![((7, 7), 7); spare];
+                let image = par_blocks(w, h, spare, |b| {
+                    std::array::from_fn(|l| (b.pixel(l), b.index(l)))
+                });
+                assert_eq!(image.len(), (w * h) as usize);
+                for (k, &((i, j), index)) in image.iter().enumerate() {
+                    assert_eq!((index, (j * w + i) as usize), (k, k));
+                }
             }
         }
     }

@@ -33,18 +33,20 @@ pub fn direct_radiance(tracer: &Tracer, lights: &[Light], g: &GSample) -> Vec3 {
 /// ray's answer is the one it gets alone, and each pixel sums its lights in the same order,
 /// so the image is the same).
 pub fn shade_direct(tracer: &Tracer, lights: &[Light], gbuffer: &GBuffer) -> Image {
-    shade_direct_watched(tracer, lights, gbuffer, &|_| {})
+    shade_direct_watched(tracer, lights, gbuffer, &|_| {}, Vec::new())
 }
 
 /// [`shade_direct`] that stops once `progress` is cancelled: the blocks not yet shaded are
-/// black (the caller checks `progress`).
+/// black (the caller checks `progress`). The pixels are written into `spare`'s memory
+/// (`blocks::par_blocks`).
 pub fn shade_direct_watched(
     tracer: &Tracer,
     lights: &[Light],
     gbuffer: &GBuffer,
     progress: Progress,
+    spare: Vec<Vec3>,
 ) -> Image {
-    let pixels = par_blocks(gbuffer.width, gbuffer.height, |block| {
+    let pixels = par_blocks(gbuffer.width, gbuffer.height, spare, |block| {
         let samples: [Option<&GSample>; 8] = std::array::from_fn(|lane| {
             (block.used & (1 << lane) != 0)
                 .then(|| gbuffer.samples[block.index(lane)].as_ref())

@@ -1,6 +1,6 @@
 //! The full-frame images the CPU passes shade into: cleared on every rayon thread
 //! ([`black_image`]), shaded row by row ([`shade_rows`]), or a frame the renderer is done
-//! with, reused ([`SpareImage`]).
+//! with, reused ([`Spare`]).
 use glam::Vec3;
 use rayon::prelude::*;
 use slc_core::progress::Progress;
@@ -51,38 +51,48 @@ pub(crate) fn shade_rows<E: Send>(
     Ok(image)
 }
 
-/// A frame a renderer is done with (the noisy image its filter consumed), kept for its next
-/// shading of the same size, which writes every pixel: that frame then costs neither an
-/// allocation nor a clear (a fresh 1920x1080 frame, 25 MB, is about 5 ms of page faults and
-/// writes on two threads). One image at most; a clone starts empty.
-#[derive(Default)]
-pub(crate) struct SpareImage(Mutex<Option<Image>>);
+/// Memory a renderer is done with, kept for its next frame: the noisy image its filter
+/// consumed (a fresh 1920x1080 frame, 25 MB, is about 5 ms of page faults and writes on two
+/// threads), or a prepared frame's buffers (`crate::prepare::FrameSpares`). One value at
+/// most; a clone starts empty.
+pub(crate) struct Spare<T>(Mutex<Option<T>>);
 
-impl Clone for SpareImage {
+/// The noisy image kept for the next shading of the same size, which writes every pixel:
+/// that frame then costs neither an allocation nor a clear.
+pub(crate) type SpareImage = Spare<Image>;
+
+impl<T> Default for Spare<T> {
+    fn default() -> Self {
+        Self(Mutex::new(None))
+    }
+}
+
+impl<T> Clone for Spare<T> {
     fn clone(&self) -> Self {
         Self::default()
     }
 }
 
-/// The size of the image kept, not its pixels.
-impl fmt::Debug for SpareImage {
+/// Whether something is kept, not what.
+impl<T> fmt::Debug for Spare<T> {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         let kept = self.0.lock().unwrap_or_else(PoisonError::into_inner);
-        match kept.as_ref() {
-            Some(image) => write!(f, "SpareImage({}x{})", image.width, image.height),
-            None => f.write_str("SpareImage(none)"),
-        }
+        f.write_str(if kept.is_some() {
+            "Spare(kept)"
+        } else {
+            "Spare(none)"
+        })
     }
 }
 
-impl SpareImage {
-    /// Keeps `image`, in place of the one kept before.
-    pub(crate) fn keep(&self, image: Image) {
-        *self.0.lock().unwrap_or_else(PoisonError::into_inner) = Some(image);
+impl<T> Spare<T> {
+    /// Keeps `value`, in place of the one kept before.
+    pub(crate) fn keep(&self, value: T) {
+        *self.0.lock().unwrap_or_else(PoisonError::into_inner) = Some(value);
     }
 
-    /// The image kept, if any (no longer kept).
-    pub(crate) fn take(&self) -> Option<Image> {
+    /// The value kept, if any (no longer kept).
+    pub(crate) fn take(&self) -> Option<T> {
         self.0.lock().unwrap_or_else(PoisonError::into_inner).take()
     }
 }
@@ -105,11 +115,11 @@ mod tests {
     fn a_spare_image_is_taken_once_and_clones_start_empty() {
         let spare = SpareImage::default();
         assert!(spare.take().is_none());
-        assert_eq!(format!("{spare:?}"), "SpareImage(none)");
+        assert_eq!(format!("{spare:?}"), "Spare(none)");
         spare.keep(Image::new(2, 3));
         spare.keep(Image::new(4, 5));
         assert!(spare.clone().take().is_none());
-        assert_eq!(format!("{spare:?}"), "SpareImage(4x5)");
+        assert_eq!(format!("{spare:?}"), "Spare(kept)");
         let kept = spare.take().expect("kept");
         assert_eq!((kept.width, kept.height), (4, 5));
         assert!(spare.take().is_none());

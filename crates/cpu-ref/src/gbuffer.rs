@@ -75,11 +75,13 @@ pub fn trace_gbuffer(
     height: u32,
     sample: PixelSample,
 ) -> GBuffer {
-    trace_gbuffer_watched(scene, tracer, camera, (width, height), sample, &|_| {})
+    let size = (width, height);
+    trace_gbuffer_watched(scene, tracer, camera, size, sample, &|_| {}, Vec::new())
 }
 
 /// [`trace_gbuffer`] that stops once `progress` is cancelled: the blocks not yet traced are
-/// misses (the caller checks `progress`).
+/// misses (the caller checks `progress`). The samples are written into `spare`'s memory
+/// (`blocks::par_blocks`).
 pub fn trace_gbuffer_watched(
     scene: &Scene,
     tracer: &Tracer,
@@ -87,9 +89,10 @@ pub fn trace_gbuffer_watched(
     (width, height): (u32, u32),
     sample: PixelSample,
     progress: Progress,
+    spare: Vec<Option<GSample>>,
 ) -> GBuffer {
     let rays = PrimaryRays::new(camera, width, height);
-    let samples = par_blocks(width, height, |block| {
+    let samples = par_blocks(width, height, spare, |block| {
         if progress.cancelled() {
             return [None; 8];
         }

@@ -5,7 +5,7 @@
 use crate::denoise::{BilateralParams, CrossBilateral};
 use crate::frame_images::SpareImage;
 use crate::path::trace_pixel_sample;
-use crate::prepare::{prepare_watched, CpuPrepared};
+use crate::prepare::{prepare_watched, CpuPrepared, FrameSpares};
 use crate::sampled_lights::{shade_sampled_vpls, shade_vsgl};
 use crate::tracer::Tracer;
 use crate::vpl_shading::{shade_lists_into, shade_vpls, VplEstimator};
@@ -22,10 +22,13 @@ use std::sync::{Arc, Mutex, TryLockError};
 /// consumed ([`Renderer::denoise`]) and shades the next frame of the same size into it
 /// ([`shade_lists_into`]): in a loop of frames (cull, shade, filter) the shading then
 /// allocates and clears no image. Its filter keeps its working set from frame to frame as
-/// well ([`CrossBilateral`]). A clone keeps none of them.
+/// well ([`CrossBilateral`]), and each prepared frame, once dropped, leaves its G-buffer,
+/// VPLs and direct light for the next one to write into ([`FrameSpares`]). A clone keeps
+/// none of them.
 #[derive(Clone, Debug, Default)]
 pub struct CpuRenderer {
     spare: SpareImage,
+    frames: FrameSpares,
     filter: KeptFilter,
 }
 
@@ -101,7 +104,8 @@ impl Renderer for CpuRenderer {
         pass: Option<u32>,
         progress: Progress,
     ) -> Result<CpuPrepared, RenderError> {
-        let p = prepare_watched(scene, settings, Arc::clone(loaded), pass, progress);
+        let tracer = Arc::clone(loaded);
+        let p = prepare_watched(scene, settings, tracer, pass, progress, Some(&self.frames));
         progress.check()?;
         Ok(p)
     }

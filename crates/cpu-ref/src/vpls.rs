@@ -14,7 +14,20 @@ use slc_core::{Vpl, VplLobe};
 /// the shading normal, interpolated vertex normals included: eq. (4) as the paper and the VPL
 /// literature evaluate it.
 pub fn generate_vpls(maps: &[Rsm], seed: u32, lobes: LobeSelection) -> Vec<Vpl> {
-    let mut vpls = Vec::new();
+    generate_vpls_into(maps, seed, lobes, Vec::new())
+}
+
+/// [`generate_vpls`] written into `spare`'s memory (a previous frame's VPLs, emptied first):
+/// Sponza's 823,592 VPLs at RSM 1024 fill 217 MB, and in fresh memory took 54-78 ms to
+/// generate where they take 11 in memory written before.
+pub fn generate_vpls_into(
+    maps: &[Rsm],
+    seed: u32,
+    lobes: LobeSelection,
+    spare: Vec<Vpl>,
+) -> Vec<Vpl> {
+    let mut vpls = spare;
+    vpls.clear();
     let mut base = 0u32;
     for rsm in maps {
         for (k, texel) in rsm.texels.iter().enumerate() {
