@@ -41,7 +41,6 @@ pub(crate) fn cull(input: &CullInput) -> Result<LightLists, CullError> {
     if pixels == 0 {
         return Ok(LightLists::default());
     }
-    let t0 = std::time::Instant::now();
     let view = CullView::new(input.camera, width, height)?;
     let receivers = Receivers::new(input.gbuffer, &view)?;
     let screen = Screen::new(&view, width, height, il, receivers.stray, receivers.near);
@@ -49,7 +48,6 @@ pub(crate) fn cull(input: &CullInput) -> Result<LightLists, CullError> {
         // δ is checked once here for the lanes, which take it as valid.
         StochasticParams::new(input.delta, 0.5)?;
     }
-    let t1 = t0.elapsed();
     // Per piece of VPLs (in order), the (pixel, VPL) pairs that pass, in VPL order, by band.
     let pieces = input
         .vpls
@@ -65,15 +63,7 @@ pub(crate) fn cull(input: &CullInput) -> Result<LightLists, CullError> {
             Ok(pairs)
         })
         .collect::<Result<Vec<Bands>, CullError>>()?;
-    let t2 = t0.elapsed();
-    let l = lists(&pieces, pixels);
-    eprintln!(
-        "TIMING recv {:.1} par {:.1} lists {:.1}",
-        t1.as_secs_f64() * 1e3,
-        (t2 - t1).as_secs_f64() * 1e3,
-        (t0.elapsed() - t2).as_secs_f64() * 1e3
-    );
-    l
+    lists(&pieces, pixels)
 }
 
 /// Each of `vpls` (numbered from `first`) scattered into `out`, in their order: the plain
