@@ -17,7 +17,8 @@ use slc_core::{
 use std::sync::Arc;
 
 /// A CPU frame up to its VPLs and direct light. Made with [`FrameSpares`], it leaves its
-/// largest buffers there when dropped, for the next frame.
+/// largest buffers there when dropped, for the next frame. (It implements `Drop` for that,
+/// so a field is moved out with `std::mem::take`.)
 #[derive(Clone)]
 pub struct CpuPrepared {
     pub camera: Camera,

@@ -344,7 +344,7 @@ fn culling_and_shading_read_the_gpu_gbuffer_in_place() {
         spp: 1,
         lobes: LobeSelection::Both,
     };
-    let vpls = prepare(&scene, &settings, Tracer::new(&scene), None).vpls;
+    let vpls = std::mem::take(&mut prepare(&scene, &settings, Tracer::new(&scene), None).vpls);
     let gpu_scene = GpuScene::upload(&ctx, &scene).unwrap();
     let gbuffer = GbufferPass::new(&ctx)
         .unwrap()
