@@ -220,6 +220,9 @@ impl OnBackend for Bench<'_> {
                 let frame = frame((w, h), rsm);
                 let settings = frame.settings(Method::Stochastic(base), 1);
                 eprintln!("{w}x{h}, RSM {rsm}²");
+                // Every frame's G-buffer, RSM, VPLs and direct light are timed cold, as the
+                // first frame's: not in the memory the frame before left.
+                r.start_cold();
                 let p = r
                     .prepare(&scene, &loaded, &settings, None, &|_| {})
                     .map_err(message)?;

@@ -29,6 +29,10 @@ pub trait CpuFrames: Renderer {
         bvh: &SceneBvh,
         p: &'a Self::Prepared,
     ) -> Result<Cow<'a, CpuPrepared>, RenderError>;
+
+    /// Makes the next frame start as the first does: on the CPU, in fresh memory rather than
+    /// in what the last frame left (`CpuRenderer::release_frame_memory`).
+    fn start_cold(&self) {}
 }
 
 impl CpuFrames for CpuRenderer {
@@ -39,6 +43,10 @@ impl CpuFrames for CpuRenderer {
         p: &'a CpuPrepared,
     ) -> Result<Cow<'a, CpuPrepared>, RenderError> {
         Ok(Cow::Borrowed(p))
+    }
+
+    fn start_cold(&self) {
+        self.release_frame_memory();
     }
 }
 

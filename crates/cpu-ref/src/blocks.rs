@@ -1,6 +1,7 @@
 //! Images computed 4x2 pixel block by block, the eight pixels of a block as the lanes of a
 //! ray packet ([`crate::tracer::Rays8`]): bands of two rows in parallel, every pixel written
 //! in place once (no per-pixel allocation, no clear).
+use crate::frame_images::emptied;
 use rayon::prelude::*;
 
 /// Pixels per block: 4 across, 2 down; lane `l` is pixel (l % 4, l / 4) of the block.
@@ -41,9 +42,9 @@ impl Block {
 }
 
 /// The `width` x `height` row-major image whose pixels `block` gives, eight at a time (its
-/// lanes outside the image are dropped), written into `spare`'s memory (a previous frame's,
-/// emptied first) where it holds them all: a frame's fresh memory costs page faults, about a
-/// fifth of a second per GB on this machine, where memory written before costs none.
+/// lanes outside the image are dropped), written into `spare`'s memory (a previous frame's)
+/// where it fits (`frame_images::emptied`): a frame's fresh memory costs page faults, about
+/// a fifth of a second per GB on this machine, where memory written before costs none.
 pub fn par_blocks<T: Send>(
     width: u32,
     height: u32,
@@ -51,9 +52,7 @@ pub fn par_blocks<T: Send>(
     block: impl Fn(Block) -> [T; 8] + Sync,
 ) -> Vec<T> {
     let n = width as usize * height as usize;
-    let mut pixels = spare;
-    pixels.clear();
-    pixels.reserve(n);
+    let mut pixels = emptied(spare, n);
     let band_len = BLOCK.1 as usize * width.max(1) as usize;
     pixels.spare_capacity_mut()[..n]
         .par_chunks_mut(band_len)

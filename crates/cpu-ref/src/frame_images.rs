@@ -97,6 +97,17 @@ impl<T> Spare<T> {
     }
 }
 
+/// `spare`, emptied, where it has room for `n` elements and not more than four times that;
+/// otherwise a new `Vec` with room for `n`. A frame much smaller than the last does not keep
+/// its memory, and none is grown by copying.
+pub(crate) fn emptied<T>(mut spare: Vec<T>, n: usize) -> Vec<T> {
+    if spare.capacity() < n || spare.capacity() / 4 > n {
+        return Vec::with_capacity(n);
+    }
+    spare.clear();
+    spare
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -109,6 +120,20 @@ mod tests {
             assert_eq!((image.width, image.height), (want.width, want.height));
             assert_eq!(image.pixels, want.pixels);
         }
+    }
+
+    #[test]
+    fn spare_memory_is_kept_only_where_it_fits() {
+        let spare = |capacity| Vec::<u8>::with_capacity(capacity);
+        let kept = |capacity, n| {
+            let s = spare(capacity);
+            let at = s.as_ptr();
+            let e = emptied(s, n);
+            assert!(e.is_empty() && e.capacity() >= n);
+            e.as_ptr() == at
+        };
+        assert!(kept(100, 100) && kept(100, 25) && kept(100, 60));
+        assert!(!kept(100, 101) && !kept(100, 24) && !kept(0, 1));
     }
 
     #[test]

@@ -18,8 +18,7 @@ use std::sync::Arc;
 
 /// A CPU frame up to its VPLs and direct light. Made with [`FrameSpares`], it leaves its
 /// largest buffers there when dropped, for the next frame. (It implements `Drop` for that,
-/// so a field is moved out with `std::mem::take`.)
-#[derive(Clone)]
+/// so a field is moved out with `std::mem::take`; a clone leaves nothing.)
 pub struct CpuPrepared {
     pub camera: Camera,
     /// The scene's BVH, shared by every frame of the scene.
@@ -37,7 +36,9 @@ pub struct CpuPrepared {
 /// the VPLs and the direct light's pixels) when dropped, for the next frame to write into
 /// (`blocks::par_blocks`): at 1920x1080 the samples alone are 216 MB, about 40 ms of page
 /// faults a frame on two threads where memory written before costs none. A frame of another
-/// size or light count reuses what fits. A clone starts empty and on its own.
+/// size or light count reuses what fits (`frame_images::emptied`). The memory stays held
+/// until the next frame takes it or [`FrameSpares::release`]. A clone starts empty and on
+/// its own.
 #[derive(Debug, Default)]
 pub struct FrameSpares(Arc<Spare<FrameMemory>>);
 
@@ -59,6 +60,26 @@ impl FrameSpares {
     /// A handle on the same memory (`Clone` gives new, empty spares).
     fn share(&self) -> Self {
         Self(Arc::clone(&self.0))
+    }
+
+    /// Frees the memory kept: the next frame is made in fresh memory, as the first is.
+    pub fn release(&self) {
+        self.0.take();
+    }
+}
+
+impl Clone for CpuPrepared {
+    fn clone(&self) -> Self {
+        Self {
+            camera: self.camera.clone(),
+            tracer: Arc::clone(&self.tracer),
+            gbuffer: self.gbuffer.clone(),
+            maps: self.maps.clone(),
+            vpls: self.vpls.clone(),
+            direct: self.direct.clone(),
+            timings: self.timings.clone(),
+            spares: None,
+        }
     }
 }
 

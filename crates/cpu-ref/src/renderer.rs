@@ -60,6 +60,12 @@ impl KeptFilter {
 }
 
 impl CpuRenderer {
+    /// Frees the memory the last frame dropped left ([`FrameSpares`]): the next frame is
+    /// prepared in fresh memory, as the first is (`slc bench` times every frame so).
+    pub fn release_frame_memory(&self) {
+        self.frames.release();
+    }
+
     /// The backend's name in reports and errors ([`Renderer::name`]).
     pub const NAME: &'static str = "cpu";
 

@@ -1,4 +1,5 @@
 //! VPLs from reflective-shadow-map texels.
+use crate::frame_images::emptied;
 use crate::rsm::Rsm;
 use slc_core::frame::LobeSelection;
 use slc_core::rng::vpl_xi;
@@ -17,17 +18,22 @@ pub fn generate_vpls(maps: &[Rsm], seed: u32, lobes: LobeSelection) -> Vec<Vpl> 
     generate_vpls_into(maps, seed, lobes, Vec::new())
 }
 
-/// [`generate_vpls`] written into `spare`'s memory (a previous frame's VPLs, emptied first):
-/// Sponza's 823,592 VPLs at RSM 1024 fill 217 MB, and in fresh memory took 54-78 ms to
-/// generate where they take 11 in memory written before.
+/// [`generate_vpls`] written into `spare`'s memory (a previous frame's VPLs) where it fits
+/// the most VPLs the maps can give (`frame_images::emptied`): Sponza's 823,592 VPLs at RSM
+/// 1024 fill 217 MB, and in fresh memory took 54-78 ms to generate where they take 11 in
+/// memory written before.
 pub fn generate_vpls_into(
     maps: &[Rsm],
     seed: u32,
     lobes: LobeSelection,
     spare: Vec<Vpl>,
 ) -> Vec<Vpl> {
-    let mut vpls = spare;
-    vpls.clear();
+    let lobes_wanted = [VplLobe::Diffuse, VplLobe::Glossy]
+        .into_iter()
+        .filter(|&lobe| lobes.wants(lobe))
+        .count();
+    let most = maps.iter().map(|m| m.texels.len()).sum::<usize>() * lobes_wanted;
+    let mut vpls = emptied(spare, most);
     let mut base = 0u32;
     for rsm in maps {
         for (k, texel) in rsm.texels.iter().enumerate() {

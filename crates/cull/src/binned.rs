@@ -182,3 +182,56 @@ impl Receivers {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use slc_bounds::{Brdf, Fresnel};
+    use slc_core::{Camera, GSample, Interleaving};
+
+    /// A sample behind the camera is an error naming its pixel, at the band of pixels where
+    /// the receivers' second piece of work begins as at the first pixel.
+    #[test]
+    fn a_sample_behind_the_camera_is_an_error_naming_its_pixel() {
+        let camera = Camera::look_at(Vec3::new(0.0, 4.0, 0.0), Vec3::ZERO, Vec3::Z, 1.0).unwrap();
+        let brdf = Brdf {
+            kd: Vec3::splat(0.5),
+            fresnel: Fresnel::Schlick(Vec3::splat(0.04)),
+            alpha: 0.3,
+            anisotropy: None,
+        };
+        let sample = |position| {
+            Some(GSample {
+                position,
+                normal: Vec3::Y,
+                geometric_normal: Vec3::Y,
+                omega_o: Vec3::Y,
+                depth: 1.0,
+                brdf,
+            })
+        };
+        let (w, h) = (100, 50);
+        for (x, y) in [(0, 0), (96, 40)] {
+            let mut samples = vec![sample(Vec3::ZERO); (w * h) as usize];
+            // Above the camera, which looks down: behind it.
+            samples[(y * w + x) as usize] = sample(Vec3::new(0.0, 9.0, 0.0));
+            let gbuffer = GBuffer {
+                width: w,
+                height: h,
+                samples,
+            };
+            let input = CullInput {
+                gbuffer: &gbuffer,
+                camera: &camera,
+                vpls: &[],
+                delta: 1e-3,
+                interleaving: Interleaving { k: 1, seed: 0 },
+            };
+            let err = cull(&input).unwrap_err().to_string();
+            assert!(
+                err.contains(&format!("pixel ({x}, {y}) is not in front of the camera")),
+                "{err}"
+            );
+        }
+    }
+}
