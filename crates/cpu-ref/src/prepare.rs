@@ -195,16 +195,8 @@ pub fn prepare_watched(
         ),
     };
     let gbuffer = timings.time("gbuffer", || {
-        let size = (w, h);
-        trace_gbuffer_watched(
-            scene,
-            &tracer,
-            &camera,
-            size,
-            sample,
-            progress,
-            memory.samples,
-        )
+        let spare = memory.samples;
+        trace_gbuffer_watched(scene, &tracer, &camera, (w, h), sample, progress, spare)
     });
     let maps: Vec<_> = timings.time("rsm", || {
         scene

@@ -28,11 +28,7 @@ pub fn generate_vpls_into(
     lobes: LobeSelection,
     spare: Vec<Vpl>,
 ) -> Vec<Vpl> {
-    let lobes_wanted = [VplLobe::Diffuse, VplLobe::Glossy]
-        .into_iter()
-        .filter(|&lobe| lobes.wants(lobe))
-        .count();
-    let most = maps.iter().map(|m| m.texels.len()).sum::<usize>() * lobes_wanted;
+    let most = maps.iter().map(|m| m.texels.len()).sum::<usize>() * lobes.per_texel() as usize;
     let mut vpls = emptied(spare, most);
     let mut base = 0u32;
     for rsm in maps {

@@ -189,8 +189,8 @@ mod tests {
     use slc_bounds::{Brdf, Fresnel};
     use slc_core::{Camera, GSample, Interleaving};
 
-    /// A sample behind the camera is an error naming its pixel, at the band of pixels where
-    /// the receivers' second piece of work begins as at the first pixel.
+    /// A sample behind the camera is an error naming its pixel: the first pixel, and pixel
+    /// 4096, the first of the receivers' second piece of work.
     #[test]
     fn a_sample_behind_the_camera_is_an_error_naming_its_pixel() {
         let camera = Camera::look_at(Vec3::new(0.0, 4.0, 0.0), Vec3::ZERO, Vec3::Z, 1.0).unwrap();

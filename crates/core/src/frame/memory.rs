@@ -3,7 +3,7 @@
 //! coefficients are measured: `tools/memory/grid.py` runs `slc render` over a grid of sizes,
 //! scenes, shaders and lobes and compares each run's peak RSS with this estimate
 //! (`docs/memory.md` holds the table; every peak is below its estimate).
-use super::settings::{LobeSelection, Method, RenderSettings};
+use super::settings::{Method, RenderSettings};
 use crate::framebuffer::GSample;
 use crate::light::Light;
 use crate::scene::Scene;
@@ -131,8 +131,7 @@ impl RenderSettings {
         let texels = faces * u64::from(self.rsm_resolution).pow(2);
         let lobes = match (self.method, self.lobes) {
             (Method::Path, _) => 0,
-            (_, LobeSelection::Both) => 2,
-            (_, LobeSelection::Diffuse | LobeSelection::Glossy) => 1,
+            (_, lobes) => u64::from(lobes.per_texel()),
         };
         let metrics = matches!(self.method, Method::Stochastic(s) if s.metrics);
         MemoryEstimate {
@@ -151,7 +150,7 @@ impl RenderSettings {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::frame::Stochastic;
+    use crate::frame::{LobeSelection, Stochastic};
 
     fn settings(width: u32, height: u32, rsm: u32) -> RenderSettings {
         RenderSettings {

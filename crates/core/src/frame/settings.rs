@@ -108,6 +108,14 @@ impl LobeSelection {
                 | (LobeSelection::Glossy, VplLobe::Glossy)
         )
     }
+
+    /// How many VPLs a lit RSM texel makes at most: one per lobe selected.
+    pub fn per_texel(self) -> u32 {
+        match self {
+            LobeSelection::Both => 2,
+            LobeSelection::Diffuse | LobeSelection::Glossy => 1,
+        }
+    }
 }
 
 /// How indirect light is computed.
