@@ -18,19 +18,17 @@
 use crate::lists::pixel_count;
 use crate::pair_lists::{lists, Bands};
 use crate::partition::check;
+use crate::pixel_rows::PixelRows;
 use crate::scatter::{Scattered, Screen};
 use crate::scatter_lanes::{plain, scatter_plain};
 use crate::view::CullView;
-use glam::{DVec2, Vec3};
+use glam::DVec2;
 use rayon::prelude::*;
 use slc_bounds::StochasticParams;
 use slc_core::{CullError, CullInput, GBuffer, LightLists, Vpl};
 
 /// VPLs scattered per piece of parallel work.
 const VPLS_PER_PIECE: usize = 4096;
-
-/// G-buffer samples read per piece of parallel work.
-const PIXELS_PER_PIECE: usize = 4096;
 
 /// The lists of `input` by binning (see the module).
 pub(crate) fn cull(input: &CullInput) -> Result<LightLists, CullError> {
@@ -42,7 +40,7 @@ pub(crate) fn cull(input: &CullInput) -> Result<LightLists, CullError> {
         return Ok(LightLists::default());
     }
     let view = CullView::new(input.camera, width, height)?;
-    let receivers = Receivers::new(input.gbuffer, &view)?;
+    let receivers = Receivers::new(input.gbuffer, &view, il.k)?;
     let screen = Screen::new(&view, width, height, il, receivers.stray, receivers.near);
     if !input.vpls.is_empty() {
         // δ is checked once here for the lanes, which take it as valid.
@@ -57,9 +55,7 @@ pub(crate) fn cull(input: &CullInput) -> Result<LightLists, CullError> {
             let first = (piece * VPLS_PER_PIECE) as u32;
             scatter(&screen, vpls, first, input.delta, scattered)?;
             let mut pairs = Bands::new(pixels);
-            for s in scattered.iter().flatten() {
-                receivers.test(s, width, il.k, &mut pairs);
-            }
+            receivers.rows.test(scattered, &mut pairs);
             Ok(pairs)
         })
         .collect::<Result<Vec<Bands>, CullError>>()?;
@@ -111,33 +107,33 @@ fn scatter(
     flush(&mut group, &mut indices, out)
 }
 
-/// The G-buffer as the scatter reads it: per pixel its sample's world position (NaN where it
-/// has no sample, which fails every test), with how far any sample's projection strays
-/// outside its own pixel and the smallest view depth.
+/// The G-buffer as the scatter reads it: per pixel its sample's world position, in rows of
+/// each subregion image ([`PixelRows`]; NaN where it has no sample, which fails every test),
+/// with how far any sample's projection strays outside its own pixel and the smallest view
+/// depth.
 struct Receivers {
-    positions: Vec<Vec3>,
+    rows: PixelRows,
     stray: f64,
     near: f64,
 }
 
 impl Receivers {
     /// Errors on a sample not in front of the camera (as the other strategies do). The
-    /// samples are read once, in order.
-    fn new(gbuffer: &GBuffer, view: &CullView) -> Result<Self, CullError> {
+    /// samples are read once, in order, a screen row per piece of work.
+    fn new(gbuffer: &GBuffer, view: &CullView, k: u32) -> Result<Self, CullError> {
         let width = gbuffer.width as usize;
-        let mut positions = vec![Vec3::NAN; gbuffer.samples.len()];
-        let (near, stray) = positions
-            .par_chunks_mut(PIXELS_PER_PIECE)
-            .zip(gbuffer.samples.par_chunks(PIXELS_PER_PIECE))
+        let mut rows = PixelRows::empty(gbuffer.width, gbuffer.height, k);
+        let (layout, screen_rows) = rows.screen_rows_mut();
+        let (near, stray) = screen_rows
+            .zip(gbuffer.samples.par_chunks(width))
             .enumerate()
-            .map(|(piece, (positions, samples))| {
+            .map(|(y, (row, samples))| {
                 let (mut near, mut stray) = (f64::INFINITY, 0.0f64);
-                for (i, (position, g)) in positions.iter_mut().zip(samples).enumerate() {
+                for (x, g) in samples.iter().enumerate() {
                     let Some(g) = g else {
                         continue;
                     };
-                    let p = piece * PIXELS_PER_PIECE + i;
-                    let (x, y) = ((p % width) as f64, (p / width) as f64);
+                    let (x, y) = (x as u32, y as f64);
                     let v = view.to_view(g.position);
                     if !(v.z > 0.0 && v.is_finite()) {
                         return Err(CullError::Input(format!(
@@ -147,9 +143,9 @@ impl Receivers {
                         )));
                     }
                     let at = view.to_screen(DVec2::new(v.x, v.y) / v.z);
-                    let corner = DVec2::new(x, y);
+                    let corner = DVec2::new(f64::from(x), y);
                     let outside = (corner - at).max(at - corner - 1.0).max_element();
-                    *position = g.position;
+                    layout.set(row, x, g.position);
                     near = near.min(v.z);
                     stray = stray.max(outside);
                 }
@@ -159,38 +155,19 @@ impl Receivers {
                 || (f64::INFINITY, 0.0),
                 |a, b| Ok((a.0.min(b.0), a.1.max(b.1))),
             )?;
-        Ok(Self {
-            positions,
-            stray,
-            near,
-        })
-    }
-
-    /// Appends (pixel, VPL) for every pixel of `s`'s rectangle whose sample passes its test.
-    #[inline]
-    fn test(&self, s: &Scattered, width: u32, k: u32, pairs: &mut Bands) {
-        let [i0, j0, i1, j1] = s.pixels;
-        let [sx, sy] = s.subregion;
-        for j in j0..=j1 {
-            let row = (sy + k * j) * width + sx;
-            for i in i0..=i1 {
-                let p = row + k * i;
-                if s.test.contains(self.positions[p as usize]) {
-                    pairs.push(p, s.index);
-                }
-            }
-        }
+        Ok(Self { rows, stray, near })
     }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use glam::Vec3;
     use slc_bounds::{Brdf, Fresnel};
     use slc_core::{Camera, GSample, Interleaving};
 
-    /// A sample behind the camera is an error naming its pixel: the first pixel, and pixel
-    /// 4096, the first of the receivers' second piece of work.
+    /// A sample behind the camera is an error naming its pixel: the first pixel, and one in a
+    /// later screen row, another piece of the receivers' work.
     #[test]
     fn a_sample_behind_the_camera_is_an_error_naming_its_pixel() {
         let camera = Camera::look_at(Vec3::new(0.0, 4.0, 0.0), Vec3::ZERO, Vec3::Z, 1.0).unwrap();

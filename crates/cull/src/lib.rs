@@ -94,6 +94,7 @@ pub mod metrics;
 mod pair_lists;
 mod par;
 mod partition;
+mod pixel_rows;
 mod positions;
 pub mod prefetch;
 pub mod reach;

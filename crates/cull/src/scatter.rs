@@ -13,7 +13,7 @@ use slc_core::{CullError, Interleaving, Vpl};
 /// The largest value of a pixel's coordinates in the bound's unit ball that still counts
 /// as inside: 1 plus 1e-6 for the f64 rounding of the test (about 1e-16 of its terms, which
 /// the eccentricity 1/(2α) of the sharpest spheroid raises at most 10^6-fold).
-const LIMIT: f64 = 1.0 + 1e-6;
+pub(crate) const LIMIT: f64 = 1.0 + 1e-6;
 
 /// A VPL's bound as a pixel tests it, in world axes relative to q, in f64: the sign of ωo·n
 /// at the VPL (eq. 4: I(ωo) = 0 behind its surface), then the spheroid `{c + R diag(r_u, r,
