@@ -1,12 +1,14 @@
 //! The G-buffer positions as `binned`'s per-pixel tests read them, and those tests: each
 //! subregion image's rows stored as chunks of eight pixels (x, y and z in lanes, structure of
 //! arrays), so the pixels of one row of a bound's rectangle are a few contiguous chunks. A
-//! chunk is first tested against the bound in f32, eight pixels at once, with a limit grown
-//! by that arithmetic's worst rounding ([`Filter`]); only the pixels it passes take the exact
-//! f64 test ([`PixelTest::contains`]), which alone decides. So the lists are those of the
-//! exact test on every pixel of the rectangle (`tests` checks both), at a fraction of its
-//! cost where rectangles are wider than a few pixels.
+//! chunk is first tested in f32, eight pixels at once, with limits moved by that
+//! arithmetic's worst rounding ([`Filter`]) to the pixels that surely pass the exact f64
+//! test ([`PixelTest::contains`]), those that surely fail it, and the few near the bound's
+//! surface or the VPL's tangent plane that only the exact test can decide. So the lists are
+//! those of the exact test on every pixel of the rectangle (`tests` checks both), at a
+//! fraction of its cost.
 use crate::pair_lists::Bands;
+use crate::reach::SIGN_MARGIN;
 use crate::scatter::{PixelTest, Scattered};
 use glam::Vec3;
 use slc_bounds::lanes::{dot, Lanes8, F8};
@@ -112,9 +114,20 @@ fn test_lanes<L: Lanes8>(rows: &PixelRows, scattered: &[Option<Scattered>], pair
             let pixel_row = y * width + sx;
             for (c, chunk) in rows.chunks[first + c0..=first + c1].iter().enumerate() {
                 let c = c0 + c;
-                let mut bits = lanes_within(c, i0, i1);
-                if let Some(f) = &filter {
-                    bits &= f.passes(chunk);
+                let within = lanes_within(c, i0, i1);
+                // Lanes that surely pass, and lanes only the exact test can decide.
+                let (sure, mut bits) = match &filter {
+                    Some(f) => {
+                        let (maybe, sure) = f.classify(chunk);
+                        (sure & within, maybe & !sure & within)
+                    }
+                    None => (0, within),
+                };
+                let mut sure = sure;
+                while sure != 0 {
+                    let lane = sure.trailing_zeros();
+                    sure &= sure - 1;
+                    pairs.push(pixel_row + k * (c as u32 * LANES as u32 + lane), s.index);
                 }
                 while bits != 0 {
                     let lane = bits.trailing_zeros() as usize;
@@ -139,29 +152,47 @@ fn lanes_within(c: usize, i0: u32, i1: u32) -> u8 {
     ((0xFFu16 << lo) & (0xFFu16 >> (LANES - 1 - hi))) as u8
 }
 
-/// A [`PixelTest`]'s bound in f32, with a limit that passes every pixel the exact test finds
-/// inside the bound (the sign test is left to the exact test).
+/// A [`PixelTest`] in f32, eight pixels at a time, with limits that keep every pixel the
+/// exact test passes ("maybe") and pass only pixels it passes ("sure"); the exact test
+/// decides the rest.
 ///
-/// With d = x − q (q the VPL's position, both f32: the subtraction rounds by at most u|d|,
-/// u = 2⁻²⁴), e = d − c (c rounded to f32: at most u|c| more, and u|e| for the
-/// subtraction), t = e·ω_u and the quadric Q = |e − t ω_u|²/r² + t²/r_u² of the exact test:
-/// for a pixel inside (Q ≤ `LIMIT`, |e| ≤ R = max(r_u, r)), |d| ≤ |e| + |c|, so the error of
-/// e is at most 2u(R + |c|)(1 + u); rounding ω_u, forming t and the perpendicular part adds
-/// at most about 10u R; and √Q, a norm with the smallest semi-axis r_min as its smallest
-/// scale, moves by at most (error of e)/r_min, plus a few u relative from the products, the
-/// rounded reciprocals and the sums. [`Filter::of`] takes twice that:
-/// √Q_f32 ≤ √LIMIT + 32u(R + |c|)/r_min + 8u. Where an input is so extreme that f32 could
-/// overflow or lose the bound (semi-axes outside [1e-18, 1e18]), there is no filter and
-/// every pixel takes the exact test.
+/// **The bound.** With d = x − q (q the VPL's position, both f32: the subtraction rounds by
+/// at most u|d|, u = 2⁻²⁴), e = d − c (c rounded to f32: at most u|c| more, and u|e| for
+/// the subtraction), t = e·ω_u and the quadric Q = |e − t ω_u|²/r² + t²/r_u² of the exact
+/// test: near the bound (|e| ≤ R = max(r_u, r)), |d| ≤ |e| + |c|, so the error of e is at
+/// most 2u(R + |c|)(1 + u); rounding ω_u, forming t and the perpendicular part adds at most
+/// about 10u R; and √Q, a norm with the smallest semi-axis r_min as its smallest scale,
+/// moves by at most (error of e)/r_min, plus a few u relative from the products, the rounded
+/// reciprocals and the sums. [`Filter::of`] takes twice that as its slack s =
+/// 32u(R + |c|)/r_min + 8u: √Q_f32 ≤ √`LIMIT` + s may be inside, √Q_f32 ≤ √`LIMIT` − s is
+/// inside.
+///
+/// **The sign.** The exact test rejects a pixel behind the VPL: ωo·n < 0 and
+/// (ωo·n)² > m²|d|² (m² the f32 square of `SIGN_MARGIN`, 1e-5). In f32, n·d is off by at
+/// most 5u|d| (n is the VPL's own f32 unit normal) and |d|² by 5u relative, so with margins
+/// of 16u: n·d < 0 and (n·d)² > (m + 16u)²(1 + 16u)|d|² is surely behind (where |d|² is
+/// a normal float), and n·d ≥ 0 or (n·d)² < (m − 16u)²(1 − 16u)|d|² is surely not.
+///
+/// Where an input is so extreme that f32 could overflow or lose the bound (semi-axes outside
+/// [1e-18, 1e18]), there is no filter and every pixel takes the exact test.
 #[derive(Clone, Copy, Debug)]
 struct Filter {
     q: [f32; 3],
+    normal: [f32; 3],
     center: [f32; 3],
     axis: [f32; 3],
     inv_along_sq: f32,
     inv_across_sq: f32,
-    limit: f32,
+    /// Q at most this: may be inside; at most `inside`: inside.
+    maybe_inside: f32,
+    inside: f32,
+    /// (n·d)² above `behind` |d|², with n·d < 0: behind; below `front` |d|²: not behind.
+    behind: f32,
+    front: f32,
 }
+
+/// The smallest |d|² (a normal float, with room) for which the f32 sign test decides.
+const SMALLEST_D_SQ: f32 = 1e-30;
 
 impl Filter {
     fn of(test: &PixelTest) -> Option<Self> {
@@ -177,15 +208,19 @@ impl Filter {
         }
         let u = f64::from(f32::EPSILON) / 2.0;
         let slack = 32.0 * u * (r_max + c) / r_min + 8.0 * u;
-        let limit = (crate::scatter::LIMIT.sqrt() + slack).powi(2);
+        let root = crate::scatter::LIMIT.sqrt();
+        let m = f64::from(SIGN_MARGIN * SIGN_MARGIN).sqrt();
         Some(Self {
             q: test.position.as_vec3().to_array(),
+            normal: test.normal.as_vec3().to_array(),
             center: test.center.as_vec3().to_array(),
             axis: test.axis.as_vec3().to_array(),
             inv_along_sq: test.inv_along_sq as f32,
             inv_across_sq: test.inv_across_sq as f32,
-            // Rounded up.
-            limit: (limit as f32).next_up(),
+            maybe_inside: up((root + slack).powi(2)),
+            inside: down((root - slack).max(0.0).powi(2)),
+            behind: up((m + 16.0 * u).powi(2) * (1.0 + 16.0 * u)),
+            front: down((m - 16.0 * u).powi(2) * (1.0 - 16.0 * u)),
         })
     }
 
@@ -193,12 +228,36 @@ impl Filter {
     fn lanes<L: Lanes8>(&self) -> FilterLanes<L> {
         FilterLanes {
             q: splat3(self.q),
+            normal: splat3(self.normal),
             center: splat3(self.center),
             axis: splat3(self.axis),
             inv_along_sq: L::splat(self.inv_along_sq),
             inv_across_sq: L::splat(self.inv_across_sq),
-            limit: L::splat(self.limit),
+            maybe_inside: L::splat(self.maybe_inside),
+            inside: L::splat(self.inside),
+            behind: L::splat(self.behind),
+            front: L::splat(self.front),
         }
+    }
+}
+
+/// `x` rounded to an f32 no smaller.
+fn up(x: f64) -> f32 {
+    let y = x as f32;
+    if f64::from(y) < x {
+        y.next_up()
+    } else {
+        y
+    }
+}
+
+/// `x` rounded to an f32 no larger.
+fn down(x: f64) -> f32 {
+    let y = x as f32;
+    if f64::from(y) > x {
+        y.next_down()
+    } else {
+        y
     }
 }
 
@@ -211,28 +270,41 @@ fn splat3<L: Lanes8>(v: [f32; 3]) -> [L; 3] {
 /// A [`Filter`]'s values in every lane.
 struct FilterLanes<L> {
     q: [L; 3],
+    normal: [L; 3],
     center: [L; 3],
     axis: [L; 3],
     inv_along_sq: L,
     inv_across_sq: L,
-    limit: L,
+    maybe_inside: L,
+    inside: L,
+    behind: L,
+    front: L,
 }
 
 impl<L: Lanes8> FilterLanes<L> {
-    /// Bit k set where lane k of `chunk` may lie inside the bound (never where it is NaN).
+    /// The lanes of `chunk` that may pass the exact test (bit k for lane k; never a NaN
+    /// lane), and those that surely pass it.
     #[inline(always)]
-    fn passes(&self, chunk: &Chunk) -> u8 {
+    fn classify(&self, chunk: &Chunk) -> (u8, u8) {
         // No closures: each would be a function without AVX2, calling every intrinsic.
-        let [q, c, a] = [&self.q, &self.center, &self.axis];
-        let e = [
-            (L::load(&chunk[0]) - q[0]) - c[0],
-            (L::load(&chunk[1]) - q[1]) - c[1],
-            (L::load(&chunk[2]) - q[2]) - c[2],
+        let [q, c, a, n] = [&self.q, &self.center, &self.axis, &self.normal];
+        let d = [
+            L::load(&chunk[0]) - q[0],
+            L::load(&chunk[1]) - q[1],
+            L::load(&chunk[2]) - q[2],
         ];
+        let e = [d[0] - c[0], d[1] - c[1], d[2] - c[2]];
         let t = dot(e, *a);
         let perp = [e[0] - t * a[0], e[1] - t * a[1], e[2] - t * a[2]];
         let quadric = dot(perp, perp) * self.inv_across_sq + t * t * self.inv_along_sq;
-        L::bits(quadric.le(self.limit))
+        let cos = dot(*n, d);
+        let (cos_sq, d_sq) = (cos * cos, dot(d, d));
+        let negative = L::splat(0.0).gt(cos);
+        let behind = negative & cos_sq.gt(self.behind * d_sq) & d_sq.gt(L::splat(SMALLEST_D_SQ));
+        let front = !negative | (self.front * d_sq).gt(cos_sq);
+        let maybe = quadric.le(self.maybe_inside) & !behind;
+        let sure = quadric.le(self.inside) & front;
+        (L::bits(maybe), L::bits(sure))
     }
 }
 
@@ -293,77 +365,116 @@ mod tests {
         (test.position + test.center + e).as_vec3()
     }
 
-    /// Eight points near the surface of `test`'s bound (the unit sphere's points scaled by
-    /// 1 + [-`off`, `off`]) as a chunk, and the lanes the exact test passes.
-    fn near_surface(rng: &mut Rng, test: &PixelTest, off: f64) -> (Chunk, u8) {
+    /// The lanes of `points` (as a chunk) the exact test passes, those the filter may pass
+    /// and those it surely passes, in plain and (where the CPU has them) AVX2 lanes, which
+    /// agree.
+    fn classified(filter: &Filter, test: &PixelTest, points: [Vec3; 8]) -> (u8, u8, u8) {
         let mut chunk: Chunk = [F8([0.0; 8]); 3];
         let mut exact = 0u8;
-        for lane in 0..8 {
-            let x = point(test, unit(rng) * (1.0 + rng.range64(-off, off)));
+        for (lane, x) in points.into_iter().enumerate() {
             for (a, plane) in chunk.iter_mut().enumerate() {
                 plane.0[lane] = x[a];
             }
             exact |= u8::from(test.contains(x)) << lane;
         }
-        (chunk, exact)
-    }
-
-    /// The filter's lanes for `chunk`, plain and (where the CPU has it) AVX2, which agree.
-    fn filtered(filter: &Filter, chunk: &Chunk) -> u8 {
-        let plain = filter.lanes::<F8>().passes(chunk);
+        let (maybe, sure) = filter.lanes::<F8>().classify(&chunk);
         #[cfg(target_arch = "x86_64")]
         if std::arch::is_x86_feature_detected!("avx2") {
             // SAFETY: the CPU has AVX2.
-            assert_eq!(unsafe { passes_avx2(filter, chunk) }, plain, "{filter:?}");
+            let avx = unsafe { classify_avx2(filter, &chunk) };
+            assert_eq!(avx, (maybe, sure), "{filter:?}");
         }
-        plain
+        (exact, maybe, sure)
     }
 
-    /// Every f32 point the exact test finds inside passes the filter, in plain and AVX2
-    /// lanes: points on and near the surfaces of bounds from 1e-6 to 1e6 with
-    /// eccentricities up to 1e5, from VPLs up to 1e4 times their size from the origin.
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2")]
+    fn classify_avx2(filter: &Filter, chunk: &Chunk) -> (u8, u8) {
+        filter.lanes::<slc_bounds::lanes_avx::A8>().classify(chunk)
+    }
+
+    /// The filter may pass every f32 point the exact test passes and surely passes only
+    /// such points, in plain and AVX2 lanes: points near the surfaces of bounds from 1e-6
+    /// to 1e6 with eccentricities up to 1e5, from VPLs up to 1e4 times their size from the
+    /// origin, and points near the VPL's tangent plane (where the sign test decides), with
+    /// the VPL's normal or without one.
     #[test]
-    fn the_filter_passes_every_point_the_exact_test_passes() {
+    fn the_filter_keeps_every_pixel_the_exact_test_passes_and_passes_only_those() {
         let mut rng = Rng(7);
-        let mut inside = 0;
-        for _ in 0..20_000 {
-            let test = bound(&mut rng, 5.0, 4.0);
+        let (mut inside, mut sure_inside, mut plane_passed, mut plane_sure) = (0, 0, 0, 0);
+        for round in 0..40_000 {
+            let mut test = bound(&mut rng, 5.0, 4.0);
+            if round % 2 == 1 {
+                test.normal = unit(&mut rng).as_vec3().as_dvec3();
+            }
             let filter = Filter::of(&test).expect("within the filter's domain");
-            let (chunk, exact) = near_surface(&mut rng, &test, 1e-4);
-            let passed = filtered(&filter, &chunk);
-            assert_eq!(
-                exact & !passed,
-                0,
-                "{test:?}: exact {exact:08b}, filter {passed:08b}"
-            );
-            inside += exact.count_ones();
+            let near_surface =
+                [(); 8].map(|_| point(&test, unit(&mut rng) * (1.0 + rng.range64(-1e-4, 1e-4))));
+            // Offsets d from the VPL within the bound's size whose cosine to the normal is
+            // near ±SIGN_MARGIN, 0 or far from it.
+            let r = (test.inv_along_sq.min(test.inv_across_sq)).recip().sqrt();
+            let near_plane = [(); 8].map(|_| {
+                let n = test.normal.normalize_or(DVec3::Z);
+                let along = unit(&mut rng)
+                    .reject_from(n)
+                    .normalize_or(n.any_orthonormal_vector());
+                let cos = match rng.range64(0.0, 4.0) as u32 {
+                    0 => 0.0,
+                    1 => 1e-5 * rng.range64(-1.01, -0.99),
+                    2 => 1e-5 * rng.range64(0.99, 1.01),
+                    _ => rng.range64(-1.0, 1.0),
+                };
+                let d = (along * (1.0 - cos * cos).sqrt() + n * cos) * r * rng.range64(0.0, 1.0);
+                (test.position + d).as_vec3()
+            });
+            for (points, at_plane) in [(near_surface, false), (near_plane, true)] {
+                let (exact, maybe, sure) = classified(&filter, &test, points);
+                assert_eq!(
+                    exact & !maybe,
+                    0,
+                    "{test:?} {points:?}: exact {exact:08b}, maybe {maybe:08b}"
+                );
+                assert_eq!(
+                    sure & !exact,
+                    0,
+                    "{test:?} {points:?}: exact {exact:08b}, sure {sure:08b}"
+                );
+                if at_plane {
+                    plane_passed += exact.count_ones();
+                    plane_sure += sure.count_ones();
+                } else {
+                    inside += exact.count_ones();
+                    sure_inside += sure.count_ones();
+                }
+            }
         }
-        assert!(inside > 30_000, "{inside}");
+        // Both sides of the surface and of the plane were tried, and most pixels that pass
+        // are decided without the exact test.
+        assert!(inside > 15_000 && sure_inside > 0, "{inside} {sure_inside}");
+        assert!(
+            plane_passed > 15_000 && plane_sure * 2 > plane_passed,
+            "{plane_passed} {plane_sure}"
+        );
     }
 
-    /// For bounds of eccentricity up to 10 near the origin, the filter rejects points 1e-3
-    /// outside the surface: it is only as loose as its rounding needs.
+    /// For bounds of eccentricity up to 10 near the origin, the filter passes no point 1e-3
+    /// outside the surface and surely passes every point 1e-3 inside: it is only as loose
+    /// as its rounding needs.
     #[test]
     fn the_filter_is_tight_for_round_bounds() {
         let mut rng = Rng(5);
         for _ in 0..5_000 {
             let test = bound(&mut rng, 1.0, 1.0);
             let filter = Filter::of(&test).expect("within the filter's domain");
-            let mut chunk: Chunk = [F8([0.0; 8]); 3];
-            for lane in 0..8 {
-                let x = point(&test, unit(&mut rng) * 1.001);
-                for (a, plane) in chunk.iter_mut().enumerate() {
-                    plane.0[lane] = x[a];
-                }
-            }
-            assert_eq!(filtered(&filter, &chunk), 0, "{test:?}");
+            let outside = [(); 8].map(|_| point(&test, unit(&mut rng) * 1.001));
+            assert_eq!(classified(&filter, &test, outside), (0, 0, 0), "{test:?}");
+            let inside = [(); 8].map(|_| point(&test, unit(&mut rng) * 0.999));
+            assert_eq!(
+                classified(&filter, &test, inside),
+                (255, 255, 255),
+                "{test:?}"
+            );
         }
-    }
-
-    #[cfg(target_arch = "x86_64")]
-    #[target_feature(enable = "avx2")]
-    fn passes_avx2(filter: &Filter, chunk: &Chunk) -> u8 {
-        filter.lanes::<slc_bounds::lanes_avx::A8>().passes(chunk)
     }
 
     /// Bounds beyond the filter's domain take the exact test at every pixel.
