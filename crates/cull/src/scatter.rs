@@ -25,11 +25,37 @@ pub(crate) struct PixelTest {
     pub normal: DVec3,
     pub center: DVec3,
     pub axis: DVec3,
+    /// The semi-axes r_u (along ω_u) and r (across), and their inverse squares.
+    pub along: f64,
+    pub across: f64,
     pub inv_along_sq: f64,
     pub inv_across_sq: f64,
 }
 
 impl PixelTest {
+    /// The test of a VPL at `position` with unit `normal` whose bound is the spheroid (or
+    /// sphere) centred at `center` relative to it, of semi-axes `along` its unit `axis` and
+    /// `across` it.
+    pub(crate) fn new(
+        position: DVec3,
+        normal: DVec3,
+        center: DVec3,
+        axis: DVec3,
+        along: f64,
+        across: f64,
+    ) -> Self {
+        Self {
+            position,
+            normal,
+            center,
+            axis,
+            along,
+            across,
+            inv_along_sq: (along * along).recip(),
+            inv_across_sq: (across * across).recip(),
+        }
+    }
+
     /// Whether the pixel whose G-buffer point is `x` may hold a pair with p > ξ: not behind
     /// the VPL by more than [`SIGN_MARGIN`] (where the shader's own f32 cosine, from the
     /// correctly rounded x − q, is negative too) and inside the bound. False where `x` is
@@ -146,14 +172,14 @@ impl Screen {
             across: across as f32,
             size: (f64::from(relative.length()) + center.length() + along) as f32,
         };
-        let test = PixelTest {
-            position: vpl.position.as_dvec3(),
-            normal: vpl.normal.as_dvec3(),
+        let test = PixelTest::new(
+            vpl.position.as_dvec3(),
+            vpl.normal.as_dvec3(),
             center,
             axis,
-            inv_along_sq: (along * along).recip(),
-            inv_across_sq: (across * across).recip(),
-        };
+            along,
+            across,
+        );
         Ok(self.place(vpl, index, test, &footprint(&bound, &self.map)))
     }
 

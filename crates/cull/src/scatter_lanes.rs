@@ -130,14 +130,14 @@ fn scatter_in<L: Lanes8>(
         }
         let lane = |v: &F8| v.0[k];
         let (along, across) = (f64::from(lane(&along)), f64::from(lane(&across)));
-        let test = PixelTest {
-            position: vpl.position.as_dvec3(),
-            normal: vpl.normal.as_dvec3(),
-            center: DVec3::from(center.each_ref().map(|c| f64::from(lane(c)))),
-            axis: DVec3::from(axis.each_ref().map(|c| f64::from(lane(c)))).normalize(),
-            inv_along_sq: (along * along).recip(),
-            inv_across_sq: (across * across).recip(),
-        };
+        let test = PixelTest::new(
+            vpl.position.as_dvec3(),
+            vpl.normal.as_dvec3(),
+            DVec3::from(center.each_ref().map(|c| f64::from(lane(c)))),
+            DVec3::from(axis.each_ref().map(|c| f64::from(lane(c)))).normalize(),
+            along,
+            across,
+        );
         let footprint = Footprint {
             lo: lo.each_ref().map(lane),
             hi: hi.each_ref().map(lane),
