@@ -14,6 +14,7 @@ use slc_cull::prefetch::prefetch;
 use slc_cull::receiver_chunks::{Passing, MAX_SETS};
 use slc_cull::tiles::{Band, Tile, TileOrder};
 use slc_cull::{ReceiverChunks, VplReach};
+use std::sync::atomic::{AtomicU32, Ordering};
 
 /// How each VPL's contribution is weighted.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -201,20 +202,30 @@ pub fn shade_lists_into(
 }
 
 /// The VPLs `lists` hold, ascending, and the lists' entries renumbered to their places among
-/// them. `lists` must be checked for `vpls` VPLs.
+/// them. `lists` must be checked for `vpls` VPLs. The entries (millions with many VPLs) are
+/// marked and renumbered in parallel.
 fn compact(lists: &LightLists, vpls: usize) -> (Vec<u32>, Vec<u32>) {
-    let mut place = vec![0u32; vpls];
-    for &v in &lists.indices {
-        place[v as usize] = 1;
-    }
+    let place: Vec<AtomicU32> = (0..vpls)
+        .into_par_iter()
+        .map(|_| AtomicU32::new(0))
+        .collect();
+    lists.indices.par_chunks(1 << 16).for_each(|entries| {
+        for &v in entries {
+            place[v as usize].store(1, Ordering::Relaxed);
+        }
+    });
     let mut listed = Vec::new();
-    for (v, p) in place.iter_mut().enumerate() {
-        if *p != 0 {
-            *p = listed.len() as u32;
+    for (v, p) in place.iter().enumerate() {
+        if p.load(Ordering::Relaxed) != 0 {
+            p.store(listed.len() as u32, Ordering::Relaxed);
             listed.push(v as u32);
         }
     }
-    let indices = lists.indices.iter().map(|&v| place[v as usize]).collect();
+    let indices = lists
+        .indices
+        .par_iter()
+        .map(|&v| place[v as usize].load(Ordering::Relaxed))
+        .collect();
     (listed, indices)
 }
 
