@@ -205,19 +205,24 @@ pub fn shade_lists_into(
 /// them. `lists` must be checked for `vpls` VPLs. The entries (millions with many VPLs) are
 /// marked and renumbered in parallel.
 fn compact(lists: &LightLists, vpls: usize) -> (Vec<u32>, Vec<u32>) {
-    let place: Vec<AtomicU32> = (0..vpls)
+    let mut place: Vec<AtomicU32> = (0..vpls)
         .into_par_iter()
         .map(|_| AtomicU32::new(0))
         .collect();
     lists.indices.par_chunks(1 << 16).for_each(|entries| {
         for &v in entries {
-            place[v as usize].store(1, Ordering::Relaxed);
+            // Read first: a VPL listed at many pixels is marked once, its line not fought over.
+            let mark = &place[v as usize];
+            if mark.load(Ordering::Relaxed) == 0 {
+                mark.store(1, Ordering::Relaxed);
+            }
         }
     });
     let mut listed = Vec::new();
-    for (v, p) in place.iter().enumerate() {
-        if p.load(Ordering::Relaxed) != 0 {
-            p.store(listed.len() as u32, Ordering::Relaxed);
+    for (v, p) in place.iter_mut().enumerate() {
+        let p = p.get_mut();
+        if *p != 0 {
+            *p = listed.len() as u32;
             listed.push(v as u32);
         }
     }

@@ -77,8 +77,9 @@ impl PixelRows {
     }
 
     /// Pushes (pixel, VPL) for every pixel of every rectangle of `scattered` whose sample
-    /// passes the VPL's [`PixelTest`], VPL by VPL, each rectangle row by row, left to right:
-    /// the pairs the exact test gives on every pixel, in the same order.
+    /// passes the VPL's [`PixelTest`], VPL by VPL, each rectangle row by row (within a chunk
+    /// of eight pixels, those that surely pass first): the pairs the exact test gives on
+    /// every pixel, each pixel's in VPL order.
     pub(crate) fn test(&self, scattered: &[Option<Scattered>], pairs: &mut Bands) {
         #[cfg(target_arch = "x86_64")]
         if std::arch::is_x86_feature_detected!("avx2") {
@@ -116,26 +117,27 @@ fn test_lanes<L: Lanes8>(rows: &PixelRows, scattered: &[Option<Scattered>], pair
                 let c = c0 + c;
                 let within = lanes_within(c, i0, i1);
                 // Lanes that surely pass, and lanes only the exact test can decide.
-                let (sure, mut bits) = match &filter {
+                let (mut sure, mut undecided) = match &filter {
                     Some(f) => {
                         let (maybe, sure) = f.classify(chunk);
                         (sure & within, maybe & !sure & within)
                     }
                     None => (0, within),
                 };
-                let mut sure = sure;
+                let pixel = |lane: u32| pixel_row + k * (c as u32 * LANES as u32 + lane);
                 while sure != 0 {
                     let lane = sure.trailing_zeros();
                     sure &= sure - 1;
-                    pairs.push(pixel_row + k * (c as u32 * LANES as u32 + lane), s.index);
+                    pairs.push(pixel(lane), s.index);
                 }
-                while bits != 0 {
-                    let lane = bits.trailing_zeros() as usize;
-                    bits &= bits - 1;
-                    let x = Vec3::new(chunk[0].0[lane], chunk[1].0[lane], chunk[2].0[lane]);
-                    if s.test.contains(x) {
-                        let i = (c * LANES + lane) as u32;
-                        pairs.push(pixel_row + k * i, s.index);
+                while undecided != 0 {
+                    let lane = undecided.trailing_zeros();
+                    undecided &= undecided - 1;
+                    let at = |plane: &F8| plane.0[lane as usize];
+                    if s.test
+                        .contains(Vec3::new(at(&chunk[0]), at(&chunk[1]), at(&chunk[2])))
+                    {
+                        pairs.push(pixel(lane), s.index);
                     }
                 }
             }
@@ -170,11 +172,15 @@ fn lanes_within(c: usize, i0: u32, i1: u32) -> u8 {
 /// **The sign.** The exact test rejects a pixel behind the VPL: ωo·n < 0 and
 /// (ωo·n)² > m²|d|² (m² the f32 square of `SIGN_MARGIN`, 1e-5). In f32, n·d is off by at
 /// most 5u|d| (n is the VPL's own f32 unit normal) and |d|² by 5u relative, so with margins
-/// of 16u: n·d < 0 and (n·d)² > (m + 16u)²(1 + 16u)|d|² is surely behind (where |d|² is
-/// a normal float), and n·d ≥ 0 or (n·d)² < (m − 16u)²(1 − 16u)|d|² is surely not.
+/// of 16u: n·d < 0 and (n·d)² > (m + 16u)²(1 + 16u)|d|² is surely behind, and n·d ≥ 0 or
+/// (n·d)² < (m − 16u)²(1 − 16u)|d|² is surely not, both only where |d|² exceeds
+/// [`SMALLEST_D_SQ`] (else the exact test decides).
 ///
-/// Where an input is so extreme that f32 could overflow or lose the bound (semi-axes outside
-/// [1e-18, 1e18]), there is no filter and every pixel takes the exact test.
+/// The VPL's position q and normal n are f32 values (as `Vpl`'s are), so the filter takes
+/// them exactly. Where the slack reaches √`LIMIT` no lane is sure. Where an input is so
+/// extreme that f32 could overflow or lose the bound (semi-axes outside [1e-18, 1e18], or
+/// the centre more than 1e18 from the VPL), there is no filter and every pixel takes the
+/// exact test. A NaN position (no sample) is neither maybe nor sure.
 #[derive(Clone, Copy, Debug)]
 struct Filter {
     q: [f32; 3],
@@ -191,12 +197,20 @@ struct Filter {
     front: f32,
 }
 
-/// The smallest |d|² (a normal float, with room) for which the f32 sign test decides.
+/// The smallest |d|² for which the f32 sign test decides: below it the cosine's products may
+/// underflow (to a zero of either sign). Above it the products compared may still be
+/// subnormal, but rounding is monotone, so the comparisons keep their margins.
 const SMALLEST_D_SQ: f32 = 1e-30;
 
 impl Filter {
     fn of(test: &PixelTest) -> Option<Self> {
-        let (r_max, r_min) = (test.along.max(test.across), test.along.min(test.across));
+        debug_assert_eq!(
+            test.position.as_vec3().as_dvec3(),
+            test.position,
+            "the VPL's position is an f32 point"
+        );
+        let [along, across] = test.semi_axes();
+        let (r_max, r_min) = (along.max(across), along.min(across));
         let c = test.center.length();
         let domain = 1e-18..=1e18;
         if !(domain.contains(&r_min) && domain.contains(&r_max) && c <= 1e18) {
@@ -211,10 +225,14 @@ impl Filter {
             normal: test.normal.as_vec3().to_array(),
             center: test.center.as_vec3().to_array(),
             axis: test.axis.as_vec3().to_array(),
-            inv_along_sq: test.inv_along_sq as f32,
-            inv_across_sq: test.inv_across_sq as f32,
+            inv_along_sq: (along * along).recip() as f32,
+            inv_across_sq: (across * across).recip() as f32,
             maybe_inside: up((root + slack).powi(2)),
-            inside: down((root - slack).max(0.0).powi(2)),
+            // No lane is sure where the slack reaches the bound's own size.
+            inside: match slack < root {
+                true => down((root - slack).powi(2)),
+                false => -1.0,
+            },
             behind: up((m + 16.0 * u).powi(2) * (1.0 + 16.0 * u)),
             front: down((m - 16.0 * u).powi(2) * (1.0 - 16.0 * u)),
         })
@@ -296,8 +314,10 @@ impl<L: Lanes8> FilterLanes<L> {
         let cos = dot(*n, d);
         let (cos_sq, d_sq) = (cos * cos, dot(d, d));
         let negative = L::splat(0.0).gt(cos);
-        let behind = negative & cos_sq.gt(self.behind * d_sq) & d_sq.gt(L::splat(SMALLEST_D_SQ));
-        let front = !negative | (self.front * d_sq).gt(cos_sq);
+        // Below it, the products of the cosine may underflow to a zero of either sign.
+        let decided = d_sq.gt(L::splat(SMALLEST_D_SQ));
+        let behind = negative & cos_sq.gt(self.behind * d_sq) & decided;
+        let front = (!negative | (self.front * d_sq).gt(cos_sq)) & decided;
         let maybe = quadric.le(self.maybe_inside) & !behind;
         let sure = quadric.le(self.inside) & front;
         (L::bits(maybe), L::bits(sure))
@@ -341,7 +361,7 @@ mod tests {
 
     /// The f32 point `w` of the unit ball maps to in `test`'s bound.
     fn point(test: &PixelTest, w: DVec3) -> Vec3 {
-        let (along, across) = (test.along, test.across);
+        let [along, across] = test.semi_axes();
         let any = if test.axis.x.abs() < 0.9 {
             DVec3::X
         } else {
@@ -392,6 +412,14 @@ mod tests {
         let (mut inside, mut sure_inside, mut plane_passed, mut plane_sure) = (0, 0, 0, 0);
         for round in 0..40_000 {
             let mut test = bound(&mut rng, 5.0, 4.0);
+            if round % 4 == 3 {
+                // Needles up to 1e8 long for their width, their centres up to 30 lengths
+                // off the VPL: slacks beyond the bound's own size.
+                let b = bound(&mut rng, 8.0, 4.0);
+                let [along, across] = b.semi_axes();
+                let center = b.center * rng.range64(1.0, 20.0);
+                test = PixelTest::new(b.position, b.normal, center, b.axis, along, across);
+            }
             if round % 2 == 1 {
                 test.normal = unit(&mut rng).as_vec3().as_dvec3();
             }
@@ -400,7 +428,7 @@ mod tests {
                 [(); 8].map(|_| point(&test, unit(&mut rng) * (1.0 + rng.range64(-1e-4, 1e-4))));
             // Offsets d from the VPL within the bound's size whose cosine to the normal is
             // near ±SIGN_MARGIN, 0 or far from it.
-            let r = test.along.max(test.across);
+            let r = test.semi_axes()[0].max(test.semi_axes()[1]);
             let near_plane = [(); 8].map(|_| {
                 let n = test.normal.normalize_or(DVec3::Z);
                 let along = unit(&mut rng)
@@ -445,6 +473,25 @@ mod tests {
         );
     }
 
+    /// Cases at the edges of the f32 arithmetic, where only the exact test may pass a pixel:
+    /// a slack beyond the bound's size (a point exactly at the f32 centre of a needle 1e-9
+    /// wide whose f64 centre it misses), and an offset so small that the f32 cosine
+    /// underflows to −0 (behind the VPL in f64).
+    #[test]
+    fn edge_cases_are_left_to_the_exact_test() {
+        let c = DVec3::new(0.0, 0.1, 0.0);
+        let needle = PixelTest::new(DVec3::ZERO, DVec3::ZERO, c, DVec3::X, 1.0, 1e-9);
+        let filter = Filter::of(&needle).expect("within the filter's domain");
+        let (exact, maybe, sure) = classified(&filter, &needle, [c.as_vec3(); 8]);
+        assert_eq!((exact, maybe, sure), (0, 255, 0));
+        let n = Vec3::new(0.3, 0.9539, 0.0).normalize().as_dvec3();
+        let sphere = PixelTest::new(DVec3::ZERO, n, DVec3::ZERO, DVec3::X, 1.0, 1.0);
+        let filter = Filter::of(&sphere).expect("within the filter's domain");
+        let tiny = Vec3::new(-f32::from_bits(1), 0.0, 0.0);
+        let (exact, maybe, sure) = classified(&filter, &sphere, [tiny; 8]);
+        assert_eq!((exact, maybe, sure), (0, 255, 0));
+    }
+
     /// For bounds of eccentricity up to 10 near the origin, the filter passes no point 1e-3
     /// outside the surface and surely passes every point 1e-3 inside: it is only as loose
     /// as its rounding needs.
@@ -471,7 +518,8 @@ mod tests {
         let mut rng = Rng(3);
         for across in [1e-19, 1e19, f64::INFINITY, 0.0] {
             let b = bound(&mut rng, 1.0, 1.0);
-            let test = PixelTest::new(b.position, b.normal, b.center, b.axis, b.along, across);
+            let along = b.semi_axes()[0];
+            let test = PixelTest::new(b.position, b.normal, b.center, b.axis, along, across);
             assert!(Filter::of(&test).is_none(), "{across}");
         }
     }

@@ -219,8 +219,8 @@ impl VplReach {
         delta: f32,
         listed: Option<&[u32]>,
     ) -> Result<(Vec<StochasticParams>, Vec<Self>), CullError> {
-        // Every ξ checked (the first out of its domain named), in parallel: at a million
-        // VPLs one cache line each is read.
+        // Every ξ checked in parallel (at a million VPLs, one cache line each is read); the
+        // error is the first VPL's out of its domain, as in VPL order.
         if let Some(Err(e)) = vpls
             .par_iter()
             .map(|v| StochasticParams::new(delta, v.xi))
@@ -242,6 +242,7 @@ impl VplReach {
                 vpls.len()
             )));
         }
+        // Cannot fail now (every ξ and δ checked), but named as a result all the same.
         let roulette_of = |i: u32| StochasticParams::new(delta, vpls[i as usize].xi);
         let roulette = match listed.first() {
             None => Vec::new(),

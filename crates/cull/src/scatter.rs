@@ -25,11 +25,12 @@ pub(crate) struct PixelTest {
     pub normal: DVec3,
     pub center: DVec3,
     pub axis: DVec3,
-    /// The semi-axes r_u (along ω_u) and r (across), and their inverse squares.
-    pub along: f64,
-    pub across: f64,
-    pub inv_along_sq: f64,
-    pub inv_across_sq: f64,
+    /// The semi-axes r_u (along ω_u) and r (across), and their inverse squares: set together
+    /// by [`Self::new`] only.
+    along: f64,
+    across: f64,
+    inv_along_sq: f64,
+    inv_across_sq: f64,
 }
 
 impl PixelTest {
@@ -54,6 +55,12 @@ impl PixelTest {
             inv_along_sq: (along * along).recip(),
             inv_across_sq: (across * across).recip(),
         }
+    }
+
+    /// The semi-axes `[r_u, r]`: along ω_u and across it.
+    #[inline]
+    pub(crate) fn semi_axes(&self) -> [f64; 2] {
+        [self.along, self.across]
     }
 
     /// Whether the pixel whose G-buffer point is `x` may hold a pair with p > ξ: not behind
