@@ -21,6 +21,7 @@
 //!   infinity, and then rejects a gap the exact test rejects too); any NaN met on the way
 //!   turns a gap into 0, which keeps the lane.
 use crate::frusta::TileFrusta;
+use crate::rounding::up;
 use crate::vpl_bounds::{ViewEllipsoid, ViewSphere};
 use glam::DVec3;
 use slc_bounds::lanes::{max, min, Lanes8, F8};
@@ -37,16 +38,6 @@ const SUM_SLACK: f32 = 1e-5;
 /// ... and exceed this (2⁻¹⁰⁰: biased exponent 27), so that every square that can decide a rejection is far
 /// inside f32's normal range, where rounding is relative.
 const SUM_FLOOR: f32 = f32::from_bits(27 << 23);
-
-/// `x` rounded to an f32 not below it (NaN stays NaN, beyond f32's range infinity).
-fn up(x: f64) -> f32 {
-    let f = x as f32;
-    if f64::from(f) < x {
-        f.next_up()
-    } else {
-        f
-    }
-}
 
 /// The largest |coordinate| of `v` in f32, rounded up.
 fn magnitude(v: DVec3) -> f32 {

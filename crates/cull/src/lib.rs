@@ -101,6 +101,7 @@ pub mod reach;
 pub mod reach_chunks;
 pub mod receiver_chunks;
 mod refine;
+mod rounding;
 mod scatter;
 mod scatter_lanes;
 pub mod strategies;

@@ -9,6 +9,7 @@
 //! fraction of its cost.
 use crate::pair_lists::Bands;
 use crate::reach::SIGN_MARGIN;
+use crate::rounding::{down, up};
 use crate::scatter::{PixelTest, Scattered};
 use glam::Vec3;
 use slc_bounds::lanes::{dot, Lanes8, F8};
@@ -181,20 +182,22 @@ fn lanes_within(c: usize, i0: u32, i1: u32) -> u8 {
 /// extreme that f32 could overflow or lose the bound (semi-axes outside [1e-18, 1e18], or
 /// the centre more than 1e18 from the VPL), there is no filter and every pixel takes the
 /// exact test. A NaN position (no sample) is neither maybe nor sure.
+///
+/// `Filter<f32>` holds one VPL's values, `Filter<L>` the same in every lane of `L`.
 #[derive(Clone, Copy, Debug)]
-struct Filter {
-    q: [f32; 3],
-    normal: [f32; 3],
-    center: [f32; 3],
-    axis: [f32; 3],
-    inv_along_sq: f32,
-    inv_across_sq: f32,
+struct Filter<R = f32> {
+    q: [R; 3],
+    normal: [R; 3],
+    center: [R; 3],
+    axis: [R; 3],
+    inv_along_sq: R,
+    inv_across_sq: R,
     /// Q at most this: may be inside; at most `inside`: inside.
-    maybe_inside: f32,
-    inside: f32,
+    maybe_inside: R,
+    inside: R,
     /// (n·d)² above `behind` |d|², with n·d < 0: behind; below `front` |d|²: not behind.
-    behind: f32,
-    front: f32,
+    behind: R,
+    front: R,
 }
 
 /// The smallest |d|² for which the f32 sign test decides: below it the cosine's products may
@@ -239,8 +242,8 @@ impl Filter {
     }
 
     #[inline(always)]
-    fn lanes<L: Lanes8>(&self) -> FilterLanes<L> {
-        FilterLanes {
+    fn lanes<L: Lanes8>(&self) -> Filter<L> {
+        Filter {
             q: splat3(self.q),
             normal: splat3(self.normal),
             center: splat3(self.center),
@@ -255,47 +258,13 @@ impl Filter {
     }
 }
 
-/// `x` rounded to an f32 no smaller.
-fn up(x: f64) -> f32 {
-    let y = x as f32;
-    if f64::from(y) < x {
-        y.next_up()
-    } else {
-        y
-    }
-}
-
-/// `x` rounded to an f32 no larger.
-fn down(x: f64) -> f32 {
-    let y = x as f32;
-    if f64::from(y) > x {
-        y.next_down()
-    } else {
-        y
-    }
-}
-
 /// `v` in every lane.
 #[inline(always)]
 fn splat3<L: Lanes8>(v: [f32; 3]) -> [L; 3] {
     [L::splat(v[0]), L::splat(v[1]), L::splat(v[2])]
 }
 
-/// A [`Filter`]'s values in every lane.
-struct FilterLanes<L> {
-    q: [L; 3],
-    normal: [L; 3],
-    center: [L; 3],
-    axis: [L; 3],
-    inv_along_sq: L,
-    inv_across_sq: L,
-    maybe_inside: L,
-    inside: L,
-    behind: L,
-    front: L,
-}
-
-impl<L: Lanes8> FilterLanes<L> {
+impl<L: Lanes8> Filter<L> {
     /// The lanes of `chunk` that may pass the exact test (bit k for lane k; never a NaN
     /// lane), and those that surely pass it.
     #[inline(always)]

@@ -4,6 +4,7 @@
 //! pixels makes.
 use crate::footprint::{footprint, Bound, Footprint, ScreenMap};
 use crate::reach::{reflects_nothing, SIGN_MARGIN};
+use crate::rounding::down;
 use crate::view::CullView;
 use crate::vpl_bounds::{GlossyBound, LocalBound};
 use glam::{DVec3, Vec3};
@@ -125,7 +126,7 @@ impl Screen {
                 scale: scale.map(|v| v as f32),
                 offset: offset.map(|v| v as f32),
                 // Rounded down: no sample lies nearer.
-                near: round_down(near),
+                near: down(near),
             },
             width,
             height,
@@ -244,16 +245,6 @@ impl Screen {
         let [i0, i1] = axis(footprint.lo[0], footprint.hi[0], sx, sw)?;
         let [j0, j1] = axis(footprint.lo[1], footprint.hi[1], sy, sh)?;
         Some([i0, j0, i1, j1])
-    }
-}
-
-/// `x` rounded to an `f32` no larger than it.
-fn round_down(x: f64) -> f32 {
-    let y = x as f32;
-    if f64::from(y) > x {
-        y.next_down()
-    } else {
-        y
     }
 }
 
