@@ -228,18 +228,12 @@ pub fn prepare_watched(
 mod tests {
     use super::*;
     use slc_core::builtin;
-    use slc_core::frame::{LobeSelection, Method};
+    use slc_core::frame::Method;
 
     fn settings(width: u32, height: u32, rsm: u32) -> RenderSettings {
         RenderSettings {
-            width,
-            height,
-            rsm_resolution: rsm,
             seed: 3,
-            method: Method::VplReference,
-            visibility: false,
-            spp: 1,
-            lobes: LobeSelection::Both,
+            ..RenderSettings::new(width, height, rsm, Method::VplReference)
         }
     }
 

@@ -6,7 +6,7 @@
 //! receivers; and for lists of any order and length, many of them in one tile.
 use glam::Vec3;
 use slc_bounds::{Anisotropy, Fresnel, StochasticParams};
-use slc_core::frame::{LobeSelection, Method, RenderSettings};
+use slc_core::frame::{Method, RenderSettings};
 use slc_core::{builtin, CullInput, Image, Interleaving, LightLists, Strategy, NO_LIST};
 use slc_cpu_ref::vpl_shading::{shade_lists, shade_lists_into, vpl_contribution};
 use slc_cpu_ref::{prepare, Tracer};
@@ -15,14 +15,8 @@ use slc_cpu_ref::{prepare, Tracer};
 fn prepared(width: u32, height: u32, rsm: u32) -> slc_cpu_ref::CpuPrepared {
     let scene = builtin("default").unwrap();
     let settings = RenderSettings {
-        width,
-        height,
-        rsm_resolution: rsm,
         seed: 3,
-        method: Method::VplReference,
-        visibility: false,
-        spp: 1,
-        lobes: LobeSelection::Both,
+        ..RenderSettings::new(width, height, rsm, Method::VplReference)
     };
     prepare(&scene, &settings, Tracer::new(&scene), None)
 }

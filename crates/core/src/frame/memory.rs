@@ -150,19 +150,10 @@ impl RenderSettings {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::frame::{LobeSelection, Stochastic};
+    use crate::frame::Stochastic;
 
     fn settings(width: u32, height: u32, rsm: u32) -> RenderSettings {
-        RenderSettings {
-            width,
-            height,
-            rsm_resolution: rsm,
-            seed: 0,
-            method: Method::Stochastic(Stochastic::PAPER),
-            visibility: false,
-            spp: 1,
-            lobes: LobeSelection::Both,
-        }
+        RenderSettings::new(width, height, rsm, Method::Stochastic(Stochastic::PAPER))
     }
 
     #[test]

@@ -155,6 +155,23 @@ pub struct RenderSettings {
 }
 
 impl RenderSettings {
+    /// A `width` x `height` frame with RSM faces of `rsm_resolution`² texels, indirect light by
+    /// `method`, and the rest as `slc render` has it by default: seed 0, no visibility, one
+    /// pass, both lobes. Change a field with struct update syntax (`RenderSettings { seed: 3,
+    /// ..RenderSettings::new(..) }`).
+    pub fn new(width: u32, height: u32, rsm_resolution: u32, method: Method) -> Self {
+        Self {
+            width,
+            height,
+            rsm_resolution,
+            seed: 0,
+            method,
+            visibility: false,
+            spp: 1,
+            lobes: LobeSelection::Both,
+        }
+    }
+
     /// Checks every number is in its domain ([`super::counts`]): the one check of settings
     /// every front end runs before any work.
     pub fn validate(&self) -> Result<(), RenderError> {
