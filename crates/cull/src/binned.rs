@@ -20,7 +20,7 @@ use crate::pair_lists::{lists, Bands};
 use crate::partition::check;
 use crate::pixel_rows::PixelRows;
 use crate::scatter::{Scattered, Screen};
-use crate::scatter_lanes::{plain, scatter_plain};
+use crate::scatter_lanes::scatter_eight;
 use crate::view::CullView;
 use glam::DVec2;
 use rayon::prelude::*;
@@ -51,60 +51,34 @@ pub(crate) fn cull(input: &CullInput) -> Result<LightLists, CullError> {
         .vpls
         .par_chunks(VPLS_PER_PIECE)
         .enumerate()
-        .map_init(Vec::new, |scattered, (piece, vpls)| {
-            let first = (piece * VPLS_PER_PIECE) as u32;
-            scatter(&screen, vpls, first, input.delta, scattered)?;
-            let mut pairs = Bands::new(pixels);
-            receivers.rows.test(scattered, &mut pairs);
-            Ok(pairs)
-        })
+        .map_init(
+            || Vec::with_capacity(VPLS_PER_PIECE),
+            |scattered, (piece, vpls)| {
+                let first = (piece * VPLS_PER_PIECE) as u32;
+                scatter(&screen, vpls, first, input.delta, scattered)?;
+                let mut pairs = Bands::new(pixels);
+                receivers.rows.test(scattered, &mut pairs);
+                Ok(pairs)
+            },
+        )
         .collect::<Result<Vec<Bands>, CullError>>()?;
     lists(&pieces, pixels)
 }
 
-/// Each of `vpls` (numbered from `first`) scattered into `out`, in their order: the plain
-/// ones eight at a time in lanes, the others (and the lanes' extremes) one at a time.
+/// Each of `vpls` (numbered from `first`) that covers a pixel, pushed onto `out` in their
+/// order: eight at a time in lanes, the VPLs the lanes do not take one at a time.
 fn scatter(
     screen: &Screen,
     vpls: &[Vpl],
     first: u32,
     delta: f32,
-    out: &mut Vec<Option<Scattered>>,
+    out: &mut Vec<Scattered>,
 ) -> Result<(), CullError> {
     out.clear();
-    out.resize(vpls.len(), None);
-    // Up to eight plain VPLs and their numbers.
-    let mut group: Vec<&Vpl> = Vec::with_capacity(8);
-    let mut indices: Vec<u32> = Vec::with_capacity(8);
-    let flush = |group: &mut Vec<&Vpl>, indices: &mut Vec<u32>, out: &mut [Option<Scattered>]| {
-        let mut results = [None; 8];
-        let left = match group.is_empty() {
-            true => 0,
-            false => scatter_plain(screen, group, indices, delta, &mut results),
-        };
-        for (k, (&vpl, &index)) in group.iter().zip(indices.iter()).enumerate() {
-            out[(index - first) as usize] = match left >> k & 1 {
-                1 => screen.scatter(vpl, index, delta)?,
-                _ => results[k],
-            };
-        }
-        group.clear();
-        indices.clear();
-        Ok::<(), CullError>(())
-    };
-    for (i, vpl) in vpls.iter().enumerate() {
-        let index = first + i as u32;
-        if plain(vpl) {
-            group.push(vpl);
-            indices.push(index);
-            if group.len() == 8 {
-                flush(&mut group, &mut indices, out)?;
-            }
-        } else {
-            out[i] = screen.scatter(vpl, index, delta)?;
-        }
+    for (group, eight) in vpls.chunks(8).enumerate() {
+        scatter_eight(screen, eight, first + 8 * group as u32, delta, out)?;
     }
-    flush(&mut group, &mut indices, out)
+    Ok(())
 }
 
 /// The G-buffer as the scatter reads it: per pixel its sample's world position, in rows of

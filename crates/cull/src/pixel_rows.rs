@@ -81,7 +81,7 @@ impl PixelRows {
     /// passes the VPL's [`PixelTest`], VPL by VPL, each rectangle row by row (within a chunk
     /// of eight pixels, those that surely pass first): the pairs the exact test gives on
     /// every pixel, each pixel's in VPL order.
-    pub(crate) fn test(&self, scattered: &[Option<Scattered>], pairs: &mut Bands) {
+    pub(crate) fn test(&self, scattered: &[Scattered], pairs: &mut Bands) {
         #[cfg(target_arch = "x86_64")]
         if std::arch::is_x86_feature_detected!("avx2") {
             // SAFETY: the CPU has AVX2, checked just above.
@@ -93,19 +93,19 @@ impl PixelRows {
 
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2")]
-fn test_avx2(rows: &PixelRows, scattered: &[Option<Scattered>], pairs: &mut Bands) {
+fn test_avx2(rows: &PixelRows, scattered: &[Scattered], pairs: &mut Bands) {
     test_lanes::<slc_bounds::lanes_avx::A8>(rows, scattered, pairs);
 }
 
 /// [`PixelRows::test`] in lanes `L`.
 #[inline(always)]
-fn test_lanes<L: Lanes8>(rows: &PixelRows, scattered: &[Option<Scattered>], pairs: &mut Bands) {
+fn test_lanes<L: Lanes8>(rows: &PixelRows, scattered: &[Scattered], pairs: &mut Bands) {
     let Layout {
         chunks_per_row: per,
         width,
         k,
     } = rows.layout;
-    for s in scattered.iter().flatten() {
+    for s in scattered {
         let filter = Filter::of(&s.test).map(|f| f.lanes::<L>());
         let [i0, j0, i1, j1] = s.pixels;
         let [sx, sy] = s.subregion;
@@ -562,12 +562,11 @@ mod tests {
             }
             let pixels = (width * height) as usize;
             let mut got = Bands::new(pixels);
-            let scattered: Vec<Option<Scattered>> = scattered.into_iter().map(Some).collect();
             rows.test(&scattered, &mut got);
             let mut plain = Bands::new(pixels);
             test_lanes::<F8>(&rows, &scattered, &mut plain);
             let mut want = Bands::new(pixels);
-            for s in scattered.iter().flatten() {
+            for s in &scattered {
                 let [i0, j0, i1, j1] = s.pixels;
                 for j in j0..=j1 {
                     for i in i0..=i1 {

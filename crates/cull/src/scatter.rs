@@ -4,7 +4,7 @@
 //! pixels makes.
 use crate::footprint::{footprint, Bound, Footprint, ScreenMap};
 use crate::reach::{reflects_nothing, SIGN_MARGIN};
-use crate::rounding::down;
+use crate::rounding::{down, up};
 use crate::view::CullView;
 use crate::vpl_bounds::{GlossyBound, LocalBound};
 use glam::{DVec3, Vec3};
@@ -105,6 +105,9 @@ pub(crate) struct Screen {
     pub eye: Vec3,
     /// How far (in screen pixels) any sample's projection lies outside its own pixel.
     pub stray: f64,
+    /// A footprint's rectangle covers no sample where it ends before `edges[0]` or starts
+    /// after `edges[1]` (x, y): one pixel beyond the samples' screen, rounded outwards.
+    pub edges: [[f32; 2]; 2],
 }
 
 impl Screen {
@@ -133,6 +136,10 @@ impl Screen {
             interleaving,
             eye: view.eye(),
             stray,
+            edges: [
+                [-1.0, -1.0].map(|e| down(e - stray)),
+                [width, height].map(|n| up(f64::from(n) + stray + 1.0)),
+            ],
         }
     }
 
@@ -180,25 +187,27 @@ impl Screen {
             across: across as f32,
             size: (f64::from(relative.length()) + center.length() + along) as f32,
         };
-        let test = PixelTest::new(
-            vpl.position.as_dvec3(),
-            vpl.normal.as_dvec3(),
-            center,
-            axis,
-            along,
-            across,
-        );
-        Ok(self.place(vpl, index, test, &footprint(&bound, &self.map)))
+        let test = || {
+            PixelTest::new(
+                vpl.position.as_dvec3(),
+                vpl.normal.as_dvec3(),
+                center,
+                axis,
+                along,
+                across,
+            )
+        };
+        Ok(self.place(vpl, index, &footprint(&bound, &self.map), test))
     }
 
-    /// VPL `index` with its `test` where its `footprint` covers pixels of its subregion's
-    /// image.
+    /// VPL `index` with its `test` (formed only then) where its `footprint` covers pixels of
+    /// its subregion's image.
     pub(crate) fn place(
         &self,
         vpl: &Vpl,
         index: u32,
-        test: PixelTest,
         footprint: &Footprint<f32>,
+        test: impl FnOnce() -> PixelTest,
     ) -> Option<Scattered> {
         if footprint.nowhere {
             return None;
@@ -217,7 +226,7 @@ impl Screen {
         Some(Scattered {
             index,
             subregion,
-            test,
+            test: test(),
             pixels,
         })
     }

@@ -14,11 +14,9 @@ use crate::footprint::{footprint, Bound, Footprint, ScreenMap};
 use crate::scatter::{PixelTest, Scattered, Screen};
 use crate::vpl_bounds::BOUND_SLACK;
 use glam::{DVec3, Vec3};
-use slc_bounds::lanes::{
-    clamp01, cross, dot, gather, gather3, gather_flags, max, Lanes8, Real, F8,
-};
+use slc_bounds::lanes::{clamp01, cross, dot, max, Lanes8, Real, F8, M8};
 use slc_bounds::Fresnel;
-use slc_core::{Vpl, VplLobe};
+use slc_core::{CullError, Vpl, VplLobe};
 
 /// The smallest α whose glossy VPLs the lanes bound.
 const MIN_ALPHA: f32 = 0.01;
@@ -26,57 +24,48 @@ const MIN_ALPHA: f32 = 0.01;
 /// The radius's growth over its f32 rounding in the lanes.
 const LANE_SLACK: f32 = 1e-5;
 
-/// Whether the lanes bound `vpl`: diffuse, or glossy with Schlick's Fresnel factor and α of
-/// at least [`MIN_ALPHA`]; isotropic, its shading normal its geometric one; every input in
-/// the domain slc-bounds accepts (finite, unit vectors within 1e-3, F0, kd and flux
-/// non-negative, α in (0, 1], ξ in (0, 1)). The others go through slc-bounds one at a time,
-/// which bounds them or names what is wrong.
-pub(crate) fn plain(vpl: &Vpl) -> bool {
-    let unit = |v: Vec3| v.is_finite() && (v.length() - 1.0).abs() <= 1e-3;
-    let non_negative = |v: Vec3| v.is_finite() && v.min_element() >= 0.0;
-    let common = vpl.position.is_finite()
-        && vpl.omega_i.is_finite()
-        && vpl.normal == vpl.geometric_normal
-        && vpl.brdf.anisotropy.is_none()
-        && unit(vpl.normal)
-        && non_negative(vpl.flux)
-        && vpl.xi.is_normal()
-        && vpl.xi > 0.0
-        && vpl.xi < 1.0;
-    common
-        && match (vpl.lobe, vpl.brdf.fresnel) {
-            (VplLobe::Glossy, Fresnel::Schlick(f0)) => {
-                unit(vpl.omega_i)
-                    && (MIN_ALPHA..=1.0).contains(&vpl.brdf.alpha)
-                    && non_negative(f0)
-                    && f0.max_element() <= 1.0
-            }
-            (VplLobe::Glossy, Fresnel::Dielectric(_)) => false,
-            (VplLobe::Diffuse, _) => {
-                non_negative(vpl.brdf.kd)
-                    && (vpl.flux.as_dvec3() * vpl.brdf.kd.as_dvec3()).max_element()
-                        <= f64::from(f32::MAX)
-            }
+/// How far |v|² of a unit vector may be from 1 in the lanes: just inside slc-bounds' 1e-3 on
+/// |v| ((1 ± 1e-3)² = 1 ± 2.001e-3), so that no vector the lanes take is one it refuses.
+const UNIT_SQ_TOLERANCE: f32 = 1.99e-3;
+
+/// Scatters `vpls` (one to eight, numbered from `first`) for the roulette's δ (a valid one),
+/// pushing onto `out`, in their order, those that cover a pixel. The lanes bound the plain
+/// ones (see [`Lanes::plain`]); the others, and the lanes' extremes, go through slc-bounds one
+/// at a time ([`Screen::scatter`]), which bounds them or names what is wrong.
+pub(crate) fn scatter_eight(
+    screen: &Screen,
+    vpls: &[Vpl],
+    first: u32,
+    delta: f32,
+    out: &mut Vec<Scattered>,
+) -> Result<(), CullError> {
+    let mut placed = [None; 8];
+    let left = scatter_lanes(screen, vpls, first, delta, &mut placed);
+    for (k, (vpl, placed)) in vpls.iter().zip(&placed).enumerate() {
+        match left >> k & 1 {
+            1 => out.extend(screen.scatter(vpl, first + k as u32, delta)?),
+            _ => out.extend(placed),
         }
+    }
+    Ok(())
 }
 
-/// Scatters up to eight plain VPLs ([`plain`]) numbered `indices` for the roulette's δ (a
-/// valid one): each one's entry of `out`, `None` where it covers no pixel. Returns the lanes
-/// left to slc-bounds (bit k: `vpls[k]`): those whose radius under- or overflows the range
-/// the lanes keep exact.
-pub(crate) fn scatter_plain(
+/// The lanes of [`scatter_eight`]: the entry of `out` (all `None` on entry) of each VPL that
+/// covers a pixel. Returns the lanes left to slc-bounds (bit k: `vpls[k]`): those not plain,
+/// and those whose radius under- or overflows the range the lanes keep exact.
+fn scatter_lanes(
     screen: &Screen,
-    vpls: &[&Vpl],
-    indices: &[u32],
+    vpls: &[Vpl],
+    first: u32,
     delta: f32,
-    out: &mut [Option<Scattered>],
+    out: &mut [Option<Scattered>; 8],
 ) -> u8 {
     #[cfg(target_arch = "x86_64")]
     if std::arch::is_x86_feature_detected!("avx2") {
         // SAFETY: the CPU supports AVX2, checked just above.
-        return unsafe { scatter_avx2(screen, vpls, indices, delta, out) };
+        return unsafe { scatter_avx2(screen, vpls, first, delta, out) };
     }
-    scatter_in::<F8>(screen, vpls, indices, delta, out)
+    scatter_in::<F8>(screen, vpls, first, delta, out)
 }
 
 /// [`scatter_in`] in AVX registers.
@@ -84,25 +73,27 @@ pub(crate) fn scatter_plain(
 #[target_feature(enable = "avx2")]
 fn scatter_avx2(
     screen: &Screen,
-    vpls: &[&Vpl],
-    indices: &[u32],
+    vpls: &[Vpl],
+    first: u32,
     delta: f32,
-    out: &mut [Option<Scattered>],
+    out: &mut [Option<Scattered>; 8],
 ) -> u8 {
-    scatter_in::<slc_bounds::lanes_avx::A8>(screen, vpls, indices, delta, out)
+    scatter_in::<slc_bounds::lanes_avx::A8>(screen, vpls, first, delta, out)
 }
 
-/// [`scatter_plain`] in lanes of `L`.
+/// [`scatter_lanes`] in lanes of `L`. A lane whose footprint ends before the image or starts
+/// after it (with a pixel to spare, [`Screen::edges`]) is dropped here, before its test is
+/// formed: at a million VPLs about half lie off screen.
 #[inline(always)]
 fn scatter_in<L: Lanes8>(
     screen: &Screen,
-    vpls: &[&Vpl],
-    indices: &[u32],
+    vpls: &[Vpl],
+    first: u32,
     delta: f32,
-    out: &mut [Option<Scattered>],
+    out: &mut [Option<Scattered>; 8],
 ) -> u8 {
     let last = vpls.len() - 1;
-    let group: [&Vpl; 8] = core::array::from_fn(|k| vpls[k.min(last)]);
+    let group: [&Vpl; 8] = core::array::from_fn(|k| &vpls[k.min(last)]);
     let lanes = Lanes::<L>::of(&group, screen.eye, delta);
     let [x, y, z] = screen.map.rows;
     let [sx, sy] = screen.map.scale;
@@ -114,45 +105,50 @@ fn scatter_in<L: Lanes8>(
         near: L::splat(screen.map.near),
     };
     let f = footprint(&lanes.bound, &screen_map);
+    let [before, after] = screen.edges;
+    let off_screen = !f.everywhere
+        & (L::splat(before[0]).gt(f.hi[0])
+            | L::splat(before[1]).gt(f.hi[1])
+            | f.lo[0].gt(L::splat(after[0]))
+            | f.lo[1].gt(L::splat(after[1])));
+    let left = L::bits(lanes.left) & (u8::MAX >> (7 - last));
+    let covers = !L::bits(lanes.empty | f.nowhere | off_screen) & !left;
+    if covers & (u8::MAX >> (7 - last)) == 0 {
+        return left;
+    }
     let (lo, hi) = (store2(f.lo), store2(f.hi));
     let (center, axis) = (store3(lanes.offset), store3(lanes.bound.axis));
     let (along, across) = (lanes.bound.along.store(), lanes.bound.across.store());
-    let (nowhere, everywhere, empty, left) = (
-        L::bits(f.nowhere),
-        L::bits(f.everywhere),
-        L::bits(lanes.empty),
-        L::bits(lanes.left),
-    );
+    let everywhere = L::bits(f.everywhere);
     for (k, (vpl, slot)) in vpls.iter().zip(out.iter_mut()).enumerate() {
-        *slot = None;
-        if (empty | nowhere | left) >> k & 1 == 1 {
+        if covers >> k & 1 == 0 {
             continue;
         }
         let lane = |v: &F8| v.0[k];
-        let (along, across) = (f64::from(lane(&along)), f64::from(lane(&across)));
-        let test = PixelTest::new(
-            vpl.position.as_dvec3(),
-            vpl.normal.as_dvec3(),
-            DVec3::from(center.each_ref().map(|c| f64::from(lane(c)))),
-            DVec3::from(axis.each_ref().map(|c| f64::from(lane(c)))).normalize(),
-            along,
-            across,
-        );
         let footprint = Footprint {
             lo: lo.each_ref().map(lane),
             hi: hi.each_ref().map(lane),
             nowhere: false,
             everywhere: everywhere >> k & 1 == 1,
         };
-        *slot = screen.place(vpl, indices[k], test, &footprint);
+        *slot = screen.place(vpl, first + k as u32, &footprint, || {
+            PixelTest::new(
+                vpl.position.as_dvec3(),
+                vpl.normal.as_dvec3(),
+                DVec3::from(center.each_ref().map(|c| f64::from(lane(c)))),
+                DVec3::from(axis.each_ref().map(|c| f64::from(lane(c)))).normalize(),
+                f64::from(lane(&along)),
+                f64::from(lane(&across)),
+            )
+        });
     }
-    left & (u8::MAX >> (8 - vpls.len()))
+    left
 }
 
 /// Eight VPLs' bounds: for the footprint, and the centre's offset from q for the pixels'
-/// test; `empty` where a VPL reflects nothing (ωi·n <= 0, no flux), `left` where its radius
-/// lies outside [`RADII`] (left to slc-bounds, whose f64 radius and overflow checks serve
-/// the extremes).
+/// test; `empty` where a VPL reflects nothing (ωi·n <= 0, no flux), `left` where it is not
+/// plain ([`Self::plain`]) or its radius lies outside [`RADII`] (left to slc-bounds, whose
+/// f64 radius and overflow checks serve the extremes).
 struct Lanes<L: Real> {
     bound: Bound<L>,
     offset: [L; 3],
@@ -165,21 +161,23 @@ struct Lanes<L: Real> {
 const RADII: [f32; 2] = [1e-12, 1e9];
 
 impl<L: Lanes8> Lanes<L> {
-    /// The bounds of `group` (plain VPLs) for δ = `delta`, centres relative to `eye`.
+    /// The bounds of `group` for δ = `delta`, centres relative to `eye`.
     #[inline(always)]
     fn of(group: &[&Vpl; 8], eye: Vec3, delta: f32) -> Self {
-        let relative: [L; 3] = load3(gather3(group, |v| (v.position - eye).to_array()));
-        let raw_normal: [L; 3] = load3(gather3(group, |v| v.normal.to_array()));
-        let raw_omega: [L; 3] = load3(gather3(group, |v| v.omega_i.to_array()));
-        let flux: [L; 3] = load3(gather3(group, |v| v.flux.to_array()));
-        // Per channel F(c) = a + b (1 − c)⁵: Schlick (F0, 1 − F0); diffuse (kd, 0).
-        let (fa, fb): ([L; 3], [L; 3]) = (
-            load3(gather3(group, |v| fresnel(v).0.to_array())),
-            load3(gather3(group, |v| fresnel(v).1.to_array())),
-        );
-        let alpha = L::load(&gather(group, |v| v.brdf.alpha));
-        let xi = L::load(&gather(group, |v| v.xi));
-        let glossy = L::load_mask(&gather_flags(group, |v| v.lobe == VplLobe::Glossy));
+        let f = Fields::of(group, eye);
+        let [relative, raw_normal, raw_omega, flux, fa, fb] = &f.vectors;
+        let (relative, raw_normal, raw_omega) =
+            (load3(relative), load3(raw_normal), load3(raw_omega));
+        let (flux, fa, fb): ([L; 3], [L; 3], [L; 3]) = (load3(flux), load3(fa), load3(fb));
+        let (alpha, xi) = (L::load(&f.alpha), L::load(&f.xi));
+        let (glossy, kind) = (L::load_mask(&f.glossy), L::load_mask(&f.kind));
+        let plain = kind
+            & Self::plain(
+                glossy,
+                [relative, raw_normal, raw_omega, flux, fa],
+                alpha,
+                xi,
+            );
         let (zero, one) = (L::splat(0.0), L::splat(1.0));
         let (n, wi) = (normalize(raw_normal), normalize(raw_omega));
         let cos_i = dot(n, wi);
@@ -207,7 +205,7 @@ impl<L: Lanes8> Lanes<L> {
         // Nothing reflected: ωi·n <= 0 as the shader forms it (reach::reflects_nothing), or no
         // flux.
         let empty = !(dot(raw_normal, raw_omega).gt(zero) & peak.gt(zero));
-        let left = !empty & !(r.gt(L::splat(RADII[0])) & r.le(L::splat(RADII[1])));
+        let left = !plain | (!empty & !(r.gt(L::splat(RADII[0])) & r.le(L::splat(RADII[1]))));
         // Glossy: the spheroid along ω_u = normalize(2 cos θi n − ωi), semi-axes
         // ((1 + α²)/(2α) r, r, r), centre q + (1 − α²)/(2α) r ω_u (eq. 13-15).
         let two_cos = L::splat(2.0) * cos_i;
@@ -253,12 +251,115 @@ impl<L: Lanes8> Lanes<L> {
             left,
         }
     }
+
+    /// Where a VPL of a [`lane_kind`] is plain: every input in the domain slc-bounds accepts
+    /// (`[q − eye, n, ωi, Φ, F0 or kd]` finite, n unit, Φ non-negative, ξ in (0, 1) and
+    /// normal), and for a glossy VPL ωi unit, α in [[`MIN_ALPHA`], 1] and F0 in [0, 1], for a
+    /// diffuse one kd non-negative with Φ kd far from f32's overflow. Each comparison fails
+    /// on NaN, and each limit lies inside slc-bounds' own, so a VPL it refuses is never
+    /// plain; the others go through it, which bounds them or names what is wrong.
+    #[inline(always)]
+    fn plain(glossy: L::Mask, vectors: [[L; 3]; 5], alpha: L, xi: L) -> L::Mask {
+        let [relative, normal, omega, flux, fa] = vectors;
+        let (zero, one, big) = (L::splat(0.0), L::splat(1.0), L::splat(f32::MAX));
+        let finite = all3(within(relative, -big, big)) & all3(within(omega, -big, big));
+        let unit_sq = (
+            L::splat(1.0 - UNIT_SQ_TOLERANCE),
+            L::splat(1.0 + UNIT_SQ_TOLERANCE),
+        );
+        let common = finite
+            & within1(dot(normal, normal), unit_sq.0, unit_sq.1)
+            & all3(within(flux, zero, big))
+            & xi.gt(L::splat(f32::MIN_POSITIVE))
+            & one.gt(xi);
+        let lobe_glossy = within1(dot(omega, omega), unit_sq.0, unit_sq.1)
+            & within1(alpha, L::splat(MIN_ALPHA), one)
+            & all3(within(fa, zero, one));
+        let reflected = [flux[0] * fa[0], flux[1] * fa[1], flux[2] * fa[2]];
+        let lobe_diffuse =
+            all3(within(fa, zero, big)) & all3(within(reflected, zero, L::splat(1e38)));
+        common & ((glossy & lobe_glossy) | (!glossy & lobe_diffuse))
+    }
+}
+
+/// What the lanes model of a VPL's kind: its shading normal its geometric one, isotropic,
+/// and glossy with Schlick's Fresnel factor or diffuse.
+#[inline(always)]
+fn lane_kind(vpl: &Vpl) -> bool {
+    vpl.normal == vpl.geometric_normal
+        && vpl.brdf.anisotropy.is_none()
+        && !matches!(
+            (vpl.lobe, vpl.brdf.fresnel),
+            (VplLobe::Glossy, Fresnel::Dielectric(_))
+        )
+}
+
+/// Where `lo <= v <= hi` (false for NaN).
+#[inline(always)]
+fn within1<L: Real>(v: L, lo: L, hi: L) -> L::Mask {
+    !lo.gt(v) & v.le(hi)
+}
+
+/// [`within1`] per component.
+#[inline(always)]
+fn within<L: Real>(v: [L; 3], lo: L, hi: L) -> [L::Mask; 3] {
+    [
+        within1(v[0], lo, hi),
+        within1(v[1], lo, hi),
+        within1(v[2], lo, hi),
+    ]
+}
+
+/// Where all three hold.
+#[inline(always)]
+fn all3<M: core::ops::BitAnd<Output = M> + Copy>(m: [M; 3]) -> M {
+    m[0] & m[1] & m[2]
+}
+
+/// Eight VPLs' fields as lanes, each VPL read once: `[q − eye, n, ωi, Φ, a, b]` with
+/// F(c) = a + b (1 − c)⁵ per channel (Schlick: (F0, 1 − F0); diffuse: (kd, 0)), α, ξ, and
+/// the flags glossy and [`lane_kind`].
+struct Fields {
+    vectors: [[F8; 3]; 6],
+    alpha: F8,
+    xi: F8,
+    glossy: M8,
+    kind: M8,
+}
+
+impl Fields {
+    /// The transposition of `group` (a plain loop: no closure, which in the AVX2 kernel
+    /// would be a call per field and VPL).
+    #[inline(always)]
+    fn of(group: &[&Vpl; 8], eye: Vec3) -> Self {
+        let mut f = Self {
+            vectors: [[F8([0.0; 8]); 3]; 6],
+            alpha: F8([0.0; 8]),
+            xi: F8([0.0; 8]),
+            glossy: M8([0; 8]),
+            kind: M8([0; 8]),
+        };
+        for (k, v) in group.iter().enumerate() {
+            let (a, b) = fresnel(v);
+            let vectors = [v.position - eye, v.normal, v.omega_i, v.flux, a, b];
+            for (lanes, value) in f.vectors.iter_mut().zip(vectors) {
+                for (c, lane) in lanes.iter_mut().enumerate() {
+                    lane.0[k] = value[c];
+                }
+            }
+            f.alpha.0[k] = v.brdf.alpha;
+            f.xi.0[k] = v.xi;
+            f.glossy.0[k] = u32::from(v.lobe == VplLobe::Glossy).wrapping_neg();
+            f.kind.0[k] = u32::from(lane_kind(v)).wrapping_neg();
+        }
+        f
+    }
 }
 
 /// Three lanes loaded. (The lanes' helpers are functions, not closures: in the AVX2 kernel a
 /// closure is a function of its own, compiled without its target features.)
 #[inline(always)]
-fn load3<L: Lanes8>(v: [F8; 3]) -> [L; 3] {
+fn load3<L: Lanes8>(v: &[F8; 3]) -> [L; 3] {
     [L::load(&v[0]), L::load(&v[1]), L::load(&v[2])]
 }
 
@@ -289,6 +390,7 @@ fn normalize<L: Real>(v: [L; 3]) -> [L; 3] {
 
 /// A plain VPL's F(c) = a + b (1 − c)⁵ per channel as (a, b): Schlick's (F0, 1 − F0) for a
 /// glossy VPL, (kd, 0) for a diffuse one (Φ kd is its reflected flux).
+#[inline(always)]
 fn fresnel(vpl: &Vpl) -> (Vec3, Vec3) {
     match (vpl.lobe, vpl.brdf.fresnel) {
         (VplLobe::Glossy, Fresnel::Schlick(f0)) => (f0, Vec3::ONE - f0),
@@ -363,20 +465,18 @@ mod tests {
         let view = CullView::new(&cam, w, h).unwrap();
         let screen = Screen::new(&view, w, h, Interleaving { k: 2, seed: 1 }, 0.0, 0.05);
         let mut rng = Rng(0x0B14_ED42);
-        let (mut placed, mut points) = (0, 0);
+        let (mut in_lanes, mut placed, mut points) = (0, 0, 0);
         for case in 0..3000 {
             let delta = 10f32.powf(rng.range(-9.0, 3.0));
             let vpls: Vec<Vpl> = (0..8).map(|k| random_vpl(&mut rng, case * 8 + k)).collect();
-            assert!(vpls.iter().all(plain));
-            let group: Vec<&Vpl> = vpls.iter().collect();
-            let indices: Vec<u32> = (0..8).collect();
             let mut out = [None; 8];
-            let left = scatter_plain(&screen, &group, &indices, delta, &mut out);
+            let left = scatter_lanes(&screen, &vpls, 0, delta, &mut out);
             for (k, vpl) in vpls.iter().enumerate() {
                 let scalar = screen.scatter(vpl, k as u32, delta).unwrap();
                 if left >> k & 1 == 1 {
                     continue;
                 }
+                in_lanes += 1;
                 let lanes = out[k];
                 let (Some(s), Some(l)) = (scalar, lanes) else {
                     assert!(scalar.is_none(), "case {case}, lane {k}: {vpl:?}");
@@ -421,8 +521,95 @@ mod tests {
             }
         }
         assert!(
-            placed > 1000 && points > 10_000,
-            "{placed} placed, {points} points"
+            in_lanes > 20_000 && placed > 1000 && points > 10_000,
+            "{in_lanes} in lanes, {placed} placed, {points} points"
         );
+    }
+
+    /// Every VPL outside the domain the lanes model is left to slc-bounds, which refuses it
+    /// or bounds it itself: one field at a time made non-finite, non-unit, negative, out of
+    /// range or of another kind, in each lane of a group of otherwise plain VPLs (whose
+    /// lanes are taken).
+    #[test]
+    fn lanes_leave_every_vpl_they_do_not_model() {
+        let cam = Camera::look_at(Vec3::new(0.0, 0.0, 3.0), Vec3::ZERO, Vec3::Y, 1.2).unwrap();
+        let view = CullView::new(&cam, 64, 64).unwrap();
+        let screen = Screen::new(&view, 64, 64, Interleaving { k: 2, seed: 1 }, 0.0, 0.05);
+        let glossy = Vpl {
+            position: Vec3::new(0.0, -1.0, 0.0),
+            normal: Vec3::Y,
+            geometric_normal: Vec3::Y,
+            omega_i: Vec3::new(0.6, 0.8, 0.0),
+            flux: Vec3::splat(1.0),
+            brdf: Brdf {
+                kd: Vec3::splat(0.5),
+                fresnel: Fresnel::Schlick(Vec3::splat(0.04)),
+                alpha: 0.2,
+                anisotropy: None,
+            },
+            lobe: VplLobe::Glossy,
+            id: 0,
+            xi: 0.5,
+        };
+        let diffuse = Vpl {
+            lobe: VplLobe::Diffuse,
+            ..glossy
+        };
+        type Change = (&'static str, fn(&mut Vpl));
+        let changes: [Change; 22] = [
+            ("NaN position", |v| v.position.x = f32::NAN),
+            ("infinite position", |v| v.position.z = f32::INFINITY),
+            ("NaN ωi", |v| v.omega_i.y = f32::NAN),
+            ("normal 0.2% long", |v| v.normal *= 1.002),
+            ("normal 0.2% short", |v| v.normal *= 0.998),
+            ("NaN normal", |v| v.normal = Vec3::NAN),
+            ("negative flux", |v| v.flux.y = -1.0),
+            ("NaN flux", |v| v.flux.z = f32::NAN),
+            ("infinite flux", |v| v.flux.x = f32::INFINITY),
+            ("ξ 0", |v| v.xi = 0.0),
+            ("ξ 1", |v| v.xi = 1.0),
+            ("ξ subnormal", |v| v.xi = f32::MIN_POSITIVE / 2.0),
+            ("NaN ξ", |v| v.xi = f32::NAN),
+            ("a shading normal", |v| {
+                v.normal = Vec3::new(0.1, 1.0, 0.0).normalize()
+            }),
+            ("anisotropic", |v| {
+                v.brdf.anisotropy = Some(slc_bounds::Anisotropy {
+                    tangent: Vec3::X,
+                    alpha_t: 0.5,
+                })
+            }),
+            ("ωi 0.2% long (glossy)", |v| v.omega_i *= 1.002),
+            ("α 0.005 (glossy)", |v| v.brdf.alpha = 0.005),
+            ("α 1.5 (glossy)", |v| v.brdf.alpha = 1.5),
+            ("F0 above 1 (glossy)", |v| {
+                v.brdf.fresnel = Fresnel::Schlick(Vec3::new(0.5, 1.5, 0.5))
+            }),
+            ("dielectric (glossy)", |v| {
+                v.brdf.fresnel = Fresnel::Dielectric(1.5)
+            }),
+            ("negative kd (diffuse)", |v| v.brdf.kd.x = -0.1),
+            ("Φ kd overflowing (diffuse)", |v| {
+                (v.flux, v.brdf.kd) = (Vec3::splat(3e38), Vec3::splat(1.0))
+            }),
+        ];
+        for base in [glossy, diffuse] {
+            let mut out = [None; 8];
+            let eight = [base; 8];
+            assert_eq!(scatter_lanes(&screen, &eight, 0, 1e-3, &mut out), 0);
+            assert!(out.iter().all(Option::is_some), "{base:?}");
+            for (what, change) in changes {
+                let lobe_only = what.ends_with("(glossy)") || what.ends_with("(diffuse)");
+                if lobe_only && what.ends_with("(glossy)") != (base.lobe == VplLobe::Glossy) {
+                    continue;
+                }
+                for k in 0..8 {
+                    let mut group = [base; 8];
+                    change(&mut group[k]);
+                    let left = scatter_lanes(&screen, &group, 0, 1e-3, &mut [None; 8]);
+                    assert_eq!(left, 1 << k, "{what} in lane {k} of {:?}", base.lobe);
+                }
+            }
+        }
     }
 }
