@@ -370,6 +370,38 @@ pub fn gather_flags<T>(of: &[&T; 8], get: impl Fn(&T) -> bool) -> M8 {
     }))
 }
 
+/// `N` values, each in every lane. This and [`load_all`] and [`store_all`] are loops, not
+/// `array::map`: inside an AVX2 kernel the closure of a `map` is a function of its own,
+/// compiled without the kernel's target features, so each operation would be a call.
+#[inline(always)]
+pub fn splat_all<R: Real, const N: usize>(v: &[f32; N]) -> [R; N] {
+    let mut out = [R::splat(0.0); N];
+    for (o, &v) in out.iter_mut().zip(v) {
+        *o = R::splat(v);
+    }
+    out
+}
+
+/// `N` lanes loaded from their memory layout (see [`splat_all`]).
+#[inline(always)]
+pub fn load_all<L: Lanes8, const N: usize>(v: &[F8; N]) -> [L; N] {
+    let mut out = [L::splat(0.0); N];
+    for (o, v) in out.iter_mut().zip(v) {
+        *o = L::load(v);
+    }
+    out
+}
+
+/// `N` lanes stored to their memory layout (see [`splat_all`]).
+#[inline(always)]
+pub fn store_all<L: Lanes8, const N: usize>(v: &[L; N]) -> [F8; N] {
+    let mut out = [F8([0.0; 8]); N];
+    for (o, v) in out.iter_mut().zip(v) {
+        *o = v.store();
+    }
+    out
+}
+
 /// Eight lanes of [`Real`] that load from the memory layout [`F8`] / [`M8`] (chunks are
 /// stored as plain arrays) and give their flags as a bit pattern: [`F8`] itself, or
 /// `lanes_avx::A8` in AVX registers inside the AVX2 kernels.

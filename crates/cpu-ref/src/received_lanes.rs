@@ -6,7 +6,7 @@
 //! this does not model (an anisotropic receiver, a dielectric one, or a half vector the shader
 //! forms in f64) are left to the scalar shader.
 use core::f32::consts::FRAC_1_PI;
-use slc_bounds::lanes::{dot, max, Lanes8, F8};
+use slc_bounds::lanes::{dot, load_all, max, Lanes8, F8};
 use slc_bounds::{Fresnel, StochasticParams};
 use slc_core::GSample;
 use slc_cull::ggx_lanes::{g1_over_cos, HalfVector};
@@ -112,7 +112,13 @@ fn received_avx2(
     out: &mut [F8; 3],
 ) -> u8 {
     use slc_bounds::lanes_avx::A8;
-    let (c, formed) = received::<A8>(brdfs, load3(omega), A8::load(l2), load3(intensity), params);
+    let (c, formed) = received::<A8>(
+        brdfs,
+        load_all(omega),
+        A8::load(l2),
+        load_all(intensity),
+        params,
+    );
     *out = [c[0].store(), c[1].store(), c[2].store()];
     A8::bits(formed)
 }
@@ -130,7 +136,7 @@ fn received<L: Lanes8>(
     params: &StochasticParams,
 ) -> ([L; 3], L::Mask) {
     let (zero, one) = (L::splat(0.0), L::splat(1.0));
-    let normal = load3(&brdfs.normal);
+    let normal = load_all(&brdfs.normal);
     // cos θx = −n·ωo.
     let cos_x = -dot(normal, omega);
     // scalar_intensity, then `StochasticParams::probability` (eq. 2) and
@@ -143,7 +149,7 @@ fn received<L: Lanes8>(
     let weight = one / p;
     // Brdf::eval(n, −ωo, ωo of the receiver): kd/π + microfacet (eq. 6-8).
     let omega_i = [-omega[0], -omega[1], -omega[2]];
-    let omega_o = load3(&brdfs.omega_o);
+    let omega_o = load_all(&brdfs.omega_o);
     let cos_i = dot(normal, omega_i);
     let cos_o = dot(normal, omega_o);
     let live = cos_x.gt(zero) & accepted & cos_i.gt(zero) & cos_o.gt(zero);
@@ -162,10 +168,4 @@ fn received<L: Lanes8>(
         *out = L::select(live, f * intensity[c] * factor, zero);
     }
     (out, !live | half.well_conditioned)
-}
-
-/// Three lanes of `F8` as `L`.
-#[inline(always)]
-fn load3<L: Lanes8>(v: &[F8; 3]) -> [L; 3] {
-    [L::load(&v[0]), L::load(&v[1]), L::load(&v[2])]
 }

@@ -471,7 +471,8 @@ fn formed_lanes_equal_the_scalar_shader() {
 }
 
 /// `VplReach::of_frame` gives every VPL, or each listed VPL in its place, its own exits and
-/// roulette; it checks every VPL's ξ, listed or not, and refuses an index past the VPLs.
+/// roulette; it checks the ξ of every VPL it forms exits for (naming the first one out of
+/// its domain), reads no other, and refuses an index past the VPLs.
 #[test]
 fn frame_exits_cover_the_listed_vpls() {
     let mut rng = Rng(0x0F_F2A3);
@@ -492,6 +493,15 @@ fn frame_exits_cover_the_listed_vpls() {
         assert_eq!(reach[j], all[i as usize]);
     }
     assert!(VplReach::of_frame(&vpls, delta, Some(&[300])).is_err());
+    // VPL 0 is not listed: its ξ is not read.
     vpls[0].xi = 1.0;
-    assert!(VplReach::of_frame(&vpls, delta, Some(&listed)).is_err());
+    assert!(VplReach::of_frame(&vpls, delta, Some(&listed)).is_ok());
+    assert!(VplReach::of_frame(&vpls, delta, None).is_err());
+    // Listed ones are checked, and the first in their order is named.
+    vpls[250].xi = 0.0;
+    vpls[100].xi = f32::NAN;
+    for _ in 0..20 {
+        let err = VplReach::of_frame(&vpls, delta, Some(&listed)).unwrap_err();
+        assert!(err.to_string().contains("NaN"), "{err}");
+    }
 }

@@ -19,7 +19,9 @@
 //!   applies.
 use crate::ggx_lanes::{g1_over_cos, HalfVector};
 use core::f32::consts::FRAC_1_PI;
-use slc_bounds::lanes::{dot, gather, gather3, gather_flags, max, Lanes8, Real, F8};
+use slc_bounds::lanes::{
+    dot, gather, gather3, gather_flags, load_all, max, splat_all, Lanes8, Real, F8,
+};
 use slc_bounds::{ggx, Fresnel, StochasticParams};
 use slc_core::{Vpl, VplLobe};
 
@@ -114,13 +116,13 @@ impl Acceptance<F8> {
     #[inline(always)]
     pub(crate) fn load<L: Lanes8>(&self) -> Acceptance<L> {
         Acceptance {
-            omega_i: self.omega_i.each_ref().map(L::load),
+            omega_i: load_all(&self.omega_i),
             alpha: L::load(&self.alpha),
             alpha_sq: L::load(&self.alpha_sq),
             g1_over_cos_i: L::load(&self.g1_over_cos_i),
-            fresnel_a: self.fresnel_a.each_ref().map(L::load),
-            fresnel_b: self.fresnel_b.each_ref().map(L::load),
-            emitted: self.emitted.each_ref().map(L::load),
+            fresnel_a: load_all(&self.fresnel_a),
+            fresnel_b: load_all(&self.fresnel_b),
+            emitted: load_all(&self.emitted),
             glossy: L::load_mask(&self.glossy),
             unmodelled: L::load_mask(&self.unmodelled),
             exact: L::load_mask(&self.exact),
@@ -154,13 +156,13 @@ impl<R: Real> Acceptance<R> {
     #[inline(always)]
     pub(crate) fn splat(of: &Acceptance<f32>) -> Self {
         Self {
-            omega_i: of.omega_i.map(R::splat),
+            omega_i: splat_all(&of.omega_i),
             alpha: R::splat(of.alpha),
             alpha_sq: R::splat(of.alpha_sq),
             g1_over_cos_i: R::splat(of.g1_over_cos_i),
-            fresnel_a: of.fresnel_a.map(R::splat),
-            fresnel_b: of.fresnel_b.map(R::splat),
-            emitted: of.emitted.map(R::splat),
+            fresnel_a: splat_all(&of.fresnel_a),
+            fresnel_b: splat_all(&of.fresnel_b),
+            emitted: splat_all(&of.emitted),
             glossy: R::flag(of.glossy),
             unmodelled: R::flag(of.unmodelled),
             exact: R::flag(of.exact),

@@ -12,7 +12,7 @@ use crate::reach::SIGN_MARGIN;
 use crate::rounding::{down, up};
 use crate::scatter::{PixelTest, Scattered};
 use glam::Vec3;
-use slc_bounds::lanes::{dot, Lanes8, F8};
+use slc_bounds::lanes::{dot, splat_all, Lanes8, F8};
 
 /// Pixels per chunk: the lanes of one test.
 const LANES: usize = 8;
@@ -244,10 +244,10 @@ impl Filter {
     #[inline(always)]
     fn lanes<L: Lanes8>(&self) -> Filter<L> {
         Filter {
-            q: splat3(self.q),
-            normal: splat3(self.normal),
-            center: splat3(self.center),
-            axis: splat3(self.axis),
+            q: splat_all(&self.q),
+            normal: splat_all(&self.normal),
+            center: splat_all(&self.center),
+            axis: splat_all(&self.axis),
             inv_along_sq: L::splat(self.inv_along_sq),
             inv_across_sq: L::splat(self.inv_across_sq),
             maybe_inside: L::splat(self.maybe_inside),
@@ -256,12 +256,6 @@ impl Filter {
             front: L::splat(self.front),
         }
     }
-}
-
-/// `v` in every lane.
-#[inline(always)]
-fn splat3<L: Lanes8>(v: [f32; 3]) -> [L; 3] {
-    [L::splat(v[0]), L::splat(v[1]), L::splat(v[2])]
 }
 
 impl<L: Lanes8> Filter<L> {

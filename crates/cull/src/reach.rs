@@ -8,8 +8,7 @@
 use crate::acceptance::Acceptance;
 use crate::vpl_bounds::{lobe_box_bound, GlossyBound, LocalBound};
 use glam::{DMat3, DVec3, Vec3};
-use rayon::prelude::*;
-use slc_bounds::lanes::{dot, Lanes8, Real, F8};
+use slc_bounds::lanes::{dot, load_all, splat_all, Lanes8, Real, F8};
 use slc_bounds::{BoxBound, BoxBoundLanes, StochasticParams};
 use slc_core::{CullError, Vpl, VplLobe};
 
@@ -38,9 +37,9 @@ impl<R: Real> Reach<R> {
     #[inline(always)]
     pub(crate) fn splat(of: &Reach<f32>) -> Self {
         Self {
-            normal: of.normal.map(R::splat),
-            stretch: of.stretch.map(R::splat),
-            center: of.center.map(R::splat),
+            normal: splat_all(&of.normal),
+            stretch: splat_all(&of.stretch),
+            center: splat_all(&of.center),
             limit: R::splat(of.limit),
         }
     }
@@ -109,9 +108,9 @@ impl Reach<F8> {
     #[inline(always)]
     pub(crate) fn load<L: Lanes8>(&self) -> Reach<L> {
         Reach {
-            normal: self.normal.each_ref().map(L::load),
-            stretch: self.stretch.each_ref().map(L::load),
-            center: self.center.each_ref().map(L::load),
+            normal: load_all(&self.normal),
+            stretch: load_all(&self.stretch),
+            center: load_all(&self.center),
             limit: L::load(&self.limit),
         }
     }
@@ -212,22 +211,16 @@ impl VplReach {
     /// The roulette (δ and its ξ) and, in parallel, the early exits of every VPL (`None`) or
     /// of the VPLs `listed` (ascending indices into `vpls`, for a caller that tests only
     /// listed pairs: entry j is VPL `listed[j]`'s, so that a million VPLs of which a few
-    /// thousand are listed cost a few thousand exits). Every VPL's ξ is checked either way.
-    /// Errors as [`Self::new`] and `StochasticParams::new`, or on an index past the VPLs.
+    /// thousand are listed cost a few thousand exits). Only the VPLs it forms exits for are
+    /// read: an unlisted VPL is not, so its ξ is not checked here (every bound-based culler
+    /// has checked it when it made the lists; at a million VPLs one cache line of each record
+    /// costs the shading about 7 ms). Errors as `StochasticParams::new` (for the first listed
+    /// VPL out of its domain) and [`Self::new`], or on an index past the VPLs.
     pub fn of_frame(
         vpls: &[Vpl],
         delta: f32,
         listed: Option<&[u32]>,
     ) -> Result<(Vec<StochasticParams>, Vec<Self>), CullError> {
-        // Every ξ checked in parallel (at a million VPLs, one cache line each is read); the
-        // error is the first VPL's out of its domain, as in VPL order.
-        if let Some(Err(e)) = vpls
-            .par_iter()
-            .map(|v| StochasticParams::new(delta, v.xi))
-            .find_first(Result::is_err)
-        {
-            return Err(e.into());
-        }
         let every: Vec<u32>;
         let listed = match listed {
             Some(listed) => listed,
@@ -242,12 +235,18 @@ impl VplReach {
                 vpls.len()
             )));
         }
-        // Cannot fail now (every ξ and δ checked), but named as a result all the same.
         let roulette_of = |i: u32| StochasticParams::new(delta, vpls[i as usize].xi);
         let roulette = match listed.first() {
             None => Vec::new(),
             Some(&first) => {
-                crate::par::try_map(listed, roulette_of(first)?, |_, &i| roulette_of(i))?
+                let placeholder = roulette_of(first)?;
+                crate::par::try_map(listed, placeholder, |_, &i| roulette_of(i)).map_err(|e| {
+                    // The first VPL out of the domain in their order, whichever a thread met.
+                    listed
+                        .iter()
+                        .find_map(|&i| roulette_of(i).err())
+                        .unwrap_or(e)
+                })?
             }
         };
         let reach = crate::par::try_map(listed, Self::NONE, |j, &i| {

@@ -20,7 +20,7 @@
 use crate::acceptance::Acceptance;
 use crate::reach::{Reach, VplReach};
 use glam::Vec3;
-use slc_bounds::lanes::{Lanes8, Real, F8};
+use slc_bounds::lanes::{load_all, splat_all, store_all, Lanes8, Real, F8};
 use slc_bounds::BoxBoundLanes;
 
 /// Most receiver sets a [`ReceiverChunks`] holds: the bits of a `u32` membership mask.
@@ -325,7 +325,7 @@ fn passing_lanes<L: Lanes8>(
 ) {
     let lanes = Reach::<L>::splat(&reach.reach);
     let acceptance = Acceptance::<L>::splat(&reach.acceptance);
-    let q = reach.position.to_array().map(L::splat);
+    let q: [L; 3] = splat_all(&reach.position.to_array());
     let (first, end) = receivers.span(sets);
     for (chunk, c) in receivers.chunks.iter().enumerate().take(end).skip(first) {
         let members = c.members(sets);
@@ -339,7 +339,7 @@ fn passing_lanes<L: Lanes8>(
             L::load(&c.position[2]) - q[2],
         ];
         let passes = if normals {
-            let normal = c.normal.each_ref().map(L::load);
+            let normal = load_all(&c.normal);
             lanes.may_contribute(d, normal)
         } else {
             lanes.may_accept(d)
@@ -357,8 +357,8 @@ fn passing_lanes<L: Lanes8>(
                 bits,
                 exact: bits & L::bits(roulette.exact),
                 l2: roulette.l2.store(),
-                omega: roulette.omega.map(L::store),
-                intensity: roulette.intensity.map(L::store),
+                omega: store_all(&roulette.omega),
+                intensity: store_all(&roulette.intensity),
             });
         }
     }

@@ -14,7 +14,9 @@ use crate::footprint::{footprint, Bound, Footprint, ScreenMap};
 use crate::scatter::{PixelTest, Scattered, Screen};
 use crate::vpl_bounds::BOUND_SLACK;
 use glam::{DVec3, Vec3};
-use slc_bounds::lanes::{clamp01, cross, dot, max, Lanes8, Real, F8, M8};
+use slc_bounds::lanes::{
+    clamp01, cross, dot, load_all, max, splat_all, store_all, Lanes8, Real, F8, M8,
+};
 use slc_bounds::Fresnel;
 use slc_core::{CullError, Vpl, VplLobe};
 
@@ -99,7 +101,7 @@ fn scatter_in<L: Lanes8>(
     let [sx, sy] = screen.map.scale;
     let [ox, oy] = screen.map.offset;
     let screen_map = ScreenMap {
-        rows: [splat3(x), splat3(y), splat3(z)],
+        rows: [splat_all(&x), splat_all(&y), splat_all(&z)],
         scale: [L::splat(sx), L::splat(sy)],
         offset: [L::splat(ox), L::splat(oy)],
         near: L::splat(screen.map.near),
@@ -116,8 +118,8 @@ fn scatter_in<L: Lanes8>(
     if covers & (u8::MAX >> (7 - last)) == 0 {
         return left;
     }
-    let (lo, hi) = (store2(f.lo), store2(f.hi));
-    let (center, axis) = (store3(lanes.offset), store3(lanes.bound.axis));
+    let (lo, hi) = (store_all(&f.lo), store_all(&f.hi));
+    let (center, axis) = (store_all(&lanes.offset), store_all(&lanes.bound.axis));
     let (along, across) = (lanes.bound.along.store(), lanes.bound.across.store());
     let everywhere = L::bits(f.everywhere);
     for (k, (vpl, slot)) in vpls.iter().zip(out.iter_mut()).enumerate() {
@@ -166,9 +168,12 @@ impl<L: Lanes8> Lanes<L> {
     fn of(group: &[&Vpl; 8], eye: Vec3, delta: f32) -> Self {
         let f = Fields::of(group, eye);
         let [relative, raw_normal, raw_omega, flux, fa, fb] = &f.vectors;
-        let (relative, raw_normal, raw_omega) =
-            (load3(relative), load3(raw_normal), load3(raw_omega));
-        let (flux, fa, fb): ([L; 3], [L; 3], [L; 3]) = (load3(flux), load3(fa), load3(fb));
+        let (relative, raw_normal, raw_omega) = (
+            load_all(relative),
+            load_all(raw_normal),
+            load_all(raw_omega),
+        );
+        let (flux, fa, fb): ([L; 3], [L; 3], [L; 3]) = (load_all(flux), load_all(fa), load_all(fb));
         let (alpha, xi) = (L::load(&f.alpha), L::load(&f.xi));
         let (glossy, kind) = (L::load_mask(&f.glossy), L::load_mask(&f.kind));
         let plain = kind
@@ -354,31 +359,6 @@ impl Fields {
         }
         f
     }
-}
-
-/// Three lanes loaded. (The lanes' helpers are functions, not closures: in the AVX2 kernel a
-/// closure is a function of its own, compiled without its target features.)
-#[inline(always)]
-fn load3<L: Lanes8>(v: &[F8; 3]) -> [L; 3] {
-    [L::load(&v[0]), L::load(&v[1]), L::load(&v[2])]
-}
-
-/// Three lanes stored.
-#[inline(always)]
-fn store3<L: Lanes8>(v: [L; 3]) -> [F8; 3] {
-    [v[0].store(), v[1].store(), v[2].store()]
-}
-
-/// Two lanes stored.
-#[inline(always)]
-fn store2<L: Lanes8>(v: [L; 2]) -> [F8; 2] {
-    [v[0].store(), v[1].store()]
-}
-
-/// Three values in every lane.
-#[inline(always)]
-fn splat3<L: Real>(v: [f32; 3]) -> [L; 3] {
-    [L::splat(v[0]), L::splat(v[1]), L::splat(v[2])]
 }
 
 /// `v` over its length (`check::unit`'s renormalisation).

@@ -23,7 +23,7 @@ use super::{BoxBound, Lobe, CONE_SLACK};
 use crate::fresnel::{dielectric, dielectric_lanes, DIELECTRIC_ULPS};
 use crate::ggx::g1_over_cos_lanes;
 use crate::lanes::{
-    clamp01, cross, dot, gather, gather3, gather_flags, max, min, Lanes8, Real, F8,
+    clamp01, cross, dot, gather, gather3, gather_flags, load_all, max, min, Lanes8, Real, F8,
 };
 use crate::Fresnel;
 use core::f32::consts::PI;
@@ -164,19 +164,18 @@ impl BoxBoundLanes<F8> {
     /// The eight lanes as `L` ([`Lanes8::load`]).
     #[inline(always)]
     pub fn load<L: Lanes8>(&self) -> BoxBoundLanes<L> {
-        let three = load3::<L>;
         BoxBoundLanes {
-            position: three(&self.position),
-            normal: three(&self.normal),
+            position: load_all(&self.position),
+            normal: load_all(&self.normal),
             peak: L::load(&self.peak),
             delta_xi: L::load(&self.delta_xi),
-            flux: three(&self.flux),
-            fresnel_a: three(&self.fresnel_a),
-            fresnel_b: three(&self.fresnel_b),
+            flux: load_all(&self.flux),
+            fresnel_a: load_all(&self.fresnel_a),
+            fresnel_b: load_all(&self.fresnel_b),
             eta: L::load(&self.eta),
             alpha: L::load(&self.alpha),
-            omega_i: three(&self.omega_i),
-            omega_u: three(&self.omega_u),
+            omega_i: load_all(&self.omega_i),
+            omega_u: load_all(&self.omega_u),
             cos_h_max: L::load(&self.cos_h_max),
             g1_i: L::load(&self.g1_i),
             g1_o_alpha: L::load(&self.g1_o_alpha),
@@ -264,12 +263,6 @@ impl<R: Real> BoxBoundLanes<R> {
         let rejects = normal_threshold & (!bright | below | !facing | value.le(threshold));
         self.always | around | !finite | !rejects
     }
-}
-
-/// Three lanes of `F8` as `L` (a function, not a closure: see `may_exceed_xi`).
-#[inline(always)]
-fn load3<L: Lanes8>(v: &[F8; 3]) -> [L; 3] {
-    [L::load(&v[0]), L::load(&v[1]), L::load(&v[2])]
 }
 
 /// Below this δ ξ l² (2⁻¹⁰⁰) the test keeps every VPL: products near the subnormal range
