@@ -18,6 +18,9 @@ use slc_core::{CullError, Vpl, VplLobe};
 /// unit normals), so the sign cannot flip within the margin.
 pub const SIGN_MARGIN: f32 = 1e-5;
 
+/// How many listed VPLs ahead [`VplReach::of_frame`] asks for a record.
+const PREFETCH_AHEAD: usize = 4;
+
 /// One VPL's early exits in lanes of `R` (see [`slc_bounds::lanes`]): its normal n, and its own
 /// bound as a stretch S and centre S·(c − q) with the bound the unit ball of S d − S·(c − q)
 /// (the spheroid of eq. 12-15: S = diag(1/r) Rᵀ; the section-6 sphere: S = I/r), and the limit
@@ -250,6 +253,11 @@ impl VplReach {
             }
         };
         let reach = crate::par::try_map(listed, Self::NONE, |j, &i| {
+            // The records of the VPLs a few places on, scattered over the whole array, are
+            // asked for while this one is formed.
+            if let Some(&ahead) = listed.get(j + PREFETCH_AHEAD) {
+                crate::prefetch::prefetch(&vpls[ahead as usize]);
+            }
             Self::new(&vpls[i as usize], &roulette[j])
         })?;
         Ok((roulette, reach))
