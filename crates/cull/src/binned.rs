@@ -19,13 +19,13 @@ use crate::lists::pixel_count;
 use crate::pair_lists::{lists, Bands};
 use crate::partition::check;
 use crate::pixel_rows::PixelRows;
-use crate::scatter::{Scattered, Screen};
-use crate::scatter_lanes::scatter_eight;
+use crate::scatter::Screen;
+use crate::scatter_lanes::scatter;
 use crate::view::CullView;
 use glam::DVec2;
 use rayon::prelude::*;
 use slc_bounds::StochasticParams;
-use slc_core::{CullError, CullInput, GBuffer, LightLists, Vpl};
+use slc_core::{CullError, CullInput, GBuffer, LightLists};
 
 /// VPLs scattered per piece of parallel work.
 const VPLS_PER_PIECE: usize = 4096;
@@ -63,22 +63,6 @@ pub(crate) fn cull(input: &CullInput) -> Result<LightLists, CullError> {
         )
         .collect::<Result<Vec<Bands>, CullError>>()?;
     lists(&pieces, pixels)
-}
-
-/// Each of `vpls` (numbered from `first`) that covers a pixel, pushed onto `out` in their
-/// order: eight at a time in lanes, the VPLs the lanes do not take one at a time.
-fn scatter(
-    screen: &Screen,
-    vpls: &[Vpl],
-    first: u32,
-    delta: f32,
-    out: &mut Vec<Scattered>,
-) -> Result<(), CullError> {
-    out.clear();
-    for (group, eight) in vpls.chunks(8).enumerate() {
-        scatter_eight(screen, eight, first + 8 * group as u32, delta, out)?;
-    }
-    Ok(())
 }
 
 /// The G-buffer as the scatter reads it: per pixel its sample's world position, in rows of

@@ -30,29 +30,33 @@ const LANE_SLACK: f32 = 1e-5;
 /// |v| ((1 ± 1e-3)² = 1 ± 2.001e-3), so that no vector the lanes take is one it refuses.
 const UNIT_SQ_TOLERANCE: f32 = 1.99e-3;
 
-/// Scatters `vpls` (one to eight, numbered from `first`) for the roulette's δ (a valid one),
-/// pushing onto `out`, in their order, those that cover a pixel. The lanes bound the plain
-/// ones (see [`Lanes::plain`]); the others, and the lanes' extremes, go through slc-bounds one
-/// at a time ([`Screen::scatter`]), which bounds them or names what is wrong.
-pub(crate) fn scatter_eight(
+/// Each of `vpls` (numbered from `first`) that covers a pixel for the roulette's δ (a valid
+/// one), in `out` in their order: eight at a time in lanes, which bound the plain ones (see
+/// [`Lanes::plain`]); the others, and the lanes' extremes, go through slc-bounds one at a
+/// time ([`Screen::scatter`]), which bounds them or names what is wrong.
+pub(crate) fn scatter(
     screen: &Screen,
     vpls: &[Vpl],
     first: u32,
     delta: f32,
     out: &mut Vec<Scattered>,
 ) -> Result<(), CullError> {
-    let mut placed = [None; 8];
-    let left = scatter_lanes(screen, vpls, first, delta, &mut placed);
-    for (k, (vpl, placed)) in vpls.iter().zip(&placed).enumerate() {
-        match left >> k & 1 {
-            1 => out.extend(screen.scatter(vpl, first + k as u32, delta)?),
-            _ => out.extend(placed),
+    out.clear();
+    for (group, eight) in vpls.chunks(8).enumerate() {
+        let first = first + 8 * group as u32;
+        let mut placed = [None; 8];
+        let left = scatter_lanes(screen, eight, first, delta, &mut placed);
+        for (k, (vpl, placed)) in eight.iter().zip(&placed).enumerate() {
+            match left >> k & 1 {
+                1 => out.extend(screen.scatter(vpl, first + k as u32, delta)?),
+                _ => out.extend(placed),
+            }
         }
     }
     Ok(())
 }
 
-/// The lanes of [`scatter_eight`]: the entry of `out` (all `None` on entry) of each VPL that
+/// The lanes of [`scatter`] for one to eight VPLs: the entry of `out` (all `None` on entry) of each VPL that
 /// covers a pixel. Returns the lanes left to slc-bounds (bit k: `vpls[k]`): those not plain,
 /// and those whose radius under- or overflows the range the lanes keep exact.
 fn scatter_lanes(
