@@ -1,9 +1,10 @@
-//! The `binned` strategy's bounds of plain VPLs, eight at a time: the radius r of eq. (12)
-//! and the spheroid of eq. (13)-(15) of a glossy VPL, the sphere of section 6 of a diffuse
-//! one, formed with slc-bounds' own operations (`GlossyLobe::radius`, `Spheroid::new`,
-//! `Sphere::diffuse`) in f32 lanes, then their footprints ([`crate::footprint`]). At a
-//! million VPLs the bounds are most of the culling, and one VPL at a time they wait on their
-//! chains of square roots and divisions; eight lanes share them.
+//! The `binned` strategy's scatter, eight VPLs at a time: for the plain ones the radius r of
+//! eq. (12) and the spheroid of eq. (13)-(15) of a glossy VPL, the sphere of section 6 of a
+//! diffuse one, formed with slc-bounds' own operations (`GlossyLobe::radius`,
+//! `Spheroid::new`, `Sphere::diffuse`) in f32 lanes, then their footprints
+//! ([`crate::footprint`]); the others through slc-bounds ([`Screen::scatter`]). At a million
+//! VPLs the bounds are most of the culling, and one VPL at a time they wait on their chains
+//! of square roots and divisions; eight lanes share them.
 //!
 //! The lanes round differently from slc-bounds in a few places (r in f32 rather than f64,
 //! the fifth power as three products): a few ulps, which the radius's extra 1e-5 covers
