@@ -6,7 +6,7 @@
 //! this does not model (an anisotropic receiver, a dielectric one, or a half vector the shader
 //! forms in f64) are left to the scalar shader.
 use core::f32::consts::FRAC_1_PI;
-use slc_bounds::lanes::{dot, load_all, max, Lanes8, F8};
+use slc_bounds::lanes::{dot, load_all, max, store_all, Lanes8, F8};
 use slc_bounds::{Fresnel, StochasticParams};
 use slc_core::GSample;
 use slc_cull::ggx_lanes::{g1_over_cos, HalfVector};
@@ -119,7 +119,7 @@ fn received_avx2(
         load_all(intensity),
         params,
     );
-    *out = [c[0].store(), c[1].store(), c[2].store()];
+    *out = store_all(&c);
     A8::bits(formed)
 }
 
