@@ -129,6 +129,28 @@ impl FrameVpls<'_> {
         }
     }
 
+    /// The most VPLs one of the K² subregions of `interleaving` can hold
+    /// (`Interleaving::vpl_subregion`): counted for CPU VPLs; for GPU VPLs, whose ids stay on
+    /// the GPU, the capacity's share plus six standard deviations of it (the subregions are
+    /// drawn by a hash of the id), the capacity itself where K = 1.
+    pub fn largest_subregion(&self, interleaving: Interleaving) -> u64 {
+        let subregions = interleaving.subregions();
+        match self {
+            Self::Cpu(vpls) => {
+                let mut counts = vec![0u64; subregions as usize];
+                for v in vpls.iter() {
+                    counts[interleaving.vpl_subregion(v.id) as usize] += 1;
+                }
+                counts.into_iter().max().unwrap_or(0)
+            }
+            Self::Gpu(_) if subregions <= 1 => self.capacity() as u64,
+            Self::Gpu(_) => {
+                let share = self.capacity() as f64 / f64::from(subregions);
+                (share + 6.0 * share.sqrt()).ceil() as u64
+            }
+        }
+    }
+
     /// Whether there can be no VPL.
     pub fn is_empty(&self) -> bool {
         self.capacity() == 0
@@ -193,7 +215,7 @@ pub(crate) struct CullSizes {
 /// The checks every CPU culler makes first (the sample count was checked when the frame was
 /// made): pixel indices in u32, 1 <= K <= [`MAX_K`], a VPL capacity (`FrameVpls::capacity`)
 /// in u32.
-pub(crate) fn check_input(frame: &CullFrame) -> Result<CullSizes, GpuError> {
+pub(crate) fn check_input(ctx: &GpuContext, frame: &CullFrame) -> Result<CullSizes, GpuError> {
     let pixels = u32::try_from(u64::from(frame.width) * u64::from(frame.height)).map_err(|_| {
         GpuError::Input(format!(
             "G-buffer of {}x{} pixels exceeds u32 pixel indices",
@@ -208,6 +230,17 @@ pub(crate) fn check_input(frame: &CullFrame) -> Result<CullSizes, GpuError> {
     }
     let vpl_count = u32::try_from(frame.vpls.capacity())
         .map_err(|_| GpuError::Input(format!("{} VPLs exceed u32", frame.vpls.capacity())))?;
+    // A tile walks its subregion's VPLs, and a pixel's list holds at most those: one
+    // invocation's loops run at most about once per VPL of the largest subregion, one more
+    // per round of 256 and a few dozen besides (a sixteenth more and 64 cover them).
+    if ctx.loop_budget.is_some() {
+        let most = frame.vpls.largest_subregion(frame.interleaving);
+        ctx.check_loop_budget(
+            || format!("culling and shading {most} VPLs in one of the {k}x{k} subregions"),
+            most + most / 16 + 64,
+            "raise --interleave K (the VPLs per subregion fall as 1/K²) or lower --rsm",
+        )?;
+    }
     Ok(CullSizes {
         pixels,
         k,

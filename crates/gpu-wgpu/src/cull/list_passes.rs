@@ -191,7 +191,7 @@ impl ListPasses {
         (label, lists_per_tile): (&'static str, u32),
         depth: impl FnOnce(&mut wgpu::CommandEncoder, PreparedTiles) -> Result<P, GpuError>,
     ) -> Result<Option<P>, GpuError> {
-        let CullSizes { pixels, k, .. } = check_input(frame)?;
+        let CullSizes { pixels, k, .. } = check_input(ctx, frame)?;
         if pixels == 0 {
             return Ok(None);
         }

@@ -80,3 +80,48 @@ fn no_adapter_message_suggests_the_cpu_backend() {
     let e = GpuError::NoAdapter("none".into());
     assert!(e.to_string().contains("--backend cpu"));
 }
+
+/// Mesa's llvmpipe ends a shader invocation's loops after 65,535 iterations in all
+/// (`LLVMPIPE_LOOP_ITERATIONS`): a tile walks every VPL of its subregion and an unculled list
+/// holds them all, so beyond that the lists and the image came out short without an error
+/// (unculled lists of 69,213 VPLs shaded 2.2% dark). There every list strategy refuses a
+/// subregion of that many VPLs with the typed error naming the limit and what to raise;
+/// elsewhere it culls them. With K = 2 (about 17,300 VPLs per subregion) each culls, and
+/// misses no pair.
+#[test]
+fn subregions_beyond_the_adapters_loop_budget_are_refused() {
+    use crate::common::cull_input;
+    use crate::tiled::frame;
+    use slc_core::{builtin, Strategy};
+    use slc_cull::metrics::measure;
+    use slc_gpu_wgpu::cull::{GpuCulling, ListCulling};
+    let Some(ctx) = gpu() else { return };
+    let culler = GpuCulling::new(&ctx).unwrap();
+    let scene = builtin("default").unwrap();
+    let camera = scene.camera_or_default();
+    let (gbuffer, vpls) = frame(&scene, &camera, (16, 12), 80);
+    assert!(vpls.len() > 68_000, "{}", vpls.len());
+    for strategy in [Strategy::None, Strategy::Ellipsoid, Strategy::Binned] {
+        let input = cull_input(&gbuffer, &camera, &vpls, 1e-3, (1, 0));
+        match (culler.cull(&ctx, &input, strategy), ctx.loop_budget) {
+            (Err(e @ GpuError::LoopBudget { .. }), Some(_)) => {
+                let text = e.to_string();
+                assert!(
+                    text.contains(&vpls.len().to_string())
+                        && text.contains("--interleave")
+                        && text.contains("--backend cpu"),
+                    "{text}"
+                );
+            }
+            (Ok(_), None) => {}
+            (got, budget) => panic!("{strategy:?} with a loop budget {budget:?}: {got:?}"),
+        }
+        let input = cull_input(&gbuffer, &camera, &vpls, 1e-3, (2, 0));
+        let lists = culler.cull(&ctx, &input, strategy).unwrap();
+        assert_eq!(
+            measure(&input, &lists).unwrap().missed_pairs,
+            0,
+            "{strategy:?}"
+        );
+    }
+}

@@ -19,6 +19,7 @@ mod raster_gbuffer;
 mod raster_rsm;
 mod readback;
 mod rng;
+mod scan;
 mod shade;
 mod tight;
 mod tiled;

@@ -83,7 +83,7 @@ impl BinnedCuller {
         ctx: &GpuContext,
         frame: &CullFrame,
     ) -> Result<GpuLightLists, GpuError> {
-        let CullSizes { pixels, k, .. } = check_input(frame)?;
+        let CullSizes { pixels, k, .. } = check_input(ctx, frame)?;
         if pixels == 0 {
             return no_lists(ctx);
         }

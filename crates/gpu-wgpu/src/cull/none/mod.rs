@@ -82,7 +82,7 @@ impl NoneCuller {
             pixels,
             k,
             vpl_count,
-        } = check_input(frame)?;
+        } = check_input(ctx, frame)?;
         if pixels == 0 {
             return no_lists(ctx);
         }

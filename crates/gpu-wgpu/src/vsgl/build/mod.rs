@@ -279,6 +279,12 @@ impl VsglBuildPass {
         camera_vsgls: u32,
         sampling: &VsglSampling,
     ) -> Result<(), GpuError> {
+        // Each RSM texel sums the light of every camera VSGL in one loop.
+        ctx.check_loop_budget(
+            || format!("weighing the RSM texels by {camera_vsgls} camera VSGLs"),
+            u64::from(camera_vsgls) + 64,
+            "lower --camera-vsgls",
+        )?;
         let (w, h) = (gbuffer.width, gbuffer.height);
         let camera_tree = GpuTree::new(w.max(h).max(1), 1);
         let camera_sums = sums_buffers(ctx, camera_tree)?;

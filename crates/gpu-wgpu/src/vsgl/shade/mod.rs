@@ -229,6 +229,12 @@ impl VsglShadePass {
         visibility: Option<Visibility>,
     ) -> Result<(wgpu::Buffer, u32), GpuError> {
         let capacity = vsgls.count.capacity();
+        // Each pixel sums every VSGL's light in one loop.
+        ctx.check_loop_budget(
+            || format!("shading {capacity} VSGLs at every pixel"),
+            u64::from(capacity) + 64,
+            "lower --vsgls",
+        )?;
         if let Some((_, maps)) = visibility {
             if maps.params.map_count != capacity {
                 return Err(GpuError::Input(format!(
