@@ -131,9 +131,10 @@ impl FrameVpls<'_> {
 
     /// The most VPLs one of the K² subregions of `interleaving` can hold
     /// (`Interleaving::vpl_subregion`): counted for CPU VPLs; for GPU VPLs, whose ids stay on
-    /// the GPU, the capacity's share plus six standard deviations of it (the subregions are
-    /// drawn by a hash of the id), the capacity itself where K = 1.
-    pub fn largest_subregion(&self, interleaving: Interleaving) -> u64 {
+    /// the GPU, a share of `count` VPLs (their count, or the capacity that bounds it) plus
+    /// six standard deviations of it (the subregions are drawn by a hash of the id), `count`
+    /// itself where K = 1.
+    pub fn largest_subregion(&self, interleaving: Interleaving, count: u64) -> u64 {
         let subregions = interleaving.subregions();
         match self {
             Self::Cpu(vpls) => {
@@ -143,9 +144,9 @@ impl FrameVpls<'_> {
                 }
                 counts.into_iter().max().unwrap_or(0)
             }
-            Self::Gpu(_) if subregions <= 1 => self.capacity() as u64,
+            Self::Gpu(_) if subregions <= 1 => count,
             Self::Gpu(_) => {
-                let share = self.capacity() as f64 / f64::from(subregions);
+                let share = count as f64 / f64::from(subregions);
                 (share + 6.0 * share.sqrt()).ceil() as u64
             }
         }
@@ -231,14 +232,24 @@ pub(crate) fn check_input(ctx: &GpuContext, frame: &CullFrame) -> Result<CullSiz
     let vpl_count = u32::try_from(frame.vpls.capacity())
         .map_err(|_| GpuError::Input(format!("{} VPLs exceed u32", frame.vpls.capacity())))?;
     // A tile walks its subregion's VPLs, and a pixel's list holds at most those: one
-    // invocation's loops run at most about once per VPL of the largest subregion, one more
-    // per round of 256 and a few dozen besides (a sixteenth more and 64 cover them).
-    if ctx.loop_budget.is_some() {
-        let most = frame.vpls.largest_subregion(frame.interleaving);
+    // invocation's loops run at most once per VPL of the largest subregion, up to 18 more per
+    // round of 256 (the one-pass tiled shading's) and a few dozen besides.
+    if let Some(budget) = ctx.loop_budget {
+        let iterations = |most: u64| most + most / 8 + 64;
+        let capacity = frame.vpls.capacity() as u64;
+        let mut most = frame.vpls.largest_subregion(frame.interleaving, capacity);
+        if let FrameVpls::Gpu(vpls) = frame.vpls {
+            if iterations(most) > budget {
+                // The capacity only bounds the count: read the count (4 bytes) before refusing.
+                let count = u64::from(vpls.read_count(ctx)?);
+                most = frame.vpls.largest_subregion(frame.interleaving, count);
+            }
+        }
         ctx.check_loop_budget(
-            || format!("culling and shading {most} VPLs in one of the {k}x{k} subregions"),
-            most + most / 16 + 64,
-            "raise --interleave K (the VPLs per subregion fall as 1/K²) or lower --rsm",
+            || format!("culling and shading up to {most} VPLs in one of the {k}x{k} subregions"),
+            iterations(most),
+            "raise --interleave K (the VPLs per subregion fall as 1/K²), lower --rsm or shade \
+             one of the --lobes",
         )?;
     }
     Ok(CullSizes {

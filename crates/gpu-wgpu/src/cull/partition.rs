@@ -45,6 +45,13 @@ impl PartitionPass {
         status: &wgpu::Buffer,
     ) -> Result<GpuPartition, GpuError> {
         let (chunks, chunk) = chunks(count.capacity(), subregions);
+        // Per step of 256 VPLs about 63 iterations (the bitonic sort's and the prefix's
+        // loops), and one per 256 subregions.
+        ctx.check_loop_budget(
+            || format!("partitioning runs of {chunk} VPLs into {subregions} subregions"),
+            64 * u64::from(chunk.div_ceil(256)) + u64::from(subregions.div_ceil(256)) + 64,
+            "lower the interleaving K or the VPLs",
+        )?;
         let cells = subregions * chunks;
         let grid = Grid::new(
             u64::from(chunks),

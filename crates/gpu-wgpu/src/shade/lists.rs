@@ -73,6 +73,20 @@ impl ShadePass {
         input: &CullInput,
         lists: &LightLists,
     ) -> Result<Image, GpuError> {
+        // A pixel's loop runs once per entry of its list.
+        if ctx.loop_budget.is_some() {
+            let longest = lists
+                .offsets
+                .windows(2)
+                .map(|w| w[1].saturating_sub(w[0]))
+                .max();
+            let longest = u64::from(longest.unwrap_or(0));
+            ctx.check_loop_budget(
+                || format!("shading a light list of {longest} VPLs"),
+                longest + 64,
+                "shorten the lists",
+            )?;
+        }
         let gpu = GpuLightLists::upload(ctx, lists, input.gbuffer.samples.len(), input.vpls.len())?;
         self.shade_read_back(ctx, input, &gpu)
     }

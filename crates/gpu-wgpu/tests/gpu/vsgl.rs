@@ -377,3 +377,31 @@ fn vsgl_shading_refuses_out_of_domain_input() {
     let b = pass.shade(&ctx, &gbuffer, &vsgls).unwrap();
     assert_eq!(a.pixels, b.pixels);
 }
+
+/// On Mesa's llvmpipe, which ends a shader invocation's loops after 65,535 iterations in all,
+/// a pixel's sum over 16,384 VSGLs came out 15% dark: there shading 8,184 VSGLs or more is
+/// refused with the typed error naming the count and `--vsgls`, and 8,183 are shaded; other
+/// adapters shade both.
+#[test]
+fn vsgls_beyond_the_adapters_loop_budget_are_refused() {
+    let Some(ctx) = gpu() else { return };
+    let pass = VsglShadePass::new(&ctx).unwrap();
+    let gbuffer = extreme_gbuffer();
+    let good = input(&extreme_vsgls()[5], DiffuseEmission::Sg);
+    let shaded = |n: usize| {
+        let vsgls = GpuVsgls::upload(&ctx, &vec![good; n]).unwrap();
+        pass.shade(&ctx, &gbuffer, &vsgls).map(|_| ())
+    };
+    assert!(shaded(8_183).is_ok());
+    match (shaded(8_184), ctx.loop_budget) {
+        (Err(e @ GpuError::LoopBudget { .. }), Some(_)) => {
+            let text = e.to_string();
+            assert!(
+                text.contains("8184 VSGLs") && text.contains("--vsgls"),
+                "{text}"
+            );
+        }
+        (Ok(()), None) => {}
+        (got, budget) => panic!("with a loop budget {budget:?}: {got:?}"),
+    }
+}

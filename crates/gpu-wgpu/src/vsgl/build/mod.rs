@@ -43,6 +43,7 @@ use crate::vsgl::build::records::{GpuBuildParams, GpuTree, CLAMPED_DIFFUSE, COUN
 use crate::vsgl::shade::records::{GpuVsgl, GpuVsglStatus};
 use crate::vsgl::shade::specular_table;
 use crate::vsgl::shade::GpuVsgls;
+use crate::vsgl::shade::ITERATIONS_PER_VSGL;
 use slc_core::frame::DiffuseEmission;
 use slc_core::vsgl::{point_shift, SampleSet};
 
@@ -279,10 +280,10 @@ impl VsglBuildPass {
         camera_vsgls: u32,
         sampling: &VsglSampling,
     ) -> Result<(), GpuError> {
-        // Each RSM texel sums the light of every camera VSGL in one loop.
+        // Each RSM texel sums the light of every camera VSGL as a pixel sums the VSGLs.
         ctx.check_loop_budget(
             || format!("weighing the RSM texels by {camera_vsgls} camera VSGLs"),
-            u64::from(camera_vsgls) + 64,
+            ITERATIONS_PER_VSGL * u64::from(camera_vsgls) + 64,
             "lower --camera-vsgls",
         )?;
         let (w, h) = (gbuffer.width, gbuffer.height);
