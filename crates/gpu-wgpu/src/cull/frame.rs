@@ -215,7 +215,10 @@ pub(crate) struct CullSizes {
 
 /// The checks every CPU culler makes first (the sample count was checked when the frame was
 /// made): pixel indices in u32, 1 <= K <= [`MAX_K`], a VPL capacity (`FrameVpls::capacity`)
-/// in u32.
+/// in u32; and on an adapter that ends a shader's loops early ([`GpuContext::loop_budget`]),
+/// the largest subregion's VPLs within what a tile's and a pixel's loops can walk
+/// ([`GpuError::LoopBudget`]), reading the GPU's VPL count back (4 bytes) where the
+/// capacity alone would refuse them.
 pub(crate) fn check_input(ctx: &GpuContext, frame: &CullFrame) -> Result<CullSizes, GpuError> {
     let pixels = u32::try_from(u64::from(frame.width) * u64::from(frame.height)).map_err(|_| {
         GpuError::Input(format!(
@@ -233,7 +236,8 @@ pub(crate) fn check_input(ctx: &GpuContext, frame: &CullFrame) -> Result<CullSiz
         .map_err(|_| GpuError::Input(format!("{} VPLs exceed u32", frame.vpls.capacity())))?;
     // A tile walks its subregion's VPLs, and a pixel's list holds at most those: one
     // invocation's loops run at most once per VPL of the largest subregion, up to 18 more per
-    // round of 256 (the one-pass tiled shading's) and a few dozen besides.
+    // round of 256 (the one-pass tiled shading's; an eighth allows 32) and a few dozen
+    // besides.
     if let Some(budget) = ctx.loop_budget {
         let iterations = |most: u64| most + most / 8 + 64;
         let capacity = frame.vpls.capacity() as u64;

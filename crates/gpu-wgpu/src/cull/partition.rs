@@ -50,7 +50,7 @@ impl PartitionPass {
         ctx.check_loop_budget(
             || format!("partitioning runs of {chunk} VPLs into {subregions} subregions"),
             64 * u64::from(chunk.div_ceil(256)) + u64::from(subregions.div_ceil(256)) + 64,
-            "lower the interleaving K or the VPLs",
+            "lower K (the subregions) or the VPLs (--rsm)",
         )?;
         let cells = subregions * chunks;
         let grid = Grid::new(

@@ -37,7 +37,9 @@ fn the_scan_is_the_exclusive_prefix_sum() {
         255,
         256,
         257,
+        2_048,
         2_051,
+        3_840,
         10_257,
         (1 << 21) + 13,
         9_000_001,
@@ -57,5 +59,11 @@ fn the_scan_is_the_exclusive_prefix_sum() {
         assert_eq!((status.total, status.total_overflow), (sum, 0), "n {n}");
     }
     let (_, status) = scanned(&ctx, &scan, &[u32::MAX; 3000]);
+    assert_eq!(status.total_overflow, 1);
+    // A sum beyond u32 within the first invocation's run alone (runs of 9 values), which
+    // wraps to 0 before the runs' sums are scanned: only the run's walk can flag it.
+    let mut values = vec![0u32; 2_051];
+    values[..2].copy_from_slice(&[u32::MAX, 1]);
+    let (_, status) = scanned(&ctx, &scan, &values);
     assert_eq!(status.total_overflow, 1);
 }
