@@ -686,6 +686,57 @@ fn gpu_backend_refuses_what_it_lacks_and_suggests_the_cpu() {
     }
 }
 
+/// Mesa's llvmpipe (CI's adapter) ends a shader's loops after 65,535 iterations in all: there
+/// a frame whose subregion holds more VPLs than a pixel's list can walk is refused by name
+/// (the built-in scene's 69,213 VPLs at RSM 80 with K = 1, unculled), and one whose buffer's
+/// capacity alone would be refused but whose count fits (RSM 72: 56,026 VPLs in 62,208
+/// places) renders after the count is read back. An adapter without the limit renders both.
+#[test]
+fn gpu_frames_beyond_the_adapters_loop_limit_are_refused_by_name() {
+    if !gpu_available() {
+        return;
+    }
+    let budget = slc_gpu_wgpu::GpuContext::new().unwrap().loop_budget;
+    let render = |rsm: &str| {
+        slc()
+            .args([
+                "render",
+                "--width",
+                "8",
+                "--height",
+                "8",
+                "--backend",
+                "gpu",
+            ])
+            .args([
+                "--culling",
+                "none",
+                "--interleave",
+                "1",
+                "--no-denoise",
+                "--rsm",
+                rsm,
+            ])
+            .arg("--out")
+            .arg(out_dir(&format!("loop-budget-{rsm}")))
+            .output()
+            .unwrap()
+    };
+    let o = render("80");
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.success(), budget.is_none(), "{err}");
+    if budget.is_some() {
+        assert!(
+            err.contains("VPLs in one of the 1x1 subregions")
+                && err.contains("--interleave")
+                && err.contains("--backend cpu"),
+            "{err}"
+        );
+    }
+    let o = render("72");
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+}
+
 /// `--gpu-tiled lists` (cull into light lists, shade in a second pass) renders the same
 /// indirect image as the default one-pass frame; without `--backend gpu` it is an error.
 #[test]
