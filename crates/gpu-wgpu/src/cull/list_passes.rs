@@ -277,7 +277,7 @@ impl ListPasses {
                 ctx.encode_dispatch(encoder, kernel.label, kernel.pipeline, &buffers, tiles.grid);
                 if mode == CULL_COUNT {
                     self.scan
-                        .encode(ctx, encoder, &offsets, list_count, &tiles.status);
+                        .encode(ctx, encoder, &offsets, list_count, &tiles.status)?;
                 }
             }
             Ok(())

@@ -83,7 +83,7 @@ impl PartitionPass {
                 grid,
             );
             if mode == CULL_COUNT {
-                scan.encode(ctx, encoder, &counts, cells, status);
+                scan.encode(ctx, encoder, &counts, cells, status)?;
             }
         }
         Ok(GpuPartition { sub_offsets, order })

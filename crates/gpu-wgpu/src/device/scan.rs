@@ -1,7 +1,7 @@
 //! Exclusive prefix sum of u32 counts into offsets (`scan.wesl`), in place, with the
 //! total appended: the light-list offsets from the per-tile list lengths.
 use crate::device::buffers::{uniform, Grid};
-use crate::device::context::GpuContext;
+use crate::device::context::{GpuContext, GpuError};
 use bytemuck::{Pod, Zeroable};
 
 /// Parameters of the exclusive scan (`scan.wesl`, `ScanParams`).
@@ -29,7 +29,8 @@ impl ScanPass {
     }
 
     /// Records the scan of `values[0..count]` (the buffer holds `count + 1` u32); the total
-    /// goes to `values[count]` and to `GpuCullStatus::total` in `status`.
+    /// goes to `values[count]` and to `GpuCullStatus::total` in `status`. Errors where the
+    /// adapter ends loops before a run's walk is done ([`GpuContext::check_loop_budget`]).
     pub fn encode(
         &self,
         ctx: &GpuContext,
@@ -37,7 +38,15 @@ impl ScanPass {
         values: &wgpu::Buffer,
         count: u32,
         status: &wgpu::Buffer,
-    ) {
+    ) -> Result<(), GpuError> {
+        // Each invocation walks its run of ⌈count / 256⌉ values twice, eight per iteration
+        // and the last few one by one, and scans the 256 runs' sums in eight steps.
+        let run = u64::from(count.div_ceil(256));
+        ctx.check_loop_budget(
+            || format!("scanning {count} values"),
+            2 * (run / 8 + 9) + 64,
+            "lower the image size or the light count",
+        )?;
         let params = uniform(ctx, "scan params", &GpuScanParams { count, pad: [0; 3] });
         ctx.encode_dispatch(
             encoder,
@@ -46,5 +55,6 @@ impl ScanPass {
             &[&params, values, status],
             Grid { x: 1, y: 1 },
         );
+        Ok(())
     }
 }

@@ -183,7 +183,7 @@ impl VplGenPass {
                     *grid,
                 );
             }
-            self.scan.encode(ctx, encoder, &counts, total, &status);
+            self.scan.encode(ctx, encoder, &counts, total, &status)?;
             for (params, grid, map) in &write_passes {
                 ctx.encode_dispatch(
                     encoder,

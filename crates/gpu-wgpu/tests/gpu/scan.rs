@@ -16,8 +16,7 @@ fn scanned(ctx: &GpuContext, scan: &ScanPass, values: &[u32]) -> (Vec<u32>, GpuC
     let buffer = upload(ctx, "scan values", &padded).unwrap();
     let status = upload(ctx, "scan status", &[GpuCullStatus::CLEAR]).unwrap();
     ctx.submit("scan test", |encoder| {
-        scan.encode(ctx, encoder, &buffer, values.len() as u32, &status);
-        Ok(())
+        scan.encode(ctx, encoder, &buffer, values.len() as u32, &status)
     })
     .unwrap();
     let out = read_back(ctx, "scan values", &buffer, padded.len()).unwrap();

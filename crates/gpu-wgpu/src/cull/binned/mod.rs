@@ -162,7 +162,7 @@ impl BinnedCuller {
                     grid,
                 );
                 if mode == CULL_COUNT {
-                    self.scan.encode(ctx, encoder, &offsets, pixels, &status);
+                    self.scan.encode(ctx, encoder, &offsets, pixels, &status)?;
                 }
             }
             Ok(())

@@ -143,7 +143,7 @@ impl TightRefiner {
                 );
                 if mode == CULL_COUNT {
                     self.scan
-                        .encode(ctx, encoder, &offsets, list_count, &status);
+                        .encode(ctx, encoder, &offsets, list_count, &status)?;
                 }
             }
             Ok(())

@@ -412,6 +412,14 @@ impl VsglBuildPass {
         if count == 0 {
             return Ok((vsgls, centres, Count::Host(0)));
         }
+        // Each light's draw sums the faces' masses (twice with the view) and descends the
+        // tree from a face's root, a few iterations per face and level.
+        let tree = pyramid.tree;
+        ctx.check_loop_budget(
+            || format!("sampling VSGLs over {} RSM faces", tree.faces),
+            u64::from(tree.faces) * (3 + 4 * u64::from(tree.levels)) + 64,
+            "use fewer lights",
+        )?;
         let marks = output::<u32>(ctx, "vsgl sample marks", 2 * pyramid.tree.len())?;
         let hit_node = output::<u32>(ctx, "vsgl sample texels", count)?;
         let slots = output::<u32>(ctx, "vsgl light slots", count + 1)?;
@@ -443,7 +451,7 @@ impl VsglBuildPass {
         let own = [(MARKS, &marks), (HIT_NODE, &hit_node), (SLOTS, &slots)];
         c.dispatch("vsgl_own", &self.own, params, &own)?;
         self.scan
-            .encode(ctx, c.encoder, &slots, sampling.count, &scanned);
+            .encode(ctx, c.encoder, &slots, sampling.count, &scanned)?;
         let mut emit = vec![
             (STATUS, pyramid.status),
             (VIEW, view),
