@@ -102,3 +102,32 @@ fn each_map_draws_its_own_points() {
         .count();
     assert!(differ > texels / 10, "{differ} of {texels} texels differ");
 }
+
+/// A disc's splat walks (2k + 1)² texels: on Mesa's llvmpipe, which ends a shader
+/// invocation's loops after 65,535 iterations in all, a `max_splat` of 128 or more is refused
+/// by name (127 is drawn); other adapters draw both.
+#[test]
+fn splats_beyond_the_adapters_loop_budget_are_refused() {
+    use slc_gpu_wgpu::GpuError;
+    let Some(ctx) = gpu() else { return };
+    let scene = builtin("default").unwrap();
+    let drawn = |max_splat: u32| {
+        let settings = IsmSettings {
+            max_splat,
+            ..sparse()
+        };
+        let casters = caster_points(&scene, &settings);
+        IsmPass::new(&ctx)
+            .unwrap()
+            .render(&ctx, &casters, &[Vec3::ZERO], &settings)
+            .map(|_| ())
+    };
+    assert!(drawn(127).is_ok());
+    match (drawn(128), ctx.loop_budget) {
+        (Err(e @ GpuError::LoopBudget { .. }), Some(_)) => {
+            assert!(e.to_string().contains("max_splat"), "{e}");
+        }
+        (Ok(()), None) => {}
+        (got, budget) => panic!("with a loop budget {budget:?}: {got:?}"),
+    }
+}

@@ -251,6 +251,13 @@ impl IsmPass {
                 "ISM settings {settings:?} not finite"
             )));
         }
+        // A point's splat walks the (2k + 1)² texels of its disc, k <= max_splat.
+        let k = u64::from(settings.max_splat);
+        ctx.check_loop_budget(
+            || format!("splatting discs up to {k} texels wide into the ISMs"),
+            (2 * k + 1).pow(2) + 2 * k + 64,
+            "lower the ISM's max_splat",
+        )?;
         let points = u32::try_from(casters.len())
             .map_err(|_| GpuError::Input(format!("{} caster points exceed u32", casters.len())))?;
         let capacity = maps.capacity();
