@@ -698,29 +698,12 @@ fn gpu_frames_beyond_the_adapters_loop_limit_are_refused_by_name() {
     }
     let budget = slc_gpu_wgpu::GpuContext::new().unwrap().loop_budget;
     let render = |rsm: &str| {
-        slc()
-            .args([
-                "render",
-                "--width",
-                "8",
-                "--height",
-                "8",
-                "--backend",
-                "gpu",
-            ])
-            .args([
-                "--culling",
-                "none",
-                "--interleave",
-                "1",
-                "--no-denoise",
-                "--rsm",
-                rsm,
-            ])
-            .arg("--out")
-            .arg(out_dir(&format!("loop-budget-{rsm}")))
-            .output()
-            .unwrap()
+        let args = "render --width 8 --height 8 --backend gpu --culling none --interleave 1 \
+                    --no-denoise --rsm";
+        run(
+            &format!("{args} {rsm}"),
+            &out_dir(&format!("loop-budget-{rsm}")),
+        )
     };
     let o = render("80");
     let err = String::from_utf8_lossy(&o.stderr);
