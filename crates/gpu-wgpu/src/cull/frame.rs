@@ -129,29 +129,6 @@ impl FrameVpls<'_> {
         }
     }
 
-    /// The most VPLs one of the K² subregions of `interleaving` can hold
-    /// (`Interleaving::vpl_subregion`): counted for CPU VPLs; for GPU VPLs, whose ids stay on
-    /// the GPU, a share of `count` VPLs (their count, or the capacity that bounds it) plus
-    /// six standard deviations of it (the subregions are drawn by a hash of the id), `count`
-    /// itself where K = 1.
-    pub fn largest_subregion(&self, interleaving: Interleaving, count: u64) -> u64 {
-        let subregions = interleaving.subregions();
-        match self {
-            Self::Cpu(vpls) => {
-                let mut counts = vec![0u64; subregions as usize];
-                for v in vpls.iter() {
-                    counts[interleaving.vpl_subregion(v.id) as usize] += 1;
-                }
-                counts.into_iter().max().unwrap_or(0)
-            }
-            Self::Gpu(_) if subregions <= 1 => count,
-            Self::Gpu(_) => {
-                let share = count as f64 / f64::from(subregions);
-                (share + 6.0 * share.sqrt()).ceil() as u64
-            }
-        }
-    }
-
     /// Whether there can be no VPL.
     pub fn is_empty(&self) -> bool {
         self.capacity() == 0
@@ -240,15 +217,7 @@ pub(crate) fn check_input(ctx: &GpuContext, frame: &CullFrame) -> Result<CullSiz
     // besides.
     if let Some(budget) = ctx.loop_budget {
         let iterations = |most: u64| most + most / 8 + 64;
-        let capacity = frame.vpls.capacity() as u64;
-        let mut most = frame.vpls.largest_subregion(frame.interleaving, capacity);
-        if let FrameVpls::Gpu(vpls) = frame.vpls {
-            if iterations(most) > budget {
-                // The capacity only bounds the count: read the count (4 bytes) before refusing.
-                let count = u64::from(vpls.read_count(ctx)?);
-                most = frame.vpls.largest_subregion(frame.interleaving, count);
-            }
-        }
+        let most = largest_subregion(ctx, frame, |most| iterations(most) <= budget)?;
         ctx.check_loop_budget(
             || format!("culling and shading up to {most} VPLs in one of the {k}x{k} subregions"),
             iterations(most),
@@ -261,6 +230,43 @@ pub(crate) fn check_input(ctx: &GpuContext, frame: &CullFrame) -> Result<CullSiz
         k,
         vpl_count,
     })
+}
+
+/// The most VPLs one of the frame's K² subregions can hold (`Interleaving::vpl_subregion`):
+/// counted for CPU VPLs. GPU VPLs keep their ids on the GPU: a share of their number plus six
+/// standard deviations of it (the subregions are drawn by a hash of the id; the number itself
+/// where K = 1), first of the buffer's capacity and, where that share does not pass `fits`,
+/// of their count read back (4 bytes).
+fn largest_subregion(
+    ctx: &GpuContext,
+    frame: &CullFrame,
+    fits: impl Fn(u64) -> bool,
+) -> Result<u64, GpuError> {
+    let interleaving = frame.interleaving;
+    let subregions = interleaving.subregions();
+    let share = |count: u64| match subregions {
+        1 => count,
+        _ => {
+            let share = count as f64 / f64::from(subregions);
+            (share + 6.0 * share.sqrt()).ceil() as u64
+        }
+    };
+    match frame.vpls {
+        FrameVpls::Cpu(vpls) => {
+            let mut counts = vec![0u64; subregions as usize];
+            for v in vpls {
+                counts[interleaving.vpl_subregion(v.id) as usize] += 1;
+            }
+            Ok(counts.into_iter().max().unwrap_or(0))
+        }
+        FrameVpls::Gpu(vpls) => {
+            let most = share(vpls.count.capacity as u64);
+            if fits(most) {
+                return Ok(most);
+            }
+            Ok(share(u64::from(vpls.read_count(ctx)?)))
+        }
+    }
 }
 
 /// The uniform per-subregion tile grid (`GpuCullParams`): `tiles_x` x `tiles_y` tiles of

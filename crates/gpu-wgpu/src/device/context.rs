@@ -480,7 +480,8 @@ pub fn is_llvmpipe(info: &wgpu::AdapterInfo) -> bool {
 pub fn is_software_adapter(info: &wgpu::AdapterInfo) -> bool {
     let name = info.name.to_ascii_lowercase();
     info.device_type == wgpu::DeviceType::Cpu
-        || ["llvmpipe", "lavapipe", "softpipe", "warp", "swiftshader"]
+        || is_llvmpipe(info)
+        || ["softpipe", "warp", "swiftshader"]
             .iter()
             .any(|s| name.contains(s))
 }
