@@ -16,6 +16,19 @@ pub struct ShearedRay {
 
 impl ShearedRay {
     pub fn new(origin: Vec3, dir: Vec3) -> Self {
+        let [kx, ky, kz] = Self::axes_of(dir);
+        let s = Vec3::new(dir[kx] / dir[kz], dir[ky] / dir[kz], 1.0 / dir[kz]);
+        Self {
+            origin: origin.into(),
+            k: [kx, ky, kz],
+            s,
+        }
+    }
+
+    /// The permuted axes (kx, ky, kz) of a ray along `dir`: kz its dominant axis, kx and ky
+    /// swapped where that component is negative (which keeps the triangles' winding).
+    #[inline]
+    pub fn axes_of(dir: Vec3) -> [usize; 3] {
         let a = dir.abs();
         let kz = if a.x >= a.y && a.x >= a.z {
             0
@@ -24,16 +37,11 @@ impl ShearedRay {
         } else {
             2
         };
-        let (mut kx, mut ky) = ((kz + 1) % 3, (kz + 2) % 3);
-        // Keep the winding of the triangle by swapping when the dominant component is negative.
+        let (kx, ky) = ((kz + 1) % 3, (kz + 2) % 3);
         if dir[kz] < 0.0 {
-            std::mem::swap(&mut kx, &mut ky);
-        }
-        let s = Vec3::new(dir[kx] / dir[kz], dir[ky] / dir[kz], 1.0 / dir[kz]);
-        Self {
-            origin: origin.into(),
-            k: [kx, ky, kz],
-            s,
+            [ky, kx, kz]
+        } else {
+            [kx, ky, kz]
         }
     }
 

@@ -18,9 +18,10 @@
 //! edge (the f64 decision) go through the scalar code.
 use super::{Tracer, NOT_MASKED};
 use crate::watertight::ShearedRay;
+use core::mem::MaybeUninit;
 use glam::Vec3;
 use obvhs::cwbvh::node::CwBvhNode;
-use obvhs::ray::Ray;
+use obvhs::ray::safe_inverse;
 use slc_bounds::lanes::{max, min, Lanes8, Real, F8};
 
 /// obvhs's lower bound on a box's entry distance (`cwbvh::node::EPSILON`, crate-private).
@@ -192,12 +193,14 @@ impl Tracer {
         if self.bvh.nodes.is_empty() || rays.used == 0 {
             return true;
         }
-        let mut stack = [(0u32, 0u8); STACK];
+        // Not cleared: zeroing its 1.5 KB took a third of an empty traversal's time.
+        let mut stack = [MaybeUninit::<(u32, u8)>::uninit(); STACK];
         let mut top = 1;
-        stack[0] = (0, rays.used);
+        stack[0].write((0, rays.used));
         while top > 0 {
             top -= 1;
-            let (index, entered) = stack[top];
+            // SAFETY: every entry below `top` was written (pushes write at `top` first).
+            let (index, entered) = unsafe { stack[top].assume_init() };
             let live = entered & !query.done();
             if live == 0 {
                 continue;
@@ -226,7 +229,7 @@ impl Tracer {
                 return false;
             }
             for &(_, child, hit) in inner.iter() {
-                stack[top] = (child, hit);
+                stack[top].write((child, hit));
                 top += 1;
             }
         }
@@ -474,40 +477,66 @@ fn slot_hits<L: Lanes8>(node: &CwBvhNode, lanes: &Lanes<L>, live: u8, reach: u8)
     out
 }
 
-/// The lanes of `rays`, or `None` where the rays in use differ in octant or shear axes.
+/// The lanes of `rays`, or `None` where the rays in use differ in octant or shear axes (or
+/// none is in use). Each lane's inverse direction is obvhs's (`Ray::new`: `safe_inverse` of
+/// each component) and its shear constants [`ShearedRay::new`]'s, formed for the eight lanes
+/// at once with the same divisions; a lane not in use copies the first one in use, with an
+/// empty range (tmax −∞), so that it never records a hit and widens no interval.
 #[inline(always)]
 fn packet_lanes<L: Lanes8>(rays: &Rays8) -> Option<Lanes<L>> {
-    let mut first: Option<([bool; 3], [usize; 3])> = None;
+    if rays.used == 0 {
+        return None;
+    }
+    let lead = rays.used.trailing_zeros() as usize;
+    let key = packet_key(rays.dir[lead]);
     let mut origin = [[0.0f32; 8]; 3];
-    let mut inv = [[1.0f32; 8]; 3];
-    let mut shear = [[0.0f32; 8]; 3];
+    let mut dir = [[0.0f32; 8]; 3];
     let mut tmin = [0.0f32; 8];
     let mut tmax = [f32::NEG_INFINITY; 8];
-    for i in set_lanes(rays.used) {
-        let (o, d) = (rays.origin[i], rays.dir[i]);
-        let ray = Ray::new(o.into(), d.into(), rays.tmin[i], rays.tmax[i]);
-        let sheared = ShearedRay::new(o, d);
-        let key = ([d.x < 0.0, d.y < 0.0, d.z < 0.0], sheared.axes());
-        if *first.get_or_insert(key) != key {
-            return None;
-        }
+    let mut coherent = true;
+    for i in 0..8 {
+        let used = rays.used & (1 << i) != 0;
+        let j = if used { i } else { lead };
+        let (o, d) = (rays.origin[j], rays.dir[j]);
+        coherent &= packet_key(d) == key;
         for a in 0..3 {
             origin[a][i] = o[a];
-            inv[a][i] = ray.inv_direction[a];
-            shear[a][i] = sheared.shear()[a];
+            dir[a][i] = d[a];
         }
-        tmin[i] = rays.tmin[i];
-        tmax[i] = rays.tmax[i];
+        if used {
+            tmin[i] = rays.tmin[i];
+            tmax[i] = rays.tmax[i];
+        }
     }
-    let (negative, k) = first?;
+    if !coherent {
+        return None;
+    }
+    let d = rays.dir[lead];
+    let (negative, k) = ([d.x < 0.0, d.y < 0.0, d.z < 0.0], ShearedRay::axes_of(d));
+    let d: [L; 3] = [lanes_of(dir[0]), lanes_of(dir[1]), lanes_of(dir[2])];
+    let one = L::splat(1.0);
+    let mut inv = [
+        (one / d[0]).store().0,
+        (one / d[1]).store().0,
+        (one / d[2]).store().0,
+    ];
+    for (inv, d) in inv.iter_mut().zip(&dir) {
+        for (v, &d) in inv.iter_mut().zip(d) {
+            if d.abs() <= f32::EPSILON {
+                *v = safe_inverse(d);
+            }
+        }
+    }
+    let [kx, ky, kz] = k;
+    let shear = [d[kx] / d[kz], d[ky] / d[kz], one / d[kz]];
     let mut reach = Reach {
         origin: [[f32::INFINITY, f32::NEG_INFINITY]; 3],
         inv: [[f32::INFINITY, f32::NEG_INFINITY]; 3],
         origin_abs: [0.0; 3],
         inv_abs: [0.0; 3],
     };
-    for i in set_lanes(rays.used) {
-        for a in 0..3 {
+    for a in 0..3 {
+        for i in 0..8 {
             let (o, v) = (origin[a][i], inv[a][i]);
             reach.origin[a] = [reach.origin[a][0].min(o), reach.origin[a][1].max(o)];
             reach.inv[a] = [reach.inv[a][0].min(v), reach.inv[a][1].max(v)];
@@ -524,7 +553,7 @@ fn packet_lanes<L: Lanes8>(rays: &Rays8) -> Option<Lanes<L>> {
             lanes_of(origin[2]),
         ],
         inv: [lanes_of(inv[0]), lanes_of(inv[1]), lanes_of(inv[2])],
-        shear: [lanes_of(shear[0]), lanes_of(shear[1]), lanes_of(shear[2])],
+        shear,
         tmin: lanes_of(tmin),
         tmax: lanes_of(tmax),
         negative,
@@ -532,6 +561,15 @@ fn packet_lanes<L: Lanes8>(rays: &Rays8) -> Option<Lanes<L>> {
         k,
         reach,
     })
+}
+
+/// What a packet's rays must share, as one number: whether the direction is negative along
+/// x, y, z (bits 0-2) and its dominant axis kz (bits 3-4), which with the sign along it
+/// gives the watertight test's axes ([`ShearedRay::axes_of`]).
+#[inline(always)]
+fn packet_key(d: Vec3) -> u8 {
+    let kz = ShearedRay::axes_of(d)[2] as u8;
+    u8::from(d.x < 0.0) | (u8::from(d.y < 0.0) << 1) | (u8::from(d.z < 0.0) << 2) | (kz << 3)
 }
 
 /// The indices of the set bits of `used`, lowest first.
