@@ -83,7 +83,7 @@ pub use error::SceneError;
 pub use file_read::MAX_INPUT_FILE_BYTES;
 pub use frame::{RenderError, RenderSettings, RenderedFrame, Shaded, Timings};
 pub use framebuffer::{GBuffer, GSample, Image};
-pub use light::{one_minus_cos, Incident, Light, SpotCone, MAX_RADIOMETRIC};
+pub use light::{one_minus_cos, Emitter, Incident, Light, SpotCone, MAX_RADIOMETRIC};
 #[cfg(feature = "loaders")]
 pub use load::{load_scene, load_scene_file, MAX_DROPPED_SHARE};
 pub use material::{AlphaMask, Material, MaterialAnisotropy, MaterialModel, NormalMap, ALPHA_MIN};

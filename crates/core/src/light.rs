@@ -44,40 +44,23 @@ impl Light {
     /// Light from this source at `x`, without visibility. `None` where it delivers nothing
     /// (outside a spot cone, at the light's own position).
     pub fn incident(&self, x: Vec3) -> Option<Incident> {
-        match *self {
-            Light::Point {
-                position,
-                intensity,
-            } => point_incident(position, intensity, x),
-            Light::Spot {
-                position,
-                intensity,
-                ..
-            } => {
-                let inc = point_incident(position, intensity, x)?;
-                let falloff = self.spot_falloff(-inc.omega_i);
-                (falloff > 0.0).then(|| Incident {
-                    irradiance: inc.irradiance * falloff,
-                    ..inc
-                })
-            }
-            Light::Directional {
-                direction,
-                irradiance,
-            } => Some(Incident {
-                omega_i: -direction,
-                distance: f32::INFINITY,
-                irradiance,
-            }),
-        }
+        self.emitter().incident(x)
     }
 
     /// Angular falloff of a spot light in the unit direction `emitted` (1 for other
     /// lights): [`SpotCone::falloff`] of `1 − cos` of its angle to the axis.
     pub fn spot_falloff(&self, emitted: Vec3) -> f32 {
-        self.spot_cone().map_or(1.0, |(axis, cone)| {
-            cone.falloff(one_minus_cos(emitted, axis))
-        })
+        self.emitter().spot_falloff(emitted)
+    }
+
+    /// This light made ready for [`Emitter::incident`] at many points: a spot light's cone
+    /// (two sines) formed once, not at every point. The same values as [`Light::incident`]
+    /// and [`Light::spot_falloff`].
+    pub fn emitter(&self) -> Emitter<'_> {
+        Emitter {
+            light: self,
+            cone: self.spot_cone(),
+        }
     }
 
     /// A spot light's axis and [`SpotCone`]; `None` for other lights.
@@ -168,6 +151,57 @@ pub struct SpotCone {
     pub h_outer: f32,
     /// `h(θo) − h(θi)` (0 for a hard edge).
     pub h_width: f32,
+}
+
+/// A [`Light`] with its spot cone formed ([`Light::emitter`]).
+#[derive(Clone, Copy, Debug)]
+pub struct Emitter<'a> {
+    light: &'a Light,
+    cone: Option<(Vec3, SpotCone)>,
+}
+
+impl Emitter<'_> {
+    /// The light.
+    pub fn light(&self) -> &Light {
+        self.light
+    }
+
+    /// [`Light::incident`].
+    pub fn incident(&self, x: Vec3) -> Option<Incident> {
+        match *self.light {
+            Light::Point {
+                position,
+                intensity,
+            } => point_incident(position, intensity, x),
+            Light::Spot {
+                position,
+                intensity,
+                ..
+            } => {
+                let inc = point_incident(position, intensity, x)?;
+                let falloff = self.spot_falloff(-inc.omega_i);
+                (falloff > 0.0).then(|| Incident {
+                    irradiance: inc.irradiance * falloff,
+                    ..inc
+                })
+            }
+            Light::Directional {
+                direction,
+                irradiance,
+            } => Some(Incident {
+                omega_i: -direction,
+                distance: f32::INFINITY,
+                irradiance,
+            }),
+        }
+    }
+
+    /// [`Light::spot_falloff`].
+    pub fn spot_falloff(&self, emitted: Vec3) -> f32 {
+        self.cone.map_or(1.0, |(axis, cone)| {
+            cone.falloff(one_minus_cos(emitted, axis))
+        })
+    }
 }
 
 impl SpotCone {

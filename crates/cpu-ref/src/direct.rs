@@ -2,7 +2,7 @@
 use crate::blocks::par_blocks;
 use crate::tracer::{Rays8, Tracer};
 use glam::Vec3;
-use slc_core::{GBuffer, GSample, Image, Light, Progress};
+use slc_core::{Emitter, GBuffer, GSample, Image, Light, Progress};
 
 /// Radiance towards the camera reflected from every light at one surface point:
 /// `Σ f(ωl, ωo) E cos θl V` with E = I / d² (or the directional irradiance).
@@ -46,6 +46,7 @@ pub fn shade_direct_watched(
     progress: Progress,
     spare: Vec<Vec3>,
 ) -> Image {
+    let emitters: Vec<Emitter> = lights.iter().map(Light::emitter).collect();
     let pixels = par_blocks(gbuffer.width, gbuffer.height, spare, |block| {
         let samples: [Option<&GSample>; 8] = std::array::from_fn(|lane| {
             (block.used & (1 << lane) != 0)
@@ -56,8 +57,8 @@ pub fn shade_direct_watched(
         if progress.cancelled() {
             return sums;
         }
-        for light in lights {
-            light_at_block(tracer, light, &samples, &mut sums);
+        for emitter in &emitters {
+            light_at_block(tracer, emitter, &samples, &mut sums);
         }
         sums
     });
@@ -71,7 +72,7 @@ pub fn shade_direct_watched(
 /// Adds `light`'s reflected radiance to each sample's sum, its shadow rays traced together.
 fn light_at_block(
     tracer: &Tracer,
-    light: &Light,
+    light: &Emitter,
     samples: &[Option<&GSample>; 8],
     sums: &mut [Vec3; 8],
 ) {
@@ -90,7 +91,7 @@ fn light_at_block(
             continue;
         }
         let from = tracer.lift(g.position, g.geometric_normal);
-        let ray = match light {
+        let ray = match light.light() {
             Light::Directional { .. } => {
                 let (tmin, tmax) = tracer.escape_range();
                 Some((inc.omega_i, tmin, tmax))

@@ -34,6 +34,7 @@ pub fn trace_rsm(
         orthographic,
     } = RsmLayout::new(light, bounds);
     let orthographic = orthographic.is_some();
+    let emitter = light.emitter();
     let texel_size = 2.0 / n as f32;
     let texels = (0..faces.len() as u32 * n * n)
         .into_par_iter()
@@ -81,7 +82,7 @@ pub fn trace_rsm(
                 };
                 let intensity = match *light {
                     Light::Point { intensity, .. } => intensity,
-                    Light::Spot { intensity, .. } => intensity * light.spot_falloff(dir),
+                    Light::Spot { intensity, .. } => intensity * emitter.spot_falloff(dir),
                     Light::Directional { .. } => {
                         unreachable!("directional lights are orthographic")
                     }
