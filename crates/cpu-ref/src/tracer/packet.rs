@@ -72,8 +72,10 @@ struct Lanes<L: Real> {
 }
 
 /// What the rays in use share, per axis: the interval of their origins and of their
-/// inverse directions (all of one sign: the rays share an octant), and the largest
-/// magnitude of each, from which [`children_in_reach`] bounds its rounding.
+/// inverse directions (mostly of one sign, as the rays share an octant; a −0 component's
+/// inverse is −1/ε beside a +0 one's +1/ε), and the largest magnitude of each, from which
+/// [`children_in_reach`] bounds its rounding. A ray with a non-finite origin or inverse
+/// direction makes the magnitude infinite: nothing is left out for such a packet.
 #[derive(Clone, Copy, Debug)]
 struct Reach {
     origin: [[f32; 2]; 3],
@@ -190,7 +192,7 @@ impl Tracer {
         let Some(mut lanes) = packet_lanes::<L>(rays) else {
             return false;
         };
-        if self.bvh.nodes.is_empty() || rays.used == 0 {
+        if self.bvh.nodes.is_empty() {
             return true;
         }
         // Not cleared: zeroing its 1.5 KB took a third of an empty traversal's time.
@@ -386,12 +388,16 @@ fn is_inner(meta: u8) -> bool {
 ///
 /// Per axis, each child's near and far planes p + q e (q e is exact: e is a power of two)
 /// less the interval of the origins, times the interval of the inverse directions, bound
-/// every ray's slab distances from below (near) and above (far); a child is left out where
-/// the largest lower bound (and the box epsilon) exceeds the smallest upper bound (and the
-/// largest tmax) by more than `slack`. Each ray's own distances differ from the exact ones
-/// by a few f32 roundings of the terms they are formed from, at most a few 1e-7 of
-/// (|p| + 255 e + |o|)|1/d| per axis, as do these bounds: the slack is 1e-5 of the sum of
-/// those magnitudes. An infinite inverse direction (or any NaN) leaves nothing out.
+/// every ray's slab distances from below (near) and above (far), each moved outwards by its
+/// axis's slack; a child is left out where the largest lower bound (and the box epsilon)
+/// exceeds the smallest upper bound (and the largest tmax). Each ray's own distances along
+/// an axis differ from the exact ones by a few f32 roundings of the terms they are formed
+/// from, at most a few 1e-7 of (|p| + 255 e + |o|)|1/d| for that axis, as do these bounds:
+/// the slack is 1e-5 of that magnitude, per axis, so that an axis along which the rays barely
+/// move (|1/d| up to 1/ε) weakens only its own bounds. The four products of each interval
+/// bound the exact value whatever the signs. An axis with a non-finite ray ([`Reach`]) or an
+/// overflowing term bounds nothing (its slack is infinite, or its bound NaN, which the
+/// maximum and minimum pass over or which leaves every child in).
 #[inline(always)]
 fn children_in_reach<L: Lanes8>(node: &CwBvhNode, lanes: &Lanes<L>) -> u8 {
     let e = node.compute_extent();
@@ -406,7 +412,6 @@ fn children_in_reach<L: Lanes8>(node: &CwBvhNode, lanes: &Lanes<L>) -> u8 {
         (&node.child_min_z, &node.child_max_z),
     ];
     let (mut lower, mut upper) = (L::splat(BOX_EPSILON), L::splat(tmax));
-    let mut scale = 0.0f32;
     for (a, (lo, hi)) in planes.into_iter().enumerate() {
         let (p, ea) = (L::splat(node.p[a]), L::splat(e[a]));
         let (lo, hi) = (
@@ -420,13 +425,16 @@ fn children_in_reach<L: Lanes8>(node: &CwBvhNode, lanes: &Lanes<L>) -> u8 {
         };
         let (o0, o1) = (L::splat(r.origin[a][0]), L::splat(r.origin[a][1]));
         let (i0, i1) = (L::splat(r.inv[a][0]), L::splat(r.inv[a][1]));
+        let slack =
+            L::splat(1e-5 * (node.p[a].abs() + 256.0 * e[a] + r.origin_abs[a]) * r.inv_abs[a]);
         let (n0, n1) = (near - o1, near - o0);
-        lower = max(lower, min(min(n0 * i0, n0 * i1), min(n1 * i0, n1 * i1)));
+        let below = min(min(n0 * i0, n0 * i1), min(n1 * i0, n1 * i1));
+        lower = max(lower, below - slack);
         let (f0, f1) = (far - o1, far - o0);
-        upper = min(upper, max(max(f0 * i0, f0 * i1), max(f1 * i0, f1 * i1)));
-        scale += (node.p[a].abs() + 256.0 * e[a] + r.origin_abs[a]) * r.inv_abs[a];
+        let above = max(max(f0 * i0, f0 * i1), max(f1 * i0, f1 * i1));
+        upper = min(upper, above + slack);
     }
-    !L::bits((lower - upper).gt(L::splat(1e-5 * scale)))
+    !L::bits(lower.gt(upper))
 }
 
 /// Eight quantized planes as lanes.
@@ -542,6 +550,10 @@ fn packet_lanes<L: Lanes8>(rays: &Rays8) -> Option<Lanes<L>> {
             reach.inv[a] = [reach.inv[a][0].min(v), reach.inv[a][1].max(v)];
             reach.origin_abs[a] = reach.origin_abs[a].max(o.abs());
             reach.inv_abs[a] = reach.inv_abs[a].max(v.abs());
+            if !(o.is_finite() && v.is_finite()) {
+                // f32::min and max above pass over a NaN, whose lane's own test may pass.
+                reach.inv_abs[a] = f32::INFINITY;
+            }
         }
     }
     let octant =
@@ -658,11 +670,22 @@ mod tests {
         assert!(!tracer.traverse8(&mixed, &mut Closest { hits: [None; 8] }));
     }
 
+    /// `children_in_reach` in AVX2 lanes, for comparison with the plain arrays.
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2")]
+    fn reach_avx2(node: &CwBvhNode, rays: &Rays8) -> u8 {
+        let lanes = packet_lanes::<slc_bounds::lanes_avx::A8>(rays).unwrap();
+        children_in_reach(node, &lanes)
+    }
+
     /// `children_in_reach` leaves out no child whose box a lane's own test enters, at every
-    /// node of the built-in scene's BVH: for coherent camera packets, for packets from
-    /// scattered origins (shadow rays) with finite ranges, for rays along an axis (infinite
-    /// inverse directions) and for rays from far away; and it leaves out most children of
-    /// the coherent ones (else the test would hold for a function that leaves out nothing).
+    /// node of the built-in scene's BVH, for five kinds of packets, each of which enters
+    /// children: camera blocks; rays from scattered origins with finite ranges; rays straight
+    /// down from points under the ceiling whose x components are +0, −0, 1e-8 and 0.05
+    /// (inverse directions of both signs, up to 1/ε); rays from 6e4 away through the camera;
+    /// and camera blocks with one NaN origin. It leaves out most children of the camera
+    /// blocks (else the test would hold for a function that leaves out nothing), and the
+    /// AVX2 lanes agree with the plain arrays.
     #[test]
     fn children_in_reach_keep_every_child_a_lane_enters() {
         let scene = builtin("default").unwrap();
@@ -675,53 +698,74 @@ mod tests {
             seed ^= seed << 17;
             (seed >> 40) as f32 / (1u64 << 24) as f32
         };
-        let (mut entered, mut kept, mut children) = (0usize, 0usize, 0usize);
+        let avx2 = cfg!(target_arch = "x86_64") && std::arch::is_x86_feature_detected!("avx2");
+        let (mut entered, mut kept, mut children) = ([0usize; 5], [0usize; 5], [0usize; 5]);
         for case in 0..2000 {
+            let kind = case % 5;
             let mut rays = Rays8 {
                 used: 0xff,
                 ..Rays8::default()
             };
             let (i0, j0) = ((next() * 60.0) as u32, (next() * 46.0) as u32);
-            let far = glam::Vec3::new(3e4, -2e4, 5e4) * (case % 7 / 6) as f32;
             for l in 0..8 {
                 let (i, j) = (i0 + l as u32 % 4, j0 + l as u32 / 4);
                 rays.dir[l] = camera.ray_direction(i, j, 0.5, 0.5, 64, 48);
                 rays.origin[l] = camera.position;
-                match case % 4 {
-                    // Scattered origins with finite ranges.
+                match kind {
                     1 => {
                         rays.origin[l] +=
                             glam::Vec3::new(next() - 0.5, next() - 0.5, next() - 0.5) * 1.5;
                         rays.tmax[l] = next() * 4.0;
                         rays.tmin[l] = 1e-3;
                     }
-                    // Along an axis: 1/d is infinite on the other two.
-                    2 => rays.dir[l] = glam::Vec3::new(0.0, -1.0, 0.0),
-                    3 => rays.origin[l] += far - rays.dir[l] * far.length(),
+                    2 => {
+                        let x = [0.0, -0.0, 1e-8, 0.05][l % 4];
+                        rays.dir[l] = glam::Vec3::new(x, -1.0, 0.0).normalize();
+                        rays.origin[l] =
+                            glam::Vec3::new(next() * 1.8 - 0.9, 1.9, next() * 1.8 - 0.9);
+                    }
+                    3 => rays.origin[l] = camera.position - rays.dir[l] * 6e4,
+                    4 if l == 2 => rays.origin[l].y = f32::NAN,
                     _ => {}
                 }
             }
-            rays.used = if case % 5 == 0 { 0b1011_0110 } else { 0xff };
+            rays.used = if case % 3 == 0 { 0b1011_0110 } else { 0xff };
+            // Blocks across the image's centre change octant: the traversal takes them ray
+            // by ray.
             let Some(lanes) = packet_lanes::<F8>(&rays) else {
                 continue;
             };
             for node in &tracer.bvh.nodes {
                 let reach = children_in_reach(node, &lanes);
+                #[cfg(target_arch = "x86_64")]
+                if avx2 {
+                    // SAFETY: the CPU has AVX2, checked above.
+                    assert_eq!(unsafe { reach_avx2(node, &rays) }, reach);
+                }
                 let slots = slot_hits(node, &lanes, rays.used, 0xff);
                 for (j, &hit) in slots.iter().enumerate() {
                     if node.child_meta[j] == 0 {
                         continue;
                     }
-                    children += 1;
-                    kept += usize::from(reach & (1 << j) != 0);
+                    children[kind] += 1;
+                    kept[kind] += usize::from(reach & (1 << j) != 0);
                     if hit != 0 {
-                        entered += 1;
+                        entered[kind] += 1;
                         assert!(reach & (1 << j) != 0, "case {case}: child {j} left out");
                     }
                 }
             }
         }
-        assert!(entered > 1000, "{entered}");
-        assert!(kept < children / 2, "{kept} of {children} children kept");
+        assert!(entered.iter().all(|&n| n > 100), "{entered:?}");
+        // The camera blocks' intervals are narrow: most children are left out, also with a
+        // NaN origin (the axis it is on bounds nothing, the others as before).
+        assert!(
+            kept[0] < children[0] / 4,
+            "{kept:?} of {children:?} children kept"
+        );
+        assert!(
+            kept[4] < children[4] / 2,
+            "{kept:?} of {children:?} children kept"
+        );
     }
 }
