@@ -691,12 +691,10 @@ mod tests {
         let scene = builtin("default").unwrap();
         let tracer = Tracer::new(&scene);
         let camera = scene.camera_or_default();
-        let mut seed = 0x9e37_79b9_7f4a_7c15u64;
+        let mut counter = 0;
         let mut next = move || {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            (seed >> 40) as f32 / (1u64 << 24) as f32
+            counter += 1;
+            slc_core::rng::uniform(7, counter, 0, 0)
         };
         let avx2 = cfg!(target_arch = "x86_64") && std::arch::is_x86_feature_detected!("avx2");
         let (mut entered, mut kept, mut children) = ([0usize; 5], [0usize; 5], [0usize; 5]);
