@@ -1,12 +1,13 @@
 //! Reflective shadow maps traced from the light: the surface points the light's photons reach
 //! first, with the flux each texel carries, on the faces of [`RsmLayout`] (`slc_core::rsm`,
 //! which the GPU's rasterized maps share).
-use crate::tracer::Tracer;
+use crate::blocks::par_blocks;
+use crate::tracer::{Rays8, SurfaceHit, Tracer};
 use glam::Vec3;
-use rayon::prelude::*;
 use slc_core::rng::{stream, Sequence};
+use slc_core::rsm::RsmFace;
 pub use slc_core::rsm::{rectangle_solid_angle, Rsm, RsmLayout, RsmTexel};
-use slc_core::{Light, Scene};
+use slc_core::{Emitter, Light, Scene};
 
 /// Where inside each texel the light's ray goes.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -18,7 +19,9 @@ pub enum TexelSample {
     Jittered { seed: u32, pass: u32 },
 }
 
-/// Traces the reflective shadow map of `light`.
+/// Traces the reflective shadow map of `light`: its texels' rays from the light in 4x2
+/// blocks of a face, each block's rays traced together ([`Tracer::intersect_rays8`]; the
+/// same hits as ray by ray).
 pub fn trace_rsm(
     scene: &Scene,
     tracer: &Tracer,
@@ -27,92 +30,194 @@ pub fn trace_rsm(
     sample: TexelSample,
 ) -> Rsm {
     let n = resolution;
-    let bounds = scene.bounds().unwrap_or((Vec3::splat(-1.0), Vec3::ONE));
-    let RsmLayout {
-        faces,
-        origin,
-        orthographic,
-    } = RsmLayout::new(light, bounds);
-    let orthographic = orthographic.is_some();
-    let emitter = light.emitter();
-    let texel_size = 2.0 / n as f32;
-    let texels = (0..faces.len() as u32 * n * n)
-        .into_par_iter()
-        .map(|index| {
-            let face = faces[(index / (n * n)) as usize];
-            let (i, j) = (index % n, (index / n) % n);
-            let (s, t) = match sample {
-                TexelSample::Centre => (0.5, 0.5),
-                TexelSample::Jittered { seed, pass } => {
-                    Sequence::new(seed, index, stream::RSM_JITTER, 2 * pass).next_2d()
-                }
-            };
-            let e = face.extent;
-            let x = (-1.0 + (i as f32 + s) * texel_size) * e;
-            let y = (1.0 - (j as f32 + t) * texel_size) * e;
-            // The beam's cross-section is `beam` (orthographic) or `beam` times the squared
-            // distance (perspective, `beam` a solid angle).
-            let (ray_origin, dir, flux, beam) = if orthographic {
-                let area = (texel_size * e) * (texel_size * e);
-                let irradiance = match *light {
-                    Light::Directional { irradiance, .. } => irradiance,
-                    _ => unreachable!("only directional lights are orthographic"),
-                };
-                (
-                    origin + x * face.right + y * face.up,
-                    face.forward,
-                    irradiance * area,
-                    area,
-                )
-            } else {
-                let dir = (face.forward + x * face.right + y * face.up).normalize();
-                let solid_angle = match sample {
-                    TexelSample::Centre => {
-                        let (x0, y1) = (
-                            (-1.0 + i as f32 * texel_size) * e,
-                            (1.0 - j as f32 * texel_size) * e,
-                        );
-                        rectangle_solid_angle(x0, x0 + texel_size * e, y1 - texel_size * e, y1)
-                    }
-                    // Density of a uniform point on the texel, in solid angle:
-                    // dω = dA / (1 + x² + y²)^{3/2} on the plane at unit distance.
-                    TexelSample::Jittered { .. } => {
-                        (texel_size * e).powi(2) / (1.0 + x * x + y * y).powf(1.5)
-                    }
-                };
-                let intensity = match *light {
-                    Light::Point { intensity, .. } => intensity,
-                    Light::Spot { intensity, .. } => intensity * emitter.spot_falloff(dir),
-                    Light::Directional { .. } => {
-                        unreachable!("directional lights are orthographic")
-                    }
-                };
-                (origin, dir, intensity * solid_angle, solid_angle)
-            };
-            if flux.max_element() <= 0.0 {
-                return None;
+    let rays = TexelRays::new(scene, light, n, sample);
+    // The faces one above the other: texel (i, j) of face f is pixel (i, f n + j), whose
+    // row-major index is the texel's index.
+    let texels = par_blocks(n, rays.faces.len() as u32 * n, Vec::new(), |block| {
+        let mut packet = Rays8::default();
+        let mut beams = [(Vec3::ZERO, 0.0); 8];
+        for lane in block.lanes() {
+            if let Some((origin, dir, flux, beam)) = rays.ray(block.index(lane) as u32) {
+                packet.origin[lane] = origin;
+                packet.dir[lane] = dir;
+                packet.used |= 1 << lane;
+                beams[lane] = (flux, beam);
             }
-            let hit = tracer.intersect(scene, ray_origin, dir, f32::INFINITY)?;
-            let cross_section = if orthographic {
-                beam
-            } else {
-                beam * hit.distance * hit.distance
-            };
-            hit.front.then_some(RsmTexel {
-                position: hit.position,
-                normal: hit.shading_normal,
-                geometric_normal: hit.geometric_normal,
-                normal_mapped: hit.normal_mapped,
-                omega_i: -dir,
-                flux,
-                cross_section,
-                brdf: hit.brdf,
-            })
+        }
+        let hits = tracer.intersect_rays8(scene, &packet);
+        std::array::from_fn(|lane| {
+            let (flux, beam) = beams[lane];
+            rays.texel(hits[lane]?, packet.dir[lane], flux, beam)
         })
-        .collect();
+    });
     Rsm {
         resolution: n,
-        faces: faces.len() as u32,
+        faces: rays.faces.len() as u32,
         texels,
+    }
+}
+
+/// What a texel's ray and its texel are formed from.
+struct TexelRays<'a> {
+    light: &'a Light,
+    emitter: Emitter<'a>,
+    faces: Vec<RsmFace>,
+    origin: Vec3,
+    orthographic: bool,
+    n: u32,
+    texel_size: f32,
+    sample: TexelSample,
+}
+
+impl<'a> TexelRays<'a> {
+    fn new(scene: &Scene, light: &'a Light, n: u32, sample: TexelSample) -> Self {
+        let bounds = scene.bounds().unwrap_or((Vec3::splat(-1.0), Vec3::ONE));
+        let RsmLayout {
+            faces,
+            origin,
+            orthographic,
+        } = RsmLayout::new(light, bounds);
+        Self {
+            light,
+            emitter: light.emitter(),
+            faces,
+            origin,
+            orthographic: orthographic.is_some(),
+            n,
+            texel_size: 2.0 / n as f32,
+            sample,
+        }
+    }
+
+    /// Texel `index`'s ray (origin and direction), the flux it carries and its beam's
+    /// cross-section `beam` (orthographic) or solid angle (perspective: the cross-section is
+    /// `beam` times the squared distance); `None` where it carries none.
+    fn ray(&self, index: u32) -> Option<(Vec3, Vec3, Vec3, f32)> {
+        let (n, texel_size, light) = (self.n, self.texel_size, self.light);
+        let face = self.faces[(index / (n * n)) as usize];
+        let (i, j) = (index % n, (index / n) % n);
+        let (s, t) = match self.sample {
+            TexelSample::Centre => (0.5, 0.5),
+            TexelSample::Jittered { seed, pass } => {
+                Sequence::new(seed, index, stream::RSM_JITTER, 2 * pass).next_2d()
+            }
+        };
+        let e = face.extent;
+        let x = (-1.0 + (i as f32 + s) * texel_size) * e;
+        let y = (1.0 - (j as f32 + t) * texel_size) * e;
+        let (ray_origin, dir, flux, beam) = if self.orthographic {
+            let area = (texel_size * e) * (texel_size * e);
+            let irradiance = match *light {
+                Light::Directional { irradiance, .. } => irradiance,
+                _ => unreachable!("only directional lights are orthographic"),
+            };
+            (
+                self.origin + x * face.right + y * face.up,
+                face.forward,
+                irradiance * area,
+                area,
+            )
+        } else {
+            let dir = (face.forward + x * face.right + y * face.up).normalize();
+            let solid_angle = match self.sample {
+                TexelSample::Centre => {
+                    let (x0, y1) = (
+                        (-1.0 + i as f32 * texel_size) * e,
+                        (1.0 - j as f32 * texel_size) * e,
+                    );
+                    rectangle_solid_angle(x0, x0 + texel_size * e, y1 - texel_size * e, y1)
+                }
+                // Density of a uniform point on the texel, in solid angle:
+                // dω = dA / (1 + x² + y²)^{3/2} on the plane at unit distance.
+                TexelSample::Jittered { .. } => {
+                    (texel_size * e).powi(2) / (1.0 + x * x + y * y).powf(1.5)
+                }
+            };
+            let intensity = match *light {
+                Light::Point { intensity, .. } => intensity,
+                Light::Spot { intensity, .. } => intensity * self.emitter.spot_falloff(dir),
+                Light::Directional { .. } => {
+                    unreachable!("directional lights are orthographic")
+                }
+            };
+            (self.origin, dir, intensity * solid_angle, solid_angle)
+        };
+        (flux.max_element() > 0.0).then_some((ray_origin, dir, flux, beam))
+    }
+
+    /// The texel of a ray along `dir` that carries `flux` in `beam` and meets `hit`; `None`
+    /// on the back of a one-sided surface.
+    fn texel(&self, hit: SurfaceHit, dir: Vec3, flux: Vec3, beam: f32) -> Option<RsmTexel> {
+        let cross_section = if self.orthographic {
+            beam
+        } else {
+            beam * hit.distance * hit.distance
+        };
+        hit.front.then_some(RsmTexel {
+            position: hit.position,
+            normal: hit.shading_normal,
+            geometric_normal: hit.geometric_normal,
+            normal_mapped: hit.normal_mapped,
+            omega_i: -dir,
+            flux,
+            cross_section,
+            brdf: hit.brdf,
+        })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use slc_core::builtin;
+
+    /// The texels traced in packets are those of each texel's ray traced alone, bit for bit:
+    /// the built-in scene's spot light, a point light inside the room (six faces) and a
+    /// directional light (orthographic, origins differing per texel), at an odd resolution
+    /// (blocks across two faces) and an even one, through texel centres and jittered.
+    #[test]
+    fn packets_give_each_texel_its_own_hit() {
+        let scene = builtin("default").unwrap();
+        let tracer = Tracer::new(&scene);
+        let lights = [
+            scene.lights[0].clone(),
+            Light::Point {
+                position: Vec3::new(0.1, 1.5, 0.2),
+                intensity: Vec3::splat(3.0),
+            },
+            Light::Directional {
+                direction: Vec3::new(0.2, -1.0, 0.1).normalize(),
+                irradiance: Vec3::splat(2.0),
+            },
+        ];
+        for light in &lights {
+            for n in [37, 32] {
+                for sample in [
+                    TexelSample::Centre,
+                    TexelSample::Jittered { seed: 5, pass: 1 },
+                ] {
+                    let rsm = trace_rsm(&scene, &tracer, light, n, sample);
+                    let rays = TexelRays::new(&scene, light, n, sample);
+                    assert_eq!(rsm.texels.len(), rays.faces.len() * (n * n) as usize);
+                    let mut met = 0;
+                    for (index, got) in rsm.texels.iter().enumerate() {
+                        let alone = rays.ray(index as u32).and_then(|(o, d, flux, beam)| {
+                            let hit = tracer.intersect(&scene, o, d, f32::INFINITY)?;
+                            met += 1;
+                            rays.texel(hit, d, flux, beam)
+                        });
+                        // Compared as printed: every float to its shortest exact form.
+                        assert_eq!(
+                            format!("{got:?}"),
+                            format!("{alone:?}"),
+                            "{light:?} n {n} texel {index}"
+                        );
+                    }
+                    // Rays that meet the scene (the directional light's meet the closed
+                    // room's outside, which faces away: no texel).
+                    assert!(met > rsm.texels.len() / 10, "{met} of {}", rsm.texels.len());
+                }
+            }
+        }
     }
 }

@@ -164,13 +164,24 @@ impl Tracer {
     /// [`Tracer::intersect`] finds for the ray alone, traced together where the rays are
     /// coherent ([`Rays8`]).
     pub fn intersect8(&self, scene: &Scene, origin: Vec3, rays: &Rays8) -> [Option<SurfaceHit>; 8] {
-        let mut packet = *rays;
-        packet.origin = [origin; 8];
-        packet.tmin = [0.0; 8];
-        let hits = self.closest8(&packet);
+        self.intersect_rays8(
+            scene,
+            &Rays8 {
+                origin: [origin; 8],
+                tmin: [0.0; 8],
+                ..*rays
+            },
+        )
+    }
+
+    /// The closest hits of up to eight rays within (tmin, tmax): each what
+    /// [`Tracer::intersect`] finds for the ray alone (from `tmin` 0), traced together where
+    /// the rays are coherent ([`Rays8`]).
+    pub fn intersect_rays8(&self, scene: &Scene, rays: &Rays8) -> [Option<SurfaceHit>; 8] {
+        let hits = self.closest8(rays);
         std::array::from_fn(|i| {
             let (t, prim) = hits[i]?;
-            Some(self.surface_at(scene, prim, origin, rays.dir[i], t))
+            Some(self.surface_at(scene, prim, rays.origin[i], rays.dir[i], t))
         })
     }
 
