@@ -174,9 +174,9 @@ impl Tracer {
         )
     }
 
-    /// The closest hits of up to eight rays within (tmin, tmax): each what
-    /// [`Tracer::intersect`] finds for the ray alone (from `tmin` 0), traced together where
-    /// the rays are coherent ([`Rays8`]).
+    /// The closest hits of up to eight rays within (tmin, tmax) (`None` for lanes not in
+    /// use): each ray's [`Tracer::closest`] and the surface there (for `tmin` 0 what
+    /// [`Tracer::intersect`] finds), traced together where the rays are coherent ([`Rays8`]).
     pub fn intersect_rays8(&self, scene: &Scene, rays: &Rays8) -> [Option<SurfaceHit>; 8] {
         let hits = self.closest8(rays);
         std::array::from_fn(|i| {
