@@ -69,10 +69,10 @@ pub fn shade_direct_watched(
     }
 }
 
-/// Adds `light`'s reflected radiance to each sample's sum, its shadow rays traced together.
+/// Adds `emitter`'s reflected radiance to each sample's sum, its shadow rays traced together.
 fn light_at_block(
     tracer: &Tracer,
-    light: &Emitter,
+    emitter: &Emitter,
     samples: &[Option<&GSample>; 8],
     sums: &mut [Vec3; 8],
 ) {
@@ -83,7 +83,7 @@ fn light_at_block(
         let Some(g) = g else {
             continue;
         };
-        let Some(inc) = light.incident(g.position) else {
+        let Some(inc) = emitter.incident(g.position) else {
             continue;
         };
         let cos = g.normal.dot(inc.omega_i);
@@ -91,7 +91,7 @@ fn light_at_block(
             continue;
         }
         let from = tracer.lift(g.position, g.geometric_normal);
-        let ray = match light.light() {
+        let ray = match emitter.light() {
             Light::Directional { .. } => {
                 let (tmin, tmax) = tracer.escape_range();
                 Some((inc.omega_i, tmin, tmax))

@@ -20,8 +20,8 @@ pub enum TexelSample {
 }
 
 /// Traces the reflective shadow map of `light`: its texels' rays from the light in 4x2
-/// blocks of the faces stacked one above the other, each block's rays traced together ([`Tracer::intersect_rays8`]; the
-/// same hits as ray by ray).
+/// blocks of the faces stacked one above the other, each block's rays traced together
+/// ([`Tracer::intersect_rays8`]; the same hits as ray by ray).
 pub fn trace_rsm(
     scene: &Scene,
     tracer: &Tracer,
@@ -35,20 +35,17 @@ pub fn trace_rsm(
     // row-major index is the texel's index.
     let texels = par_blocks(n, rays.faces.len() as u32 * n, Vec::new(), |block| {
         let mut packet = Rays8::default();
-        let mut beams = [(Vec3::ZERO, 0.0); 8];
+        let mut texel_rays = [None; 8];
         for lane in block.lanes() {
-            if let Some((origin, dir, flux, beam)) = rays.ray(block.index(lane) as u32) {
-                packet.origin[lane] = origin;
-                packet.dir[lane] = dir;
+            if let Some(ray) = rays.ray(block.index(lane) as u32) {
+                packet.origin[lane] = ray.origin;
+                packet.dir[lane] = ray.dir;
                 packet.used |= 1 << lane;
-                beams[lane] = (flux, beam);
+                texel_rays[lane] = Some(ray);
             }
         }
         let hits = tracer.intersect_rays8(scene, &packet);
-        std::array::from_fn(|lane| {
-            let (flux, beam) = beams[lane];
-            rays.texel(hits[lane]?, packet.dir[lane], flux, beam)
-        })
+        std::array::from_fn(|lane| rays.texel(&texel_rays[lane]?, hits[lane]?))
     });
     Rsm {
         resolution: n,
@@ -57,9 +54,20 @@ pub fn trace_rsm(
     }
 }
 
-/// What a texel's ray and its texel are formed from.
+/// A texel's ray, the flux it carries and its beam: the beam's cross-section (orthographic)
+/// or solid angle (perspective: the cross-section is `beam` times the squared distance).
+#[derive(Clone, Copy, Debug)]
+struct TexelRay {
+    origin: Vec3,
+    dir: Vec3,
+    flux: Vec3,
+    beam: f32,
+}
+
+/// What a texel's ray and its texel are formed from: the light, its map's faces and origin
+/// ([`RsmLayout`]), the resolution n and a texel's size on a face (2/n), and where in a texel
+/// its ray goes.
 struct TexelRays<'a> {
-    light: &'a Light,
     emitter: Emitter<'a>,
     faces: Vec<RsmFace>,
     origin: Vec3,
@@ -78,7 +86,6 @@ impl<'a> TexelRays<'a> {
             orthographic,
         } = RsmLayout::new(light, bounds);
         Self {
-            light,
             emitter: light.emitter(),
             faces,
             origin,
@@ -89,11 +96,9 @@ impl<'a> TexelRays<'a> {
         }
     }
 
-    /// Texel `index`'s ray (origin and direction), the flux it carries and its beam's
-    /// cross-section `beam` (orthographic) or solid angle (perspective: the cross-section is
-    /// `beam` times the squared distance); `None` where it carries none.
-    fn ray(&self, index: u32) -> Option<(Vec3, Vec3, Vec3, f32)> {
-        let (n, texel_size, light) = (self.n, self.texel_size, self.light);
+    /// Texel `index`'s ray; `None` where it carries no flux.
+    fn ray(&self, index: u32) -> Option<TexelRay> {
+        let (n, texel_size, light) = (self.n, self.texel_size, self.emitter.light());
         let face = self.faces[(index / (n * n)) as usize];
         let (i, j) = (index % n, (index / n) % n);
         let (s, t) = match self.sample {
@@ -105,7 +110,7 @@ impl<'a> TexelRays<'a> {
         let e = face.extent;
         let x = (-1.0 + (i as f32 + s) * texel_size) * e;
         let y = (1.0 - (j as f32 + t) * texel_size) * e;
-        let (ray_origin, dir, flux, beam) = if self.orthographic {
+        let (origin, dir, flux, beam) = if self.orthographic {
             let area = (texel_size * e) * (texel_size * e);
             let irradiance = match *light {
                 Light::Directional { irradiance, .. } => irradiance,
@@ -145,25 +150,29 @@ impl<'a> TexelRays<'a> {
         if flux.max_element() <= 0.0 {
             None
         } else {
-            Some((ray_origin, dir, flux, beam))
+            Some(TexelRay {
+                origin,
+                dir,
+                flux,
+                beam,
+            })
         }
     }
 
-    /// The texel of a ray along `dir` that carries `flux` in `beam` and meets `hit`; `None`
-    /// on the back of a one-sided surface.
-    fn texel(&self, hit: SurfaceHit, dir: Vec3, flux: Vec3, beam: f32) -> Option<RsmTexel> {
+    /// The texel of `ray`, which meets `hit`; `None` on the back of a one-sided surface.
+    fn texel(&self, ray: &TexelRay, hit: SurfaceHit) -> Option<RsmTexel> {
         let cross_section = if self.orthographic {
-            beam
+            ray.beam
         } else {
-            beam * hit.distance * hit.distance
+            ray.beam * hit.distance * hit.distance
         };
         hit.front.then_some(RsmTexel {
             position: hit.position,
             normal: hit.shading_normal,
             geometric_normal: hit.geometric_normal,
             normal_mapped: hit.normal_mapped,
-            omega_i: -dir,
-            flux,
+            omega_i: -ray.dir,
+            flux: ray.flux,
             cross_section,
             brdf: hit.brdf,
         })
@@ -208,10 +217,11 @@ mod tests {
                     assert_eq!(rsm.texels.len(), rays.faces.len() * (n * n) as usize);
                     let (mut met, mut lit) = (0, 0);
                     for (index, got) in rsm.texels.iter().enumerate() {
-                        let alone = rays.ray(index as u32).and_then(|(o, d, flux, beam)| {
-                            let hit = tracer.intersect(&scene, o, d, f32::INFINITY)?;
+                        let alone = rays.ray(index as u32).and_then(|ray| {
+                            let hit =
+                                tracer.intersect(&scene, ray.origin, ray.dir, f32::INFINITY)?;
                             met += 1;
-                            rays.texel(hit, d, flux, beam)
+                            rays.texel(&ray, hit)
                         });
                         // Compared as printed: every float to its shortest exact form.
                         assert_eq!(
