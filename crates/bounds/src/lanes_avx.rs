@@ -200,36 +200,9 @@ mod tests {
         if !std::arch::is_x86_feature_detected!("avx2") {
             return;
         }
-        let special = [
-            0.0,
-            -0.0,
-            1.0,
-            -1.5,
-            f32::MIN_POSITIVE,
-            1e-45,
-            -1e-40,
-            f32::MAX,
-            f32::INFINITY,
-            f32::NEG_INFINITY,
-            f32::NAN,
-            3.0e38,
-        ];
-        let mut state = 0x9E37_79B9_7F4A_7C15u64;
-        let mut next = || {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            state
-        };
+        let mut rng = crate::test_util::Rng::new(0x9E37_79B9_7F4A_7C15);
         for _ in 0..20_000 {
-            let mut lane = || {
-                let r = next();
-                if r % 4 == 0 {
-                    special[(r >> 8) as usize % special.len()]
-                } else {
-                    f32::from_bits((r >> 16) as u32)
-                }
-            };
+            let mut lane = || rng.lane_input();
             let a = F8(core::array::from_fn(|_| lane()));
             let b = F8(core::array::from_fn(|_| lane()));
             // SAFETY: AVX2 was detected above.

@@ -68,6 +68,8 @@ pub mod glossy;
 pub mod lanes;
 #[cfg(target_arch = "x86_64")]
 pub mod lanes_avx;
+#[cfg(target_arch = "x86_64")]
+pub mod lanes_avx512;
 pub mod sg;
 pub mod shading_normal;
 pub mod sphere;

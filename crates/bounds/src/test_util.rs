@@ -27,6 +27,31 @@ impl Rng {
         self.f64() as f32
     }
 
+    /// An input for the lane types' bit-for-bit tests: one time in four a special value
+    /// (signed zeros, subnormals, the largest finite, infinities, NaN), else any bit pattern.
+    pub fn lane_input(&mut self) -> f32 {
+        const SPECIAL: [f32; 12] = [
+            0.0,
+            -0.0,
+            1.0,
+            -1.5,
+            f32::MIN_POSITIVE,
+            1e-45,
+            -1e-40,
+            f32::MAX,
+            f32::INFINITY,
+            f32::NEG_INFINITY,
+            f32::NAN,
+            3.0e38,
+        ];
+        let r = self.u64();
+        if r.is_multiple_of(4) {
+            SPECIAL[(r >> 8) as usize % SPECIAL.len()]
+        } else {
+            f32::from_bits((r >> 16) as u32)
+        }
+    }
+
     /// Uniform in [lo, hi).
     pub fn range(&mut self, lo: f32, hi: f32) -> f32 {
         lo + (hi - lo) * self.f32()

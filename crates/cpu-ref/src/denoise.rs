@@ -10,6 +10,7 @@ mod lanes;
 mod taps;
 
 use guide::{fill_rows, Guide};
+use lanes::{Lanes, Width};
 use rayon::prelude::*;
 pub use slc_core::frame::BilateralParams;
 use slc_core::{GBuffer, Image};
@@ -42,7 +43,8 @@ pub fn cross_bilateral(
 /// The cross bilateral filter with its working set (`Guide`, about 40 bytes per pixel),
 /// kept from one frame to the next of the same size.
 ///
-/// Both passes run eight pixels per vector (`taps`; AVX2 where the CPU has it): the
+/// Both passes run a vector of pixels at a time (`taps`: sixteen in AVX-512 registers or
+/// eight in AVX2 registers where the CPU has them, else eight in plain arrays): the
 /// horizontal pass row by row, each row's guide and demodulated values written into padded
 /// planes and filtered while they are in cache; the vertical pass in bands of [`BAND`] rows
 /// and strips of [`STRIP`] columns, so the 2r + 1 rows a strip reads stay in the L2 cache.
@@ -63,6 +65,17 @@ impl CrossBilateral {
     /// [`cross_bilateral`] of `image`, reusing the working set of the last call.
     pub fn filter(
         &mut self,
+        image: &Image,
+        gbuffer: &GBuffer,
+        params: BilateralParams,
+    ) -> Result<Image, SizeMismatch> {
+        self.filter_in(Width::Avx512, image, gbuffer, params)
+    }
+
+    /// [`Self::filter`] in lanes no wider than `widest` (the same bits in every width).
+    fn filter_in(
+        &mut self,
+        widest: Width,
         image: &Image,
         gbuffer: &GBuffer,
         params: BilateralParams,
@@ -88,9 +101,10 @@ impl CrossBilateral {
             inv_2sd: 1.0 / (2.0 * params.sigma_depth * params.sigma_depth),
             normal_squarings: params.normal_squarings,
         };
+        let lanes = Lanes::at_most(widest);
         self.guide.fit(w, h, r);
         fill_rows(&mut self.guide, image, gbuffer, |guide, row| {
-            lanes::horizontal(guide, &kernel, row)
+            lanes::horizontal(lanes, guide, &kernel, row)
         });
         // Pixels without a surface keep their value; the vertical pass writes the others.
         let mut out = Vec::new();
@@ -98,7 +112,7 @@ impl CrossBilateral {
         let guide = &self.guide;
         out.par_chunks_mut(BAND * w.max(1))
             .enumerate()
-            .for_each(|(b, band)| lanes::vertical(guide, &kernel, gbuffer, b * BAND, band));
+            .for_each(|(b, band)| lanes::vertical(lanes, guide, &kernel, gbuffer, b * BAND, band));
         Ok(Image {
             width: image.width,
             height: image.height,

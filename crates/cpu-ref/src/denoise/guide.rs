@@ -1,6 +1,6 @@
 //! The filter's working set: per padded row of the image, its guide (depth and shading
 //! normal), its demodulated values and the horizontal pass's output, each a plane of `f32`
-//! (structure of arrays), so eight neighbouring pixels are one vector load. Every row is
+//! (structure of arrays), so neighbouring pixels are one vector load. Every row is
 //! padded with `radius` pixels on each side (and the image with `radius` rows above and
 //! below) that have no surface: a tap outside the image reads a pixel without a surface and
 //! weighs 0, the filter's `continue` for taps past the border, without a bounds test.
@@ -18,6 +18,8 @@ pub(super) const VALUE: usize = 4;
 pub(super) const HORIZONTAL: usize = 7;
 /// Planes per padded row.
 pub(super) const PLANES: usize = 10;
+/// Lanes of the widest vectors the filter runs in (AVX-512's sixteen).
+pub(super) const VECTOR: usize = 16;
 
 /// The reflectance the filter divides out and multiplies back: kd + F(1), at least 1e-3.
 #[inline]
@@ -32,7 +34,8 @@ pub struct Guide {
     pub(super) width: usize,
     pub(super) height: usize,
     pub(super) radius: usize,
-    /// Floats per plane row: the padding, the width rounded up to whole vectors, the padding.
+    /// Floats per plane row: the padding, the width rounded up to whole vectors of the
+    /// widest lanes ([`VECTOR`]), the padding.
     pub(super) stride: usize,
     /// `height + 2 radius` padded rows of `PLANES * stride` floats.
     pub(super) rows: Vec<f32>,
@@ -55,7 +58,7 @@ impl Guide {
         self.width = width;
         self.height = height;
         self.radius = radius;
-        self.stride = radius + width.div_ceil(8) * 8 + radius;
+        self.stride = radius + width.div_ceil(VECTOR) * VECTOR + radius;
         let row_len = self.row_len();
         self.rows = vec![0.0; row_len * (height + 2 * radius)];
         let (top, rest) = self.rows.split_at_mut(row_len * radius);

@@ -1,21 +1,62 @@
-//! The two passes of the filter over the padded planes, in AVX2 registers where the CPU has
-//! them and in plain arrays of eight lanes elsewhere (the same operations).
-use super::guide::{reflectance, Guide, HORIZONTAL, VALUE};
-use super::taps::{filter, Centre, Kernel};
+//! The two passes of the filter over the padded planes, in AVX-512 registers (sixteen lanes)
+//! or AVX2 registers (eight) where the CPU has them and in plain arrays of eight lanes
+//! elsewhere (the same operations, so the same bits).
+use super::guide::{reflectance, Guide, HORIZONTAL, VALUE, VECTOR};
+use super::taps::{filter, Centre, Kernel, Row};
 use super::STRIP;
 use glam::Vec3;
-use slc_bounds::lanes::{Lanes8, F8};
+use slc_bounds::lanes::F8;
 use slc_core::GBuffer;
+
+/// A width of lanes.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
+pub(super) enum Width {
+    /// Plain arrays of eight lanes.
+    Arrays,
+    /// Eight lanes in AVX2 registers.
+    Avx2,
+    /// Sixteen lanes in AVX-512 registers.
+    Avx512,
+}
+
+impl Width {
+    /// The widest lanes this CPU has.
+    fn of_cpu() -> Self {
+        #[cfg(target_arch = "x86_64")]
+        {
+            if std::arch::is_x86_feature_detected!("avx512f") {
+                return Width::Avx512;
+            }
+            if std::arch::is_x86_feature_detected!("avx2") {
+                return Width::Avx2;
+            }
+        }
+        Width::Arrays
+    }
+}
+
+/// The lanes the passes run in: a [`Width`] this CPU has (its one constructor makes sure).
+#[derive(Clone, Copy, Debug)]
+pub(super) struct Lanes(Width);
+
+impl Lanes {
+    /// The widest lanes this CPU has, but no wider than `cap`.
+    pub(super) fn at_most(cap: Width) -> Self {
+        Lanes(cap.min(Width::of_cpu()))
+    }
+}
 
 /// The horizontal pass over the padded row `row` (its guide and values filled): the
 /// filtered demodulated values into its `HORIZONTAL` planes, 0 where there is no surface.
-pub(super) fn horizontal(guide: &Guide, kernel: &Kernel, row: &mut [f32]) {
-    #[cfg(target_arch = "x86_64")]
-    if std::arch::is_x86_feature_detected!("avx2") {
-        // SAFETY: the CPU supports AVX2, checked just above.
-        return unsafe { horizontal_avx2(guide, kernel, row) };
+pub(super) fn horizontal(lanes: Lanes, guide: &Guide, kernel: &Kernel, row: &mut [f32]) {
+    match lanes.0 {
+        // SAFETY (both): `Lanes` holds a width the CPU has.
+        #[cfg(target_arch = "x86_64")]
+        Width::Avx512 => unsafe { horizontal_avx512(guide, kernel, row) },
+        #[cfg(target_arch = "x86_64")]
+        Width::Avx2 => unsafe { horizontal_avx2(guide, kernel, row) },
+        _ => horizontal_in::<F8>(guide, kernel, row),
     }
-    horizontal_in::<F8>(guide, kernel, row);
 }
 
 #[cfg(target_arch = "x86_64")]
@@ -24,17 +65,23 @@ fn horizontal_avx2(guide: &Guide, kernel: &Kernel, row: &mut [f32]) {
     horizontal_in::<slc_bounds::lanes_avx::A8>(guide, kernel, row);
 }
 
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx512f")]
+fn horizontal_avx512(guide: &Guide, kernel: &Kernel, row: &mut [f32]) {
+    horizontal_in::<slc_bounds::lanes_avx512::A16>(guide, kernel, row);
+}
+
 #[inline(always)]
-fn horizontal_in<L: Lanes8>(guide: &Guide, kernel: &Kernel, row: &mut [f32]) {
+fn horizontal_in<L: Row>(guide: &Guide, kernel: &Kernel, row: &mut [f32]) {
     let (r, s) = (guide.radius, guide.stride);
-    for x0 in (0..guide.width).step_by(8) {
+    for x0 in (0..guide.width).step_by(L::N) {
         let centre = Centre::<L>::load(row, s, r + x0);
         // Tap k of lane i reads pixel x0 + i + k − r, at x0 + i + k in the padded row.
         let v = filter(kernel, &centre, VALUE, s, |k| (&*row, x0 + k));
         let surface = centre.depth.le(L::splat(f32::INFINITY));
         for (c, v) in v.into_iter().enumerate() {
             let at = (HORIZONTAL + c) * s + r + x0;
-            row[at..at + 8].copy_from_slice(&L::select(surface, v, L::splat(0.0)).store().0);
+            L::select(surface, v, L::splat(0.0)).store(&mut row[at..]);
         }
     }
 }
@@ -43,18 +90,21 @@ fn horizontal_in<L: Lanes8>(guide: &Guide, kernel: &Kernel, row: &mut [f32]) {
 /// the image's pixels): each pixel with a surface becomes its filtered value times its
 /// reflectance.
 pub(super) fn vertical(
+    lanes: Lanes,
     guide: &Guide,
     kernel: &Kernel,
     gbuffer: &GBuffer,
     y0: usize,
     band: &mut [Vec3],
 ) {
-    #[cfg(target_arch = "x86_64")]
-    if std::arch::is_x86_feature_detected!("avx2") {
-        // SAFETY: the CPU supports AVX2, checked just above.
-        return unsafe { vertical_avx2(guide, kernel, gbuffer, y0, band) };
+    match lanes.0 {
+        // SAFETY (both): `Lanes` holds a width the CPU has.
+        #[cfg(target_arch = "x86_64")]
+        Width::Avx512 => unsafe { vertical_avx512(guide, kernel, gbuffer, y0, band) },
+        #[cfg(target_arch = "x86_64")]
+        Width::Avx2 => unsafe { vertical_avx2(guide, kernel, gbuffer, y0, band) },
+        _ => vertical_in::<F8>(guide, kernel, gbuffer, y0, band),
     }
-    vertical_in::<F8>(guide, kernel, gbuffer, y0, band);
 }
 
 #[cfg(target_arch = "x86_64")]
@@ -63,8 +113,20 @@ fn vertical_avx2(guide: &Guide, kernel: &Kernel, gbuffer: &GBuffer, y0: usize, b
     vertical_in::<slc_bounds::lanes_avx::A8>(guide, kernel, gbuffer, y0, band);
 }
 
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx512f")]
+fn vertical_avx512(
+    guide: &Guide,
+    kernel: &Kernel,
+    gbuffer: &GBuffer,
+    y0: usize,
+    band: &mut [Vec3],
+) {
+    vertical_in::<slc_bounds::lanes_avx512::A16>(guide, kernel, gbuffer, y0, band);
+}
+
 #[inline(always)]
-fn vertical_in<L: Lanes8>(
+fn vertical_in<L: Row>(
     guide: &Guide,
     kernel: &Kernel,
     gbuffer: &GBuffer,
@@ -78,16 +140,20 @@ fn vertical_in<L: Lanes8>(
         for (dy, out) in band.chunks_mut(w).enumerate() {
             let y = y0 + dy;
             let centre_row = padded(r + y);
-            for x0 in (strip..(strip + STRIP).min(w)).step_by(8) {
+            for x0 in (strip..(strip + STRIP).min(w)).step_by(L::N) {
                 let centre = Centre::<L>::load(centre_row, s, r + x0);
                 // Tap k reads image row y + k − r, padded row y + k.
                 let v = filter(kernel, &centre, HORIZONTAL, s, |k| (padded(y + k), r + x0));
-                let v = [v[0].store(), v[1].store(), v[2].store()];
-                let lanes = (w - x0).min(8);
-                let samples = &gbuffer.samples[y * w + x0..y * w + x0 + lanes];
+                let mut flat = [0.0f32; 3 * VECTOR];
+                for (c, v) in v.into_iter().enumerate() {
+                    v.store(&mut flat[c * L::N..]);
+                }
+                let n = (w - x0).min(L::N);
+                let samples = &gbuffer.samples[y * w + x0..y * w + x0 + n];
                 for (i, g) in samples.iter().enumerate() {
                     if let Some(g) = g {
-                        out[x0 + i] = Vec3::new(v[0].0[i], v[1].0[i], v[2].0[i]) * reflectance(g);
+                        let v = Vec3::new(flat[i], flat[L::N + i], flat[2 * L::N + i]);
+                        out[x0 + i] = v * reflectance(g);
                     }
                 }
             }

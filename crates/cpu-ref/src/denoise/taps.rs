@@ -1,11 +1,58 @@
-//! The filter's taps, eight centre pixels at a time: each lane runs the operations of the
-//! scalar filter in the same order (the relative depth difference divided, the normal
-//! weight squared `normal_squarings` times, the spatial weight times the normal weight
-//! times the depth weight, the sums in tap order), so a lane's result differs from the
-//! scalar filter's only by the exponential, here `slc_bounds::lanes::exp` (within 2 ulp)
-//! instead of the platform's `expf`.
+//! The filter's taps, a vector of centre pixels at a time (eight or sixteen lanes): each lane
+//! runs the operations of the scalar filter in the same order (the relative depth difference
+//! divided, the normal weight squared `normal_squarings` times, the spatial weight times the
+//! normal weight times the depth weight, the sums in tap order), so a lane's result differs
+//! from the scalar filter's only by the exponential, here `slc_bounds::lanes::exp` (within 2
+//! ulp) instead of the platform's `expf`, and every lane type gives the same bits.
 use super::guide::{DEPTH, NORMAL};
 use slc_bounds::lanes::{dot, exp, max, Lanes8, Real, F8};
+
+/// Lanes the filter runs in, loaded from and stored to its planes of `f32`: the plain arrays
+/// of [`F8`] (CPUs without AVX2), `A8` (AVX2) or `A16` (AVX-512).
+pub(super) trait Row: Real {
+    /// Lanes per vector.
+    const N: usize;
+    /// The `N` floats from `v[0]` on.
+    fn load(v: &[f32]) -> Self;
+    /// The lanes into `out[..N]`.
+    fn store(self, out: &mut [f32]);
+}
+
+/// Eight lanes of any [`Lanes8`] type, through the [`F8`] layout.
+macro_rules! row_of_eight {
+    ($ty:ty) => {
+        impl Row for $ty {
+            const N: usize = 8;
+            #[inline(always)]
+            fn load(v: &[f32]) -> Self {
+                let mut f = F8([0.0; 8]);
+                f.0.copy_from_slice(&v[..8]);
+                <$ty as Lanes8>::load(&f)
+            }
+            #[inline(always)]
+            fn store(self, out: &mut [f32]) {
+                out[..8].copy_from_slice(&<$ty as Lanes8>::store(self).0);
+            }
+        }
+    };
+}
+
+row_of_eight!(F8);
+#[cfg(target_arch = "x86_64")]
+row_of_eight!(slc_bounds::lanes_avx::A8);
+
+#[cfg(target_arch = "x86_64")]
+impl Row for slc_bounds::lanes_avx512::A16 {
+    const N: usize = 16;
+    #[inline(always)]
+    fn load(v: &[f32]) -> Self {
+        Self::load(v)
+    }
+    #[inline(always)]
+    fn store(self, out: &mut [f32]) {
+        Self::store(self, out)
+    }
+}
 
 /// What the taps of one filter pass share.
 #[derive(Clone, Debug)]
@@ -17,17 +64,15 @@ pub(super) struct Kernel {
     pub normal_squarings: u32,
 }
 
-/// Eight floats of `plane` from `at`.
+/// A vector of floats of `plane` from `at`.
 #[inline(always)]
-pub(super) fn load<L: Lanes8>(plane: &[f32], at: usize) -> L {
-    let mut v = F8([0.0; 8]);
-    v.0.copy_from_slice(&plane[at..at + 8]);
-    L::load(&v)
+pub(super) fn load<L: Row>(plane: &[f32], at: usize) -> L {
+    L::load(&plane[at..])
 }
 
-/// Eight floats at `at` of each of the three planes from `first` on.
+/// A vector of floats at `at` of each of the three planes from `first` on.
 #[inline(always)]
-fn load3<L: Lanes8>(row: &[f32], first: usize, stride: usize, at: usize) -> [L; 3] {
+fn load3<L: Row>(row: &[f32], first: usize, stride: usize, at: usize) -> [L; 3] {
     [
         load(&row[first * stride..], at),
         load(&row[(first + 1) * stride..], at),
@@ -35,7 +80,7 @@ fn load3<L: Lanes8>(row: &[f32], first: usize, stride: usize, at: usize) -> [L; 
     ]
 }
 
-/// The guide of eight centre pixels.
+/// The guide of a vector of centre pixels.
 #[derive(Clone, Copy)]
 pub(super) struct Centre<L: Real> {
     pub depth: L,
@@ -44,7 +89,7 @@ pub(super) struct Centre<L: Real> {
     pub normal: [L; 3],
 }
 
-impl<L: Lanes8> Centre<L> {
+impl<L: Row> Centre<L> {
     /// The centres at `at` of the padded row `row` (planes of `stride` floats).
     #[inline(always)]
     pub fn load(row: &[f32], stride: usize, at: usize) -> Self {
@@ -57,11 +102,11 @@ impl<L: Lanes8> Centre<L> {
     }
 }
 
-/// The weighted sum and the sum of weights over the taps of eight centres. `tap(k)` gives
+/// The weighted sum and the sum of weights over the taps of a vector of centres. `tap(k)` gives
 /// tap k's (row, index) in the padded rows: its depth, normal and the values of the
 /// `values` planes there.
 #[inline(always)]
-pub(super) fn filter<'a, L: Lanes8>(
+pub(super) fn filter<'a, L: Row>(
     kernel: &Kernel,
     centre: &Centre<L>,
     values: usize,
@@ -95,21 +140,39 @@ pub(super) fn filter<'a, L: Lanes8>(
 mod tests {
     use super::*;
     use slc_bounds::lanes_avx::A8;
+    use slc_bounds::lanes_avx512::A16;
     use slc_core::rng::uniform;
 
-    #[target_feature(enable = "avx2")]
-    fn avx(kernel: &Kernel, row: &[f32], stride: usize, at: usize) -> [F8; 3] {
-        let centre = Centre::<A8>::load(row, stride, at);
-        filter(kernel, &centre, 4, stride, |k| (row, at - 3 + k)).map(A8::store)
+    /// The filtered values of the `L::N` centres from `at` (the three planes, one after the
+    /// other), taps from `at - 3` on.
+    #[inline(always)]
+    fn run<L: Row>(kernel: &Kernel, row: &[f32], stride: usize, at: usize) -> Vec<f32> {
+        let centre = Centre::<L>::load(row, stride, at);
+        let mut out = vec![0.0; 3 * L::N];
+        for (c, v) in filter(kernel, &centre, 4, stride, |k| (row, at - 3 + k))
+            .into_iter()
+            .enumerate()
+        {
+            v.store(&mut out[c * L::N..]);
+        }
+        out
     }
 
-    /// The AVX2 lanes and the plain arrays (CPUs without AVX2) agree bit for bit.
+    #[target_feature(enable = "avx2")]
+    fn avx2(kernel: &Kernel, row: &[f32], stride: usize, at: usize) -> Vec<f32> {
+        run::<A8>(kernel, row, stride, at)
+    }
+
+    #[target_feature(enable = "avx512f")]
+    fn avx512(kernel: &Kernel, row: &[f32], stride: usize, at: usize) -> Vec<f32> {
+        run::<A16>(kernel, row, stride, at)
+    }
+
+    /// The AVX2 and AVX-512 lanes and the plain arrays (CPUs without AVX2) agree bit for bit,
+    /// NaN centres and taps included.
     #[test]
-    fn avx_lanes_equal_the_array_lanes() {
-        if !std::arch::is_x86_feature_detected!("avx2") {
-            return;
-        }
-        let stride = 32;
+    fn every_lane_type_gives_the_same_bits() {
+        let stride = 48;
         let kernel = Kernel {
             spatial: vec![0.3, 0.7, 0.9, 1.0, 0.9, 0.7, 0.3],
             inv_2sd: 200.0,
@@ -119,13 +182,32 @@ mod tests {
             .map(|i| uniform(3, i, 0, 0))
             .collect();
         row[5] = f32::NAN;
+        row[20] = f32::NAN;
+        let bits = |v: &[f32]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+        let (has_avx2, has_avx512) = (
+            std::arch::is_x86_feature_detected!("avx2"),
+            std::arch::is_x86_feature_detected!("avx512f"),
+        );
         for at in 3..stride - 11 {
-            let centre = Centre::<F8>::load(&row, stride, at);
-            let arrays = filter(&kernel, &centre, 4, stride, |k| (&row[..], at - 3 + k));
-            // SAFETY: the CPU supports AVX2, checked above.
-            let lanes = unsafe { avx(&kernel, &row, stride, at) };
-            let bits = |v: [F8; 3]| v.map(|c| c.0.map(f32::to_bits));
-            assert_eq!(bits(arrays), bits(lanes), "at {at}");
+            let arrays = run::<F8>(&kernel, &row, stride, at);
+            if has_avx2 {
+                // SAFETY: the CPU supports AVX2, checked above.
+                let lanes = unsafe { avx2(&kernel, &row, stride, at) };
+                assert_eq!(bits(&arrays), bits(&lanes), "AVX2 at {at}");
+            }
+            if has_avx512 && at + 8 < stride - 11 {
+                // SAFETY: the CPU supports AVX-512F, checked above.
+                let lanes = unsafe { avx512(&kernel, &row, stride, at) };
+                let next = run::<F8>(&kernel, &row, stride, at + 8);
+                for c in 0..3 {
+                    let want = [&arrays[8 * c..8 * c + 8], &next[8 * c..8 * c + 8]].concat();
+                    assert_eq!(
+                        bits(&want),
+                        bits(&lanes[16 * c..16 * c + 16]),
+                        "AVX-512 at {at}"
+                    );
+                }
+            }
         }
     }
 }

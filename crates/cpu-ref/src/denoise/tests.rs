@@ -2,6 +2,7 @@
 //! with and without surfaces, borders and sizes that are not whole vectors.
 use super::*;
 use glam::Vec3;
+use lanes::Width;
 use slc_bounds::{Brdf, Fresnel};
 use slc_core::rng::uniform;
 use slc_core::GSample;
@@ -227,6 +228,30 @@ fn equals_the_scalar_filter_within_rounding() {
                 }
             }
         }
+    }
+}
+
+/// The filter in AVX-512, AVX2 and plain-array lanes gives the same image bit for bit
+/// (whichever of them this CPU has), at widths that are and are not whole vectors of eight
+/// and sixteen, strips included.
+#[test]
+fn every_width_of_lanes_gives_the_same_bits() {
+    for (k, (w, h)) in [(1, 1), (9, 4), (16, 5), (24, 3), (37, 21), (300, 40)]
+        .into_iter()
+        .enumerate()
+    {
+        let (image, gbuffer) = random_frame(w, h, 40 + k as u32);
+        let params = BilateralParams::default();
+        let each = [Width::Arrays, Width::Avx2, Width::Avx512].map(|widest| {
+            let filtered = CrossBilateral::default().filter_in(widest, &image, &gbuffer, params);
+            let pixels = filtered.unwrap().pixels;
+            pixels
+                .iter()
+                .flat_map(|p| p.to_array().map(f32::to_bits))
+                .collect::<Vec<_>>()
+        });
+        assert_eq!(each[0], each[1], "{w}x{h}: AVX2 against arrays");
+        assert_eq!(each[0], each[2], "{w}x{h}: AVX-512 against arrays");
     }
 }
 
