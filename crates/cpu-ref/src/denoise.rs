@@ -40,7 +40,7 @@ pub fn cross_bilateral(
     CrossBilateral::default().filter(image, gbuffer, params)
 }
 
-/// The cross bilateral filter with its working set (`Guide`, about 40 bytes per pixel),
+/// The cross bilateral filter with its working set (`Guide`, about 52 bytes per pixel),
 /// kept from one frame to the next of the same size.
 ///
 /// Both passes run a vector of pixels at a time (`taps`: sixteen in AVX-512 registers or
@@ -112,7 +112,7 @@ impl CrossBilateral {
         let guide = &self.guide;
         out.par_chunks_mut(BAND * w.max(1))
             .enumerate()
-            .for_each(|(b, band)| lanes::vertical(lanes, guide, &kernel, gbuffer, b * BAND, band));
+            .for_each(|(b, band)| lanes::vertical(lanes, guide, &kernel, b * BAND, band));
         Ok(Image {
             width: image.width,
             height: image.height,

@@ -16,8 +16,12 @@ pub(super) const NORMAL: usize = 1;
 pub(super) const VALUE: usize = 4;
 /// The horizontal pass's output (red, green, blue).
 pub(super) const HORIZONTAL: usize = 7;
+/// The reflectance the vertical pass multiplies back (red, green, blue; NaN where there is
+/// no surface), so that it does not read the G-buffer's samples again (a hundred bytes a
+/// pixel, 216 MB at 1080p, where these planes are twelve).
+pub(super) const REFLECTANCE: usize = 10;
 /// Planes per padded row.
-pub(super) const PLANES: usize = 10;
+pub(super) const PLANES: usize = 13;
 /// Lanes of the widest vectors the filter runs in (AVX-512's sixteen).
 pub(super) const VECTOR: usize = 16;
 
@@ -27,8 +31,8 @@ pub(super) fn reflectance(g: &GSample) -> Vec3 {
     (g.brdf.kd + g.brdf.fresnel.eval(1.0)).max(Vec3::splat(1e-3))
 }
 
-/// The padded planes of one image size and radius, kept from frame to frame (about 40 bytes
-/// per pixel: 85 MB at 1920x1080, whose first touch costs page faults).
+/// The padded planes of one image size and radius, kept from frame to frame (about 52 bytes
+/// per pixel: 110 MB at 1920x1080, whose first touch costs page faults).
 #[derive(Debug, Default)]
 pub struct Guide {
     pub(super) width: usize,
@@ -68,22 +72,27 @@ impl Guide {
         }
     }
 
-    /// Writes image row `y`'s guide and demodulated values into its padded row `row` (depth
-    /// NaN, normal and values 0 where there is no surface, in the padding too).
+    /// Writes image row `y`'s guide, demodulated values and reflectance into its padded row
+    /// `row` (depth and reflectance NaN, normal and values 0 where there is no surface, in
+    /// the padding too).
     pub(super) fn fill_row(&self, row: &mut [f32], samples: &[Option<GSample>], pixels: &[Vec3]) {
         let (r, s) = (self.radius, self.stride);
         row[..VALUE * s + s * 3].fill(0.0);
         row[DEPTH * s..DEPTH * s + s].fill(f32::NAN);
+        row[REFLECTANCE * s..(REFLECTANCE + 3) * s].fill(f32::NAN);
         for (x, (g, p)) in samples.iter().zip(pixels).enumerate() {
             let Some(g) = g else {
                 continue;
             };
             let i = r + x;
-            let v = *p / reflectance(g);
+            // At least 1e-3 per channel (`Vec3::max` takes 1e-3 over NaN): never NaN.
+            let f = reflectance(g);
+            let v = *p / f;
             row[DEPTH * s + i] = g.depth;
             for c in 0..3 {
                 row[(NORMAL + c) * s + i] = g.normal[c];
                 row[(VALUE + c) * s + i] = v[c];
+                row[(REFLECTANCE + c) * s + i] = f[c];
             }
         }
     }

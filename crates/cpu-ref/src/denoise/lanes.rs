@@ -1,12 +1,11 @@
 //! The two passes of the filter over the padded planes, in AVX-512 registers (sixteen lanes)
 //! or AVX2 registers (eight) where the CPU has them and in plain arrays of eight lanes
 //! elsewhere (the same operations, so the same bits).
-use super::guide::{reflectance, Guide, HORIZONTAL, VALUE, VECTOR};
+use super::guide::{Guide, HORIZONTAL, REFLECTANCE, VALUE, VECTOR};
 use super::taps::{filter, Centre, Kernel, Row};
 use super::STRIP;
 use glam::Vec3;
 use slc_bounds::lanes::F8;
-use slc_core::GBuffer;
 
 /// A width of lanes.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
@@ -89,50 +88,31 @@ fn horizontal_in<L: Row>(guide: &Guide, kernel: &Kernel, row: &mut [f32]) {
 /// The vertical pass for the image rows from `y0` on, `band` their output pixels (holding
 /// the image's pixels): each pixel with a surface becomes its filtered value times its
 /// reflectance.
-pub(super) fn vertical(
-    lanes: Lanes,
-    guide: &Guide,
-    kernel: &Kernel,
-    gbuffer: &GBuffer,
-    y0: usize,
-    band: &mut [Vec3],
-) {
+pub(super) fn vertical(lanes: Lanes, guide: &Guide, kernel: &Kernel, y0: usize, band: &mut [Vec3]) {
     match lanes.0 {
         // SAFETY (both): `Lanes` holds a width the CPU has.
         #[cfg(target_arch = "x86_64")]
-        Width::Avx512 => unsafe { vertical_avx512(guide, kernel, gbuffer, y0, band) },
+        Width::Avx512 => unsafe { vertical_avx512(guide, kernel, y0, band) },
         #[cfg(target_arch = "x86_64")]
-        Width::Avx2 => unsafe { vertical_avx2(guide, kernel, gbuffer, y0, band) },
-        _ => vertical_in::<F8>(guide, kernel, gbuffer, y0, band),
+        Width::Avx2 => unsafe { vertical_avx2(guide, kernel, y0, band) },
+        _ => vertical_in::<F8>(guide, kernel, y0, band),
     }
 }
 
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2")]
-fn vertical_avx2(guide: &Guide, kernel: &Kernel, gbuffer: &GBuffer, y0: usize, band: &mut [Vec3]) {
-    vertical_in::<slc_bounds::lanes_avx::A8>(guide, kernel, gbuffer, y0, band);
+fn vertical_avx2(guide: &Guide, kernel: &Kernel, y0: usize, band: &mut [Vec3]) {
+    vertical_in::<slc_bounds::lanes_avx::A8>(guide, kernel, y0, band);
 }
 
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx512f")]
-fn vertical_avx512(
-    guide: &Guide,
-    kernel: &Kernel,
-    gbuffer: &GBuffer,
-    y0: usize,
-    band: &mut [Vec3],
-) {
-    vertical_in::<slc_bounds::lanes_avx512::A16>(guide, kernel, gbuffer, y0, band);
+fn vertical_avx512(guide: &Guide, kernel: &Kernel, y0: usize, band: &mut [Vec3]) {
+    vertical_in::<slc_bounds::lanes_avx512::A16>(guide, kernel, y0, band);
 }
 
 #[inline(always)]
-fn vertical_in<L: Row>(
-    guide: &Guide,
-    kernel: &Kernel,
-    gbuffer: &GBuffer,
-    y0: usize,
-    band: &mut [Vec3],
-) {
+fn vertical_in<L: Row>(guide: &Guide, kernel: &Kernel, y0: usize, band: &mut [Vec3]) {
     let (w, r, s) = (guide.width, guide.radius, guide.stride);
     let row_len = guide.row_len();
     let padded = |y: usize| &guide.rows[y * row_len..(y + 1) * row_len];
@@ -148,12 +128,13 @@ fn vertical_in<L: Row>(
                 for (c, v) in v.into_iter().enumerate() {
                     v.store(&mut flat[c * L::N..]);
                 }
-                let n = (w - x0).min(L::N);
-                let samples = &gbuffer.samples[y * w + x0..y * w + x0 + n];
-                for (i, g) in samples.iter().enumerate() {
-                    if let Some(g) = g {
+                let reflectance =
+                    |i: usize, c: usize| centre_row[(REFLECTANCE + c) * s + r + x0 + i];
+                for i in 0..(w - x0).min(L::N) {
+                    if !reflectance(i, 0).is_nan() {
                         let v = Vec3::new(flat[i], flat[L::N + i], flat[2 * L::N + i]);
-                        out[x0 + i] = v * reflectance(g);
+                        let f = Vec3::new(reflectance(i, 0), reflectance(i, 1), reflectance(i, 2));
+                        out[x0 + i] = v * f;
                     }
                 }
             }
