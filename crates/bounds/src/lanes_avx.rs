@@ -162,37 +162,12 @@ impl Lanes8 for A8 {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    /// Every operation of both lane types on `a` and `b`, as bit patterns.
-    fn each<L: Lanes8>(a: F8, b: F8, out: impl Fn(L) -> F8) -> Vec<u32> {
-        let (x, y) = (L::load(&a), L::load(&b));
-        let mut v: Vec<F8> = [
-            x + y,
-            x - y,
-            x * y,
-            x / y,
-            -x,
-            x.sqrt(),
-            x.round(),
-            x.floor(),
-            crate::lanes::exp(x),
-            crate::lanes::exp(x * L::splat(1e-37)),
-        ]
-        .into_iter()
-        .map(&out)
-        .collect();
-        let m = x.gt(y);
-        v.push(out(L::select(m, x, y)));
-        v.push(out(L::select(!m | x.le(y), x, y)));
-        v.push(out(L::select(m & x.le(y), x, y)));
-        let mut bits: Vec<u32> = v.iter().flat_map(|f| f.0.map(f32::to_bits)).collect();
-        bits.extend([m, x.le(y), !m, L::flag(true), L::flag(false)].map(|m| u32::from(L::bits(m))));
-        bits
-    }
+    use crate::test_util::{flags8, lane_operations};
 
     #[target_feature(enable = "avx2")]
-    fn avx(a: F8, b: F8) -> Vec<u32> {
-        each::<A8>(a, b, A8::store)
+    fn avx(a: &F8, b: &F8) -> (Vec<u32>, Vec<bool>) {
+        let values = |v: A8| v.store().0.to_vec();
+        lane_operations(A8::load(a), A8::load(b), values, flags8::<A8>)
     }
 
     #[test]
@@ -202,25 +177,12 @@ mod tests {
         }
         let mut rng = crate::test_util::Rng::new(0x9E37_79B9_7F4A_7C15);
         for _ in 0..20_000 {
-            let mut lane = || rng.lane_input();
-            let a = F8(core::array::from_fn(|_| lane()));
-            let b = F8(core::array::from_fn(|_| lane()));
+            let a = F8(core::array::from_fn(|_| rng.lane_input()));
+            let b = F8(core::array::from_fn(|_| rng.lane_input()));
             // SAFETY: AVX2 was detected above.
-            let wide = unsafe { avx(a, b) };
-            let plain = each::<F8>(a, b, |v| v);
-            // NaN payloads may differ between instructions and scalar code: compare NaNs as NaN.
-            let canon = |b: &u32| {
-                if f32::from_bits(*b).is_nan() {
-                    u32::MAX
-                } else {
-                    *b
-                }
-            };
-            let (w, p): (Vec<u32>, Vec<u32>) = (
-                wide.iter().map(canon).collect(),
-                plain.iter().map(canon).collect(),
-            );
-            assert_eq!(w, p, "a {a:?} b {b:?}");
+            let wide = unsafe { avx(&a, &b) };
+            let plain = lane_operations(a, b, |v| v.0.to_vec(), flags8::<F8>);
+            assert_eq!(wide, plain, "a {a:?} b {b:?}");
         }
     }
 }

@@ -172,59 +172,21 @@ impl A16 {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::lanes::Lanes8;
-
-    /// Every operation of a lane type on `a` and `b` (as in `lanes_avx`'s test), as floats and
-    /// flags in lane order.
-    fn each<R: Real>(
-        x: R,
-        y: R,
-        out: impl Fn(R) -> Vec<f32>,
-        flags: impl Fn(R::Mask) -> Vec<bool>,
-    ) -> (Vec<u32>, Vec<bool>) {
-        let m = x.gt(y);
-        let values = [
-            x + y,
-            x - y,
-            x * y,
-            x / y,
-            -x,
-            x.sqrt(),
-            x.round(),
-            x.floor(),
-            crate::lanes::exp(x),
-            crate::lanes::exp(x * R::splat(1e-37)),
-            R::select(m, x, y),
-            R::select(!m | x.le(y), x, y),
-            R::select(m & x.le(y), x, y),
-        ];
-        // NaN payloads may differ between instructions and scalar code: compare NaNs as NaN.
-        let canon = |v: f32| if v.is_nan() { u32::MAX } else { v.to_bits() };
-        let bits = values.into_iter().flat_map(&out).map(canon).collect();
-        let masks = [m, x.le(y), !m, R::flag(true), R::flag(false)];
-        (bits, masks.into_iter().flat_map(flags).collect())
-    }
+    use crate::test_util::{flags8, lane_operations};
 
     #[target_feature(enable = "avx512f")]
     fn wide(a: &[f32; 16], b: &[f32; 16]) -> (Vec<u32>, Vec<bool>) {
-        each(
-            A16::load(a),
-            A16::load(b),
-            |v| v.halves().iter().flat_map(|h| h.0).collect(),
-            |m| (0..16).map(|k| m.0 >> k & 1 == 1).collect(),
-        )
+        let values = |v: A16| v.halves().iter().flat_map(|h| h.0).collect();
+        let flags = |m: AM16| (0..16).map(|k| m.0 >> k & 1 == 1).collect();
+        lane_operations(A16::load(a), A16::load(b), values, flags)
     }
 
+    /// The two halves in plain arrays, each operation's sixteen values (or flags) in lane
+    /// order.
     fn plain(a: &[f32; 16], b: &[f32; 16]) -> (Vec<u32>, Vec<bool>) {
         let half = |v: &[f32; 16], h: usize| F8(core::array::from_fn(|i| v[8 * h + i]));
-        let [lo, hi] = [0, 1].map(|h| {
-            each(
-                half(a, h),
-                half(b, h),
-                |v| v.0.to_vec(),
-                |m| (0..8).map(|k| F8::bits(m) >> k & 1 == 1).collect(),
-            )
-        });
+        let [lo, hi] =
+            [0, 1].map(|h| lane_operations(half(a, h), half(b, h), |v| v.0.to_vec(), flags8::<F8>));
         (interleave(&lo.0, &hi.0), interleave(&lo.1, &hi.1))
     }
 
@@ -243,9 +205,8 @@ mod tests {
         }
         let mut rng = crate::test_util::Rng::new(0x5EED_A512);
         for _ in 0..10_000 {
-            let mut lane = || rng.lane_input();
-            let a: [f32; 16] = core::array::from_fn(|_| lane());
-            let b: [f32; 16] = core::array::from_fn(|_| lane());
+            let a: [f32; 16] = core::array::from_fn(|_| rng.lane_input());
+            let b: [f32; 16] = core::array::from_fn(|_| rng.lane_input());
             // SAFETY: AVX-512F was detected above.
             let got = unsafe { wide(&a, &b) };
             assert_eq!(got, plain(&a, &b), "a {a:?} b {b:?}");

@@ -119,3 +119,40 @@ pub fn random_anisotropy(rng: &mut Rng, n: Vec3) -> crate::Anisotropy {
         alpha_t: 10f32.powf(rng.range(-4.0, 0.0)),
     }
 }
+
+/// Every operation of a lane type (`crate::lanes::Real`) on `x` and `y`, for the lane types'
+/// bit-for-bit tests: the values as bit patterns (NaN as one pattern: payloads may differ
+/// between instructions and scalar code) and the flags, each in lane order (`values` and
+/// `flags` list a vector's lanes).
+pub fn lane_operations<R: crate::lanes::Real>(
+    x: R,
+    y: R,
+    values: impl Fn(R) -> Vec<f32>,
+    flags: impl Fn(R::Mask) -> Vec<bool>,
+) -> (Vec<u32>, Vec<bool>) {
+    let m = x.gt(y);
+    let results = [
+        x + y,
+        x - y,
+        x * y,
+        x / y,
+        -x,
+        x.sqrt(),
+        x.round(),
+        x.floor(),
+        crate::lanes::exp(x),
+        crate::lanes::exp(x * R::splat(1e-37)),
+        R::select(m, x, y),
+        R::select(!m | x.le(y), x, y),
+        R::select(m & x.le(y), x, y),
+    ];
+    let canon = |v: f32| if v.is_nan() { u32::MAX } else { v.to_bits() };
+    let bits = results.into_iter().flat_map(values).map(canon).collect();
+    let masks = [m, x.le(y), !m, R::flag(true), R::flag(false)];
+    (bits, masks.into_iter().flat_map(flags).collect())
+}
+
+/// The eight flags of an eight-lane mask, lane 0 first.
+pub fn flags8<L: crate::lanes::Lanes8>(m: L::Mask) -> Vec<bool> {
+    (0..8).map(|k| L::bits(m) >> k & 1 == 1).collect()
+}
