@@ -1,15 +1,16 @@
-//! Arithmetic written once for one `f32` and for eight lanes ([`F8`]): the early exits of the
-//! VPL shading and the SG shading of VSGLs (`sg/single.rs`). Every lane performs the same IEEE
+//! Arithmetic written once for one `f32` and for eight lanes ([`F8`]) or sixteen: the early
+//! exits of the VPL shading, the SG shading of VSGLs (`sg/single.rs`) and the CPU filter. Every lane performs the same IEEE
 //! operations in the same order as the scalar code, so the two agree bit for bit, including
 //! [`exp`], which is built from those operations rather than taken from the platform's `libm`.
 //! [`F8`] is a plain array (the layout chunks are stored in, and the lanes of CPUs without
 //! AVX2); the AVX2 kernels compute in `lanes_avx::A8`, one 256-bit instruction per operation,
-//! loaded from that layout through [`Lanes8`]. No operation is fused (Rust never contracts
+//! loaded from that layout through [`Lanes8`], and the AVX-512 ones in `lanes_avx512::A16`,
+//! sixteen lanes. No operation is fused (Rust never contracts
 //! `a * b + c` into an FMA), so the lanes round exactly as the scalar code does.
 use core::fmt::Debug;
 use core::ops::{Add, BitAnd, BitOr, Div, Mul, Neg, Not, Sub};
 
-/// A number type of the lanes' arithmetic: `f32`, or eight of them.
+/// A number type of the lanes' arithmetic: `f32`, or eight or sixteen of them.
 pub trait Real:
     Copy
     + Add<Output = Self>

@@ -162,10 +162,10 @@ impl Lanes8 for A8 {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::test_util::{flags8, lane_operations};
+    use crate::test_util::{flags8, lane_operations, LaneResults};
 
     #[target_feature(enable = "avx2")]
-    fn avx(a: &F8, b: &F8) -> (Vec<u32>, Vec<bool>) {
+    fn avx(a: &F8, b: &F8) -> LaneResults {
         let values = |v: A8| v.store().0.to_vec();
         lane_operations(A8::load(a), A8::load(b), values, flags8::<A8>)
     }

@@ -28,7 +28,10 @@ pub struct AM16(pub __mmask16);
 
 // SAFETY (every `unsafe` block below): the intrinsics need AVX-512F. The methods are only
 // called from kernels compiled with `#[target_feature(enable = "avx512f")]`, which run only
-// where `is_x86_feature_detected!("avx512f")` holds.
+// where `is_x86_feature_detected!("avx512f")` holds. As with `lanes_avx::A8`, the methods
+// are safe to name (the `Real` trait's are), so that contract is the caller's: an `A16` used
+// outside such a kernel, on a CPU without AVX-512F, stops the process on an illegal
+// instruction.
 
 macro_rules! binary {
     ($trait:ident, $method:ident, $intrinsic:ident) => {
@@ -172,22 +175,27 @@ impl A16 {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::test_util::{flags8, lane_operations};
+    use crate::test_util::{flags8, lane_operations, LaneResults};
 
     #[target_feature(enable = "avx512f")]
-    fn wide(a: &[f32; 16], b: &[f32; 16]) -> (Vec<u32>, Vec<bool>) {
+    fn wide(a: &[f32; 16], b: &[f32; 16]) -> LaneResults {
         let values = |v: A16| v.halves().iter().flat_map(|h| h.0).collect();
         let flags = |m: AM16| (0..16).map(|k| m.0 >> k & 1 == 1).collect();
         lane_operations(A16::load(a), A16::load(b), values, flags)
     }
 
-    /// The two halves in plain arrays, each operation's sixteen values (or flags) in lane
-    /// order.
-    fn plain(a: &[f32; 16], b: &[f32; 16]) -> (Vec<u32>, Vec<bool>) {
+    /// The two halves in plain arrays: each operation's sixteen values (or flags) in lane
+    /// order, and whether all and any of each mask's sixteen flags are set.
+    fn plain(a: &[f32; 16], b: &[f32; 16]) -> LaneResults {
         let half = |v: &[f32; 16], h: usize| F8(core::array::from_fn(|i| v[8 * h + i]));
         let [lo, hi] =
             [0, 1].map(|h| lane_operations(half(a, h), half(b, h), |v| v.0.to_vec(), flags8::<F8>));
-        (interleave(&lo.0, &hi.0), interleave(&lo.1, &hi.1))
+        let flags = interleave(&lo.1, &hi.1);
+        let reductions = flags
+            .chunks(16)
+            .map(|m| [m.iter().all(|&f| f), m.iter().any(|&f| f)])
+            .collect();
+        (interleave(&lo.0, &hi.0), flags, reductions)
     }
 
     /// The halves' values per operation (eight of each half in turn) in lane order.

@@ -120,16 +120,20 @@ pub fn random_anisotropy(rng: &mut Rng, n: Vec3) -> crate::Anisotropy {
     }
 }
 
+/// What [`lane_operations`] gives: the values as bit patterns (NaN as one pattern: payloads
+/// may differ between instructions and scalar code) and the flags, each in lane order, and
+/// per mask whether all and whether any of its lanes are set.
+pub type LaneResults = (Vec<u32>, Vec<bool>, Vec<[bool; 2]>);
+
 /// Every operation of a lane type (`crate::lanes::Real`) on `x` and `y`, for the lane types'
-/// bit-for-bit tests: the values as bit patterns (NaN as one pattern: payloads may differ
-/// between instructions and scalar code) and the flags, each in lane order (`values` and
-/// `flags` list a vector's lanes).
+/// bit-for-bit tests (`values` and `flags` list a vector's lanes).
 pub fn lane_operations<R: crate::lanes::Real>(
     x: R,
     y: R,
     values: impl Fn(R) -> Vec<f32>,
     flags: impl Fn(R::Mask) -> Vec<bool>,
-) -> (Vec<u32>, Vec<bool>) {
+) -> LaneResults {
+    use crate::lanes::{max, min};
     let m = x.gt(y);
     let results = [
         x + y,
@@ -142,6 +146,7 @@ pub fn lane_operations<R: crate::lanes::Real>(
         x.floor(),
         crate::lanes::exp(x),
         crate::lanes::exp(x * R::splat(1e-37)),
+        min(max(x.round(), R::splat(-126.0)), R::splat(127.0)).exp2i(),
         R::select(m, x, y),
         R::select(!m | x.le(y), x, y),
         R::select(m & x.le(y), x, y),
@@ -149,7 +154,12 @@ pub fn lane_operations<R: crate::lanes::Real>(
     let canon = |v: f32| if v.is_nan() { u32::MAX } else { v.to_bits() };
     let bits = results.into_iter().flat_map(values).map(canon).collect();
     let masks = [m, x.le(y), !m, R::flag(true), R::flag(false)];
-    (bits, masks.into_iter().flat_map(flags).collect())
+    let reductions = masks.map(|m| [R::all(m), R::any(m)]).to_vec();
+    (
+        bits,
+        masks.into_iter().flat_map(flags).collect(),
+        reductions,
+    )
 }
 
 /// The eight flags of an eight-lane mask, lane 0 first.

@@ -58,8 +58,9 @@ pub struct CrossBilateral {
 
 /// Image rows per task of the vertical pass.
 pub const BAND: usize = 32;
-/// Columns per strip of the vertical pass (a multiple of 8).
+/// Columns per strip of the vertical pass (a multiple of the widest vectors, sixteen).
 pub const STRIP: usize = 256;
+const _: () = assert!(STRIP.is_multiple_of(guide::VECTOR));
 
 impl CrossBilateral {
     /// [`cross_bilateral`] of `image`, reusing the working set of the last call.

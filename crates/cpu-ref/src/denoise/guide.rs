@@ -1,5 +1,6 @@
 //! The filter's working set: per padded row of the image, its guide (depth and shading
-//! normal), its demodulated values and the horizontal pass's output, each a plane of `f32`
+//! normal), its demodulated values, the horizontal pass's output and the reflectance the
+//! vertical pass multiplies back, each a plane of `f32`
 //! (structure of arrays), so neighbouring pixels are one vector load. Every row is
 //! padded with `radius` pixels on each side (and the image with `radius` rows above and
 //! below) that have no surface: a tap outside the image reads a pixel without a surface and
@@ -74,7 +75,8 @@ impl Guide {
 
     /// Writes image row `y`'s guide, demodulated values and reflectance into its padded row
     /// `row` (depth and reflectance NaN, normal and values 0 where there is no surface, in
-    /// the padding too).
+    /// the row's padding columns too; the padding rows above and below are `fit`'s, where the
+    /// NaN depth gives every tap weight 0).
     pub(super) fn fill_row(&self, row: &mut [f32], samples: &[Option<GSample>], pixels: &[Vec3]) {
         let (r, s) = (self.radius, self.stride);
         row[..VALUE * s + s * 3].fill(0.0);

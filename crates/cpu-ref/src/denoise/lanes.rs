@@ -19,29 +19,30 @@ pub(super) enum Width {
 }
 
 impl Width {
-    /// The widest lanes this CPU has.
-    fn of_cpu() -> Self {
-        #[cfg(target_arch = "x86_64")]
-        {
-            if std::arch::is_x86_feature_detected!("avx512f") {
-                return Width::Avx512;
-            }
-            if std::arch::is_x86_feature_detected!("avx2") {
-                return Width::Avx2;
-            }
+    /// Whether this CPU has the instructions of these lanes.
+    fn on_cpu(self) -> bool {
+        match self {
+            Width::Arrays => true,
+            #[cfg(target_arch = "x86_64")]
+            Width::Avx2 => std::arch::is_x86_feature_detected!("avx2"),
+            #[cfg(target_arch = "x86_64")]
+            Width::Avx512 => std::arch::is_x86_feature_detected!("avx512f"),
+            #[cfg(not(target_arch = "x86_64"))]
+            _ => false,
         }
-        Width::Arrays
     }
 }
 
-/// The lanes the passes run in: a [`Width`] this CPU has (its one constructor makes sure).
+/// The lanes the passes run in: a [`Width`] this CPU has (its one constructor checks).
 #[derive(Clone, Copy, Debug)]
 pub(super) struct Lanes(Width);
 
 impl Lanes {
     /// The widest lanes this CPU has, but no wider than `cap`.
     pub(super) fn at_most(cap: Width) -> Self {
-        Lanes(cap.min(Width::of_cpu()))
+        let widths = [Width::Avx512, Width::Avx2, Width::Arrays];
+        let widest = widths.into_iter().find(|&w| w <= cap && w.on_cpu());
+        Lanes(widest.unwrap_or(Width::Arrays))
     }
 }
 
@@ -57,6 +58,13 @@ pub(super) fn horizontal(lanes: Lanes, guide: &Guide, kernel: &Kernel, row: &mut
         _ => horizontal_in::<F8>(guide, kernel, row),
     }
 }
+
+// Every width's vectors tile the rows, which are padded to whole vectors of `VECTOR`.
+const _: () = assert!(VECTOR.is_multiple_of(<F8 as Row>::N));
+#[cfg(target_arch = "x86_64")]
+const _: () = assert!(VECTOR.is_multiple_of(<slc_bounds::lanes_avx::A8 as Row>::N));
+#[cfg(target_arch = "x86_64")]
+const _: () = assert!(VECTOR.is_multiple_of(<slc_bounds::lanes_avx512::A16 as Row>::N));
 
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2")]

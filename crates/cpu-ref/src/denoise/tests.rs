@@ -191,14 +191,19 @@ fn random_frame(w: u32, h: u32, seed: u32) -> (Image, GBuffer) {
 /// within 2 ulp of `expf`), at sizes from one pixel to several vectors and strips, with the
 /// paper's radius and a smaller one; one filter kept across all of them (its working set
 /// refitted at each size) gives what a fresh one gives.
-#[test]
-fn equals_the_scalar_filter_within_rounding() {
-    let small = BilateralParams {
+/// A radius smaller than the paper's, so that the rows' taps start off the vectors' grid.
+fn small_params() -> BilateralParams {
+    BilateralParams {
         radius: 3,
         sigma_spatial: 1.5,
         sigma_depth: 0.02,
         normal_squarings: 2,
-    };
+    }
+}
+
+#[test]
+fn equals_the_scalar_filter_within_rounding() {
+    let small = small_params();
     let mut kept = CrossBilateral::default();
     for (k, (w, h)) in [
         (1, 1),
@@ -241,17 +246,61 @@ fn every_width_of_lanes_gives_the_same_bits() {
         .enumerate()
     {
         let (image, gbuffer) = random_frame(w, h, 40 + k as u32);
-        let params = BilateralParams::default();
-        let each = [Width::Arrays, Width::Avx2, Width::Avx512].map(|widest| {
-            let filtered = CrossBilateral::default().filter_in(widest, &image, &gbuffer, params);
-            let pixels = filtered.unwrap().pixels;
-            pixels
-                .iter()
-                .flat_map(|p| p.to_array().map(f32::to_bits))
-                .collect::<Vec<_>>()
-        });
-        assert_eq!(each[0], each[1], "{w}x{h}: AVX2 against arrays");
-        assert_eq!(each[0], each[2], "{w}x{h}: AVX-512 against arrays");
+        for params in [BilateralParams::default(), small_params()] {
+            let each = [Width::Arrays, Width::Avx2, Width::Avx512].map(|widest| {
+                let mut filter = CrossBilateral::default();
+                let pixels = filter
+                    .filter_in(widest, &image, &gbuffer, params)
+                    .unwrap()
+                    .pixels;
+                pixels
+                    .iter()
+                    .flat_map(|p| p.to_array().map(f32::to_bits))
+                    .collect::<Vec<_>>()
+            });
+            let r = params.radius;
+            assert_eq!(each[0], each[1], "{w}x{h}, radius {r}: AVX2 against arrays");
+            assert_eq!(
+                each[0], each[2],
+                "{w}x{h}, radius {r}: AVX-512 against arrays"
+            );
+        }
+    }
+}
+
+/// Surfaces whose reflectance is out of range (NaN or infinite kd: `reflectance` clamps NaN
+/// to 1e-3) are filtered and multiplied back as the scalar filter does: the vertical pass
+/// takes the reflectance from the guide's planes, where NaN marks a pixel without a surface.
+#[test]
+fn surfaces_with_nan_or_infinite_kd_are_filtered_as_the_scalar_filter_does() {
+    let (image, mut gbuffer) = random_frame(37, 21, 9);
+    for (i, g) in gbuffer.samples.iter_mut().enumerate() {
+        if let Some(g) = g.as_mut().filter(|_| i % 5 == 0) {
+            g.brdf.kd = if i % 10 == 0 {
+                Vec3::new(f32::NAN, 0.2, f32::NAN)
+            } else {
+                Vec3::new(0.3, f32::INFINITY, 0.1)
+            };
+        }
+    }
+    for params in [BilateralParams::default(), small_params()] {
+        let want = scalar_filter(&image, &gbuffer, params);
+        let got = cross_bilateral(&image, &gbuffer, params).unwrap();
+        for (i, (a, b)) in got.pixels.iter().zip(&want.pixels).enumerate() {
+            for c in 0..3 {
+                let (a, b) = (a[c], b[c]);
+                let same = a == b
+                    || (a.is_nan() && b.is_nan())
+                    || (a - b).abs() / b.abs().max(1e-6) < 1e-5;
+                assert!(same, "pixel {i} channel {c}: {a} against {b}");
+            }
+        }
+        // The NaN-kd surfaces are filtered: not left as the image's pixel.
+        let filtered = (0..got.pixels.len())
+            .filter(|i| i % 10 == 0 && gbuffer.samples[*i].is_some())
+            .filter(|&i| got.pixels[i] != image.pixels[i] && got.pixels[i].is_finite())
+            .count();
+        assert!(filtered > 5, "{filtered} NaN-kd surfaces filtered");
     }
 }
 
