@@ -14,10 +14,10 @@ use std::mem::size_of;
 /// arenas (a 1 x 1 render holds 12 MiB).
 pub const BASELINE_BYTES: u64 = 24 << 20;
 /// Per pixel besides the G-buffer: the direct, indirect and total images, the filter's
-/// buffers, the per-pixel lists' heads, the images written (PNG and EXR encoders, the
-/// multi-layer EXR) — 14 RGB `f32` values (measured: 200–232 bytes a pixel with the 104 of the
-/// G-buffer; estimated: 272).
-pub const IMAGE_BYTES_PER_PIXEL: u64 = 14 * size_of::<Vec3>() as u64;
+/// buffers (its planes 52 bytes), the per-pixel lists' heads, the images written (PNG and EXR
+/// encoders, the multi-layer EXR) — 15 RGB `f32` values (measured: 200–259 bytes a pixel with
+/// the 104 of the G-buffer, the most at 2048x2048 and above; estimated: 284).
+pub const IMAGE_BYTES_PER_PIXEL: u64 = 15 * size_of::<Vec3>() as u64;
 /// Per RSM texel: the traced surface and its flux, and the VSGL shader's mipmaps of them
 /// (measured: about 115 bytes).
 pub const RSM_BYTES_PER_TEXEL: u64 = 128;
