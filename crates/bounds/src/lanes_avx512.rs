@@ -8,7 +8,7 @@
 //! AVX2 kernel's, but each instruction carries twice the lanes: a kernel whose long chains
 //! of dependent operations fill the scheduler (the filter's exponential) keeps twice the
 //! work in flight.
-use crate::lanes::{Real, F8};
+use crate::lanes::Real;
 use core::arch::x86_64::{
     __m512, __mmask16, _mm512_add_epi32, _mm512_add_ps, _mm512_castps_si512, _mm512_castsi512_ps,
     _mm512_cmp_ps_mask, _mm512_cvttps_epi32, _mm512_div_ps, _mm512_loadu_ps, _mm512_mask_blend_ps,
@@ -159,27 +159,21 @@ impl A16 {
         let out = &mut out[..16];
         unsafe { _mm512_storeu_ps(out.as_mut_ptr(), self.0) }
     }
-
-    /// The lanes as two [`F8`]s, lanes 0-7 first.
-    #[inline(always)]
-    pub fn halves(self) -> [F8; 2] {
-        let mut out = [F8([0.0; 8]); 2];
-        let mut flat = [0.0f32; 16];
-        self.store(&mut flat);
-        out[0].0.copy_from_slice(&flat[..8]);
-        out[1].0.copy_from_slice(&flat[8..]);
-        out
-    }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::lanes::F8;
     use crate::test_util::{flags8, lane_operations, LaneResults};
 
     #[target_feature(enable = "avx512f")]
     fn wide(a: &[f32; 16], b: &[f32; 16]) -> LaneResults {
-        let values = |v: A16| v.halves().iter().flat_map(|h| h.0).collect();
+        let values = |v: A16| {
+            let mut lanes = vec![0.0; 16];
+            v.store(&mut lanes);
+            lanes
+        };
         let flags = |m: AM16| (0..16).map(|k| m.0 >> k & 1 == 1).collect();
         lane_operations(A16::load(a), A16::load(b), values, flags)
     }

@@ -15,7 +15,7 @@ use std::mem::size_of;
 pub const BASELINE_BYTES: u64 = 24 << 20;
 /// Per pixel besides the G-buffer: the direct, indirect and total images, the filter's
 /// buffers (its planes 52 bytes), the per-pixel lists' heads, the images written (PNG and EXR
-/// encoders, the multi-layer EXR) — 15 RGB `f32` values (measured: 200–259 bytes a pixel with
+/// encoders, the multi-layer EXR) — 15 RGB `f32` values (measured: 200–252 bytes a pixel with
 /// the 104 of the G-buffer, the most at 2048x2048 and above; estimated: 284).
 pub const IMAGE_BYTES_PER_PIXEL: u64 = 15 * size_of::<Vec3>() as u64;
 /// Per RSM texel: the traced surface and its flux, and the VSGL shader's mipmaps of them

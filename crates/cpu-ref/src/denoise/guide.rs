@@ -1,10 +1,10 @@
 //! The filter's working set: per padded row of the image, its guide (depth and shading
 //! normal), its demodulated values, the horizontal pass's output and the reflectance the
-//! vertical pass multiplies back, each a plane of `f32`
-//! (structure of arrays), so neighbouring pixels are one vector load. Every row is
-//! padded with `radius` pixels on each side (and the image with `radius` rows above and
-//! below) that have no surface: a tap outside the image reads a pixel without a surface and
-//! weighs 0, the filter's `continue` for taps past the border, without a bounds test.
+//! vertical pass multiplies back, each a plane of `f32` (structure of arrays), so
+//! neighbouring pixels are one vector load. Every row is padded with `radius` pixels on each
+//! side (and the image with `radius` rows above and below) that have no surface: a tap
+//! outside the image reads a pixel without a surface and weighs 0, the filter's `continue`
+//! for taps past the border, without a bounds test.
 use glam::Vec3;
 use rayon::prelude::*;
 use slc_core::{GBuffer, GSample, Image};
