@@ -395,8 +395,9 @@ fn is_inner(meta: u8) -> bool {
 /// an axis differ from the exact ones by a few f32 roundings of the terms they are formed
 /// from, at most a few 1e-7 of (|p| + 255 e + |o|)|1/d| for that axis, as do these bounds:
 /// the slack is 1e-5 of that magnitude (with 256 e for 255 e), per axis, so that an axis
-/// along which the rays barely move (|1/d| up to 1/ε) weakens only its own bounds. The four products of each interval
-/// bound the exact value whatever the signs. An axis with a non-finite ray ([`Reach`]) or an
+/// along which the rays barely move (|1/d| up to 1/ε) weakens only its own bounds. The four
+/// products of each interval bound the exact value whatever the signs. An axis with a
+/// non-finite ray ([`Reach`]) or an
 /// overflowing term bounds nothing (its slack is infinite, or its bound NaN, which the
 /// maximum and minimum pass over or which leaves every child in).
 #[inline(always)]
