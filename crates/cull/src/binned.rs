@@ -9,10 +9,10 @@
 //! (grown by `BOUND_SLACK`) and not behind the VPL, so its pixel lies in the VPL's rectangle
 //! (computed in f64 and grown) and passes the test.
 //!
-//! The VPLs are read once, in their order, and each tests the pixels of its rectangle where
-//! it is (the samples' positions, a few MB, stay in cache; the VPLs, 100+ bytes each, are
-//! streamed): the pairs that pass, in VPL order, are then sorted by pixel
-//! ([`crate::pair_lists`]). A GPU twin gets
+//! The VPLs are read once, in their order, a piece at a time; each piece's VPLs test the
+//! pixels of their rectangles subregion by subregion, so one subregion image's positions
+//! stay in cache while they are read (the VPLs, 100+ bytes each, are streamed): the pairs
+//! that pass, each pixel's in VPL order, are then sorted by pixel ([`crate::pair_lists`]). A GPU twin gets
 //! the same lists by binning each rectangle into the tiles it overlaps, then testing each
 //! tile's pixels against its bin (docs/many-vpls.md).
 use crate::lists::pixel_count;

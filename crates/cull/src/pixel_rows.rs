@@ -80,26 +80,57 @@ impl PixelRows {
     /// Pushes (pixel, VPL) for every pixel of every rectangle of `scattered` whose sample
     /// passes the VPL's [`PixelTest`], VPL by VPL, each rectangle row by row (within a chunk
     /// of eight pixels, those that surely pass first): the pairs the exact test gives on
-    /// every pixel, each pixel's in VPL order.
+    /// every pixel, each pixel's in the order of `scattered`.
+    ///
+    /// The VPLs are taken subregion by subregion ([`by_subregion`]), so one subregion
+    /// image's rows stay in cache while its VPLs test them: in `scattered` the subregions
+    /// interleave (a VPL's is a hash of its id), and taken in that order every rectangle's
+    /// rows would be read from a different part of the whole image's positions.
     pub(crate) fn test(&self, scattered: &[Scattered], pairs: &mut Bands) {
+        let ordered = by_subregion(scattered, self.layout.k);
         #[cfg(target_arch = "x86_64")]
         if std::arch::is_x86_feature_detected!("avx2") {
             // SAFETY: the CPU has AVX2, checked just above.
-            return unsafe { test_avx2(self, scattered, pairs) };
+            return unsafe { test_avx2(self, &ordered, pairs) };
         }
-        test_lanes::<F8>(self, scattered, pairs);
+        test_lanes::<F8>(self, &ordered, pairs);
     }
+}
+
+/// The entries of `scattered` subregion by subregion, each subregion's in their order (a
+/// counting sort). Every pixel lies in one subregion, so its pairs keep the order of
+/// `scattered`. With more subregions than entries there is about one entry per subregion and
+/// nothing to gather: the order is kept as it is.
+fn by_subregion(scattered: &[Scattered], k: u32) -> Vec<&Scattered> {
+    let subregions = k as usize * k as usize;
+    if subregions > scattered.len() {
+        return scattered.iter().collect();
+    }
+    let of = |s: &Scattered| (s.subregion[1] * k + s.subregion[0]) as usize;
+    let mut next = vec![0usize; subregions + 1];
+    for s in scattered {
+        next[of(s) + 1] += 1;
+    }
+    for i in 1..=subregions {
+        next[i] += next[i - 1];
+    }
+    let mut ordered = vec![&scattered[0]; scattered.len()];
+    for s in scattered {
+        ordered[next[of(s)]] = s;
+        next[of(s)] += 1;
+    }
+    ordered
 }
 
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2")]
-fn test_avx2(rows: &PixelRows, scattered: &[Scattered], pairs: &mut Bands) {
+fn test_avx2(rows: &PixelRows, scattered: &[&Scattered], pairs: &mut Bands) {
     test_lanes::<slc_bounds::lanes_avx::A8>(rows, scattered, pairs);
 }
 
-/// [`PixelRows::test`] in lanes `L`.
+/// [`PixelRows::test`] in lanes `L`, the VPLs in the order of `scattered`.
 #[inline(always)]
-fn test_lanes<L: Lanes8>(rows: &PixelRows, scattered: &[Scattered], pairs: &mut Bands) {
+fn test_lanes<L: Lanes8>(rows: &PixelRows, scattered: &[&Scattered], pairs: &mut Bands) {
     let Layout {
         chunks_per_row: per,
         width,
@@ -488,12 +519,13 @@ mod tests {
     }
 
     /// The lists of the rows' tests equal those of the exact test on every pixel of every
-    /// rectangle, at interleavings 1, 3 and 8 with rectangles of every width (partial
-    /// chunks at both ends, one pixel, the whole row), samples missing and extreme bounds.
+    /// rectangle, at interleavings 1, 3 and 8 (the VPLs gathered by subregion) and 20 (more
+    /// subregions than VPLs: taken as given) with rectangles of every width (partial chunks
+    /// at both ends, one pixel, the whole row), samples missing and extreme bounds.
     #[test]
     fn rows_give_the_exact_tests_lists() {
         let mut rng = Rng(11);
-        for (k, width, height) in [(1, 37, 5), (3, 50, 13), (8, 203, 40)] {
+        for (k, width, height) in [(1, 37, 5), (3, 50, 13), (8, 203, 40), (20, 400, 90)] {
             let mut positions = vec![None; (width * height) as usize];
             for p in positions.iter_mut() {
                 if rng.range64(0.0, 1.0) < 0.9 {
@@ -557,8 +589,10 @@ mod tests {
             let pixels = (width * height) as usize;
             let mut got = Bands::new(pixels);
             rows.test(&scattered, &mut got);
+            // The portable lanes, the VPLs in their own order (subregions interleaved).
             let mut plain = Bands::new(pixels);
-            test_lanes::<F8>(&rows, &scattered, &mut plain);
+            let in_order: Vec<&Scattered> = scattered.iter().collect();
+            test_lanes::<F8>(&rows, &in_order, &mut plain);
             let mut want = Bands::new(pixels);
             for s in &scattered {
                 let [i0, j0, i1, j1] = s.pixels;
