@@ -9,10 +9,11 @@
 //! (grown by `BOUND_SLACK`) and not behind the VPL, so its pixel lies in the VPL's rectangle
 //! (computed in f64 and grown) and passes the test.
 //!
-//! The VPLs are read once, in their order, a piece at a time; each piece's VPLs test the
-//! pixels of their rectangles subregion by subregion, so one subregion image's positions
-//! stay in cache while they are read (the VPLs, 100+ bytes each, are streamed): the pairs
-//! that pass, each pixel's in VPL order, are then sorted by pixel ([`crate::pair_lists`]). A GPU twin gets
+//! The VPLs are read once, in their order, a piece at a time (the VPLs, 100+ bytes each,
+//! are streamed through the scatter); each piece's scattered bounds then test the pixels of
+//! their rectangles subregion by subregion, so one subregion image's positions stay in
+//! cache while they are read. The pairs that pass, each pixel's in VPL order, are then
+//! sorted by pixel ([`crate::pair_lists`]). A GPU twin gets
 //! the same lists by binning each rectangle into the tiles it overlaps, then testing each
 //! tile's pixels against its bin (docs/many-vpls.md).
 use crate::lists::pixel_count;
@@ -46,7 +47,8 @@ pub(crate) fn cull(input: &CullInput) -> Result<LightLists, CullError> {
         // δ is checked once here for the lanes, which take it as valid.
         StochasticParams::new(input.delta, 0.5)?;
     }
-    // Per piece of VPLs (in order), the (pixel, VPL) pairs that pass, in VPL order, by band.
+    // Per piece of VPLs (in order), the (pixel, VPL) pairs that pass, each pixel's in VPL
+    // order, by band.
     let pieces = input
         .vpls
         .par_chunks(VPLS_PER_PIECE)

@@ -99,8 +99,9 @@ impl PixelRows {
 
 /// The entries of `scattered` subregion by subregion, each subregion's in their order (a
 /// counting sort). Every pixel lies in one subregion, so its pairs keep the order of
-/// `scattered`. With more subregions than entries there is about one entry per subregion and
-/// nothing to gather: the order is kept as it is.
+/// `scattered`. With more subregions than entries there is less than one entry per subregion,
+/// nothing to gather, and the counters would outweigh the entries (K² + 1 of them, 8 MiB at
+/// K = 1024): the order is kept as it is.
 fn by_subregion(scattered: &[Scattered], k: u32) -> Vec<&Scattered> {
     let subregions = k as usize * k as usize;
     if subregions > scattered.len() {
@@ -521,7 +522,9 @@ mod tests {
     /// The lists of the rows' tests equal those of the exact test on every pixel of every
     /// rectangle, at interleavings 1, 3 and 8 (the VPLs gathered by subregion) and 20 (more
     /// subregions than VPLs: taken as given) with rectangles of every width (partial chunks
-    /// at both ends, one pixel, the whole row), samples missing and extreme bounds.
+    /// at both ends, one pixel, the whole row), samples missing and extreme bounds. The
+    /// VPLs lie in random subregions and come in no order of their indices, so each pixel's
+    /// list must keep the order of `scattered` itself.
     #[test]
     fn rows_give_the_exact_tests_lists() {
         let mut rng = Rng(11);
@@ -547,7 +550,8 @@ mod tests {
             });
             let mut scattered = Vec::new();
             for index in 0..300u32 {
-                let subregion = [index % k, (index / k) % k];
+                // At random (some subregions left empty), as a VPL's is a hash of its id.
+                let subregion = [(); 2].map(|_| (rng.range64(0.0, f64::from(k)) as u32).min(k - 1));
                 let [sw, sh] =
                     slc_core::Interleaving { k, seed: 0 }.subregion_size(width, height, subregion);
                 let axis = unit(&mut rng);
@@ -585,6 +589,11 @@ mod tests {
                     test,
                     pixels: [i0, j0, i1, j1],
                 });
+            }
+            // In no order of their indices: each pixel's list keeps the order of `scattered`.
+            for i in (1..scattered.len()).rev() {
+                let j = (rng.range64(0.0, (i + 1) as f64) as usize).min(i);
+                scattered.swap(i, j);
             }
             let pixels = (width * height) as usize;
             let mut got = Bands::new(pixels);
