@@ -1,8 +1,8 @@
 //! [`LightLists`] from (pixel, VPL) pairs gathered with each pixel's in VPL order: a counting
-//! sort by pixel that keeps each pixel's VPLs in their order. The pairs arrive split into bands of
-//! [`BAND_PIXELS`] consecutive pixels ([`Bands`]), so each band is sorted on its own, in
-//! parallel, with its counters in cache: millions of pairs over a whole image's counters miss
-//! the cache at nearly every step.
+//! sort by pixel that keeps each pixel's VPLs in their order. The pairs arrive split into
+//! bands of [`BAND_PIXELS`] consecutive pixels ([`Bands`]), so each band is sorted on its
+//! own, in parallel, with its counters in cache: millions of pairs over a whole image's
+//! counters miss the cache at nearly every step.
 use rayon::prelude::*;
 use slc_core::{CullError, LightLists, NO_LIST};
 

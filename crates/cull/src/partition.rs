@@ -18,19 +18,7 @@ impl Partition {
             .iter()
             .map(|v| interleaving.vpl_subregion(v.id))
             .collect();
-        let mut offsets = vec![0u32; subregions + 1];
-        for &s in &of {
-            offsets[s as usize + 1] += 1;
-        }
-        for s in 0..subregions {
-            offsets[s + 1] += offsets[s];
-        }
-        let mut next = offsets.clone();
-        let mut indices = vec![0u32; vpls.len()];
-        for (i, &s) in of.iter().enumerate() {
-            indices[next[s as usize] as usize] = i as u32;
-            next[s as usize] += 1;
-        }
+        let (offsets, indices) = group_by(&of, subregions);
         Ok(Self { offsets, indices })
     }
 
@@ -44,6 +32,26 @@ impl Partition {
     pub(crate) fn of(&self, s: u32) -> &[u32] {
         &self.indices[self.offsets[s as usize] as usize..self.offsets[s as usize + 1] as usize]
     }
+}
+
+/// The indices `0..keys.len()` grouped by their key (each below `groups`), ascending within
+/// each group (a counting sort, stable), in compressed rows: group `g` holds
+/// `indices[offsets[g]..offsets[g + 1]]`. Returns `(offsets, indices)`.
+pub(crate) fn group_by(keys: &[u32], groups: usize) -> (Vec<u32>, Vec<u32>) {
+    let mut offsets = vec![0u32; groups + 1];
+    for &g in keys {
+        offsets[g as usize + 1] += 1;
+    }
+    for g in 0..groups {
+        offsets[g + 1] += offsets[g];
+    }
+    let mut next = offsets.clone();
+    let mut indices = vec![0u32; keys.len()];
+    for (i, &g) in keys.iter().enumerate() {
+        indices[next[g as usize] as usize] = i as u32;
+        next[g as usize] += 1;
+    }
+    (offsets, indices)
 }
 
 /// Largest accepted interleaving factor K (K² = 2^20 subregions; more than any image needs).

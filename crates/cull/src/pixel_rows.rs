@@ -8,6 +8,7 @@
 //! those of the exact test on every pixel of the rectangle (`tests` checks both), at a
 //! fraction of its cost.
 use crate::pair_lists::Bands;
+use crate::partition::group_by;
 use crate::reach::SIGN_MARGIN;
 use crate::rounding::{down, up};
 use crate::scatter::{PixelTest, Scattered};
@@ -97,30 +98,22 @@ impl PixelRows {
     }
 }
 
-/// The entries of `scattered` subregion by subregion, each subregion's in their order (a
-/// counting sort). Every pixel lies in one subregion, so its pairs keep the order of
-/// `scattered`. With more subregions than entries there is less than one entry per subregion,
-/// nothing to gather, and the counters would outweigh the entries (K² + 1 of them, 8 MiB at
-/// K = 1024): the order is kept as it is.
+/// The entries of `scattered` subregion by subregion, each subregion's in their order
+/// ([`group_by`], as [`crate::partition::Partition`] groups VPLs). Every pixel lies in one
+/// subregion, so its pairs keep the order of `scattered`. With more subregions than entries
+/// there is less than one entry per subregion, nothing to gather, and the counters would
+/// outweigh the entries (K² + 1 of them, 4 MiB at K = 1024): the order is kept as it is.
 fn by_subregion(scattered: &[Scattered], k: u32) -> Vec<&Scattered> {
     let subregions = k as usize * k as usize;
     if subregions > scattered.len() {
         return scattered.iter().collect();
     }
-    let of = |s: &Scattered| (s.subregion[1] * k + s.subregion[0]) as usize;
-    let mut next = vec![0usize; subregions + 1];
-    for s in scattered {
-        next[of(s) + 1] += 1;
-    }
-    for i in 1..=subregions {
-        next[i] += next[i - 1];
-    }
-    let mut ordered = vec![&scattered[0]; scattered.len()];
-    for s in scattered {
-        ordered[next[of(s)]] = s;
-        next[of(s)] += 1;
-    }
-    ordered
+    let keys: Vec<u32> = scattered
+        .iter()
+        .map(|s| s.subregion[1] * k + s.subregion[0])
+        .collect();
+    let (_, order) = group_by(&keys, subregions);
+    order.iter().map(|&i| &scattered[i as usize]).collect()
 }
 
 #[cfg(target_arch = "x86_64")]
@@ -551,7 +544,8 @@ mod tests {
             let mut scattered = Vec::new();
             for index in 0..300u32 {
                 // At random (some subregions left empty), as a VPL's is a hash of its id.
-                let subregion = [(); 2].map(|_| (rng.range64(0.0, f64::from(k)) as u32).min(k - 1));
+                let mut any = || (rng.range64(0.0, f64::from(k)) as u32).min(k - 1);
+                let subregion = [any(), any()];
                 let [sw, sh] =
                     slc_core::Interleaving { k, seed: 0 }.subregion_size(width, height, subregion);
                 let axis = unit(&mut rng);

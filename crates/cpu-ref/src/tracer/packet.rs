@@ -397,9 +397,8 @@ fn is_inner(meta: u8) -> bool {
 /// the slack is 1e-5 of that magnitude (with 256 e for 255 e), per axis, so that an axis
 /// along which the rays barely move (|1/d| up to 1/ε) weakens only its own bounds. The four
 /// products of each interval bound the exact value whatever the signs. An axis with a
-/// non-finite ray ([`Reach`]) or an
-/// overflowing term bounds nothing (its slack is infinite, or its bound NaN, which the
-/// maximum and minimum pass over or which leaves every child in).
+/// non-finite ray ([`Reach`]) or an overflowing term bounds nothing (its slack is infinite,
+/// or its bound NaN, which the maximum and minimum pass over or which leaves every child in).
 #[inline(always)]
 fn children_in_reach<L: Lanes8>(node: &CwBvhNode, lanes: &Lanes<L>) -> u8 {
     let e = node.compute_extent();
