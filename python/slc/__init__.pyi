@@ -83,6 +83,7 @@ class LightListArrays(TypedDict):
     offsets: npt.NDArray[np.uint32]
     indices: npt.NDArray[np.uint32]
     lists: npt.NDArray[np.uint32]
+    shared: npt.NDArray[np.uint32]
     NO_LIST: int
 
 class FrameOptions(TypedDict, total=False):

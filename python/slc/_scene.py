@@ -273,7 +273,10 @@ class Scene:
         """The light lists the strategy ``culling`` builds for the frame (culled on the
         CPU): ``lists`` is the list of each pixel (H×W uint32, ``NO_LIST`` where the pixel
         has none), list l holds the VPL indices (rows of ``vpls``)
-        ``indices[offsets[l]:offsets[l + 1]]``.
+        ``indices[offsets[l]:offsets[l + 1]]``. ``shared`` (H×W uint32) is each pixel's
+        second list, one many pixels share (``binned``: the VPLs of large range that may
+        reach its cell), ``NO_LIST`` where it has none and everywhere for the other
+        strategies; a pixel is shaded with the union of its two lists.
 
         Options (keyword only):
 {options}"""

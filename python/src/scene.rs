@@ -497,9 +497,17 @@ impl PyScene {
         let out = PyDict::new(py);
         out.set_item("offsets", PyArray1::from_vec(py, lists.offsets))?;
         out.set_item("indices", PyArray1::from_vec(py, lists.indices))?;
-        let pixels: Bound<'py, PyArray2<u32>> = PyArray1::from_vec(py, lists.pixel_list)
-            .reshape([s.height as usize, s.width as usize])?;
+        let shape = [s.height as usize, s.width as usize];
+        // Without second lists every pixel's shared list is NO_LIST.
+        let shared = match lists.shared_list.is_empty() {
+            true => vec![NO_LIST; lists.pixel_list.len()],
+            false => lists.shared_list,
+        };
+        let pixels: Bound<'py, PyArray2<u32>> =
+            PyArray1::from_vec(py, lists.pixel_list).reshape(shape)?;
+        let shared: Bound<'py, PyArray2<u32>> = PyArray1::from_vec(py, shared).reshape(shape)?;
         out.set_item("lists", pixels)?;
+        out.set_item("shared", shared)?;
         out.set_item("NO_LIST", NO_LIST)?;
         Ok(out)
     }

@@ -82,11 +82,16 @@ def test_vpls_are_columns_of_one_row_per_vpl(scene):
 
 
 def _pixel_lists(lists):
-    """Each pixel's VPL indices (row-major), from offsets, indices and the per-pixel lists."""
+    """Each pixel's VPL indices (row-major), from offsets, indices and the per-pixel lists:
+    its own list, or with a shared list the union of both, ascending."""
     offsets, indices = lists["offsets"], lists["indices"]
+
+    def entries(l):
+        return () if l == lists["NO_LIST"] else tuple(indices[offsets[l] : offsets[l + 1]])
+
     return [
-        () if l == lists["NO_LIST"] else tuple(indices[offsets[l] : offsets[l + 1]])
-        for l in lists["lists"].ravel()
+        entries(own) if shared == lists["NO_LIST"] else tuple(sorted(set(entries(own) + entries(shared))))
+        for own, shared in zip(lists["lists"].ravel(), lists["shared"].ravel())
     ]
 
 
@@ -113,6 +118,18 @@ def test_light_lists_are_the_lists_the_renderer_shades_with(scene):
     assert len(subregions) == 4 and sorted(members) == list(range(n))
     assert all(set(c) <= set(f) for c, f in zip(culled, unculled))
     assert sum(map(len, culled)) < sum(map(len, unculled))
+    assert (lists["shared"] == lists["NO_LIST"]).all()
+    # binned shares the VPLs whose rectangles exceed a tile (16² pixels of a subregion
+    # image) per cell: a frame without interleaving where such ranges occur.
+    wide = dict(width=96, height=72, rsm=8, delta=1e-3, interleave=1, seed=1)
+    binned = scene.light_lists(**wide, culling="binned")
+    assert (binned["shared"] != binned["NO_LIST"]).any()
+    lights = scene.render(**wide, culling="binned", metrics=True).lights
+    binned_lists = _pixel_lists(binned)
+    np.testing.assert_array_equal([len(l) for l in binned_lists], lights.ravel())
+    everything = _pixel_lists(scene.light_lists(**wide, culling="none"))
+    assert all(set(c) <= set(f) for c, f in zip(binned_lists, everything))
+    assert all(list(c) == sorted(set(c)) for c in binned_lists)
 
 
 def test_vsgls_and_references():

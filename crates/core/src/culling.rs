@@ -5,6 +5,7 @@ use crate::framebuffer::GBuffer;
 use crate::rng::{hash4, stream};
 use crate::strategy::Strategy;
 use crate::vpl::Vpl;
+use std::borrow::Cow;
 
 /// Pixels per tile side in tiled and clustered culling (paper section 5, 7).
 pub const TILE_SIZE: u32 = 16;
@@ -70,21 +71,45 @@ pub struct CullInput<'a> {
 /// (indices into `CullInput::vpls`), and pixel `p` shades with list `pixel_list[p]`
 /// (`NO_LIST` for pixels that see nothing). A tile with two depth clusters has two lists; a
 /// pixel picks the one of its depth.
+///
+/// A strategy may give a pixel a second list, `shared_list[p]`, that many pixels share
+/// (`binned`: its tile's VPLs whose ranges cover many pixels). Then every list is strictly
+/// ascending ([`Self::check`]), and the pixel is shaded with the union of its two lists in
+/// ascending order, each VPL once ([`Self::for_pixel`]). `shared_list` is empty where the
+/// strategy gives each pixel one list.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct LightLists {
     pub offsets: Vec<u32>,
     pub indices: Vec<u32>,
     pub pixel_list: Vec<u32>,
+    pub shared_list: Vec<u32>,
 }
 
 /// `pixel_list` value of a pixel without a list.
 pub const NO_LIST: u32 = u32::MAX;
 
 impl LightLists {
-    /// The VPL indices pixel `p` is shaded with.
+    /// The VPL indices pixel `p` is shaded with, in the order it sums them: its list as it
+    /// is, or with a second list the union of both, ascending, each VPL once.
+    pub fn for_pixel(&self, p: usize) -> Cow<'_, [u32]> {
+        match self.lists_of(p) {
+            [own, []] => Cow::Borrowed(own),
+            [[], shared] => Cow::Borrowed(shared),
+            [own, shared] => Cow::Owned(union(own, shared)),
+        }
+    }
+
+    /// Pixel `p`'s own list and its second, shared list (empty where it has none).
     #[inline]
-    pub fn for_pixel(&self, p: usize) -> &[u32] {
-        match self.pixel_list[p] {
+    pub fn lists_of(&self, p: usize) -> [&[u32]; 2] {
+        let shared = self.shared_list.get(p).copied().unwrap_or(NO_LIST);
+        [self.list(self.pixel_list[p]), self.list(shared)]
+    }
+
+    /// The entries of list `l`, none for `NO_LIST`.
+    #[inline]
+    pub fn list(&self, l: u32) -> &[u32] {
+        match l {
             NO_LIST => &[],
             l => {
                 &self.indices
@@ -93,12 +118,39 @@ impl LightLists {
         }
     }
 
-    /// Pixel-VPL pairs the lists hold: the sum over pixels of their list's length (what
-    /// shading evaluates, before its early exits).
+    /// Pixel-VPL pairs the lists hold: the sum over pixels of the VPLs each is shaded with
+    /// (what shading evaluates, before its early exits).
     pub fn listed_pairs(&self) -> u64 {
         (0..self.pixel_list.len())
-            .map(|p| self.for_pixel(p).len() as u64)
+            .map(|p| match self.lists_of(p) {
+                [own, []] | [[], own] => own.len() as u64,
+                [own, shared] => union(own, shared).len() as u64,
+            })
             .sum()
+    }
+
+    /// The same lists with one list per pixel: where a pixel has a second list, its own
+    /// becomes the union ([`Self::for_pixel`]), for a reader of single lists (the GPU's
+    /// shading of uploaded lists). Lists without a second list are returned as they are.
+    pub fn flattened(self) -> LightLists {
+        if self.shared_list.is_empty() {
+            return self;
+        }
+        let mut flat = LightLists {
+            offsets: vec![0],
+            ..LightLists::default()
+        };
+        for p in 0..self.pixel_list.len() {
+            let list = self.for_pixel(p);
+            if list.is_empty() {
+                flat.pixel_list.push(NO_LIST);
+                continue;
+            }
+            flat.pixel_list.push((flat.offsets.len() - 1) as u32);
+            flat.indices.extend_from_slice(&list);
+            flat.offsets.push(flat.indices.len() as u32);
+        }
+        flat
     }
 
     /// Number of lists.
@@ -148,18 +200,50 @@ impl LightLists {
         let lists = self.len();
         // l + 1, NO_LIST (u32::MAX) as 0: at most `lists` for a pixel without or with a list.
         let named = |l: u32| l.wrapping_add(1);
-        if self
-            .pixel_list
-            .iter()
-            .map(|&l| named(l))
-            .max()
-            .is_some_and(|l| l as usize > lists)
+        for map in [&self.pixel_list, &self.shared_list] {
+            if map
+                .iter()
+                .map(|&l| named(l))
+                .max()
+                .is_some_and(|l| l as usize > lists)
+            {
+                let l = map.iter().find(|&&l| named(l) as usize > lists);
+                return bad(format!("list {} of {lists} lists", l.expect("the largest")));
+            }
+        }
+        if self.shared_list.is_empty() {
+            return Ok(());
+        }
+        if self.shared_list.len() != pixels {
+            return bad(format!(
+                "{} shared list entries for {pixels} pixels",
+                self.shared_list.len()
+            ));
+        }
+        // Unions are merged: with second lists, every list is strictly ascending.
+        if let Some(l) = (0..lists).find(|&l| self.list(l as u32).windows(2).any(|w| w[0] >= w[1]))
         {
-            let l = self.pixel_list.iter().find(|&&l| named(l) as usize > lists);
-            return bad(format!("list {} of {lists} lists", l.expect("the largest")));
+            return bad(format!(
+                "list {l} is not strictly ascending beside shared lists"
+            ));
         }
         Ok(())
     }
+}
+
+/// The union of two strictly ascending lists, ascending, each VPL once.
+fn union(a: &[u32], b: &[u32]) -> Vec<u32> {
+    let mut out = Vec::with_capacity(a.len() + b.len());
+    let (mut i, mut j) = (0, 0);
+    while i < a.len() && j < b.len() {
+        let (x, y) = (a[i], b[j]);
+        out.push(x.min(y));
+        i += usize::from(x <= y);
+        j += usize::from(y <= x);
+    }
+    out.extend_from_slice(&a[i..]);
+    out.extend_from_slice(&b[j..]);
+    out
 }
 
 /// Why culling failed.
@@ -230,6 +314,7 @@ mod tests {
             offsets: vec![0, 2],
             indices: vec![0, 1],
             pixel_list: vec![0, NO_LIST],
+            shared_list: Vec::new(),
         };
         assert!(good.check(2, 2).is_ok());
         assert!(good.check(3, 2).is_err());
@@ -249,6 +334,7 @@ mod tests {
             offsets: vec![0],
             indices: vec![],
             pixel_list: vec![NO_LIST; 3],
+            shared_list: Vec::new(),
         };
         assert!(none.check(3, 0).is_ok());
         let named = LightLists {
@@ -260,6 +346,54 @@ mod tests {
         assert!(LightLists::default().check(0, 0).is_ok());
     }
 
+    /// Second lists: a pixel is shaded with the union of its two lists, ascending, each VPL
+    /// once; the pairs and the flattened lists count and hold exactly that; lists beside
+    /// shared ones must be strictly ascending, and a shared list must exist.
+    #[test]
+    fn a_pixel_with_a_shared_list_is_shaded_with_the_union() {
+        // Lists 0 and 1 are pixels' own, list 2 is shared by pixels 0, 1 and 3.
+        let lists = LightLists {
+            offsets: vec![0, 3, 4, 7],
+            indices: vec![1, 5, 9, 2, 0, 5, 6],
+            pixel_list: vec![0, NO_LIST, 1, NO_LIST, 1],
+            shared_list: vec![2, 2, NO_LIST, 2, NO_LIST],
+        };
+        assert!(lists.check(5, 10).is_ok());
+        assert_eq!(*lists.for_pixel(0), [0, 1, 5, 6, 9], "VPL 5 once");
+        assert_eq!(*lists.for_pixel(1), [0, 5, 6]);
+        assert_eq!(*lists.for_pixel(2), [2]);
+        assert_eq!(*lists.for_pixel(3), [0, 5, 6]);
+        assert_eq!(lists.lists_of(0), [&[1, 5, 9][..], &[0, 5, 6][..]]);
+        assert_eq!(lists.listed_pairs(), 5 + 3 + 1 + 3 + 1);
+        let flat = lists.clone().flattened();
+        assert!(flat.shared_list.is_empty());
+        assert!(flat.check(5, 10).is_ok());
+        for p in 0..5 {
+            assert_eq!(flat.for_pixel(p), lists.for_pixel(p), "pixel {p}");
+        }
+        assert_eq!(flat.listed_pairs(), lists.listed_pairs());
+        let unsorted = LightLists {
+            indices: vec![1, 5, 9, 2, 0, 6, 5],
+            ..lists.clone()
+        };
+        let message = unsorted.check(5, 10).unwrap_err().to_string();
+        assert!(
+            message.contains("list 2 is not strictly ascending"),
+            "{message}"
+        );
+        let short = LightLists {
+            shared_list: vec![2, 2],
+            ..lists.clone()
+        };
+        assert!(short.check(5, 10).is_err());
+        let dangling = LightLists {
+            shared_list: vec![3, 2, NO_LIST, 2, NO_LIST],
+            ..lists
+        };
+        let message = dangling.check(5, 10).unwrap_err().to_string();
+        assert!(message.contains("list 3 of 3 lists"), "{message}");
+    }
+
     #[test]
     fn listed_pairs_count_each_pixel_with_its_list() {
         // Two lists (3 and 1 VPLs); pixels 0 and 2 share list 0, pixel 1 has none.
@@ -267,6 +401,7 @@ mod tests {
             offsets: vec![0, 3, 4],
             indices: vec![5, 6, 7, 1],
             pixel_list: vec![0, NO_LIST, 0, 1],
+            shared_list: Vec::new(),
         };
         // Pixels 0 and 2: three pairs each; pixel 1: none; pixel 3: one.
         assert_eq!(lists.listed_pairs(), 7);

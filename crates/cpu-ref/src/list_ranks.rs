@@ -1,5 +1,5 @@
-//! The rank of each light list among a tile's, in the order the tile's pixels first meet
-//! them, found in a small hash table: a tile of per-pixel lists (`binned`) has as many lists
+//! The rank of each light list among a tile's (or pair of lists: a pixel's own and its
+//! shared one), in the order the tile's pixels first meet them, found in a small hash table: a tile of per-pixel lists (`binned`) has as many lists
 //! as pixels, and a search through the ranks found so far made shading those tiles quadratic
 //! in their pixels.
 
@@ -7,8 +7,8 @@
 #[derive(Clone, Copy, Default)]
 struct Slot {
     generation: u32,
-    list: u32,
     rank: u32,
+    list: u64,
 }
 
 /// An open-addressing table from list to rank, reused from tile to tile (a new generation per
@@ -31,12 +31,12 @@ impl ListRanks {
         self.generation += 1;
     }
 
-    /// The rank of list `l` in this tile: its place in `lists`, where it is appended when the
+    /// The rank of list (or pair of lists) `l` in this tile: its place in `lists`, where it is appended when the
     /// tile meets it first. At most the `pixels` given to [`Self::start`] lists per tile.
     #[inline]
-    pub(crate) fn rank(&mut self, l: u32, lists: &mut Vec<u32>) -> u32 {
+    pub(crate) fn rank(&mut self, l: u64, lists: &mut Vec<u64>) -> u32 {
         let mask = self.slots.len() - 1;
-        let mut i = (l.wrapping_mul(0x9E37_79B1) >> 12) as usize & mask;
+        let mut i = (l.wrapping_mul(0x9E37_79B9_7F4A_7C15) >> 40) as usize & mask;
         loop {
             let slot = &mut self.slots[i];
             if slot.generation != self.generation {
@@ -68,17 +68,17 @@ mod tests {
         let mut ranks = ListRanks::default();
         let mut lists = Vec::new();
         ranks.start(4);
-        let got: Vec<u32> = [7, 3, 7, 9, 3, u32::MAX - 1]
+        let got: Vec<u32> = [7, 3, 7, 9, 3, u64::MAX - 1]
             .iter()
             .map(|&l| ranks.rank(l, &mut lists))
             .collect();
         assert_eq!(got, [0, 1, 0, 2, 1, 3]);
-        assert_eq!(lists, [7, 3, 9, u32::MAX - 1]);
+        assert_eq!(lists, [7, 3, 9, u64::MAX - 1]);
         lists.clear();
         ranks.start(256);
         assert_eq!(ranks.rank(9, &mut lists), 0, "a new tile starts empty");
         // 256 distinct lists spaced so that many share a slot before probing.
-        let many: Vec<u32> = (0..256).map(|i| i << 20).collect();
+        let many: Vec<u64> = (0..256).map(|i| i << 20).collect();
         lists.clear();
         ranks.start(256);
         for (i, &l) in many.iter().enumerate() {

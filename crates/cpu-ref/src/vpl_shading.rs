@@ -249,22 +249,25 @@ struct ListShading<'a> {
     visibility: bool,
 }
 
-/// Scratch reused from tile to tile: the tile's distinct lists (and their ranks), the (rank of the list, slot,
-/// pixel) triples of its pixels with a list, those grouped by list, where each group starts
-/// and the next free place while grouping; for the lists shaded together, their VPLs (each
-/// with the lists that hold it) and per VPL a stamp of those lists while merging; the
+/// Scratch reused from tile to tile: the tile's distinct lists (a pixel's own and shared
+/// list as one [`key`]) and their ranks, the (rank of the list, slot, pixel) triples of its
+/// pixels with a list, those grouped by list, where each group starts and the next free
+/// place while grouping; for the lists shaded together, their VPLs (each with the lists that
+/// hold it), their distinct shared lists with the sets that hold each, and per VPL a stamp
+/// of those lists while merging; the
 /// receivers in lanes, the BRDF lanes of their chunks (formed only for a chunk where a pair
 /// passes, which `formed` marks), their samples and sets, sums and the chunks where one VPL
 /// passes.
 #[derive(Default)]
 struct TileScratch<'a> {
-    lists: Vec<u32>,
+    lists: Vec<u64>,
     ranks: ListRanks,
     pixels: Vec<(u32, u32, u32)>,
     grouped: Vec<(u32, u32, u32)>,
     starts: Vec<usize>,
     next: Vec<usize>,
     members: Vec<(u32, u32)>,
+    shared: Vec<(u32, u32)>,
     union: Vec<u32>,
     stamps: Vec<u32>,
     receivers: ReceiverChunks,
@@ -288,13 +291,15 @@ impl<'a> ListShading<'a> {
         scratch.ranks.start(tile.pixel_count());
         scratch.pixels.clear();
         // Neighbours in Z order mostly share a list: the last one found is tried first.
-        let mut last = (NO_LIST, 0);
+        let mut last = (NO_KEY, 0);
+        let shared = &self.lists.shared_list;
         for (slot, [x, y]) in tile.pixels_z_order(k) {
             let p = y * width + x;
             // Read below, once the tile's pixels are grouped.
             prefetch(&self.gbuffer.samples[p as usize]);
-            let l = self.lists.pixel_list[p as usize];
-            if l == NO_LIST {
+            let own = self.lists.pixel_list[p as usize];
+            let l = key(own, shared.get(p as usize).copied().unwrap_or(NO_LIST));
+            if l == NO_KEY {
                 continue;
             }
             if l != last.0 {
@@ -323,11 +328,13 @@ impl<'a> ListShading<'a> {
         }
         let lists = core::mem::take(&mut scratch.lists);
         // A list shares its window only when it has few pixels and is strictly ascending
-        // (the union of such lists in ascending order is each one's own order).
+        // (the union of such lists in ascending order is each one's own order; beside
+        // shared lists every list is).
         let starts = core::mem::take(&mut scratch.starts);
         let shares = |r: usize| {
+            let [own, shared] = lists_of(lists[r]);
             starts[r + 1] - starts[r] < SHARED_WINDOW_PIXELS
-                && self.list(lists[r]).windows(2).all(|w| w[0] < w[1])
+                && (shared != NO_LIST || self.list(own).windows(2).all(|w| w[0] < w[1]))
         };
         let mut first = 0;
         while first < ranks {
@@ -346,9 +353,12 @@ impl<'a> ListShading<'a> {
         scratch.starts = starts;
     }
 
-    /// The entries of list `l`: places in `listed`.
+    /// The entries of list `l`: places in `listed` (none for `NO_LIST`).
     #[inline]
     fn list(&self, l: u32) -> &'a [u32] {
+        if l == NO_LIST {
+            return &[];
+        }
         let l = l as usize;
         &self.indices[self.lists.offsets[l] as usize..self.lists.offsets[l + 1] as usize]
     }
@@ -363,7 +373,7 @@ impl<'a> ListShading<'a> {
     /// order, so its estimate is the same bit for bit as summing its list one VPL at a time.
     fn lists_window(
         &self,
-        lists: &[u32],
+        lists: &[u64],
         first: u32,
         run: &[(u32, u32, u32)],
         out: &mut [Vec3],
@@ -436,23 +446,46 @@ impl<'a> ListShading<'a> {
         }
     }
 
-    /// Fills `scratch.members` with the VPLs of `lists` and, per VPL, the lists that hold it
-    /// (bit s: `lists[s]`): one list as it is, several merged in ascending order.
-    fn members(&self, lists: &[u32], scratch: &mut TileScratch<'a>) {
+    /// Fills `scratch.members` with the VPLs of `lists` (each a [`key`]) and, per VPL, the
+    /// lists that hold it (bit s: `lists[s]`, its own list or its shared one): one list
+    /// without a shared one as it is, otherwise merged in ascending order, each VPL once. A
+    /// shared list held by several sets is stamped once, with all of them.
+    fn members(&self, lists: &[u64], scratch: &mut TileScratch<'a>) {
         scratch.members.clear();
         if let [l] = *lists {
-            scratch.members.extend(self.list(l).iter().map(|&v| (v, 1)));
-            return;
+            if let [own, NO_LIST] = lists_of(l) {
+                scratch
+                    .members
+                    .extend(self.list(own).iter().map(|&v| (v, 1)));
+                return;
+            }
         }
         scratch.stamps.resize(self.listed.len(), 0);
         scratch.union.clear();
+        scratch.shared.clear();
+        let stamp = |v: u32, sets: u32, scratch: &mut TileScratch<'a>| {
+            let stamp = &mut scratch.stamps[v as usize];
+            if *stamp == 0 {
+                scratch.union.push(v);
+            }
+            *stamp |= sets;
+        };
         for (s, &l) in lists.iter().enumerate() {
-            for &v in self.list(l) {
-                let stamp = &mut scratch.stamps[v as usize];
-                if *stamp == 0 {
-                    scratch.union.push(v);
+            let [own, shared] = lists_of(l);
+            for &v in self.list(own) {
+                stamp(v, 1 << s, scratch);
+            }
+            if shared != NO_LIST {
+                match scratch.shared.iter_mut().find(|(l, _)| *l == shared) {
+                    Some((_, sets)) => *sets |= 1 << s,
+                    None => scratch.shared.push((shared, 1 << s)),
                 }
-                *stamp |= 1 << s;
+            }
+        }
+        for i in 0..scratch.shared.len() {
+            let (shared, sets) = scratch.shared[i];
+            for &v in self.list(shared) {
+                stamp(v, sets, scratch);
             }
         }
         scratch.union.sort_unstable();
@@ -477,6 +510,22 @@ impl<'a> ListShading<'a> {
                 ));
         visible.then(|| c * self.scale)
     }
+}
+
+/// A pixel's own list and its shared list ([`LightLists::shared_list`]) as one key: the
+/// pixels of a tile are grouped by both.
+#[inline]
+fn key(own: u32, shared: u32) -> u64 {
+    u64::from(own) << 32 | u64::from(shared)
+}
+
+/// The key of a pixel with neither list.
+const NO_KEY: u64 = u64::MAX;
+
+/// The own and shared list of a [`key`].
+#[inline]
+fn lists_of(key: u64) -> [u32; 2] {
+    [(key >> 32) as u32, key as u32]
 }
 
 /// A list of a tile with fewer pixels than this shares its chunks of receivers with the

@@ -28,7 +28,7 @@ fn plain(input: &CullInput, lists: &slc_core::LightLists) -> Image {
         let Some(g) = &input.gbuffer.samples[p] else {
             continue;
         };
-        for &k in lists.for_pixel(p) {
+        for &k in lists.for_pixel(p).iter() {
             let v = &input.vpls[k as usize];
             let r = StochasticParams::new(input.delta, v.xi).unwrap();
             let c = vpl_contribution(g, v, Some(&r));
@@ -105,9 +105,18 @@ fn shade_lists_equals_the_plain_sum_bit_for_bit() {
             }
         }
         for k in [1, 3, 4] {
-            for strategy in [Strategy::None, Strategy::Ellipsoid, Strategy::Clustered] {
+            for strategy in [
+                Strategy::None,
+                Strategy::Ellipsoid,
+                Strategy::Clustered,
+                Strategy::Binned,
+            ] {
                 let input = p.cull_input(1e-3, Interleaving { k, seed: 3 });
                 let lists = slc_cull::culler(strategy).cull(&input).unwrap();
+                if strategy == Strategy::Binned && k == 1 {
+                    // Ranges wider than a tile: shared lists beside the pixels' own.
+                    assert!(!lists.shared_list.is_empty(), "{name}: shared lists");
+                }
                 let (got, want) = shaded_and_plain(&p, &input, &lists);
                 assert_eq!(differing(&got, &want), 0, "{name} K {k} {strategy:?}");
                 assert!(want.pixels.iter().any(|o| *o != Vec3::ZERO), "{name}: lit");
@@ -190,6 +199,53 @@ fn shade_lists_equals_the_plain_sum_for_lists_of_any_order() {
     }
 }
 
+/// Pixels with a second, shared list ([`LightLists::shared_list`]): strictly ascending lists,
+/// a pixel with its own list, a shared one, both (sharing VPLs or not) or neither, shared
+/// lists held by runs of neighbours and by single pixels. `shade_lists` equals the plain sum
+/// of each pixel's union in ascending order, bit for bit, and the flattened lists' image.
+#[test]
+fn shade_lists_equals_the_plain_sum_with_shared_lists() {
+    let p = prepared(53, 41, 16);
+    let n = p.vpls.len() as u64;
+    let mut state = 0x2545_f491_4f6c_dd1du64;
+    let mut next = move |m: u64| {
+        state ^= state << 13;
+        state ^= state >> 7;
+        state ^= state << 17;
+        state % m.max(1)
+    };
+    let mut lists = LightLists {
+        offsets: vec![0],
+        ..LightLists::default()
+    };
+    for l in 0..400 {
+        let len = [0, 1, 5, 40, 150][l % 5];
+        let mut list: Vec<u32> = (0..len).map(|_| next(n) as u32).collect();
+        list.sort_unstable();
+        list.dedup();
+        lists.indices.extend(&list);
+        lists.offsets.push(lists.indices.len() as u32);
+    }
+    let pixels = p.gbuffer.samples.len();
+    let mut pick = |i: usize, none: usize| match i % 5 {
+        j if j == none => NO_LIST,
+        1 | 2 => (i / 13 % 400) as u32,
+        _ => next(400) as u32,
+    };
+    lists.pixel_list = (0..pixels).map(|i| pick(i, 0)).collect();
+    lists.shared_list = (0..pixels).map(|i| pick(i / 3, 3)).collect();
+    let flat = lists.clone().flattened();
+    for k in [1, 2, 4] {
+        let input = p.cull_input(1e-4, Interleaving { k, seed: 5 });
+        let (got, want) = shaded_and_plain(&p, &input, &lists);
+        assert_eq!(differing(&got, &want), 0, "K {k}");
+        let (flat_got, _) = shaded_and_plain(&p, &input, &flat);
+        assert_eq!(differing(&got, &flat_got), 0, "K {k}: flattened");
+        let lit = want.pixels.iter().filter(|o| **o != Vec3::ZERO).count();
+        assert!(lit > pixels / 4, "{lit} of {pixels} lit");
+    }
+}
+
 /// `shade_lists` builds the early exits of the listed VPLs only: a VPL outside slc-bounds'
 /// domain (a glossy VPL with α = 0) that no list holds is never read,
 /// and the image is that of the valid VPLs; the same VPL listed is an error.
@@ -212,6 +268,7 @@ fn shade_lists_checks_the_listed_vpls() {
         offsets: vec![0, 1],
         indices: vec![listed],
         pixel_list: vec![0; p.gbuffer.samples.len()],
+        shared_list: Vec::new(),
     };
     let other = u32::from(bad == 0);
     let shaded = shade_lists(&p.tracer, &input, &lists(other), false, &|_| {}).unwrap();

@@ -3,36 +3,47 @@
 //! ([`crate::scatter`]), and each pixel of that rectangle tests its own G-buffer point x
 //! against the bound and the sign of ωo·n at the VPL ([`PixelTest`]). A pixel's list is
 //! every VPL that passes there, ascending. The cost is the VPLs plus the pixels their
-//! rectangles cover, not VPLs × tiles, and no list holds a pair outside its VPL's bound.
+//! rectangles cover, not VPLs × tiles, and no pixel's own list holds a pair outside its
+//! VPL's bound.
 //!
 //! The guarantee is the tiled strategies': a pair with p > ξ lies inside its VPL's bound
 //! (grown by `BOUND_SLACK`) and not behind the VPL, so its pixel lies in the VPL's rectangle
-//! (computed in f64 and grown) and passes the test.
+//! (computed in f64 and grown) and passes the test, and its cell passes the cell's.
+//!
+//! The few VPLs whose rectangles cover more than two tiles' worth of pixels
+//! ([`LARGE_PIXELS`]) are not tested pixel by pixel: each is tested once per 8 x 8 cell of
+//! its rectangle against the box of the cell's samples ([`take_large`]) and listed in the
+//! cell's list, which the cell's pixels share ([`LightLists::shared_list`]). Per pixel they
+//! made most of the tests and the pairs; the shading decides them eight receivers at a time.
 //!
 //! The VPLs are read once, in their order, a piece at a time (the VPLs, 100+ bytes each,
 //! are streamed through the scatter); each piece's scattered bounds then test the pixels of
 //! their rectangles subregion by subregion, so one subregion image's positions stay in
 //! cache while they are read. The pairs that pass, each pixel's in VPL order, are then
-//! sorted by pixel ([`crate::pair_lists`]). A GPU twin gets
-//! the same lists by binning each rectangle into the tiles it overlaps, then testing each
-//! tile's pixels against its bin (docs/many-vpls.md).
+//! sorted by pixel ([`crate::pair_lists`]). A GPU twin gets the lists of
+//! [`crate::BinnedCuller::per_pixel`] (every VPL tested per pixel) by binning each rectangle
+//! into the tiles it overlaps, then testing each tile's pixels against its bin
+//! (docs/many-vpls.md).
 use crate::lists::pixel_count;
 use crate::pair_lists::{lists, Bands};
 use crate::partition::check;
 use crate::pixel_rows::PixelRows;
-use crate::scatter::Screen;
+use crate::pixel_rows::{CellBoxes, CELL};
+use crate::reach::SIGN_MARGIN;
+use crate::scatter::{Scattered, Screen, LIMIT};
 use crate::scatter_lanes::scatter;
 use crate::view::CullView;
-use glam::DVec2;
+use glam::{DVec2, DVec3};
 use rayon::prelude::*;
 use slc_bounds::StochasticParams;
-use slc_core::{CullError, CullInput, GBuffer, LightLists};
+use slc_core::{CullError, CullInput, GBuffer, LightLists, NO_LIST, TILE_SIZE};
 
 /// VPLs scattered per piece of parallel work.
 const VPLS_PER_PIECE: usize = 4096;
 
-/// The lists of `input` by binning (see the module).
-pub(crate) fn cull(input: &CullInput) -> Result<LightLists, CullError> {
+/// The lists of `input` by binning (see the module), VPLs whose rectangles cover more than
+/// `shared_above` pixels per cell ([`LARGE_PIXELS`] by default).
+pub(crate) fn cull(input: &CullInput, shared_above: u64) -> Result<LightLists, CullError> {
     let pixels = pixel_count(input.gbuffer)?;
     let il = input.interleaving;
     check(il, input.vpls.len())?;
@@ -47,8 +58,9 @@ pub(crate) fn cull(input: &CullInput) -> Result<LightLists, CullError> {
         // δ is checked once here for the lanes, which take it as valid.
         StochasticParams::new(input.delta, 0.5)?;
     }
+    let cells = receivers.rows.cell_boxes();
     // Per piece of VPLs (in order), the (pixel, VPL) pairs that pass, each pixel's in VPL
-    // order, by band.
+    // order, by band, and the (cell, VPL) pairs of the large rectangles.
     let pieces = input
         .vpls
         .par_chunks(VPLS_PER_PIECE)
@@ -58,13 +70,121 @@ pub(crate) fn cull(input: &CullInput) -> Result<LightLists, CullError> {
             |scattered, (piece, vpls)| {
                 let first = (piece * VPLS_PER_PIECE) as u32;
                 scatter(&screen, vpls, first, input.delta, scattered)?;
+                let mut shared = Vec::new();
+                scattered.retain(|s| !take_large(s, shared_above, &cells, &mut shared));
                 let mut pairs = Bands::new(pixels);
                 receivers.rows.test(scattered, &mut pairs);
-                Ok(pairs)
+                Ok((pairs, shared))
             },
         )
-        .collect::<Result<Vec<Bands>, CullError>>()?;
-    lists(&pieces, pixels)
+        .collect::<Result<Vec<(Bands, Vec<u64>)>, CullError>>()?;
+    let (bands, shared): (Vec<Bands>, Vec<Vec<u64>>) = pieces.into_iter().unzip();
+    let mut lists = lists(&bands, pixels)?;
+    share(&mut lists, shared.concat(), &cells, input.gbuffer)?;
+    Ok(lists)
+}
+
+/// A VPL whose rectangle covers more pixels than this (two tiles' worth of its subregion
+/// image) is not tested pixel by pixel: it joins the shared list of every cell of its
+/// subregion image ([`CELL`]² pixels) that its rectangle overlaps and its bound may reach
+/// ([`take_large`]). Such VPLs are few (at 960x540 with RSM 256, 2,212 of 51,468) but made
+/// more than half of the pixel tests and three quarters of the pairs (docs/many-vpls.md);
+/// the shading tests them against its receivers eight at a time at a fraction of that cost.
+pub(crate) const LARGE_PIXELS: u64 = 2 * (TILE_SIZE as u64) * (TILE_SIZE as u64);
+
+/// Whether `s`'s rectangle covers more than `shared_above` pixels; if so, pushes
+/// (cell << 32 | VPL) for every cell the rectangle overlaps whose box of samples the bound's box reaches and that
+/// does not lie wholly behind the VPL. A pixel whose sample passes the [`PixelTest`] lies in
+/// the rectangle, inside the bound (so inside its box, grown for the test's `LIMIT`) and not
+/// behind the VPL by more than `SIGN_MARGIN`, so its cell is kept.
+fn take_large(s: &Scattered, shared_above: u64, cells: &CellBoxes, shared: &mut Vec<u64>) -> bool {
+    let [i0, j0, i1, j1] = s.pixels;
+    let area = u64::from(i1 - i0 + 1) * u64::from(j1 - j0 + 1);
+    if area <= shared_above {
+        return false;
+    }
+    let t = &s.test;
+    let [along, across] = t.semi_axes();
+    let center = t.position + t.center;
+    // The spheroid's half extents per world axis, grown for `LIMIT` and f64 rounding.
+    let a2 = t.axis * t.axis;
+    let extent = (a2 * (along * along) + (1.0 - a2) * (across * across)).map(f64::sqrt)
+        * (LIMIT * (1.0 + 1e-9))
+        + DVec3::splat(1e-12 * center.abs().max_element());
+    let (lo, hi) = (center - extent, center + extent);
+    let margin = f64::from(SIGN_MARGIN);
+    for cy in j0 / CELL..=j1 / CELL {
+        for cx in i0 / CELL..=i1 / CELL {
+            let id = cells.id(s.subregion, [cx, cy]);
+            let [blo, bhi] = cells.boxes[id].map(|v| v.as_dvec3());
+            if !(blo.cmple(hi).all() && bhi.cmpge(lo).all()) {
+                continue;
+            }
+            // Outside the bound everywhere in the box: every x of the box lies within |h|
+            // of its middle m, so at least `off_axis` from the spheroid's axis and `on_axis`
+            // along it from its centre, and its Q is at least the Q of those distances.
+            let (mid, half) = ((blo + bhi) * 0.5, (bhi - blo) * 0.5);
+            let e = mid - center;
+            let along_e = e.dot(t.axis);
+            let on_axis = (along_e.abs() - half.dot(t.axis.abs())).max(0.0);
+            let off_axis = ((e - along_e * t.axis).length() - half.length()).max(0.0);
+            let q = (on_axis / along).powi(2) + (off_axis / across).powi(2);
+            if q > LIMIT * (1.0 + 1e-6) {
+                continue;
+            }
+            // Behind the VPL by more than the margin everywhere in the box: at every x of
+            // the box, n·(x − q) <= n·(m − q) + |n|·h < −margin (|m − q| + |h|) <= −margin |x − q|.
+            let d = mid - t.position;
+            let front = t.normal.dot(d) + t.normal.abs().dot(half);
+            if front < -margin * (d.length() + half.length()) * (1.0 + 1e-9) {
+                continue;
+            }
+            shared.push((id as u64) << 32 | u64::from(s.index));
+        }
+    }
+    true
+}
+
+/// Appends the cells' lists, each ascending, to `lists` from the (cell << 32 | VPL) entries
+/// `shared`, and names each as the shared list of its cell's pixels with a sample in
+/// `gbuffer`. Nothing changes without entries.
+fn share(
+    lists: &mut LightLists,
+    mut shared: Vec<u64>,
+    cells: &CellBoxes,
+    gbuffer: &GBuffer,
+) -> Result<(), CullError> {
+    if shared.is_empty() {
+        return Ok(());
+    }
+    let total = lists.indices.len() + shared.len();
+    if u32::try_from(total).is_err() {
+        return Err(CullError::Input(format!(
+            "{total} light-list entries exceed 32-bit offsets"
+        )));
+    }
+    shared.sort_unstable();
+    let mut of_cell = vec![NO_LIST; cells.boxes.len()];
+    for run in shared.chunk_by(|a, b| a >> 32 == b >> 32) {
+        of_cell[(run[0] >> 32) as usize] = lists.len() as u32;
+        lists.indices.extend(run.iter().map(|&e| e as u32));
+        lists.offsets.push(lists.indices.len() as u32);
+    }
+    let width = gbuffer.width as usize;
+    let mut shared_list = vec![NO_LIST; lists.pixel_list.len()];
+    shared_list
+        .par_chunks_mut(width)
+        .zip(gbuffer.samples.par_chunks(width))
+        .enumerate()
+        .for_each(|(y, (row, samples))| {
+            for (x, (list, sample)) in row.iter_mut().zip(samples).enumerate() {
+                if sample.is_some() {
+                    *list = of_cell[cells.of_pixel(x as u32, y as u32)];
+                }
+            }
+        });
+    lists.shared_list = shared_list;
+    Ok(())
 }
 
 /// The G-buffer as the scatter reads it: per pixel its sample's world position, in rows of
@@ -164,7 +284,7 @@ mod tests {
                 delta: 1e-3,
                 interleaving: Interleaving { k: 1, seed: 0 },
             };
-            let err = cull(&input).unwrap_err().to_string();
+            let err = cull(&input, LARGE_PIXELS).unwrap_err().to_string();
             assert!(
                 err.contains(&format!("pixel ({x}, {y}) is not in front of the camera")),
                 "{err}"

@@ -24,8 +24,9 @@
 //! - `splatting`, `clustered-raster` ([`GpuOnly`]): the GPU's rasterization baselines; the
 //!   CPU culler refuses them with an error.
 //! - `binned` ([`BinnedCuller`]): each VPL's bound mapped once to the rectangle of pixels it
-//!   may cover and tested at each pixel of it: a list per pixel, at a cost that follows the
-//!   pixels the bounds cover, not VPLs × tiles (docs/many-vpls.md). CPU only for now.
+//!   may cover and tested at each pixel of it (a list per pixel), or, for rectangles larger
+//!   than two tiles, at each 8×8 cell of it (a list per cell, shared by its pixels): a cost
+//!   that follows the pixels the bounds cover, not VPLs × tiles (docs/many-vpls.md).
 //!
 //! The crate needs no scene loader, BVH or GPU: it builds on `slc-core` without its
 //! `loaders` feature, so an engine can embed it with its own G-buffer and VPLs
@@ -133,7 +134,7 @@ pub fn culler(strategy: Strategy) -> Box<dyn CpuCuller> {
     }
     match strategy.parts().0 {
         Layout::Unculled => Box::new(NoCulling),
-        Layout::Binned => Box::new(BinnedCuller),
+        Layout::Binned => Box::new(BinnedCuller::default()),
         _ => Box::new(GpuOnly(strategy)),
     }
 }

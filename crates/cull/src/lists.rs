@@ -70,6 +70,7 @@ pub(crate) fn assemble(
         offsets,
         indices,
         pixel_list,
+        shared_list: Vec::new(),
     })
 }
 
@@ -104,11 +105,11 @@ mod tests {
         b.pixels = vec![(4, 0)];
         let lists = assemble(vec![a, b], 6).unwrap();
         assert_eq!(lists.len(), 3);
-        assert_eq!(lists.for_pixel(0), &[1, 2, 3, 4, 9, 10, 11]);
-        assert_eq!(lists.for_pixel(1), &[] as &[u32]);
-        assert_eq!(lists.for_pixel(2), &[5]);
-        assert_eq!(lists.for_pixel(3), &[] as &[u32]);
-        assert_eq!(lists.for_pixel(4), &[7]);
+        assert_eq!(*lists.for_pixel(0), [1, 2, 3, 4, 9, 10, 11]);
+        assert!(lists.for_pixel(1).is_empty());
+        assert_eq!(*lists.for_pixel(2), [5]);
+        assert!(lists.for_pixel(3).is_empty());
+        assert_eq!(*lists.for_pixel(4), [7]);
         assert_eq!(lists.pixel_list[5], NO_LIST);
     }
 

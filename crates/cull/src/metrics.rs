@@ -68,7 +68,7 @@ pub fn measure_all(
                     let truth = &scratch.truth[slot];
                     for l in lists {
                         let listed = l.for_pixel(p);
-                        let tp = matches(listed, truth, &mut scratch.sorted);
+                        let tp = matches(&listed, truth, &mut scratch.sorted);
                         scratch
                             .stats
                             .push([listed.len() as u32, tp, truth.len() as u32 - tp]);

@@ -103,6 +103,7 @@ pub(crate) fn lists(pieces: &[Bands], pixels: usize) -> Result<LightLists, CullE
         offsets,
         indices,
         pixel_list,
+        shared_list: Vec::new(),
     })
 }
 
@@ -121,6 +122,7 @@ mod tests {
             offsets: vec![0],
             indices: Vec::new(),
             pixel_list: vec![NO_LIST; pixels],
+            shared_list: Vec::new(),
         };
         for (p, vpls) in per_pixel.iter().enumerate() {
             if !vpls.is_empty() {

@@ -98,6 +98,84 @@ impl PixelRows {
     }
 }
 
+/// Pixels per side of a cell of a subregion image ([`PixelRows::cell_boxes`]): a chunk wide.
+pub(crate) const CELL: u32 = LANES as u32;
+
+/// The box of the positions of each [`CELL`]² cell of every subregion image.
+pub(crate) struct CellBoxes {
+    /// Cells per row and per column of the largest subregion image.
+    across: u32,
+    down: u32,
+    k: u32,
+    /// Per cell, subregion by subregion and row-major within each, `[lo, hi]` of its samples
+    /// (lo above hi where it has none).
+    pub boxes: Vec<[Vec3; 2]>,
+}
+
+impl CellBoxes {
+    /// The number of cell `[cx, cy]` of subregion `[sx, sy]`.
+    #[inline]
+    pub(crate) fn id(&self, [sx, sy]: [u32; 2], [cx, cy]: [u32; 2]) -> usize {
+        let sub = (sy * self.k + sx) as usize;
+        (sub * self.down as usize + cy as usize) * self.across as usize + cx as usize
+    }
+
+    /// The cell of screen pixel (x, y).
+    #[inline]
+    pub(crate) fn of_pixel(&self, x: u32, y: u32) -> usize {
+        let k = self.k;
+        self.id([x % k, y % k], [x / k / CELL, y / k / CELL])
+    }
+}
+
+impl PixelRows {
+    /// The box of each cell's positions: a cell is a chunk wide, so it is [`CELL`] chunks of
+    /// consecutive subregion rows.
+    pub(crate) fn cell_boxes(&self) -> CellBoxes {
+        use rayon::prelude::*;
+        let Layout {
+            chunks_per_row: per,
+            k,
+            ..
+        } = self.layout;
+        let height = (self.chunks.len() / self.layout.screen_row()) as u32;
+        let (across, down) = (per as u32, height.div_ceil(k).div_ceil(CELL));
+        let empty = [Vec3::INFINITY, Vec3::NEG_INFINITY];
+        let boxes = (0..k * k)
+            .into_par_iter()
+            .flat_map_iter(|sub| {
+                let (sx, sy) = (sub % k, sub / k);
+                (0..down * across).map(move |cell| {
+                    let (cx, cy) = ((cell % across) as usize, cell / across);
+                    let mut b = empty;
+                    for j in cy * CELL..(cy + 1) * CELL {
+                        let y = sy + k * j;
+                        if y >= height {
+                            break;
+                        }
+                        let chunk =
+                            &self.chunks[(y as usize * k as usize + sx as usize) * per + cx];
+                        for lane in 0..LANES {
+                            let x = Vec3::new(chunk[0].0[lane], chunk[1].0[lane], chunk[2].0[lane]);
+                            // A lane without a sample is NaN throughout.
+                            if !x.x.is_nan() {
+                                b = [b[0].min(x), b[1].max(x)];
+                            }
+                        }
+                    }
+                    b
+                })
+            })
+            .collect();
+        CellBoxes {
+            across,
+            down,
+            k,
+            boxes,
+        }
+    }
+}
+
 /// The entries of `scattered` subregion by subregion, each subregion's in their order
 /// ([`group_by`], as [`crate::partition::Partition`] groups VPLs). Every pixel lies in one
 /// subregion, so its pairs keep the order of `scattered`. With more subregions than entries

@@ -138,3 +138,50 @@ fn never_misses(
         assert!(of(&all, "none").true_positive_pairs > 5_000);
     }
 }
+
+/// `binned`'s cells ([`BinnedCuller::shared_above`]): 200 random rooms with every VPL (0),
+/// those above 64 pixels, the default and none (`u64::MAX`) shared per cell. A pixel's
+/// union holds every VPL the per-pixel test passes there (the cell test is conservative),
+/// its own list only VPLs not shared, and no pair is missed; the cells are used.
+#[test]
+fn binned_cells_keep_every_pixel_the_pixel_test_passes() {
+    use slc_core::Culler;
+    use slc_cull::BinnedCuller;
+    let mut rng = Rng::new(9);
+    let (mut shared_pixels, mut checked) = (0u64, 0u64);
+    for case in 0..200 {
+        let camera = floor_camera(&mut rng);
+        let (w, h) = (1 + rng.below(90), 1 + rng.below(70));
+        let gbuffer = floor_gbuffer(&camera, w, h, &mut rng);
+        let count = rng.below(240);
+        let vpls = room_vpls(&mut rng, count);
+        let delta = rng.log(-6.0, -1.0);
+        let k = 1 + rng.below(3);
+        let label = format!("room {case} ({w}x{h}, {count} VPLs, delta {delta:.1e}, K {k})");
+        let input = input(&gbuffer, &camera, &vpls, delta, k);
+        let exact = BinnedCuller::per_pixel().cull(&input).unwrap();
+        assert!(exact.shared_list.is_empty(), "{label}");
+        for shared_above in [0, 64, BinnedCuller::default().shared_above] {
+            let lists = BinnedCuller { shared_above }.cull(&input).unwrap();
+            lists.check(gbuffer.samples.len(), vpls.len()).unwrap();
+            let m = slc_cull::metrics::measure(&input, &lists).unwrap();
+            assert_eq!(m.missed_pairs, 0, "{label}, above {shared_above}");
+            for p in 0..gbuffer.samples.len() {
+                let union = lists.for_pixel(p);
+                let [own, shared] = lists.lists_of(p);
+                assert!(
+                    exact.for_pixel(p).iter().all(|v| union.contains(v)),
+                    "{label}, above {shared_above}: pixel {p}"
+                );
+                assert!(
+                    own.iter().all(|v| !shared.contains(v)),
+                    "{label}: pixel {p}"
+                );
+                shared_pixels += u64::from(!shared.is_empty());
+                checked += 1;
+            }
+        }
+    }
+    println!("{shared_pixels} of {checked} pixel lists with a shared list");
+    assert!(shared_pixels * 10 > checked, "{shared_pixels} of {checked}");
+}

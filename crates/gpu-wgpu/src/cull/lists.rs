@@ -31,13 +31,25 @@ pub struct GpuLightLists {
 impl GpuLightLists {
     /// Validates `lists` for `pixels` pixels and `vpl_count` VPLs (what indexing them on the
     /// CPU would require: offsets ascending within `indices`, list ids below the list count or
-    /// [`NO_LIST`], VPL indices in range) and uploads them.
+    /// [`NO_LIST`], VPL indices in range) and uploads them; a pixel's two lists (where the
+    /// lists give it a second, [`LightLists::shared_list`]) are uploaded as one.
     pub fn upload(
         ctx: &GpuContext,
         lists: &LightLists,
         pixels: usize,
         vpl_count: usize,
     ) -> Result<Self, GpuError> {
+        // The shader reads one list per pixel: a pixel's two lists become one, once checked.
+        let flat;
+        let lists = if lists.shared_list.is_empty() {
+            lists
+        } else {
+            lists
+                .check(pixels, vpl_count)
+                .map_err(|e| GpuError::Input(e.to_string()))?;
+            flat = lists.clone().flattened();
+            &flat
+        };
         let bad = |what: String| Err(GpuError::Input(format!("light lists: {what}")));
         if lists.pixel_list.len() != pixels {
             return bad(format!(
@@ -162,5 +174,6 @@ pub(crate) fn compact(offsets: &[u32], indices: Vec<u32>, pixel_list: &[u32]) ->
             .iter()
             .map(|&l| renumber.get(l as usize).copied().unwrap_or(NO_LIST))
             .collect(),
+        shared_list: Vec::new(),
     }
 }

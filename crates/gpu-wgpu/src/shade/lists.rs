@@ -73,14 +73,17 @@ impl ShadePass {
         input: &CullInput,
         lists: &LightLists,
     ) -> Result<Image, GpuError> {
-        // A pixel's loop runs once per entry of its list.
+        // A pixel's loop runs once per entry of its list (of the union of its two lists,
+        // at most the longest own list and the longest shared one together).
         if ctx.loop_budget.is_some() {
-            let longest = lists
-                .offsets
-                .windows(2)
-                .map(|w| w[1].saturating_sub(w[0]))
-                .max();
-            let longest = u64::from(longest.unwrap_or(0));
+            let longest_of = |map: &[u32]| {
+                map.iter()
+                    .filter_map(|&l| lists.offsets.get(l as usize..l as usize + 2))
+                    .map(|w| u64::from(w[1].saturating_sub(w[0])))
+                    .max()
+                    .unwrap_or(0)
+            };
+            let longest = longest_of(&lists.pixel_list) + longest_of(&lists.shared_list);
             ctx.check_loop_budget(
                 || format!("shading a light list of {longest} VPLs"),
                 longest + 64,

@@ -3,14 +3,19 @@
 //! ever missed, on the built-in scene and with its VPLs at the extremes (α 1e-4…1, anisotropic
 //! lobes, Schlick and dielectric Fresnel, ξ near 0 and 1, flux over 12 decades) at δ from
 //! 1e-9 (ranges far above a tile: lists of every VPL) to 1e3 (ranges far below a pixel); the
-//! lists equal the CPU's but for entries decided within rounding at a bound's surface (the
-//! GPU tests in f32 with a limit above its rounding, the CPU in f64); shading the lists gives
-//! the unculled estimate bit for bit; frames without pixels or VPLs give empty lists.
+//! lists equal the CPU's tested per pixel (`BinnedCuller::per_pixel`) but for entries decided
+//! within rounding at a bound's surface (the GPU tests in f32 with a limit above its rounding,
+//! the CPU in f64), and lie within the CPU's default lists (whose large ranges are shared per
+//! cell); shading the lists, the GPU's and the CPU's with shared lists, gives the unculled
+//! estimate bit for bit; frames without pixels or VPLs give empty lists.
 use crate::common::{cull_input, gpu};
 use crate::tight::{extra, extreme};
 use crate::tiled::frame;
-use slc_core::{builtin, CullInput, GBuffer, Interleaving, LightLists, Strategy, Vpl, NO_LIST};
+use slc_core::{
+    builtin, CullInput, Culler, GBuffer, Interleaving, LightLists, Strategy, Vpl, NO_LIST,
+};
 use slc_cull::metrics::measure;
+use slc_cull::BinnedCuller;
 use slc_gpu_wgpu::cull::frame::CullFrame;
 use slc_gpu_wgpu::cull::room::settled;
 use slc_gpu_wgpu::cull::{GpuCulling, ListCulling};
@@ -74,11 +79,17 @@ fn binned_lists_never_miss_a_pair_and_match_the_cpu_at_the_extremes() {
         };
         let label = format!("{name} δ {delta} K {k}");
         let gpu = culler.cull(&ctx, &input, Strategy::Binned).unwrap();
-        let cpu = slc_cull::culler(Strategy::Binned).cull(&input).unwrap();
+        let cpu = BinnedCuller::per_pixel().cull(&input).unwrap();
+        let shared = slc_cull::culler(Strategy::Binned).cull(&input).unwrap();
         let m = measure(&input, &gpu).unwrap();
         let c = measure(&input, &cpu).unwrap();
         let entries = m.true_positive_pairs + m.false_positive_pairs;
         let (gpu_only, cpu_only) = (extra(&gpu, &cpu), extra(&cpu, &gpu));
+        // Cells only add entries: the GPU's beyond the shared lists are the rounding's.
+        assert!(
+            extra(&gpu, &shared) <= gpu_only,
+            "{label}: beyond the shared lists"
+        );
         eprintln!(
             "{label}: TP {} FP {} (CPU {}) per pixel {:.2}, {gpu_only} on the GPU only, \
              {cpu_only} on the CPU only, missed {}",
@@ -128,6 +139,13 @@ fn binned_shading_equals_the_unculled_estimate() {
         };
         let binned = image(Strategy::Binned);
         let unculled = image(Strategy::None);
+        // The CPU's lists with shared ones, uploaded as one list per pixel.
+        let cpu = slc_cull::culler(Strategy::Binned).cull(&input).unwrap();
+        assert_eq!(
+            shade.shade(&ctx, &input, &cpu).unwrap().pixels,
+            unculled.pixels,
+            "{name}: CPU lists"
+        );
         let lit = binned
             .pixels
             .iter()

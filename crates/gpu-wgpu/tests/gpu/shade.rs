@@ -431,6 +431,7 @@ fn extreme_frame() -> (GBuffer, Vec<Vpl>, LightLists) {
                 _ => 0,
             })
             .collect(),
+        shared_list: Vec::new(),
     };
     (gbuffer, vpls, lists)
 }
@@ -520,6 +521,7 @@ fn tangent_angles_agree_at_negative_zero_normals() {
         offsets: vec![0, 1],
         indices: vec![0],
         pixel_list: vec![0, 0],
+        shared_list: Vec::new(),
     };
     let input = cull_input(&gbuffer, &camera, &vpls, 1e-3, (1, 0));
     check(
