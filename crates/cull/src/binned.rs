@@ -10,8 +10,8 @@
 //! (grown by `BOUND_SLACK`) and not behind the VPL, so its pixel lies in the VPL's rectangle
 //! (computed in f64 and grown) and passes the test, and its cell passes the cell's.
 //!
-//! The few VPLs whose rectangles cover more than two tiles' worth of pixels
-//! ([`LARGE_PIXELS`]) are not tested pixel by pixel: each is tested once per 8 x 8 cell of
+//! The VPLs whose rectangles cover more than a tile's worth of pixels ([`LARGE_PIXELS`])
+//! are not tested pixel by pixel: each is tested once per 4 x 4 cell of
 //! its rectangle against the box of the cell's samples ([`take_large`]) and listed in the
 //! cell's list, which the cell's pixels share ([`LightLists::shared_list`]). Per pixel they
 //! made most of the tests and the pairs; the shading decides them eight receivers at a time.
@@ -26,7 +26,7 @@
 //! (docs/many-vpls.md).
 use crate::lists::pixel_count;
 use crate::pair_lists::{lists, Bands};
-use crate::partition::check;
+use crate::partition::{check, group_by};
 use crate::pixel_rows::PixelRows;
 use crate::pixel_rows::{CellBoxes, CELL};
 use crate::reach::SIGN_MARGIN;
@@ -77,27 +77,35 @@ pub(crate) fn cull(input: &CullInput, shared_above: u64) -> Result<LightLists, C
                 Ok((pairs, shared))
             },
         )
-        .collect::<Result<Vec<(Bands, Vec<u64>)>, CullError>>()?;
-    let (bands, shared): (Vec<Bands>, Vec<Vec<u64>>) = pieces.into_iter().unzip();
+        .collect::<Result<Vec<(Bands, Vec<(u32, u32)>)>, CullError>>()?;
+    let (bands, shared): (Vec<Bands>, Vec<Vec<(u32, u32)>>) = pieces.into_iter().unzip();
     let mut lists = lists(&bands, pixels)?;
     share(&mut lists, shared.concat(), &cells, input.gbuffer)?;
     Ok(lists)
 }
 
-/// A VPL whose rectangle covers more pixels than this (two tiles' worth of its subregion
+/// A VPL whose rectangle covers more pixels than this (a tile's worth of its subregion
 /// image) is not tested pixel by pixel: it joins the shared list of every cell of its
 /// subregion image ([`CELL`]² pixels) that its rectangle overlaps and its bound may reach
-/// ([`take_large`]). Such VPLs are few (at 960x540 with RSM 256, 2,212 of 51,468) but made
-/// more than half of the pixel tests and three quarters of the pairs (docs/many-vpls.md);
-/// the shading tests them against its receivers eight at a time at a fraction of that cost.
-pub(crate) const LARGE_PIXELS: u64 = 2 * (TILE_SIZE as u64) * (TILE_SIZE as u64);
+/// ([`take_large`]). Such VPLs are a minority (at 960x540 with RSM 256, 9,348 of 51,468; at
+/// RSM 1024, 11,024 of 823,592) but made most of the pixel tests and the pairs
+/// (docs/many-vpls.md); the shading tests them against its receivers eight at a time at a
+/// fraction of that cost. Of the settings measured (8 x 8 or 4 x 4 cells, above one, two or
+/// four tiles), 4 x 4 cells above one tile were the fastest whose lists keep within 20
+/// false positives per true positive at RSM 1024 (13 at 960x540; 8 x 8 cells gave 23).
+pub(crate) const LARGE_PIXELS: u64 = (TILE_SIZE as u64) * (TILE_SIZE as u64);
 
 /// Whether `s`'s rectangle covers more than `shared_above` pixels; if so, pushes
-/// (cell << 32 | VPL) for every cell the rectangle overlaps whose box of samples the bound's box reaches and that
+/// (cell, VPL) for every cell the rectangle overlaps whose box of samples the bound's box reaches and that
 /// does not lie wholly behind the VPL. A pixel whose sample passes the [`PixelTest`] lies in
 /// the rectangle, inside the bound (so inside its box, grown for the test's `LIMIT`) and not
 /// behind the VPL by more than `SIGN_MARGIN`, so its cell is kept.
-fn take_large(s: &Scattered, shared_above: u64, cells: &CellBoxes, shared: &mut Vec<u64>) -> bool {
+fn take_large(
+    s: &Scattered,
+    shared_above: u64,
+    cells: &CellBoxes,
+    shared: &mut Vec<(u32, u32)>,
+) -> bool {
     let [i0, j0, i1, j1] = s.pixels;
     let area = u64::from(i1 - i0 + 1) * u64::from(j1 - j0 + 1);
     if area <= shared_above {
@@ -139,18 +147,19 @@ fn take_large(s: &Scattered, shared_above: u64, cells: &CellBoxes, shared: &mut 
             if front < -margin * (d.length() + half.length()) * (1.0 + 1e-9) {
                 continue;
             }
-            shared.push((id as u64) << 32 | u64::from(s.index));
+            shared.push((id as u32, s.index));
         }
     }
     true
 }
 
-/// Appends the cells' lists, each ascending, to `lists` from the (cell << 32 | VPL) entries
-/// `shared`, and names each as the shared list of its cell's pixels with a sample in
-/// `gbuffer`. Nothing changes without entries.
+/// Appends the cells' lists to `lists` from the (cell, VPL) entries `shared`, which come in
+/// VPL order: grouped by cell with a stable counting sort ([`group_by`]), each list is
+/// ascending. Names each as the shared list of its cell's pixels with a sample in `gbuffer`.
+/// Nothing changes without entries.
 fn share(
     lists: &mut LightLists,
-    mut shared: Vec<u64>,
+    shared: Vec<(u32, u32)>,
     cells: &CellBoxes,
     gbuffer: &GBuffer,
 ) -> Result<(), CullError> {
@@ -163,12 +172,18 @@ fn share(
             "{total} light-list entries exceed 32-bit offsets"
         )));
     }
-    shared.sort_unstable();
+    let keys: Vec<u32> = shared.iter().map(|e| e.0).collect();
+    let (offsets, order) = group_by(&keys, cells.boxes.len());
     let mut of_cell = vec![NO_LIST; cells.boxes.len()];
-    for run in shared.chunk_by(|a, b| a >> 32 == b >> 32) {
-        of_cell[(run[0] >> 32) as usize] = lists.len() as u32;
-        lists.indices.extend(run.iter().map(|&e| e as u32));
-        lists.offsets.push(lists.indices.len() as u32);
+    for (cell, range) in offsets.windows(2).enumerate() {
+        if range[1] > range[0] {
+            of_cell[cell] = lists.len() as u32;
+            let entries = &order[range[0] as usize..range[1] as usize];
+            lists
+                .indices
+                .extend(entries.iter().map(|&i| shared[i as usize].1));
+            lists.offsets.push(lists.indices.len() as u32);
+        }
     }
     let width = gbuffer.width as usize;
     let mut shared_list = vec![NO_LIST; lists.pixel_list.len()];

@@ -25,7 +25,7 @@
 //!   CPU culler refuses them with an error.
 //! - `binned` ([`BinnedCuller`]): each VPL's bound mapped once to the rectangle of pixels it
 //!   may cover and tested at each pixel of it (a list per pixel), or, for rectangles larger
-//!   than two tiles, at each 8×8 cell of it (a list per cell, shared by its pixels): a cost
+//!   than a tile, at each 4×4 cell of it (a list per cell, shared by its pixels): a cost
 //!   that follows the pixels the bounds cover, not VPLs × tiles (docs/many-vpls.md).
 //!
 //! The crate needs no scene loader, BVH or GPU: it builds on `slc-core` without its
@@ -75,7 +75,7 @@
 //! };
 //! let lists = slc_cull::culler(Strategy::Ellipsoid).cull(&input)?;
 //! let centre = (h / 2 * w + w / 2) as usize;
-//! assert_eq!(lists.for_pixel(centre), &[0]);
+//! assert_eq!(*lists.for_pixel(centre), [0]);
 //! assert!(lists.indices.iter().all(|&i| i == 0), "the VPL above the camera is culled");
 //!
 //! let m = slc_cull::metrics::measure(&input, &lists)?;

@@ -98,8 +98,9 @@ impl PixelRows {
     }
 }
 
-/// Pixels per side of a cell of a subregion image ([`PixelRows::cell_boxes`]): a chunk wide.
-pub(crate) const CELL: u32 = LANES as u32;
+/// Pixels per side of a cell of a subregion image ([`PixelRows::cell_boxes`]): half a chunk
+/// wide.
+pub(crate) const CELL: u32 = LANES as u32 / 2;
 
 /// The box of the positions of each [`CELL`]² cell of every subregion image.
 pub(crate) struct CellBoxes {
@@ -129,7 +130,7 @@ impl CellBoxes {
 }
 
 impl PixelRows {
-    /// The box of each cell's positions: a cell is a chunk wide, so it is [`CELL`] chunks of
+    /// The box of each cell's positions: a cell is [`CELL`] lanes of a chunk in [`CELL`]
     /// consecutive subregion rows.
     pub(crate) fn cell_boxes(&self) -> CellBoxes {
         use rayon::prelude::*;
@@ -139,7 +140,9 @@ impl PixelRows {
             ..
         } = self.layout;
         let height = (self.chunks.len() / self.layout.screen_row()) as u32;
-        let (across, down) = (per as u32, height.div_ceil(k).div_ceil(CELL));
+        let cells_per_chunk = LANES / CELL as usize;
+        let across = (per * cells_per_chunk) as u32;
+        let down = height.div_ceil(k).div_ceil(CELL);
         let empty = [Vec3::INFINITY, Vec3::NEG_INFINITY];
         let boxes = (0..k * k)
             .into_par_iter()
@@ -147,15 +150,16 @@ impl PixelRows {
                 let (sx, sy) = (sub % k, sub / k);
                 (0..down * across).map(move |cell| {
                     let (cx, cy) = ((cell % across) as usize, cell / across);
+                    let (c, first) = (cx / cells_per_chunk, cx % cells_per_chunk * CELL as usize);
                     let mut b = empty;
                     for j in cy * CELL..(cy + 1) * CELL {
                         let y = sy + k * j;
                         if y >= height {
                             break;
                         }
-                        let chunk =
-                            &self.chunks[(y as usize * k as usize + sx as usize) * per + cx];
-                        for lane in 0..LANES {
+                        let row = (y as usize * k as usize + sx as usize) * per;
+                        let chunk = &self.chunks[row + c];
+                        for lane in first..first + CELL as usize {
                             let x = Vec3::new(chunk[0].0[lane], chunk[1].0[lane], chunk[2].0[lane]);
                             // A lane without a sample is NaN throughout.
                             if !x.x.is_nan() {

@@ -1,10 +1,10 @@
 //! `binned`: each VPL's bound mapped to the rectangle of pixels it may cover in its
 //! subregion image (scatter instead of gather; `crate::binned`, docs/many-vpls.md), then
-//! tested at every pixel of the rectangle, or, for the few rectangles larger than two
-//! tiles, at every 8 x 8 cell of it against the box of the cell's samples. A list per pixel,
-//! holding every VPL whose bound contains the pixel's G-buffer point (not behind the VPL),
-//! and a list per cell shared by its pixels: the paper's bounds at the finest granularity,
-//! at a cost that follows the pixels the bounds cover rather than VPLs × tiles.
+//! tested at every pixel of the rectangle, or, for rectangles larger than a tile, at every
+//! 4 x 4 cell of it against the box of the cell's samples. A list per pixel, holding every
+//! VPL whose bound contains the pixel's G-buffer point (not behind the VPL), and a list per
+//! cell shared by its pixels: the paper's bounds at a pixel's or a cell's granularity, at a
+//! cost that follows the pixels the bounds cover rather than VPLs × tiles.
 use crate::binned::LARGE_PIXELS;
 use slc_core::{CullError, CullInput, Culler, LightLists, Strategy};
 
@@ -18,7 +18,7 @@ pub struct BinnedCuller {
 }
 
 impl Default for BinnedCuller {
-    /// Rectangles larger than two tiles (512 pixels) shared per cell.
+    /// Rectangles larger than a tile (256 pixels) shared per cell.
     fn default() -> Self {
         Self {
             shared_above: LARGE_PIXELS,
