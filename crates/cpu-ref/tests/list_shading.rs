@@ -149,38 +149,61 @@ fn shade_lists_refuses_lists_of_another_size() {
     assert!(shade_lists(&p.tracer, &k0, &lists, false, &|_| {}).is_err());
 }
 
+/// A xorshift generator from `state`: each call a number below its argument (0 below 0 or 1).
+fn xorshift(mut state: u64) -> impl FnMut(u64) -> u64 {
+    move |m| {
+        state ^= state << 13;
+        state ^= state >> 7;
+        state ^= state << 17;
+        state % m.max(1)
+    }
+}
+
+/// `count` lists of VPLs drawn by `next` below `vpls`, list l of length `lens[l % lens.len()]`
+/// and put in order by `order(l, list)`; no pixel names one yet.
+fn random_lists(
+    next: &mut impl FnMut(u64) -> u64,
+    count: usize,
+    lens: &[usize],
+    vpls: usize,
+    order: impl Fn(usize, &mut Vec<u32>),
+) -> LightLists {
+    let mut lists = LightLists {
+        offsets: vec![0],
+        ..LightLists::default()
+    };
+    for l in 0..count {
+        let mut list: Vec<u32> = (0..lens[l % lens.len()])
+            .map(|_| next(vpls as u64) as u32)
+            .collect();
+        order(l, &mut list);
+        lists.indices.extend(&list);
+        lists.offsets.push(lists.indices.len() as u32);
+    }
+    lists
+}
+
 /// Lists of any kind: ascending, shuffled, with repeated VPLs, empty, long and short, up to
 /// one per pixel (far more than 32 in a tile), some pixels without a list. `shade_lists`
 /// still equals the plain sum of each pixel's list in its order, bit for bit.
 #[test]
 fn shade_lists_equals_the_plain_sum_for_lists_of_any_order() {
     let p = prepared(53, 41, 16);
-    let n = p.vpls.len() as u64;
-    let mut state = 0x9e37_79b9_7f4a_7c15u64;
-    let mut next = move |m: u64| {
-        state ^= state << 13;
-        state ^= state >> 7;
-        state ^= state << 17;
-        state % m.max(1)
-    };
-    let mut lists = LightLists {
-        offsets: vec![0],
-        ..LightLists::default()
-    };
-    for l in 0..600 {
-        let len = [0, 1, 3, 17, 200][l % 5];
-        let mut list: Vec<u32> = (0..len).map(|_| next(n) as u32).collect();
-        match l % 3 {
+    let mut next = xorshift(0x9e37_79b9_7f4a_7c15);
+    let mut lists = random_lists(
+        &mut next,
+        600,
+        &[0, 1, 3, 17, 200],
+        p.vpls.len(),
+        |l, list| match l % 3 {
             0 => {
                 list.sort_unstable();
                 list.dedup();
             }
             1 => list.sort_unstable(),
             _ => {}
-        }
-        lists.indices.extend(&list);
-        lists.offsets.push(lists.indices.len() as u32);
-    }
+        },
+    );
     let pixels = p.gbuffer.samples.len();
     lists.pixel_list = (0..pixels)
         .map(|i| match i % 7 {
@@ -206,26 +229,17 @@ fn shade_lists_equals_the_plain_sum_for_lists_of_any_order() {
 #[test]
 fn shade_lists_equals_the_plain_sum_with_shared_lists() {
     let p = prepared(53, 41, 16);
-    let n = p.vpls.len() as u64;
-    let mut state = 0x2545_f491_4f6c_dd1du64;
-    let mut next = move |m: u64| {
-        state ^= state << 13;
-        state ^= state >> 7;
-        state ^= state << 17;
-        state % m.max(1)
-    };
-    let mut lists = LightLists {
-        offsets: vec![0],
-        ..LightLists::default()
-    };
-    for l in 0..400 {
-        let len = [0, 1, 5, 40, 150][l % 5];
-        let mut list: Vec<u32> = (0..len).map(|_| next(n) as u32).collect();
-        list.sort_unstable();
-        list.dedup();
-        lists.indices.extend(&list);
-        lists.offsets.push(lists.indices.len() as u32);
-    }
+    let mut next = xorshift(0x2545_f491_4f6c_dd1d);
+    let mut lists = random_lists(
+        &mut next,
+        400,
+        &[0, 1, 5, 40, 150],
+        p.vpls.len(),
+        |_, list| {
+            list.sort_unstable();
+            list.dedup();
+        },
+    );
     let pixels = p.gbuffer.samples.len();
     let mut pick = |i: usize, none: usize| match i % 5 {
         j if j == none => NO_LIST,

@@ -1,7 +1,43 @@
 //! No strategy ever culls a contributing VPL (missed pairs = 0 against the brute-force truth).
 use crate::common::*;
 use slc_core::frame::LobeSelection;
-use slc_core::{Camera, GBuffer, Vpl};
+use slc_core::{Camera, CullInput, GBuffer, Vpl};
+
+/// A random room: a floor G-buffer by ray casting from a random camera (1 to 90 x 1 to 70
+/// pixels), up to 240 VPLs around it, δ from 1e-6 to 1e-1 and K from 1 to `max_k`.
+struct Room {
+    camera: Camera,
+    gbuffer: GBuffer,
+    vpls: Vec<Vpl>,
+    delta: f32,
+    k: u32,
+    label: String,
+}
+
+impl Room {
+    fn input(&self) -> CullInput<'_> {
+        input(&self.gbuffer, &self.camera, &self.vpls, self.delta, self.k)
+    }
+
+    fn random(rng: &mut Rng, case: u32, max_k: u32) -> Self {
+        let camera = floor_camera(rng);
+        let (w, h) = (1 + rng.below(90), 1 + rng.below(70));
+        let gbuffer = floor_gbuffer(&camera, w, h, rng);
+        let count = rng.below(240);
+        let vpls = room_vpls(rng, count);
+        let delta = rng.log(-6.0, -1.0);
+        let k = 1 + rng.below(max_k);
+        let label = format!("room {case} ({w}x{h}, {count} VPLs, delta {delta:.1e}, K {k})");
+        Self {
+            camera,
+            gbuffer,
+            vpls,
+            delta,
+            k,
+            label,
+        }
+    }
+}
 
 /// 300 random rooms: a floor G-buffer by ray casting (jittered, often exactly on pixel corners
 /// and edges; sky above the horizon), VPLs on the walls and ceiling, hanging just above the
@@ -12,15 +48,9 @@ fn synthetic_rooms_never_miss() {
     let mut rng = Rng::new(1);
     let (mut contributing, mut listed_none, mut listed_ellipsoid) = (0u64, 0u64, 0u64);
     for case in 0..300 {
-        let camera = floor_camera(&mut rng);
-        let (w, h) = (1 + rng.below(90), 1 + rng.below(70));
-        let gbuffer = floor_gbuffer(&camera, w, h, &mut rng);
-        let count = rng.below(240);
-        let vpls = room_vpls(&mut rng, count);
-        let delta = rng.log(-6.0, -1.0);
-        let k = 1 + rng.below(5);
-        let label = format!("room {case} ({w}x{h}, {count} VPLs, delta {delta:.1e}, K {k})");
-        let all = check_all(&input(&gbuffer, &camera, &vpls, delta, k), &label);
+        let room = Room::random(&mut rng, case, 5);
+        let label = &room.label;
+        let all = check_all(&room.input(), label);
         contributing += of(&all, "none").true_positive_pairs;
         listed_none += of(&all, "none").true_positive_pairs + of(&all, "none").false_positive_pairs;
         let e = of(&all, "ellipsoid");
@@ -150,20 +180,14 @@ fn binned_cells_keep_every_pixel_the_pixel_test_passes() {
     let mut rng = Rng::new(9);
     let (mut shared_pixels, mut checked) = (0u64, 0u64);
     for case in 0..200 {
-        let camera = floor_camera(&mut rng);
-        let (w, h) = (1 + rng.below(90), 1 + rng.below(70));
-        let gbuffer = floor_gbuffer(&camera, w, h, &mut rng);
-        let count = rng.below(240);
-        let vpls = room_vpls(&mut rng, count);
-        let delta = rng.log(-6.0, -1.0);
-        let k = 1 + rng.below(3);
-        let label = format!("room {case} ({w}x{h}, {count} VPLs, delta {delta:.1e}, K {k})");
-        let input = input(&gbuffer, &camera, &vpls, delta, k);
+        let room = Room::random(&mut rng, case, 3);
+        let (label, gbuffer) = (&room.label, &room.gbuffer);
+        let input = room.input();
         let exact = BinnedCuller::per_pixel().cull(&input).unwrap();
         assert!(exact.shared_list.is_empty(), "{label}");
         for shared_above in [0, 64, BinnedCuller::default().shared_above] {
             let lists = BinnedCuller { shared_above }.cull(&input).unwrap();
-            lists.check(gbuffer.samples.len(), vpls.len()).unwrap();
+            lists.check(gbuffer.samples.len(), room.vpls.len()).unwrap();
             let m = slc_cull::metrics::measure(&input, &lists).unwrap();
             assert_eq!(m.missed_pairs, 0, "{label}, above {shared_above}");
             for p in 0..gbuffer.samples.len() {
