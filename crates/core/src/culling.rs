@@ -90,7 +90,8 @@ pub const NO_LIST: u32 = u32::MAX;
 
 impl LightLists {
     /// The VPL indices pixel `p` is shaded with, in the order it sums them: its list as it
-    /// is, or with a second list the union of both, ascending, each VPL once.
+    /// is, or with a second list the union of both, ascending, each VPL once. The lists must
+    /// be well formed ([`Self::check`]); a list id past the offsets panics.
     pub fn for_pixel(&self, p: usize) -> Cow<'_, [u32]> {
         match self.lists_of(p) {
             [own, []] => Cow::Borrowed(own),
@@ -131,10 +132,11 @@ impl LightLists {
 
     /// The same lists with one list per pixel: where a pixel has a second list, its own
     /// becomes the union ([`Self::for_pixel`]), for a reader of single lists (the GPU's
-    /// shading of uploaded lists). Lists without a second list are returned as they are.
-    pub fn flattened(self) -> LightLists {
+    /// shading of uploaded lists). Errors when the unions hold more entries than 32-bit
+    /// offsets address. The lists must be well formed ([`Self::check`]).
+    pub fn flattened(&self) -> Result<LightLists, CullError> {
         if self.shared_list.is_empty() {
-            return self;
+            return Ok(self.clone());
         }
         let mut flat = LightLists {
             offsets: vec![0],
@@ -148,9 +150,15 @@ impl LightLists {
             }
             flat.pixel_list.push((flat.offsets.len() - 1) as u32);
             flat.indices.extend_from_slice(&list);
-            flat.offsets.push(flat.indices.len() as u32);
+            let end = u32::try_from(flat.indices.len()).map_err(|_| {
+                CullError::Input(format!(
+                    "more than {} light-list entries once each pixel's lists are one",
+                    u32::MAX
+                ))
+            })?;
+            flat.offsets.push(end);
         }
-        flat
+        Ok(flat)
     }
 
     /// Number of lists.
@@ -164,7 +172,9 @@ impl LightLists {
 
     /// Errors unless these are lists for `pixels` pixels and `vpls` VPLs: one entry per
     /// pixel, each a list or `NO_LIST`; offsets starting at 0, never decreasing and ending
-    /// at the number of indices; every index below `vpls`.
+    /// at the number of indices; every index below `vpls`; and where there are second lists,
+    /// one entry per pixel in `shared_list` too, each a list or `NO_LIST`, and every list
+    /// strictly ascending.
     pub fn check(&self, pixels: usize, vpls: usize) -> Result<(), CullError> {
         let bad = |what: String| Err(CullError::Input(format!("malformed light lists: {what}")));
         if self.pixel_list.len() != pixels {
@@ -200,7 +210,7 @@ impl LightLists {
         let lists = self.len();
         // l + 1, NO_LIST (u32::MAX) as 0: at most `lists` for a pixel without or with a list.
         let named = |l: u32| l.wrapping_add(1);
-        for map in [&self.pixel_list, &self.shared_list] {
+        for (map, which) in [(&self.pixel_list, ""), (&self.shared_list, "shared ")] {
             if map
                 .iter()
                 .map(|&l| named(l))
@@ -208,7 +218,10 @@ impl LightLists {
                 .is_some_and(|l| l as usize > lists)
             {
                 let l = map.iter().find(|&&l| named(l) as usize > lists);
-                return bad(format!("list {} of {lists} lists", l.expect("the largest")));
+                return bad(format!(
+                    "{which}list {} of {lists} lists",
+                    l.expect("the largest")
+                ));
             }
         }
         if self.shared_list.is_empty() {
@@ -365,7 +378,7 @@ mod tests {
         assert_eq!(*lists.for_pixel(3), [0, 5, 6]);
         assert_eq!(lists.lists_of(0), [&[1, 5, 9][..], &[0, 5, 6][..]]);
         assert_eq!(lists.listed_pairs(), 5 + 3 + 1 + 3 + 1);
-        let flat = lists.clone().flattened();
+        let flat = lists.flattened().unwrap();
         assert!(flat.shared_list.is_empty());
         assert!(flat.check(5, 10).is_ok());
         for p in 0..5 {
@@ -391,7 +404,7 @@ mod tests {
             ..lists
         };
         let message = dangling.check(5, 10).unwrap_err().to_string();
-        assert!(message.contains("list 3 of 3 lists"), "{message}");
+        assert!(message.contains("shared list 3 of 3 lists"), "{message}");
     }
 
     #[test]

@@ -44,7 +44,9 @@ pub enum Layout {
     /// rectangle of screen pixels it covers, into the 16×16 tiles of its subregion image that
     /// rectangle overlaps, and each pixel of a tile tests its own G-buffer point against the
     /// bounds of its tile's bin: a list per pixel, at a cost of the VPLs plus the pixels their
-    /// rectangles cover, not VPLs × tiles (the paper's open problem, section 8).
+    /// rectangles cover, not VPLs × tiles (the paper's open problem, section 8). On the CPU,
+    /// a rectangle larger than a tile is tested per 4×4 cell instead, into a list the cell's
+    /// pixels share (`LightLists::shared_list`).
     Binned,
 }
 

@@ -1,7 +1,7 @@
 //! The rank of each light list among a tile's (or pair of lists: a pixel's own and its
-//! shared one), in the order the tile's pixels first meet them, found in a small hash table: a tile of per-pixel lists (`binned`) has as many lists
-//! as pixels, and a search through the ranks found so far made shading those tiles quadratic
-//! in their pixels.
+//! shared one), in the order the tile's pixels first meet them, found in a small hash
+//! table: a tile of per-pixel lists (`binned`) has as many lists as pixels, and a search
+//! through the ranks found so far made shading those tiles quadratic in their pixels.
 
 /// One slot of the table: the list it holds and its rank, valid in the tile `generation`.
 #[derive(Clone, Copy, Default)]
@@ -31,8 +31,8 @@ impl ListRanks {
         self.generation += 1;
     }
 
-    /// The rank of list (or pair of lists) `l` in this tile: its place in `lists`, where it is appended when the
-    /// tile meets it first. At most the `pixels` given to [`Self::start`] lists per tile.
+    /// The rank of list (or pair of lists) `l` in this tile: its place in `lists`, where it is
+    /// appended when the tile meets it first. At most the `pixels` given to [`Self::start`] lists per tile.
     #[inline]
     pub(crate) fn rank(&mut self, l: u64, lists: &mut Vec<u64>) -> u32 {
         let mask = self.slots.len() - 1;
@@ -62,7 +62,7 @@ mod tests {
 
     /// Ranks in the order lists are first met, the same rank each time a list comes back,
     /// nothing kept from one tile to the next; a full tile of distinct lists (one per pixel,
-    /// numbers that collide in the table) and lists numbered near u32::MAX.
+    /// numbers that collide in the table) and keys near u64::MAX.
     #[test]
     fn ranks_follow_first_appearance_per_tile() {
         let mut ranks = ListRanks::default();

@@ -102,8 +102,9 @@ pub fn shade_vpls(
 }
 
 /// Indirect radiance from culled light lists (paper eq. 3 with interleaved sampling): each
-/// pixel sums the VPLs of its list with weight K²/p when p > ξ. Unbiased as long as the lists
-/// miss no VPL with p > ξ at the pixel. Fails when δ, a ξ, K or a listed VPL is out of the
+/// pixel sums the VPLs of its list ([`LightLists::for_pixel`]: with a shared list, the union
+/// of both, ascending) with weight K²/p when p > ξ. Unbiased as long as the lists miss no VPL
+/// with p > ξ at the pixel. Fails when δ, a ξ, K or a listed VPL is out of the
 /// domain of slc-bounds and slc-cull, when the lists are malformed ([`LightLists::check`])
 /// or do not fit the G-buffer, or when the image has 2³² pixels or more. Pairs that [`VplReach`]
 /// rejects (outside the VPL's own bound, facing away at either end, or not accepted by the
@@ -111,15 +112,14 @@ pub fn shade_vpls(
 /// image is the same bit for bit. The pixels are shaded tile by tile (the culling's tiles),
 /// band by band of [`TileOrder::bands`] in parallel, the K tiles at one place of a row of
 /// subregions one after another (they share the G-buffer's cache lines), each tile's pixels
-/// grouped by list in Z order and written in place. The pixels of a list are shaded VPL by
-/// VPL, each VPL first tested against the box of the pixels (its bound of p over boxes,
-/// eight VPLs at a time: [`VplReach::box_may_exceed_xi`]), then against eight of them at a
-/// time ([`ReceiverChunks`]), the short lists
-/// of a tile sharing their chunks
-/// ([`SHARED_WINDOW_PIXELS`]). Where those lanes accepted a pair with the shader's own
+/// grouped by their lists (own and shared) in Z order and written in place. The pixels of a
+/// list are shaded VPL by VPL, each VPL first tested against the box of the pixels (its
+/// bound of p over boxes, eight VPLs at a time: [`VplReach::box_may_exceed_xi`]), then
+/// against eight of them at a time ([`ReceiverChunks`]), the short lists of a tile sharing
+/// their chunks ([`SHARED_WINDOW_PIXELS`]). Where those lanes accepted a pair with the shader's own
 /// operations, their ωo, l² and I(ωo) are used as they are, and the receiver's BRDF is
 /// formed eight receivers at a time as well (`received_lanes`, else [`received`]). Every
-/// pixel sums its VPLs in its list's order either way. `progress` is told the pixels of each
+/// pixel sums its VPLs in the order of `for_pixel` either way. `progress` is told the pixels of each
 /// tile shaded; once it is cancelled the tiles not yet begun are left unshaded (the caller
 /// checks `progress`).
 pub fn shade_lists(

@@ -248,7 +248,7 @@ fn shade_lists_equals_the_plain_sum_with_shared_lists() {
     };
     lists.pixel_list = (0..pixels).map(|i| pick(i, 0)).collect();
     lists.shared_list = (0..pixels).map(|i| pick(i / 3, 3)).collect();
-    let flat = lists.clone().flattened();
+    let flat = lists.flattened().unwrap();
     for k in [1, 2, 4] {
         let input = p.cull_input(1e-4, Interleaving { k, seed: 5 });
         let (got, want) = shaded_and_plain(&p, &input, &lists);

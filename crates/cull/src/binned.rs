@@ -2,9 +2,9 @@
 //! mapped once to the rectangle of its subregion image's pixels it may cover
 //! ([`crate::scatter`]), and each pixel of that rectangle tests its own G-buffer point x
 //! against the bound and the sign of ωo·n at the VPL ([`PixelTest`]). A pixel's list is
-//! every VPL that passes there, ascending. The cost is the VPLs plus the pixels their
-//! rectangles cover, not VPLs × tiles, and no pixel's own list holds a pair outside its
-//! VPL's bound.
+//! every VPL that passes there, ascending (for the VPLs of large rectangles, below, its
+//! cell's list stands in). The cost is the VPLs plus the pixels their rectangles cover, not
+//! VPLs × tiles, and no pixel's own list holds a pair outside its VPL's bound.
 //!
 //! The guarantee is the tiled strategies': a pair with p > ξ lies inside its VPL's bound
 //! (grown by `BOUND_SLACK`) and not behind the VPL, so its pixel lies in the VPL's rectangle
@@ -42,7 +42,7 @@ use slc_core::{CullError, CullInput, GBuffer, LightLists, NO_LIST, TILE_SIZE};
 const VPLS_PER_PIECE: usize = 4096;
 
 /// The lists of `input` by binning (see the module), VPLs whose rectangles cover more than
-/// `shared_above` pixels per cell ([`LARGE_PIXELS`] by default).
+/// `shared_above` pixels culled per cell ([`LARGE_PIXELS`] by default).
 pub(crate) fn cull(input: &CullInput, shared_above: u64) -> Result<LightLists, CullError> {
     let pixels = pixel_count(input.gbuffer)?;
     let il = input.interleaving;
@@ -58,7 +58,11 @@ pub(crate) fn cull(input: &CullInput, shared_above: u64) -> Result<LightLists, C
         // δ is checked once here for the lanes, which take it as valid.
         StochasticParams::new(input.delta, 0.5)?;
     }
-    let cells = receivers.rows.cell_boxes();
+    // The cells' boxes only where a rectangle can be large (not at K = 1024, where there
+    // would be K² cells of a pixel or two each).
+    let largest = il.subregion_size(width, height, [0, 0]);
+    let cells = (u64::from(largest[0]) * u64::from(largest[1]) > shared_above)
+        .then(|| receivers.rows.cell_boxes());
     // Per piece of VPLs (in order), the (pixel, VPL) pairs that pass, each pixel's in VPL
     // order, by band, and the (cell, VPL) pairs of the large rectangles.
     let pieces = input
@@ -71,7 +75,9 @@ pub(crate) fn cull(input: &CullInput, shared_above: u64) -> Result<LightLists, C
                 let first = (piece * VPLS_PER_PIECE) as u32;
                 scatter(&screen, vpls, first, input.delta, scattered)?;
                 let mut shared = Vec::new();
-                scattered.retain(|s| !take_large(s, shared_above, &cells, &mut shared));
+                if let Some(cells) = &cells {
+                    scattered.retain(|s| !take_large(s, shared_above, cells, &mut shared));
+                }
                 let mut pairs = Bands::new(pixels);
                 receivers.rows.test(scattered, &mut pairs);
                 Ok((pairs, shared))
@@ -80,7 +86,9 @@ pub(crate) fn cull(input: &CullInput, shared_above: u64) -> Result<LightLists, C
         .collect::<Result<Vec<(Bands, Vec<(u32, u32)>)>, CullError>>()?;
     let (bands, shared): (Vec<Bands>, Vec<Vec<(u32, u32)>>) = pieces.into_iter().unzip();
     let mut lists = lists(&bands, pixels)?;
-    share(&mut lists, shared.concat(), &cells, input.gbuffer)?;
+    if let Some(cells) = &cells {
+        share(&mut lists, shared.concat(), cells, input.gbuffer)?;
+    }
     Ok(lists)
 }
 
@@ -90,16 +98,20 @@ pub(crate) fn cull(input: &CullInput, shared_above: u64) -> Result<LightLists, C
 /// ([`take_large`]). Such VPLs are a minority (at 960x540 with RSM 256, 9,348 of 51,468; at
 /// RSM 1024, 11,024 of 823,592) but made most of the pixel tests and the pairs
 /// (docs/many-vpls.md); the shading tests them against its receivers eight at a time at a
-/// fraction of that cost. Of the settings measured (8 x 8 or 4 x 4 cells, above one, two or
-/// four tiles), 4 x 4 cells above one tile were the fastest whose lists keep within 20
-/// false positives per true positive at RSM 1024 (13 at 960x540; 8 x 8 cells gave 23).
+/// fraction of that cost. Of the settings measured (8 x 8 cells above one, two or four
+/// tiles, 4 x 4 cells above one or two), 4 x 4 cells above one tile were the fastest whose
+/// lists keep within 20 false positives per true positive at RSM 1024 (13 at 960x540; 8 x 8
+/// cells above one tile gave 23).
 pub(crate) const LARGE_PIXELS: u64 = (TILE_SIZE as u64) * (TILE_SIZE as u64);
 
-/// Whether `s`'s rectangle covers more than `shared_above` pixels; if so, pushes
-/// (cell, VPL) for every cell the rectangle overlaps whose box of samples the bound's box reaches and that
-/// does not lie wholly behind the VPL. A pixel whose sample passes the [`PixelTest`] lies in
-/// the rectangle, inside the bound (so inside its box, grown for the test's `LIMIT`) and not
-/// behind the VPL by more than `SIGN_MARGIN`, so its cell is kept.
+/// Whether `s`'s rectangle covers more than `shared_above` pixels; if so, pushes (cell, VPL)
+/// for every cell the rectangle overlaps whose box of samples the bound's box reaches, where
+/// a lower bound of the bound's quadric over the box is within `LIMIT`, and that does not lie
+/// wholly behind the VPL. A pixel whose sample passes the [`PixelTest`] lies in the
+/// rectangle, inside the bound (so inside its box, grown for the test's `LIMIT`, and at a
+/// quadric within `LIMIT`) and not behind the VPL by more than `SIGN_MARGIN`, so its cell is
+/// kept. The slacks cover the f64 rounding relative to the bound's size and to the
+/// coordinates' magnitude.
 fn take_large(
     s: &Scattered,
     shared_above: u64,
@@ -120,7 +132,8 @@ fn take_large(
         * (LIMIT * (1.0 + 1e-9))
         + DVec3::splat(1e-12 * center.abs().max_element());
     let (lo, hi) = (center - extent, center + extent);
-    let margin = f64::from(SIGN_MARGIN);
+    // The pixel test's margin as it compares it: the f32 square of `SIGN_MARGIN`.
+    let margin = f64::from(SIGN_MARGIN * SIGN_MARGIN).sqrt();
     for cy in j0 / CELL..=j1 / CELL {
         for cx in i0 / CELL..=i1 / CELL {
             let id = cells.id(s.subregion, [cx, cy]);
@@ -134,8 +147,10 @@ fn take_large(
             let (mid, half) = ((blo + bhi) * 0.5, (bhi - blo) * 0.5);
             let e = mid - center;
             let along_e = e.dot(t.axis);
-            let on_axis = (along_e.abs() - half.dot(t.axis.abs())).max(0.0);
-            let off_axis = ((e - along_e * t.axis).length() - half.length()).max(0.0);
+            // The distances' rounding, absolute: about 1e-16 of the coordinates formed.
+            let rounding = 1e-12 * (center.abs().max_element() + mid.abs().max_element());
+            let on_axis = (along_e.abs() - half.dot(t.axis.abs()) - rounding).max(0.0);
+            let off_axis = ((e - along_e * t.axis).length() - half.length() - rounding).max(0.0);
             let q = (on_axis / along).powi(2) + (off_axis / across).powi(2);
             if q > LIMIT * (1.0 + 1e-6) {
                 continue;

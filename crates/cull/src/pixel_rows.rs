@@ -600,6 +600,56 @@ mod tests {
     /// at both ends, one pixel, the whole row), samples missing and extreme bounds. The
     /// VPLs lie in random subregions and come in no order of their indices, so each pixel's
     /// list must keep the order of `scattered` itself.
+    /// Each cell's box is the box of exactly the samples of the pixels in it
+    /// ([`CellBoxes::of_pixel`]), empty where none has one, and the numbers of the cells of
+    /// every subregion's image ([`CellBoxes::id`]) are distinct and within the boxes: images
+    /// whose sides are not multiples of K or of a cell, K from 1 to 9.
+    #[test]
+    fn cell_boxes_hold_their_pixels_samples() {
+        let mut rng = Rng(13);
+        for (k, width, height) in [(1, 37, 5), (3, 50, 13), (4, 33, 31), (9, 203, 40)] {
+            let mut rows = PixelRows::empty(width, height, k);
+            let mut positions = vec![None; (width * height) as usize];
+            let (layout, screen_rows) = rows.screen_rows_mut();
+            let rows_of: Vec<_> = screen_rows.collect();
+            for (y, row) in rows_of.into_iter().enumerate() {
+                for x in 0..width {
+                    if rng.range64(0.0, 1.0) < 0.8 {
+                        let p = Vec3::new(
+                            rng.range64(-2.0, 2.0) as f32,
+                            rng.range64(-2.0, 2.0) as f32,
+                            rng.range64(-2.0, 2.0) as f32,
+                        );
+                        layout.set(row, x, p);
+                        positions[y * width as usize + x as usize] = Some(p);
+                    }
+                }
+            }
+            let cells = rows.cell_boxes();
+            let mut want = vec![[Vec3::INFINITY, Vec3::NEG_INFINITY]; cells.boxes.len()];
+            for y in 0..height {
+                for x in 0..width {
+                    if let Some(p) = positions[(y * width + x) as usize] {
+                        let b = &mut want[cells.of_pixel(x, y)];
+                        *b = [b[0].min(p), b[1].max(p)];
+                    }
+                }
+            }
+            assert_eq!(cells.boxes, want, "K {k}, {width}x{height}");
+            let mut ids = std::collections::HashSet::new();
+            let il = slc_core::Interleaving { k, seed: 0 };
+            for (sx, sy) in (0..k).flat_map(|sy| (0..k).map(move |sx| (sx, sy))) {
+                let [w, h] = il.subregion_size(width, height, [sx, sy]);
+                for (cx, cy) in (0..h.div_ceil(CELL))
+                    .flat_map(|cy| (0..w.div_ceil(CELL)).map(move |cx| (cx, cy)))
+                {
+                    let id = cells.id([sx, sy], [cx, cy]);
+                    assert!(id < cells.boxes.len() && ids.insert(id), "K {k}: cell {id}");
+                }
+            }
+        }
+    }
+
     #[test]
     fn rows_give_the_exact_tests_lists() {
         let mut rng = Rng(11);

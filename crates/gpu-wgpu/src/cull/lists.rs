@@ -44,10 +44,9 @@ impl GpuLightLists {
         let lists = if lists.shared_list.is_empty() {
             lists
         } else {
-            lists
-                .check(pixels, vpl_count)
-                .map_err(|e| GpuError::Input(e.to_string()))?;
-            flat = lists.clone().flattened();
+            let input = |e: slc_core::CullError| GpuError::Input(e.to_string());
+            lists.check(pixels, vpl_count).map_err(input)?;
+            flat = lists.flattened().map_err(input)?;
             &flat
         };
         let bad = |what: String| Err(GpuError::Input(format!("light lists: {what}")));

@@ -6,7 +6,7 @@
 //! lists equal the CPU's tested per pixel (`BinnedCuller::per_pixel`) but for entries decided
 //! within rounding at a bound's surface (the GPU tests in f32 with a limit above its rounding,
 //! the CPU in f64), and lie within the CPU's default lists (whose large ranges are shared per
-//! cell); shading the lists, the GPU's and the CPU's with shared lists, gives the unculled
+//! cell) but for such entries; shading the lists, the GPU's and the CPU's with shared lists, gives the unculled
 //! estimate bit for bit; frames without pixels or VPLs give empty lists.
 use crate::common::{cull_input, gpu};
 use crate::tight::{extra, extreme};

@@ -7,7 +7,8 @@
 //! subregion image (`binned_cull.wesl`) the VPLs whose rectangle overlaps the tile's samples,
 //! and per pixel the test `binned.rs`'s `PixelTest` makes: the sample x not behind the VPL
 //! (eq. 4) and inside its bound. Every pixel gets its own list (list p for pixel p), ascending
-//! in the VPL index like the CPU's: the lists read back equal the CPU strategy's up to f32
+//! in the VPL index like the CPU's: the lists read back equal those of the CPU's
+//! `BinnedCuller::per_pixel` (the CPU's default shares large ranges per cell) up to f32
 //! versus f64 decisions at a bound's surface (the f32 test allows its rounding, which for
 //! the sharpest lobes, α = 1e-4, widens the spheroid by about 1%: `binned_footprint.wesl`).
 //!
