@@ -73,7 +73,7 @@ pub struct CullInput<'a> {
 /// pixel picks the one of its depth.
 ///
 /// A strategy may give a pixel a second list, `shared_list[p]`, that many pixels share
-/// (`binned`: its tile's VPLs whose ranges cover many pixels). Then every list is strictly
+/// (`binned`: the VPLs of large range that may reach the pixel's 4×4 cell). Then every list is strictly
 /// ascending ([`Self::check`]), and the pixel is shaded with the union of its two lists in
 /// ascending order, each VPL once ([`Self::for_pixel`]). `shared_list` is empty where the
 /// strategy gives each pixel one list.
@@ -123,10 +123,7 @@ impl LightLists {
     /// (what shading evaluates, before its early exits).
     pub fn listed_pairs(&self) -> u64 {
         (0..self.pixel_list.len())
-            .map(|p| match self.lists_of(p) {
-                [own, []] | [[], own] => own.len() as u64,
-                [own, shared] => union(own, shared).len() as u64,
-            })
+            .map(|p| self.for_pixel(p).len() as u64)
             .sum()
     }
 

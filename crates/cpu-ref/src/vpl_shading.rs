@@ -104,9 +104,9 @@ pub fn shade_vpls(
 /// Indirect radiance from culled light lists (paper eq. 3 with interleaved sampling): each
 /// pixel sums the VPLs of its list ([`LightLists::for_pixel`]: with a shared list, the union
 /// of both, ascending) with weight K²/p when p > ξ. Unbiased as long as the lists miss no VPL
-/// with p > ξ at the pixel. Fails when δ, a ξ, K or a listed VPL is out of the
-/// domain of slc-bounds and slc-cull, when the lists are malformed ([`LightLists::check`])
-/// or do not fit the G-buffer, or when the image has 2³² pixels or more. Pairs that [`VplReach`]
+/// with p > ξ at the pixel. Fails when δ, a ξ, K or a listed VPL is out of the domain of
+/// slc-bounds and slc-cull, when the lists are malformed ([`LightLists::check`]) or do not
+/// fit the G-buffer, or when the image has 2³² pixels or more. Pairs that [`VplReach`]
 /// rejects (outside the VPL's own bound, facing away at either end, or not accepted by the
 /// roulette) are skipped before the receiver's BRDF: their contribution is exactly 0, so the
 /// image is the same bit for bit. The pixels are shaded tile by tile (the culling's tiles),
@@ -116,12 +116,12 @@ pub fn shade_vpls(
 /// list are shaded VPL by VPL, each VPL first tested against the box of the pixels (its
 /// bound of p over boxes, eight VPLs at a time: [`VplReach::box_may_exceed_xi`]), then
 /// against eight of them at a time ([`ReceiverChunks`]), the short lists of a tile sharing
-/// their chunks ([`SHARED_WINDOW_PIXELS`]). Where those lanes accepted a pair with the shader's own
-/// operations, their ωo, l² and I(ωo) are used as they are, and the receiver's BRDF is
-/// formed eight receivers at a time as well (`received_lanes`, else [`received`]). Every
-/// pixel sums its VPLs in the order of `for_pixel` either way. `progress` is told the pixels of each
-/// tile shaded; once it is cancelled the tiles not yet begun are left unshaded (the caller
-/// checks `progress`).
+/// their chunks ([`SHARED_WINDOW_PIXELS`]). Where those lanes accepted a pair with the
+/// shader's own operations, their ωo, l² and I(ωo) are used as they are, and the receiver's
+/// BRDF is formed eight receivers at a time as well (`received_lanes`, else [`received`]).
+/// Every pixel sums its VPLs in the order of `for_pixel` either way. `progress` is told the
+/// pixels of each tile shaded; once it is cancelled the tiles not yet begun are left
+/// unshaded (the caller checks `progress`).
 pub fn shade_lists(
     tracer: &Tracer,
     input: &CullInput,
@@ -254,10 +254,9 @@ struct ListShading<'a> {
 /// pixels with a list, those grouped by list, where each group starts and the next free
 /// place while grouping; for the lists shaded together, their VPLs (each with the lists that
 /// hold it), their distinct shared lists with the sets that hold each, and per VPL a stamp
-/// of those lists while merging; the
-/// receivers in lanes, the BRDF lanes of their chunks (formed only for a chunk where a pair
-/// passes, which `formed` marks), their samples and sets, sums and the chunks where one VPL
-/// passes.
+/// of those lists while merging; the receivers in lanes, the BRDF lanes of their chunks
+/// (formed only for a chunk where a pair passes, which `formed` marks), their samples and
+/// sets, sums and the chunks where one VPL passes.
 #[derive(Default)]
 struct TileScratch<'a> {
     lists: Vec<u64>,
@@ -332,7 +331,7 @@ impl<'a> ListShading<'a> {
         // shared lists every list is).
         let starts = core::mem::take(&mut scratch.starts);
         let shares = |r: usize| {
-            let [own, shared] = lists_of(lists[r]);
+            let [own, shared] = key_lists(lists[r]);
             starts[r + 1] - starts[r] < SHARED_WINDOW_PIXELS
                 && (shared != NO_LIST || self.list(own).windows(2).all(|w| w[0] < w[1]))
         };
@@ -453,7 +452,7 @@ impl<'a> ListShading<'a> {
     fn members(&self, lists: &[u64], scratch: &mut TileScratch<'a>) {
         scratch.members.clear();
         if let [l] = *lists {
-            if let [own, NO_LIST] = lists_of(l) {
+            if let [own, NO_LIST] = key_lists(l) {
                 scratch
                     .members
                     .extend(self.list(own).iter().map(|&v| (v, 1)));
@@ -471,7 +470,7 @@ impl<'a> ListShading<'a> {
             *stamp |= sets;
         };
         for (s, &l) in lists.iter().enumerate() {
-            let [own, shared] = lists_of(l);
+            let [own, shared] = key_lists(l);
             for &v in self.list(own) {
                 stamp(v, 1 << s, scratch);
             }
@@ -524,7 +523,7 @@ const NO_KEY: u64 = u64::MAX;
 
 /// The own and shared list of a [`key`].
 #[inline]
-fn lists_of(key: u64) -> [u32; 2] {
+fn key_lists(key: u64) -> [u32; 2] {
     [(key >> 32) as u32, key as u32]
 }
 

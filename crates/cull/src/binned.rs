@@ -11,9 +11,9 @@
 //! (computed in f64 and grown) and passes the test, and its cell passes the cell's.
 //!
 //! The VPLs whose rectangles cover more than a tile's worth of pixels ([`LARGE_PIXELS`])
-//! are not tested pixel by pixel: each is tested once per 4 x 4 cell of
-//! its rectangle against the box of the cell's samples ([`take_large`]) and listed in the
-//! cell's list, which the cell's pixels share ([`LightLists::shared_list`]). Per pixel they
+//! are not tested pixel by pixel: each is tested once per 4 x 4 cell of its rectangle
+//! against the box of the cell's samples ([`take_large`]) and listed in the cell's list,
+//! which the cell's pixels share ([`LightLists::shared_list`]). Per pixel they
 //! made most of the tests and the pairs; the shading decides them eight receivers at a time.
 //!
 //! The VPLs are read once, in their order, a piece at a time (the VPLs, 100+ bytes each,
@@ -27,8 +27,7 @@
 use crate::lists::pixel_count;
 use crate::pair_lists::{lists, Bands};
 use crate::partition::{check, group_by};
-use crate::pixel_rows::PixelRows;
-use crate::pixel_rows::{CellBoxes, CELL};
+use crate::pixel_rows::{CellBoxes, PixelRows, CELL};
 use crate::reach::SIGN_MARGIN;
 use crate::scatter::{Scattered, Screen, LIMIT};
 use crate::scatter_lanes::scatter;
@@ -143,7 +142,8 @@ fn take_large(
             }
             // Outside the bound everywhere in the box: every x of the box lies within |h|
             // of its middle m, so at least `off_axis` from the spheroid's axis and `on_axis`
-            // along it from its centre, and its Q is at least the Q of those distances.
+            // along it from its centre, and its Q (the quadric of `PixelTest`, the spheroid
+            // of eq. 12-15 or the sphere) is at least the Q of those distances.
             let (mid, half) = ((blo + bhi) * 0.5, (bhi - blo) * 0.5);
             let e = mid - center;
             let along_e = e.dot(t.axis);

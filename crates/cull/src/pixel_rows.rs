@@ -110,7 +110,7 @@ pub(crate) struct CellBoxes {
     k: u32,
     /// Per cell, subregion by subregion and row-major within each, `[lo, hi]` of its samples
     /// (lo above hi where it has none).
-    pub boxes: Vec<[Vec3; 2]>,
+    pub(crate) boxes: Vec<[Vec3; 2]>,
 }
 
 impl CellBoxes {
@@ -594,12 +594,6 @@ mod tests {
         }
     }
 
-    /// The lists of the rows' tests equal those of the exact test on every pixel of every
-    /// rectangle, at interleavings 1, 3 and 8 (the VPLs gathered by subregion) and 20 (more
-    /// subregions than VPLs: taken as given) with rectangles of every width (partial chunks
-    /// at both ends, one pixel, the whole row), samples missing and extreme bounds. The
-    /// VPLs lie in random subregions and come in no order of their indices, so each pixel's
-    /// list must keep the order of `scattered` itself.
     /// Each cell's box is the box of exactly the samples of the pixels in it
     /// ([`CellBoxes::of_pixel`]), empty where none has one, and the numbers of the cells of
     /// every subregion's image ([`CellBoxes::id`]) are distinct and within the boxes: images
@@ -650,6 +644,12 @@ mod tests {
         }
     }
 
+    /// The lists of the rows' tests equal those of the exact test on every pixel of every
+    /// rectangle, at interleavings 1, 3 and 8 (the VPLs gathered by subregion) and 20 (more
+    /// subregions than VPLs: taken as given) with rectangles of every width (partial chunks
+    /// at both ends, one pixel, the whole row), samples missing and extreme bounds. The
+    /// VPLs lie in random subregions and come in no order of their indices, so each pixel's
+    /// list must keep the order of `scattered` itself.
     #[test]
     fn rows_give_the_exact_tests_lists() {
         let mut rng = Rng(11);
