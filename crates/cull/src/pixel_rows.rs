@@ -328,6 +328,7 @@ impl Filter {
         }
         let u = f64::from(f32::EPSILON) / 2.0;
         let slack = 32.0 * u * (r_max + c) / r_min + 8.0 * u;
+        let [inv_along_sq, inv_across_sq] = test.inverse_squares();
         let root = crate::scatter::LIMIT.sqrt();
         let m = f64::from(SIGN_MARGIN * SIGN_MARGIN).sqrt();
         Some(Self {
@@ -335,8 +336,8 @@ impl Filter {
             normal: test.normal.as_vec3().to_array(),
             center: test.center.as_vec3().to_array(),
             axis: test.axis.as_vec3().to_array(),
-            inv_along_sq: (along * along).recip() as f32,
-            inv_across_sq: (across * across).recip() as f32,
+            inv_along_sq: inv_along_sq as f32,
+            inv_across_sq: inv_across_sq as f32,
             maybe_inside: up((root + slack).powi(2)),
             // No lane is sure where the slack reaches the bound's own size.
             inside: match slack < root {

@@ -64,6 +64,12 @@ impl PixelTest {
         [self.along, self.across]
     }
 
+    /// Their inverse squares `[1/r_u², 1/r²]`, as the test forms them.
+    #[inline]
+    pub(crate) fn inverse_squares(&self) -> [f64; 2] {
+        [self.inv_along_sq, self.inv_across_sq]
+    }
+
     /// Whether the pixel whose G-buffer point is `x` may hold a pair with p > ξ: not behind
     /// the VPL by more than [`SIGN_MARGIN`] (where the shader's own f32 cosine, from the
     /// correctly rounded x − q, is negative too) and inside the bound. False where `x` is
