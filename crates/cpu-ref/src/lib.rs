@@ -51,6 +51,7 @@ pub mod direct;
 mod frame_images;
 pub mod gbuffer;
 mod list_ranks;
+mod listed_vpls;
 pub mod path;
 pub mod prepare;
 pub mod received_lanes;

@@ -2,6 +2,7 @@
 //! paper eq. (3) where each VPL is kept at a pixel only if p(ωo, l) > ξ.
 use crate::frame_images::{black_image, shade_rows};
 use crate::list_ranks::ListRanks;
+use crate::listed_vpls::ListedVpls;
 use crate::received_lanes::{received_lanes, ReceiverBrdfs};
 use crate::tracer::Tracer;
 use glam::Vec3;
@@ -14,7 +15,6 @@ use slc_cull::prefetch::prefetch;
 use slc_cull::receiver_chunks::{Passing, MAX_SETS};
 use slc_cull::tiles::{Band, Tile, TileOrder};
 use slc_cull::{ReceiverChunks, VplReach};
-use std::sync::atomic::{AtomicU32, Ordering};
 
 /// How each VPL's contribution is weighted.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -156,9 +156,14 @@ pub fn shade_lists_into(
     lists.check(gbuffer.samples.len(), vpls.len())?;
     // Only the listed VPLs' exits are formed, in a compact table: the listed VPLs in
     // ascending order (`listed`), the lists' entries renumbered to their place in it (an
-    // order-preserving map, so every pixel still sums its VPLs in its list's order).
-    let (listed, indices) = compact(lists, vpls.len());
-    let (roulette, reach) = VplReach::of_frame(vpls, input.delta, Some(&listed))?;
+    // order-preserving map, so every pixel still sums its VPLs in its list's order); each
+    // with its bounds only where its lists cover enough pixels to earn them back.
+    let ListedVpls {
+        listed,
+        bounded,
+        indices,
+    } = ListedVpls::of(lists, vpls.len());
+    let (roulette, reach) = VplReach::of_listed(vpls, input.delta, &listed, |j| bounded[j])?;
     let shading = ListShading {
         tracer,
         gbuffer,
@@ -199,39 +204,6 @@ pub fn shade_lists_into(
             },
         );
     Ok(image)
-}
-
-/// The VPLs `lists` hold, ascending, and the lists' entries renumbered to their places among
-/// them. `lists` must be checked for `vpls` VPLs. The entries (millions with many VPLs) are
-/// marked and renumbered in parallel.
-fn compact(lists: &LightLists, vpls: usize) -> (Vec<u32>, Vec<u32>) {
-    let mut place: Vec<AtomicU32> = (0..vpls)
-        .into_par_iter()
-        .map(|_| AtomicU32::new(0))
-        .collect();
-    lists.indices.par_chunks(1 << 16).for_each(|entries| {
-        for &v in entries {
-            // Read first: a VPL listed at many pixels is marked once, its line not fought over.
-            let mark = &place[v as usize];
-            if mark.load(Ordering::Relaxed) == 0 {
-                mark.store(1, Ordering::Relaxed);
-            }
-        }
-    });
-    let mut listed = Vec::new();
-    for (v, p) in place.iter_mut().enumerate() {
-        let p = p.get_mut();
-        if *p != 0 {
-            *p = listed.len() as u32;
-            listed.push(v as u32);
-        }
-    }
-    let indices = lists
-        .indices
-        .par_iter()
-        .map(|&v| place[v as usize].load(Ordering::Relaxed))
-        .collect();
-    (listed, indices)
 }
 
 /// What [`shade_lists`] shades every pixel with. The VPLs of `indices` (the lists' entries)

@@ -505,3 +505,111 @@ fn frame_exits_cover_the_listed_vpls() {
         assert!(err.to_string().contains("NaN"), "{err}");
     }
 }
+
+/// `VplReach::without_bounds` (what the shading forms for a VPL listed at few pixels) keeps
+/// the sign tests and the roulette of `VplReach::new` and drops only its bounds: over random
+/// VPLs and pairs at the edge of their range it rejects no pair that the roulette accepts or
+/// that contributes, it passes every pair `new` passes, where the shader forms p in f32 it
+/// decides as the shader does, its bound over boxes passes every box, and the
+/// receivers-in-lanes test passes exactly the receivers its scalar test passes. It refuses the
+/// VPLs `new` refuses, and `of_listed` forms each listed VPL's exits as asked.
+#[test]
+fn exits_without_bounds_keep_the_signs_and_the_roulette() {
+    let mut rng = Rng(0x5EED_0B0D_FEED_0002);
+    let (mut tighter, mut exact, mut contributing) = (0u32, 0u32, 0u32);
+    let mut receiver_lanes = ReceiverChunks::default();
+    let mut passing = Vec::new();
+    let cases = 100_000u32;
+    for case in 0..cases {
+        let vpl = random_vpl(&mut rng);
+        let params = StochasticParams::new(rng.log(-9.0, 3.0), vpl.xi).unwrap();
+        let bounded = VplReach::new(&vpl, &params).unwrap();
+        let reach = VplReach::without_bounds(&vpl, &params).unwrap();
+        let omega = direction(&mut rng, &vpl);
+        let range = params.range(scalar_intensity(vpl.intensity(omega)));
+        let distance = if range > 0.0 && range < 1e15 && rng.f32() < 0.8 {
+            range * (1.0 + rng.range(-1.0, 1.0) * rng.log(-6.0, -1.0))
+        } else {
+            rng.log(-3.0, 4.0)
+        };
+        let g = receiver(&mut rng, vpl.position + omega * distance, omega);
+        let d = g.position - vpl.position;
+        let l2 = d.length_squared();
+        if l2 <= 0.0 {
+            continue;
+        }
+        let p = params.probability(scalar_intensity(vpl.intensity(d / l2.sqrt())), l2);
+        let accepts = p > params.xi();
+        let contribution = vpl_contribution(&g, &vpl, Some(&params));
+        assert!(!accepts || reach.may_accept(d), "case {case}: {vpl:?}");
+        assert!(
+            contribution == Vec3::ZERO || reach.may_contribute(d, g.normal),
+            "case {case}: {vpl:?}"
+        );
+        assert!(!bounded.may_contribute(d, g.normal) || reach.may_contribute(d, g.normal));
+        if exact_in_f32(&vpl, d / l2.sqrt()) {
+            assert_eq!(reach.may_accept(d), accepts, "case {case}: {vpl:?}");
+            exact += 1;
+        }
+        let spread = distance * rng.log(-7.0, 0.0);
+        assert!(reach.box_may_exceed_xi(g.position - spread, g.position + spread));
+        let receivers: Vec<(Vec3, Vec3)> = (0..11)
+            .map(|_| {
+                let jitter = Vec3::new(rng.f32(), rng.f32(), rng.f32()) * 2.0 - Vec3::ONE;
+                (g.position + jitter * spread, g.normal)
+            })
+            .collect();
+        receiver_lanes.refill(receivers.iter().copied());
+        receiver_lanes.passing(&[reach], &[0], true, &mut passing);
+        let lanes: Vec<usize> = passing
+            .iter()
+            .flat_map(|c| {
+                (0..8)
+                    .filter(|&k| c.bits & (1 << k) != 0)
+                    .map(|k| c.chunk * 8 + k)
+            })
+            .collect();
+        let scalar: Vec<usize> = (0..receivers.len())
+            .filter(|&i| reach.may_contribute(receivers[i].0 - vpl.position, receivers[i].1))
+            .collect();
+        assert_eq!(lanes, scalar, "case {case}");
+        tighter +=
+            u32::from(reach.may_contribute(d, g.normal) && !bounded.may_contribute(d, g.normal));
+        contributing += u32::from(contribution != Vec3::ZERO);
+    }
+    // Not vacuous: pairs contribute, p is often decided exactly, and the bounds `new` adds
+    // reject some pairs these exits pass (few: most pairs here lie at the edge of the
+    // range, where the roulette decides as the bound does; the bounds save time, the
+    // roulette's test being dearer).
+    assert!(contributing > cases / 20, "{contributing} contributing");
+    assert!(exact > cases / 2, "{exact} decided exactly");
+    assert!(
+        tighter > cases / 1000,
+        "{tighter} rejected only by the bounds"
+    );
+
+    // The same refusals: a lobe outside slc-bounds' domain.
+    let mut vpls: Vec<Vpl> = (0..40).map(|_| random_vpl(&mut rng)).collect();
+    for (i, v) in vpls.iter_mut().enumerate().filter(|(i, _)| i % 4 == 0) {
+        v.normal = [Vec3::ZERO, Vec3::NAN, Vec3::splat(2.0)][i % 3];
+    }
+    for v in &vpls {
+        let params = StochasticParams::new(1e-3, v.xi).unwrap();
+        assert_eq!(
+            VplReach::new(v, &params).is_err(),
+            VplReach::without_bounds(v, &params).is_err(),
+            "{v:?}"
+        );
+    }
+    // `of_listed`: entry j with its bounds where asked.
+    vpls.retain(|v| VplReach::new(v, &StochasticParams::new(1e-3, v.xi).unwrap()).is_ok());
+    let listed: Vec<u32> = (0..vpls.len() as u32).collect();
+    let (roulette, reach) = VplReach::of_listed(&vpls, 1e-3, &listed, |j| j % 2 == 0).unwrap();
+    for (j, v) in vpls.iter().enumerate() {
+        let want = match j % 2 {
+            0 => VplReach::new(v, &roulette[j]),
+            _ => VplReach::without_bounds(v, &roulette[j]),
+        };
+        assert_eq!(reach[j], want.unwrap(), "VPL {j}");
+    }
+}

@@ -145,11 +145,31 @@ impl VplReach {
     /// The early exits of `vpl` under the roulette `params` (its δ and ξ, eq. 2-3). Errors
     /// when the VPL is outside the domain of slc-bounds (see `slc_bounds::BoundsError`).
     pub fn new(vpl: &Vpl, params: &StochasticParams) -> Result<Self, CullError> {
+        Self::with(vpl, params, true)
+    }
+
+    /// [`Self::new`] without the VPL's bounds: only the sign tests and the roulette, its own
+    /// bound and its bound over boxes passing everywhere. Forming the bounds costs most of
+    /// [`Self::new`] (the spheroid of eq. 12-15 and the box bound, in f64), which a VPL
+    /// listed at a few pixels does not earn back. The same errors: its lobe is validated.
+    pub fn without_bounds(vpl: &Vpl, params: &StochasticParams) -> Result<Self, CullError> {
+        Self::with(vpl, params, false)
+    }
+
+    fn with(vpl: &Vpl, params: &StochasticParams, bounds: bool) -> Result<Self, CullError> {
         let dark = reflects_nothing(vpl);
         // The bound over boxes of receivers at the VPL, and its own bound (the glossy lobe
         // built once for both); none for a VPL that reflects nothing.
         let (local, box_bound) = match (dark, vpl.lobe) {
             (true, _) => (None, BoxBoundLanes::ALWAYS),
+            (false, VplLobe::Diffuse) if !bounds => {
+                vpl.diffuse_lobe()?;
+                (Some(LocalBound::Empty), BoxBoundLanes::ALWAYS)
+            }
+            (false, VplLobe::Glossy) if !bounds => {
+                vpl.glossy_lobe()?;
+                (Some(LocalBound::Empty), BoxBoundLanes::ALWAYS)
+            }
             (false, VplLobe::Diffuse) => (
                 Some(LocalBound::new(vpl, params, GlossyBound::Ellipsoid)?),
                 lobe_box_bound(vpl, params)?.to_f32(vpl.position),
@@ -224,14 +244,23 @@ impl VplReach {
         delta: f32,
         listed: Option<&[u32]>,
     ) -> Result<(Vec<StochasticParams>, Vec<Self>), CullError> {
-        let every: Vec<u32>;
-        let listed = match listed {
-            Some(listed) => listed,
+        match listed {
+            Some(listed) => Self::of_listed(vpls, delta, listed, |_| true),
             None => {
-                every = (0..vpls.len() as u32).collect();
-                &every
+                let every: Vec<u32> = (0..vpls.len() as u32).collect();
+                Self::of_listed(vpls, delta, &every, |_| true)
             }
-        };
+        }
+    }
+
+    /// [`Self::of_frame`] of the VPLs `listed`, entry j with its bounds ([`Self::new`]) where
+    /// `bounded(j)`, else without ([`Self::without_bounds`]).
+    pub fn of_listed(
+        vpls: &[Vpl],
+        delta: f32,
+        listed: &[u32],
+        bounded: impl Fn(usize) -> bool + Sync + Send,
+    ) -> Result<(Vec<StochasticParams>, Vec<Self>), CullError> {
         if let Some(&i) = listed.iter().find(|&&i| i as usize >= vpls.len()) {
             return Err(CullError::Input(format!(
                 "listed VPL {i} of {} VPLs",
@@ -258,7 +287,7 @@ impl VplReach {
             if let Some(&ahead) = listed.get(j + PREFETCH_AHEAD) {
                 crate::prefetch::prefetch(&vpls[ahead as usize]);
             }
-            Self::new(&vpls[i as usize], &roulette[j])
+            Self::with(&vpls[i as usize], &roulette[j], bounded(j))
         })?;
         Ok((roulette, reach))
     }
