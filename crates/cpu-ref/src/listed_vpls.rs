@@ -77,11 +77,17 @@ impl ListedVpls {
     }
 }
 
+/// Pieces of the pixels counted apart by [`list_pixels`], at most: each holds a count per
+/// list (a byte per pixel with lists per pixel), so many threads do not each get one.
+const MOST_PIECES: usize = 4;
+
 /// Per list of `lists`, how many pixels name it as their own or shared list, up to
-/// [`BOUNDED_PIXELS`]: counted over one piece of the pixels per thread, then added.
+/// [`BOUNDED_PIXELS`]: counted over a few pieces of the pixels in parallel, then added in
+/// parallel over the lists.
 fn list_pixels(lists: &LightLists) -> Vec<u8> {
     let pixels = lists.pixel_list.len();
-    let piece = pixels.div_ceil(rayon::current_num_threads()).max(1);
+    let pieces = rayon::current_num_threads().clamp(1, MOST_PIECES);
+    let piece = pixels.div_ceil(pieces).max(1);
     let counts: Vec<Vec<u8>> = (0..pixels.div_ceil(piece))
         .into_par_iter()
         .map(|i| {
@@ -99,11 +105,18 @@ fn list_pixels(lists: &LightLists) -> Vec<u8> {
         .collect();
     let mut counts = counts.into_iter();
     let mut total = counts.next().unwrap_or_else(|| vec![0; lists.len()]);
-    for more in counts {
-        for (t, m) in total.iter_mut().zip(more) {
-            *t = t.saturating_add(m).min(BOUNDED_PIXELS);
-        }
-    }
+    let more: Vec<Vec<u8>> = counts.collect();
+    const SPAN: usize = 1 << 16;
+    total
+        .par_chunks_mut(SPAN)
+        .enumerate()
+        .for_each(|(i, span)| {
+            for piece in &more {
+                for (t, &m) in span.iter_mut().zip(&piece[i * SPAN..]) {
+                    *t = t.saturating_add(m).min(BOUNDED_PIXELS);
+                }
+            }
+        });
     total
 }
 
@@ -196,10 +209,15 @@ mod tests {
             })
             .into();
         let mut kinds = [0usize; 2];
-        for seed in 0..200u64 {
-            let (pixels, vpls) = (1 + (seed as usize * 37) % 900, 1 + (seed as u32 * 13) % 300);
+        for seed in 0..201u64 {
+            let (pixels, vpls) = match seed {
+                // Lists enough for several spans of the counts' addition.
+                200 => (300_000, 5_000),
+                _ => (1 + (seed as usize * 37) % 900, 1 + (seed as u32 * 13) % 300),
+            };
             let lists = random_lists(seed + 1, pixels, vpls);
             lists.check(pixels, vpls as usize).unwrap();
+            assert!(seed != 200 || lists.len() > 1 << 16, "{} lists", lists.len());
             let want = brute_force(&lists, vpls as usize);
             for pool in &pools {
                 assert_eq!(
