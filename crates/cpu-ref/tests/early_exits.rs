@@ -149,6 +149,48 @@ fn receiver(rng: &mut Rng, x: Vec3, omega: Vec3) -> GSample {
     }
 }
 
+/// A pair of `vpl` and a receiver: its offset d = x − q, l², p(ωo, l) of eq. (2) and whether
+/// p > ξ, exactly as the shader (and the metrics' truth) decide it, and the pair's weighted
+/// contribution (eq. 1, 3).
+struct Pair {
+    g: GSample,
+    d: Vec3,
+    l2: f32,
+    distance: f32,
+    p: f32,
+    accepts: bool,
+    contribution: Vec3,
+}
+
+/// A receiver for `vpl` in a random direction, at the range l_max(ωo) = sqrt(I/(δ ξ)) of
+/// eq. (5) within ±1e-2 … ±1e-6, or anywhere; `None` where it lies at the VPL.
+fn pair_at_range_edge(rng: &mut Rng, vpl: &Vpl, params: &StochasticParams) -> Option<Pair> {
+    let omega = direction(rng, vpl);
+    let range = params.range(scalar_intensity(vpl.intensity(omega)));
+    let distance = if range > 0.0 && range < 1e15 && rng.f32() < 0.8 {
+        let sign = if rng.f32() < 0.5 { -1.0 } else { 1.0 };
+        range * (1.0 + sign * rng.log(-6.0, -2.0))
+    } else {
+        rng.log(-3.0, 4.0)
+    };
+    let g = receiver(rng, vpl.position + omega * distance, omega);
+    let d = g.position - vpl.position;
+    let l2 = d.length_squared();
+    if l2 <= 0.0 {
+        return None;
+    }
+    let p = params.probability(scalar_intensity(vpl.intensity(d / l2.sqrt())), l2);
+    Some(Pair {
+        g,
+        d,
+        l2,
+        distance,
+        p,
+        accepts: p > params.xi(),
+        contribution: vpl_contribution(&g, vpl, Some(params)),
+    })
+}
+
 #[test]
 fn no_early_exit_drops_an_accepted_or_contributing_pair() {
     let mut rng = Rng(0x5EED_1234_ABCD_0001);
@@ -168,26 +210,18 @@ fn no_early_exit_drops_an_accepted_or_contributing_pair() {
         if recent.len() < 8 {
             recent.resize(8, (vpl, reach));
         }
-        let omega = direction(&mut rng, &vpl);
-        let intensity = scalar_intensity(vpl.intensity(omega));
-        // At the range l_max(ωo) = sqrt(I/(δ ξ)) (eq. 5) within ±1e-2 … ±1e-6, or anywhere.
-        let range = params.range(intensity);
-        let distance = if range > 0.0 && range < 1e15 && rng.f32() < 0.8 {
-            let sign = if rng.f32() < 0.5 { -1.0 } else { 1.0 };
-            range * (1.0 + sign * rng.log(-6.0, -2.0))
-        } else {
-            rng.log(-3.0, 4.0)
-        };
-        let g = receiver(&mut rng, vpl.position + omega * distance, omega);
-        let d = g.position - vpl.position;
-        let l2 = d.length_squared();
-        if l2 <= 0.0 {
+        let Some(Pair {
+            g,
+            d,
+            l2,
+            distance,
+            p,
+            accepts,
+            contribution,
+        }) = pair_at_range_edge(&mut rng, &vpl, &params)
+        else {
             continue;
-        }
-        // p > ξ exactly as the shader (and the metrics' truth) decide it.
-        let p = params.probability(scalar_intensity(vpl.intensity(d / l2.sqrt())), l2);
-        let accepts = p > params.xi();
-        let contribution = vpl_contribution(&g, &vpl, Some(&params));
+        };
         if exact_in_f32(&vpl, d / l2.sqrt()) {
             assert_eq!(
                 reach.may_accept(d),
@@ -525,33 +559,21 @@ fn exits_without_bounds_keep_the_signs_and_the_roulette() {
         let params = StochasticParams::new(rng.log(-9.0, 3.0), vpl.xi).unwrap();
         let bounded = VplReach::new(&vpl, &params).unwrap();
         let reach = VplReach::without_bounds(&vpl, &params).unwrap();
-        let omega = direction(&mut rng, &vpl);
-        let range = params.range(scalar_intensity(vpl.intensity(omega)));
-        let distance = if range > 0.0 && range < 1e15 && rng.f32() < 0.8 {
-            range * (1.0 + rng.range(-1.0, 1.0) * rng.log(-6.0, -1.0))
-        } else {
-            rng.log(-3.0, 4.0)
-        };
-        let g = receiver(&mut rng, vpl.position + omega * distance, omega);
-        let d = g.position - vpl.position;
-        let l2 = d.length_squared();
-        if l2 <= 0.0 {
+        let Some(pair) = pair_at_range_edge(&mut rng, &vpl, &params) else {
             continue;
-        }
-        let p = params.probability(scalar_intensity(vpl.intensity(d / l2.sqrt())), l2);
-        let accepts = p > params.xi();
-        let contribution = vpl_contribution(&g, &vpl, Some(&params));
+        };
+        let (g, d, accepts, contribution) = (pair.g, pair.d, pair.accepts, pair.contribution);
         assert!(!accepts || reach.may_accept(d), "case {case}: {vpl:?}");
         assert!(
             contribution == Vec3::ZERO || reach.may_contribute(d, g.normal),
             "case {case}: {vpl:?}"
         );
         assert!(!bounded.may_contribute(d, g.normal) || reach.may_contribute(d, g.normal));
-        if exact_in_f32(&vpl, d / l2.sqrt()) {
+        if exact_in_f32(&vpl, d / pair.l2.sqrt()) {
             assert_eq!(reach.may_accept(d), accepts, "case {case}: {vpl:?}");
             exact += 1;
         }
-        let spread = distance * rng.log(-7.0, 0.0);
+        let spread = pair.distance * rng.log(-7.0, 0.0);
         assert!(reach.box_may_exceed_xi(g.position - spread, g.position + spread));
         let receivers: Vec<(Vec3, Vec3)> = (0..11)
             .map(|_| {
