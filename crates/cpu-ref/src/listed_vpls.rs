@@ -43,16 +43,25 @@ impl ListedVpls {
             .map(|_| AtomicU32::new(0))
             .collect();
         let enough = u32::from(BOUNDED_PIXELS);
+        let add = |entries: &[u32], pixels: u32| {
+            for &v in entries {
+                let c = &count[v as usize];
+                if c.load(Ordering::Relaxed) < enough {
+                    c.fetch_add(pixels, Ordering::Relaxed);
+                }
+            }
+        };
         (0..lists.len())
             .into_par_iter()
             .with_min_len(256)
             .for_each(|l| {
-                let pixels = u32::from(covers[l]).max(1);
-                for &v in lists.list(l as u32) {
-                    let c = &count[v as usize];
-                    if c.load(Ordering::Relaxed) < enough {
-                        c.fetch_add(pixels, Ordering::Relaxed);
-                    }
+                let (entries, pixels) = (lists.list(l as u32), u32::from(covers[l]).max(1));
+                // A long list (`none` lists every VPL K² times) is shared out as well.
+                match entries.len() > LONG_LIST {
+                    true => entries
+                        .par_chunks(LONG_LIST)
+                        .for_each(|entries| add(entries, pixels)),
+                    false => add(entries, pixels),
                 }
             });
         let (mut listed, mut bounded) = (Vec::new(), Vec::new());
@@ -76,6 +85,9 @@ impl ListedVpls {
         }
     }
 }
+
+/// Entries of one list counted on one thread, at most.
+const LONG_LIST: usize = 1 << 14;
 
 /// Pieces of the pixels counted apart by [`list_pixels`], at most: each holds a count per
 /// list (a byte per pixel with lists per pixel), so many threads do not each get one.
@@ -124,9 +136,10 @@ fn list_pixels(lists: &LightLists) -> Vec<u8> {
 mod tests {
     use super::*;
 
-    /// Random lists of up to `vpls` VPLs for `pixels` pixels: own lists (some named by many
-    /// pixels, some by one, some by none) and, in half the cases, shared lists.
-    fn random_lists(seed: u64, pixels: usize, vpls: u32) -> LightLists {
+    /// Random lists of up to `vpls` VPLs (up to `longest` entries each) for `pixels` pixels:
+    /// own lists (some named by many pixels, some by one, some by none) and, in half the
+    /// cases, shared lists.
+    fn random_lists(seed: u64, pixels: usize, vpls: u32, longest: u64) -> LightLists {
         let mut state = seed | 1;
         let mut next = move |n: u64| {
             state ^= state << 13;
@@ -138,7 +151,7 @@ mod tests {
         lists.offsets.push(0);
         let count = 1 + next(pixels as u64 / 2 + 2) as u32;
         for _ in 0..count {
-            let len = next(12);
+            let len = next(longest);
             let mut list: Vec<u32> = (0..len).map(|_| next(u64::from(vpls)) as u32).collect();
             list.sort_unstable();
             list.dedup();
@@ -209,15 +222,29 @@ mod tests {
             })
             .into();
         let mut kinds = [0usize; 2];
-        for seed in 0..201u64 {
-            let (pixels, vpls) = match seed {
+        for seed in 0..202u64 {
+            let (pixels, vpls, longest) = match seed {
                 // Lists enough for several spans of the counts' addition.
-                200 => (300_000, 5_000),
-                _ => (1 + (seed as usize * 37) % 900, 1 + (seed as u32 * 13) % 300),
+                200 => (300_000, 5_000, 12),
+                // Lists longer than one thread counts.
+                201 => (100, 100_000, 60_000),
+                _ => (
+                    1 + (seed as usize * 37) % 900,
+                    1 + (seed as u32 * 13) % 300,
+                    12,
+                ),
             };
-            let lists = random_lists(seed + 1, pixels, vpls);
+            let lists = random_lists(seed + 1, pixels, vpls, longest);
             lists.check(pixels, vpls as usize).unwrap();
-            assert!(seed != 200 || lists.len() > 1 << 16, "{} lists", lists.len());
+            assert!(
+                seed != 200 || lists.len() > 1 << 16,
+                "{} lists",
+                lists.len()
+            );
+            assert!(
+                seed != 201 || (0..lists.len()).any(|l| lists.list(l as u32).len() > LONG_LIST),
+                "no long list"
+            );
             let want = brute_force(&lists, vpls as usize);
             for pool in &pools {
                 assert_eq!(

@@ -610,21 +610,28 @@ fn exits_without_bounds_keep_the_signs_and_the_roulette() {
         "{tighter} rejected only by the bounds"
     );
 
-    // The same refusals: a lobe outside slc-bounds' domain.
-    let mut vpls: Vec<Vpl> = (0..40).map(|_| random_vpl(&mut rng)).collect();
-    for (i, v) in vpls.iter_mut().enumerate().filter(|(i, _)| i % 4 == 0) {
-        v.normal = [Vec3::ZERO, Vec3::NAN, Vec3::splat(2.0)][i % 3];
+    // The same refusals: a lobe outside slc-bounds' domain (a quarter of the VPLs, those
+    // that reflect something), and a range beyond f32 (another quarter: a flux of 1e38 at
+    // normal incidence with δ = 1e-9 and ξ = 1e-37).
+    let mut spoilt: Vec<Vpl> = (0..40).map(|_| random_vpl(&mut rng)).collect();
+    for (i, v) in spoilt.iter_mut().enumerate() {
+        match i % 4 {
+            0 => v.normal = [Vec3::NAN, Vec3::splat(0.7)][i % 2],
+            1 => (v.flux, v.xi, v.omega_i) = (Vec3::splat(1e38), 1e-37, v.normal),
+            _ => {}
+        }
     }
-    for v in &vpls {
-        let params = StochasticParams::new(1e-3, v.xi).unwrap();
-        assert_eq!(
-            VplReach::new(v, &params).is_err(),
-            VplReach::without_bounds(v, &params).is_err(),
-            "{v:?}"
-        );
+    let mut refused = 0;
+    for (i, v) in spoilt.iter().enumerate() {
+        let delta = if i % 4 == 1 { 1e-9 } else { 1e-3 };
+        let params = StochasticParams::new(delta, v.xi).unwrap();
+        let err = VplReach::new(v, &params).is_err();
+        assert_eq!(err, VplReach::without_bounds(v, &params).is_err(), "{v:?}");
+        refused += usize::from(err);
     }
+    assert!(refused >= 15, "{refused} of 40 refused");
     // `of_listed`: entry j with its bounds where asked.
-    vpls.retain(|v| VplReach::new(v, &StochasticParams::new(1e-3, v.xi).unwrap()).is_ok());
+    let vpls: Vec<Vpl> = (0..40).map(|_| random_vpl(&mut rng)).collect();
     let listed: Vec<u32> = (0..vpls.len() as u32).collect();
     let (roulette, reach) = VplReach::of_listed(&vpls, 1e-3, &listed, |j| j % 2 == 0).unwrap();
     for (j, v) in vpls.iter().enumerate() {

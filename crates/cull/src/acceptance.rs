@@ -16,7 +16,7 @@
 //! - a VPL on a tilted shading normal (`Vpl::is_tilted`: the adjoint cosine of
 //!   `slc_bounds::shading_normal` replaces ωo·n) or with an anisotropic lobe
 //!   (`slc_bounds::anisotropy`) always passes where ωo·n > 0; its own bound (`reach`) still
-//!   applies.
+//!   applies where the shading formed it (`VplReach::without_bounds` leaves it out).
 use crate::ggx_lanes::{g1_over_cos, HalfVector};
 use core::f32::consts::FRAC_1_PI;
 use slc_bounds::lanes::{

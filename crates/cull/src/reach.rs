@@ -149,38 +149,43 @@ impl VplReach {
     }
 
     /// [`Self::new`] without the VPL's bounds: only the sign tests and the roulette, its own
-    /// bound and its bound over boxes passing everywhere. Forming the bounds costs most of
-    /// [`Self::new`] (the spheroid of eq. 12-15 and the box bound, in f64), which a VPL
-    /// listed at a few pixels does not earn back. The same errors: its lobe is validated.
+    /// bound and its bound over boxes passing everywhere. Forming the bound over boxes and
+    /// the stretch of its own bound costs most of [`Self::new`], which a VPL listed at a few
+    /// pixels does not earn back. The same errors: its own bound is still formed (not kept),
+    /// so a lobe outside slc-bounds' domain or a range beyond f32 is refused as by
+    /// [`Self::new`].
     pub fn without_bounds(vpl: &Vpl, params: &StochasticParams) -> Result<Self, CullError> {
         Self::with(vpl, params, false)
     }
 
     fn with(vpl: &Vpl, params: &StochasticParams, bounds: bool) -> Result<Self, CullError> {
         let dark = reflects_nothing(vpl);
-        // The bound over boxes of receivers at the VPL, and its own bound (the glossy lobe
-        // built once for both); none for a VPL that reflects nothing.
+        // The bound over boxes of receivers at the VPL (where asked for), and its own bound
+        // (the glossy lobe built once for both); none for a VPL that reflects nothing.
         let (local, box_bound) = match (dark, vpl.lobe) {
             (true, _) => (None, BoxBoundLanes::ALWAYS),
-            (false, VplLobe::Diffuse) if !bounds => {
-                vpl.diffuse_lobe()?;
-                (Some(LocalBound::Empty), BoxBoundLanes::ALWAYS)
-            }
-            (false, VplLobe::Glossy) if !bounds => {
-                vpl.glossy_lobe()?;
-                (Some(LocalBound::Empty), BoxBoundLanes::ALWAYS)
-            }
             (false, VplLobe::Diffuse) => (
                 Some(LocalBound::new(vpl, params, GlossyBound::Ellipsoid)?),
-                lobe_box_bound(vpl, params)?.to_f32(vpl.position),
+                match bounds {
+                    true => lobe_box_bound(vpl, params)?.to_f32(vpl.position),
+                    false => BoxBoundLanes::ALWAYS,
+                },
             ),
             (false, VplLobe::Glossy) => {
                 let lobe = vpl.glossy_lobe()?;
                 (
                     Some(LocalBound::glossy(&lobe, params, GlossyBound::Ellipsoid)?),
-                    BoxBound::glossy(&lobe, params).to_f32(vpl.position),
+                    match bounds {
+                        true => BoxBound::glossy(&lobe, params).to_f32(vpl.position),
+                        false => BoxBoundLanes::ALWAYS,
+                    },
                 )
             }
+        };
+        // Without bounds, a VPL that reflects something keeps only its sign tests.
+        let local = match bounds {
+            true => local,
+            false => local.map(|_| LocalBound::Empty),
         };
         let (stretch, center, limit) = match local {
             None => (DMat3::ZERO, DVec3::ZERO, -1.0),
