@@ -109,7 +109,9 @@ pub fn shade_vpls(
 /// fit the G-buffer, or when the image has 2³² pixels or more. Pairs that [`VplReach`]
 /// rejects (outside the VPL's own bound, facing away at either end, or not accepted by the
 /// roulette) are skipped before the receiver's BRDF: their contribution is exactly 0, so the
-/// image is the same bit for bit. The pixels are shaded tile by tile (the culling's tiles),
+/// image is the same bit for bit. A VPL's bounds (its own and over boxes) are formed only
+/// where its lists cover enough pixels to earn them back (`listed_vpls::BOUNDED_PIXELS`);
+/// the others are tested by their signs and the roulette alone. The pixels are shaded tile by tile (the culling's tiles),
 /// band by band of [`TileOrder::bands`] in parallel, the K tiles at one place of a row of
 /// subregions one after another (they share the G-buffer's cache lines), each tile's pixels
 /// grouped by their lists (own and shared) in Z order and written in place. The pixels of a
