@@ -111,10 +111,11 @@ pub fn shade_vpls(
 /// roulette) are skipped before the receiver's BRDF: their contribution is exactly 0, so the
 /// image is the same bit for bit. A VPL's bounds (its own and over boxes) are formed only
 /// where its lists cover enough pixels to earn them back (`listed_vpls::BOUNDED_PIXELS`);
-/// the others are tested by their signs and the roulette alone. The pixels are shaded tile by tile (the culling's tiles),
-/// band by band of [`TileOrder::bands`] in parallel, the K tiles at one place of a row of
-/// subregions one after another (they share the G-buffer's cache lines), each tile's pixels
-/// grouped by their lists (own and shared) in Z order and written in place. The pixels of a
+/// the others are tested by their signs and the roulette alone. The pixels are shaded tile
+/// by tile (the culling's tiles), band by band of [`TileOrder::bands`] in parallel, the K
+/// tiles at one place of a row of subregions one after another (they share the G-buffer's
+/// cache lines), each tile's pixels grouped by their lists (own and shared) in Z order and
+/// written in place. The pixels of a
 /// list are shaded VPL by VPL, each VPL first tested against the box of the pixels (its
 /// bound of p over boxes, eight VPLs at a time: [`VplReach::box_may_exceed_xi`]), then
 /// against eight of them at a time ([`ReceiverChunks`]), the short lists of a tile sharing
