@@ -3,7 +3,7 @@
 //! has every method, the references and shadow rays included. Another backend hands a frame
 //! to what only the CPU computes as [`slc_core::frame::PreparedData`] ([`CpuPrepared::from_data`]).
 use crate::denoise::{BilateralParams, CrossBilateral};
-use crate::frame_images::SpareImage;
+use crate::frame_images::{Spare, SpareImage};
 use crate::path::trace_pixel_sample;
 use crate::prepare::{prepare_watched, CpuPrepared, FrameSpares};
 use crate::sampled_lights::{shade_sampled_vpls, shade_vsgl};
@@ -16,18 +16,22 @@ use slc_core::{
     BackendInfo, Capabilities, CullMetrics, Image, Interleaving, LightLists, Progress, Renderer,
     Scene, Strategy,
 };
+use slc_cull::ListedReach;
 use std::sync::{Arc, Mutex, TryLockError};
 
 /// The CPU reference renderer on rayon's threads. It keeps the last noisy image its filter
 /// consumed ([`Renderer::denoise`]) and shades the next frame of the same size into it
 /// ([`shade_lists_into`]): in a loop of frames (cull, shade, filter) the shading then
-/// allocates and clears no image. Its filter keeps its working set from frame to frame as
+/// allocates and clears no image, and forms its listed VPLs' exits in the last frame's table
+/// ([`ListedReach`]). Its filter keeps its working set from frame to frame as
 /// well ([`CrossBilateral`]), and each prepared frame, once dropped, leaves its G-buffer,
 /// VPLs and direct light for the next one to write into ([`FrameSpares`]). A clone keeps
 /// none of them.
 #[derive(Clone, Debug, Default)]
 pub struct CpuRenderer {
     spare: SpareImage,
+    /// The listed VPLs' exits of the last shading, formed again in its memory.
+    exits: Spare<ListedReach>,
     frames: FrameSpares,
     filter: KeptFilter,
 }
@@ -138,7 +142,12 @@ impl Renderer for CpuRenderer {
     ) -> Result<Image, RenderError> {
         let input = p.cull_input(delta, interleaving);
         let spare = self.spare.take();
-        let image = shade_lists_into(&p.tracer, &input, lists, visibility, progress, spare)?;
+        let mut exits = self.exits.take().unwrap_or_default();
+        let image = shade_lists_into(
+            &p.tracer, &input, lists, visibility, progress, spare, &mut exits,
+        );
+        self.exits.keep(exits);
+        let image = image?;
         progress.check()?;
         Ok(image)
     }

@@ -14,7 +14,7 @@ use slc_core::{CullError, CullInput, GBuffer, GSample, Image, LightLists, Progre
 use slc_cull::prefetch::prefetch;
 use slc_cull::receiver_chunks::{Passing, MAX_SETS};
 use slc_cull::tiles::{Band, Tile, TileOrder};
-use slc_cull::{ReceiverChunks, VplReach};
+use slc_cull::{ListedReach, ReceiverChunks, VplReach};
 
 /// How each VPL's contribution is weighted.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -132,13 +132,16 @@ pub fn shade_lists(
     visibility: bool,
     progress: Progress,
 ) -> Result<Image, CullError> {
-    shade_lists_into(tracer, input, lists, visibility, progress, None)
+    let mut exits = ListedReach::default();
+    shade_lists_into(tracer, input, lists, visibility, progress, None, &mut exits)
 }
 
 /// [`shade_lists`] written into `spare`, an image the caller is done with (a previous frame),
 /// where it has the G-buffer's size: every pixel is written (0 where a pixel has no list or no
 /// surface), so its old values do not matter and its buffer is neither allocated nor cleared
-/// again. Any other `spare` is dropped and a new image made.
+/// again. Any other `spare` is dropped and a new image made. The listed VPLs' exits are formed
+/// in `exits`, a table the caller keeps from frame to frame ([`ListedReach::form`]); its old
+/// entries do not matter either.
 pub fn shade_lists_into(
     tracer: &Tracer,
     input: &CullInput,
@@ -146,6 +149,7 @@ pub fn shade_lists_into(
     visibility: bool,
     progress: Progress,
     spare: Option<Image>,
+    exits: &mut ListedReach,
 ) -> Result<Image, CullError> {
     let (gbuffer, vpls) = (input.gbuffer, input.vpls);
     let (w, h, k) = (gbuffer.width, gbuffer.height, input.interleaving.k);
@@ -166,7 +170,7 @@ pub fn shade_lists_into(
         bounded,
         indices,
     } = ListedVpls::of(lists, vpls.len());
-    let (roulette, reach) = VplReach::of_listed(vpls, input.delta, &listed, |j| bounded[j])?;
+    exits.form(vpls, input.delta, &listed, |j| bounded[j])?;
     let shading = ListShading {
         tracer,
         gbuffer,
@@ -174,8 +178,8 @@ pub fn shade_lists_into(
         indices: &indices,
         listed: &listed,
         vpls,
-        roulette: &roulette,
-        reach: &reach,
+        roulette: &exits.roulette,
+        reach: &exits.reach,
         scale: input.interleaving.scale(),
         visibility,
     };

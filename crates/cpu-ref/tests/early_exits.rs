@@ -15,7 +15,7 @@ use slc_bounds::{scalar_intensity, Anisotropy, Brdf, Fresnel, StochasticParams};
 use slc_core::{GSample, Vpl, VplLobe};
 use slc_cpu_ref::received_lanes::{received_pairs, ReceiverBrdfs};
 use slc_cpu_ref::vpl_shading::{received, vpl_contribution};
-use slc_cull::{ReachChunks, ReceiverChunks, VplReach};
+use slc_cull::{ListedReach, ReachChunks, ReceiverChunks, VplReach};
 
 #[path = "../../../tests/fixtures/rng.rs"]
 mod rng;
@@ -641,4 +641,15 @@ fn exits_without_bounds_keep_the_signs_and_the_roulette() {
         };
         assert_eq!(reach[j], want.unwrap(), "VPL {j}");
     }
+    // `ListedReach::form` in a used table, larger (kept, then more than four times too
+    // large: dropped) or smaller: the same entries; an empty list empties it.
+    let some: Vec<u32> = listed.iter().copied().filter(|i| i % 3 != 1).collect();
+    let fresh = |listed: &[u32]| VplReach::of_listed(&vpls, 1e-3, listed, |j| j % 2 == 0);
+    let mut table = ListedReach::default();
+    for listed in [&listed[..], &some, &listed[..8], &listed[..], &[]] {
+        table.form(&vpls, 1e-3, listed, |j| j % 2 == 0).unwrap();
+        let (roulette, reach) = fresh(listed).unwrap();
+        assert_eq!((&table.roulette, &table.reach), (&roulette, &reach));
+    }
+    assert!(table.form(&vpls, 1e-3, &[3, 40], |_| true).is_err());
 }

@@ -10,6 +10,7 @@ use slc_core::frame::{Method, RenderSettings};
 use slc_core::{builtin, CullInput, Image, Interleaving, LightLists, Strategy, NO_LIST};
 use slc_cpu_ref::vpl_shading::{shade_lists, shade_lists_into, vpl_contribution};
 use slc_cpu_ref::{prepare, Tracer};
+use slc_cull::ListedReach;
 
 /// The built-in scene's G-buffer and VPLs at `width` x `height` with RSM `rsm`.
 fn prepared(width: u32, height: u32, rsm: u32) -> slc_cpu_ref::CpuPrepared {
@@ -41,8 +42,9 @@ fn plain(input: &CullInput, lists: &slc_core::LightLists) -> Image {
 }
 
 /// `shade_lists` and the plain sum of `lists`. Shading into a spare image of the same size
-/// full of NaN (every pixel written), or into one of another size (dropped), gives the same
-/// image.
+/// full of NaN (every pixel written), or into one of another size (dropped), with the listed
+/// VPLs' exits formed in a used table (every VPL's, at another δ, then the last shading's),
+/// gives the same image.
 fn shaded_and_plain(
     p: &slc_cpu_ref::CpuPrepared,
     input: &CullInput,
@@ -55,8 +57,21 @@ fn shaded_and_plain(
         height: h,
         pixels: vec![Vec3::NAN; got.pixels.len()],
     };
+    let mut exits = ListedReach::default();
+    let every: Vec<u32> = (0..input.vpls.len() as u32).collect();
+    exits
+        .form(input.vpls, input.delta * 2.0, &every, |j| j % 3 == 0)
+        .unwrap();
     for spare in [nan, Image::new(w + 1, h), Image::new(h, w)] {
-        let into = shade_lists_into(&p.tracer, input, lists, false, &|_| {}, Some(spare));
+        let into = shade_lists_into(
+            &p.tracer,
+            input,
+            lists,
+            false,
+            &|_| {},
+            Some(spare),
+            &mut exits,
+        );
         let into = into.unwrap();
         assert_eq!((into.width, into.height), (w, h));
         assert_eq!(differing(&into, &got), 0, "into a spare image");

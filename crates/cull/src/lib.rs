@@ -114,7 +114,7 @@ pub mod view;
 mod vpl_bounds;
 
 pub use frusta::FRUSTUM_SLACK;
-pub use reach::VplReach;
+pub use reach::{ListedReach, VplReach};
 pub use reach_chunks::ReachChunks;
 pub use receiver_chunks::ReceiverChunks;
 pub use strategies::binned::BinnedCuller;

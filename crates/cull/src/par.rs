@@ -1,7 +1,7 @@
-//! A parallel map that may fail, written straight into its `Vec`. rayon's
-//! `collect::<Result<Vec<_>, _>>()` is not indexed: it gathers pieces in a linked list and
-//! copies them into place, which for per-VPL records of a hundred bytes and more costs as
-//! much as building a good part of them.
+//! A parallel map that may fail, written straight into its `Vec` (a new one, or one a caller
+//! keeps from frame to frame). rayon's `collect::<Result<Vec<_>, _>>()` is not indexed: it
+//! gathers pieces in a linked list and copies them into place, which for per-VPL records of a
+//! hundred bytes and more costs as much as building a good part of them.
 use rayon::prelude::*;
 use std::sync::{Mutex, PoisonError};
 
@@ -19,8 +19,28 @@ where
     U: Copy + Send + Sync,
     E: Send,
 {
+    let mut out = Vec::new();
+    try_map_into(items, placeholder, f, &mut out)?;
+    Ok(out)
+}
+
+/// [`try_map`] written into `out`, whose old items are dropped and whose memory is reused
+/// where it has room: a table of a few hundred MB written afresh every frame costs its page
+/// faults every frame (about a third of forming a million VPLs' early exits). On an error
+/// `out` holds the mapped items with `placeholder` in the failed slots.
+pub(crate) fn try_map_into<T, U, E>(
+    items: &[T],
+    placeholder: U,
+    f: impl Fn(usize, &T) -> Result<U, E> + Sync + Send,
+    out: &mut Vec<U>,
+) -> Result<(), E>
+where
+    T: Sync,
+    U: Copy + Send + Sync,
+    E: Send,
+{
     let error = Mutex::new(None);
-    let out = items
+    items
         .par_iter()
         .enumerate()
         .map(|(i, item)| {
@@ -32,10 +52,10 @@ where
                 placeholder
             })
         })
-        .collect();
+        .collect_into_vec(out);
     match error.into_inner().unwrap_or_else(PoisonError::into_inner) {
         Some(e) => Err(e),
-        None => Ok(out),
+        None => Ok(()),
     }
 }
 
@@ -54,5 +74,28 @@ mod tests {
             try_map(&[] as &[u32], 0, |_, &v| Ok::<_, ()>(v)),
             Ok(vec![])
         );
+    }
+
+    /// Into a used `Vec`, larger or smaller than the items: the same items, its memory
+    /// kept where it had room.
+    #[test]
+    fn maps_into_used_memory() {
+        let items: Vec<u32> = (0..5_000).collect();
+        let mut out = vec![7u32; 9_000];
+        let before = out.as_ptr();
+        try_map_into(&items, 0, |i, &v| Ok::<_, ()>(v + i as u32), &mut out).unwrap();
+        assert_eq!(out, (0..5_000).map(|v| 2 * v).collect::<Vec<_>>());
+        assert_eq!(out.as_ptr(), before);
+        let more: Vec<u32> = (0..20_000).collect();
+        try_map_into(&more, 0, |_, &v| Ok::<_, ()>(v), &mut out).unwrap();
+        assert_eq!(out, more);
+        let failed = try_map_into(
+            &items,
+            9,
+            |_, &v| if v == 3 { Err(v) } else { Ok(v) },
+            &mut out,
+        );
+        assert_eq!(failed, Err(3));
+        assert_eq!((out.len(), out[3], out[4]), (5_000, 9, 4));
     }
 }
