@@ -16,20 +16,23 @@ use slc_core::{
     BackendInfo, Capabilities, CullMetrics, Image, Interleaving, LightLists, Progress, Renderer,
     Scene, Strategy,
 };
-use slc_cull::ListedReach;
+use slc_cull::{BoundedCuller, BoundedMemory, ListedReach};
 use std::sync::{Arc, Mutex, TryLockError};
 
 /// The CPU reference renderer on rayon's threads. It keeps the last noisy image its filter
 /// consumed ([`Renderer::denoise`]) and shades the next frame of the same size into it
 /// ([`shade_lists_into`]): in a loop of frames (cull, shade, filter) the shading then
 /// allocates and clears no image, and forms its listed VPLs' exits in the last frame's table
-/// ([`ListedReach`]). Its filter keeps its working set from frame to frame as
+/// ([`ListedReach`]); a bound-testing strategy's culling forms its bounds in the last one's
+/// memory ([`BoundedMemory`]). Its filter keeps its working set from frame to frame as
 /// well ([`CrossBilateral`]), and each prepared frame, once dropped, leaves its G-buffer,
 /// VPLs and direct light for the next one to write into ([`FrameSpares`]). A clone keeps
 /// none of them.
 #[derive(Clone, Debug, Default)]
 pub struct CpuRenderer {
     spare: SpareImage,
+    /// The bounds of the last bound-testing culling, formed again in their memory.
+    bounds: Spare<BoundedMemory>,
     /// The listed VPLs' exits of the last shading, formed again in its memory.
     exits: Spare<ListedReach>,
     frames: FrameSpares,
@@ -127,7 +130,14 @@ impl Renderer for CpuRenderer {
         delta: f32,
         interleaving: Interleaving,
     ) -> Result<LightLists, RenderError> {
-        Ok(slc_cull::culler(strategy).cull(&p.cull_input(delta, interleaving))?)
+        let input = p.cull_input(delta, interleaving);
+        let Some(culler) = BoundedCuller::new(strategy) else {
+            return Ok(slc_cull::culler(strategy).cull(&input)?);
+        };
+        let mut memory = self.bounds.take().unwrap_or_default();
+        let lists = culler.cull_in(&input, &mut memory);
+        self.bounds.keep(memory);
+        Ok(lists?)
     }
 
     fn shade_lists(

@@ -97,23 +97,20 @@ struct EllipsoidChunk {
 pub(crate) struct EllipsoidLanes(Vec<EllipsoidChunk>);
 
 impl EllipsoidLanes {
-    pub(crate) fn new(ellipsoids: &[ViewEllipsoid]) -> Self {
-        Self(
-            ellipsoids
-                .chunks(8)
-                .map(|e| EllipsoidChunk {
-                    columns: core::array::from_fn(|j| {
-                        core::array::from_fn(|i| chunk_of(e, |e| e.columns[j][i] as f32))
-                    }),
-                    center: core::array::from_fn(|i| chunk_of(e, |e| e.center[i] as f32)),
-                    scale: chunk_of(e, |e| {
-                        e.columns.iter().map(|&c| magnitude(c)).fold(0.0, f32::max)
-                    }),
-                    offset: chunk_of(e, |e| magnitude(e.center)),
-                    valid: valid_bits(e.len()),
-                })
-                .collect(),
-        )
+    /// The chunks of `ellipsoids`, in place of this one's (in its memory).
+    pub(crate) fn refill(&mut self, ellipsoids: &[ViewEllipsoid]) {
+        self.0.clear();
+        self.0.extend(ellipsoids.chunks(8).map(|e| EllipsoidChunk {
+            columns: core::array::from_fn(|j| {
+                core::array::from_fn(|i| chunk_of(e, |e| e.columns[j][i] as f32))
+            }),
+            center: core::array::from_fn(|i| chunk_of(e, |e| e.center[i] as f32)),
+            scale: chunk_of(e, |e| {
+                e.columns.iter().map(|&c| magnitude(c)).fold(0.0, f32::max)
+            }),
+            offset: chunk_of(e, |e| magnitude(e.center)),
+            valid: valid_bits(e.len()),
+        }));
     }
 
     /// Per chunk, the bits of the ellipsoids the tile's exact test may keep (pushed to
@@ -211,18 +208,15 @@ struct SphereChunk {
 pub(crate) struct SphereLanes(Vec<SphereChunk>);
 
 impl SphereLanes {
-    pub(crate) fn new(spheres: &[ViewSphere]) -> Self {
-        Self(
-            spheres
-                .chunks(8)
-                .map(|s| SphereChunk {
-                    center: core::array::from_fn(|i| chunk_of(s, |s| s.center[i] as f32)),
-                    radius_sq: chunk_of(s, |s| s.radius_sq as f32),
-                    offset: chunk_of(s, |s| magnitude(s.center)),
-                    valid: valid_bits(s.len()),
-                })
-                .collect(),
-        )
+    /// The chunks of `spheres`, in place of this one's (in its memory).
+    pub(crate) fn refill(&mut self, spheres: &[ViewSphere]) {
+        self.0.clear();
+        self.0.extend(spheres.chunks(8).map(|s| SphereChunk {
+            center: core::array::from_fn(|i| chunk_of(s, |s| s.center[i] as f32)),
+            radius_sq: chunk_of(s, |s| s.radius_sq as f32),
+            offset: chunk_of(s, |s| magnitude(s.center)),
+            valid: valid_bits(s.len()),
+        }));
     }
 
     /// Per chunk, the bits of the spheres the tile's exact test may keep (pushed to `out`,
@@ -273,6 +267,18 @@ mod tests {
     use crate::test_rng::Rng;
     use core::fmt::Debug;
     use glam::DVec2;
+
+    fn ellipsoid_lanes(ellipsoids: &[ViewEllipsoid]) -> EllipsoidLanes {
+        let mut lanes = EllipsoidLanes::default();
+        lanes.refill(ellipsoids);
+        lanes
+    }
+
+    fn sphere_lanes(spheres: &[ViewSphere]) -> SphereLanes {
+        let mut lanes = SphereLanes::default();
+        lanes.refill(spheres);
+        lanes
+    }
 
     /// 10^x for x uniform in [lo, hi].
     fn log_uniform(rng: &mut Rng, lo: f64, hi: f64) -> f64 {
@@ -446,7 +452,7 @@ mod tests {
                     }
                 })
                 .collect();
-            let lanes = EllipsoidLanes::new(&ellipsoids);
+            let lanes = ellipsoid_lanes(&ellipsoids);
             let t = TileLanes::new(&f);
             let bits = plain_and_wide(
                 &lanes,
@@ -497,7 +503,7 @@ mod tests {
                     }
                 })
                 .collect();
-            let lanes = SphereLanes::new(&spheres);
+            let lanes = sphere_lanes(&spheres);
             let bits = plain_and_wide(
                 &lanes,
                 &TileLanes::new(&f),
@@ -541,7 +547,7 @@ mod tests {
         };
         assert_ne!(f.sphere_hits(&sphere), 0, "the exact test keeps it");
         let mut bits = Vec::new();
-        SphereLanes::new(&[sphere]).candidates(&TileLanes::new(&f), &mut bits);
+        sphere_lanes(&[sphere]).candidates(&TileLanes::new(&f), &mut bits);
         assert_eq!(bits, [1]);
     }
 
@@ -556,7 +562,7 @@ mod tests {
         let mut f = TileFrusta::default();
         f.set(DVec2::splat(-1.0), DVec2::ONE, &[[1.0, 2.0]]);
         for n in [1, 7, 8, 9, 17] {
-            let lanes = SphereLanes::new(&vec![far; n]);
+            let lanes = sphere_lanes(&vec![far; n]);
             let mut bits = Vec::new();
             lanes.candidates(&TileLanes::new(&f), &mut bits);
             let mut seen = Vec::new();

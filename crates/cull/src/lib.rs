@@ -121,6 +121,7 @@ pub use strategies::binned::BinnedCuller;
 pub use strategies::bounded::BoundedCuller;
 pub use strategies::gpu_only::GpuOnly;
 pub use strategies::none::NoCulling;
+pub use tiled::BoundedMemory;
 pub use view::CullView;
 pub use vpl_bounds::{GlossyBound, BOUND_SLACK};
 

@@ -1,5 +1,5 @@
-//! A parallel map that may fail, written straight into its `Vec` (a new one, or one a caller
-//! keeps from frame to frame). rayon's `collect::<Result<Vec<_>, _>>()` is not indexed: it
+//! A parallel map that may fail, written straight into a `Vec` that a caller may keep from
+//! frame to frame. rayon's `collect::<Result<Vec<_>, _>>()` is not indexed: it
 //! gathers pieces in a linked list and copies them into place, which for per-VPL records of a
 //! hundred bytes and more costs as much as building a good part of them.
 use rayon::prelude::*;
@@ -9,25 +9,11 @@ use std::sync::{Mutex, PoisonError};
 /// fails, one of the errors (which one when several fail depends on the threads, as with
 /// rayon's collect). Unlike rayon's collect it does not stop early: the other items are
 /// still mapped, and `placeholder` fills the slots of those that failed.
-pub(crate) fn try_map<T, U, E>(
-    items: &[T],
-    placeholder: U,
-    f: impl Fn(usize, &T) -> Result<U, E> + Sync + Send,
-) -> Result<Vec<U>, E>
-where
-    T: Sync,
-    U: Copy + Send + Sync,
-    E: Send,
-{
-    let mut out = Vec::new();
-    try_map_into(items, placeholder, f, &mut out)?;
-    Ok(out)
-}
-
-/// [`try_map`] written into `out`, whose old items are dropped and whose memory is reused
-/// where it has room: a table of a few hundred MB written afresh every frame costs its page
-/// faults every frame (about a third of forming a million VPLs' early exits). On an error
-/// `out` holds the mapped items with `placeholder` in the failed slots.
+///
+/// Written into `out`, whose old items are dropped and whose memory is reused where it has
+/// room: a table of a few hundred MB written afresh every frame costs its page faults every
+/// frame (about a third of forming a million VPLs' early exits). On an error `out` holds the
+/// mapped items with `placeholder` in the failed slots.
 pub(crate) fn try_map_into<T, U, E>(
     items: &[T],
     placeholder: U,
@@ -63,17 +49,24 @@ where
 mod tests {
     use super::*;
 
+    /// Into a new `Vec`.
+    fn try_map<E: Send>(
+        items: &[u32],
+        f: impl Fn(usize, &u32) -> Result<u32, E> + Sync + Send,
+    ) -> Result<Vec<u32>, E> {
+        let mut out = Vec::new();
+        try_map_into(items, 0, f, &mut out)?;
+        Ok(out)
+    }
+
     #[test]
     fn maps_in_order_or_fails() {
         let items: Vec<u32> = (0..10_000).collect();
-        let doubled = try_map(&items, 0, |i, &v| Ok::<_, ()>(v * 2 + i as u32)).unwrap();
+        let doubled = try_map(&items, |i, &v| Ok::<_, ()>(v * 2 + i as u32)).unwrap();
         assert_eq!(doubled, (0..10_000).map(|v| v * 3).collect::<Vec<_>>());
-        let failed = try_map(&items, 0, |_, &v| if v == 7_777 { Err(v) } else { Ok(v) });
+        let failed = try_map(&items, |_, &v| if v == 7_777 { Err(v) } else { Ok(v) });
         assert_eq!(failed, Err(7_777));
-        assert_eq!(
-            try_map(&[] as &[u32], 0, |_, &v| Ok::<_, ()>(v)),
-            Ok(vec![])
-        );
+        assert_eq!(try_map(&[], |_, &v| Ok::<_, ()>(v)), Ok(vec![]));
     }
 
     /// Into a used `Vec`, larger or smaller than the items: the same items, its memory

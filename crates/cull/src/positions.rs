@@ -7,11 +7,12 @@ use glam::Vec3;
 use rayon::prelude::*;
 use slc_core::GBuffer;
 
-/// Per pixel of `gbuffer` (row-major): its sample's position, `None` where it has no sample.
-pub(crate) fn positions(gbuffer: &GBuffer) -> Vec<Option<Vec3>> {
+/// Per pixel of `gbuffer` (row-major): its sample's position, `None` where it has no sample;
+/// written into `out`'s memory, its old entries dropped.
+pub(crate) fn positions(gbuffer: &GBuffer, out: &mut Vec<Option<Vec3>>) {
     gbuffer
         .samples
         .par_iter()
         .map(|g| g.as_ref().map(|g| g.position))
-        .collect()
+        .collect_into_vec(out);
 }

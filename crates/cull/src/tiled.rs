@@ -12,7 +12,7 @@ use crate::positions::positions;
 use crate::refine::{block_of, Place, Refiner, Scratch, BLOCKS};
 use crate::tiles::{tiles, Tile};
 use crate::view::CullView;
-use crate::vpl_bounds::{subregion_bounds, GlossyBound, SubregionBounds};
+use crate::vpl_bounds::{subregion_bounds, GlossyBound, SubregionBounds, VplBound};
 use glam::{DVec2, Vec3};
 use rayon::prelude::*;
 use slc_core::{CullError, CullInput, LightLists, NO_LIST};
@@ -26,13 +26,40 @@ pub(crate) enum Clustering {
     ExponentialSlices,
 }
 
+/// The memory [`cull`] fills every frame, kept by a caller from frame to frame
+/// ([`BoundedCuller::cull_in`](crate::BoundedCuller::cull_in)): every VPL's bound, the bounds
+/// grouped by subregion with their lanes, and the G-buffer's positions. At a million VPLs
+/// some 200 MB, whose page faults took about a seventh of `ellipsoid`'s culling when it was
+/// allocated afresh every frame.
+#[derive(Clone, Debug, Default)]
+pub struct BoundedMemory {
+    every: Vec<VplBound>,
+    subregions: Vec<SubregionBounds>,
+    positions: Vec<Option<Vec3>>,
+}
+
+impl BoundedMemory {
+    /// Drops what is more than four times too large for `vpls` VPLs in `subregions`
+    /// subregions and `pixels` pixels: a frame much smaller than the last does not keep its
+    /// memory.
+    fn fit(&mut self, vpls: usize, subregions: usize, pixels: usize) {
+        if self.every.capacity() / 4 > vpls || self.subregions.len() / 4 > subregions {
+            self.every = Vec::new();
+            self.subregions = Vec::new();
+        }
+        if self.positions.capacity() / 4 > pixels {
+            self.positions = Vec::new();
+        }
+    }
+}
+
 /// What every tile reads.
-struct TileInputs {
+struct TileInputs<'a> {
     width: u32,
     /// The G-buffer's positions, packed ([`positions`]).
-    positions: Vec<Option<Vec3>>,
+    positions: &'a [Option<Vec3>],
     view: CullView,
-    bounds: Vec<SubregionBounds>,
+    bounds: &'a [SubregionBounds],
     split: DepthSplit,
     k: u32,
     /// The `tight` strategies' per-block refinement.
@@ -41,11 +68,13 @@ struct TileInputs {
 
 /// Culls `input` with `glossy` bounds for glossy VPLs (the section-6 sphere for diffuse ones)
 /// and the given depth clustering. Each existing cluster gets one list (ascending VPL
-/// indices, `NO_LIST` when empty); each pixel with a sample the list of its cluster.
+/// indices, `NO_LIST` when empty); each pixel with a sample the list of its cluster. The
+/// bounds and positions are formed in `memory` (its old contents do not matter).
 pub(crate) fn cull(
     input: &CullInput,
     glossy: GlossyBound,
     clustering: Clustering,
+    memory: &mut BoundedMemory,
 ) -> Result<LightLists, CullError> {
     let pixels = pixel_count(input.gbuffer)?;
     let partition = Partition::new(input.vpls, input.interleaving)?;
@@ -54,26 +83,40 @@ pub(crate) fn cull(
         return assemble(Vec::new(), 0);
     }
     let view = CullView::new(input.camera, width, height)?;
-    let bounds = subregion_bounds(input.vpls, &partition, input.delta, &view, glossy)?;
+    memory.fit(input.vpls.len(), partition.subregions(), pixels);
+    let BoundedMemory {
+        every,
+        subregions: bounds,
+        positions: packed,
+    } = memory;
+    subregion_bounds(
+        input.vpls,
+        &partition,
+        input.delta,
+        &view,
+        glossy,
+        every,
+        bounds,
+    )?;
     let refiner = match glossy {
         GlossyBound::Tight => Some(Refiner::new(
             input.vpls,
-            &bounds,
+            bounds,
             input.delta,
             &view,
             clustering == Clustering::HalfZ,
         )?),
         _ => None,
     };
-    let positions = positions(input.gbuffer);
+    positions(input.gbuffer, packed);
     let split = match clustering {
         Clustering::HalfZ => DepthSplit::HalfZ,
-        Clustering::ExponentialSlices => depth_range(&positions, &view)
+        Clustering::ExponentialSlices => depth_range(packed, &view)
             .map_or(DepthSplit::HalfZ, |(lo, hi)| DepthSplit::slices(lo, hi)),
     };
     let frame = TileInputs {
         width,
-        positions,
+        positions: packed,
         view,
         bounds,
         split,

@@ -201,33 +201,38 @@ pub(crate) struct SubregionBounds {
     pub ellipsoid_lanes: EllipsoidLanes,
 }
 
-/// Every VPL's bound (in parallel), grouped by interleaved subregion.
+/// Every VPL's bound (in parallel, into `every`), grouped by interleaved subregion into
+/// `out`: both written in their memory (a previous frame's), their old entries dropped.
 pub(crate) fn subregion_bounds(
     vpls: &[Vpl],
     partition: &Partition,
     delta: f32,
     view: &CullView,
     glossy: GlossyBound,
-) -> Result<Vec<SubregionBounds>, CullError> {
-    let bounds = crate::par::try_map(vpls, VplBound::Empty, |i, vpl| {
-        VplBound::new(vpl, i as u32, delta, view, glossy)
-    })?;
-    Ok((0..partition.subregions() as u32)
-        .into_par_iter()
-        .map(|s| {
-            let mut out = SubregionBounds::default();
-            for &i in partition.of(s) {
-                match bounds[i as usize] {
-                    VplBound::Empty => {}
-                    VplBound::Sphere(b) => out.spheres.push(b),
-                    VplBound::Ellipsoid(b) => out.ellipsoids.push(b),
-                }
+    every: &mut Vec<VplBound>,
+    out: &mut Vec<SubregionBounds>,
+) -> Result<(), CullError> {
+    crate::par::try_map_into(
+        vpls,
+        VplBound::Empty,
+        |i, vpl| VplBound::new(vpl, i as u32, delta, view, glossy),
+        every,
+    )?;
+    out.resize_with(partition.subregions(), SubregionBounds::default);
+    out.par_iter_mut().enumerate().for_each(|(s, out)| {
+        out.spheres.clear();
+        out.ellipsoids.clear();
+        for &i in partition.of(s as u32) {
+            match every[i as usize] {
+                VplBound::Empty => {}
+                VplBound::Sphere(b) => out.spheres.push(b),
+                VplBound::Ellipsoid(b) => out.ellipsoids.push(b),
             }
-            out.sphere_lanes = SphereLanes::new(&out.spheres);
-            out.ellipsoid_lanes = EllipsoidLanes::new(&out.ellipsoids);
-            out
-        })
-        .collect())
+        }
+        out.sphere_lanes.refill(&out.spheres);
+        out.ellipsoid_lanes.refill(&out.ellipsoids);
+    });
+    Ok(())
 }
 
 #[cfg(test)]

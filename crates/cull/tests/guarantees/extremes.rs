@@ -3,9 +3,9 @@
 //! inputs (errors, never panics).
 use crate::common::*;
 use glam::Vec3;
-use slc_core::Strategy;
 use slc_core::{Camera, CullInput, GBuffer, Interleaving, VplLobe, NO_LIST};
-use slc_cull::culler;
+use slc_core::{Culler, Strategy};
+use slc_cull::{culler, BoundedCuller, BoundedMemory};
 
 /// A camera 1.5 units above the floor looking at the horizon: the upper half is sky, so
 /// whole tiles are empty and others are cut by the horizon.
@@ -281,4 +281,33 @@ fn extremes_of_delta_alpha_xi_and_range() {
         contributing[0] > 10_000 && contributing[1] > 0,
         "{contributing:?}"
     );
+}
+
+/// Culling in kept memory (`BoundedCuller::cull_in`) gives the lists of fresh memory, whatever
+/// frame the memory held before: one `BoundedMemory` through every bound-testing strategy and
+/// 60 random frames of 0 to 240 VPLs, 1 to 70 x 1 to 50 pixels and K from 1 to 6 (so it is
+/// grown, reused and dropped as more than four times too large).
+#[test]
+fn kept_memory_gives_the_lists_of_fresh_memory() {
+    let mut rng = Rng::new(11);
+    let mut memory = BoundedMemory::default();
+    let bounded: Vec<BoundedCuller> = Strategy::on_cpu().filter_map(BoundedCuller::new).collect();
+    assert!(
+        bounded.len() >= 8,
+        "{} bound-testing strategies",
+        bounded.len()
+    );
+    for case in 0..60 {
+        let camera = floor_camera(&mut rng);
+        let (w, h) = (1 + rng.below(70), 1 + rng.below(50));
+        let gbuffer = floor_gbuffer(&camera, w, h, &mut rng);
+        let count = rng.below(240);
+        let vpls = room_vpls(&mut rng, count);
+        let (delta, k) = (rng.log(-5.0, -1.0), 1 + rng.below(6));
+        let input = input(&gbuffer, &camera, &vpls, delta, k);
+        let culler = bounded[case as usize % bounded.len()];
+        let fresh = culler.cull(&input).unwrap();
+        let kept = culler.cull_in(&input, &mut memory).unwrap();
+        assert_eq!(kept, fresh, "case {case}: {culler:?}, {w}x{h}, K {k}");
+    }
 }
