@@ -16,6 +16,7 @@ use crate::vpl_bounds::{subregion_bounds, GlossyBound, SubregionBounds, VplBound
 use glam::{DVec2, Vec3};
 use rayon::prelude::*;
 use slc_core::{CullError, CullInput, LightLists, NO_LIST};
+use std::fmt;
 
 /// How a tile is divided in depth.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -31,11 +32,22 @@ pub(crate) enum Clustering {
 /// grouped by subregion with their lanes, and the G-buffer's positions. At a million VPLs
 /// some 200 MB, whose page faults took about a seventh of `ellipsoid`'s culling when it was
 /// allocated afresh every frame.
-#[derive(Clone, Debug, Default)]
+#[derive(Default)]
 pub struct BoundedMemory {
     every: Vec<VplBound>,
     subregions: Vec<SubregionBounds>,
     positions: Vec<Option<Vec3>>,
+}
+
+/// How much it holds, not what.
+impl fmt::Debug for BoundedMemory {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.debug_struct("BoundedMemory")
+            .field("bounds", &self.every.capacity())
+            .field("subregions", &self.subregions.len())
+            .field("positions", &self.positions.capacity())
+            .finish()
+    }
 }
 
 impl BoundedMemory {
