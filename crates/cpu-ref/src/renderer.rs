@@ -67,10 +67,14 @@ impl KeptFilter {
 }
 
 impl CpuRenderer {
-    /// Frees the memory the last frame dropped left ([`FrameSpares`]): the next frame is
-    /// prepared in fresh memory, as the first is (`slc bench` times every frame so).
+    /// Frees the memory the last frame dropped left ([`FrameSpares`]) and the memory of its
+    /// culling and shading ([`BoundedMemory`], [`ListedReach`]; a few hundred MB at a million
+    /// VPLs): the next frame is prepared, culled and shaded in fresh memory, as the first is
+    /// (`slc bench` times every frame's preparation so).
     pub fn release_frame_memory(&self) {
         self.frames.release();
+        drop(self.bounds.take());
+        drop(self.exits.take());
     }
 
     /// The backend's name in reports and errors ([`Renderer::name`]).
