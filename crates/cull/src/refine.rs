@@ -11,7 +11,6 @@ use crate::lists::ListChunk;
 use crate::view::CullView;
 use crate::vpl_bounds::{lobe_box_bound, SubregionBounds, ViewEllipsoid};
 use glam::DVec3;
-use rayon::prelude::*;
 use slc_bounds::{BoxBound, ReceiverBox, StochasticParams};
 use slc_core::{CullError, Vpl, TILE_SIZE};
 
@@ -36,44 +35,64 @@ pub(crate) struct Place {
 /// Every VPL's [`BoxBound`] in the culling view with its view-space position, the
 /// spheroids of the glossy ones (by VPL index), and the largest |coordinate| of the VPLs'
 /// world positions.
-pub(crate) struct Refiner {
-    bounds: Vec<(BoxBound, DVec3)>,
-    spheroids: Vec<Option<ViewEllipsoid>>,
+pub(crate) struct Refiner<'a> {
+    bounds: &'a [(BoxBound, DVec3)],
+    spheroids: &'a [Option<ViewEllipsoid>],
     vpl_extent: f32,
     /// Whether each block's samples are split at their half depth.
     split_blocks: bool,
 }
 
-impl Refiner {
+/// The memory of a [`Refiner`], kept from frame to frame with the culling's
+/// ([`crate::BoundedMemory`]): at a million VPLs about 250 MB.
+#[derive(Default)]
+pub(crate) struct RefinerMemory {
+    bounds: Vec<(BoxBound, DVec3)>,
+    spheroids: Vec<Option<ViewEllipsoid>>,
+}
+
+impl RefinerMemory {
+    /// The VPLs it has room for.
+    pub(crate) fn capacity(&self) -> usize {
+        self.bounds.capacity()
+    }
+}
+
+impl<'a> Refiner<'a> {
     /// The bounds of `vpls` for δ = `delta` in `view`, with the spheroids of `culled` (the
-    /// tile culling's bounds); `split_blocks` splits each block's samples at their half depth.
+    /// tile culling's bounds), formed in `memory` (its old contents do not matter);
+    /// `split_blocks` splits each block's samples at their half depth.
     pub(crate) fn new(
         vpls: &[Vpl],
         culled: &[SubregionBounds],
         delta: f32,
         view: &CullView,
         split_blocks: bool,
+        memory: &'a mut RefinerMemory,
     ) -> Result<Self, CullError> {
         let rotation = view.rotation().as_dmat3();
-        let bounds = vpls
-            .par_iter()
-            .map(|v| {
-                let params = StochasticParams::new(delta, v.xi)?;
-                let bound = lobe_box_bound(v, &params)?.rotated(rotation);
-                Ok((bound, view.to_view(v.position)))
-            })
-            .collect::<Result<Vec<_>, CullError>>()?;
+        let bound_of = |v: &Vpl| -> Result<(BoxBound, DVec3), CullError> {
+            let params = StochasticParams::new(delta, v.xi)?;
+            let bound = lobe_box_bound(v, &params)?.rotated(rotation);
+            Ok((bound, view.to_view(v.position)))
+        };
+        memory.bounds.clear();
+        if let Some(first) = vpls.first() {
+            let placeholder = bound_of(first)?;
+            crate::par::try_map_into(vpls, placeholder, |_, v| bound_of(v), &mut memory.bounds)?;
+        }
         let vpl_extent = vpls
             .iter()
             .map(|v| v.position.abs().max_element())
             .fold(0.0, f32::max);
-        let mut spheroids = vec![None; vpls.len()];
+        memory.spheroids.clear();
+        memory.spheroids.resize(vpls.len(), None);
         for e in culled.iter().flat_map(|s| &s.ellipsoids) {
-            spheroids[e.index as usize] = Some(*e);
+            memory.spheroids[e.index as usize] = Some(*e);
         }
         Ok(Self {
-            bounds,
-            spheroids,
+            bounds: &memory.bounds,
+            spheroids: &memory.spheroids,
             vpl_extent,
             split_blocks,
         })

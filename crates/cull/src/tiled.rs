@@ -9,7 +9,7 @@ use crate::frusta::TileFrusta;
 use crate::lists::{assemble, pixel_count, ListChunk};
 use crate::partition::Partition;
 use crate::positions::positions;
-use crate::refine::{block_of, Place, Refiner, Scratch, BLOCKS};
+use crate::refine::{block_of, Place, Refiner, RefinerMemory, Scratch, BLOCKS};
 use crate::tiles::{tiles, Tile};
 use crate::view::CullView;
 use crate::vpl_bounds::{subregion_bounds, GlossyBound, SubregionBounds, VplBound};
@@ -37,6 +37,8 @@ pub struct BoundedMemory {
     every: Vec<VplBound>,
     subregions: Vec<SubregionBounds>,
     positions: Vec<Option<Vec3>>,
+    /// The `tight` strategies' refinement.
+    refiner: RefinerMemory,
 }
 
 /// How much it holds, not what.
@@ -46,6 +48,7 @@ impl fmt::Debug for BoundedMemory {
             .field("bounds", &self.every.capacity())
             .field("subregions", &self.subregions.len())
             .field("positions", &self.positions.capacity())
+            .field("refiner", &self.refiner.capacity())
             .finish()
     }
 }
@@ -58,6 +61,9 @@ impl BoundedMemory {
         if self.every.capacity() / 4 > vpls || self.subregions.len() / 4 > subregions {
             self.every = Vec::new();
             self.subregions = Vec::new();
+        }
+        if self.refiner.capacity() / 4 > vpls {
+            self.refiner = RefinerMemory::default();
         }
         if self.positions.capacity() / 4 > pixels {
             self.positions = Vec::new();
@@ -75,7 +81,7 @@ struct TileInputs<'a> {
     split: DepthSplit,
     k: u32,
     /// The `tight` strategies' per-block refinement.
-    refiner: Option<Refiner>,
+    refiner: Option<Refiner<'a>>,
 }
 
 /// Culls `input` with `glossy` bounds for glossy VPLs (the section-6 sphere for diffuse ones)
@@ -100,6 +106,7 @@ pub(crate) fn cull(
         every,
         subregions: bounds,
         positions: packed,
+        refiner,
     } = memory;
     subregion_bounds(
         input.vpls,
@@ -117,6 +124,7 @@ pub(crate) fn cull(
             input.delta,
             &view,
             clustering == Clustering::HalfZ,
+            refiner,
         )?),
         _ => None,
     };
