@@ -37,9 +37,10 @@ impl BoundedCuller {
         })
     }
 
-    /// [`Culler::cull`] with its bounds and the G-buffer's positions formed in `memory`,
-    /// which a caller keeps from frame to frame ([`BoundedMemory`]): the same lists, without
-    /// the page faults of a few hundred MB of fresh memory at a million VPLs.
+    /// [`Culler::cull`] with its bounds, the G-buffer's positions and `tight`'s refinement
+    /// formed in `memory`, which a caller keeps from frame to frame ([`BoundedMemory`]): the
+    /// same lists, without the page faults of a few hundred MB of fresh memory at a million
+    /// VPLs.
     pub fn cull_in(
         &self,
         input: &CullInput,
