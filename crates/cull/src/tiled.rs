@@ -27,10 +27,10 @@ pub(crate) enum Clustering {
     ExponentialSlices,
 }
 
-/// The memory [`cull`] fills every frame, kept by a caller from frame to frame
-/// ([`BoundedCuller::cull_in`](crate::BoundedCuller::cull_in)): every VPL's bound, the bounds
-/// grouped by subregion with their lanes, the G-buffer's positions and the `tight`
-/// strategies' tables of bounds over boxes. At a million VPLs some 200 MB (450 MB for
+/// The memory a bound-testing strategy's culling fills every frame, kept by a caller from
+/// frame to frame ([`BoundedCuller::cull_in`](crate::BoundedCuller::cull_in)): every VPL's
+/// bound, the bounds grouped by subregion with their lanes, the G-buffer's positions and the
+/// `tight` strategies' tables of bounds over boxes. At a million VPLs some 200 MB (450 MB for
 /// `tight`), whose page faults took about a seventh of `ellipsoid`'s culling and a third of
 /// `tight`'s when it was allocated afresh every frame.
 #[derive(Default)]
