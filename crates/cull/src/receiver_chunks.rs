@@ -269,18 +269,25 @@ fn passing_in<L: Lanes8>(
     normals: bool,
     passing: &mut Vec<Passing>,
 ) {
-    let mut group = [(0, 0); 8];
-    let mut len = 0;
-    for member in members {
-        group[len] = member;
-        len += 1;
-        if len == 8 {
-            passing_group::<L>(receivers, reach, &group, normals, passing);
-            len = 0;
+    // The next eight members' exits are asked for while these eight are tested: a window's
+    // VPLs lie scattered over the table (170 MB at a million listed VPLs), and each group's
+    // gather of their bounds waited on those reads.
+    let mut members = members;
+    let mut next_group = |group: &mut [(u32, u32); 8]| {
+        let mut len = 0;
+        for (slot, member) in group.iter_mut().zip(&mut members) {
+            crate::prefetch::prefetch(&reach[member.0 as usize]);
+            *slot = member;
+            len += 1;
         }
-    }
-    if len > 0 {
+        len
+    };
+    let (mut group, mut next) = ([(0, 0); 8], [(0, 0); 8]);
+    let mut len = next_group(&mut group);
+    while len > 0 {
+        let next_len = next_group(&mut next);
         passing_group::<L>(receivers, reach, &group[..len], normals, passing);
+        (group, len) = (next, next_len);
     }
 }
 
