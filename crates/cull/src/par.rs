@@ -5,6 +5,14 @@
 use rayon::prelude::*;
 use std::sync::{Mutex, PoisonError};
 
+/// Whether memory kept from an earlier frame with room for `capacity` items is more than four
+/// times what a frame of `needed` items uses: then it is dropped, so that a frame much smaller
+/// than the last does not hold the last one's memory (`crate::ListedReach`,
+/// `crate::BoundedMemory`).
+pub(crate) fn too_large_to_keep(capacity: usize, needed: usize) -> bool {
+    capacity / 4 > needed
+}
+
 /// `f(i, item)` for every item, in parallel, collected in the items' order; or, if any call
 /// fails, one of the errors (which one when several fail depends on the threads, as with
 /// rayon's collect). Unlike rayon's collect it does not stop early: the other items are

