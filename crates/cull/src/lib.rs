@@ -112,6 +112,7 @@ mod tiled;
 pub mod tiles;
 pub mod view;
 mod vpl_bounds;
+mod vpl_lanes;
 
 pub use frusta::FRUSTUM_SLACK;
 pub use reach::{ListedReach, VplReach};

@@ -7,9 +7,11 @@
 //! only cheaper.
 use crate::acceptance::Acceptance;
 use crate::vpl_bounds::{lobe_box_bound, GlossyBound, LocalBound};
+use crate::vpl_lanes::{own_bounds, LaneBound};
 use glam::{DMat3, DVec3, Vec3};
+use rayon::prelude::*;
 use slc_bounds::lanes::{dot, load_all, splat_all, Lanes8, Real, F8};
-use slc_bounds::{BoxBound, BoxBoundLanes, StochasticParams};
+use slc_bounds::{BoxBound, BoxBoundLanes, GlossyLobe, StochasticParams};
 use slc_core::{CullError, Vpl, VplLobe};
 
 /// Relative margin of the sign tests: a pair is rejected only when the cosine at one end,
@@ -17,9 +19,6 @@ use slc_core::{CullError, Vpl, VplLobe};
 /// direction (normalised first, then dotted) differs from it by a few ulps (about 1e-6 with
 /// unit normals), so the sign cannot flip within the margin.
 pub const SIGN_MARGIN: f32 = 1e-5;
-
-/// How many listed VPLs ahead [`VplReach::of_frame`] asks for a record.
-const PREFETCH_AHEAD: usize = 4;
 
 /// One VPL's early exits in lanes of `R` (see [`slc_bounds::lanes`]): its normal n, and its own
 /// bound as a stretch S and centre S·(c − q) with the bound the unit ball of S d − S·(c − q)
@@ -144,54 +143,112 @@ pub struct VplReach {
 impl VplReach {
     /// The early exits of `vpl` under the roulette `params` (its δ and ξ, eq. 2-3). Errors
     /// when the VPL is outside the domain of slc-bounds (see `slc_bounds::BoundsError`).
+    /// Its own bound is formed in f32 lanes where the VPL is plain (`crate::vpl_lanes`,
+    /// grown by 1e-5 over their rounding), else by slc-bounds; [`ListedReach::form`] forms
+    /// the same exits eight VPLs at a time.
     pub fn new(vpl: &Vpl, params: &StochasticParams) -> Result<Self, CullError> {
-        Self::with(vpl, params, true)
+        Self::one(vpl, params, true)
     }
 
     /// [`Self::new`] without the VPL's bounds: only the sign tests and the roulette, its own
     /// bound and its bound over boxes passing everywhere. Forming the bound over boxes and
     /// the stretch of its own bound costs about a third of [`Self::new`] (155 against 222 ns
-    /// a VPL on one thread, Sponza's VPLs at RSM 1024), which a VPL listed at a few pixels
-    /// does not earn back. The same errors: its own bound is still formed (not kept),
-    /// so a lobe outside slc-bounds' domain or a range beyond f32 is refused as by
-    /// [`Self::new`].
+    /// a VPL on one thread, Sponza's VPLs at RSM 1024, before the own bounds' lanes), which
+    /// a VPL listed at a few pixels does not earn back. The same errors: its own bound is
+    /// still formed (not kept), so a lobe outside slc-bounds' domain or a range beyond f32
+    /// is refused as by [`Self::new`].
     pub fn without_bounds(vpl: &Vpl, params: &StochasticParams) -> Result<Self, CullError> {
-        Self::with(vpl, params, false)
+        Self::one(vpl, params, false)
     }
 
-    fn with(vpl: &Vpl, params: &StochasticParams, bounds: bool) -> Result<Self, CullError> {
+    /// One VPL's exits, with its bounds where `bounds` ([`Self::eight`] for one).
+    fn one(vpl: &Vpl, params: &StochasticParams, bounds: bool) -> Result<Self, CullError> {
+        let mut out = [Self::NONE];
+        Self::eight(&[vpl], core::slice::from_ref(params), |_| bounds, &mut out)?;
+        Ok(out[0])
+    }
+
+    /// The exits of `vpls` (one to eight) under their roulettes `roulette` into `out`, VPL k
+    /// with its bounds where `bounded(k)`: the own bounds of the plain ones in lanes, the
+    /// others' by slc-bounds. Errors as [`Self::new`], for the first VPL it refuses.
+    fn eight(
+        vpls: &[&Vpl],
+        roulette: &[StochasticParams],
+        bounded: impl Fn(usize) -> bool,
+        out: &mut [Self],
+    ) -> Result<(), CullError> {
+        let (formed, bounds) = own_bounds(vpls, |k| (roulette[k].delta(), roulette[k].xi()));
+        for (k, ((vpl, params), out)) in vpls.iter().zip(roulette).zip(out).enumerate() {
+            let own = (formed >> k & 1 == 1).then(|| bounds.lane(k));
+            Self::with(vpl, params, bounded(k), own, out)?;
+        }
+        Ok(())
+    }
+
+    /// The exits of `vpl` with its bounds where `bounds`, its own bound `own` where the lanes
+    /// formed it (a plain VPL that reflects something: its lobe is in slc-bounds' domain),
+    /// else formed here by slc-bounds.
+    fn with(
+        vpl: &Vpl,
+        params: &StochasticParams,
+        bounds: bool,
+        own: Option<LaneBound>,
+        out: &mut Self,
+    ) -> Result<(), CullError> {
         let dark = reflects_nothing(vpl);
         // The bound over boxes of receivers at the VPL (where asked for), and its own bound
-        // (the glossy lobe built once for both); none for a VPL that reflects nothing.
-        let (local, box_bound) = match (dark, vpl.lobe) {
-            (true, _) => (None, BoxBoundLanes::ALWAYS),
-            (false, VplLobe::Diffuse) => (
-                Some(LocalBound::new(vpl, params, GlossyBound::Ellipsoid)?),
+        // (from the lanes, or with the glossy lobe built once for both); none for a VPL that
+        // reflects nothing.
+        let box_bound = |lobe: Option<&GlossyLobe>| -> Result<BoxBoundLanes<f32>, CullError> {
+            Ok(match (bounds, lobe) {
+                (false, _) => BoxBoundLanes::ALWAYS,
+                (true, Some(lobe)) => BoxBound::glossy(lobe, params).to_f32(vpl.position),
+                (true, None) => lobe_box_bound(vpl, params)?.to_f32(vpl.position),
+            })
+        };
+        let (local, box_bound) = match (dark, own, vpl.lobe) {
+            (true, _, _) => (None, BoxBoundLanes::ALWAYS),
+            (false, Some(own), VplLobe::Diffuse) => (Some(Own::Lanes(own)), box_bound(None)?),
+            (false, Some(own), VplLobe::Glossy) => (
+                Some(Own::Lanes(own)),
                 match bounds {
-                    true => lobe_box_bound(vpl, params)?.to_f32(vpl.position),
+                    true => box_bound(Some(&vpl.glossy_lobe()?))?,
                     false => BoxBoundLanes::ALWAYS,
                 },
             ),
-            (false, VplLobe::Glossy) => {
+            (false, None, VplLobe::Diffuse) => (
+                Some(Own::Local(LocalBound::new(
+                    vpl,
+                    params,
+                    GlossyBound::Ellipsoid,
+                )?)),
+                box_bound(None)?,
+            ),
+            (false, None, VplLobe::Glossy) => {
                 let lobe = vpl.glossy_lobe()?;
                 (
-                    Some(LocalBound::glossy(&lobe, params, GlossyBound::Ellipsoid)?),
-                    match bounds {
-                        true => BoxBound::glossy(&lobe, params).to_f32(vpl.position),
-                        false => BoxBoundLanes::ALWAYS,
-                    },
+                    Some(Own::Local(LocalBound::glossy(
+                        &lobe,
+                        params,
+                        GlossyBound::Ellipsoid,
+                    )?)),
+                    box_bound(Some(&lobe))?,
                 )
             }
         };
         // Without bounds, a VPL that reflects something keeps only its sign tests.
-        let local = match bounds {
-            true => local,
-            false => local.map(|_| LocalBound::Empty),
-        };
-        let (stretch, center, limit) = match local {
-            None => (DMat3::ZERO, DVec3::ZERO, -1.0),
-            Some(LocalBound::Empty) => (DMat3::ZERO, DVec3::ZERO, f64::INFINITY),
-            Some(LocalBound::Sphere { center, radius_sq }) => {
+        let (stretch, center, limit) = match (local, bounds) {
+            (None, _) => (DMat3::ZERO, DVec3::ZERO, -1.0),
+            (Some(_), false) | (Some(Own::Local(LocalBound::Empty)), true) => {
+                (DMat3::ZERO, DVec3::ZERO, f64::INFINITY)
+            }
+            (Some(Own::Lanes(b)), true) => {
+                // S = diag(1/r_u, 1/r, 1/r) [ω_u t1 t2]ᵀ, any unit t1, t2 across ω_u.
+                let (t1, t2) = b.axis.any_orthonormal_pair();
+                let rows = DMat3::from_cols(b.axis / b.along, t1 / b.across, t2 / b.across);
+                stretched(rows.transpose(), b.offset, b.along.max(b.across))
+            }
+            (Some(Own::Local(LocalBound::Sphere { center, radius_sq })), true) => {
                 let radius = radius_sq.sqrt();
                 stretched(
                     DMat3::from_diagonal(DVec3::splat(radius.recip())),
@@ -199,11 +256,14 @@ impl VplReach {
                     radius,
                 )
             }
-            Some(LocalBound::Spheroid {
-                center,
-                rotation,
-                semi_axes,
-            }) => stretched(
+            (
+                Some(Own::Local(LocalBound::Spheroid {
+                    center,
+                    rotation,
+                    semi_axes,
+                })),
+                true,
+            ) => stretched(
                 DMat3::from_diagonal(semi_axes.as_dvec3().recip())
                     * rotation.as_dmat3().transpose(),
                 center,
@@ -211,17 +271,16 @@ impl VplReach {
             ),
         };
         let rows = stretch.transpose().to_cols_array().map(|v| v as f32);
-        Ok(Self {
-            position: vpl.position,
-            reach: Reach {
-                normal: vpl.normal.to_array(),
-                stretch: rows,
-                center: center.as_vec3().to_array(),
-                limit: limit as f32,
-            },
-            acceptance: Acceptance::new(vpl, params, dark),
-            box_bound,
-        })
+        out.position = vpl.position;
+        out.reach = Reach {
+            normal: vpl.normal.to_array(),
+            stretch: rows,
+            center: center.as_vec3().to_array(),
+            limit: limit as f32,
+        };
+        out.acceptance = Acceptance::new(vpl, params, dark);
+        out.box_bound = box_bound;
+        Ok(())
     }
 
     /// Exits that reject every pair (the limit of the bound is −1).
@@ -369,21 +428,32 @@ impl ListedReach {
                 .find_map(|&i| roulette_of(i).err())
                 .unwrap_or(e)
         })?;
+        // Eight listed VPLs at a time (their own bounds share lanes), in this table's memory.
         let roulette = &self.roulette;
-        crate::par::try_map_into(
-            listed,
-            VplReach::NONE,
-            |j, &i| {
-                // The records of the VPLs a few places on, scattered over the whole array, are
-                // asked for while this one is formed.
-                if let Some(&ahead) = listed.get(j + PREFETCH_AHEAD) {
+        self.reach.truncate(listed.len());
+        self.reach.resize(listed.len(), VplReach::NONE);
+        self.reach
+            .par_chunks_mut(8)
+            .zip(listed.par_chunks(8))
+            .zip(roulette.par_chunks(8))
+            .enumerate()
+            .try_for_each(|(c, ((out, eight), roulette))| {
+                // The records of the next eight VPLs, scattered over the whole array, are
+                // asked for while these are formed.
+                for &ahead in listed.iter().skip(8 * (c + 1)).take(8) {
                     crate::prefetch::prefetch(&vpls[ahead as usize]);
                 }
-                VplReach::with(&vpls[i as usize], &roulette[j], bounded(j))
-            },
-            &mut self.reach,
-        )
+                let last = eight.len() - 1;
+                let group: [&Vpl; 8] = core::array::from_fn(|k| &vpls[eight[k.min(last)] as usize]);
+                VplReach::eight(&group[..=last], roulette, |k| bounded(8 * c + k), out)
+            })
     }
+}
+
+/// A VPL's own bound, as formed: by the lanes, or by slc-bounds.
+enum Own {
+    Lanes(LaneBound),
+    Local(LocalBound),
 }
 
 /// The stretch S, centre S·(c − q) and limit of a bound with centre `center` (relative to q)
@@ -413,4 +483,85 @@ pub(crate) fn reflects_nothing(vpl: &Vpl) -> bool {
         VplLobe::Glossy => vpl.flux.cmpeq(Vec3::ZERO).all(),
     };
     dark || vpl.normal.dot(vpl.omega_i) <= 0.0
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::test_rng::{random_vpl, Rng};
+
+    /// The lanes' own bounds keep every pair slc-bounds' own bounds keep: over random VPLs of
+    /// both lobes (δ from 1e-9 to 1e3, flux from 1e-6 to 1e6, α from 0.01 to 1, ξ near 0 and
+    /// 1), every offset near the surface of slc-bounds' bound (its `LocalBound`, grown by
+    /// `BOUND_SLACK`) that exits formed with it pass, exits formed with the lanes' bound pass
+    /// too; the rest of the exits (the normal, the roulette, the bound over boxes) is the same.
+    #[test]
+    fn lane_bounds_keep_every_pair_of_slc_bounds() {
+        let mut rng = Rng(0x5EED_0E81);
+        let (mut formed, mut points) = (0, 0);
+        for case in 0..2000 {
+            let delta = 10f32.powf(rng.range(-9.0, 3.0));
+            let vpls: Vec<Vpl> = (0..8).map(|k| random_vpl(&mut rng, case * 8 + k)).collect();
+            let group: Vec<&Vpl> = vpls.iter().collect();
+            let roulette: Vec<StochasticParams> = vpls
+                .iter()
+                .map(|v| StochasticParams::new(delta, v.xi).unwrap())
+                .collect();
+            let (lanes, bounds) = own_bounds(&group, |k| (delta, vpls[k].xi));
+            for (k, (vpl, params)) in vpls.iter().zip(&roulette).enumerate() {
+                if lanes >> k & 1 == 0 {
+                    continue;
+                }
+                formed += 1;
+                let (mut own, mut scalar) = (VplReach::NONE, VplReach::NONE);
+                VplReach::with(vpl, params, true, Some(bounds.lane(k)), &mut own).unwrap();
+                VplReach::with(vpl, params, true, None, &mut scalar).unwrap();
+                assert_eq!(
+                    (
+                        own.position,
+                        own.reach.normal,
+                        own.acceptance,
+                        own.box_bound
+                    ),
+                    (
+                        scalar.position,
+                        scalar.reach.normal,
+                        scalar.acceptance,
+                        scalar.box_bound
+                    ),
+                    "case {case}, lane {k}"
+                );
+                let (center, rotation, semi) =
+                    match LocalBound::new(vpl, params, GlossyBound::Ellipsoid).unwrap() {
+                        LocalBound::Sphere { center, radius_sq } => {
+                            (center, DMat3::IDENTITY, DVec3::splat(radius_sq.sqrt()))
+                        }
+                        LocalBound::Spheroid {
+                            center,
+                            rotation,
+                            semi_axes,
+                        } => (center, rotation.as_dmat3(), semi_axes.as_dvec3()),
+                        LocalBound::Empty => unreachable!("the lanes bound it: r > 1e-12"),
+                    };
+                for _ in 0..40 {
+                    let u = DVec3::new(
+                        rng.range64(-1.0, 1.0),
+                        rng.range64(-1.0, 1.0),
+                        rng.range64(-1.0, 1.0),
+                    );
+                    let Some(u) = u.try_normalize() else { continue };
+                    let d = center + rotation * (semi * u * rng.range64(0.98, 1.02));
+                    let d = d.as_vec3().to_array();
+                    if scalar.reach.may_accept(d) {
+                        points += 1;
+                        assert!(own.reach.may_accept(d), "case {case}, lane {k}: {d:?}");
+                    }
+                }
+            }
+        }
+        assert!(
+            formed > 5000 && points > 50_000,
+            "{formed} formed, {points} points"
+        );
+    }
 }

@@ -1,39 +1,15 @@
-//! The `binned` strategy's scatter, eight VPLs at a time: for the plain ones the radius r of
-//! eq. (12) and the spheroid of eq. (13)-(15) of a glossy VPL, the sphere of section 6 of a
-//! diffuse one, formed with slc-bounds' own operations (`GlossyLobe::radius`,
-//! `Spheroid::new`, `Sphere::diffuse`) in f32 lanes, then their footprints
-//! ([`crate::footprint`]); the others through slc-bounds ([`Screen::scatter`]). At a million
-//! VPLs the bounds are most of the culling, and one VPL at a time they wait on their chains
-//! of square roots and divisions; eight lanes share them.
-//!
-//! The lanes round differently from slc-bounds in a few places (r in f32 rather than f64,
-//! the fifth power as three products): a few ulps, which the radius's extra 1e-5 covers
-//! before `BOUND_SLACK` (1e-3) grows the bound as it grows every strategy's. Lobes sharper
-//! than [`MIN_ALPHA`] are left to slc-bounds: there the f32 rounding of the axis, tilted by
-//! the eccentricity 1/(2α), would eat into that slack.
+//! The `binned` strategy's scatter, eight VPLs at a time: the plain VPLs' own bounds in f32
+//! lanes ([`crate::vpl_lanes`]), then their footprints ([`crate::footprint`]); the others
+//! through slc-bounds ([`Screen::scatter`]).
 use crate::footprint::{footprint, Bound, Footprint, ScreenMap};
 use crate::scatter::{PixelTest, Scattered, Screen};
-use crate::vpl_bounds::BOUND_SLACK;
-use glam::{DVec3, Vec3};
-use slc_bounds::lanes::{
-    clamp01, cross, dot, load_all, max, splat_all, store_all, Lanes8, Real, F8, M8,
-};
-use slc_bounds::Fresnel;
-use slc_core::{CullError, Vpl, VplLobe};
-
-/// The smallest α whose glossy VPLs the lanes bound.
-const MIN_ALPHA: f32 = 0.01;
-
-/// The radius's growth over its f32 rounding in the lanes.
-const LANE_SLACK: f32 = 1e-5;
-
-/// How far |v|² of a unit vector may be from 1 in the lanes: just inside slc-bounds' 1e-3 on
-/// |v| ((1 ± 1e-3)² = 1 ± 2.001e-3), so that no vector the lanes take is one it refuses.
-const UNIT_SQ_TOLERANCE: f32 = 1.99e-3;
+use crate::vpl_lanes::OwnBounds;
+use slc_bounds::lanes::{dot, splat_all, store_all, Lanes8, F8};
+use slc_core::{CullError, Vpl};
 
 /// Each of `vpls` (numbered from `first`) that covers a pixel for the roulette's δ (a valid
 /// one), in `out` in their order: eight at a time in lanes, which bound the plain ones (see
-/// [`Lanes::plain`]); the others, and the lanes' extremes, go through slc-bounds one at a
+/// [`crate::vpl_lanes`]); the others, and the lanes' extremes, go through slc-bounds one at a
 /// time ([`Screen::scatter`]), which bounds them or names what is wrong.
 pub(crate) fn scatter(
     screen: &Screen,
@@ -101,7 +77,19 @@ fn scatter_in<L: Lanes8>(
 ) -> u8 {
     let last = vpls.len() - 1;
     let group: [&Vpl; 8] = core::array::from_fn(|k| &vpls[k.min(last)]);
-    let lanes = Lanes::<L>::of(&group, screen.eye, delta);
+    let xi = F8(core::array::from_fn(|k| group[k].xi));
+    let lanes = OwnBounds::<L>::of(&group, screen.eye, &F8([delta; 8]), &xi);
+    let bound = Bound {
+        center: [
+            lanes.relative[0] + lanes.offset[0],
+            lanes.relative[1] + lanes.offset[1],
+            lanes.relative[2] + lanes.offset[2],
+        ],
+        axis: lanes.axis,
+        along: lanes.along,
+        across: lanes.across,
+        size: dot(lanes.relative, lanes.relative).sqrt() + lanes.length + lanes.along,
+    };
     let [x, y, z] = screen.map.rows;
     let [sx, sy] = screen.map.scale;
     let [ox, oy] = screen.map.offset;
@@ -111,7 +99,7 @@ fn scatter_in<L: Lanes8>(
         offset: [L::splat(ox), L::splat(oy)],
         near: L::splat(screen.map.near),
     };
-    let f = footprint(&lanes.bound, &screen_map);
+    let f = footprint(&bound, &screen_map);
     let [before, after] = screen.edges;
     let off_screen = !f.everywhere
         & (L::splat(before[0]).gt(f.hi[0])
@@ -126,8 +114,7 @@ fn scatter_in<L: Lanes8>(
         return left;
     }
     let (lo, hi) = (store_all(&f.lo), store_all(&f.hi));
-    let (center, axis) = (store_all(&lanes.offset), store_all(&lanes.bound.axis));
-    let (along, across) = (lanes.bound.along.store(), lanes.bound.across.store());
+    let stored = lanes.store();
     let everywhere = L::bits(f.everywhere);
     for (k, (vpl, slot)) in vpls.iter().zip(out.iter_mut()).enumerate() {
         if covers >> k & 1 == 0 {
@@ -141,304 +128,29 @@ fn scatter_in<L: Lanes8>(
             everywhere: everywhere >> k & 1 == 1,
         };
         *slot = screen.place(vpl, first + k as u32, &footprint, || {
+            let b = stored.lane(k);
             PixelTest::new(
                 vpl.position.as_dvec3(),
                 vpl.normal.as_dvec3(),
-                DVec3::from(center.each_ref().map(|c| f64::from(lane(c)))),
-                DVec3::from(axis.each_ref().map(|c| f64::from(lane(c)))).normalize(),
-                f64::from(lane(&along)),
-                f64::from(lane(&across)),
+                b.offset,
+                b.axis,
+                b.along,
+                b.across,
             )
         });
     }
     left
 }
 
-/// Eight VPLs' bounds: for the footprint, and the centre's offset from q for the pixels'
-/// test; `empty` where a VPL reflects nothing (ωi·n <= 0, no flux), `left` where it is not
-/// plain ([`Self::plain`]) or its radius lies outside [`RADII`] (left to slc-bounds, whose
-/// f64 radius and overflow checks serve the extremes).
-struct Lanes<L: Real> {
-    bound: Bound<L>,
-    offset: [L; 3],
-    empty: L::Mask,
-    left: L::Mask,
-}
-
-/// The radii the lanes bound: far from f32's underflow and from an overflow of the
-/// footprint's squares.
-const RADII: [f32; 2] = [1e-12, 1e9];
-
-impl<L: Lanes8> Lanes<L> {
-    /// The bounds of `group` for δ = `delta`, centres relative to `eye`.
-    #[inline(always)]
-    fn of(group: &[&Vpl; 8], eye: Vec3, delta: f32) -> Self {
-        let f = Fields::of(group, eye);
-        let [relative, raw_normal, raw_omega, flux, fa, fb] = &f.vectors;
-        let (relative, raw_normal, raw_omega) = (
-            load_all(relative),
-            load_all(raw_normal),
-            load_all(raw_omega),
-        );
-        let (flux, fa, fb): ([L; 3], [L; 3], [L; 3]) = (load_all(flux), load_all(fa), load_all(fb));
-        let (alpha, xi) = (L::load(&f.alpha), L::load(&f.xi));
-        let (glossy, kind) = (L::load_mask(&f.glossy), L::load_mask(&f.kind));
-        let plain = kind
-            & Self::plain(
-                glossy,
-                [relative, raw_normal, raw_omega, flux, fa],
-                alpha,
-                xi,
-            );
-        let (zero, one) = (L::splat(0.0), L::splat(1.0));
-        let (n, wi) = (normalize(raw_normal), normalize(raw_omega));
-        let cos_i = dot(n, wi);
-        let sin_i = {
-            let c = cross(n, wi);
-            dot(c, c).sqrt()
-        };
-        // F_max at θh_max (supplemental eq. 2): cos θh_max = cos θi / sqrt(2 (1 + sin θi)).
-        let cos_h = clamp01(cos_i) / (L::splat(2.0) * (one + clamp01(sin_i))).sqrt();
-        let t = one - clamp01(cos_h);
-        let t2 = t * t;
-        let m = t2 * t2 * t;
-        let peak: L = max(
-            max(flux[0] * (fa[0] + fb[0] * m), flux[1] * (fa[1] + fb[1] * m)),
-            flux[2] * (fa[2] + fb[2] * m),
-        );
-        // Glossy: r² = Φ F_max G1(ωi) / (4π δ ξ cos θi) (eq. 12), G1/cos in closed form;
-        // diffuse: the peak range² = Φ kd / (π δ ξ) (section 6).
-        let alpha_sq = alpha * alpha;
-        let c = max(cos_i, -cos_i);
-        let g1_over_cos = L::splat(2.0) / (c + ((one - alpha_sq) * c * c + alpha_sq).sqrt());
-        let factor = L::select(glossy, g1_over_cos * L::splat(0.25), one);
-        let pi_delta = L::splat(core::f32::consts::PI * delta);
-        let r = L::sqrt(peak * factor / (pi_delta * xi)) * L::splat(1.0 + LANE_SLACK);
-        // Nothing reflected: ωi·n <= 0 as the shader forms it (reach::reflects_nothing), or no
-        // flux.
-        let empty = !(dot(raw_normal, raw_omega).gt(zero) & peak.gt(zero));
-        let left = !plain | (!empty & !(r.gt(L::splat(RADII[0])) & r.le(L::splat(RADII[1]))));
-        // Glossy: the spheroid along ω_u = normalize(2 cos θi n − ωi), semi-axes
-        // ((1 + α²)/(2α) r, r, r), centre q + (1 − α²)/(2α) r ω_u (eq. 13-15).
-        let two_cos = L::splat(2.0) * cos_i;
-        let reflected = normalize([
-            two_cos * n[0] - wi[0],
-            two_cos * n[1] - wi[1],
-            two_cos * n[2] - wi[2],
-        ]);
-        let half_over_alpha = L::splat(0.5) / alpha;
-        let along_glossy = (one + alpha_sq) * half_over_alpha * r;
-        let offset_glossy = (one - alpha_sq) * half_over_alpha * r;
-        // Diffuse (Sphere::diffuse): centre q + r (1/27)^(1/4) n, radius r (4/27)^(1/4).
-        let (offset_diffuse, radius_diffuse) = (
-            r * L::splat((1.0f32 / 27.0).powf(0.25)),
-            r * L::splat((4.0f32 / 27.0).powf(0.25)),
-        );
-        let grown = L::splat((1.0 + BOUND_SLACK) as f32);
-        let along = L::select(glossy, along_glossy, radius_diffuse) * grown;
-        let across = L::select(glossy, r, radius_diffuse) * grown;
-        let length = L::select(glossy, offset_glossy, offset_diffuse);
-        let axis = [
-            L::select(glossy, reflected[0], n[0]),
-            L::select(glossy, reflected[1], n[1]),
-            L::select(glossy, reflected[2], n[2]),
-        ];
-        let offset = [axis[0] * length, axis[1] * length, axis[2] * length];
-        let center = [
-            relative[0] + offset[0],
-            relative[1] + offset[1],
-            relative[2] + offset[2],
-        ];
-        let size = dot(relative, relative).sqrt() + length + along;
-        Self {
-            bound: Bound {
-                center,
-                axis,
-                along,
-                across,
-                size,
-            },
-            offset,
-            empty,
-            left,
-        }
-    }
-
-    /// Where a VPL of a [`lane_kind`] is plain: every input in the domain slc-bounds accepts
-    /// (`[q − eye, n, ωi, Φ, F0 or kd]` finite, n unit, Φ non-negative, ξ in (0, 1) and
-    /// normal), and for a glossy VPL ωi unit, α in [[`MIN_ALPHA`], 1] and F0 in [0, 1], for a
-    /// diffuse one kd non-negative with Φ kd far from f32's overflow. Each comparison fails
-    /// on NaN, and each limit lies inside slc-bounds' own, so a VPL it refuses is never
-    /// plain; the others go through it, which bounds them or names what is wrong.
-    #[inline(always)]
-    fn plain(glossy: L::Mask, vectors: [[L; 3]; 5], alpha: L, xi: L) -> L::Mask {
-        let [relative, normal, omega, flux, fa] = vectors;
-        let (zero, one, big) = (L::splat(0.0), L::splat(1.0), L::splat(f32::MAX));
-        let finite = all3(within(relative, -big, big)) & all3(within(omega, -big, big));
-        let unit_sq = (
-            L::splat(1.0 - UNIT_SQ_TOLERANCE),
-            L::splat(1.0 + UNIT_SQ_TOLERANCE),
-        );
-        let common = finite
-            & within1(dot(normal, normal), unit_sq.0, unit_sq.1)
-            & all3(within(flux, zero, big))
-            & xi.gt(L::splat(f32::MIN_POSITIVE))
-            & one.gt(xi);
-        let lobe_glossy = within1(dot(omega, omega), unit_sq.0, unit_sq.1)
-            & within1(alpha, L::splat(MIN_ALPHA), one)
-            & all3(within(fa, zero, one));
-        let reflected = [flux[0] * fa[0], flux[1] * fa[1], flux[2] * fa[2]];
-        let lobe_diffuse =
-            all3(within(fa, zero, big)) & all3(within(reflected, zero, L::splat(1e38)));
-        common & ((glossy & lobe_glossy) | (!glossy & lobe_diffuse))
-    }
-}
-
-/// What the lanes model of a VPL's kind: its shading normal its geometric one, isotropic,
-/// and glossy with Schlick's Fresnel factor or diffuse.
-#[inline(always)]
-fn lane_kind(vpl: &Vpl) -> bool {
-    vpl.normal == vpl.geometric_normal
-        && vpl.brdf.anisotropy.is_none()
-        && !matches!(
-            (vpl.lobe, vpl.brdf.fresnel),
-            (VplLobe::Glossy, Fresnel::Dielectric(_))
-        )
-}
-
-/// Where `lo <= v <= hi` (false for NaN).
-#[inline(always)]
-fn within1<L: Real>(v: L, lo: L, hi: L) -> L::Mask {
-    !lo.gt(v) & v.le(hi)
-}
-
-/// [`within1`] per component.
-#[inline(always)]
-fn within<L: Real>(v: [L; 3], lo: L, hi: L) -> [L::Mask; 3] {
-    [
-        within1(v[0], lo, hi),
-        within1(v[1], lo, hi),
-        within1(v[2], lo, hi),
-    ]
-}
-
-/// Where all three hold.
-#[inline(always)]
-fn all3<M: core::ops::BitAnd<Output = M> + Copy>(m: [M; 3]) -> M {
-    m[0] & m[1] & m[2]
-}
-
-/// Eight VPLs' fields as lanes, each VPL read once: `[q − eye, n, ωi, Φ, a, b]` with
-/// F(c) = a + b (1 − c)⁵ per channel (Schlick: (F0, 1 − F0); diffuse: (kd, 0)), α, ξ, and
-/// the flags glossy and [`lane_kind`].
-struct Fields {
-    vectors: [[F8; 3]; 6],
-    alpha: F8,
-    xi: F8,
-    glossy: M8,
-    kind: M8,
-}
-
-impl Fields {
-    /// The transposition of `group` (a plain loop: no closure, which in the AVX2 kernel
-    /// would be a call per field and VPL).
-    #[inline(always)]
-    fn of(group: &[&Vpl; 8], eye: Vec3) -> Self {
-        let mut f = Self {
-            vectors: [[F8([0.0; 8]); 3]; 6],
-            alpha: F8([0.0; 8]),
-            xi: F8([0.0; 8]),
-            glossy: M8([0; 8]),
-            kind: M8([0; 8]),
-        };
-        for (k, v) in group.iter().enumerate() {
-            let (a, b) = fresnel(v);
-            let vectors = [v.position - eye, v.normal, v.omega_i, v.flux, a, b];
-            for (lanes, value) in f.vectors.iter_mut().zip(vectors) {
-                for (c, lane) in lanes.iter_mut().enumerate() {
-                    lane.0[k] = value[c];
-                }
-            }
-            f.alpha.0[k] = v.brdf.alpha;
-            f.xi.0[k] = v.xi;
-            f.glossy.0[k] = u32::from(v.lobe == VplLobe::Glossy).wrapping_neg();
-            f.kind.0[k] = u32::from(lane_kind(v)).wrapping_neg();
-        }
-        f
-    }
-}
-
-/// `v` over its length (`check::unit`'s renormalisation).
-#[inline(always)]
-fn normalize<L: Real>(v: [L; 3]) -> [L; 3] {
-    let len = dot(v, v).sqrt();
-    [v[0] / len, v[1] / len, v[2] / len]
-}
-
-/// A plain VPL's F(c) = a + b (1 − c)⁵ per channel as (a, b): Schlick's (F0, 1 − F0) for a
-/// glossy VPL, (kd, 0) for a diffuse one (Φ kd is its reflected flux).
-#[inline(always)]
-fn fresnel(vpl: &Vpl) -> (Vec3, Vec3) {
-    match (vpl.lobe, vpl.brdf.fresnel) {
-        (VplLobe::Glossy, Fresnel::Schlick(f0)) => (f0, Vec3::ONE - f0),
-        _ => (vpl.brdf.kd, Vec3::ZERO),
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::test_rng::Rng;
+    use crate::test_rng::{random_vpl, Rng};
     use crate::view::CullView;
     use crate::vpl_bounds::LocalBound;
-    use slc_bounds::{Brdf, StochasticParams};
-    use slc_core::{Camera, Interleaving};
-
-    fn random_vpl(rng: &mut Rng, id: u32) -> Vpl {
-        let unit = |rng: &mut Rng| loop {
-            let v = Vec3::new(
-                rng.range(-1.0, 1.0),
-                rng.range(-1.0, 1.0),
-                rng.range(-1.0, 1.0),
-            );
-            if v.length_squared() > 1e-3 && v.length_squared() <= 1.0 {
-                break v.normalize();
-            }
-        };
-        let normal = unit(rng);
-        let mut omega_i = unit(rng);
-        if omega_i.dot(normal) < 0.0 && rng.f32() < 0.9 {
-            omega_i = -omega_i;
-        }
-        Vpl {
-            position: Vec3::new(
-                rng.range(-5.0, 5.0),
-                rng.range(-5.0, 5.0),
-                rng.range(-20.0, 2.0),
-            ),
-            normal,
-            geometric_normal: normal,
-            omega_i,
-            flux: Vec3::new(rng.f32(), rng.f32(), rng.f32()) * 10f32.powf(rng.range(-6.0, 6.0)),
-            brdf: Brdf {
-                kd: Vec3::new(rng.f32(), rng.f32(), rng.f32()),
-                fresnel: Fresnel::Schlick(Vec3::new(rng.f32(), rng.f32(), rng.f32())),
-                alpha: 10f32.powf(rng.range(-2.0, 0.0)),
-                anisotropy: None,
-            },
-            lobe: if rng.f32() < 0.7 {
-                VplLobe::Glossy
-            } else {
-                VplLobe::Diffuse
-            },
-            id,
-            xi: if rng.f32() < 0.2 {
-                [1e-6, 1.0 - 1e-6][rng.f32().round() as usize]
-            } else {
-                rng.range(1e-4, 1.0)
-            },
-        }
-    }
+    use glam::Vec3;
+    use slc_bounds::{Brdf, Fresnel, StochasticParams};
+    use slc_core::{Camera, Interleaving, VplLobe};
 
     /// The lanes bound plain VPLs (δ from 1e-9 to 1e3, flux from 1e-6 to 1e6, α from 0.01
     /// to 1, ξ near 0 and 1) at least as far as slc-bounds does: every point of slc-bounds'

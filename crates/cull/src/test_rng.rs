@@ -1,4 +1,7 @@
-//! The deterministic generator of the unit tests (xorshift64*).
+//! The deterministic generator of the unit tests (xorshift64*), and random VPLs from it.
+use glam::Vec3;
+use slc_bounds::{Brdf, Fresnel};
+use slc_core::{Vpl, VplLobe};
 
 pub(crate) struct Rng(pub u64);
 
@@ -26,5 +29,53 @@ impl Rng {
 
     pub(crate) fn range64(&mut self, a: f64, b: f64) -> f64 {
         a + (b - a) * self.f64()
+    }
+}
+
+/// A random VPL of either lobe: unit vectors, ωi mostly above the surface, flux from 1e-6 to
+/// 1e6, α from 0.01 to 1, ξ near 0 or 1 one time in five.
+pub(crate) fn random_vpl(rng: &mut Rng, id: u32) -> Vpl {
+    let unit = |rng: &mut Rng| loop {
+        let v = Vec3::new(
+            rng.range(-1.0, 1.0),
+            rng.range(-1.0, 1.0),
+            rng.range(-1.0, 1.0),
+        );
+        if v.length_squared() > 1e-3 && v.length_squared() <= 1.0 {
+            break v.normalize();
+        }
+    };
+    let normal = unit(rng);
+    let mut omega_i = unit(rng);
+    if omega_i.dot(normal) < 0.0 && rng.f32() < 0.9 {
+        omega_i = -omega_i;
+    }
+    Vpl {
+        position: Vec3::new(
+            rng.range(-5.0, 5.0),
+            rng.range(-5.0, 5.0),
+            rng.range(-20.0, 2.0),
+        ),
+        normal,
+        geometric_normal: normal,
+        omega_i,
+        flux: Vec3::new(rng.f32(), rng.f32(), rng.f32()) * 10f32.powf(rng.range(-6.0, 6.0)),
+        brdf: Brdf {
+            kd: Vec3::new(rng.f32(), rng.f32(), rng.f32()),
+            fresnel: Fresnel::Schlick(Vec3::new(rng.f32(), rng.f32(), rng.f32())),
+            alpha: 10f32.powf(rng.range(-2.0, 0.0)),
+            anisotropy: None,
+        },
+        lobe: if rng.f32() < 0.7 {
+            VplLobe::Glossy
+        } else {
+            VplLobe::Diffuse
+        },
+        id,
+        xi: if rng.f32() < 0.2 {
+            [1e-6, 1.0 - 1e-6][rng.f32().round() as usize]
+        } else {
+            rng.range(1e-4, 1.0)
+        },
     }
 }
