@@ -37,7 +37,10 @@ fn input_k2<'a>(
 /// Each name runs its own strategy: the GPU's lists by name equal the CPU strategy's of the
 /// same name but for a few entries decided within rounding (classified in `tiled.rs` and
 /// `clustered.rs`; the tight ones, whose bound the GPU forms in f32 with wider slacks, within
-/// 1%: `tight.rs`); every other strategy's lists differ in hundreds of entries or more.
+/// 1%: `tight.rs`); every other strategy's lists differ in hundreds of entries or more. The
+/// CPU forms most bounds in f32 lanes grown by 1e-5 (`slc_cull`'s `vpl_lanes`), so it may
+/// list a few more pairs at a bound's edge (26 of 1.17 M for `clustered` here); the GPU
+/// lists at most ten the CPU does not.
 #[test]
 fn every_strategy_by_name_matches_the_cpu_strategy_of_that_name() {
     let Some(ctx) = gpu() else { return };
@@ -72,14 +75,23 @@ fn every_strategy_by_name_matches_the_cpu_strategy_of_that_name() {
                 .sum()
         };
         let own = differing(&cpu[i]);
+        let gpu_only: usize = (0..gpu.pixel_list.len())
+            .map(|p| {
+                let cpu = cpu[i].for_pixel(p);
+                gpu.for_pixel(p).iter().filter(|v| !cpu.contains(v)).count()
+            })
+            .sum();
         let entries: usize = (0..gbuffer.samples.len())
             .map(|p| cpu[i].for_pixel(p).len())
             .sum();
-        eprintln!("{name}: {entries} pixel-VPL pairs on the CPU, {own} differing");
+        eprintln!("{name}: {entries} pixel-VPL pairs on the CPU, {own} differing, {gpu_only} on the GPU only");
         if name.parts().1 == GlossyBound::Tight {
             assert!(own * 100 <= entries, "{name}: {own}");
         } else {
-            assert!(own <= 10 && own * 10_000 <= entries, "{name}: {own}");
+            assert!(
+                gpu_only <= 10 && own * 10_000 <= entries,
+                "{name}: {own}, {gpu_only}"
+            );
         }
         for (j, other) in strategies.iter().enumerate().filter(|&(j, _)| j != i) {
             let d = differing(&cpu[j]);
