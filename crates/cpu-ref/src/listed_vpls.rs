@@ -8,8 +8,9 @@ use std::sync::atomic::{AtomicU32, Ordering};
 /// A listed VPL's early exits include its bounds (`VplReach::new`) where the lists that hold
 /// it cover at least this many pixels (each list counted with the pixels whose own or shared
 /// list it is, and at least once), else only its sign tests and roulette
-/// (`VplReach::without_bounds`: about 155 ns a VPL on one thread against 222, measured on
-/// Sponza's VPLs at RSM 1024). With a million VPLs most of `binned`'s listed VPLs reach only
+/// (`VplReach::without_bounds`: about 52 ns a VPL on one thread against 192, measured on
+/// Sponza's VPLs at RSM 1024; 155 against 222 when the limit was chosen, before the own
+/// bounds' lanes). With a million VPLs most of `binned`'s listed VPLs reach only
 /// a pixel or two (docs/many-vpls.md), while nearly every tile's or cluster's list covers
 /// more than this on its own. Of the limits tried in scratch runs on Sponza at 480x270
 /// (1, that is every VPL bounded, 32 and 255; at 6b6e493, where the VPLs without bounds

@@ -151,12 +151,13 @@ impl VplReach {
     }
 
     /// [`Self::new`] without the VPL's bounds: only the sign tests and the roulette, its own
-    /// bound and its bound over boxes passing everywhere. Forming the bound over boxes and
-    /// the stretch of its own bound costs about a third of [`Self::new`] (155 against 222 ns
-    /// a VPL on one thread, Sponza's VPLs at RSM 1024, before the own bounds' lanes), which
-    /// a VPL listed at a few pixels does not earn back. The same errors: its own bound is
-    /// still formed (not kept), so a lobe outside slc-bounds' domain or a range beyond f32
-    /// is refused as by [`Self::new`].
+    /// bound and its bound over boxes passing everywhere. Forming the bound over boxes (with
+    /// the glossy lobe it needs) and the stretch of its own bound costs most of
+    /// [`Self::new`] (52 against 192 ns a VPL on one thread, [`ListedReach::form`] of 200k
+    /// of Sponza's VPLs at RSM 1024), which a VPL listed at a few pixels does not earn back.
+    /// The same errors: its own bound is still formed (not kept), by the lanes or by
+    /// slc-bounds, so a lobe outside slc-bounds' domain or a range beyond f32 is refused as
+    /// by [`Self::new`].
     pub fn without_bounds(vpl: &Vpl, params: &StochasticParams) -> Result<Self, CullError> {
         Self::one(vpl, params, false)
     }
