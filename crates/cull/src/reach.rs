@@ -489,7 +489,7 @@ pub(crate) fn reflects_nothing(vpl: &Vpl) -> bool {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::test_rng::{random_vpl, Rng};
+    use crate::test_rng::{point_of, random_vpl, Rng};
 
     /// The lanes' own bounds keep every pair slc-bounds' own bounds keep: over random VPLs of
     /// both lobes (δ from 1e-9 to 1e3, flux from 1e-6 to 1e6, α from 0.01 to 1, ξ near 0 and
@@ -532,26 +532,9 @@ mod tests {
                     ),
                     "case {case}, lane {k}"
                 );
-                let (center, rotation, semi) =
-                    match LocalBound::new(vpl, params, GlossyBound::Ellipsoid).unwrap() {
-                        LocalBound::Sphere { center, radius_sq } => {
-                            (center, DMat3::IDENTITY, DVec3::splat(radius_sq.sqrt()))
-                        }
-                        LocalBound::Spheroid {
-                            center,
-                            rotation,
-                            semi_axes,
-                        } => (center, rotation.as_dmat3(), semi_axes.as_dvec3()),
-                        LocalBound::Empty => unreachable!("the lanes bound it: r > 1e-12"),
-                    };
+                let local = LocalBound::new(vpl, params, GlossyBound::Ellipsoid).unwrap();
                 for _ in 0..40 {
-                    let u = DVec3::new(
-                        rng.range64(-1.0, 1.0),
-                        rng.range64(-1.0, 1.0),
-                        rng.range64(-1.0, 1.0),
-                    );
-                    let Some(u) = u.try_normalize() else { continue };
-                    let d = center + rotation * (semi * u * rng.range64(0.98, 1.02));
+                    let d = point_of(&local, &mut rng, [0.98, 1.02]);
                     let d = d.as_vec3().to_array();
                     if scalar.reach.may_accept(d) {
                         points += 1;

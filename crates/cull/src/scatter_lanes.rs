@@ -145,7 +145,7 @@ fn scatter_in<L: Lanes8>(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::test_rng::{random_vpl, Rng};
+    use crate::test_rng::{point_of, random_vpl, Rng};
     use crate::view::CullView;
     use crate::vpl_bounds::LocalBound;
     use glam::Vec3;
@@ -190,27 +190,8 @@ mod tests {
                 );
                 let params = StochasticParams::new(delta, vpl.xi).unwrap();
                 let local = LocalBound::new(vpl, &params, crate::GlossyBound::Ellipsoid).unwrap();
-                let (center, rotation, semi) = match local {
-                    LocalBound::Sphere { center, radius_sq } => (
-                        center,
-                        glam::DMat3::IDENTITY,
-                        glam::DVec3::splat(radius_sq.sqrt()),
-                    ),
-                    LocalBound::Spheroid {
-                        center,
-                        rotation,
-                        semi_axes,
-                    } => (center, rotation.as_dmat3(), semi_axes.as_dvec3()),
-                    LocalBound::Empty => unreachable!("placed"),
-                };
                 for _ in 0..40 {
-                    let u = glam::DVec3::new(
-                        rng.range64(-1.0, 1.0),
-                        rng.range64(-1.0, 1.0),
-                        rng.range64(-1.0, 1.0),
-                    );
-                    let Some(u) = u.try_normalize() else { continue };
-                    let d = center + rotation * (semi * u * rng.range64(0.99, 1.0));
+                    let d = point_of(&local, &mut rng, [0.99, 1.0]);
                     let x = (vpl.position.as_dvec3() + d).as_vec3();
                     if s.test.contains(x) {
                         points += 1;

@@ -1,5 +1,6 @@
 //! The deterministic generator of the unit tests (xorshift64*), and random VPLs from it.
-use glam::Vec3;
+use crate::vpl_bounds::LocalBound;
+use glam::{DMat3, DVec3, Vec3};
 use slc_bounds::{Brdf, Fresnel};
 use slc_core::{Vpl, VplLobe};
 
@@ -78,4 +79,31 @@ pub(crate) fn random_vpl(rng: &mut Rng, id: u32) -> Vpl {
             rng.range(1e-4, 1.0)
         },
     }
+}
+
+/// A random point of a non-empty `bound` relative to q: its centre plus a random direction's
+/// point of its surface times a scale drawn from `scale`.
+pub(crate) fn point_of(bound: &LocalBound, rng: &mut Rng, scale: [f64; 2]) -> DVec3 {
+    let (center, rotation, semi) = match *bound {
+        LocalBound::Sphere { center, radius_sq } => {
+            (center, DMat3::IDENTITY, DVec3::splat(radius_sq.sqrt()))
+        }
+        LocalBound::Spheroid {
+            center,
+            rotation,
+            semi_axes,
+        } => (center, rotation.as_dmat3(), semi_axes.as_dvec3()),
+        LocalBound::Empty => panic!("an empty bound has no points"),
+    };
+    let u = loop {
+        let u = DVec3::new(
+            rng.range64(-1.0, 1.0),
+            rng.range64(-1.0, 1.0),
+            rng.range64(-1.0, 1.0),
+        );
+        if let Some(u) = u.try_normalize() {
+            break u;
+        }
+    };
+    center + rotation * (semi * u * rng.range64(scale[0], scale[1]))
 }
