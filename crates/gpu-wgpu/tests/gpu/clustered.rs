@@ -4,8 +4,9 @@
 //! A differing entry is reported with its pixel, subregion, tile, depth slice and VPL.
 //!
 //! Two kinds of difference are tolerated, both where f32 and f64 may decide differently, and
-//! reported: an entry whose CPU f64 bound lies within `BORDER` of its cluster frustum's box
-//! (the rule of `tiled.rs`), and the entries of a tile where a sample's slice key
+//! reported: an entry whose CPU f64 bound lies within `BORDER` of its cluster frustum's box,
+//! or on the CPU only within `LANE_GROWTH` more (the rules of `tiled.rs`), and the entries
+//! of a tile where a sample's slice key
 //! t = ln(z / near) 32 / ln(far / near) lies within [`SLICE_BORDER`] of a slice boundary
 //! and the GPU put it in the neighbouring slice. Every pixel's slice is compared with the
 //! CPU's; any other slice difference fails.
