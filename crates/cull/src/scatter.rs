@@ -153,7 +153,7 @@ impl Screen {
     /// nothing, lies nearer than every sample or outside the image). Errors on a VPL outside
     /// the domain of slc-bounds, as every bound-based strategy does. The bound is slc-bounds'
     /// own (`LocalBound`): this is the path of every VPL the lanes do not take
-    /// (`crate::scatter_lanes::plain`).
+    /// (`crate::vpl_lanes`).
     pub(crate) fn scatter(
         &self,
         vpl: &Vpl,

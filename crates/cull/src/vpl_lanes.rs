@@ -1,7 +1,8 @@
 //! Eight VPLs' own bounds at a time in f32 lanes: for the plain ones the radius r of eq. (12)
 //! and the spheroid of eq. (13)-(15) of a glossy VPL, the sphere of section 6 of a diffuse
-//! one, formed with slc-bounds' own operations (`GlossyLobe::radius`, `Spheroid::new`,
-//! `Sphere::diffuse`) in lanes, grown by `BOUND_SLACK` as every strategy grows them. The
+//! one, formed as slc-bounds forms them (`GlossyLobe::radius`, `Spheroid::new`,
+//! `Sphere::diffuse`: the same formulas, G1/cos its own `g1_over_cos_lanes`) in lanes, grown
+//! by `BOUND_SLACK` as every strategy grows them. The
 //! others go through slc-bounds one at a time, which bounds them or names what is wrong.
 //! `binned`'s scatter ([`crate::scatter_lanes`]) maps these bounds to pixels, and the
 //! shading's early exits ([`crate::VplReach`]) test receivers against them: at a million
@@ -16,6 +17,7 @@
 use crate::reach::reflects_nothing;
 use crate::vpl_bounds::BOUND_SLACK;
 use glam::{DVec3, Vec3};
+use slc_bounds::ggx::g1_over_cos_lanes;
 use slc_bounds::lanes::{clamp01, cross, dot, load_all, max, store_all, Lanes8, Real, F8, M8};
 use slc_bounds::Fresnel;
 use slc_core::{Vpl, VplLobe};
@@ -92,8 +94,7 @@ impl<L: Lanes8> OwnBounds<L> {
         // Glossy: r² = Φ F_max G1(ωi) / (4π δ ξ cos θi) (eq. 12), G1/cos in closed form;
         // diffuse: the peak range² = Φ kd / (π δ ξ) (section 6).
         let alpha_sq = alpha * alpha;
-        let c = max(cos_i, -cos_i);
-        let g1_over_cos = L::splat(2.0) / (c + ((one - alpha_sq) * c * c + alpha_sq).sqrt());
+        let g1_over_cos = g1_over_cos_lanes(alpha_sq, max(cos_i, -cos_i));
         let factor = L::select(glossy, g1_over_cos * L::splat(0.25), one);
         let pi_delta = L::splat(core::f32::consts::PI) * delta;
         let r = L::sqrt(peak * factor / (pi_delta * xi)) * L::splat(1.0 + LANE_SLACK);
@@ -213,13 +214,15 @@ impl StoredBounds {
 }
 
 /// The own bounds of `vpls` (one to eight), VPL k under the roulette of δ and ξ
-/// `delta_xi(k)`, and the lanes that formed one (bit k: `vpls[k]`, plain and reflecting
-/// something with a radius in [`RADII`]). The others are left to slc-bounds. Any δ will do:
-/// one outside slc-bounds' domain gives a radius outside [`RADII`].
+/// `delta_xi(k)`, and the lanes that formed one (bit k: `vpls[k]`, plain, reflecting
+/// something by [`reflects_nothing`] and the lanes, with a radius in [`RADII`]). The others
+/// are left to slc-bounds. δ must lie in slc-bounds' domain (normal and positive: the callers
+/// check it); the lanes check each ξ.
 pub(crate) fn own_bounds(
     vpls: &[&Vpl],
     delta_xi: impl Fn(usize) -> (f32, f32),
 ) -> (u8, StoredBounds) {
+    debug_assert!((1..=8).contains(&vpls.len()), "{} VPLs", vpls.len());
     let last = vpls.len() - 1;
     let group: [&Vpl; 8] = core::array::from_fn(|k| vpls[k.min(last)]);
     let roulette: [(f32, f32); 8] = core::array::from_fn(|k| delta_xi(k.min(last)));

@@ -46,7 +46,9 @@ const BORDER: f64 = 1e-6;
 /// How much farther a CPU bound may reach than the reference, relative to the same scale:
 /// the CPU forms the plain VPLs' bounds in f32 lanes grown by 1e-5 over slc-bounds' own
 /// (`slc_cull`'s `vpl_lanes`), so it may list a VPL whose reference bound misses the
-/// cluster by up to that much (the scale is at least the bound's size).
+/// cluster by up to that much. The scale is at least the bound's size wherever the eye and
+/// the world's origin lie outside the bound's reach of the VPL, as in these frames (else
+/// such an entry would be reported as a real difference: a false alarm, never a miss).
 const LANE_GROWTH: f64 = 1e-5;
 
 /// The CPU's f64 tile (`crates/cull/src/tiled.rs` gather, `frusta.rs` set with
