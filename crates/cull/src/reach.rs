@@ -493,8 +493,8 @@ mod tests {
     use crate::test_rng::{point_of, random_vpl, Rng};
 
     /// The lanes' own bounds keep every pair slc-bounds' own bounds keep: over random VPLs of
-    /// both lobes (δ from 1e-9 to 1e3, flux from 1e-6 to 1e6, α from 0.01 to 1, ξ near 0 and
-    /// 1), every offset on the surface of slc-bounds' bound (its `LocalBound`, grown by
+    /// both lobes (δ from 1e-9 to 1e3, flux from 1e-6 to 1e6, α from 0.01 to 1 and in half
+    /// the groups from 0.01 to 0.012, ξ near 0 and 1), every offset on the surface of slc-bounds' bound (its `LocalBound`, grown by
     /// `BOUND_SLACK`) that exits formed with it pass, exits formed with the lanes' bound pass
     /// too (a shortfall of 2e-5 fails); the rest of the exits (the normal, the roulette, the
     /// bound over boxes) is the same, and without bounds the exits are the same whichever
@@ -505,7 +505,17 @@ mod tests {
         let (mut formed, mut points) = (0, 0);
         for case in 0..2000 {
             let delta = 10f32.powf(rng.range(-9.0, 3.0));
-            let vpls: Vec<Vpl> = (0..8).map(|k| random_vpl(&mut rng, case * 8 + k)).collect();
+            // Every other group at the sharpest lobes the lanes take (α 0.01 to 0.012), where
+            // the axis's rounding, drawn out by the elongation, leaves the least margin.
+            let vpls: Vec<Vpl> = (0..8)
+                .map(|k| {
+                    let mut v = random_vpl(&mut rng, case * 8 + k);
+                    if case % 2 == 0 {
+                        v.brdf.alpha = rng.range(0.01, 0.012);
+                    }
+                    v
+                })
+                .collect();
             let group: Vec<&Vpl> = vpls.iter().collect();
             let roulette: Vec<StochasticParams> = vpls
                 .iter()
