@@ -492,13 +492,13 @@ mod tests {
     use super::*;
     use crate::test_rng::{point_of, random_vpl, Rng};
 
-    /// The lanes' own bounds keep every pair slc-bounds' own bounds keep: over random VPLs of
-    /// both lobes (δ from 1e-9 to 1e3, flux from 1e-6 to 1e6, α from 0.01 to 1 and in half
-    /// the groups from 0.01 to 0.012, ξ near 0 and 1), every offset on the surface of slc-bounds' bound (its `LocalBound`, grown by
-    /// `BOUND_SLACK`) that exits formed with it pass, exits formed with the lanes' bound pass
-    /// too (a shortfall of 2e-5 fails); the rest of the exits (the normal, the roulette, the
-    /// bound over boxes) is the same, and without bounds the exits are the same whichever
-    /// formed the own bound.
+    /// The lanes' own bounds keep every pair slc-bounds' own bounds keep: over random VPLs of both
+    /// lobes (δ from 1e-9 to 1e3, flux from 1e-6 to 1e6, α from 0.01 to 1 and in half the groups
+    /// from 0.01 to 0.012, ξ near 0 and 1), every offset on the surface of slc-bounds' bound (its
+    /// `LocalBound`, grown by `BOUND_SLACK`) that exits formed with it pass, exits formed with the
+    /// lanes' bound pass too (a shortfall of 2e-5 fails); the rest of the exits (the normal, the
+    /// roulette, the bound over boxes) is the same, and without bounds the exits are the same
+    /// whichever formed the own bound.
     #[test]
     fn lane_bounds_keep_every_pair_of_slc_bounds() {
         let mut rng = Rng(0x5EED_0E81);

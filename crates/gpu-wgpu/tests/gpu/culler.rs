@@ -84,7 +84,7 @@ fn every_strategy_by_name_matches_the_cpu_strategy_of_that_name() {
         let entries: usize = (0..gbuffer.samples.len())
             .map(|p| cpu[i].for_pixel(p).len())
             .sum();
-        eprintln!("{name}: {entries} pixel-VPL pairs on the CPU, {own} differing, {gpu_only} on the GPU only");
+        eprintln!("{name}: {entries} pairs on the CPU, {own} differing, {gpu_only} GPU-only");
         if name.parts().1 == GlossyBound::Tight {
             assert!(own * 100 <= entries, "{name}: {own}");
         } else {
