@@ -11,7 +11,7 @@ use crate::vpl_lanes::{own_bounds, LaneBound};
 use glam::{DMat3, DVec3, Vec3};
 use rayon::prelude::*;
 use slc_bounds::lanes::{dot, load_all, splat_all, Lanes8, Real, F8};
-use slc_bounds::{BoxBound, BoxBoundLanes, GlossyLobe, StochasticParams};
+use slc_bounds::{BoxBound, BoxBoundLanes, StochasticParams};
 use slc_core::{CullError, Vpl, VplLobe};
 
 /// Relative margin of the sign tests: a pair is rejected only when the cosine at one end,
@@ -198,45 +198,31 @@ impl VplReach {
         out: &mut Self,
     ) -> Result<(), CullError> {
         let dark = reflects_nothing(vpl);
-        // The bound over boxes of receivers at the VPL (where asked for), and its own bound
-        // (from the lanes, or with the glossy lobe built once for both); none for a VPL that
-        // reflects nothing.
-        let box_bound = |lobe: Option<&GlossyLobe>| -> Result<BoxBoundLanes<f32>, CullError> {
-            Ok(match (bounds, lobe) {
-                (false, _) => BoxBoundLanes::ALWAYS,
-                (true, Some(lobe)) => BoxBound::glossy(lobe, params).to_f32(vpl.position),
-                (true, None) => lobe_box_bound(vpl, params)?.to_f32(vpl.position),
-            })
+        // The glossy lobe, built once, where slc-bounds' own bound or the bound over boxes of
+        // receivers needs it.
+        let lobe = match (dark, vpl.lobe) {
+            (false, VplLobe::Glossy) if bounds || own.is_none() => Some(vpl.glossy_lobe()?),
+            _ => None,
         };
-        let (local, box_bound) = match (dark, own, vpl.lobe) {
-            (true, _, _) => (None, BoxBoundLanes::ALWAYS),
-            (false, Some(own), VplLobe::Diffuse) => (Some(Own::Lanes(own)), box_bound(None)?),
-            (false, Some(own), VplLobe::Glossy) => (
-                Some(Own::Lanes(own)),
-                match bounds {
-                    true => box_bound(Some(&vpl.glossy_lobe()?))?,
-                    false => BoxBoundLanes::ALWAYS,
-                },
-            ),
-            (false, None, VplLobe::Diffuse) => (
-                Some(Own::Local(LocalBound::new(
-                    vpl,
-                    params,
-                    GlossyBound::Ellipsoid,
-                )?)),
-                box_bound(None)?,
-            ),
-            (false, None, VplLobe::Glossy) => {
-                let lobe = vpl.glossy_lobe()?;
-                (
-                    Some(Own::Local(LocalBound::glossy(
-                        &lobe,
-                        params,
-                        GlossyBound::Ellipsoid,
-                    )?)),
-                    box_bound(Some(&lobe))?,
-                )
-            }
+        // Its own bound: the lanes', or slc-bounds'; none for a VPL that reflects nothing.
+        let local = match (dark, own, &lobe) {
+            (true, _, _) => None,
+            (false, Some(own), _) => Some(Own::Lanes(own)),
+            (false, None, Some(lobe)) => Some(Own::Local(LocalBound::glossy(
+                lobe,
+                params,
+                GlossyBound::Ellipsoid,
+            )?)),
+            (false, None, None) => Some(Own::Local(LocalBound::new(
+                vpl,
+                params,
+                GlossyBound::Ellipsoid,
+            )?)),
+        };
+        let box_bound = match (dark || !bounds, &lobe) {
+            (true, _) => BoxBoundLanes::ALWAYS,
+            (false, Some(lobe)) => BoxBound::glossy(lobe, params).to_f32(vpl.position),
+            (false, None) => lobe_box_bound(vpl, params)?.to_f32(vpl.position),
         };
         // Without bounds, a VPL that reflects something keeps only its sign tests.
         let (stretch, center, limit) = match (local, bounds) {
@@ -432,7 +418,6 @@ impl ListedReach {
         })?;
         // Eight listed VPLs at a time (their own bounds share lanes), in this table's memory.
         let roulette = &self.roulette;
-        self.reach.truncate(listed.len());
         self.reach.resize(listed.len(), VplReach::NONE);
         self.reach
             .par_chunks_mut(8)

@@ -185,8 +185,6 @@ impl VplBound {
         let last = vpls.len() - 1;
         let group: [&Vpl; 8] = core::array::from_fn(|k| &vpls[k.min(last)]);
         let (formed, bounds) = own_bounds(&group[..=last], |k| (delta, group[k].xi));
-        // The lanes take δ as valid: with another, every VPL meets `new`'s checks.
-        let formed = formed * u8::from(StochasticParams::new(delta, 0.5).is_ok());
         let spheroid = matches!(glossy, GlossyBound::Ellipsoid | GlossyBound::Tight);
         for (k, (vpl, out)) in vpls.iter().zip(out).enumerate() {
             let index = first + k as u32;
@@ -262,7 +260,6 @@ pub(crate) fn subregion_bounds(
     out: &mut Vec<SubregionBounds>,
 ) -> Result<(), CullError> {
     // Eight VPLs at a time (their own bounds share lanes), in `every`'s memory.
-    every.truncate(vpls.len());
     every.resize(vpls.len(), VplBound::Empty);
     every
         .par_chunks_mut(8)

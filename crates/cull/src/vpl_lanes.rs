@@ -19,7 +19,7 @@ use crate::vpl_bounds::BOUND_SLACK;
 use glam::{DVec3, Vec3};
 use slc_bounds::ggx::g1_over_cos_lanes;
 use slc_bounds::lanes::{clamp01, cross, dot, load_all, max, store_all, Lanes8, Real, F8, M8};
-use slc_bounds::Fresnel;
+use slc_bounds::{Fresnel, StochasticParams};
 use slc_core::{Vpl, VplLobe};
 
 /// The smallest α whose glossy VPLs the lanes bound.
@@ -214,10 +214,10 @@ impl StoredBounds {
 }
 
 /// The own bounds of `vpls` (one to eight), VPL k under the roulette of δ and ξ
-/// `delta_xi(k)`, and the lanes that formed one (bit k: `vpls[k]`, plain, reflecting
-/// something by [`reflects_nothing`] and the lanes, with a radius in [`RADII`]). The others
-/// are left to slc-bounds. δ must lie in slc-bounds' domain (normal and positive: the callers
-/// check it); the lanes check each ξ.
+/// `delta_xi(k)`, and the lanes that formed one (bit k: `vpls[k]`, plain under a roulette
+/// slc-bounds accepts, reflecting something by [`reflects_nothing`] and the lanes, with a
+/// radius in [`RADII`]). The others are left to slc-bounds, which bounds them or names what
+/// is wrong.
 pub(crate) fn own_bounds(
     vpls: &[&Vpl],
     delta_xi: impl Fn(usize) -> (f32, f32),
@@ -228,38 +228,35 @@ pub(crate) fn own_bounds(
     let roulette: [(f32, f32); 8] = core::array::from_fn(|k| delta_xi(k.min(last)));
     let delta = F8(roulette.map(|r| r.0));
     let xi = F8(roulette.map(|r| r.1));
+    // As slc-bounds' callers see them: the roulette in its domain (a subnormal δ would give
+    // the lanes a finite range), and `reflects_nothing`'s test.
+    let mut scalar = 0;
+    for (k, (vpl, (delta, xi))) in vpls.iter().zip(roulette).enumerate() {
+        let ok = StochasticParams::new(delta, xi).is_ok() && !reflects_nothing(vpl);
+        scalar |= u8::from(ok) << k;
+    }
     #[cfg(target_arch = "x86_64")]
     if std::arch::is_x86_feature_detected!("avx2") {
         // SAFETY: the CPU supports AVX2, checked just above.
-        return unsafe { own_bounds_avx2(&group, &delta, &xi, last) };
+        let (formed, bounds) = unsafe { own_bounds_avx2(&group, &delta, &xi) };
+        return (formed & scalar, bounds);
     }
-    own_bounds_in::<F8>(&group, &delta, &xi, last)
+    let (formed, bounds) = own_bounds_in::<F8>(&group, &delta, &xi);
+    (formed & scalar, bounds)
 }
 
 /// [`own_bounds_in`] in AVX registers.
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2")]
-fn own_bounds_avx2(group: &[&Vpl; 8], delta: &F8, xi: &F8, last: usize) -> (u8, StoredBounds) {
-    own_bounds_in::<slc_bounds::lanes_avx::A8>(group, delta, xi, last)
+fn own_bounds_avx2(group: &[&Vpl; 8], delta: &F8, xi: &F8) -> (u8, StoredBounds) {
+    own_bounds_in::<slc_bounds::lanes_avx::A8>(group, delta, xi)
 }
 
-/// [`own_bounds`] in lanes of `L`, of `group`'s first `last + 1` VPLs.
+/// [`own_bounds`] in lanes of `L`: the lanes the lanes bound, and the bounds.
 #[inline(always)]
-fn own_bounds_in<L: Lanes8>(
-    group: &[&Vpl; 8],
-    delta: &F8,
-    xi: &F8,
-    last: usize,
-) -> (u8, StoredBounds) {
+fn own_bounds_in<L: Lanes8>(group: &[&Vpl; 8], delta: &F8, xi: &F8) -> (u8, StoredBounds) {
     let bounds = OwnBounds::<L>::of(group, Vec3::ZERO, delta, xi);
-    let held = u8::MAX >> (7 - last);
-    // As slc-bounds' callers see it, a VPL reflects nothing by `reflects_nothing`'s test.
-    let mut dark = 0;
-    for (k, vpl) in group.iter().enumerate().take(last + 1) {
-        dark |= u8::from(reflects_nothing(vpl)) << k;
-    }
-    let formed = !L::bits(bounds.left | bounds.empty) & !dark & held;
-    (formed, bounds.store())
+    (!L::bits(bounds.left | bounds.empty), bounds.store())
 }
 
 /// What the lanes model of a VPL's kind: its shading normal its geometric one, isotropic,
