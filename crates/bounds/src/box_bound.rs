@@ -31,7 +31,10 @@ use crate::{DiffuseLobe, GlossyLobe};
 use core::f64::consts::FRAC_1_PI;
 use glam::{DMat3, DVec3, Vec3};
 
+mod eight;
 pub mod lanes;
+
+pub use eight::SchlickLobes;
 
 /// Added to sin β of the cone of directions: covers the f32 rounding of the shader's unit
 /// direction ωo (about 1e-7 rad) and half vector (at most about 1e-4 α rad where the shader
@@ -63,6 +66,22 @@ enum Lobe {
     },
 }
 
+/// What [`BoxBound::glossy`] takes from a glossy lobe, in f32 as the lobe forms it: its unit
+/// normal n, ωi and mirror direction ω_u, α (`GlossyLobe::alpha`) and the α whose G1 bounds
+/// G1(ωo) (none on a tilted shading normal), the flux times `GlossyLobe::bound_factor`, the
+/// Fresnel model, G1(ωi)/(ωi·n) and cos θh_max(ωi).
+struct GlossyParts {
+    normal: Vec3,
+    omega_i: Vec3,
+    reflection: Vec3,
+    alpha: f32,
+    g1_o_alpha: Option<f32>,
+    flux: Vec3,
+    fresnel: Fresnel,
+    g1_over_cos: f32,
+    cos_h_max: f32,
+}
+
 /// One VPL's bound of p over boxes of receivers, in the frame its vectors were given in
 /// ([`Self::rotated`] moves it to another, e.g. a culling view). Its directions are
 /// normalised in f64: a cosine near 1 must resolve 1 − cos of order α², far below the f32
@@ -83,30 +102,48 @@ impl BoxBound {
     /// The bound of a glossy VPL for the roulette `params`.
     pub fn glossy(lobe: &GlossyLobe, params: &StochasticParams) -> Self {
         let cos_i = lobe.cos_i();
-        let omega_i = lobe.omega_i().as_dvec3().normalize();
-        let normal = lobe.normal().as_dvec3().normalize();
-        let alpha = f64::from(lobe.alpha());
-        let g1_i = 0.25 * f64::from(ggx::g1_over_cos(lobe.alpha(), cos_i));
         // A tilted shading normal: the flux times `bound_factor`, and G1(ωo) bounded by 1
         // below (`g1_tilt_max` covers G1(ωo)(ωo·n_g)/(ωo·n) in the factor). An anisotropic
         // lobe: the isotropic one of its largest α with the flux times `bound_factor`, and
         // G1(ωo) bounded by the isotropic G1 of its smallest α (`crate::anisotropy`).
-        let flux = lobe.flux() * lobe.bound_factor();
+        Self::glossy_of(
+            &GlossyParts {
+                normal: lobe.normal(),
+                omega_i: lobe.omega_i(),
+                reflection: lobe.reflection(),
+                alpha: lobe.alpha(),
+                g1_o_alpha: (!lobe.is_tilted()).then(|| lobe.alpha_min()),
+                flux: lobe.flux() * lobe.bound_factor(),
+                fresnel: lobe.fresnel(),
+                g1_over_cos: ggx::g1_over_cos(lobe.alpha(), cos_i),
+                cos_h_max: cos_theta_h_max(cos_i, lobe.sin_i()),
+            },
+            params,
+        )
+    }
+
+    /// The glossy bound of `parts` (a lobe's f32 values, from [`Self::glossy`] or from
+    /// [`SchlickLobes::box_bounds`]): the directions normalised again in f64, and the largest
+    /// intensity scalar(Φ F_max(ωi)) G1(ωi)/(4 ωi·n) D(1) with F_max at θh_max
+    /// (supplemental eq. 2).
+    fn glossy_of(parts: &GlossyParts, params: &StochasticParams) -> Self {
+        let alpha = f64::from(parts.alpha);
+        let g1_i = 0.25 * f64::from(parts.g1_over_cos);
         let f_max = f64::from(scalar_intensity(
-            flux * lobe.fresnel().max_over_half_vectors(cos_i, lobe.sin_i()),
+            parts.flux * parts.fresnel.max_from(parts.cos_h_max),
         ));
         Self {
             lobe: Lobe::Glossy {
-                flux,
-                g1_o_alpha: (!lobe.is_tilted()).then(|| lobe.alpha_min()),
-                fresnel: lobe.fresnel(),
+                flux: parts.flux,
+                g1_o_alpha: parts.g1_o_alpha,
+                fresnel: parts.fresnel,
                 alpha,
-                omega_i,
-                omega_u: lobe.reflection().as_dvec3().normalize(),
-                cos_h_max: f64::from(cos_theta_h_max(cos_i, lobe.sin_i())),
+                omega_i: parts.omega_i.as_dvec3().normalize(),
+                omega_u: parts.reflection.as_dvec3().normalize(),
+                cos_h_max: f64::from(parts.cos_h_max),
                 g1_i,
             },
-            normal,
+            normal: parts.normal.as_dvec3().normalize(),
             peak: f_max * g1_i / (core::f64::consts::PI * alpha * alpha),
             delta_xi_shrunk: delta_xi_shrunk(params),
         }

@@ -4,7 +4,7 @@ use crate::fresnel::Fresnel;
 use glam::Vec3;
 
 /// Largest accepted deviation of a direction's length from 1.
-const UNIT_TOLERANCE: f32 = 1e-3;
+pub(crate) const UNIT_TOLERANCE: f32 = 1e-3;
 
 /// `v` if all components are finite.
 pub(crate) fn finite(v: Vec3, what: &'static str) -> Result<Vec3, BoundsError> {

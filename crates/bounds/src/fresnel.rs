@@ -104,11 +104,17 @@ pub fn dielectric_lanes<R: Real>(eta: R, cos_h: R) -> R {
 /// cosine or no need for those digits (the path tracer's lobe choice).
 #[inline]
 pub fn cos_theta_h_max(cos_i: f32, sin_i: f32) -> f32 {
-    let c = cos_i.clamp(0.0, 1.0);
-    let sin_i = sin_i.clamp(0.0, 1.0);
+    cos_theta_h_max_lanes(cos_i, sin_i)
+}
+
+/// [`cos_theta_h_max`] written once for one `f32` and for lanes ([`crate::lanes`]): the same
+/// IEEE operations in every lane.
+#[inline(always)]
+pub fn cos_theta_h_max_lanes<R: Real>(cos_i: R, sin_i: R) -> R {
+    let one = R::splat(1.0);
     // 1 - sin θi = cos² θi / (1 + sin θi): no cancellation near grazing incidence, where
     // 1 - sin θi would round to 0 for cos θi below about 3e-4.
-    c / (2.0 * (1.0 + sin_i)).sqrt()
+    clamp01(cos_i) / (R::splat(2.0) * (one + clamp01(sin_i))).sqrt()
 }
 
 /// `sqrt(1 − cos²)`, the sine for callers that have only a cosine.

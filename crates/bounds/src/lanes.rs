@@ -433,6 +433,28 @@ impl Lanes8 for F8 {
     }
 }
 
+/// Where `lo <= v <= hi` (false for NaN).
+#[inline(always)]
+pub fn within1<L: Real>(v: L, lo: L, hi: L) -> L::Mask {
+    !lo.gt(v) & v.le(hi)
+}
+
+/// [`within1`] per component.
+#[inline(always)]
+pub fn within<L: Real>(v: [L; 3], lo: L, hi: L) -> [L::Mask; 3] {
+    [
+        within1(v[0], lo, hi),
+        within1(v[1], lo, hi),
+        within1(v[2], lo, hi),
+    ]
+}
+
+/// Where all three hold.
+#[inline(always)]
+pub fn all3<M: core::ops::BitAnd<Output = M> + Copy>(m: [M; 3]) -> M {
+    m[0] & m[1] & m[2]
+}
+
 /// `a·b` as glam forms `Vec3::dot`: `(a.x b.x + a.y b.y) + a.z b.z`.
 #[inline(always)]
 pub fn dot<R: Real>(a: [R; 3], b: [R; 3]) -> R {

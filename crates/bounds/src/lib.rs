@@ -83,7 +83,7 @@ pub use aabb::Aabb;
 pub use anisotropy::Anisotropy;
 pub use basis::Basis;
 pub use box_bound::lanes::BoxBoundLanes;
-pub use box_bound::{BoxBound, ReceiverBox};
+pub use box_bound::{BoxBound, ReceiverBox, SchlickLobes};
 pub use brdf::Brdf;
 pub use diffuse::DiffuseLobe;
 pub use error::BoundsError;

@@ -7,7 +7,7 @@
 //! only cheaper.
 use crate::acceptance::Acceptance;
 use crate::vpl_bounds::{lobe_box_bound, GlossyBound, LocalBound};
-use crate::vpl_lanes::{own_bounds, LaneBound};
+use crate::vpl_lanes::{box_bounds, own_bounds, LaneBound};
 use glam::{DMat3, DVec3, Vec3};
 use rayon::prelude::*;
 use slc_bounds::lanes::{dot, load_all, splat_all, Lanes8, Real, F8};
@@ -145,17 +145,18 @@ impl VplReach {
     /// The early exits of `vpl` under the roulette `params` (its δ and ξ, eq. 2-3). Errors
     /// when the VPL is outside the domain of slc-bounds (see `slc_bounds::BoundsError`).
     /// Its own bound is formed in f32 lanes where the VPL is plain (`crate::vpl_lanes`,
-    /// grown by 1e-5 over their rounding), else by slc-bounds; [`ListedReach::form`] forms
-    /// the same exits eight VPLs at a time.
+    /// grown by 1e-5 over their rounding), else by slc-bounds, and so is its bound over boxes
+    /// (the same bound bit for bit); [`ListedReach::form`] forms the same exits eight VPLs at
+    /// a time.
     pub fn new(vpl: &Vpl, params: &StochasticParams) -> Result<Self, CullError> {
         Self::one(vpl, params, true)
     }
 
     /// [`Self::new`] without the VPL's bounds: only the sign tests and the roulette, its own
-    /// bound and its bound over boxes passing everywhere. Forming the bound over boxes (with
-    /// the glossy lobe it needs) and the stretch of its own bound costs most of
-    /// [`Self::new`] (52 against 192 ns a VPL on one thread, [`ListedReach::form`] of 200k
-    /// of Sponza's VPLs at RSM 1024), which a VPL listed at a few pixels does not earn back.
+    /// bound and its bound over boxes passing everywhere. Forming the bound over boxes and
+    /// the stretch of its own bound costs most of [`Self::new`] (about 100 against 210 ns a
+    /// VPL on one thread, [`ListedReach::form`] of 200k of Sponza's VPLs at RSM 1024), which a
+    /// VPL listed at a few pixels does not earn back.
     /// The same errors: its own bound is still formed (not kept), by the lanes or by
     /// slc-bounds, so a lobe outside slc-bounds' domain or a range beyond f32 is refused as
     /// by [`Self::new`].
@@ -180,28 +181,38 @@ impl VplReach {
         out: &mut [Self],
     ) -> Result<(), CullError> {
         let (formed, bounds) = own_bounds(vpls, |k| (roulette[k].delta(), roulette[k].xi()));
+        let wanted = (0..vpls.len()).fold(0u8, |bits, k| {
+            bits | u8::from(bounded(k) && !reflects_nothing(vpls[k])) << k
+        });
+        let boxed = box_bounds(vpls, roulette, wanted, |k, b| {
+            out[k].box_bound = b.to_f32(vpls[k].position);
+        });
         for (k, ((vpl, params), out)) in vpls.iter().zip(roulette).zip(out).enumerate() {
             let own = (formed >> k & 1 == 1).then(|| bounds.lane(k));
-            Self::with(vpl, params, bounded(k), own, out)?;
+            let boxed = boxed >> k & 1 == 1;
+            Self::with(vpl, params, bounded(k), own, boxed, out)?;
         }
         Ok(())
     }
 
     /// The exits of `vpl` with its bounds where `bounds`, its own bound `own` where the lanes
     /// formed it (a plain VPL that reflects something: its lobe is in slc-bounds' domain),
-    /// else formed here by slc-bounds.
+    /// else formed here by slc-bounds; its bound over boxes already in `out` where `boxed`
+    /// (the lanes formed it, [`box_bounds`]), else formed here.
     fn with(
         vpl: &Vpl,
         params: &StochasticParams,
         bounds: bool,
         own: Option<LaneBound>,
+        boxed: bool,
         out: &mut Self,
     ) -> Result<(), CullError> {
         let dark = reflects_nothing(vpl);
+        let boxes = bounds && !dark && !boxed;
         // The glossy lobe, built once, where slc-bounds' own bound or the bound over boxes of
         // receivers needs it.
         let lobe = match (dark, vpl.lobe) {
-            (false, VplLobe::Glossy) if bounds || own.is_none() => Some(vpl.glossy_lobe()?),
+            (false, VplLobe::Glossy) if boxes || own.is_none() => Some(vpl.glossy_lobe()?),
             _ => None,
         };
         // Its own bound: the lanes', or slc-bounds'; none for a VPL that reflects nothing.
@@ -219,10 +230,13 @@ impl VplReach {
                 GlossyBound::Ellipsoid,
             )?)),
         };
-        let box_bound = match (dark || !bounds, &lobe) {
-            (true, _) => BoxBoundLanes::ALWAYS,
-            (false, Some(lobe)) => BoxBound::glossy(lobe, params).to_f32(vpl.position),
-            (false, None) => lobe_box_bound(vpl, params)?.to_f32(vpl.position),
+        // Its bound over boxes: none where it reflects nothing or has no bounds; already in
+        // `out` where the lanes formed it.
+        let box_bound = match (dark || !bounds, boxed, &lobe) {
+            (true, _, _) => Some(BoxBoundLanes::ALWAYS),
+            (false, true, _) => None,
+            (false, false, Some(lobe)) => Some(BoxBound::glossy(lobe, params).to_f32(vpl.position)),
+            (false, false, None) => Some(lobe_box_bound(vpl, params)?.to_f32(vpl.position)),
         };
         // Without bounds, a VPL that reflects something keeps only its sign tests.
         let (stretch, center, limit) = match (local, bounds) {
@@ -267,7 +281,9 @@ impl VplReach {
             limit: limit as f32,
         };
         out.acceptance = Acceptance::new(vpl, params, dark);
-        out.box_bound = box_bound;
+        if let Some(box_bound) = box_bound {
+            out.box_bound = box_bound;
+        }
         Ok(())
     }
 
@@ -482,8 +498,8 @@ mod tests {
     /// from 0.01 to 0.012, ξ near 0 and 1), every offset on the surface of slc-bounds' bound (its
     /// `LocalBound`, grown by `BOUND_SLACK`) that exits formed with it pass, exits formed with the
     /// lanes' bound pass too (a shortfall of 2e-5 fails); the rest of the exits (the normal, the
-    /// roulette, the bound over boxes) is the same, and without bounds the exits are the same
-    /// whichever formed the own bound.
+    /// roulette, the bound over boxes, also formed eight at a time) is the same, and without
+    /// bounds the exits are the same whichever formed the own bound.
     #[test]
     fn lane_bounds_keep_every_pair_of_slc_bounds() {
         let mut rng = Rng(0x5EED_0E81);
@@ -507,17 +523,19 @@ mod tests {
                 .map(|v| StochasticParams::new(delta, v.xi).unwrap())
                 .collect();
             let (lanes, bounds) = own_bounds(&group, |k| (delta, vpls[k].xi));
+            let mut eight = [VplReach::NONE; 8];
+            VplReach::eight(&group, &roulette, |_| true, &mut eight).unwrap();
             for (k, (vpl, params)) in vpls.iter().zip(&roulette).enumerate() {
                 if lanes >> k & 1 == 0 {
                     continue;
                 }
                 formed += 1;
                 let (mut own, mut scalar) = (VplReach::NONE, VplReach::NONE);
-                VplReach::with(vpl, params, false, Some(bounds.lane(k)), &mut own).unwrap();
-                VplReach::with(vpl, params, false, None, &mut scalar).unwrap();
+                VplReach::with(vpl, params, false, Some(bounds.lane(k)), false, &mut own).unwrap();
+                VplReach::with(vpl, params, false, None, false, &mut scalar).unwrap();
                 assert_eq!(own, scalar, "case {case}, lane {k}: without bounds");
-                VplReach::with(vpl, params, true, Some(bounds.lane(k)), &mut own).unwrap();
-                VplReach::with(vpl, params, true, None, &mut scalar).unwrap();
+                VplReach::with(vpl, params, true, Some(bounds.lane(k)), false, &mut own).unwrap();
+                VplReach::with(vpl, params, true, None, false, &mut scalar).unwrap();
                 assert_eq!(
                     (
                         own.position,
@@ -532,6 +550,13 @@ mod tests {
                         scalar.box_bound
                     ),
                     "case {case}, lane {k}"
+                );
+                // Formed eight at a time, the bound over boxes from the lanes
+                // (`box_bounds`) is the one formed one VPL at a time, bit for bit.
+                assert_eq!(
+                    format!("{:?}", eight[k].box_bound),
+                    format!("{:?}", scalar.box_bound),
+                    "case {case}, lane {k}: eight at a time"
                 );
                 let local = LocalBound::new(vpl, params, GlossyBound::Ellipsoid).unwrap();
                 for _ in 0..40 {

@@ -10,7 +10,9 @@ use crate::frusta::Box3;
 use crate::lists::ListChunk;
 use crate::view::CullView;
 use crate::vpl_bounds::{lobe_box_bound, SubregionBounds, ViewEllipsoid};
+use crate::vpl_lanes::box_bounds;
 use glam::DVec3;
+use rayon::prelude::*;
 use slc_bounds::{BoxBound, ReceiverBox, StochasticParams};
 use slc_core::{CullError, Vpl, TILE_SIZE};
 
@@ -62,6 +64,37 @@ impl RefinerMemory {
     }
 }
 
+/// The [`BoxBound`]s of `eight` (one to eight VPLs) for δ = `delta`, rotated into `view`,
+/// with their view-space positions, into `out`: formed in lanes where
+/// [`box_bounds`] takes a VPL, by slc-bounds one at a time for the others (or refused: the
+/// first VPL out of the domain of either names the error).
+fn view_bounds(
+    eight: &[Vpl],
+    delta: f32,
+    view: &CullView,
+    out: &mut [(BoxBound, DVec3)],
+) -> Result<(), CullError> {
+    let rotation = view.rotation().as_dmat3();
+    let mut params = [StochasticParams::new(delta, eight[0].xi)?; 8];
+    for (p, v) in params.iter_mut().zip(eight).skip(1) {
+        *p = StochasticParams::new(delta, v.xi)?;
+    }
+    let refs: [&Vpl; 8] = core::array::from_fn(|k| &eight[k.min(eight.len() - 1)]);
+    let (refs, params) = (&refs[..eight.len()], &params[..eight.len()]);
+    let boxed = box_bounds(refs, params, u8::MAX, |k, bound| {
+        out[k] = (bound.rotated(rotation), view.to_view(refs[k].position));
+    });
+    for (k, (v, params)) in refs.iter().zip(params).enumerate() {
+        if boxed >> k & 1 == 0 {
+            out[k] = (
+                lobe_box_bound(v, params)?.rotated(rotation),
+                view.to_view(v.position),
+            );
+        }
+    }
+    Ok(())
+}
+
 impl<'a> Refiner<'a> {
     /// The bounds of `vpls` for δ = `delta` in `view`, with the spheroids of `culled` (the
     /// tile culling's bounds), formed in `memory` (its old contents do not matter);
@@ -74,16 +107,18 @@ impl<'a> Refiner<'a> {
         split_blocks: bool,
         memory: &'a mut RefinerMemory,
     ) -> Result<Self, CullError> {
-        let rotation = view.rotation().as_dmat3();
-        let bound_of = |v: &Vpl| -> Result<(BoxBound, DVec3), CullError> {
-            let params = StochasticParams::new(delta, v.xi)?;
-            let bound = lobe_box_bound(v, &params)?.rotated(rotation);
-            Ok((bound, view.to_view(v.position)))
-        };
         memory.bounds.clear();
         if let Some(first) = vpls.first() {
-            let placeholder = bound_of(first)?;
-            crate::par::try_map_into(vpls, placeholder, |_, v| bound_of(v), &mut memory.bounds)?;
+            // Eight VPLs at a time (the plain glossy ones' bounds share lanes), in the
+            // memory's last contents; the placeholder only sizes it.
+            let params = StochasticParams::new(delta, first.xi)?;
+            let placeholder = (lobe_box_bound(first, &params)?, DVec3::ZERO);
+            memory.bounds.resize(vpls.len(), placeholder);
+            memory
+                .bounds
+                .par_chunks_mut(8)
+                .zip(vpls.par_chunks(8))
+                .try_for_each(|(out, eight)| view_bounds(eight, delta, view, out))?;
         }
         let vpl_extent = vpls
             .iter()
@@ -229,4 +264,47 @@ pub(crate) fn block_of(a: u32, b: u32) -> u8 {
 pub(crate) struct Scratch {
     spheres: Vec<u32>,
     ellipsoids: Vec<u32>,
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::test_rng::{random_vpl, Rng};
+    use glam::Vec3;
+    use slc_core::Camera;
+
+    /// Eight at a time, every VPL's bound is slc-bounds' own rotated into the view, bit for
+    /// bit, whichever formed it (the lanes or slc-bounds one at a time: diffuse VPLs, a tilted
+    /// normal).
+    #[test]
+    fn view_bounds_are_slc_bounds_rotated() {
+        let mut rng = Rng(0x7E57_B0C5);
+        let camera = Camera::look_at(Vec3::new(1.0, 2.0, 3.0), Vec3::ZERO, Vec3::Y, 1.0).unwrap();
+        let view = CullView::new(&camera, 64, 48).unwrap();
+        let rotation = view.rotation().as_dmat3();
+        for case in 0..500u32 {
+            let n = 1 + case as usize % 8;
+            let vpls: Vec<Vpl> = (0..n)
+                .map(|k| {
+                    let mut v = random_vpl(&mut rng, 8 * case + k as u32);
+                    if rng.f32() < 0.2 {
+                        v.geometric_normal =
+                            (v.normal + 0.01 * v.normal.any_orthonormal_vector()).normalize();
+                    }
+                    v
+                })
+                .collect();
+            let delta = 10f32.powf(rng.range(-9.0, 3.0));
+            let first = StochasticParams::new(delta, vpls[0].xi).unwrap();
+            let placeholder = (lobe_box_bound(&vpls[0], &first).unwrap(), DVec3::NAN);
+            let mut out = vec![placeholder; n];
+            view_bounds(&vpls, delta, &view, &mut out).unwrap();
+            for (v, got) in vpls.iter().zip(&out) {
+                let params = StochasticParams::new(delta, v.xi).unwrap();
+                let bound = lobe_box_bound(v, &params).unwrap().rotated(rotation);
+                let expected = (bound, view.to_view(v.position));
+                assert_eq!(format!("{got:?}"), format!("{expected:?}"), "case {case}");
+            }
+        }
+    }
 }

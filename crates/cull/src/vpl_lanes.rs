@@ -17,9 +17,12 @@
 use crate::reach::reflects_nothing;
 use crate::vpl_bounds::BOUND_SLACK;
 use glam::{DVec3, Vec3};
+use slc_bounds::fresnel::cos_theta_h_max_lanes;
 use slc_bounds::ggx::g1_over_cos_lanes;
-use slc_bounds::lanes::{clamp01, cross, dot, load_all, max, store_all, Lanes8, Real, F8, M8};
-use slc_bounds::{Fresnel, StochasticParams};
+use slc_bounds::lanes::{
+    all3, clamp01, cross, dot, load_all, max, store_all, within, within1, Lanes8, Real, F8, M8,
+};
+use slc_bounds::{BoxBound, Fresnel, SchlickLobes, StochasticParams};
 use slc_core::{Vpl, VplLobe};
 
 /// The smallest α whose glossy VPLs the lanes bound.
@@ -83,7 +86,7 @@ impl<L: Lanes8> OwnBounds<L> {
             dot(c, c).sqrt()
         };
         // F_max at θh_max (supplemental eq. 2): cos θh_max = cos θi / sqrt(2 (1 + sin θi)).
-        let cos_h = clamp01(cos_i) / (L::splat(2.0) * (one + clamp01(sin_i))).sqrt();
+        let cos_h = cos_theta_h_max_lanes(cos_i, sin_i);
         let t = one - clamp01(cos_h);
         let t2 = t * t;
         let m = t2 * t2 * t;
@@ -245,6 +248,68 @@ pub(crate) fn own_bounds(
     (formed & scalar, bounds)
 }
 
+/// The bounds over boxes of receivers ([`BoxBound::glossy`]) of the VPLs `vpls` (one to
+/// eight) that the lanes take, VPL k under the roulette `params[k]`, handed to `each(k, bound)`
+/// for every k in `wanted` (bit k): the glossy ones of a [`lane_kind`] whose lobe slc-bounds
+/// accepts, formed eight at a time by [`SchlickLobes::box_bounds`] (the same bounds bit for
+/// bit). Returns those VPLs; the others are the caller's to bound one at a time, or to refuse.
+pub(crate) fn box_bounds(
+    vpls: &[&Vpl],
+    params: &[StochasticParams],
+    wanted: u8,
+    each: impl FnMut(usize, BoxBound),
+) -> u8 {
+    debug_assert!((1..=8).contains(&vpls.len()), "{} VPLs", vpls.len());
+    let wanted = vpls.iter().enumerate().fold(0u8, |bits, (k, v)| {
+        let taken = wanted >> k & 1 == 1 && v.lobe == VplLobe::Glossy && lane_kind(v);
+        bits | u8::from(taken) << k
+    });
+    if wanted == 0 {
+        return 0;
+    }
+    let last = vpls.len() - 1;
+    let group: [&Vpl; 8] = core::array::from_fn(|k| vpls[k.min(last)]);
+    let fields = Fields::of(&group, Vec3::ZERO);
+    #[cfg(target_arch = "x86_64")]
+    if std::arch::is_x86_feature_detected!("avx2") {
+        // SAFETY: the CPU supports AVX2, checked just above.
+        return unsafe { box_bounds_avx2(&fields, wanted, params, each) };
+    }
+    box_bounds_in::<F8>(&fields, wanted, params, each)
+}
+
+/// [`box_bounds_in`] in AVX registers.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+fn box_bounds_avx2(
+    fields: &Fields,
+    wanted: u8,
+    params: &[StochasticParams],
+    each: impl FnMut(usize, BoxBound),
+) -> u8 {
+    box_bounds_in::<slc_bounds::lanes_avx::A8>(fields, wanted, params, each)
+}
+
+/// [`box_bounds`] of the transposed `fields` in lanes of `L` (for a glossy VPL of a
+/// [`lane_kind`], the fields' `a` is Schlick's F0).
+#[inline(always)]
+fn box_bounds_in<L: Lanes8>(
+    fields: &Fields,
+    wanted: u8,
+    params: &[StochasticParams],
+    each: impl FnMut(usize, BoxBound),
+) -> u8 {
+    let [_, normal, omega_i, flux, f0, _] = &fields.vectors;
+    SchlickLobes::<L> {
+        normal: load_all(normal),
+        omega_i: load_all(omega_i),
+        alpha: L::load(&fields.alpha),
+        flux: load_all(flux),
+        f0: load_all(f0),
+    }
+    .box_bounds(wanted, params, each)
+}
+
 /// [`own_bounds_in`] in AVX registers.
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2")]
@@ -269,28 +334,6 @@ fn lane_kind(vpl: &Vpl) -> bool {
             (vpl.lobe, vpl.brdf.fresnel),
             (VplLobe::Glossy, Fresnel::Dielectric(_))
         )
-}
-
-/// Where `lo <= v <= hi` (false for NaN).
-#[inline(always)]
-fn within1<L: Real>(v: L, lo: L, hi: L) -> L::Mask {
-    !lo.gt(v) & v.le(hi)
-}
-
-/// [`within1`] per component.
-#[inline(always)]
-fn within<L: Real>(v: [L; 3], lo: L, hi: L) -> [L::Mask; 3] {
-    [
-        within1(v[0], lo, hi),
-        within1(v[1], lo, hi),
-        within1(v[2], lo, hi),
-    ]
-}
-
-/// Where all three hold.
-#[inline(always)]
-fn all3<M: core::ops::BitAnd<Output = M> + Copy>(m: [M; 3]) -> M {
-    m[0] & m[1] & m[2]
 }
 
 /// Eight VPLs' fields as lanes, each VPL read once: `[q − eye, n, ωi, Φ, a, b]` with
@@ -344,5 +387,84 @@ fn fresnel(vpl: &Vpl) -> (Vec3, Vec3) {
     match (vpl.lobe, vpl.brdf.fresnel) {
         (VplLobe::Glossy, Fresnel::Schlick(f0)) => (f0, Vec3::ONE - f0),
         _ => (vpl.brdf.kd, Vec3::ZERO),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::test_rng::{random_vpl, Rng};
+    use crate::vpl_bounds::lobe_box_bound;
+    use slc_bounds::Anisotropy;
+
+    /// A random VPL (`random_vpl`), one in three changed into one the lanes leave or refuse:
+    /// tilted, anisotropic, with a dielectric's Fresnel factor, α 0 or above 1, a NaN or
+    /// non-unit normal, a negative flux or F0 above 1.
+    fn any_vpl(rng: &mut Rng, id: u32) -> Vpl {
+        let mut v = random_vpl(rng, id);
+        let t = v.normal.any_orthonormal_vector();
+        match (rng.f32() * 30.0) as u32 {
+            0 => v.geometric_normal = (v.normal + 0.01 * t).normalize(),
+            1 => {
+                v.brdf.anisotropy = Some(Anisotropy {
+                    tangent: t,
+                    alpha_t: 0.5,
+                })
+            }
+            2 => v.brdf.fresnel = Fresnel::Dielectric(1.5),
+            3 => v.brdf.alpha = 0.0,
+            4 => v.brdf.alpha = 1.5,
+            5 => v.normal.x = f32::NAN,
+            6 => v.omega_i *= 1.01,
+            7 => v.flux.y = -1.0,
+            8 => v.brdf.fresnel = Fresnel::Schlick(Vec3::new(0.5, 1.5, 0.5)),
+            9 => v.normal *= 1.0005,
+            _ => {}
+        }
+        v.geometric_normal = match v.geometric_normal == v.normal || rng.f32() < 0.5 {
+            true => v.geometric_normal,
+            false => v.normal,
+        };
+        v
+    }
+
+    /// `box_bounds` hands on exactly the wanted glossy VPLs of a lane kind whose lobe
+    /// slc-bounds accepts, each with slc-bounds' own bound bit for bit (`lobe_box_bound`).
+    #[test]
+    fn box_bounds_are_slc_bounds_bit_for_bit() {
+        let mut rng = Rng(0xB0B0_0E16);
+        let (mut handed, mut left) = (0, 0);
+        for case in 0..4000u32 {
+            let n = 1 + case as usize % 8;
+            let vpls: Vec<Vpl> = (0..n)
+                .map(|k| any_vpl(&mut rng, 8 * case + k as u32))
+                .collect();
+            let group: Vec<&Vpl> = vpls.iter().collect();
+            let delta = 10f32.powf(rng.range(-9.0, 3.0));
+            let params: Vec<StochasticParams> = vpls
+                .iter()
+                .map(|v| StochasticParams::new(delta, v.xi).unwrap())
+                .collect();
+            let wanted = if case % 2 == 0 {
+                u8::MAX
+            } else {
+                rng.f32().to_bits() as u8
+            };
+            let mut got = vec![None; n];
+            let bits = box_bounds(&group, &params, wanted, |k, b| {
+                got[k] = Some(format!("{b:?}"))
+            });
+            for (k, (v, p)) in vpls.iter().zip(&params).enumerate() {
+                let expected = (wanted >> k & 1 == 1 && v.lobe == VplLobe::Glossy && lane_kind(v))
+                    .then(|| lobe_box_bound(v, p).ok().map(|b| format!("{b:?}")))
+                    .flatten();
+                assert_eq!(got[k], expected, "case {case}, VPL {k}: {v:?}");
+                assert_eq!(bits >> k & 1 == 1, expected.is_some());
+                handed += usize::from(expected.is_some());
+                left += usize::from(expected.is_none());
+            }
+            assert_eq!(u16::from(bits) >> n, 0, "no lane past the VPLs");
+        }
+        assert!(handed > 5000 && left > 5000, "{handed} handed, {left} left");
     }
 }
