@@ -188,5 +188,7 @@ fn test_rotation(s: Mat3) -> Mat3 {
     Mat3::from_cols(x, y, z).transpose()
 }
 
+pub mod lanes;
+
 #[cfg(test)]
 mod tests;

@@ -8,6 +8,8 @@ use crate::view::CullView;
 use crate::vpl_lanes::{own_bounds, LaneBound};
 use glam::{DMat3, DVec3, Mat3, Vec3};
 use rayon::prelude::*;
+use slc_bounds::lanes::{load_all, splat_all, store_all, Lanes8, F8};
+use slc_bounds::test_space::lanes::{mat3_mul, test_matrices};
 use slc_bounds::{BoxBound, GlossyLobe, Sphere, Spheroid, StochasticParams, TestSpace};
 pub use slc_core::GlossyBound;
 use slc_core::{CullError, Vpl, VplLobe};
@@ -172,8 +174,9 @@ impl VplBound {
     /// The bounds of `vpls` (one to eight, VPL k numbered `first + k`) into `out`, as
     /// [`Self::new`] forms them, with the own bounds of the plain VPLs from the lanes
     /// ([`crate::vpl_lanes`]) where `glossy` is the spheroid of eq. (12)-(15) (a diffuse
-    /// VPL's sphere is the same for every `glossy`). Errors as [`Self::new`], for the first
-    /// VPL it refuses.
+    /// VPL's sphere is the same for every `glossy`), and those spheroids' test spaces formed
+    /// eight at a time too (the same as one at a time, bit for bit). Errors as [`Self::new`],
+    /// for the first VPL it refuses.
     pub(crate) fn eight(
         vpls: &[Vpl],
         first: u32,
@@ -186,12 +189,28 @@ impl VplBound {
         let group: [&Vpl; 8] = core::array::from_fn(|k| &vpls[k.min(last)]);
         let (formed, bounds) = own_bounds(&group[..=last], |k| (delta, group[k].xi));
         let spheroid = matches!(glossy, GlossyBound::Ellipsoid | GlossyBound::Tight);
+        let own: [Option<LaneBound>; 8] = core::array::from_fn(|k| {
+            let lanes = k <= last
+                && formed >> k & 1 == 1
+                && (spheroid || group[k].lobe == VplLobe::Diffuse);
+            lanes.then(|| bounds.lane(k))
+        });
+        // The glossy ones' test spaces eight at a time.
+        let spheroids: [Option<(Mat3, Vec3)>; 8] = core::array::from_fn(|k| match own[k] {
+            Some(b) if group[k].lobe == VplLobe::Glossy => Some(spheroid_axes(&b)),
+            _ => None,
+        });
+        let (spaces, matrices) = test_spaces(&spheroids, view.rotation());
         for (k, (vpl, out)) in vpls.iter().zip(out).enumerate() {
             let index = first + k as u32;
-            let lanes = formed >> k & 1 == 1 && (spheroid || vpl.lobe == VplLobe::Diffuse);
-            *out = match lanes {
-                true => Self::of_lane(&bounds.lane(k), vpl, index, view)?,
-                false => Self::new(vpl, index, delta, view, glossy)?,
+            *out = match (own[k], spaces >> k & 1 == 1) {
+                (Some(b), true) => {
+                    let bs = Mat3::from_cols_array_2d(&matrices.map(|c| c.map(|v| v.0[k])));
+                    let center = view.relative(vpl.position) + b.offset;
+                    Self::from_test_space(view, center, bs, index)
+                }
+                (Some(b), false) => Self::of_lane(&b, vpl, index, view)?,
+                (None, _) => Self::new(vpl, index, delta, view, glossy)?,
             };
         }
         Ok(())
@@ -207,9 +226,7 @@ impl VplBound {
                 index,
             })),
             VplLobe::Glossy => {
-                let (t1, t2) = b.axis.any_orthonormal_pair();
-                let rotation = DMat3::from_cols(b.axis, t1, t2).as_mat3();
-                let semi_axes = DVec3::new(b.along, b.across, b.across).as_vec3();
+                let (rotation, semi_axes) = spheroid_axes(b);
                 Self::ellipsoid(view, center, rotation, semi_axes, index)
             }
         }
@@ -226,15 +243,103 @@ impl VplBound {
         index: u32,
     ) -> Result<Self, CullError> {
         // The centre passed here only feeds TestSpace's own f32 BS·c, which is not used.
-        let bs = TestSpace::new(view.rotation() * rotation, semi_axes, Vec3::ZERO)?
-            .matrix()
-            .as_dmat3();
-        Ok(Self::Ellipsoid(ViewEllipsoid {
+        let bs = TestSpace::new(view.rotation() * rotation, semi_axes, Vec3::ZERO)?.matrix();
+        Ok(Self::from_test_space(view, center, bs, index))
+    }
+
+    /// The ellipsoid of test space `bs` (BS of eq. 16-17) centred `center` (camera-relative),
+    /// with BS·c formed in f64.
+    fn from_test_space(view: &CullView, center: DVec3, bs: Mat3, index: u32) -> Self {
+        let bs = bs.as_dmat3();
+        Self::Ellipsoid(ViewEllipsoid {
             columns: [bs.x_axis, bs.y_axis, bs.z_axis],
             center: bs * view.rotate(center),
             index,
-        }))
+        })
     }
+}
+
+/// The world rotation [ω_u t1 t2] (any unit t1, t2 across the axis, in f64) and the semi-axes
+/// of a spheroid the lanes formed, in f32 as the test space takes them.
+fn spheroid_axes(b: &LaneBound) -> (Mat3, Vec3) {
+    let (t1, t2) = b.axis.any_orthonormal_pair();
+    (
+        DMat3::from_cols(b.axis, t1, t2).as_mat3(),
+        DVec3::new(b.along, b.across, b.across).as_vec3(),
+    )
+}
+
+/// BS of `TestSpace::new(view_rotation * R, semi_axes, 0)` for each spheroid (R, semi-axes)
+/// of `spheroids`, eight at a time (`slc_bounds::test_space::lanes`: the same matrix bit for
+/// bit), as columns of lanes; and the spheroids it formed one for (bit k). The others are
+/// the caller's to form one at a time, or to refuse.
+fn test_spaces(spheroids: &[Option<(Mat3, Vec3)>; 8], view_rotation: Mat3) -> (u8, [[F8; 3]; 3]) {
+    let wanted = (0..8).fold(0u8, |bits, k| bits | u8::from(spheroids[k].is_some()) << k);
+    if wanted == 0 {
+        return (0, [[F8([0.0; 8]); 3]; 3]);
+    }
+    // A lane without a spheroid takes the identity, which the lanes accept (and drop below).
+    let (mut rotation, mut semi) = ([[F8([0.0; 8]); 3]; 3], [F8([1.0; 8]); 3]);
+    for (k, s) in spheroids.iter().enumerate() {
+        let (r, axes) = s.unwrap_or((Mat3::IDENTITY, Vec3::ONE));
+        for (j, column) in r.to_cols_array_2d().into_iter().enumerate() {
+            for (i, v) in column.into_iter().enumerate() {
+                rotation[j][i].0[k] = v;
+            }
+        }
+        for (i, v) in axes.to_array().into_iter().enumerate() {
+            semi[i].0[k] = v;
+        }
+    }
+    let view = view_rotation.to_cols_array_2d();
+    #[cfg(target_arch = "x86_64")]
+    if std::arch::is_x86_feature_detected!("avx2") {
+        // SAFETY: the CPU supports AVX2, checked just above.
+        let (formed, matrices) = unsafe { test_spaces_avx2(&rotation, &semi, &view) };
+        return (formed & wanted, matrices);
+    }
+    let (formed, matrices) = test_spaces_in::<F8>(&rotation, &semi, &view);
+    (formed & wanted, matrices)
+}
+
+/// [`test_spaces_in`] in AVX registers.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+fn test_spaces_avx2(
+    rotation: &[[F8; 3]; 3],
+    semi: &[F8; 3],
+    view: &[[f32; 3]; 3],
+) -> (u8, [[F8; 3]; 3]) {
+    test_spaces_in::<slc_bounds::lanes_avx::A8>(rotation, semi, view)
+}
+
+/// [`test_spaces`] in lanes of `L`: the view rotation times each R as glam multiplies
+/// them, then BS.
+#[inline(always)]
+fn test_spaces_in<L: Lanes8>(
+    rotation: &[[F8; 3]; 3],
+    semi: &[F8; 3],
+    view: &[[f32; 3]; 3],
+) -> (u8, [[F8; 3]; 3]) {
+    let rotation = [
+        load_all::<L, 3>(&rotation[0]),
+        load_all(&rotation[1]),
+        load_all(&rotation[2]),
+    ];
+    let view = [
+        splat_all::<L, 3>(&view[0]),
+        splat_all(&view[1]),
+        splat_all(&view[2]),
+    ];
+    let (matrix, ok) = test_matrices(mat3_mul(view, rotation), load_all(semi));
+    (
+        L::bits(ok),
+        [
+            store_all(&matrix[0]),
+            store_all(&matrix[1]),
+            store_all(&matrix[2]),
+        ],
+    )
 }
 
 /// The non-empty bounds of one subregion's VPLs, spheres and ellipsoids apart (each ascending
@@ -337,7 +442,7 @@ mod tests {
         use crate::test_rng::{random_vpl, Rng};
         let view = view();
         let mut rng = Rng(0xE16_B0D5);
-        let (mut compared, mut points) = (0, 0);
+        let (mut compared, mut points, mut lanes) = (0, 0, 0);
         for case in 0..1500 {
             // One δ in twenty outside slc-bounds' domain (subnormal, 0, NaN).
             let delta = match case % 20 {
@@ -380,6 +485,19 @@ mod tests {
                 continue;
             }
             eight.unwrap();
+            // Where the lanes formed a VPL's own bound, its bound is the one `of_lane` forms
+            // one VPL at a time, bit for bit (the test spaces eight at a time included).
+            let refs: Vec<&Vpl> = vpls.iter().collect();
+            let (formed, bounds) = own_bounds(&refs, |k| (delta, vpls[k].xi));
+            let spheroid = matches!(glossy, GlossyBound::Ellipsoid | GlossyBound::Tight);
+            for (k, vpl) in vpls.iter().enumerate() {
+                if formed >> k & 1 == 1 && (spheroid || vpl.lobe == VplLobe::Diffuse) {
+                    let lane = VplBound::of_lane(&bounds.lane(k), vpl, 40 + k as u32, &view);
+                    let (lane, got) = (format!("{:?}", lane.unwrap()), format!("{:?}", out[k]));
+                    assert_eq!(lane, got, "case {case}, VPL {k}: one at a time");
+                    lanes += 1;
+                }
+            }
             for (k, (want, got)) in one.iter().zip(&out).enumerate() {
                 compared += 1;
                 let unit = |rng: &mut Rng| loop {
@@ -426,8 +544,8 @@ mod tests {
             }
         }
         assert!(
-            compared > 4000 && points > 40_000,
-            "{compared} compared, {points} points"
+            compared > 4000 && points > 40_000 && lanes > 2000,
+            "{compared} compared, {points} points, {lanes} from the lanes"
         );
     }
 
