@@ -66,8 +66,8 @@ impl RefinerMemory {
 
 /// The [`BoxBound`]s of `eight` (one to eight VPLs) for δ = `delta`, rotated into `view`,
 /// with their view-space positions, into `out`: formed in lanes where
-/// [`box_bounds`] takes a VPL, by slc-bounds one at a time for the others (or refused: the
-/// first VPL out of the domain of either names the error).
+/// [`box_bounds`] takes a VPL, by slc-bounds one at a time for the others. Errors on a VPL
+/// whose roulette (checked first, for all of them) or lobe is out of slc-bounds' domain.
 fn view_bounds(
     eight: &[Vpl],
     delta: f32,
@@ -107,18 +107,20 @@ impl<'a> Refiner<'a> {
         split_blocks: bool,
         memory: &'a mut RefinerMemory,
     ) -> Result<Self, CullError> {
-        memory.bounds.clear();
-        if let Some(first) = vpls.first() {
-            // Eight VPLs at a time (the plain glossy ones' bounds share lanes), in the
-            // memory's last contents; the placeholder only sizes it.
-            let params = StochasticParams::new(delta, first.xi)?;
-            let placeholder = (lobe_box_bound(first, &params)?, DVec3::ZERO);
-            memory.bounds.resize(vpls.len(), placeholder);
-            memory
-                .bounds
-                .par_chunks_mut(8)
-                .zip(vpls.par_chunks(8))
-                .try_for_each(|(out, eight)| view_bounds(eight, delta, view, out))?;
+        match vpls.first() {
+            None => memory.bounds.clear(),
+            Some(first) => {
+                // Eight VPLs at a time (the plain glossy ones' bounds share lanes), in the
+                // memory's last contents (the placeholder fills only slots it lacked).
+                let params = StochasticParams::new(delta, first.xi)?;
+                let placeholder = (lobe_box_bound(first, &params)?, DVec3::ZERO);
+                memory.bounds.resize(vpls.len(), placeholder);
+                memory
+                    .bounds
+                    .par_chunks_mut(8)
+                    .zip(vpls.par_chunks(8))
+                    .try_for_each(|(out, eight)| view_bounds(eight, delta, view, out))?;
+            }
         }
         let vpl_extent = vpls
             .iter()

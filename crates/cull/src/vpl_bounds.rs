@@ -442,7 +442,7 @@ mod tests {
         use crate::test_rng::{random_vpl, Rng};
         let view = view();
         let mut rng = Rng(0xE16_B0D5);
-        let (mut compared, mut points, mut lanes) = (0, 0, 0);
+        let (mut compared, mut points, mut lanes, mut from_lanes) = (0, 0, 0, 0);
         for case in 0..1500 {
             // One δ in twenty outside slc-bounds' domain (subnormal, 0, NaN).
             let delta = match case % 20 {
@@ -498,6 +498,22 @@ mod tests {
                     lanes += 1;
                 }
             }
+            // The glossy ones' test spaces came from the lanes (most of them: the lanes
+            // refuse none that `TestSpace::new` accepts here).
+            let spheroids: [Option<(Mat3, Vec3)>; 8] = core::array::from_fn(|k| {
+                let glossy = k < count && vpls[k].lobe == VplLobe::Glossy;
+                (spheroid && glossy && formed >> k & 1 == 1).then(|| spheroid_axes(&bounds.lane(k)))
+            });
+            let (spaces, matrices) = test_spaces(&spheroids, view.rotation());
+            for (k, s) in spheroids.iter().enumerate() {
+                if let Some((rotation, semi)) = s {
+                    assert_eq!(spaces >> k & 1, 1, "case {case}, VPL {k}: left");
+                    let one = TestSpace::new(view.rotation() * *rotation, *semi, Vec3::ZERO);
+                    let lane = Mat3::from_cols_array_2d(&matrices.map(|c| c.map(|v| v.0[k])));
+                    assert_eq!(format!("{lane:?}"), format!("{:?}", one.unwrap().matrix()));
+                    from_lanes += 1;
+                }
+            }
             for (k, (want, got)) in one.iter().zip(&out).enumerate() {
                 compared += 1;
                 let unit = |rng: &mut Rng| loop {
@@ -544,8 +560,9 @@ mod tests {
             }
         }
         assert!(
-            compared > 4000 && points > 40_000 && lanes > 2000,
-            "{compared} compared, {points} points, {lanes} from the lanes"
+            compared > 4000 && points > 40_000 && lanes > 2000 && from_lanes > 1000,
+            "{compared} compared, {points} points, {lanes} own bounds and {from_lanes} test \
+             spaces from the lanes"
         );
     }
 

@@ -373,7 +373,11 @@ impl Fields {
     }
 }
 
-/// `v` over its length (`check::unit`'s renormalisation).
+/// `v` over its length (`check::unit`'s renormalisation). The mirror direction ω_u is
+/// normalised here the same way, where `GlossyLobe::reflection` (glam's `normalize`)
+/// multiplies by 1/|v|: an ulp apart, which the own bounds' slack covers; the bounds over
+/// boxes (`SchlickLobes::box_bounds`), which must equal slc-bounds' bit for bit, form it as
+/// glam does.
 #[inline(always)]
 fn normalize<L: Real>(v: [L; 3]) -> [L; 3] {
     let len = dot(v, v).sqrt();

@@ -110,20 +110,26 @@ impl Stored {
     /// bounded with the lobe's α and the bound factor is 1 (the flux times 1.0 is the flux).
     #[inline(always)]
     fn parts(&self, k: usize) -> GlossyParts {
-        let at3 = |v: &[F8; 3]| Vec3::new(v[0].0[k], v[1].0[k], v[2].0[k]);
         let alpha = self.alpha.0[k];
         GlossyParts {
-            normal: at3(&self.normal),
-            omega_i: at3(&self.omega_i),
-            reflection: at3(&self.reflection),
+            normal: lane3(&self.normal, k),
+            omega_i: lane3(&self.omega_i, k),
+            reflection: lane3(&self.reflection, k),
             alpha,
             g1_o_alpha: Some(alpha),
-            flux: at3(&self.flux),
-            fresnel: Fresnel::Schlick(at3(&self.f0)),
+            flux: lane3(&self.flux, k),
+            fresnel: Fresnel::Schlick(lane3(&self.f0, k)),
             g1_over_cos: self.g1_over_cos.0[k],
             cos_h_max: self.cos_h_max.0[k],
         }
     }
+}
+
+/// Lane `k` of three lanes as a vector (a function, not a closure: this runs in the AVX2
+/// kernel, where a closure could be compiled without AVX2).
+#[inline(always)]
+fn lane3(v: &[F8; 3], k: usize) -> Vec3 {
+    Vec3::new(v[0].0[k], v[1].0[k], v[2].0[k])
 }
 
 /// `check::unit` in lanes: `v / |v|`, and where `v` is finite with |v| within

@@ -2,7 +2,7 @@
 //! at a time: glam's f32 matrix arithmetic step for step in lanes ([`crate::lanes`]), so each
 //! lane's BS is the one `TestSpace::new` forms, bit for bit. A culler that forms every VPL's
 //! test space each frame (a million at RSM 1024) otherwise spends some 300 scalar operations a
-//! VPL on four matrix products, two normalisations and the checks.
+//! VPL on four matrix products, three normalisations and the checks.
 use crate::lanes::{all3, cross, dot, max, within, Real};
 
 /// A 3×3 matrix in lanes, as glam's `Mat3` holds it: three columns.
@@ -10,8 +10,8 @@ pub type Mat3Lanes<L> = [[L; 3]; 3];
 
 /// BS of `TestSpace::new(rotation, semi_axes, Vec3::ZERO)` in each lane where that returns a
 /// non-empty test space, and those lanes. The others (refused, empty, or where the lanes'
-/// checks are stricter: an orthonormality error or a BS entry that is NaN, which glam's
-/// `max` may pass over) are the caller's to form one at a time.
+/// checks are stricter: a NaN entry of RᵀR − I, which glam's `max` passes over) are the
+/// caller's to form one at a time.
 #[inline(always)]
 pub fn test_matrices<L: Real>(
     rotation: Mat3Lanes<L>,
