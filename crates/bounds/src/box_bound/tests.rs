@@ -45,18 +45,7 @@ impl TestLobe {
 /// with α_t from 1e-4 to 1 along a random tangent (`crate::anisotropy`).
 pub(super) fn random_lobe(rng: &mut Rng) -> TestLobe {
     let n = rng.unit();
-    let theta_i = match rng.u64() % 4 {
-        0 => 0.0,
-        1 => core::f32::consts::FRAC_PI_2 - 10f32.powf(rng.range(-6.0, -1.0)),
-        _ => rng.range(0.0, core::f32::consts::FRAC_PI_2),
-    };
-    let phi = rng.range(0.0, core::f32::consts::TAU);
-    let local = Vec3::new(
-        theta_i.sin() * phi.cos(),
-        theta_i.sin() * phi.sin(),
-        theta_i.cos(),
-    );
-    let omega_i = Basis::from_unit(n).to_world(local).normalize();
+    let omega_i = incident(rng, n, false);
     let flux = Vec3::new(rng.f32(), rng.f32(), rng.f32()) * 10f32.powf(rng.range(-6.0, 6.0));
     if rng.u64().is_multiple_of(4) {
         let kd = Vec3::new(rng.f32(), rng.f32(), rng.f32());
@@ -89,6 +78,26 @@ pub(super) fn random_lobe(rng: &mut Rng) -> TestLobe {
         }
     }
     TestLobe::Glossy(lobe)
+}
+
+/// A unit ωi at a random angle θi to the unit normal `n`: normal incidence, near grazing
+/// (1e-6 to 0.1 rad above the surface) or uniform in [0, π/2]; with `below`, one time in five
+/// below the surface (θi in [π/2, π]).
+pub(super) fn incident(rng: &mut Rng, n: Vec3, below: bool) -> Vec3 {
+    use core::f32::consts::{FRAC_PI_2, PI, TAU};
+    let theta_i = match rng.u64() % if below { 5 } else { 4 } {
+        0 => 0.0,
+        1 => FRAC_PI_2 - 10f32.powf(rng.range(-6.0, -1.0)),
+        4 => rng.range(FRAC_PI_2, PI),
+        _ => rng.range(0.0, FRAC_PI_2),
+    };
+    let phi = rng.range(0.0, TAU);
+    let local = Vec3::new(
+        theta_i.sin() * phi.cos(),
+        theta_i.sin() * phi.sin(),
+        theta_i.cos(),
+    );
+    Basis::from_unit(n).to_world(local).normalize()
 }
 
 pub(super) fn random_params(rng: &mut Rng) -> StochasticParams {

@@ -2,10 +2,10 @@
 //! the extremes and outside the domain: every lobe `GlossyLobe::new` accepts is bounded the
 //! same, every one it refuses is left to the caller.
 use super::*;
-use crate::box_bound::tests::random_params;
+use crate::box_bound::tests::{incident, random_params};
 use crate::lanes::Lanes8;
 use crate::test_util::Rng;
-use crate::{Basis, GlossyLobe};
+use crate::GlossyLobe;
 
 /// A raw input to `GlossyLobe::new`: a unit vector (or a vector within and just outside
 /// its tolerance, NaN, infinite or zero); α from 1e-4 to 1 (or 0, above 1, subnormal, NaN);
@@ -33,19 +33,7 @@ fn spoil(rng: &mut Rng, v: Vec3) -> Vec3 {
 
 fn raw(rng: &mut Rng) -> Raw {
     let n = rng.unit();
-    let theta_i = match rng.u64() % 5 {
-        0 => 0.0,
-        1 => core::f32::consts::FRAC_PI_2 - 10f32.powf(rng.range(-6.0, -1.0)),
-        2 => rng.range(core::f32::consts::FRAC_PI_2, core::f32::consts::PI),
-        _ => rng.range(0.0, core::f32::consts::FRAC_PI_2),
-    };
-    let phi = rng.range(0.0, core::f32::consts::TAU);
-    let local = Vec3::new(
-        theta_i.sin() * phi.cos(),
-        theta_i.sin() * phi.sin(),
-        theta_i.cos(),
-    );
-    let omega_i = Basis::from_unit(n).to_world(local).normalize();
+    let omega_i = incident(rng, n, true);
     let alpha = match rng.u64() % 12 {
         0 => 0.0,
         1 => 1.0,
