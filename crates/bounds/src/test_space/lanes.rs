@@ -1,8 +1,8 @@
 //! [`TestSpace::new`](super::TestSpace::new)'s matrix BS of eq. (16)-(17) for eight spheroids
 //! at a time: glam's f32 matrix arithmetic step for step in lanes ([`crate::lanes`]), so each
 //! lane's BS is the one `TestSpace::new` forms, bit for bit. A culler that forms every VPL's
-//! test space each frame (a million at RSM 1024) otherwise spends some 300 scalar operations a
-//! VPL on four matrix products, three normalisations and the checks.
+//! test space each frame (a million at RSM 1024) otherwise forms five 3×3 products (45
+//! operations each), three normalisations and the checks one VPL at a time.
 use crate::lanes::{all3, cross, dot, max, within, Real};
 
 /// A 3×3 matrix in lanes, as glam's `Mat3` holds it: three columns.
