@@ -86,7 +86,13 @@ pub(crate) fn cull(input: &CullInput, shared_above: u64) -> Result<LightLists, C
     let (bands, shared): (Vec<Bands>, Vec<Vec<(u32, u32)>>) = pieces.into_iter().unzip();
     let mut lists = lists(&bands, pixels)?;
     if let Some(cells) = &cells {
-        share(&mut lists, shared.concat(), cells, input.gbuffer)?;
+        share(
+            &mut lists,
+            shared.concat(),
+            cells,
+            &receivers.sampled,
+            width,
+        )?;
     }
     Ok(lists)
 }
@@ -170,13 +176,15 @@ fn take_large(
 
 /// Appends the cells' lists to `lists` from the (cell, VPL) entries `shared`, which come in
 /// VPL order: grouped by cell with a stable counting sort ([`group_by`]), each list is
-/// ascending. Names each as the shared list of its cell's pixels with a sample in `gbuffer`.
+/// ascending. Names each as the shared list of its cell's pixels with a sample (`sampled`: per
+/// pixel of the `width`-pixel screen rows, row by row).
 /// Nothing changes without entries.
 fn share(
     lists: &mut LightLists,
     shared: Vec<(u32, u32)>,
     cells: &CellBoxes,
-    gbuffer: &GBuffer,
+    sampled: &[bool],
+    width: u32,
 ) -> Result<(), CullError> {
     if shared.is_empty() {
         return Ok(());
@@ -200,16 +208,16 @@ fn share(
             lists.offsets.push(lists.indices.len() as u32);
         }
     }
-    let width = gbuffer.width as usize;
-    let mut shared_list = vec![NO_LIST; lists.pixel_list.len()];
+    let mut shared_list = vec![NO_LIST; sampled.len()];
     shared_list
-        .par_chunks_mut(width)
-        .zip(gbuffer.samples.par_chunks(width))
+        .par_chunks_mut(width as usize)
+        .zip(sampled.par_chunks(width as usize))
         .enumerate()
-        .for_each(|(y, (row, samples))| {
-            for (x, (list, sample)) in row.iter_mut().zip(samples).enumerate() {
-                if sample.is_some() {
-                    *list = of_cell[cells.of_pixel(x as u32, y as u32)];
+        .for_each(|(y, (row, sampled))| {
+            for ((list, &sampled), cell) in row.iter_mut().zip(sampled).zip(cells.of_row(y as u32))
+            {
+                if sampled {
+                    *list = of_cell[cell];
                 }
             }
         });
@@ -223,6 +231,9 @@ fn share(
 /// depth.
 struct Receivers {
     rows: PixelRows,
+    /// Per pixel, row by row, whether it has a sample (so the cells' lists are handed out
+    /// without reading the G-buffer's samples again).
+    sampled: Vec<bool>,
     stray: f64,
     near: f64,
 }
@@ -233,16 +244,19 @@ impl Receivers {
     fn new(gbuffer: &GBuffer, view: &CullView, k: u32) -> Result<Self, CullError> {
         let width = gbuffer.width as usize;
         let mut rows = PixelRows::empty(gbuffer.width, gbuffer.height, k);
+        let mut sampled = vec![false; gbuffer.samples.len()];
         let (layout, screen_rows) = rows.screen_rows_mut();
         let (near, stray) = screen_rows
             .zip(gbuffer.samples.par_chunks(width))
+            .zip(sampled.par_chunks_mut(width))
             .enumerate()
-            .map(|(y, (row, samples))| {
+            .map(|(y, ((row, samples), sampled))| {
                 let (mut near, mut stray) = (f64::INFINITY, 0.0f64);
-                for (x, g) in samples.iter().enumerate() {
+                for (x, (g, sampled)) in samples.iter().zip(sampled).enumerate() {
                     let Some(g) = g else {
                         continue;
                     };
+                    *sampled = true;
                     let (x, y) = (x as u32, y as f64);
                     let v = view.to_view(g.position);
                     if !(v.z > 0.0 && v.is_finite()) {
@@ -265,7 +279,12 @@ impl Receivers {
                 || (f64::INFINITY, 0.0),
                 |a, b| Ok((a.0.min(b.0), a.1.max(b.1))),
             )?;
-        Ok(Self { rows, stray, near })
+        Ok(Self {
+            rows,
+            sampled,
+            stray,
+            near,
+        })
     }
 }
 

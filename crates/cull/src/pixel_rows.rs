@@ -121,11 +121,29 @@ impl CellBoxes {
         (sub * self.down as usize + cy as usize) * self.across as usize + cx as usize
     }
 
-    /// The cell of screen pixel (x, y).
-    #[inline]
+    /// The cell of screen pixel (x, y) ([`Self::of_row`] counts them along a row).
+    #[cfg(test)]
     pub(crate) fn of_pixel(&self, x: u32, y: u32) -> usize {
         let k = self.k;
         self.id([x % k, y % k], [x / k / CELL, y / k / CELL])
+    }
+
+    /// The cells of the pixels x = 0, 1, ... of screen row `y`: [`Self::of_pixel`] of each,
+    /// counted along the row instead of divided per pixel.
+    pub(crate) fn of_row(&self, y: u32) -> impl Iterator<Item = usize> + '_ {
+        let k = self.k;
+        let (sy, cy) = (y % k, y / k / CELL);
+        // Pixel x is column q = x / k of subregion sx = x % k.
+        let (mut sx, mut q) = (0, 0);
+        std::iter::repeat_with(move || {
+            let cell = self.id([sx, sy], [q / CELL, cy]);
+            sx += 1;
+            if sx == k {
+                sx = 0;
+                q += 1;
+            }
+            cell
+        })
     }
 }
 
@@ -596,7 +614,7 @@ mod tests {
     }
 
     /// Each cell's box is the box of exactly the samples of the pixels in it
-    /// ([`CellBoxes::of_pixel`]), empty where none has one, and the numbers of the cells of
+    /// ([`CellBoxes::of_pixel`], and [`CellBoxes::of_row`] the same cells), empty where none has one, and the numbers of the cells of
     /// every subregion's image ([`CellBoxes::id`]) are distinct and within the boxes: images
     /// whose sides are not multiples of K or of a cell, K from 1 to 9.
     #[test]
@@ -631,6 +649,11 @@ mod tests {
                 }
             }
             assert_eq!(cells.boxes, want, "K {k}, {width}x{height}");
+            for y in 0..height {
+                let along: Vec<usize> = cells.of_row(y).take(width as usize).collect();
+                let each: Vec<usize> = (0..width).map(|x| cells.of_pixel(x, y)).collect();
+                assert_eq!(along, each, "K {k}, {width}x{height}, row {y}");
+            }
             let mut ids = std::collections::HashSet::new();
             let il = slc_core::Interleaving { k, seed: 0 };
             for (sx, sy) in (0..k).flat_map(|sy| (0..k).map(move |sx| (sx, sy))) {
