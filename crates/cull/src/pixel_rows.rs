@@ -121,15 +121,17 @@ impl CellBoxes {
         (sub * self.down as usize + cy as usize) * self.across as usize + cx as usize
     }
 
-    /// The cell of screen pixel (x, y) ([`Self::of_row`] counts them along a row).
+    /// The cell of screen pixel (x, y), as [`Self::of_row`] counts them along a row (the
+    /// tests' reference).
     #[cfg(test)]
     pub(crate) fn of_pixel(&self, x: u32, y: u32) -> usize {
         let k = self.k;
         self.id([x % k, y % k], [x / k / CELL, y / k / CELL])
     }
 
-    /// The cells of the pixels x = 0, 1, ... of screen row `y`: [`Self::of_pixel`] of each,
-    /// counted along the row instead of divided per pixel.
+    /// The cells of the pixels x = 0, 1, ... of screen row `y`: pixel x is in column x / K of
+    /// subregion x mod K, cell column x / K / [`CELL`] (and y likewise), counted along the row
+    /// instead of divided per pixel.
     pub(crate) fn of_row(&self, y: u32) -> impl Iterator<Item = usize> + '_ {
         let k = self.k;
         let (sy, cy) = (y % k, y / k / CELL);
