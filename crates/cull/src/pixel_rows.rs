@@ -616,9 +616,10 @@ mod tests {
     }
 
     /// Each cell's box is the box of exactly the samples of the pixels in it
-    /// ([`CellBoxes::of_pixel`], and [`CellBoxes::of_row`] the same cells), empty where none has one, and the numbers of the cells of
-    /// every subregion's image ([`CellBoxes::id`]) are distinct and within the boxes: images
-    /// whose sides are not multiples of K or of a cell, K from 1 to 9.
+    /// ([`CellBoxes::of_pixel`], and [`CellBoxes::of_row`] the same cells), empty where none
+    /// has one, and the numbers of the cells of every subregion's image ([`CellBoxes::id`])
+    /// are distinct and within the boxes: images whose sides are not multiples of K or of a
+    /// cell, K from 1 to 9.
     #[test]
     fn cell_boxes_hold_their_pixels_samples() {
         let mut rng = Rng(13);
