@@ -461,6 +461,14 @@ pub fn dot<R: Real>(a: [R; 3], b: [R; 3]) -> R {
     a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 }
 
+/// `v` as glam's `Vec3::normalize` forms it: each component times 1/|v| (not over |v|: the
+/// two differ by an ulp).
+#[inline(always)]
+pub fn normalize<R: Real>(v: [R; 3]) -> [R; 3] {
+    let inverse = R::splat(1.0) / dot(v, v).sqrt();
+    [v[0] * inverse, v[1] * inverse, v[2] * inverse]
+}
+
 /// `a×b` as glam forms `Vec3::cross`.
 #[inline(always)]
 pub fn cross<R: Real>(a: [R; 3], b: [R; 3]) -> [R; 3] {

@@ -82,15 +82,13 @@ fn view_bounds(
     let refs: [&Vpl; 8] = core::array::from_fn(|k| &eight[k.min(eight.len() - 1)]);
     let (refs, params) = (&refs[..eight.len()], &params[..eight.len()]);
     let boxed = box_bounds(refs, params, u8::MAX, |k, bound| {
-        out[k] = (bound.rotated(rotation), view.to_view(refs[k].position));
+        out[k].0 = bound.rotated(rotation);
     });
-    for (k, (v, params)) in refs.iter().zip(params).enumerate() {
+    for (k, ((v, params), out)) in refs.iter().zip(params).zip(out).enumerate() {
         if boxed >> k & 1 == 0 {
-            out[k] = (
-                lobe_box_bound(v, params)?.rotated(rotation),
-                view.to_view(v.position),
-            );
+            out.0 = lobe_box_bound(v, params)?.rotated(rotation);
         }
+        out.1 = view.to_view(v.position);
     }
     Ok(())
 }

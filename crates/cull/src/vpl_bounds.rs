@@ -205,7 +205,7 @@ impl VplBound {
             let index = first + k as u32;
             *out = match (own[k], spaces >> k & 1 == 1) {
                 (Some(b), true) => {
-                    let bs = Mat3::from_cols_array_2d(&matrices.map(|c| c.map(|v| v.0[k])));
+                    let bs = lane_matrix(&matrices, k);
                     let center = view.relative(vpl.position) + b.offset;
                     Self::from_test_space(view, center, bs, index)
                 }
@@ -300,6 +300,11 @@ fn test_spaces(spheroids: &[Option<(Mat3, Vec3)>; 8], view_rotation: Mat3) -> (u
     }
     let (formed, matrices) = test_spaces_in::<F8>(&rotation, &semi, &view);
     (formed & wanted, matrices)
+}
+
+/// Lane `k` of a matrix whose columns are lanes (as [`test_spaces`] returns them).
+fn lane_matrix(columns: &[[F8; 3]; 3], k: usize) -> Mat3 {
+    Mat3::from_cols_array_2d(&columns.map(|c| c.map(|v| v.0[k])))
 }
 
 /// [`test_spaces_in`] in AVX registers.
@@ -509,7 +514,7 @@ mod tests {
                 if let Some((rotation, semi)) = s {
                     assert_eq!(spaces >> k & 1, 1, "case {case}, VPL {k}: left");
                     let one = TestSpace::new(view.rotation() * *rotation, *semi, Vec3::ZERO);
-                    let lane = Mat3::from_cols_array_2d(&matrices.map(|c| c.map(|v| v.0[k])));
+                    let lane = lane_matrix(&matrices, k);
                     assert_eq!(format!("{lane:?}"), format!("{:?}", one.unwrap().matrix()));
                     from_lanes += 1;
                 }

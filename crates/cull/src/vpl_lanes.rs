@@ -79,7 +79,7 @@ impl<L: Lanes8> OwnBounds<L> {
                 xi,
             );
         let (zero, one) = (L::splat(0.0), L::splat(1.0));
-        let (n, wi) = (normalize(raw_normal), normalize(raw_omega));
+        let (n, wi) = (over_length(raw_normal), over_length(raw_omega));
         let cos_i = dot(n, wi);
         let sin_i = {
             let c = cross(n, wi);
@@ -108,7 +108,7 @@ impl<L: Lanes8> OwnBounds<L> {
         // Glossy: the spheroid along ω_u = normalize(2 cos θi n − ωi), semi-axes
         // ((1 + α²)/(2α) r, r, r), centre q + (1 − α²)/(2α) r ω_u (eq. 13-15).
         let two_cos = L::splat(2.0) * cos_i;
-        let reflected = normalize([
+        let reflected = over_length([
             two_cos * n[0] - wi[0],
             two_cos * n[1] - wi[1],
             two_cos * n[2] - wi[2],
@@ -374,12 +374,12 @@ impl Fields {
 }
 
 /// `v` over its length (`check::unit`'s renormalisation). The mirror direction ω_u is
-/// normalised here the same way, where `GlossyLobe::reflection` (glam's `normalize`)
-/// multiplies by 1/|v|: an ulp apart, which the own bounds' slack covers; the bounds over
-/// boxes (`SchlickLobes::box_bounds`), which must equal slc-bounds' bit for bit, form it as
-/// glam does.
+/// normalised here the same way, where `GlossyLobe::reflection` (glam's `normalize`,
+/// `slc_bounds::lanes::normalize`) multiplies by 1/|v|: an ulp apart, which the own bounds'
+/// slack covers; the bounds over boxes (`SchlickLobes::box_bounds`), which must equal
+/// slc-bounds' bit for bit, form it as glam does.
 #[inline(always)]
-fn normalize<L: Real>(v: [L; 3]) -> [L; 3] {
+fn over_length<L: Real>(v: [L; 3]) -> [L; 3] {
     let len = dot(v, v).sqrt();
     [v[0] / len, v[1] / len, v[2] / len]
 }

@@ -9,7 +9,9 @@ use super::{BoxBound, GlossyParts};
 use crate::check::UNIT_TOLERANCE;
 use crate::fresnel::cos_theta_h_max_lanes;
 use crate::ggx::g1_over_cos_lanes;
-use crate::lanes::{all3, cross, dot, max, store_all, within, within1, Lanes8, Real, F8};
+use crate::lanes::{
+    all3, cross, dot, max, normalize, store_all, within, within1, Lanes8, Real, F8,
+};
 use crate::{Fresnel, StochasticParams};
 use glam::Vec3;
 
@@ -66,13 +68,7 @@ impl<L: Lanes8> SchlickLobes<L> {
             two_cos * n[1] - wi[1],
             two_cos * n[2] - wi[2],
         ];
-        // glam's `normalize`: the vector times 1/|v|.
-        let inverse = one / dot(mirror, mirror).sqrt();
-        let reflection = [
-            mirror[0] * inverse,
-            mirror[1] * inverse,
-            mirror[2] * inverse,
-        ];
+        let reflection = normalize(mirror);
         let stored = Stored {
             normal: store_all(&n),
             omega_i: store_all(&wi),

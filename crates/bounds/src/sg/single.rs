@@ -10,7 +10,7 @@
 //! [`SphericalGaussian::irradiance`], [`SgSurface::radiance`]) stay the reference: the tests
 //! below hold these to them.
 use crate::error::BoundsError;
-use crate::lanes::{clamp01, dot, exp, max, min, Real};
+use crate::lanes::{clamp01, dot, exp, max, min, normalize, Real};
 use crate::sg::lobe::SphericalGaussian;
 use crate::sg::shading::SgSurface;
 use core::f32::consts::{PI, TAU};
@@ -328,7 +328,7 @@ impl<R: Real> SgLanes<R> {
         let sharp = m.sharpness.gt(zero);
         // normalize(axis_sum / d) as glam forms it, kept only where finite.
         let v = scale(m.axis_sum, R::splat(1.0) / m.sharpness);
-        let v = scale(v, R::splat(1.0) / dot(v, v).sqrt());
+        let v = normalize(v);
         let keep = sharp & finite(v[0]) & finite(v[1]) & finite(v[2]);
         let axis = [
             R::select(keep, v[0], self.axis[0]),

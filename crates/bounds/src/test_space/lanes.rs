@@ -3,7 +3,7 @@
 //! lane's BS is the one `TestSpace::new` forms, bit for bit. A culler that forms every VPL's
 //! test space each frame (a million at RSM 1024) otherwise forms five 3×3 products (45
 //! operations each), three normalisations and the checks one VPL at a time.
-use crate::lanes::{all3, cross, dot, max, within, Real};
+use crate::lanes::{all3, cross, dot, max, normalize, within, Real};
 
 /// A 3×3 matrix in lanes, as glam's `Mat3` holds it: three columns.
 pub type Mat3Lanes<L> = [[L; 3]; 3];
@@ -60,10 +60,7 @@ fn test_rotation<L: Real>(s: Mat3Lanes<L>) -> Mat3Lanes<L> {
     let (len_x, len_y) = (dot(bx, bx).sqrt(), dot(by, by).sqrt());
     let ux = [bx[0] / len_x, bx[1] / len_x, bx[2] / len_x];
     let uy = [by[0] / len_y, by[1] / len_y, by[2] / len_y];
-    // glam's `normalize`: the vector times 1/|v|.
-    let c = cross(ux, uy);
-    let inverse = L::splat(1.0) / dot(c, c).sqrt();
-    let z = [c[0] * inverse, c[1] * inverse, c[2] * inverse];
+    let z = normalize(cross(ux, uy));
     let first = len_x.gt(len_y);
     let (zx, yz) = (cross(z, ux), cross(uy, z));
     let x = [
