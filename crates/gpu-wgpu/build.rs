@@ -40,6 +40,8 @@ const KERNELS: &[Kernel] = &[
     k("tight_cull", "cull::tight::tight_cull"),
     k("none_cull", "cull::none::none_cull"),
     k("binned_footprint", "cull::binned::binned_footprint"),
+    k("binned_tiles", "cull::binned::binned_tiles"),
+    k("binned_bins", "cull::binned::binned_bins"),
     k("binned_cull", "cull::binned::binned_cull"),
     k("raster_args", "cull::raster::raster_args"),
     k("splat", "cull::raster::splat"),

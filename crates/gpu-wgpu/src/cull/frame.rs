@@ -237,7 +237,7 @@ pub(crate) fn check_input(ctx: &GpuContext, frame: &CullFrame) -> Result<CullSiz
 /// standard deviations of it (the subregions are drawn by a hash of the id; the number itself
 /// where K = 1), first of the buffer's capacity and, where that share does not pass `fits`,
 /// of their count read back (4 bytes).
-fn largest_subregion(
+pub(crate) fn largest_subregion(
     ctx: &GpuContext,
     frame: &CullFrame,
     fits: impl Fn(u64) -> bool,

@@ -136,7 +136,8 @@ fn shading_reads_every_strategys_lists_on_the_gpu() {
 /// Lists that outgrew the room their culler left are refused when read back (a typed error,
 /// never truncated lists); used through `use_lists` they are culled again until complete:
 /// once more for a list culler, twice for the tight ones with both rooms too small (the
-/// base lists, then the refined ones). The complete lists equal those culled with room.
+/// base lists, then the refined ones) and for binned (its tiles' bins, then the lists). The
+/// complete lists equal those culled with room.
 #[test]
 fn outgrown_lists_are_refused_or_culled_again() {
     let Some(ctx) = gpu() else { return };
@@ -150,6 +151,7 @@ fn outgrown_lists_are_refused_or_culled_again() {
         (Strategy::Clustered, 2),
         (Strategy::Tight, 3),
         (Strategy::ClusteredTight, 3),
+        (Strategy::Binned, 3),
     ] {
         culler.set_list_room(1 << 20);
         let roomy = culler.cull(&ctx, &input, strategy).unwrap();

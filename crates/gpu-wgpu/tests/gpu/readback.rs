@@ -52,11 +52,12 @@ fn without_timestamps(
 }
 
 /// The fault records a frame of `strategy` reads after its shading: none without culling,
-/// two where the tight refinement follows the base lists, else one.
+/// two where the tight refinement follows the base lists or binned's lists its tiles' bins,
+/// else one.
 fn status_bytes(strategy: Strategy) -> u64 {
     match strategy {
         Strategy::None => 0,
-        Strategy::Tight | Strategy::ClusteredTight => 32,
+        Strategy::Tight | Strategy::ClusteredTight | Strategy::Binned => 32,
         _ => 16,
     }
 }
@@ -122,7 +123,7 @@ fn stochastic_frames_read_back_their_images_only() {
 /// image, bit for bit (list order is fixed; the rasterized clusters' atomics order nodes
 /// differently between runs), the same metrics; the culler learns the room, so the next
 /// frame is culled once. With the room 1, the tight strategies outgrow twice (the base
-/// lists, then the refined ones).
+/// lists, then the refined ones), and binned (its tiles' bins, then its lists).
 #[test]
 fn lists_that_outgrow_their_buffer_are_culled_again() {
     let Some(ctx) = gpu() else { return };
@@ -132,6 +133,7 @@ fn lists_that_outgrow_their_buffer_are_culled_again() {
         Strategy::Clustered,
         Strategy::Tight,
         Strategy::ClusteredTight,
+        Strategy::Binned,
         Strategy::None,
         Strategy::ClusteredRaster,
     ] {

@@ -3,23 +3,31 @@
 //! sphere or the GGX spheroid of eq. 12-15, grown by `BOUND_SLACK`, written in world axes
 //! relative to the VPL as well) and the screen rectangle it may cover
 //! (`binned_footprint.wesl`, `footprint.rs`'s f32 arithmetic with its conservative rounding);
-//! the subregions' VPLs (`cull::partition`); then per 16 x 16 tile of each interleaved
-//! subregion image (`binned_cull.wesl`) the VPLs whose rectangle overlaps the tile's samples,
-//! and per pixel the test `binned.rs`'s `PixelTest` makes: the sample x not behind the VPL
-//! (eq. 4) and inside its bound. Every pixel gets its own list (list p for pixel p), ascending
-//! in the VPL index like the CPU's: the lists read back equal those of the CPU's
-//! `BinnedCuller::per_pixel` (the CPU's default shares large ranges per cell) up to f32
-//! versus f64 decisions at a bound's surface (the f32 test allows its rounding, which for
-//! the sharpest lobes, α = 1e-4, widens the spheroid by about 1%: `binned_footprint.wesl`).
+//! the subregions' VPLs, ascending (`cull::partition`); per 16 x 16 tile of each interleaved
+//! subregion image the box of its samples and of its strips of 16 x 2 pixels
+//! (`binned_tiles.wesl`); per subregion, its VPLs handed to the tiles whose samples their
+//! rectangle overlaps and their bound may reach (`binned_bins.wesl`: each tile's bin,
+//! ascending); then per tile (`binned_cull.wesl`) the VPLs of its bin, per strip those that
+//! reach its samples, and per pixel the test `binned.rs`'s `PixelTest` makes: the sample x not
+//! behind the VPL (eq. 4) and inside its bound. So the culling costs the VPLs, the (tile, VPL)
+//! pairs they reach and the pixels their rectangles cover, not VPLs x tiles. Every pixel gets
+//! its own list (list p for pixel p), ascending in the VPL index like the CPU's: the lists read
+//! back equal those of the CPU's `BinnedCuller::per_pixel` (the CPU's default shares large
+//! ranges per cell) up to f32 versus f64 decisions at a bound's surface (the f32 test allows
+//! its rounding, which for the sharpest lobes, α = 1e-4, widens the spheroid by about 1%:
+//! `binned_footprint.wesl`).
 //!
-//! Counting, a scan (`device::scan`) and writing run in one submission, into a buffer of the
-//! room earlier frames' lists needed (`cull::room`): lists that outgrew it are culled again
-//! with the total their fault record reports, and a total beyond the storage-binding limit is
-//! refused ([`GpuError::BufferTooLarge`], naming the light lists).
+//! Binning, counting, the scans (`device::scan`) and writing run in one submission, the bins
+//! and the lists each into a buffer of the room earlier frames needed (`cull::room`): bins or
+//! lists that outgrew it are culled again with the total their fault record reports, and a
+//! total beyond the storage-binding limit is refused ([`GpuError::BufferTooLarge`], naming the
+//! tile bins or the light lists).
 pub mod records;
 
 use crate::cull::bounds::BoundsPass;
-use crate::cull::frame::{check_input, cull_params, tile_grid, CullFrame, CullSizes};
+use crate::cull::frame::{
+    check_input, cull_params, largest_subregion, tile_grid, CullFrame, CullSizes,
+};
 use crate::cull::lists::{no_lists, GpuLightLists};
 use crate::cull::partition::PartitionPass;
 use crate::cull::records::{GpuCullParams, GpuCullStatus, CULL_COUNT, CULL_WRITE};
@@ -28,7 +36,7 @@ use crate::device::buffers::{output, uniform, upload, Grid};
 use crate::device::context::{GpuContext, GpuError};
 use crate::device::count::ArgsPass;
 use crate::device::scan::ScanPass;
-use records::{GpuBinnedParams, GpuBinnedVpl};
+use records::{GpuBinnedParams, GpuBinnedTile, GpuBinnedVpl};
 use slc_cull::GlossyBound;
 use std::mem::offset_of;
 use std::sync::Arc;
@@ -37,19 +45,27 @@ use std::sync::Arc;
 pub(crate) const SOURCE: &str = kernel!("binned_cull");
 /// The kernel of `binned_footprint.wesl`.
 pub(crate) const FOOTPRINT_SOURCE: &str = kernel!("binned_footprint");
-/// Invocations per workgroup of the per-VPL pass.
+/// The kernel of `binned_tiles.wesl`.
+pub(crate) const TILES_SOURCE: &str = kernel!("binned_tiles");
+/// The kernel of `binned_bins.wesl`.
+pub(crate) const BINS_SOURCE: &str = kernel!("binned_bins");
+/// Invocations per workgroup of the per-VPL passes.
 const WORKGROUP: u32 = 64;
 
-/// The binned strategy's pipelines and the room its lists needed.
+/// The binned strategy's pipelines and the room its bins and lists needed.
 pub struct BinnedCuller {
     bounds: BoundsPass,
     partition: PartitionPass,
     scan: ScanPass,
     args: ArgsPass,
     footprint: wgpu::ComputePipeline,
+    tiles: wgpu::ComputePipeline,
+    bins: wgpu::ComputePipeline,
     pipeline: wgpu::ComputePipeline,
     /// What the lists of earlier frames needed.
     room: Arc<ListRoom>,
+    /// What the bins (tile, VPL) of earlier frames needed.
+    bin_room: Arc<ListRoom>,
 }
 
 impl BinnedCuller {
@@ -63,22 +79,26 @@ impl BinnedCuller {
                 scan: ScanPass::new(ctx),
                 args,
                 footprint: ctx.compute_pipeline("binned footprint", FOOTPRINT_SOURCE),
+                tiles: ctx.compute_pipeline("binned tiles", TILES_SOURCE),
+                bins: ctx.compute_pipeline("binned bins", BINS_SOURCE),
                 pipeline: ctx.compute_pipeline("binned cull", SOURCE),
                 room: Arc::new(ListRoom::new()),
+                bin_room: Arc::new(ListRoom::new()),
             })
         })
     }
 
-    /// Sets the room of the next frames' lists (`cull::room`).
+    /// Sets the room of the next frames' lists (`cull::room`), and of their bins.
     pub fn set_list_room(&self, entries: u32) {
         self.room.set(entries);
+        self.bin_room.set(entries);
     }
 
     /// The lists of `frame` left on the GPU: one per pixel (list p of pixel p, [`slc_core::NO_LIST`]
     /// without a sample), possibly empty, in the CSR layout the shading pass reads. Errors on
     /// invalid input and on buffers beyond the device's limits; faults on the GPU (a sample
-    /// behind the camera, a bound beyond f32) and the lists' total are read after their use
-    /// ([`GpuLightLists::outgrown`]).
+    /// behind the camera, a bound beyond f32) and the totals of the bins and the lists are
+    /// read after their use ([`GpuLightLists::outgrown`]).
     pub fn cull_frame(
         &self,
         ctx: &GpuContext,
@@ -98,16 +118,44 @@ impl BinnedCuller {
             u64::from(tiles.2),
             ctx.limits.max_compute_workgroups_per_dimension,
         )?;
-        let records = output::<GpuBinnedVpl>(ctx, "binned vpls", frame.vpls.capacity())?;
+        let tiles_per_subregion = u64::from(tiles.0) * u64::from(tiles.1);
+        if let Some(budget) = ctx.loop_budget {
+            let iterations = |most| bin_iterations(most, tiles);
+            let most = largest_subregion(ctx, frame, |most| iterations(most) <= budget)?;
+            ctx.check_loop_budget(
+                || {
+                    format!(
+                        "binning up to {most} VPLs of a subregion into its \
+                         {tiles_per_subregion} tiles"
+                    )
+                },
+                iterations(most),
+                "raise --interleave K (fewer VPLs and tiles per subregion), lower --rsm or \
+                 the image size, or shade one of the --lobes",
+            )?;
+        }
+        let capacity = frame.vpls.capacity();
+        let records = output::<GpuBinnedVpl>(ctx, "binned vpls", capacity)?;
+        let tile_records = output::<GpuBinnedTile>(ctx, "binned tiles", tiles.2 as usize)?;
+        let stray = output::<u32>(ctx, "binned stray", 4)?;
+        let bin_offsets = output::<u32>(ctx, "bin offsets", tiles.2 as usize + 1)?;
         let offsets = output::<u32>(ctx, "list offsets", pixels as usize + 1)?;
         let pixel_list = output::<u32>(ctx, "pixel lists", pixels as usize)?;
         let status = upload(ctx, "cull status", &[GpuCullStatus::CLEAR])?;
+        let bin_status = upload(ctx, "bin status", &[GpuCullStatus::CLEAR])?;
         let binned = uniform(ctx, "binned params", &screen_map(frame));
         // The lists of a subregion are its pixels (subregion 0's are the most).
         let per_subregion = u64::from(width.div_ceil(k)) * u64::from(height.div_ceil(k));
         let (entries, write) =
             self.room
                 .buffer(ctx, frame, "light lists", per_subregion, &status)?;
+        let (bins, bin_write) =
+            self.bin_room
+                .buffer(ctx, frame, "tile bins", tiles_per_subregion, &bin_status)?;
+        let subregions = Grid::new(
+            u64::from(k * k),
+            ctx.limits.max_compute_workgroups_per_dimension,
+        )?;
         let at = offset_of!(GpuCullParams, vpl_count);
         ctx.submit("binned cull", |encoder| {
             let partition = self.partition.encode(
@@ -139,6 +187,43 @@ impl BinnedCuller {
                 ],
                 workgroups,
             );
+            ctx.encode_dispatch(
+                encoder,
+                "binned tiles",
+                &self.tiles,
+                &[
+                    &footprint_params,
+                    &binned,
+                    &frame.positions,
+                    &tile_records,
+                    &stray,
+                    &status,
+                ],
+                grid,
+            );
+            for mode in [CULL_COUNT, CULL_WRITE] {
+                let params = uniform(ctx, "binned bins", &cull_params(frame, &view, tiles, mode));
+                ctx.encode_dispatch(
+                    encoder,
+                    "binned bins",
+                    &self.bins,
+                    &[
+                        &params,
+                        &records,
+                        &tile_records,
+                        &stray,
+                        &partition.order,
+                        &partition.sub_offsets,
+                        &bin_offsets,
+                        &bins,
+                    ],
+                    subregions,
+                );
+                if mode == CULL_COUNT {
+                    self.scan
+                        .encode(ctx, encoder, &bin_offsets, tiles.2, &bin_status)?;
+                }
+            }
             for mode in [CULL_COUNT, CULL_WRITE] {
                 let params = cull_params(frame, &view, tiles, mode);
                 let params = bounds
@@ -153,12 +238,12 @@ impl BinnedCuller {
                         &binned,
                         &frame.positions,
                         &records,
-                        &partition.order,
-                        &partition.sub_offsets,
+                        &bins,
+                        &bin_offsets,
                         &offsets,
                         &entries,
                         &pixel_list,
-                        &status,
+                        &tile_records,
                     ],
                     grid,
                 );
@@ -175,9 +260,22 @@ impl BinnedCuller {
             list_count: pixels,
             entries: write.held,
             pixels,
-            writes: vec![write],
+            // The bins first: lists made from bins that outgrew theirs are incomplete too.
+            writes: vec![bin_write, write],
         })
     }
+}
+
+/// The most loop iterations an invocation of `binned_bins.wesl` runs for a subregion of
+/// `most` VPLs on the grid `tiles` (per subregion `tiles.0` x `tiles.1`): per batch of 256
+/// tiles and round of 256 VPLs, its VPL's tiles within the batch (at most 256, and a row
+/// loop's own iterations), the eight words of its tile's marks and their set bits.
+fn bin_iterations(most: u64, (across, down, _): (u32, u32, u32)) -> u64 {
+    let per_subregion = u64::from(across) * u64::from(down);
+    let batches = per_subregion.div_ceil(256);
+    let rounds = most.div_ceil(256);
+    let per_round = per_subregion.min(256) + u64::from(down) + 8 + 256 + 2;
+    batches * rounds * per_round + 64
 }
 
 /// The map from the image plane at unit depth to `frame`'s screen pixels, in f64 and then

@@ -31,6 +31,25 @@ pub struct GpuBinnedVpl {
 }
 const _: () = assert!(std::mem::size_of::<GpuBinnedVpl>() == 80);
 
+/// One tile as the binned strategy's bins and lists test it (`binned_tiles.wesl` writes it).
+/// Keep in sync with `BinnedTile` in `records.wesl`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
+pub struct GpuBinnedTile {
+    /// The rectangle (X0, Y0, X1, Y1) of its samples' screen positions, grown by `pad` for
+    /// their rounding (X0 > X1 without samples).
+    pub rect: [f32; 4],
+    /// Their smallest view depth, shrunk for its rounding.
+    pub near: f32,
+    /// How much the rectangle is grown.
+    pub pad: f32,
+    pub unused: [u32; 2],
+    /// Per strip of 16 x 2 pixels, the smallest and the largest (X, Y, depth, 0) of its
+    /// samples.
+    pub strips: [[f32; 4]; 16],
+}
+const _: () = assert!(std::mem::size_of::<GpuBinnedTile>() == 288);
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -43,6 +62,14 @@ mod tests {
         super::super::SOURCE => {
             GpuBinnedParams as "BinnedParams",
             GpuBinnedVpl as "BinnedVpl",
+        }
+        super::super::TILES_SOURCE => {
+            GpuBinnedParams as "BinnedParams",
+            GpuBinnedTile as "BinnedTile",
+        }
+        super::super::BINS_SOURCE => {
+            GpuBinnedVpl as "BinnedVpl",
+            GpuBinnedTile as "BinnedTile",
         }
     }
 }
