@@ -40,7 +40,8 @@ fn with_sky(g: &GBuffer) -> GBuffer {
     g
 }
 
-/// The scene's VPLs and extreme ones at δ 1e-9…1e3 and K 1…64, with and without sky: 0 missed
+/// The scene's VPLs and extreme ones at δ 1e-9…1e3 and K 1…64, with and without sky, and on
+/// an image whose subregion has more tiles than one workgroup bins at a time: 0 missed
 /// pairs, the CPU's true positives, lists ascending; entries on the CPU only at most 1e-4 of
 /// all or 10 (decided within rounding at a bound's surface), on the GPU only at most 1e-3 of
 /// all (or 1) on the scene's VPLs and 5% with the extremes' sharp lobes: the GPU's f32 test allows
@@ -55,7 +56,9 @@ fn binned_lists_never_miss_a_pair_and_match_the_cpu_at_the_extremes() {
     let camera = scene.camera_or_default();
     let (gbuffer, scene_vpls) = frame(&scene, &camera, (96, 64), 16);
     let sky = with_sky(&gbuffer);
-    let cases: [(&str, Vec<Vpl>, f32, u32, &GBuffer); 10] = [
+    // 20 x 14 tiles in its one subregion at K = 1: the bins take them in two batches of 256.
+    let (wide, _) = frame(&scene, &camera, (320, 224), 16);
+    let cases: [(&str, Vec<Vpl>, f32, u32, &GBuffer); 11] = [
         // name, VPLs, δ, K, G-buffer
         ("scene", scene_vpls.clone(), 1e-3, 1, &gbuffer),
         ("scene, short ranges", scene_vpls.clone(), 0.3, 2, &gbuffer),
@@ -68,6 +71,13 @@ fn binned_lists_never_miss_a_pair_and_match_the_cpu_at_the_extremes() {
         // 1,024 and 4,096 subregions, most with a VPL or none: the partition's sort.
         ("scene, K 32", scene_vpls.clone(), 1e-3, 32, &gbuffer),
         ("scene, K 64", scene_vpls.clone(), 1e-3, 64, &sky),
+        (
+            "scene, 320x224, short ranges",
+            scene_vpls.clone(),
+            0.3,
+            1,
+            &wide,
+        ),
     ];
     for (name, vpls, delta, k, g) in &cases {
         let input = CullInput {
