@@ -58,7 +58,22 @@ fn binned_lists_never_miss_a_pair_and_match_the_cpu_at_the_extremes() {
     let sky = with_sky(&gbuffer);
     // 20 x 14 tiles in its one subregion at K = 1: the bins take them in two batches of 256.
     let (wide, _) = frame(&scene, &camera, (320, 224), 16);
-    let cases: [(&str, Vec<Vpl>, f32, u32, &GBuffer); 11] = [
+    // 140,000 VPLs (the scene's again and again, new ids and ξ) at K = 8: about 2,190 per
+    // subregion, nine rounds of 256, which the bins split into slices of two rounds
+    // (`bin_slices`: 512 workgroups wanted); at K = 1 each of the others' rounds is a slice.
+    let (small, _) = frame(&scene, &camera, (32, 16), 16);
+    let many: Vec<Vpl> = (0..140_000u32)
+        .map(|i| {
+            let v = scene_vpls[i as usize % scene_vpls.len()];
+            let xi = (v.xi + 0.618_034 * (i / scene_vpls.len() as u32) as f32).fract();
+            Vpl {
+                id: i,
+                xi: xi.max(1e-6),
+                ..v
+            }
+        })
+        .collect();
+    let cases: [(&str, Vec<Vpl>, f32, u32, &GBuffer); 12] = [
         // name, VPLs, δ, K, G-buffer
         ("scene", scene_vpls.clone(), 1e-3, 1, &gbuffer),
         ("scene, short ranges", scene_vpls.clone(), 0.3, 2, &gbuffer),
@@ -78,6 +93,7 @@ fn binned_lists_never_miss_a_pair_and_match_the_cpu_at_the_extremes() {
             1,
             &wide,
         ),
+        ("scene x 140,000, 32x16", many, 1e-3, 8, &small),
     ];
     for (name, vpls, delta, k, g) in &cases {
         let input = CullInput {

@@ -5,9 +5,9 @@
 //! (`binned_footprint.wesl`, `footprint.rs`'s f32 arithmetic with its conservative rounding);
 //! the subregions' VPLs, ascending (`cull::partition`); per 16 x 16 tile of each interleaved
 //! subregion image the box of its samples and of its strips of 16 x 2 pixels
-//! (`binned_tiles.wesl`); per subregion, its VPLs handed to the tiles whose samples their
-//! rectangle overlaps and their bound may reach (`binned_bins.wesl`: each tile's bin,
-//! ascending); then per tile (`binned_cull.wesl`) the VPLs of its bin, per strip those that
+//! (`binned_tiles.wesl`); per slice of a subregion's VPLs ([`bin_slices`]), those VPLs
+//! handed to the tiles whose samples their rectangle overlaps and their bound may reach
+//! (`binned_bins.wesl`: each tile's bin, its slices' parts in order, ascending); then per tile (`binned_cull.wesl`) the VPLs of its bin, per strip those that
 //! reach its samples, and per pixel the test `binned.rs`'s `PixelTest` makes: the sample x not
 //! behind the VPL (eq. 4) and inside its bound. So the culling costs the VPLs, the (tile, VPL)
 //! pairs they reach and the pixels their rectangles cover, not VPLs x tiles. Every pixel gets
@@ -119,26 +119,33 @@ impl BinnedCuller {
             ctx.limits.max_compute_workgroups_per_dimension,
         )?;
         let tiles_per_subregion = u64::from(tiles.0) * u64::from(tiles.1);
-        if let Some(budget) = ctx.loop_budget {
-            let iterations = |most| bin_iterations(most, tiles);
-            let most = largest_subregion(ctx, frame, |most| iterations(most) <= budget)?;
+        let slices_of = |most| bin_slices(most, tiles, k * k, ctx.loop_budget);
+        let most = largest_subregion(ctx, frame, |most| {
+            ctx.loop_budget
+                .is_none_or(|budget| bin_iterations(slices_of(most).rounds, tiles) <= budget)
+        })?;
+        let slices = slices_of(most);
+        if ctx.loop_budget.is_some() {
             ctx.check_loop_budget(
                 || {
                     format!(
                         "binning up to {most} VPLs of a subregion into its \
-                         {tiles_per_subregion} tiles"
+                         {tiles_per_subregion} tiles in {} slices",
+                        slices.slices
                     )
                 },
-                iterations(most),
+                bin_iterations(slices.rounds, tiles),
                 "raise --interleave K (fewer VPLs and tiles per subregion), lower --rsm or \
                  the image size, or shade one of the --lobes",
             )?;
         }
+        // Per tile, one part of its bin per slice.
+        let bin_parts = tiles.2 * slices.slices;
         let capacity = frame.vpls.capacity();
         let records = output::<GpuBinnedVpl>(ctx, "binned vpls", capacity)?;
         let tile_records = output::<GpuBinnedTile>(ctx, "binned tiles", tiles.2 as usize)?;
         let stray = output::<u32>(ctx, "binned stray", 4)?;
-        let bin_offsets = output::<u32>(ctx, "bin offsets", tiles.2 as usize + 1)?;
+        let bin_offsets = output::<u32>(ctx, "bin offsets", bin_parts as usize + 1)?;
         let offsets = output::<u32>(ctx, "list offsets", pixels as usize + 1)?;
         let pixel_list = output::<u32>(ctx, "pixel lists", pixels as usize)?;
         let scratch = output::<u32>(
@@ -148,7 +155,7 @@ impl BinnedCuller {
         )?;
         let status = upload(ctx, "cull status", &[GpuCullStatus::CLEAR])?;
         let bin_status = upload(ctx, "bin status", &[GpuCullStatus::CLEAR])?;
-        let binned = uniform(ctx, "binned params", &screen_map(frame));
+        let binned = uniform(ctx, "binned params", &binned_params(frame, slices));
         // The lists of a subregion are its pixels (subregion 0's are the most).
         let per_subregion = u64::from(width.div_ceil(k)) * u64::from(height.div_ceil(k));
         let (entries, write) =
@@ -157,8 +164,8 @@ impl BinnedCuller {
         let (bins, bin_write) =
             self.bin_room
                 .buffer(ctx, frame, "tile bins", tiles_per_subregion, &bin_status)?;
-        let subregions = Grid::new(
-            u64::from(k * k),
+        let bin_groups = Grid::new(
+            u64::from(k * k) * u64::from(slices.slices),
             ctx.limits.max_compute_workgroups_per_dimension,
         )?;
         let at = offset_of!(GpuCullParams, vpl_count);
@@ -214,6 +221,7 @@ impl BinnedCuller {
                     &self.bins,
                     &[
                         &params,
+                        &binned,
                         &records,
                         &tile_records,
                         &stray,
@@ -222,11 +230,11 @@ impl BinnedCuller {
                         &bin_offsets,
                         &bins,
                     ],
-                    subregions,
+                    bin_groups,
                 );
                 if mode == CULL_COUNT {
                     self.scan
-                        .encode(ctx, encoder, &bin_offsets, tiles.2, &bin_status)?;
+                        .encode(ctx, encoder, &bin_offsets, bin_parts, &bin_status)?;
                 }
             }
             for mode in [CULL_COUNT, CULL_WRITE] {
@@ -272,16 +280,62 @@ impl BinnedCuller {
     }
 }
 
-/// The most loop iterations an invocation of `binned_bins.wesl` runs for a subregion of
-/// `most` VPLs on the grid `tiles` (per subregion `tiles.0` x `tiles.1`): per batch of 256
-/// tiles and round of 256 VPLs, its VPL's tiles within the batch (at most 256, and a row
-/// loop's own iterations), the eight words of its tile's marks and their set bits.
-fn bin_iterations(most: u64, (across, down, _): (u32, u32, u32)) -> u64 {
+/// How `binned_bins.wesl` splits each subregion's VPLs: `slices` workgroups per subregion,
+/// each walking `rounds` rounds of 256 VPLs (the last one the rest of its subregion's).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+struct BinSlices {
+    slices: u32,
+    rounds: u64,
+}
+
+/// The slices of subregions of up to `most` VPLs on the grid `tiles` (K² = `subregions`
+/// subregions): enough for [`BIN_WORKGROUPS`] workgroups in all (a GPU runs one workgroup per
+/// subregion, 64 at K = 8 and one at K = 1, on a few of its cores), and on an adapter with a
+/// loop `budget` enough for each slice's loops to keep within it, but never more than its
+/// rounds nor than [`BIN_PARTS`] parts of bins in all (each slice counts its part of every
+/// tile's bin; a frame whose slices cannot keep within the budget is refused by the caller).
+fn bin_slices(
+    most: u64,
+    tiles: (u32, u32, u32),
+    subregions: u32,
+    budget: Option<u64>,
+) -> BinSlices {
+    let rounds = most.div_ceil(256).max(1);
+    let most_slices = (BIN_PARTS / u64::from(tiles.2.max(1))).clamp(1, rounds);
+    let wanted = BIN_WORKGROUPS.div_ceil(u64::from(subregions.max(1)));
+    let needed = budget.map_or(1, |budget| {
+        let per_round = bin_iterations(1, tiles) - BIN_ROUND_FIXED;
+        let fit = budget.saturating_sub(BIN_ROUND_FIXED) / per_round;
+        rounds.div_ceil(fit.max(1))
+    });
+    let per_slice = rounds.div_ceil(wanted.max(needed).clamp(1, most_slices));
+    BinSlices {
+        // No slice left empty: as few as hold the rounds.
+        slices: rounds.div_ceil(per_slice) as u32,
+        rounds: per_slice,
+    }
+}
+
+/// Workgroups [`bin_slices`] aims for: four for each of the 132 cores of an H200, and a few
+/// hundred on smaller GPUs; on lavapipe's two threads the slices cost little (Sponza at
+/// 480x270, K = 8: docs/many-vpls.md).
+const BIN_WORKGROUPS: u64 = 512;
+
+/// The most parts of bins (tiles times slices) [`bin_slices`] makes: 16 MiB of counts.
+const BIN_PARTS: u64 = 1 << 22;
+
+/// Loop iterations of a `binned_bins.wesl` invocation outside its rounds.
+const BIN_ROUND_FIXED: u64 = 64;
+
+/// The most loop iterations an invocation of `binned_bins.wesl` runs for a slice of `rounds`
+/// rounds of 256 VPLs on the grid `tiles` (per subregion `tiles.0` x `tiles.1`): per batch of
+/// 256 tiles and round, its VPL's tiles within the batch (at most 256, and a row loop's own
+/// iterations), the eight words of its tile's marks and their set bits.
+fn bin_iterations(rounds: u64, (across, down, _): (u32, u32, u32)) -> u64 {
     let per_subregion = u64::from(across) * u64::from(down);
     let batches = per_subregion.div_ceil(256);
-    let rounds = most.div_ceil(256);
     let per_round = per_subregion.min(256) + u64::from(down) + 8 + 256 + 2;
-    batches * rounds * per_round + 64
+    batches * rounds * per_round + BIN_ROUND_FIXED
 }
 
 /// Entries of the list kernel's scratch for `pixels` pixels: [`SCRATCH_SLOTS`] per pixel, or
@@ -309,8 +363,9 @@ const SCRATCH_BYTES: u64 = 128 << 20;
 
 /// The map from the image plane at unit depth to `frame`'s screen pixels, in f64 and then
 /// rounded, as `slc_cull`'s `CullView::screen_map` and `Screen` form it: X = u scale + offset
-/// with scale = (W/2) / (aspect tan(yfov/2)), offset = W/2 (y: H/2 / tan(yfov/2), H/2).
-fn screen_map(frame: &CullFrame) -> GpuBinnedParams {
+/// with scale = (W/2) / (aspect tan(yfov/2)), offset = W/2 (y: H/2 / tan(yfov/2), H/2); and
+/// the bins' `slices`.
+fn binned_params(frame: &CullFrame, slices: BinSlices) -> GpuBinnedParams {
     let (w, h) = (f64::from(frame.width), f64::from(frame.height));
     let tan_half = (0.5 * f64::from(frame.camera.yfov)).tan();
     let half_extent = [w / h * tan_half, tan_half];
@@ -321,12 +376,80 @@ fn screen_map(frame: &CullFrame) -> GpuBinnedParams {
             (0.5 * w) as f32,
             (0.5 * h) as f32,
         ],
+        bins: [
+            slices.slices,
+            u32::try_from(slices.rounds).unwrap_or(u32::MAX),
+            0,
+            0,
+        ],
     }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Every VPL of a subregion of `most` lies in one of the slices' rounds, and there are no
+    /// more slices than rounds.
+    fn cover(slices: BinSlices, most: u64) {
+        let s = u64::from(slices.slices);
+        assert!(s * slices.rounds * 256 >= most, "{slices:?} for {most}");
+        assert!(s <= most.div_ceil(256).max(1), "{slices:?} for {most}");
+        assert!(
+            (s - 1) * slices.rounds * 256 < most.max(1),
+            "an empty slice: {slices:?}"
+        );
+    }
+
+    /// Sponza at 480x270 with K = 1 on lavapipe's loop budget: 51,468 VPLs in 510 tiles (two
+    /// batches) took 217,820 iterations in one workgroup; split, each slice keeps within the
+    /// budget. With K = 8 and no budget, enough slices for [`BIN_WORKGROUPS`] workgroups.
+    #[test]
+    fn slices_keep_within_the_loop_budget_and_fill_the_gpu() {
+        let budget = 65_535;
+        let k1 = (30, 17, 510);
+        assert!(bin_iterations(51_468u64.div_ceil(256), k1) > budget);
+        let split = bin_slices(51_468, k1, 1, Some(budget));
+        assert!(bin_iterations(split.rounds, k1) <= budget, "{split:?}");
+        cover(split, 51_468);
+        assert_eq!(
+            split.slices, 202,
+            "one slice per round, short of 512 workgroups"
+        );
+        let k8 = (4, 3, 768);
+        for most in [0, 1, 255, 256, 257, 3_300, 13_000, 60_000] {
+            let free = bin_slices(most, k8, 64, None);
+            cover(free, most);
+            // 512 / 64 = 8 slices wanted, fewer where there are fewer rounds or the last
+            // would be empty.
+            let wanted = most.div_ceil(256).clamp(1, 8);
+            assert!(
+                free.slices <= 8 && 2 * u64::from(free.slices) > wanted,
+                "{free:?}"
+            );
+            cover(bin_slices(most, k8, 64, Some(budget)), most);
+            cover(bin_slices(most, k1, 1, Some(budget)), most);
+        }
+    }
+
+    /// Where even one round per slice passes the budget, or the slices would pass
+    /// [`BIN_PARTS`], the slices are capped (the caller then refuses the frame by its loop
+    /// budget), still covering every VPL.
+    #[test]
+    fn slices_are_capped() {
+        // 1920x1080 at K = 1: 8,160 tiles, 32 batches; 3.3M VPLs.
+        let grid = (120, 68, 8_160);
+        let s = bin_slices(3_300_000, grid, 1, Some(65_535));
+        assert!(
+            u64::from(s.slices) <= BIN_PARTS / 8_160 && s.slices > 400,
+            "{s:?}"
+        );
+        cover(s, 3_300_000);
+        assert!(bin_iterations(s.rounds, grid) > 65_535);
+        let huge = (4_096, 4_096, 1 << 24);
+        let s = bin_slices(1 << 20, huge, 1, Some(65_535));
+        assert_eq!((s.slices, s.rounds), (1, 4_096));
+    }
 
     /// 48 entries per pixel up to 128 MiB (960x540), none beyond it or beyond the binding.
     #[test]

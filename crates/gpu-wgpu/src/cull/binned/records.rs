@@ -2,16 +2,19 @@
 //! compares their sizes with the layout naga computes from the linked kernels.
 use bytemuck::{Pod, Zeroable};
 
-/// The map from the image plane at unit depth to screen pixels (`slc_cull`'s
-/// `CullView::screen_map`): X = u scale + offset per axis. Keep in sync with `BinnedParams`
-/// in `records.wesl`.
+/// The binned strategy's own parameters: the map from the image plane at unit depth to screen
+/// pixels (`slc_cull`'s `CullView::screen_map`), X = u scale + offset per axis, and how its
+/// bins split each subregion's VPLs. Keep in sync with `BinnedParams` in `records.wesl`.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
 pub struct GpuBinnedParams {
     /// scale (x, y), then offset (x, y).
     pub screen: [f32; 4],
+    /// The bins' slices per subregion and rounds of 256 VPLs per slice (`bin_slices` in
+    /// `cull/binned/mod.rs`), then two unused words.
+    pub bins: [u32; 4],
 }
-const _: () = assert!(std::mem::size_of::<GpuBinnedParams>() == 16);
+const _: () = assert!(std::mem::size_of::<GpuBinnedParams>() == 32);
 
 /// One VPL as the binned strategy's tiles and pixels test it (`binned_footprint.wesl` writes
 /// it). Keep in sync with `BinnedVpl` in `records.wesl`.
@@ -68,6 +71,7 @@ mod tests {
             GpuBinnedTile as "BinnedTile",
         }
         super::super::BINS_SOURCE => {
+            GpuBinnedParams as "BinnedParams",
             GpuBinnedVpl as "BinnedVpl",
             GpuBinnedTile as "BinnedTile",
         }
