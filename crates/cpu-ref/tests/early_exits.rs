@@ -652,4 +652,18 @@ fn exits_without_bounds_keep_the_signs_and_the_roulette() {
         assert_eq!((&table.roulette, &table.reach), (&roulette, &reach));
     }
     assert!(table.form(&vpls, 1e-3, &[3, 40], |_| true).is_err());
+    // A roulette out of the domain is named before a lobe out of it, and the first in the
+    // listed order, whichever group of eight a thread met first (a NaN normal in the first
+    // group, ξ 0 in the fourth, ξ 2 in the fifth).
+    let mut spoilt = vpls.clone();
+    spoilt[5].normal = Vec3::NAN;
+    (spoilt[30].xi, spoilt[37].xi) = (0.0, 2.0);
+    let first = StochasticParams::new(1e-3, 0.0).unwrap_err();
+    for _ in 0..20 {
+        let err = table.form(&spoilt, 1e-3, &listed, |_| true).unwrap_err();
+        assert_eq!(
+            err.to_string(),
+            slc_core::CullError::from(first).to_string()
+        );
+    }
 }
