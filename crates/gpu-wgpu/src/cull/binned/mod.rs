@@ -5,10 +5,11 @@
 //! (`binned_footprint.wesl`, `footprint.rs`'s f32 arithmetic with its conservative rounding);
 //! the subregions' VPLs, ascending (`cull::partition`); per 16 x 16 tile of each interleaved
 //! subregion image the box of its samples and of its strips of 16 x 2 pixels
-//! (`binned_tiles.wesl`); per slice of a subregion's VPLs ([`bin_slices`]), those VPLs
+//! (`binned_tiles.wesl`); per slice of a subregion's VPLs (`bin_slices`), those VPLs
 //! handed to the tiles whose samples their rectangle overlaps and their bound may reach
-//! (`binned_bins.wesl`: each tile's bin, its slices' parts in order, ascending); then per tile (`binned_cull.wesl`) the VPLs of its bin, per strip those that
-//! reach its samples, and per pixel the test `binned.rs`'s `PixelTest` makes: the sample x not
+//! (`binned_bins.wesl`: each tile's bin, its slices' parts in order, ascending); then per
+//! tile (`binned_cull.wesl`) the VPLs of its bin, per strip those that reach its samples,
+//! and per pixel the test `binned.rs`'s `PixelTest` makes: the sample x not
 //! behind the VPL (eq. 4) and inside its bound. So the culling costs the VPLs, the (tile, VPL)
 //! pairs they reach and the pixels their rectangles cover, not VPLs x tiles. Every pixel gets
 //! its own list (list p for pixel p), ascending in the VPL index like the CPU's: the lists read
