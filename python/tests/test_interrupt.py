@@ -17,6 +17,10 @@ CHILD = textwrap.dedent(
     """
     import os, signal, sys, threading, time
     import slc
+    # Python raises KeyboardInterrupt on SIGINT only where SIGINT was not ignored when it
+    # started; a job started in the background of a shell without job control (`cmd &` in a
+    # script, as some CI runners start their steps) inherits it ignored.
+    signal.signal(signal.SIGINT, signal.default_int_handler)
     backend = sys.argv[1]
     scene = slc.Scene.builtin()
     scene.render(width=16, height=16, rsm=4, backend=backend)  # the device is opened
