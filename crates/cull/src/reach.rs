@@ -418,8 +418,8 @@ impl ListedReach {
             self.reach.clear();
             return Ok(());
         };
+        // Every entry is written below; the old ones only fill the room.
         let placeholder = roulette_of(first)?;
-        self.roulette.clear();
         self.roulette.resize(listed.len(), placeholder);
         self.reach.resize(listed.len(), VplReach::NONE);
         // Eight listed VPLs at a time (their own bounds share lanes), in this table's memory,

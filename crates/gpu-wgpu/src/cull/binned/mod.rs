@@ -290,8 +290,8 @@ struct BinSlices {
 }
 
 /// The slices of subregions of up to `most` VPLs on the grid `tiles` (K² = `subregions`
-/// subregions): enough for [`BIN_WORKGROUPS`] workgroups in all (a GPU runs one workgroup per
-/// subregion, 64 at K = 8 and one at K = 1, on a few of its cores), and on an adapter with a
+/// subregions): enough for [`BIN_WORKGROUPS`] workgroups in all (one workgroup per subregion
+/// would be 64 at K = 8 and one at K = 1, a few of a GPU's cores), and on an adapter with a
 /// loop `budget` enough for each slice's loops to keep within it, but never more than its
 /// rounds nor than [`BIN_PARTS`] parts of bins in all (each slice counts its part of every
 /// tile's bin; a frame whose slices cannot keep within the budget is refused by the caller).
@@ -305,8 +305,7 @@ fn bin_slices(
     let most_slices = (BIN_PARTS / u64::from(tiles.2.max(1))).clamp(1, rounds);
     let wanted = BIN_WORKGROUPS.div_ceil(u64::from(subregions.max(1)));
     let needed = budget.map_or(1, |budget| {
-        let per_round = bin_iterations(1, tiles) - BIN_ROUND_FIXED;
-        let fit = budget.saturating_sub(BIN_ROUND_FIXED) / per_round;
+        let fit = budget.saturating_sub(BIN_ROUND_FIXED) / bin_round_iterations(tiles);
         rounds.div_ceil(fit.max(1))
     });
     let per_slice = rounds.div_ceil(wanted.max(needed).clamp(1, most_slices));
@@ -318,8 +317,8 @@ fn bin_slices(
 }
 
 /// Workgroups [`bin_slices`] aims for: four for each of the 132 cores of an H200, and a few
-/// hundred on smaller GPUs; on lavapipe's two threads the slices cost little (Sponza at
-/// 480x270, K = 8: docs/many-vpls.md).
+/// hundred on smaller GPUs. A choice, not measured on a GPU; on lavapipe's two threads the
+/// slices cost nothing measurable (Sponza at 480x270, K = 8: docs/many-vpls.md).
 const BIN_WORKGROUPS: u64 = 512;
 
 /// The most parts of bins (tiles times slices) [`bin_slices`] makes: 16 MiB of counts.
@@ -329,14 +328,18 @@ const BIN_PARTS: u64 = 1 << 22;
 const BIN_ROUND_FIXED: u64 = 64;
 
 /// The most loop iterations an invocation of `binned_bins.wesl` runs for a slice of `rounds`
-/// rounds of 256 VPLs on the grid `tiles` (per subregion `tiles.0` x `tiles.1`): per batch of
-/// 256 tiles and round, its VPL's tiles within the batch (at most 256, and a row loop's own
-/// iterations), the eight words of its tile's marks and their set bits.
-fn bin_iterations(rounds: u64, (across, down, _): (u32, u32, u32)) -> u64 {
+/// rounds of 256 VPLs on the grid `tiles`.
+fn bin_iterations(rounds: u64, tiles: (u32, u32, u32)) -> u64 {
+    rounds * bin_round_iterations(tiles) + BIN_ROUND_FIXED
+}
+
+/// The loop iterations of one round of 256 VPLs on the grid `tiles` (per subregion `tiles.0`
+/// x `tiles.1`): per batch of 256 tiles, its VPL's tiles within the batch (at most 256, and a
+/// row loop's own iterations), the eight words of its tile's marks and their set bits.
+fn bin_round_iterations((across, down, _): (u32, u32, u32)) -> u64 {
     let per_subregion = u64::from(across) * u64::from(down);
     let batches = per_subregion.div_ceil(256);
-    let per_round = per_subregion.min(256) + u64::from(down) + 8 + 256 + 2;
-    batches * rounds * per_round + BIN_ROUND_FIXED
+    batches * (per_subregion.min(256) + u64::from(down) + 8 + 256 + 2)
 }
 
 /// Entries of the list kernel's scratch for `pixels` pixels: [`SCRATCH_SLOTS`] per pixel, or
