@@ -12,7 +12,7 @@
 //!
 //! The VPLs whose rectangles cover more than a tile's worth of pixels ([`LARGE_PIXELS`])
 //! are not tested pixel by pixel: each is tested once per 4 x 4 cell of its rectangle
-//! against the box of the cell's samples ([`take_large`]) and listed in the cell's list,
+//! against the box of the cell's samples (`cells::CellTest`) and listed in the cell's list,
 //! which the cell's pixels share ([`LightLists::shared_list`]). Per pixel they
 //! made most of the tests and the pairs; the shading decides them eight receivers at a time.
 //!
@@ -24,15 +24,15 @@
 //! [`crate::BinnedCuller::per_pixel`] (every VPL tested per pixel) by binning each rectangle
 //! into the tiles it overlaps, then testing each tile's pixels against its bin
 //! (docs/many-vpls.md).
+use crate::cells::CellBoxes;
 use crate::lists::pixel_count;
 use crate::pair_lists::{lists, Bands};
 use crate::partition::{check, group_by};
-use crate::pixel_rows::{CellBoxes, PixelRows, CELL};
-use crate::reach::SIGN_MARGIN;
-use crate::scatter::{Scattered, Screen, LIMIT};
+use crate::pixel_rows::PixelRows;
+use crate::scatter::Screen;
 use crate::scatter_lanes::scatter;
 use crate::view::CullView;
-use glam::{DVec2, DVec3};
+use glam::DVec2;
 use rayon::prelude::*;
 use slc_bounds::StochasticParams;
 use slc_core::{CullError, CullInput, GBuffer, LightLists, NO_LIST, TILE_SIZE};
@@ -75,7 +75,7 @@ pub(crate) fn cull(input: &CullInput, shared_above: u64) -> Result<LightLists, C
                 scatter(&screen, vpls, first, input.delta, scattered)?;
                 let mut shared = Vec::new();
                 if let Some(cells) = &cells {
-                    scattered.retain(|s| !take_large(s, shared_above, cells, &mut shared));
+                    cells.take_large(scattered, shared_above, &mut shared);
                 }
                 let mut pairs = Bands::new(pixels);
                 receivers.rows.test(scattered, &mut pairs);
@@ -99,80 +99,15 @@ pub(crate) fn cull(input: &CullInput, shared_above: u64) -> Result<LightLists, C
 
 /// A VPL whose rectangle covers more pixels than this (a tile's worth of its subregion
 /// image) is not tested pixel by pixel: it joins the shared list of every cell of its
-/// subregion image ([`CELL`]² pixels) that its rectangle overlaps and its bound may reach
-/// ([`take_large`]). Such VPLs are a minority (at 960x540 with RSM 256, 9,348 of 51,468; at
-/// RSM 1024, 11,024 of 823,592) but made most of the pixel tests and the pairs
+/// subregion image (4 x 4 pixels) that its rectangle overlaps and its bound may reach
+/// (`CellBoxes::take_large`). Such VPLs are a minority (at 960x540 with RSM 256, 9,348 of
+/// 51,468; at RSM 1024, 11,024 of 823,592) but made most of the pixel tests and the pairs
 /// (docs/many-vpls.md); the shading tests them against its receivers eight at a time at a
 /// fraction of that cost. Of the settings measured (8 x 8 cells above one, two or four
 /// tiles, 4 x 4 cells above one or two), 4 x 4 cells above one tile were the fastest whose
 /// lists keep within 20 false positives per true positive at RSM 1024 (13 at 960x540; 8 x 8
 /// cells above one tile gave 23).
 pub(crate) const LARGE_PIXELS: u64 = (TILE_SIZE as u64) * (TILE_SIZE as u64);
-
-/// Whether `s`'s rectangle covers more than `shared_above` pixels; if so, pushes (cell, VPL)
-/// for every cell the rectangle overlaps whose box of samples the bound's box reaches, where
-/// a lower bound of the bound's quadric over the box is within `LIMIT`, and that does not lie
-/// wholly behind the VPL. A pixel whose sample passes the [`PixelTest`] lies in the
-/// rectangle, inside the bound (so inside its box, grown for the test's `LIMIT`, and at a
-/// quadric within `LIMIT`) and not behind the VPL by more than `SIGN_MARGIN`, so its cell is
-/// kept. The slacks cover the f64 rounding relative to the bound's size and to the
-/// coordinates' magnitude.
-fn take_large(
-    s: &Scattered,
-    shared_above: u64,
-    cells: &CellBoxes,
-    shared: &mut Vec<(u32, u32)>,
-) -> bool {
-    let [i0, j0, i1, j1] = s.pixels;
-    let area = u64::from(i1 - i0 + 1) * u64::from(j1 - j0 + 1);
-    if area <= shared_above {
-        return false;
-    }
-    let t = &s.test;
-    let [along, across] = t.semi_axes();
-    let center = t.position + t.center;
-    // The spheroid's half extents per world axis, grown for `LIMIT` and f64 rounding.
-    let a2 = t.axis * t.axis;
-    let extent = (a2 * (along * along) + (1.0 - a2) * (across * across)).map(f64::sqrt)
-        * (LIMIT * (1.0 + 1e-9))
-        + DVec3::splat(1e-12 * center.abs().max_element());
-    let (lo, hi) = (center - extent, center + extent);
-    // The pixel test's margin as it compares it: the f32 square of `SIGN_MARGIN`.
-    let margin = f64::from(SIGN_MARGIN * SIGN_MARGIN).sqrt();
-    for cy in j0 / CELL..=j1 / CELL {
-        for cx in i0 / CELL..=i1 / CELL {
-            let id = cells.id(s.subregion, [cx, cy]);
-            let [blo, bhi] = cells.boxes[id].map(|v| v.as_dvec3());
-            if !(blo.cmple(hi).all() && bhi.cmpge(lo).all()) {
-                continue;
-            }
-            // Outside the bound everywhere in the box: every x of the box lies within |h|
-            // of its middle m, so at least `off_axis` from the spheroid's axis and `on_axis`
-            // along it from its centre, and its Q (the quadric of `PixelTest`, the spheroid
-            // of eq. 12-15 or the sphere) is at least the Q of those distances.
-            let (mid, half) = ((blo + bhi) * 0.5, (bhi - blo) * 0.5);
-            let e = mid - center;
-            let along_e = e.dot(t.axis);
-            // The distances' rounding, absolute: about 1e-16 of the coordinates formed.
-            let rounding = 1e-12 * (center.abs().max_element() + mid.abs().max_element());
-            let on_axis = (along_e.abs() - half.dot(t.axis.abs()) - rounding).max(0.0);
-            let off_axis = ((e - along_e * t.axis).length() - half.length() - rounding).max(0.0);
-            let q = (on_axis / along).powi(2) + (off_axis / across).powi(2);
-            if q > LIMIT * (1.0 + 1e-6) {
-                continue;
-            }
-            // Behind the VPL by more than the margin everywhere in the box: at every x of
-            // the box, n·(x − q) <= n·(m − q) + |n|·h < −margin (|m − q| + |h|) <= −margin |x − q|.
-            let d = mid - t.position;
-            let front = t.normal.dot(d) + t.normal.abs().dot(half);
-            if front < -margin * (d.length() + half.length()) * (1.0 + 1e-9) {
-                continue;
-            }
-            shared.push((id as u32, s.index));
-        }
-    }
-    true
-}
 
 /// Appends the cells' lists to `lists` from the (cell, VPL) entries `shared`, which come in
 /// VPL order: grouped by cell with a stable counting sort ([`group_by`]), each list is
@@ -196,8 +131,8 @@ fn share(
         )));
     }
     let keys: Vec<u32> = shared.iter().map(|e| e.0).collect();
-    let (offsets, order) = group_by(&keys, cells.boxes.len());
-    let mut of_cell = vec![NO_LIST; cells.boxes.len()];
+    let (offsets, order) = group_by(&keys, cells.len());
+    let mut of_cell = vec![NO_LIST; cells.len()];
     for (cell, range) in offsets.windows(2).enumerate() {
         if range[1] > range[0] {
             of_cell[cell] = lists.len() as u32;

@@ -86,6 +86,7 @@
 mod acceptance;
 mod binned;
 mod bound_lanes;
+mod cells;
 mod depth;
 mod footprint;
 mod frusta;

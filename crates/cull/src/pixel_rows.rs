@@ -7,6 +7,7 @@
 //! surface or the VPL's tangent plane that only the exact test can decide. So the lists are
 //! those of the exact test on every pixel of the rectangle (`tests` checks both), at a
 //! fraction of its cost.
+use crate::cells::CellBoxes;
 use crate::pair_lists::Bands;
 use crate::partition::group_by;
 use crate::reach::SIGN_MARGIN;
@@ -102,58 +103,10 @@ impl PixelRows {
 /// wide.
 pub(crate) const CELL: u32 = LANES as u32 / 2;
 
-/// The box of the positions of each [`CELL`]² cell of every subregion image.
-pub(crate) struct CellBoxes {
-    /// Cells per row and per column of the largest subregion image.
-    across: u32,
-    down: u32,
-    k: u32,
-    /// Per cell, subregion by subregion and row-major within each, `[lo, hi]` of its samples
-    /// (lo above hi where it has none).
-    pub(crate) boxes: Vec<[Vec3; 2]>,
-}
-
-impl CellBoxes {
-    /// The number of cell `[cx, cy]` of subregion `[sx, sy]`.
-    #[inline]
-    pub(crate) fn id(&self, [sx, sy]: [u32; 2], [cx, cy]: [u32; 2]) -> usize {
-        let sub = (sy * self.k + sx) as usize;
-        (sub * self.down as usize + cy as usize) * self.across as usize + cx as usize
-    }
-
-    /// The cell of screen pixel (x, y), as [`Self::of_row`] counts them along a row (the
-    /// tests' reference).
-    #[cfg(test)]
-    pub(crate) fn of_pixel(&self, x: u32, y: u32) -> usize {
-        let k = self.k;
-        self.id([x % k, y % k], [x / k / CELL, y / k / CELL])
-    }
-
-    /// The cells of the pixels x = 0, 1, ... of screen row `y`: pixel x is in column x / K of
-    /// subregion x mod K, cell column x / K / [`CELL`] (and y likewise), counted along the row
-    /// instead of divided per pixel.
-    pub(crate) fn of_row(&self, y: u32) -> impl Iterator<Item = usize> + '_ {
-        let k = self.k;
-        let (sy, cy) = (y % k, y / k / CELL);
-        // Pixel x is column q = x / k of subregion sx = x % k.
-        let (mut sx, mut q) = (0, 0);
-        std::iter::repeat_with(move || {
-            let cell = self.id([sx, sy], [q / CELL, cy]);
-            sx += 1;
-            if sx == k {
-                sx = 0;
-                q += 1;
-            }
-            cell
-        })
-    }
-}
-
 impl PixelRows {
     /// The box of each cell's positions: a cell is [`CELL`] lanes of a chunk in [`CELL`]
     /// consecutive subregion rows.
     pub(crate) fn cell_boxes(&self) -> CellBoxes {
-        use rayon::prelude::*;
         let Layout {
             chunks_per_row: per,
             k,
@@ -163,40 +116,28 @@ impl PixelRows {
         let cells_per_chunk = LANES / CELL as usize;
         let across = (per * cells_per_chunk) as u32;
         let down = height.div_ceil(k).div_ceil(CELL);
-        let empty = [Vec3::INFINITY, Vec3::NEG_INFINITY];
-        let boxes = (0..k * k)
-            .into_par_iter()
-            .flat_map_iter(|sub| {
-                let (sx, sy) = (sub % k, sub / k);
-                (0..down * across).map(move |cell| {
-                    let (cx, cy) = ((cell % across) as usize, cell / across);
-                    let (c, first) = (cx / cells_per_chunk, cx % cells_per_chunk * CELL as usize);
-                    let mut b = empty;
-                    for j in cy * CELL..(cy + 1) * CELL {
-                        let y = sy + k * j;
-                        if y >= height {
-                            break;
-                        }
-                        let row = (y as usize * k as usize + sx as usize) * per;
-                        let chunk = &self.chunks[row + c];
-                        for lane in first..first + CELL as usize {
-                            let x = Vec3::new(chunk[0].0[lane], chunk[1].0[lane], chunk[2].0[lane]);
-                            // A lane without a sample is NaN throughout.
-                            if !x.x.is_nan() {
-                                b = [b[0].min(x), b[1].max(x)];
-                            }
-                        }
+        CellBoxes::new(k, [across, down], |[sx, sy], [cx, cy]| {
+            let (c, first) = (
+                cx as usize / cells_per_chunk,
+                cx as usize % cells_per_chunk * CELL as usize,
+            );
+            let mut b = [Vec3::INFINITY, Vec3::NEG_INFINITY];
+            for j in cy * CELL..(cy + 1) * CELL {
+                let y = sy + k * j;
+                if y >= height {
+                    break;
+                }
+                let chunk = &self.chunks[(y as usize * k as usize + sx as usize) * per + c];
+                for lane in first..first + CELL as usize {
+                    let x = Vec3::new(chunk[0].0[lane], chunk[1].0[lane], chunk[2].0[lane]);
+                    // A lane without a sample is NaN throughout.
+                    if !x.x.is_nan() {
+                        b = [b[0].min(x), b[1].max(x)];
                     }
-                    b
-                })
-            })
-            .collect();
-        CellBoxes {
-            across,
-            down,
-            k,
-            boxes,
-        }
+                }
+            }
+            b
+        })
     }
 }
 
@@ -275,7 +216,7 @@ fn test_lanes<L: Lanes8>(rows: &PixelRows, scattered: &[&Scattered], pairs: &mut
 
 /// The lanes of chunk `c` (pixels 8c..8c+7 of a row) within `[i0, i1]`, as bits.
 #[inline(always)]
-fn lanes_within(c: usize, i0: u32, i1: u32) -> u8 {
+pub(crate) fn lanes_within(c: usize, i0: u32, i1: u32) -> u8 {
     let base = c * LANES;
     let lo = (i0 as usize).saturating_sub(base);
     let hi = (i1 as usize - base).min(LANES - 1);
@@ -419,50 +360,9 @@ impl<L: Lanes8> Filter<L> {
 mod tests {
     use super::*;
     use crate::pair_lists::lists;
-    use crate::test_rng::Rng;
+    use crate::test_rng::{bound, point, unit, Rng};
     use glam::DVec3;
     use rayon::prelude::*;
-
-    fn unit(rng: &mut Rng) -> DVec3 {
-        loop {
-            let v = DVec3::new(
-                rng.range64(-1.0, 1.0),
-                rng.range64(-1.0, 1.0),
-                rng.range64(-1.0, 1.0),
-            );
-            if (0.01..=1.0).contains(&v.length_squared()) {
-                return v.normalize();
-            }
-        }
-    }
-
-    /// A random bound: semi-axes from 1e-6 to 1e6 with eccentricities up to 10^`ecc` (either
-    /// way), the VPL up to 10^`far` times the larger semi-axis from the origin and the centre
-    /// off the VPL; the normal zero so that only the bound decides.
-    fn bound(rng: &mut Rng, ecc: f64, far: f64) -> PixelTest {
-        let along = 10f64.powf(rng.range64(-6.0, 6.0));
-        let across = along * 10f64.powf(rng.range64(-ecc, ecc));
-        let axis = unit(rng);
-        let position = (unit(rng) * along.max(across) * 10f64.powf(rng.range64(-1.0, far)))
-            .as_vec3()
-            .as_dvec3();
-        let center = axis * along * rng.range64(-1.5, 1.5);
-        PixelTest::new(position, DVec3::ZERO, center, axis, along, across)
-    }
-
-    /// The f32 point `w` of the unit ball maps to in `test`'s bound.
-    fn point(test: &PixelTest, w: DVec3) -> Vec3 {
-        let [along, across] = test.semi_axes();
-        let any = if test.axis.x.abs() < 0.9 {
-            DVec3::X
-        } else {
-            DVec3::Y
-        };
-        let b1 = test.axis.cross(any).normalize();
-        let b2 = test.axis.cross(b1);
-        let e = test.axis * (w.x * along) + (b1 * w.y + b2 * w.z) * across;
-        (test.position + test.center + e).as_vec3()
-    }
 
     /// The lanes of `points` (as a chunk) the exact test passes, those the filter may pass
     /// and those it surely passes, in plain and (where the CPU has them) AVX2 lanes, which
@@ -642,7 +542,7 @@ mod tests {
                 }
             }
             let cells = rows.cell_boxes();
-            let mut want = vec![[Vec3::INFINITY, Vec3::NEG_INFINITY]; cells.boxes.len()];
+            let mut want = vec![[Vec3::INFINITY, Vec3::NEG_INFINITY]; cells.len()];
             for y in 0..height {
                 for x in 0..width {
                     if let Some(p) = positions[(y * width + x) as usize] {
@@ -651,7 +551,8 @@ mod tests {
                     }
                 }
             }
-            assert_eq!(cells.boxes, want, "K {k}, {width}x{height}");
+            let boxes: Vec<[Vec3; 2]> = (0..cells.len()).map(|id| cells.box_of(id)).collect();
+            assert_eq!(boxes, want, "K {k}, {width}x{height}");
             for y in 0..height {
                 let along: Vec<usize> = cells.of_row(y).take(width as usize).collect();
                 let each: Vec<usize> = (0..width).map(|x| cells.of_pixel(x, y)).collect();
@@ -665,7 +566,7 @@ mod tests {
                     .flat_map(|cy| (0..w.div_ceil(CELL)).map(move |cx| (cx, cy)))
                 {
                     let id = cells.id([sx, sy], [cx, cy]);
-                    assert!(id < cells.boxes.len() && ids.insert(id), "K {k}: cell {id}");
+                    assert!(id < cells.len() && ids.insert(id), "K {k}: cell {id}");
                 }
             }
         }

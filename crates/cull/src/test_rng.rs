@@ -1,4 +1,5 @@
 //! The deterministic generator of the unit tests (xorshift64*), and random VPLs from it.
+use crate::scatter::PixelTest;
 use crate::vpl_bounds::LocalBound;
 use glam::{DMat3, DVec3, Vec3};
 use slc_bounds::{Brdf, Fresnel};
@@ -106,4 +107,46 @@ pub(crate) fn point_of(bound: &LocalBound, rng: &mut Rng, scale: [f64; 2]) -> DV
         }
     };
     center + rotation * (semi * u * rng.range64(scale[0], scale[1]))
+}
+
+/// A random unit vector.
+pub(crate) fn unit(rng: &mut Rng) -> DVec3 {
+    loop {
+        let v = DVec3::new(
+            rng.range64(-1.0, 1.0),
+            rng.range64(-1.0, 1.0),
+            rng.range64(-1.0, 1.0),
+        );
+        if (0.01..=1.0).contains(&v.length_squared()) {
+            return v.normalize();
+        }
+    }
+}
+
+/// A random bound: semi-axes from 1e-6 to 1e6 with eccentricities up to 10^`ecc` (either
+/// way), the VPL up to 10^`far` times the larger semi-axis from the origin and the centre
+/// off the VPL; the normal zero so that only the bound decides.
+pub(crate) fn bound(rng: &mut Rng, ecc: f64, far: f64) -> PixelTest {
+    let along = 10f64.powf(rng.range64(-6.0, 6.0));
+    let across = along * 10f64.powf(rng.range64(-ecc, ecc));
+    let axis = unit(rng);
+    let position = (unit(rng) * along.max(across) * 10f64.powf(rng.range64(-1.0, far)))
+        .as_vec3()
+        .as_dvec3();
+    let center = axis * along * rng.range64(-1.5, 1.5);
+    PixelTest::new(position, DVec3::ZERO, center, axis, along, across)
+}
+
+/// The f32 point `w` of the unit ball maps to in `test`'s bound.
+pub(crate) fn point(test: &PixelTest, w: DVec3) -> Vec3 {
+    let [along, across] = test.semi_axes();
+    let any = if test.axis.x.abs() < 0.9 {
+        DVec3::X
+    } else {
+        DVec3::Y
+    };
+    let b1 = test.axis.cross(any).normalize();
+    let b2 = test.axis.cross(b1);
+    let e = test.axis * (w.x * along) + (b1 * w.y + b2 * w.z) * across;
+    (test.position + test.center + e).as_vec3()
 }
