@@ -244,10 +244,7 @@ const SLACK: f32 = 1.0 / 32768.0;
 impl CellTest {
     fn of(test: &PixelTest) -> Self {
         let [along, across] = test.semi_axes();
-        let (r_max, r_min) = (along.max(across), along.min(across));
-        let domain = 1e-18..=1e18;
-        let quadric =
-            domain.contains(&r_min) && domain.contains(&r_max) && test.center.length() <= 1e18;
+        let quadric = test.fits_f32();
         // The spheroid's half extents per world axis, grown for `LIMIT` and f64 rounding.
         let center = test.position + test.center;
         let a2 = test.axis * test.axis;

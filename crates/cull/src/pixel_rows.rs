@@ -283,8 +283,7 @@ impl Filter {
         let [along, across] = test.semi_axes();
         let (r_max, r_min) = (along.max(across), along.min(across));
         let c = test.center.length();
-        let domain = 1e-18..=1e18;
-        if !(domain.contains(&r_min) && domain.contains(&r_max) && c <= 1e18) {
+        if !test.fits_f32() {
             return None;
         }
         let u = f64::from(f32::EPSILON) / 2.0;

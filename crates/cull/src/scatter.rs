@@ -64,6 +64,16 @@ impl PixelTest {
         [self.along, self.across]
     }
 
+    /// Whether f32 lanes can hold the bound without overflow or losing it: semi-axes within
+    /// [1e-18, 1e18] and the centre at most 1e18 from the VPL (the domain of the lane tests
+    /// of `pixel_rows` and `cells`).
+    pub(crate) fn fits_f32(&self) -> bool {
+        let domain = 1e-18..=1e18;
+        domain.contains(&self.along.min(self.across))
+            && domain.contains(&self.along.max(self.across))
+            && self.center.length() <= 1e18
+    }
+
     /// Their inverse squares `[1/r_u², 1/r²]`, as the test forms them.
     #[inline]
     pub(crate) fn inverse_squares(&self) -> [f64; 2] {
