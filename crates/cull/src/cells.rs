@@ -8,7 +8,7 @@
 use crate::pixel_rows::{lanes_within, CELL};
 use crate::reach::SIGN_MARGIN;
 use crate::rounding::{down, up};
-use crate::scatter::{PixelTest, Scattered, LIMIT};
+use crate::scatter::{Frame, PixelTest, Scattered, LIMIT};
 use glam::{DVec3, Vec3};
 use slc_bounds::lanes::{dot, splat_all, Lanes8, Real, F8};
 
@@ -223,11 +223,9 @@ struct CellTest<R = f32> {
     /// The bound's box, rounded outwards.
     lo: [R; 3],
     hi: [R; 3],
-    q: [R; 3],
-    normal: [R; 3],
+    /// The VPL and the bound (its centre 0 where the quadric rejects nothing).
+    frame: Frame<R>,
     abs_normal: [R; 3],
-    center: [R; 3],
-    axis: [R; 3],
     abs_axis: [R; 3],
     /// 1/r_u and 1/r (0 where the quadric rejects nothing).
     inv_along: R,
@@ -252,11 +250,12 @@ impl CellTest {
             * (LIMIT * (1.0 + 1e-9))
             + DVec3::splat(1e-12 * center.abs().max_element());
         let (lo, hi) = (center - extent, center + extent);
-        let f32s = |v: DVec3| v.as_vec3().to_array();
+        let mut frame = Frame::of(test);
         let (c, inv) = match quadric {
             true => (test.center, [along.recip() as f32, across.recip() as f32]),
             false => (DVec3::ZERO, [0.0; 2]),
         };
+        frame.center = c.as_vec3().to_array();
         Self {
             // Where f64 overflowed (an unbounded extent), the box does not limit.
             lo: lo.to_array().map(|v| {
@@ -269,12 +268,9 @@ impl CellTest {
             hi: hi
                 .to_array()
                 .map(|v| if v.is_nan() { f32::INFINITY } else { up(v) }),
-            q: f32s(test.position),
-            normal: f32s(test.normal),
-            abs_normal: f32s(test.normal.abs()),
-            center: f32s(c),
-            axis: f32s(test.axis),
-            abs_axis: f32s(test.axis.abs()),
+            frame,
+            abs_normal: frame.normal.map(f32::abs),
+            abs_axis: frame.axis.map(f32::abs),
             inv_along: inv[0],
             inv_across: inv[1],
             norms: (test.position.abs().element_sum() + c.abs().element_sum()) as f32,
@@ -288,11 +284,8 @@ impl CellTest {
         CellTest {
             lo: splat_all(&self.lo),
             hi: splat_all(&self.hi),
-            q: splat_all(&self.q),
-            normal: splat_all(&self.normal),
+            frame: self.frame.lanes(),
             abs_normal: splat_all(&self.abs_normal),
-            center: splat_all(&self.center),
-            axis: splat_all(&self.axis),
             abs_axis: splat_all(&self.abs_axis),
             inv_along: L::splat(self.inv_along),
             inv_across: L::splat(self.inv_across),
@@ -341,16 +334,17 @@ impl<L: Lanes8> CellTest<L> {
         let b = self.norms + abs(m[0]) + abs(m[1]) + abs(m[2]) + h[0] + h[1] + h[2];
         let eps = b * L::splat(SLACK);
         let h_len = dot(h, h).sqrt();
-        let d = [m[0] - self.q[0], m[1] - self.q[1], m[2] - self.q[2]];
-        let c = &self.center;
+        let f = &self.frame;
+        let d = [m[0] - f.q[0], m[1] - f.q[1], m[2] - f.q[2]];
+        let c = &f.center;
         let e = [d[0] - c[0], d[1] - c[1], d[2] - c[2]];
-        let a = &self.axis;
+        let a = &f.axis;
         let t = dot(e, *a);
         let perp = [e[0] - t * a[0], e[1] - t * a[1], e[2] - t * a[2]];
         let on_axis = positive(abs(t) - dot(h, self.abs_axis) - eps) * self.inv_along;
         let off_axis = positive(dot(perp, perp).sqrt() - h_len - eps) * self.inv_across;
         let reached = (on_axis * on_axis + off_axis * off_axis).le(self.limit);
-        let front = dot(self.normal, d) + dot(self.abs_normal, h);
+        let front = dot(f.normal, d) + dot(self.abs_normal, h);
         let reach = dot(d, d).sqrt() + h_len;
         let behind = (-(self.margin * reach)).gt(front + eps + eps);
         L::bits(meets & reached & !behind)
@@ -360,7 +354,7 @@ impl<L: Lanes8> CellTest<L> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::test_rng::{bound, point, unit, Rng};
+    use crate::test_rng::{bound, point, unit, varied_bound, Rng};
 
     /// The cells of `boxes` (as a chunk) kept, in plain and (where the CPU has them) AVX2
     /// lanes, which agree.
@@ -426,16 +420,7 @@ mod tests {
         let mut rng = Rng(11);
         let (mut holding, mut rejected, mut cells) = (0u32, 0u32, 0u32);
         for round in 0..20_000 {
-            let mut test = bound(&mut rng, 5.0, 4.0);
-            if round % 4 == 3 {
-                let b = bound(&mut rng, 8.0, 4.0);
-                let [along, across] = b.semi_axes();
-                let center = b.center * rng.range64(1.0, 20.0);
-                test = PixelTest::new(b.position, b.normal, center, b.axis, along, across);
-            }
-            if round % 2 == 1 {
-                test.normal = unit(&mut rng).as_vec3().as_dvec3();
-            }
+            let mut test = varied_bound(&mut rng, round);
             if round % 97 == 0 {
                 let [along, _] = test.semi_axes();
                 test = PixelTest::new(
@@ -444,7 +429,7 @@ mod tests {
                     test.center,
                     test.axis,
                     along,
-                    [1e-19, 1e19, 0.0][(round / 97) % 3],
+                    [1e-19, 1e19, 0.0][(round / 97) as usize % 3],
                 );
             }
             let r = test.semi_axes()[0].max(test.semi_axes()[1]).min(1e6);

@@ -12,9 +12,9 @@ use crate::pair_lists::Bands;
 use crate::partition::group_by;
 use crate::reach::SIGN_MARGIN;
 use crate::rounding::{down, up};
-use crate::scatter::{PixelTest, Scattered};
+use crate::scatter::{Frame, PixelTest, Scattered};
 use glam::Vec3;
-use slc_bounds::lanes::{dot, splat_all, Lanes8, F8};
+use slc_bounds::lanes::{dot, Lanes8, F8};
 
 /// Pixels per chunk: the lanes of one test.
 const LANES: usize = 8;
@@ -254,10 +254,7 @@ pub(crate) fn lanes_within(c: usize, i0: u32, i1: u32) -> u8 {
 /// `Filter<f32>` holds one VPL's values, `Filter<L>` the same in every lane of `L`.
 #[derive(Clone, Copy, Debug)]
 struct Filter<R = f32> {
-    q: [R; 3],
-    normal: [R; 3],
-    center: [R; 3],
-    axis: [R; 3],
+    frame: Frame<R>,
     inv_along_sq: R,
     inv_across_sq: R,
     /// Q at most this: may be inside; at most `inside`: inside.
@@ -292,10 +289,7 @@ impl Filter {
         let root = crate::scatter::LIMIT.sqrt();
         let m = f64::from(SIGN_MARGIN * SIGN_MARGIN).sqrt();
         Some(Self {
-            q: test.position.as_vec3().to_array(),
-            normal: test.normal.as_vec3().to_array(),
-            center: test.center.as_vec3().to_array(),
-            axis: test.axis.as_vec3().to_array(),
+            frame: Frame::of(test),
             inv_along_sq: inv_along_sq as f32,
             inv_across_sq: inv_across_sq as f32,
             maybe_inside: up((root + slack).powi(2)),
@@ -312,10 +306,7 @@ impl Filter {
     #[inline(always)]
     fn lanes<L: Lanes8>(&self) -> Filter<L> {
         Filter {
-            q: splat_all(&self.q),
-            normal: splat_all(&self.normal),
-            center: splat_all(&self.center),
-            axis: splat_all(&self.axis),
+            frame: self.frame.lanes(),
             inv_along_sq: L::splat(self.inv_along_sq),
             inv_across_sq: L::splat(self.inv_across_sq),
             maybe_inside: L::splat(self.maybe_inside),
@@ -332,7 +323,8 @@ impl<L: Lanes8> Filter<L> {
     #[inline(always)]
     fn classify(&self, chunk: &Chunk) -> (u8, u8) {
         // No closures: each would be a function without AVX2, calling every intrinsic.
-        let [q, c, a, n] = [&self.q, &self.center, &self.axis, &self.normal];
+        let f = &self.frame;
+        let [q, c, a, n] = [&f.q, &f.center, &f.axis, &f.normal];
         let d = [
             L::load(&chunk[0]) - q[0],
             L::load(&chunk[1]) - q[1],
@@ -359,7 +351,7 @@ impl<L: Lanes8> Filter<L> {
 mod tests {
     use super::*;
     use crate::pair_lists::lists;
-    use crate::test_rng::{bound, point, unit, Rng};
+    use crate::test_rng::{bound, point, unit, varied_bound, Rng};
     use glam::DVec3;
     use rayon::prelude::*;
 
@@ -401,18 +393,7 @@ mod tests {
         let mut rng = Rng(7);
         let (mut inside, mut sure_inside, mut plane_passed, mut plane_sure) = (0, 0, 0, 0);
         for round in 0..40_000 {
-            let mut test = bound(&mut rng, 5.0, 4.0);
-            if round % 4 == 3 {
-                // Needles up to 1e8 long for their width, their centres up to 30 lengths
-                // off the VPL: slacks beyond the bound's own size.
-                let b = bound(&mut rng, 8.0, 4.0);
-                let [along, across] = b.semi_axes();
-                let center = b.center * rng.range64(1.0, 20.0);
-                test = PixelTest::new(b.position, b.normal, center, b.axis, along, across);
-            }
-            if round % 2 == 1 {
-                test.normal = unit(&mut rng).as_vec3().as_dvec3();
-            }
+            let test = varied_bound(&mut rng, round);
             let filter = Filter::of(&test).expect("within the filter's domain");
             let near_surface =
                 [(); 8].map(|_| point(&test, unit(&mut rng) * (1.0 + rng.range64(-1e-4, 1e-4))));

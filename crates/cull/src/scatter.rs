@@ -8,6 +8,7 @@ use crate::rounding::{down, up};
 use crate::view::CullView;
 use crate::vpl_bounds::{GlossyBound, LocalBound};
 use glam::{DVec3, Vec3};
+use slc_bounds::lanes::{splat_all, Lanes8};
 use slc_bounds::StochasticParams;
 use slc_core::{CullError, Interleaving, Vpl};
 
@@ -97,6 +98,39 @@ impl PixelTest {
             + t * t * self.inv_along_sq
             <= LIMIT;
         !behind & inside
+    }
+}
+
+/// A [`PixelTest`]'s VPL and bound rounded to f32, as the lane tests take them (`pixel_rows`'
+/// filter and the cells' test): the VPL's position q (an f32 point already) and normal n,
+/// the bound's centre c relative to q and its axis ω_u. `Frame<f32>` holds one VPL's values,
+/// `Frame<L>` the same in every lane of `L`.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Frame<R = f32> {
+    pub q: [R; 3],
+    pub normal: [R; 3],
+    pub center: [R; 3],
+    pub axis: [R; 3],
+}
+
+impl Frame {
+    pub(crate) fn of(test: &PixelTest) -> Self {
+        Self {
+            q: test.position.as_vec3().to_array(),
+            normal: test.normal.as_vec3().to_array(),
+            center: test.center.as_vec3().to_array(),
+            axis: test.axis.as_vec3().to_array(),
+        }
+    }
+
+    #[inline(always)]
+    pub(crate) fn lanes<L: Lanes8>(&self) -> Frame<L> {
+        Frame {
+            q: splat_all(&self.q),
+            normal: splat_all(&self.normal),
+            center: splat_all(&self.center),
+            axis: splat_all(&self.axis),
+        }
     }
 }
 

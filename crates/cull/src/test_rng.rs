@@ -150,3 +150,21 @@ pub(crate) fn point(test: &PixelTest, w: DVec3) -> Vec3 {
     let e = test.axis * (w.x * along) + (b1 * w.y + b2 * w.z) * across;
     (test.position + test.center + e).as_vec3()
 }
+
+/// The bounds of the lane tests' checks, varied by `round`: [`bound`]s of eccentricities up
+/// to 1e5 and VPLs up to 1e4 times their size from the origin; one time in four needles up to
+/// 1e8 long for their width with their centres up to 30 lengths off the VPL (slacks beyond
+/// the bound's own size); one time in two with a random normal (else none).
+pub(crate) fn varied_bound(rng: &mut Rng, round: u32) -> PixelTest {
+    let mut test = bound(rng, 5.0, 4.0);
+    if round % 4 == 3 {
+        let b = bound(rng, 8.0, 4.0);
+        let [along, across] = b.semi_axes();
+        let center = b.center * rng.range64(1.0, 20.0);
+        test = PixelTest::new(b.position, b.normal, center, b.axis, along, across);
+    }
+    if round % 2 == 1 {
+        test.normal = unit(rng).as_vec3().as_dvec3();
+    }
+    test
+}
