@@ -27,7 +27,7 @@
 use crate::cells::CellBoxes;
 use crate::lists::pixel_count;
 use crate::pair_lists::{lists, Bands};
-use crate::partition::{check, group_by};
+use crate::partition::check;
 use crate::pixel_rows::PixelRows;
 use crate::scatter::Screen;
 use crate::scatter_lanes::scatter;
@@ -62,8 +62,8 @@ pub(crate) fn cull(input: &CullInput, shared_above: u64) -> Result<LightLists, C
     let largest = il.subregion_size(width, height, [0, 0]);
     let cells = (u64::from(largest[0]) * u64::from(largest[1]) > shared_above)
         .then(|| receivers.rows.cell_boxes());
-    // Per piece of VPLs (in order), the (pixel, VPL) pairs that pass, each pixel's in VPL
-    // order, by band, and the (cell, VPL) pairs of the large rectangles.
+    // Per piece of VPLs (in order), the (pixel, VPL) pairs that pass and the (cell, VPL)
+    // pairs of the large rectangles, each pixel's or cell's in VPL order, by band.
     let pieces = input
         .vpls
         .par_chunks(VPLS_PER_PIECE)
@@ -73,7 +73,7 @@ pub(crate) fn cull(input: &CullInput, shared_above: u64) -> Result<LightLists, C
             |scattered, (piece, vpls)| {
                 let first = (piece * VPLS_PER_PIECE) as u32;
                 scatter(&screen, vpls, first, input.delta, scattered)?;
-                let mut shared = Vec::new();
+                let mut shared = Bands::new(cells.as_ref().map_or(0, CellBoxes::len));
                 if let Some(cells) = &cells {
                     cells.take_large(scattered, shared_above, &mut shared);
                 }
@@ -82,17 +82,12 @@ pub(crate) fn cull(input: &CullInput, shared_above: u64) -> Result<LightLists, C
                 Ok((pairs, shared))
             },
         )
-        .collect::<Result<Vec<(Bands, Vec<(u32, u32)>)>, CullError>>()?;
-    let (bands, shared): (Vec<Bands>, Vec<Vec<(u32, u32)>>) = pieces.into_iter().unzip();
+        .collect::<Result<Vec<(Bands, Bands)>, CullError>>()?;
+    let (bands, shared): (Vec<Bands>, Vec<Bands>) = pieces.into_iter().unzip();
     let mut lists = lists(&bands, pixels)?;
     if let Some(cells) = &cells {
-        share(
-            &mut lists,
-            shared.concat(),
-            cells,
-            &receivers.sampled,
-            width,
-        )?;
+        let of_cells = crate::pair_lists::lists(&shared, cells.len())?;
+        share(&mut lists, of_cells, cells, &receivers.sampled, width)?;
     }
     Ok(lists)
 }
@@ -109,40 +104,40 @@ pub(crate) fn cull(input: &CullInput, shared_above: u64) -> Result<LightLists, C
 /// cells above one tile gave 23).
 pub(crate) const LARGE_PIXELS: u64 = (TILE_SIZE as u64) * (TILE_SIZE as u64);
 
-/// Appends the cells' lists to `lists` from the (cell, VPL) entries `shared`, which come in
-/// VPL order: grouped by cell with a stable counting sort ([`group_by`]), each list is
-/// ascending. Names each as the shared list of its cell's pixels with a sample (`sampled`: per
-/// pixel of the `width`-pixel screen rows, row by row).
-/// Nothing changes without entries.
+/// Appends the cells' lists `of_cells` (one "pixel" per cell, each list ascending) to
+/// `lists`, and names each as the shared list of its cell's pixels with a sample (`sampled`:
+/// per pixel of the `width`-pixel screen rows, row by row). Nothing changes without entries.
 fn share(
     lists: &mut LightLists,
-    shared: Vec<(u32, u32)>,
+    of_cells: LightLists,
     cells: &CellBoxes,
     sampled: &[bool],
     width: u32,
 ) -> Result<(), CullError> {
-    if shared.is_empty() {
+    if of_cells.indices.is_empty() {
         return Ok(());
     }
-    let total = lists.indices.len() + shared.len();
+    let total = lists.indices.len() + of_cells.indices.len();
     if u32::try_from(total).is_err() {
         return Err(CullError::Input(format!(
             "{total} light-list entries exceed 32-bit offsets"
         )));
     }
-    let keys: Vec<u32> = shared.iter().map(|e| e.0).collect();
-    let (offsets, order) = group_by(&keys, cells.len());
-    let mut of_cell = vec![NO_LIST; cells.len()];
-    for (cell, range) in offsets.windows(2).enumerate() {
-        if range[1] > range[0] {
-            of_cell[cell] = lists.len() as u32;
-            let entries = &order[range[0] as usize..range[1] as usize];
-            lists
-                .indices
-                .extend(entries.iter().map(|&i| shared[i as usize].1));
-            lists.offsets.push(lists.indices.len() as u32);
-        }
-    }
+    let (first_list, first_entry) = (lists.len() as u32, lists.indices.len() as u32);
+    lists.indices.extend_from_slice(&of_cells.indices);
+    let offsets = &of_cells.offsets[1..];
+    lists
+        .offsets
+        .extend(offsets.iter().map(|o| o + first_entry));
+    let of_cell: Vec<u32> = (of_cells.pixel_list.iter())
+        .map(|&l| {
+            if l == NO_LIST {
+                NO_LIST
+            } else {
+                first_list + l
+            }
+        })
+        .collect();
     let mut shared_list = vec![NO_LIST; sampled.len()];
     shared_list
         .par_chunks_mut(width as usize)

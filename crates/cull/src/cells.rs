@@ -5,6 +5,7 @@
 //! ([`CellTest`]). That test is conservative on its own, with a slack for its own rounding:
 //! it keeps every cell holding a sample that the exact per-pixel test
 //! ([`PixelTest::contains`]) passes.
+use crate::pair_lists::Bands;
 use crate::pixel_rows::{lanes_within, CELL};
 use crate::reach::SIGN_MARGIN;
 use crate::rounding::{down, up};
@@ -128,7 +129,7 @@ impl CellBoxes {
         &self,
         scattered: &mut Vec<Scattered>,
         shared_above: u64,
-        shared: &mut Vec<(u32, u32)>,
+        shared: &mut Bands,
     ) {
         #[cfg(target_arch = "x86_64")]
         if std::arch::is_x86_feature_detected!("avx2") {
@@ -145,7 +146,7 @@ impl CellBoxes {
         &self,
         scattered: &mut Vec<Scattered>,
         shared_above: u64,
-        shared: &mut Vec<(u32, u32)>,
+        shared: &mut Bands,
     ) {
         let mut kept = 0;
         for i in 0..scattered.len() {
@@ -167,7 +168,7 @@ impl CellBoxes {
                     while keep != 0 {
                         let lane = keep.trailing_zeros() as usize;
                         keep &= keep - 1;
-                        shared.push(((row + c * LANES + lane) as u32, s.index));
+                        shared.push((row + c * LANES + lane) as u32, s.index);
                     }
                 }
             }
@@ -182,7 +183,7 @@ fn take_large_avx2(
     cells: &CellBoxes,
     scattered: &mut Vec<Scattered>,
     shared_above: u64,
-    shared: &mut Vec<(u32, u32)>,
+    shared: &mut Bands,
 ) {
     cells.take_large_lanes::<slc_bounds::lanes_avx::A8>(scattered, shared_above, shared);
 }
