@@ -28,7 +28,7 @@ use crate::cells::CellBoxes;
 use crate::lists::pixel_count;
 use crate::pair_lists::{lists, Bands};
 use crate::partition::check;
-use crate::pixel_rows::PixelRows;
+use crate::pixel_rows::{Layout, PixelRows};
 use crate::scatter::Screen;
 use crate::scatter_lanes::scatter;
 use crate::view::CullView;
@@ -182,7 +182,9 @@ impl Receivers {
             .enumerate()
             .map(|(y, ((row, samples), sampled))| {
                 let (mut near, mut stray) = (f64::INFINITY, 0.0f64);
-                for (x, (g, sampled)) in samples.iter().zip(sampled).enumerate() {
+                let slots = layout.slots();
+                for (x, ((g, sampled), slot)) in samples.iter().zip(sampled).zip(slots).enumerate()
+                {
                     let Some(g) = g else {
                         continue;
                     };
@@ -199,7 +201,7 @@ impl Receivers {
                     let at = view.to_screen(DVec2::new(v.x, v.y) / v.z);
                     let corner = DVec2::new(f64::from(x), y);
                     let outside = (corner - at).max(at - corner - 1.0).max_element();
-                    layout.set(row, x, g.position);
+                    Layout::set(row, slot, g.position);
                     near = near.min(v.z);
                     stray = stray.max(outside);
                 }

@@ -45,14 +45,36 @@ impl Layout {
         self.k as usize * self.chunks_per_row
     }
 
-    /// Writes `position` for pixel `x` into its screen row's chunks (one item of
+    /// Where pixel `x` of a screen row goes: (chunk of the row, lane). Pixel x is column
+    /// i = x / K of subregion row sx = x mod K.
+    #[cfg(test)]
+    fn slot(&self, x: u32) -> (usize, usize) {
+        let (sx, i) = ((x % self.k) as usize, (x / self.k) as usize);
+        (sx * self.chunks_per_row + i / LANES, i % LANES)
+    }
+
+    /// The [`Self::slot`]s of pixels x = 0, 1, ... of a screen row, counted along the row
+    /// instead of divided per pixel.
+    pub(crate) fn slots(&self) -> impl Iterator<Item = (usize, usize)> {
+        let (k, per) = (self.k as usize, self.chunks_per_row);
+        let (mut sx, mut i) = (0, 0);
+        std::iter::repeat_with(move || {
+            let slot = (sx * per + i / LANES, i % LANES);
+            sx += 1;
+            if sx == k {
+                sx = 0;
+                i += 1;
+            }
+            slot
+        })
+    }
+
+    /// Writes `position` into `slot` of a screen row's chunks (one item of
     /// [`PixelRows::screen_rows_mut`]).
     #[inline]
-    pub(crate) fn set(&self, screen_row: &mut [Chunk], x: u32, position: Vec3) {
-        let (sx, i) = ((x % self.k) as usize, (x / self.k) as usize);
-        let chunk = &mut screen_row[sx * self.chunks_per_row + i / LANES];
-        for (plane, v) in chunk.iter_mut().zip(position.to_array()) {
-            plane.0[i % LANES] = v;
+    pub(crate) fn set(screen_row: &mut [Chunk], (chunk, lane): (usize, usize), position: Vec3) {
+        for (plane, v) in screen_row[chunk].iter_mut().zip(position.to_array()) {
+            plane.0[lane] = v;
         }
     }
 }
@@ -495,6 +517,21 @@ mod tests {
         }
     }
 
+    /// The slots counted along a row are those of each pixel divided out, and distinct: K
+    /// from 1 to 9, widths not multiples of K or of a chunk.
+    #[test]
+    fn slots_along_a_row_are_each_pixels_own() {
+        for (k, width) in [(1, 37), (3, 50), (8, 960), (9, 203)] {
+            let layout = PixelRows::empty(width, 1, k).layout;
+            let along: Vec<_> = layout.slots().take(width as usize).collect();
+            let each: Vec<_> = (0..width).map(|x| layout.slot(x)).collect();
+            assert_eq!(along, each, "K {k}, width {width}");
+            let distinct: std::collections::HashSet<_> = each.iter().collect();
+            assert_eq!(distinct.len(), width as usize, "K {k}, width {width}");
+            assert!(each.iter().all(|&(c, _)| c < layout.screen_row()));
+        }
+    }
+
     /// Each cell's box is the box of exactly the samples of the pixels in it
     /// ([`CellBoxes::of_pixel`], and [`CellBoxes::of_row`] the same cells), empty where none
     /// has one, and the numbers of the cells of every subregion's image ([`CellBoxes::id`])
@@ -516,7 +553,7 @@ mod tests {
                             rng.range64(-2.0, 2.0) as f32,
                             rng.range64(-2.0, 2.0) as f32,
                         );
-                        layout.set(row, x, p);
+                        Layout::set(row, layout.slot(x), p);
                         positions[y * width as usize + x as usize] = Some(p);
                     }
                 }
@@ -577,7 +614,7 @@ mod tests {
             screen_rows.enumerate().for_each(|(y, row)| {
                 for x in 0..width {
                     if let Some(p) = positions[y * width as usize + x as usize] {
-                        layout.set(row, x, p);
+                        Layout::set(row, layout.slot(x), p);
                     }
                 }
             });
