@@ -218,7 +218,9 @@ fn take_large_avx2(
 ///
 /// Where the bound is beyond f32 (semi-axes outside [1e-18, 1e18] or the centre more than
 /// 1e18 from the VPL, as for the pixel test's filter) the quadric rejects nothing; the box
-/// and the sign still do. A NaN in a cell's box (none comes from a G-buffer) keeps it.
+/// and the sign still do. Where B exceeds 2⁶² (a square could overflow) the cell is kept. A
+/// NaN in a cell's box (none comes from a G-buffer) keeps it; an empty box never meets the
+/// bound's, which stays within f32's finite range.
 #[derive(Clone, Copy, Debug)]
 struct CellTest<R = f32> {
     /// The bound's box, rounded outwards.
@@ -240,16 +242,22 @@ struct CellTest<R = f32> {
 /// ε / B (see [`CellTest`]).
 const SLACK: f32 = 1.0 / 32768.0;
 
+/// B beyond which a cell is kept untested: every length the test squares is at most B, so
+/// below 2⁶² no square overflows f32 (whose largest value is near 2¹²⁸).
+const HUGE: f32 = (1u64 << 62) as f32;
+
 impl CellTest {
     fn of(test: &PixelTest) -> Self {
         let [along, across] = test.semi_axes();
         let quadric = test.fits_f32();
-        // The spheroid's half extents per world axis, grown for `LIMIT` and f64 rounding.
+        // The spheroid's half extents per world axis, grown for `LIMIT` and for the f64
+        // rounding of the pixel test, which forms x − q and e − c at the scale of q and c.
         let center = test.position + test.center;
         let a2 = test.axis * test.axis;
+        let scale = test.position.abs().max_element() + test.center.abs().max_element();
         let extent = (a2 * (along * along) + (1.0 - a2) * (across * across)).map(f64::sqrt)
             * (LIMIT * (1.0 + 1e-9))
-            + DVec3::splat(1e-12 * center.abs().max_element());
+            + DVec3::splat(1e-12 * scale);
         let (lo, hi) = (center - extent, center + extent);
         let mut frame = Frame::of(test);
         let (c, inv) = match quadric {
@@ -258,17 +266,16 @@ impl CellTest {
         };
         frame.center = c.as_vec3().to_array();
         Self {
-            // Where f64 overflowed (an unbounded extent), the box does not limit.
-            lo: lo.to_array().map(|v| {
-                if v.is_nan() {
-                    f32::NEG_INFINITY
-                } else {
-                    down(v)
-                }
+            // Within f32's finite range, so that an empty cell (+∞ below −∞) never meets it;
+            // where f64 overflowed (an unbounded extent), the box does not limit.
+            lo: lo.to_array().map(|v| match v.is_nan() {
+                true => f32::MIN,
+                false => down(v).max(f32::MIN),
             }),
-            hi: hi
-                .to_array()
-                .map(|v| if v.is_nan() { f32::INFINITY } else { up(v) }),
+            hi: hi.to_array().map(|v| match v.is_nan() {
+                true => f32::MAX,
+                false => up(v).min(f32::MAX),
+            }),
             frame,
             abs_normal: frame.normal.map(f32::abs),
             abs_axis: frame.axis.map(f32::abs),
@@ -348,7 +355,10 @@ impl<L: Lanes8> CellTest<L> {
         let front = dot(f.normal, d) + dot(self.abs_normal, h);
         let reach = dot(d, d).sqrt() + h_len;
         let behind = (-(self.margin * reach)).gt(front + eps + eps);
-        L::bits(meets & reached & !behind)
+        // Where B passes 2⁶², a square of a length up to B may overflow (and 0 × ∞ make a
+        // NaN where the quadric rejects nothing): kept.
+        let huge = b.gt(L::splat(HUGE));
+        L::bits(meets & ((reached & !behind) | huge))
     }
 }
 
@@ -502,6 +512,50 @@ mod tests {
             assert_eq!(kept(&test, behind), 0, "{test:?}");
             test.normal = -test.normal;
             assert_eq!(kept(&test, behind), 0b11_1111, "{test:?}");
+        }
+    }
+
+    /// Cells at the edges of f32, each holding a point the pixel test passes, are kept: a
+    /// sphere as large as a range saturated at `f32::MAX` (beyond the quadric's domain) and
+    /// a point 2e19 away, whose squares overflow; a centre 2e19 from the VPL and a spheroid
+    /// 2e19 across (beyond the domain too); a sphere of 1e18 (within it) and a cell 3.7e19
+    /// long, whose half extent's square is just below f32's largest value; a sphere whose VPL and centre lie 2^40 on either side of it, where the pixel
+    /// test rounds x − q at the scale of q. The empty cell is rejected even beside the
+    /// saturated sphere, whose box is unbounded.
+    #[test]
+    fn keeps_cells_at_the_edges_of_f32() {
+        let (zero, x, y) = (DVec3::ZERO, DVec3::X, DVec3::Y);
+        let saturated = f64::from(f32::MAX) * (1.0 + 1e-6);
+        let far = Vec3::new(0.0, 2e19, 0.0);
+        let on_x = |v: f32| Vec3::new(v, 0.0, 0.0);
+        let cases = [
+            (
+                PixelTest::new(zero, y, zero, x, saturated, saturated),
+                [far, far],
+            ),
+            (
+                PixelTest::new(zero, y, far.as_dvec3(), x, 1e3, 1e3),
+                [far, far],
+            ),
+            (
+                PixelTest::new(zero, y, zero, x, 1e3, 2e19),
+                [far * 0.95, far * 0.95],
+            ),
+            (
+                PixelTest::new(zero, y, zero, x, 1e18, 1e18),
+                [Vec3::new(0.0, 1e18, 0.0), Vec3::new(0.0, 3.7892e19, 0.0)],
+            ),
+            (
+                PixelTest::new(-x * 2f64.powi(40), x, x * 2f64.powi(40), x, 1.0, 1.0),
+                [on_x(1.00005), on_x(1.00005)],
+            ),
+        ];
+        let empty = [Vec3::INFINITY, Vec3::NEG_INFINITY];
+        for (test, cell) in cases {
+            assert!(test.contains(cell[0]), "{test:?} {cell:?}");
+            let mut boxes = [empty; 8];
+            boxes[0] = cell;
+            assert_eq!(kept(&test, boxes), 1, "{test:?} {cell:?}");
         }
     }
 }
