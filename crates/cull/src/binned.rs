@@ -264,6 +264,23 @@ mod tests {
     use slc_bounds::{Brdf, Fresnel};
     use slc_core::{Camera, GSample, Interleaving};
 
+    /// A sample at `position` facing up.
+    fn sample(position: Vec3) -> Option<GSample> {
+        Some(GSample {
+            position,
+            normal: Vec3::Y,
+            geometric_normal: Vec3::Y,
+            omega_o: Vec3::Y,
+            depth: 1.0,
+            brdf: Brdf {
+                kd: Vec3::splat(0.5),
+                fresnel: Fresnel::Schlick(Vec3::splat(0.04)),
+                alpha: 0.3,
+                anisotropy: None,
+            },
+        })
+    }
+
     /// The receivers' stray (skipping the projections that surely lie within the stray so
     /// far) is the maximum of every sample's own: samples at their pixels' centres, jittered
     /// within them or on their edges, up to two pixels outside (images from 37 to 1e3 pixels
@@ -288,19 +305,7 @@ mod tests {
                     let far = spread == 1e5 && (x, y) == (w / 2, h / 2);
                     let u = if far { 1e5 } else { u };
                     let d = camera.ray_direction(x, y, u, v, w, h);
-                    samples.push(Some(GSample {
-                        position: camera.position + d * rng.range(1.0, 9.0),
-                        normal: Vec3::Y,
-                        geometric_normal: Vec3::Y,
-                        omega_o: Vec3::Y,
-                        depth: 1.0,
-                        brdf: Brdf {
-                            kd: Vec3::splat(0.5),
-                            fresnel: Fresnel::Schlick(Vec3::splat(0.04)),
-                            alpha: 0.3,
-                            anisotropy: None,
-                        },
-                    }));
+                    samples.push(sample(camera.position + d * rng.range(1.0, 9.0)));
                 }
                 let want = samples.iter().enumerate().fold(0.0f64, |m, (p, g)| {
                     let v = view.to_view(g.as_ref().unwrap().position);
@@ -339,22 +344,6 @@ mod tests {
     #[test]
     fn a_sample_behind_the_camera_is_an_error_naming_its_pixel() {
         let camera = Camera::look_at(Vec3::new(0.0, 4.0, 0.0), Vec3::ZERO, Vec3::Z, 1.0).unwrap();
-        let brdf = Brdf {
-            kd: Vec3::splat(0.5),
-            fresnel: Fresnel::Schlick(Vec3::splat(0.04)),
-            alpha: 0.3,
-            anisotropy: None,
-        };
-        let sample = |position| {
-            Some(GSample {
-                position,
-                normal: Vec3::Y,
-                geometric_normal: Vec3::Y,
-                omega_o: Vec3::Y,
-                depth: 1.0,
-                brdf,
-            })
-        };
         let (w, h) = (100, 50);
         for (x, y) in [(0, 0), (96, 40)] {
             let mut samples = vec![sample(Vec3::ZERO); (w * h) as usize];
