@@ -26,7 +26,7 @@
 //! (docs/many-vpls.md).
 use crate::cells::CellBoxes;
 use crate::lists::pixel_count;
-use crate::pair_lists::{lists, Bands};
+use crate::pair_lists::{self, Bands};
 use crate::partition::check;
 use crate::pixel_rows::{Layout, PixelRows};
 use crate::scatter::Screen;
@@ -84,9 +84,9 @@ pub(crate) fn cull(input: &CullInput, shared_above: u64) -> Result<LightLists, C
         )
         .collect::<Result<Vec<(Bands, Bands)>, CullError>>()?;
     let (bands, shared): (Vec<Bands>, Vec<Bands>) = pieces.into_iter().unzip();
-    let mut lists = lists(&bands, pixels)?;
+    let mut lists = pair_lists::lists(&bands, pixels)?;
     if let Some(cells) = &cells {
-        let of_cells = crate::pair_lists::lists(&shared, cells.len())?;
+        let of_cells = pair_lists::lists(&shared, cells.len())?;
         share(&mut lists, of_cells, cells, &receivers.sampled, width)?;
     }
     Ok(lists)
@@ -178,7 +178,7 @@ struct Receivers {
 struct Projection {
     scale: DVec2,
     offset: DVec2,
-    /// The image's width plus height: the scale of the rounding.
+    /// The image's width plus height plus 2: the scale of the rounding.
     size: f64,
 }
 

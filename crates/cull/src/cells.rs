@@ -55,11 +55,7 @@ impl CellBoxes {
                     for lane in 0..LANES {
                         let cx = c * LANES as u32 + lane as u32;
                         if cx < cells_across {
-                            let [lo, hi] = box_of(subregion, [cx, cy]);
-                            for (a, v) in lo.to_array().into_iter().chain(hi.to_array()).enumerate()
-                            {
-                                chunk[a].0[lane] = v;
-                            }
+                            put(&mut chunk, lane, box_of(subregion, [cx, cy]));
                         }
                     }
                     chunk
@@ -177,6 +173,13 @@ impl CellBoxes {
     }
 }
 
+/// Writes the box `[lo, hi]` into lane `lane` of `chunk`.
+fn put(chunk: &mut CellChunk, lane: usize, [lo, hi]: [Vec3; 2]) {
+    for (a, v) in lo.to_array().into_iter().chain(hi.to_array()).enumerate() {
+        chunk[a].0[lane] = v;
+    }
+}
+
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2")]
 fn take_large_avx2(
@@ -219,8 +222,8 @@ fn take_large_avx2(
 /// Where the bound is beyond f32 (semi-axes outside [1e-18, 1e18] or the centre more than
 /// 1e18 from the VPL, as for the pixel test's filter) the quadric rejects nothing; the box
 /// and the sign still do. Where B exceeds 2⁶² (a square could overflow) the cell is kept. A
-/// NaN in a cell's box (none comes from a G-buffer) keeps it; an empty box never meets the
-/// bound's, which stays within f32's finite range.
+/// cell's box holds no NaN (`PixelRows::cell_boxes` passes over lanes without a sample); an
+/// empty box never meets the bound's, which stays within f32's finite range.
 #[derive(Clone, Copy, Debug)]
 struct CellTest<R = f32> {
     /// The bound's box, rounded outwards.
@@ -371,10 +374,8 @@ mod tests {
     /// lanes, which agree.
     fn kept(test: &PixelTest, boxes: [[Vec3; 2]; 8]) -> u8 {
         let mut chunk: CellChunk = [F8([0.0; 8]); 6];
-        for (lane, [lo, hi]) in boxes.into_iter().enumerate() {
-            for (a, v) in lo.to_array().into_iter().chain(hi.to_array()).enumerate() {
-                chunk[a].0[lane] = v;
-            }
+        for (lane, cell) in boxes.into_iter().enumerate() {
+            put(&mut chunk, lane, cell);
         }
         let cell_test = CellTest::of(test);
         let plain = cell_test.lanes::<F8>().keeps(&chunk);
