@@ -32,7 +32,8 @@ impl Interleaving {
         (y % self.k) * self.k + x % self.k
     }
 
-    /// The subregion a VPL belongs to, from its stable id.
+    /// The subregion a VPL belongs to, from its stable id ([`crate::Subregions::of_vpl`]
+    /// gives the same without a division).
     #[inline]
     pub fn vpl_subregion(&self, vpl_id: u32) -> u32 {
         if self.k == 1 {

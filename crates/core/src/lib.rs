@@ -62,6 +62,7 @@ pub mod settings_tables;
 pub mod shader;
 pub mod shapes;
 pub mod strategy;
+mod subregions;
 pub mod tangents;
 pub mod texture;
 #[cfg(feature = "loaders")]
@@ -96,5 +97,6 @@ pub use scene::{LoadReport, Scene};
 pub use settings::{load_settings, MaterialOverride, Settings};
 pub use shader::{ShadeInput, Shader};
 pub use strategy::{GlossyBound, Layout, Strategy, UnknownStrategy};
+pub use subregions::Subregions;
 pub use texture::{Texture, TextureId};
 pub use vpl::{Vpl, VplLobe};

@@ -52,7 +52,7 @@ pub(crate) fn cull(input: &CullInput, shared_above: u64) -> Result<LightLists, C
     }
     let view = CullView::new(input.camera, width, height)?;
     let receivers = Receivers::new(input.gbuffer, &view, il.k)?;
-    let screen = Screen::new(&view, width, height, il, receivers.stray, receivers.near);
+    let screen = Screen::new(&view, width, height, il, receivers.stray, receivers.near)?;
     if !input.vpls.is_empty() {
         // δ is checked once here for the lanes, which take it as valid.
         StochasticParams::new(input.delta, 0.5)?;

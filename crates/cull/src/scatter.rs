@@ -10,7 +10,7 @@ use crate::vpl_bounds::{GlossyBound, LocalBound};
 use glam::{DVec3, Vec3};
 use slc_bounds::lanes::{splat_all, Lanes8};
 use slc_bounds::StochasticParams;
-use slc_core::{CullError, Interleaving, Vpl};
+use slc_core::{CullError, Interleaving, Subregions, Vpl};
 
 /// The largest value of a pixel's coordinates in the bound's unit ball that still counts
 /// as inside: 1 plus 1e-6 for the f64 rounding of the test (about 1e-16 of its terms, which
@@ -148,9 +148,12 @@ pub(crate) struct Scattered {
 /// and the G-buffer samples' extremes.
 pub(crate) struct Screen {
     pub map: ScreenMap<f32>,
-    pub width: u32,
-    pub height: u32,
-    pub interleaving: Interleaving,
+    /// The interleaving's subregions of this image.
+    subregions: Subregions,
+    /// The interleaving factor K, and 1 / K where K is a power of two (a division by K is
+    /// then this product, bit for bit).
+    k: f64,
+    inv_k: Option<f64>,
     /// The eye, from which the bounds' centres are taken.
     pub eye: Vec3,
     /// How far (in screen pixels) any sample's projection lies outside its own pixel.
@@ -162,7 +165,8 @@ pub(crate) struct Screen {
 
 impl Screen {
     /// The scatter of a `width` x `height` image seen by `view` whose samples stray up to
-    /// `stray` pixels outside their own and lie no nearer than `near`.
+    /// `stray` pixels outside their own and lie no nearer than `near`. Errors on an
+    /// interleaving factor K of 0 or with K² beyond u32.
     pub(crate) fn new(
         view: &CullView,
         width: u32,
@@ -170,10 +174,13 @@ impl Screen {
         interleaving: Interleaving,
         stray: f64,
         near: f64,
-    ) -> Self {
+    ) -> Result<Self, CullError> {
         let rotation = view.rotation();
         let (scale, offset) = view.screen_map();
-        Self {
+        let k = interleaving.k;
+        let subregions = Subregions::new(interleaving, width, height)
+            .ok_or_else(|| CullError::Input(format!("interleaving factor K = {k} out of range")))?;
+        Ok(Self {
             map: ScreenMap {
                 rows: [0, 1, 2].map(|i| rotation.row(i).to_array()),
                 scale: scale.map(|v| v as f32),
@@ -181,16 +188,16 @@ impl Screen {
                 // Rounded down: no sample lies nearer.
                 near: down(near),
             },
-            width,
-            height,
-            interleaving,
+            subregions,
+            k: f64::from(k),
+            inv_k: k.is_power_of_two().then(|| 1.0 / f64::from(k)),
             eye: view.eye(),
             stray,
             edges: [
                 [-1.0, -1.0].map(|e| down(e - stray)),
                 [width, height].map(|n| up(f64::from(n) + stray + 1.0)),
             ],
-        }
+        })
     }
 
     /// VPL `index` for the roulette's δ, `None` where it covers no pixel (it reflects
@@ -262,12 +269,8 @@ impl Screen {
         if footprint.nowhere {
             return None;
         }
-        let k = self.interleaving.k;
-        let sub = self.interleaving.vpl_subregion(vpl.id);
-        let subregion = [sub % k, sub / k];
-        let [sw, sh] = self
-            .interleaving
-            .subregion_size(self.width, self.height, subregion);
+        let subregion = self.subregions.of_vpl(vpl.id);
+        let [sw, sh] = self.subregions.size(subregion);
         let pixels = if footprint.everywhere {
             (sw > 0 && sh > 0).then(|| [0, 0, sw - 1, sh - 1])
         } else {
@@ -294,11 +297,16 @@ impl Screen {
         [sx, sy]: [u32; 2],
         [sw, sh]: [u32; 2],
     ) -> Option<[u32; 4]> {
-        let k = f64::from(self.interleaving.k);
+        let k = self.k;
+        // x / K is x times 1 / K exactly where K is a power of two (K = 8 by default).
+        let per_k = |x: f64| match self.inv_k {
+            Some(inv) => x * inv,
+            None => x / k,
+        };
         let axis = |a: f32, b: f32, s: u32, n: u32| -> Option<[u32; 2]> {
             let s = f64::from(s);
-            let i0 = first_index((f64::from(a) - self.stray - 1.0 - s) / k, n);
-            let i1 = last_index((f64::from(b) + self.stray - s) / k, n);
+            let i0 = first_index(per_k(f64::from(a) - self.stray - 1.0 - s), n);
+            let i1 = last_index(per_k(f64::from(b) + self.stray - s), n);
             (i0 <= i1).then_some([i0 as u32, i1 as u32])
         };
         let [i0, i1] = axis(footprint.lo[0], footprint.hi[0], sx, sw)?;

@@ -162,7 +162,7 @@ mod tests {
         let cam = Camera::look_at(Vec3::new(0.0, 0.0, 3.0), Vec3::ZERO, Vec3::Y, 1.2).unwrap();
         let (w, h) = (96, 64);
         let view = CullView::new(&cam, w, h).unwrap();
-        let screen = Screen::new(&view, w, h, Interleaving { k: 2, seed: 1 }, 0.0, 0.05);
+        let screen = Screen::new(&view, w, h, Interleaving { k: 2, seed: 1 }, 0.0, 0.05).unwrap();
         let mut rng = Rng(0x0B14_ED42);
         let (mut in_lanes, mut placed, mut points) = (0, 0, 0);
         for case in 0..3000 {
@@ -214,7 +214,7 @@ mod tests {
     fn lanes_leave_every_vpl_they_do_not_model() {
         let cam = Camera::look_at(Vec3::new(0.0, 0.0, 3.0), Vec3::ZERO, Vec3::Y, 1.2).unwrap();
         let view = CullView::new(&cam, 64, 64).unwrap();
-        let screen = Screen::new(&view, 64, 64, Interleaving { k: 2, seed: 1 }, 0.0, 0.05);
+        let screen = Screen::new(&view, 64, 64, Interleaving { k: 2, seed: 1 }, 0.0, 0.05).unwrap();
         let glossy = Vpl {
             position: Vec3::new(0.0, -1.0, 0.0),
             normal: Vec3::Y,
