@@ -1,7 +1,7 @@
 //! [`Interleaving`]'s subregion arithmetic for one image, without a division per VPL: a
-//! scatter that places a million VPLs a frame (`slc_cull`'s `binned`) spent a fifth of its
-//! placement waiting on the divisions by K and K² of [`Interleaving::vpl_subregion`] and
-//! [`Interleaving::subregion_size`].
+//! scatter that places a million VPLs a frame (`slc_cull`'s `binned`) waited on the
+//! divisions by K and K² of [`Interleaving::vpl_subregion`] and
+//! [`Interleaving::subregion_size`] for every VPL it placed.
 use crate::culling::Interleaving;
 use crate::rng::{hash4, stream};
 
