@@ -17,6 +17,7 @@ use crate::cull::records::{GpuBoxBound, GpuLocalBound};
 use crate::device::buffers::{output, read_back};
 use crate::device::context::{GpuContext, GpuError};
 use crate::device::count::{ArgsPass, Count};
+use crate::vpl::buffers::VplBuffers;
 use crate::vpl::records::vec4;
 use slc_core::{Camera, Interleaving, Vpl};
 use slc_cull::CullView;
@@ -52,7 +53,7 @@ pub struct GpuBounds {
     pub shapes: wgpu::Buffer,
     pub locals: wgpu::Buffer,
     /// The VPLs as uploaded (`GpuVpl`), for the passes that shade them.
-    pub vpls: wgpu::Buffer,
+    pub vpls: VplBuffers,
     /// How many there are (the buffers hold its capacity).
     pub count: Count,
 }
@@ -135,18 +136,11 @@ impl BoundsPass {
             let at = std::mem::offset_of!(GpuView, count);
             let view_buffer = vpl_count.uniform(ctx, encoder, "bounds view", &view, at);
             let workgroups = vpl_count.workgroups(ctx, encoder, &self.args, 1, WORKGROUP)?;
-            ctx.encode_dispatch(
+            ctx.encode_dispatch_at(
                 encoder,
                 "bounds",
                 &self.pipeline,
-                &[
-                    &view_buffer,
-                    &vpl_buffer,
-                    &bounds,
-                    &box_bounds,
-                    &shapes,
-                    &local_bounds,
-                ],
+                &vpl_buffer.with(&[&view_buffer, &bounds, &box_bounds, &shapes, &local_bounds]),
                 workgroups,
             );
             Ok(())

@@ -9,6 +9,7 @@ use crate::device::buffers::{read_back, upload};
 use crate::device::context::{GpuContext, GpuError};
 use crate::device::count::Count;
 use crate::frame::raster::gbuffer::GpuGBuffer;
+use crate::vpl::buffers::VplBuffers;
 use crate::vpl::generate::GpuVpls;
 use crate::vpl::records::GpuVpl;
 use slc_bounds::StochasticParams;
@@ -144,7 +145,7 @@ impl FrameVpls<'_> {
 
     /// The [`GpuVpl`] records on the GPU: the CPU's validated for δ = `delta` exactly as the
     /// CPU culler validates them (`GpuVpl::new`) and uploaded, or the GPU's own buffer.
-    pub fn records(&self, ctx: &GpuContext, delta: f32) -> Result<wgpu::Buffer, GpuError> {
+    pub fn records(&self, ctx: &GpuContext, delta: f32) -> Result<VplBuffers, GpuError> {
         match self {
             Self::Cpu(vpls) => {
                 let packed = vpls
@@ -152,13 +153,13 @@ impl FrameVpls<'_> {
                     .enumerate()
                     .map(|(i, v)| GpuVpl::new(v, i, delta))
                     .collect::<Result<Vec<_>, _>>()?;
-                upload(ctx, "vpls", &packed)
+                VplBuffers::upload(ctx, "vpls", &packed)
             }
             Self::Gpu(vpls) => {
                 // Generated VPLs are valid by construction (ξ in (0, 1)); δ is checked as
                 // the CPU's records check it.
                 StochasticParams::new(delta, 0.5).map_err(|e| GpuError::Input(e.to_string()))?;
-                Ok(vpls.buffer.clone())
+                Ok(vpls.buffers.clone())
             }
         }
     }

@@ -210,20 +210,19 @@ impl ShadePass {
         ctx.submit("shade", |encoder| {
             let at = std::mem::offset_of!(GpuShadeParams, vpl_count);
             let params = count.uniform(ctx, encoder, "shade params", &params, at);
-            ctx.encode_dispatch(
+            ctx.encode_dispatch_at(
                 encoder,
                 "shade",
                 &self.pipeline,
-                &[
+                &vpls.with(&[
                     &params,
                     samples,
-                    &vpls,
                     &lists.offsets,
                     &lists.indices,
                     &lists.pixel_list,
                     &out,
                     positions,
-                ],
+                ]),
                 grid,
             );
             Ok(())

@@ -88,22 +88,21 @@ impl TiledShadePass {
                 &params,
                 offset_of!(GpuShadeParams, vpl_count),
             );
-            ctx.encode_dispatch(
+            ctx.encode_dispatch_at(
                 encoder,
                 "tiled shade",
                 &self.pipeline,
-                &[
+                &tiles.bounds.vpls.with(&[
                     &cull,
                     &shade,
                     &tiles.frusta,
                     &tiles.bounds.buffer,
                     &tiles.partition.order,
-                    &tiles.bounds.vpls,
                     samples,
                     &frame.positions,
                     &tiles.pixel_list,
                     &image,
-                ],
+                ]),
                 tiles.grid,
             );
             Ok(())

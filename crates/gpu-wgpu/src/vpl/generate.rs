@@ -4,15 +4,17 @@
 //! maps, ξ = `rng::vpl_xi(seed, id)` (paper eq. 3) from `rng.wesl`, compacted in the
 //! CPU's order by a count pass, an exclusive scan (`device::scan`) and a write pass, in one
 //! submission. Nothing is read back: the count stays on the GPU ([`GpuCount`], the scan's
-//! total), the VPL buffer holds the most VPLs the maps can make (one per texel and lobe
-//! selected: a 1024² map's glossy VPLs fill one 128 MiB binding exactly), and the
+//! total), the VPL buffers hold the most VPLs the maps can make (one per texel and lobe
+//! selected: a 1024² map's glossy VPLs fill one 128 MiB binding exactly, both lobes' two
+//! of them, [`VplBuffers`]), and the
 //! passes after it take the count from there (`device::count`).
 use crate::cull::records::{GpuCullStatus, CULL_COUNT, CULL_WRITE};
-use crate::device::buffers::{output, read_back, uniform, upload, Grid};
+use crate::device::buffers::{output, uniform, upload, Grid};
 use crate::device::context::{GpuContext, GpuError};
 use crate::device::count::GpuCount;
 use crate::device::scan::ScanPass;
 use crate::frame::light::rsm::GpuRsm;
+use crate::vpl::buffers::VplBuffers;
 use crate::vpl::records::GpuVplGenParams;
 use crate::vpl::records::{anisotropy_from_gpu, GpuVpl, FRESNEL_DIELECTRIC, LOBE_DIFFUSE};
 use glam::Vec3;
@@ -64,7 +66,7 @@ impl VplLobes {
 /// the CPU where something there needs them.
 pub struct GpuVpls {
     /// The VPLs in the CPU's order, then unused records up to the count's capacity.
-    pub buffer: wgpu::Buffer,
+    pub buffers: VplBuffers,
     /// The number of VPLs (`GpuCullStatus::total` of the generation's scan).
     pub count: GpuCount,
 }
@@ -78,7 +80,7 @@ impl GpuVpls {
     /// The VPLs as `slc_core::Vpl`s, in the CPU's order.
     pub fn read_back(&self, ctx: &GpuContext) -> Result<Vec<Vpl>, GpuError> {
         let count = self.read_count(ctx)?;
-        let raw: Vec<GpuVpl> = read_back(ctx, "vpls", &self.buffer, count as usize)?;
+        let raw = self.buffers.read_back(ctx, count as usize)?;
         Ok(raw.iter().map(unpack).collect())
     }
 }
@@ -171,15 +173,18 @@ impl VplGenPass {
         let count_passes = passes(CULL_COUNT)?;
         let write_passes = passes(CULL_WRITE)?;
         let capacity = lobes.per_texel() * total;
-        let vpls = output::<GpuVpl>(ctx, "vpls", capacity as usize)?;
-        let no_vpls = output::<GpuVpl>(ctx, "no vpls", 1)?;
+        let vpls = VplBuffers::output(ctx, "vpls", capacity as usize)?;
+        let no_vpls = [
+            output::<GpuVpl>(ctx, "no vpls", 1)?,
+            output::<GpuVpl>(ctx, "no vpls", 1)?,
+        ];
         ctx.submit("vpl generation", |encoder| {
             for (params, grid, map) in &count_passes {
                 ctx.encode_dispatch(
                     encoder,
                     "vpl count",
                     &self.pipeline,
-                    &[params, &map.texels, &counts, &no_vpls],
+                    &[params, &map.texels, &counts, &no_vpls[0], &no_vpls[1]],
                     *grid,
                 );
             }
@@ -189,14 +194,14 @@ impl VplGenPass {
                     encoder,
                     "vpl write",
                     &self.pipeline,
-                    &[params, &map.texels, &counts, &vpls],
+                    &[params, &map.texels, &counts, &vpls.low, &vpls.high],
                     *grid,
                 );
             }
             Ok(())
         })?;
         Ok(GpuVpls {
-            buffer: vpls,
+            buffers: vpls,
             count: GpuCount {
                 buffer: status,
                 offset: STATUS_TOTAL,

@@ -24,6 +24,7 @@ mod shade;
 mod tight;
 mod tiled;
 mod tiled_shade;
+mod vpl_buffers;
 mod vsgl;
 mod vsgl_build;
 mod vsgl_visibility;

@@ -26,7 +26,6 @@ use slc_core::{GBuffer, GSample, Light, Scene, Vpl};
 use slc_cpu_ref::rsm::{trace_rsm, Rsm, TexelSample};
 use slc_cpu_ref::vpls::generate_vpls;
 use slc_cpu_ref::Tracer;
-use slc_gpu_wgpu::device::buffers::read_back;
 use slc_gpu_wgpu::frame::light::records::GpuRsmTexel;
 use slc_gpu_wgpu::frame::light::rsm::RsmPass;
 use slc_gpu_wgpu::frame::raster::scene::GpuScene;
@@ -397,13 +396,10 @@ fn gpu_vpl_bound_factors_cover_the_cpus() {
             .unwrap()
             .generate(&ctx, &maps, SEED, VplLobes::Both)
             .unwrap();
-        let raw: Vec<GpuVpl> = read_back(
-            &ctx,
-            "vpls",
-            &generated.buffer,
-            generated.read_count(&ctx).unwrap() as usize,
-        )
-        .unwrap();
+        let raw: Vec<GpuVpl> = generated
+            .buffers
+            .read_back(&ctx, generated.read_count(&ctx).unwrap() as usize)
+            .unwrap();
         let vpls = generated.read_back(&ctx).unwrap();
         let mut not_one = 0;
         for (i, (v, g)) in vpls.iter().zip(&raw).enumerate() {

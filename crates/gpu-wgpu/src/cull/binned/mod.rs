@@ -187,17 +187,13 @@ impl BinnedCuller {
             let workgroups = bounds
                 .count
                 .workgroups(ctx, encoder, &self.args, 1, WORKGROUP)?;
-            ctx.encode_dispatch(
+            ctx.encode_dispatch_at(
                 encoder,
                 "binned footprint",
                 &self.footprint,
-                &[
-                    &footprint_params,
-                    &binned,
-                    &bounds.vpls,
-                    &bounds.locals,
-                    &records,
-                ],
+                &bounds
+                    .vpls
+                    .with(&[&footprint_params, &binned, &bounds.locals, &records]),
                 workgroups,
             );
             ctx.encode_dispatch(

@@ -109,11 +109,11 @@ impl NoneCuller {
                 &params,
                 std::mem::offset_of!(GpuNoneParams, vpl_count),
             );
-            ctx.encode_dispatch(
+            ctx.encode_dispatch_at(
                 encoder,
                 "no culling",
                 &self.pipeline,
-                &[&params, &vpls, &frame.positions, &bounds, &pixel_list],
+                &vpls.with(&[&params, &frame.positions, &bounds, &pixel_list]),
                 grid,
             );
             self.partition

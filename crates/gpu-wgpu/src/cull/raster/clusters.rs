@@ -297,20 +297,19 @@ impl ClusterRasterizer {
                         &params,
                         std::mem::offset_of!(GpuShadeParams, vpl_count),
                     );
-                    ctx.encode_dispatch(
+                    ctx.encode_dispatch_at(
                         encoder,
                         "node shade",
                         &self.shade,
-                        &[
+                        &clusters.tiles.bounds.vpls.with(&[
                             &params,
                             samples,
-                            &clusters.tiles.bounds.vpls,
                             &frame.positions,
                             &clusters.tiles.pixel_list,
                             &lists.heads,
                             &lists.nodes,
                             &image,
-                        ],
+                        ]),
                         grid,
                     );
                     Ok(())

@@ -23,6 +23,7 @@ use crate::cull::records::GpuCullStatus;
 use crate::cull::room::ListRoom;
 use crate::device::buffers::{output, upload};
 use crate::device::context::{GpuContext, GpuError};
+use crate::vpl::buffers::VPL_BINDINGS;
 use slc_core::Interleaving;
 use std::mem::offset_of;
 
@@ -186,9 +187,10 @@ impl Splatter {
                     (2, tiles.bounds.shapes.as_entire_binding()),
                     (3, tiles.partition.sub_offsets.as_entire_binding()),
                     (4, tiles.partition.order.as_entire_binding()),
-                    (5, tiles.bounds.vpls.as_entire_binding()),
                     (6, samples.as_entire_binding()),
                     (7, frame.positions.as_entire_binding()),
+                    (VPL_BINDINGS[0], tiles.bounds.vpls.low.as_entire_binding()),
+                    (VPL_BINDINGS[1], tiles.bounds.vpls.high.as_entire_binding()),
                 ],
             );
             let drawn = (&params, &params_buffer);

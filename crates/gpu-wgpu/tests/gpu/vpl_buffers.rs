@@ -1,0 +1,143 @@
+//! VPLs over two storage bindings (`vpl::buffers`): on a device whose bindings hold fewer
+//! VPL records than a frame makes, the frame renders the same images bit for bit and counts
+//! the same VPLs as on one whose bindings hold them all; records uploaded over two bindings
+//! read back as they went in; VPLs beyond two bindings are refused by name.
+use crate::common::{gpu, small_frame};
+use glam::Vec3;
+use slc_core::frame::{Method, RenderSettings};
+use slc_core::render::render;
+use slc_core::{builtin, Strategy, Vpl, VplLobe};
+use slc_gpu_wgpu::vpl::buffers::VplBuffers;
+use slc_gpu_wgpu::vpl::records::GpuVpl;
+use slc_gpu_wgpu::{GpuContext, GpuError, GpuRenderer};
+
+/// A device of the shared one's adapter whose storage bindings hold `bytes` at most.
+fn narrow_gpu(shared: &GpuContext, bytes: u64) -> GpuContext {
+    let instance =
+        wgpu::Instance::new(wgpu::InstanceDescriptor::new_without_display_handle_from_env());
+    let adapter = pollster::block_on(instance.request_adapter(&wgpu::RequestAdapterOptions {
+        power_preference: wgpu::PowerPreference::HighPerformance,
+        ..Default::default()
+    }))
+    .expect("the shared device's adapter");
+    let info = adapter.get_info();
+    let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
+        label: Some("narrow bindings"),
+        required_features: adapter.features() & shared.device.features(),
+        required_limits: wgpu::Limits {
+            max_storage_buffer_binding_size: bytes,
+            ..adapter.limits()
+        },
+        ..Default::default()
+    }))
+    .expect("a device with smaller bindings");
+    GpuContext::from_device(device, queue, &info)
+}
+
+/// Bindings of 320 KiB hold 2,560 VPL records: the built-in scene at RSM 16 makes some
+/// 2,770 VPLs of both lobes (2,766 on lavapipe; room for 3,584), so some 200 lie in the
+/// second buffer, while the G-buffer, the bounds (80 bytes a VPL) and the lists fit one
+/// binding at 32x24 (`binned`'s lists hold some 180 KB).
+const NARROW: u64 = 320 * 1024;
+
+#[test]
+fn vpls_over_two_bindings_render_as_over_one() {
+    let Some(wide) = gpu() else { return };
+    let narrow = narrow_gpu(&wide, NARROW);
+    assert_eq!(VplBuffers::per_binding(&narrow), 2560);
+    let scene = builtin("default").unwrap();
+    // Every strategy whose per-VPL buffers fit these bindings: not the tight ones, whose
+    // bounds over boxes take 112 bytes a VPL.
+    let strategies = [
+        Strategy::None,
+        Strategy::Sphere,
+        Strategy::Ellipsoid,
+        Strategy::Clustered,
+        Strategy::Binned,
+        Strategy::Splatting,
+        Strategy::ClusteredRaster,
+    ];
+    let (wide, narrow) = (
+        GpuRenderer::from_context(wide).unwrap(),
+        GpuRenderer::from_context(narrow).unwrap(),
+    );
+    for strategy in strategies {
+        let mut settings = RenderSettings {
+            width: 32,
+            height: 24,
+            ..small_frame(strategy, true)
+        };
+        // No metrics: splatting's lists for them would outgrow these bindings.
+        if let Method::Stochastic(s) = &mut settings.method {
+            s.metrics = false;
+        }
+        let (a, b) = (
+            render(&wide, &scene, &settings, &|_| {}),
+            render(&narrow, &scene, &settings, &|_| {}),
+        );
+        if strategy.is_raster() && a.is_err() {
+            // An adapter without f32 blending refuses the raster baselines on both devices.
+            assert!(b.is_err(), "{strategy}");
+            continue;
+        }
+        let (a, b) = (a.unwrap(), b.unwrap_or_else(|e| panic!("{strategy}: {e}")));
+        // More than the first buffer holds.
+        assert!(a.vpl_count > 2560, "{strategy}: {} VPLs", a.vpl_count);
+        assert_eq!(b.vpl_count, a.vpl_count, "{strategy}");
+        for (x, y) in [(&a.direct, &b.direct), (&a.indirect, &b.indirect)] {
+            let bits = |i: &slc_core::Image| {
+                i.pixels
+                    .iter()
+                    .flat_map(|p| p.to_array().map(f32::to_bits))
+                    .collect::<Vec<_>>()
+            };
+            assert!(bits(x) == bits(y), "{strategy}: images differ");
+        }
+        assert!(
+            a.indirect.pixels.iter().any(|p| p.max_element() > 0.0),
+            "{strategy}: black"
+        );
+    }
+}
+
+/// Records uploaded over two bindings, and generated into them, read back as they were; a
+/// count beyond two bindings is refused, naming the buffer.
+#[test]
+fn records_over_two_bindings_read_back_whole() {
+    let Some(wide) = gpu() else { return };
+    let narrow = narrow_gpu(&wide, NARROW);
+    let vpl = |i: usize| Vpl {
+        position: Vec3::new(i as f32, 1.0, -2.0),
+        normal: Vec3::Y,
+        geometric_normal: Vec3::Y,
+        omega_i: Vec3::Y,
+        flux: Vec3::splat(0.5),
+        brdf: slc_bounds::Brdf {
+            kd: Vec3::splat(0.5),
+            fresnel: slc_bounds::Fresnel::Schlick(Vec3::splat(0.04)),
+            alpha: 0.3,
+            anisotropy: None,
+        },
+        lobe: VplLobe::Diffuse,
+        id: i as u32,
+        xi: 0.5,
+    };
+    for count in [0, 1, 2559, 2560, 2561, 5120] {
+        let records: Vec<GpuVpl> = (0..count)
+            .map(|i| GpuVpl::new(&vpl(i), i, 1e-3).unwrap())
+            .collect();
+        let buffers = VplBuffers::upload(&narrow, "vpls", &records).unwrap();
+        let back = buffers.read_back(&narrow, count).unwrap();
+        assert!(back == records, "{count} records");
+    }
+    let records: Vec<GpuVpl> = (0..5121)
+        .map(|i| GpuVpl::new(&vpl(i), i, 1e-3).unwrap())
+        .collect();
+    match VplBuffers::upload(&narrow, "vpls", &records) {
+        Err(GpuError::BufferTooLarge { label, limit, .. }) => {
+            assert!(label.contains("vpls") && limit == NARROW, "{label} {limit}")
+        }
+        Err(e) => panic!("{e}"),
+        Ok(_) => panic!("5,121 records in two bindings of 2,560"),
+    }
+}
