@@ -19,6 +19,7 @@ mod notes;
 
 use crate::cull::frame::CullFrame;
 use crate::cull::lists::read_lists;
+use crate::cull::records::GpuBound;
 use crate::cull::{Culled, GpuCulling, ListCulling};
 use crate::device::context::{GpuContext, GpuError};
 use crate::frame::denoise::{DenoisePass, Guide};
@@ -363,7 +364,10 @@ impl Renderer for GpuRenderer {
             progress.check()?;
             let vpls = t.time("vpl_generation", || {
                 self.step("vpl_generation", || {
-                    self.vpl_gen.generate(ctx, &maps, seed, lobes)
+                    let mut vpls = self.vpl_gen.generate(ctx, &maps, seed, lobes)?;
+                    // The culling keeps a bound of 80 bytes per VPL in one binding.
+                    vpls.fit_capacity(ctx, std::mem::size_of::<GpuBound>() as u64)?;
+                    Ok(vpls)
                 })
             })?;
             progress.check()?;

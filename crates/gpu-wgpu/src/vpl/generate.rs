@@ -77,6 +77,20 @@ impl GpuVpls {
         self.count.read(ctx, "vpl count")
     }
 
+    /// Where a buffer of `bytes_per_vpl` bytes for each VPL the count's capacity allows would
+    /// exceed one storage binding, reads the count back (12 bytes, a wait for the
+    /// generation) and makes it the capacity, by which the passes after size their per-VPL
+    /// buffers: a 1024² RSM of both lobes has room for 2,097,152 VPLs, whose bounds of 80
+    /// bytes would take 160 MiB, where Sponza makes 1,647,184 (126 MiB). Other frames read
+    /// nothing.
+    pub fn fit_capacity(&mut self, ctx: &GpuContext, bytes_per_vpl: u64) -> Result<(), GpuError> {
+        let limit = ctx.limits.max_storage_buffer_binding_size;
+        if u64::from(self.count.capacity).saturating_mul(bytes_per_vpl) > limit {
+            self.count.capacity = self.read_count(ctx)?;
+        }
+        Ok(())
+    }
+
     /// The VPLs as `slc_core::Vpl`s, in the CPU's order.
     pub fn read_back(&self, ctx: &GpuContext) -> Result<Vec<Vpl>, GpuError> {
         let count = self.read_count(ctx)?;
