@@ -113,7 +113,8 @@ impl<'a> CullFrame<'a> {
 /// [`GpuVpl`]s by [`FrameVpls::records`]) or generated on the GPU
 /// (`vpl::generate::VplGenPass`, complete records that never leave the device, counted there:
 /// the passes size their buffers by [`FrameVpls::capacity`] and take the count into their
-/// uniforms and dispatches with [`FrameVpls::count`], so nothing is read back).
+/// uniforms and dispatches with [`FrameVpls::count`], so nothing is read back but where the
+/// count sizes them, `GpuVpls::fit_capacity`).
 #[derive(Clone, Copy)]
 pub enum FrameVpls<'a> {
     Cpu(&'a [Vpl]),

@@ -6,7 +6,9 @@
 //! ([`GpuRenderer::new`]) or one the host owns ([`GpuRenderer::from_context`] with
 //! [`GpuContext::from_device`]). What comes back to the CPU: the images, the fault record of
 //! the culling or VSGL passes after the shading, the VPL count when asked (after the frame,
-//! for its report), and the G-buffer, VPLs and lists where the brute-force metrics or a CPU
+//! for its report; right after VPL generation where the culling's per-VPL buffers sized by
+//! the room generation leaves would outgrow a binding, `GpuVpls::fit_capacity`), and the
+//! G-buffer, VPLs and lists where the brute-force metrics or a CPU
 //! reference need them ([`GpuRenderer::read_frame`]). VSGLs are built from the RSMs where they lie
 //! ([`crate::vsgl::build`]) and shaded there ([`crate::vsgl::shade`]), with visibility
 //! from imperfect shadow maps to each VSGL's `μ_v` ([`crate::vsgl::ism`]).
@@ -19,7 +21,7 @@ mod notes;
 
 use crate::cull::frame::CullFrame;
 use crate::cull::lists::read_lists;
-use crate::cull::records::GpuBound;
+use crate::cull::records::{GpuBound, GpuBoxBound};
 use crate::cull::{Culled, GpuCulling, ListCulling};
 use crate::device::context::{GpuContext, GpuError};
 use crate::frame::denoise::{DenoisePass, Guide};
@@ -50,6 +52,7 @@ use slc_core::{
 };
 use std::cell::{OnceCell, RefCell};
 use std::collections::BTreeMap;
+use std::mem::size_of;
 use std::sync::{Arc, Mutex};
 
 fn gpu(e: GpuError) -> RenderError {
@@ -365,8 +368,10 @@ impl Renderer for GpuRenderer {
             let vpls = t.time("vpl_generation", || {
                 self.step("vpl_generation", || {
                     let mut vpls = self.vpl_gen.generate(ctx, &maps, seed, lobes)?;
-                    // The culling keeps a bound of 80 bytes per VPL in one binding.
-                    vpls.fit_capacity(ctx, std::mem::size_of::<GpuBound>() as u64)?;
+                    // The culling keeps up to 112 bytes per VPL in one binding (the tight
+                    // strategies' bounds over boxes; the others' bounds take 80).
+                    let per_vpl = size_of::<GpuBoxBound>().max(size_of::<GpuBound>());
+                    vpls.fit_capacity(ctx, per_vpl as u64)?;
                     Ok(vpls)
                 })
             })?;

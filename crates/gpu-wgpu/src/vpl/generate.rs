@@ -65,7 +65,8 @@ impl VplLobes {
 /// and so does their number; [`GpuVpls::read_count`] and [`GpuVpls::read_back`] bring them to
 /// the CPU where something there needs them.
 pub struct GpuVpls {
-    /// The VPLs in the CPU's order, then unused records up to the count's capacity.
+    /// The VPLs in the CPU's order, then unused records: room for one VPL per texel and lobe
+    /// (the count's capacity, unless [`GpuVpls::fit_capacity`] lowered it to the count).
     pub buffers: VplBuffers,
     /// The number of VPLs (`GpuCullStatus::total` of the generation's scan).
     pub count: GpuCount,

@@ -1,5 +1,6 @@
 //! VPLs over two storage bindings (`vpl::buffers`): on a device whose bindings hold fewer
-//! VPL records than a frame makes, the frame renders the same images bit for bit and counts
+//! VPL records than a frame makes, the frame renders the same images bit for bit (but for
+//! clustered-raster's order of sums, which no two runs share) and counts
 //! the same VPLs as on one whose bindings hold them all; records uploaded over two bindings
 //! read back as they went in; VPLs beyond two bindings are refused by name.
 use crate::common::{gpu, small_frame};
@@ -85,14 +86,28 @@ fn vpls_over_two_bindings_render_as_over_one() {
         // More than the first buffer holds.
         assert!(a.vpl_count > 2048, "{strategy}: {} VPLs", a.vpl_count);
         assert_eq!(b.vpl_count, a.vpl_count, "{strategy}");
-        for (x, y) in [(&a.direct, &b.direct), (&a.indirect, &b.indirect)] {
-            let bits = |i: &slc_core::Image| {
-                i.pixels
-                    .iter()
-                    .flat_map(|p| p.to_array().map(f32::to_bits))
-                    .collect::<Vec<_>>()
-            };
-            assert!(bits(x) == bits(y), "{strategy}: images differ");
+        let bits = |i: &slc_core::Image| {
+            i.pixels
+                .iter()
+                .flat_map(|p| p.to_array().map(f32::to_bits))
+                .collect::<Vec<_>>()
+        };
+        assert!(
+            bits(&a.direct) == bits(&b.direct),
+            "{strategy}: direct images differ"
+        );
+        if strategy == Strategy::ClusteredRaster {
+            // Its nodes are ordered by atomics, differently from run to run on one device
+            // too: the sums agree to their rounding.
+            let worst = (a.indirect.pixels.iter().zip(&b.indirect.pixels))
+                .map(|(x, y)| (*x - *y).abs().max_element() / y.abs().max_element().max(1e-6))
+                .fold(0.0f32, f32::max);
+            assert!(worst <= 1e-5, "{strategy}: {worst}");
+        } else {
+            assert!(
+                bits(&a.indirect) == bits(&b.indirect),
+                "{strategy}: indirect images differ"
+            );
         }
         assert!(
             a.indirect.pixels.iter().any(|p| p.max_element() > 0.0),
