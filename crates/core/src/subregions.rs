@@ -7,7 +7,7 @@ use crate::rng::{hash4, stream};
 
 /// The subregions of an interleaving for a `width` x `height` image: the same values as
 /// [`Interleaving::vpl_subregion`] and [`Interleaving::subregion_size`], with the divisions
-/// by K and K² done as multiplications by their precomputed reciprocals ([`Divisor`]) and
+/// by K and K² done as multiplications by their precomputed reciprocals (`Divisor`) and
 /// each image side split once into K q + r.
 #[derive(Clone, Copy, Debug)]
 pub struct Subregions {
