@@ -8,11 +8,13 @@ use crate::rng::{hash4, stream};
 /// The subregions of an interleaving for a `width` x `height` image: the same values as
 /// [`Interleaving::vpl_subregion`] and [`Interleaving::subregion_size`], with the divisions
 /// by K and K² done as multiplications by their precomputed reciprocals (`Divisor`) and
-/// each image side split once into K q + r.
+/// each image side split once into K q + r; and x / K in f64 ([`Subregions::per_k`]).
 #[derive(Clone, Copy, Debug)]
 pub struct Subregions {
     seed: u32,
     k: Divisor,
+    /// 1 / K where K is a power of two: a division by K is then this product, bit for bit.
+    inv_k: Option<f64>,
     subregions: Divisor,
     /// Width and height as K q + r, [q, r]: subregion s's side is q + 1 for s < r, else q.
     sides: [[u32; 2]; 2],
@@ -28,6 +30,7 @@ impl Subregions {
         Some(Self {
             seed: interleaving.seed,
             k,
+            inv_k: k.d.is_power_of_two().then(|| 1.0 / f64::from(k.d)),
             subregions,
             sides: [side(width), side(height)],
         })
@@ -54,6 +57,16 @@ impl Subregions {
             side(self.sides[0], subregion[0]),
             side(self.sides[1], subregion[1]),
         ]
+    }
+
+    /// x / K in f64, bit for bit: x times 1 / K where K is a power of two (K = 8 by default;
+    /// both are exact products of x and 2⁻ʲ, rounded once), else the division.
+    #[inline]
+    pub fn per_k(&self, x: f64) -> f64 {
+        match self.inv_k {
+            Some(inv) => x * inv,
+            None => x / f64::from(self.k.d),
+        }
     }
 }
 
@@ -134,7 +147,8 @@ mod tests {
 
     /// The subregions of VPLs and the sizes of subregion images are
     /// [`Interleaving::vpl_subregion`]'s and [`Interleaving::subregion_size`]'s, for K from
-    /// 1 to the culling's largest (1024), images smaller and larger than K.
+    /// 1 to the culling's largest (1024), images smaller and larger than K; x / K is the
+    /// division's, bit for bit.
     #[test]
     fn subregions_are_the_interleavings() {
         for k in [1, 2, 3, 7, 8, 13, 16, 64, 100, 1023, 1024] {
@@ -160,6 +174,21 @@ mod tests {
             }
         }
         assert!(Subregions::new(Interleaving { k: 0, seed: 0 }, 4, 4).is_none());
+        // x / K bit for bit, for K powers of two and not, at values from subnormal to huge.
+        let mut x = 1e-310f64;
+        while x < 1e300 {
+            for k in [1, 2, 3, 8, 64, 100, 1024] {
+                let s = Subregions::new(Interleaving { k, seed: 0 }, 4, 4).unwrap();
+                for v in [x, -x, x * 1.2345, 0.5 * x + 0.25] {
+                    assert_eq!(
+                        s.per_k(v).to_bits(),
+                        (v / f64::from(k)).to_bits(),
+                        "{v} / {k}"
+                    );
+                }
+            }
+            x *= 3.7;
+        }
         assert!(Subregions::new(
             Interleaving {
                 k: 1 << 16,

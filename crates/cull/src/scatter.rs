@@ -150,10 +150,6 @@ pub(crate) struct Screen {
     pub map: ScreenMap<f32>,
     /// The interleaving's subregions of this image.
     subregions: Subregions,
-    /// The interleaving factor K, and 1 / K where K is a power of two (a division by K is
-    /// then this product, bit for bit).
-    k: f64,
-    inv_k: Option<f64>,
     /// The eye, from which the bounds' centres are taken.
     pub eye: Vec3,
     /// How far (in screen pixels) any sample's projection lies outside its own pixel.
@@ -189,8 +185,6 @@ impl Screen {
                 near: down(near),
             },
             subregions,
-            k: f64::from(k),
-            inv_k: k.is_power_of_two().then(|| 1.0 / f64::from(k)),
             eye: view.eye(),
             stray,
             edges: [
@@ -297,12 +291,7 @@ impl Screen {
         [sx, sy]: [u32; 2],
         [sw, sh]: [u32; 2],
     ) -> Option<[u32; 4]> {
-        let k = self.k;
-        // x / K is x times 1 / K exactly where K is a power of two (K = 8 by default).
-        let per_k = |x: f64| match self.inv_k {
-            Some(inv) => x * inv,
-            None => x / k,
-        };
+        let per_k = |x: f64| self.subregions.per_k(x);
         let axis = |a: f32, b: f32, s: u32, n: u32| -> Option<[u32; 2]> {
             let s = f64::from(s);
             let i0 = first_index(per_k(f64::from(a) - self.stray - 1.0 - s), n);

@@ -39,7 +39,7 @@ fn narrow_gpu(shared: &GpuContext, bytes: u64) -> GpuContext {
 /// 2,770 VPLs of both lobes (2,766 on lavapipe; room for 3,584), so some 700 lie in the
 /// second buffer. Bounds of 80 bytes for the 3,584 would not fit one binding (287 KB), so the
 /// count is read back and they are sized by it (`GpuVpls::fit_capacity`, 221 KB). The
-/// G-buffer and the lists fit one binding at 32x24 (`binned`'s lists hold some 180 KB).
+/// G-buffer and the lists fit one binding at 32x24 (at 64x48 `binned`'s lists needed 711 KB).
 const NARROW: u64 = 256 * 1024;
 
 #[test]
