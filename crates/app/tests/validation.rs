@@ -225,8 +225,9 @@ fn a_frame_beyond_the_adapters_binding_is_refused_before_work_naming_what_fits()
 
 /// RSM 1024² with both lobes renders on the GPU wherever a binding holds 128 MiB (lavapipe's
 /// limit, exactly its 1024² RSM texels of 128 bytes; the VPLs, two a texel, lie in two
-/// buffers, and their bounds, sized by the 1,647,184 VPLs Sponza makes, take 126 MiB): as
-/// many VPLs as the CPU makes.
+/// buffers, and their bounds, sized by the 1,647,184 VPLs Sponza makes, take 126 MiB; the
+/// tight strategies' bounds over boxes, 184 MB, lie in two buffers too): as many VPLs as the
+/// CPU makes, with `binned` and with `tight`.
 #[test]
 fn rsm_1024_with_both_lobes_renders_on_a_128_mib_binding() {
     if !gpu_available() {
@@ -234,20 +235,24 @@ fn rsm_1024_with_both_lobes_renders_on_a_128_mib_binding() {
     }
     let scene = format!("{}/../../scenes/sponza.toml", env!("CARGO_MANIFEST_DIR"));
     let out = out_dir("gpu-rsm-1024");
-    let o = run(
-        &format!("render {scene} --backend gpu --width 32 --height 18 --rsm 1024 --culling binned"),
-        &out,
-    );
-    let text = String::from_utf8_lossy(&o.stdout);
-    let err = String::from_utf8_lossy(&o.stderr);
-    let small_binding = err
-        .split("more than the ")
-        .nth(1)
-        .and_then(|rest| rest.split(' ').next()?.parse::<u64>().ok())
-        .is_some_and(|limit| limit < 1 << 27);
-    assert!(o.status.success() || small_binding, "{err}");
-    if o.status.success() {
-        assert!(text.contains("1647184 VPLs"), "{text}");
+    for culling in ["binned", "tight"] {
+        let o = run(
+            &format!(
+                "render {scene} --backend gpu --width 32 --height 18 --rsm 1024 --culling {culling}"
+            ),
+            &out,
+        );
+        let text = String::from_utf8_lossy(&o.stdout);
+        let err = String::from_utf8_lossy(&o.stderr);
+        let small_binding = err
+            .split("more than the ")
+            .nth(1)
+            .and_then(|rest| rest.split(' ').next()?.parse::<u64>().ok())
+            .is_some_and(|limit| limit < 1 << 27);
+        assert!(o.status.success() || small_binding, "{culling}: {err}");
+        if o.status.success() {
+            assert!(text.contains("1647184 VPLs"), "{culling}: {text}");
+        }
     }
     std::fs::remove_dir_all(&out).ok();
 }

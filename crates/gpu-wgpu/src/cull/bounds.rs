@@ -17,11 +17,17 @@ use crate::cull::records::{GpuBoxBound, GpuLocalBound};
 use crate::device::buffers::{output, read_back};
 use crate::device::context::{GpuContext, GpuError};
 use crate::device::count::{ArgsPass, Count};
+use crate::device::split_buffers::SplitBuffers;
 use crate::vpl::buffers::VplBuffers;
 use crate::vpl::records::vec4;
 use slc_core::{Camera, Interleaving, Vpl};
 use slc_cull::CullView;
 use slc_cull::GlossyBound;
+
+/// The binding numbers of the low and the high buffer of the bounds over boxes in
+/// `box_bound_buffers.wesl`, past every other binding of `bounds.wesl` and `tight_cull.wesl`
+/// but the VPLs' (`crate::vpl::buffers::VPL_BINDINGS`).
+pub const BOX_BOUND_BINDINGS: [u32; 2] = [12, 13];
 
 /// The kernel of `bounds.wesl`, linked with what it imports (build.rs).
 pub(crate) const SOURCE: &str = kernel!("bounds");
@@ -49,7 +55,8 @@ pub struct BoundsSettings<'a> {
 /// [`BoundsPass::run_with_locals`] one [`GpuLocalBound`] per VPL.
 pub struct GpuBounds {
     pub buffer: wgpu::Buffer,
-    pub box_bounds: wgpu::Buffer,
+    /// Over two bindings: Sponza's 1.6M VPLs of a 1024² RSM need 184 MB of them.
+    pub box_bounds: SplitBuffers<GpuBoxBound>,
     pub shapes: wgpu::Buffer,
     pub locals: wgpu::Buffer,
     /// The VPLs as uploaded (`GpuVpl`), for the passes that shade them.
@@ -126,7 +133,7 @@ impl BoundsPass {
         } else {
             1
         };
-        let box_bounds = output::<GpuBoxBound>(ctx, "box bounds", box_count)?;
+        let box_bounds = SplitBuffers::<GpuBoxBound>::output(ctx, "box bounds", box_count)?;
         let shape_count = if settings.shapes { capacity } else { 1 };
         let shapes = output::<GpuBoundShape>(ctx, "bound shapes", shape_count)?;
         let local_count = if locals { capacity } else { 1 };
@@ -136,13 +143,9 @@ impl BoundsPass {
             let at = std::mem::offset_of!(GpuView, count);
             let view_buffer = vpl_count.uniform(ctx, encoder, "bounds view", &view, at);
             let workgroups = vpl_count.workgroups(ctx, encoder, &self.args, 1, WORKGROUP)?;
-            ctx.encode_dispatch_at(
-                encoder,
-                "bounds",
-                &self.pipeline,
-                &vpl_buffer.with(&[&view_buffer, &bounds, &box_bounds, &shapes, &local_bounds]),
-                workgroups,
-            );
+            let mut buffers = vpl_buffer.with(&[&view_buffer, &bounds, &shapes, &local_bounds]);
+            buffers.extend(box_bounds.at(BOX_BOUND_BINDINGS));
+            ctx.encode_dispatch_at(encoder, "bounds", &self.pipeline, &buffers, workgroups);
             Ok(())
         })?;
         Ok(GpuBounds {

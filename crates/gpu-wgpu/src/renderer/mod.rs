@@ -368,9 +368,9 @@ impl Renderer for GpuRenderer {
             let vpls = t.time("vpl_generation", || {
                 self.step("vpl_generation", || {
                     let mut vpls = self.vpl_gen.generate(ctx, &maps, seed, lobes)?;
-                    // The culling keeps up to 112 bytes per VPL in one binding (the tight
-                    // strategies' bounds over boxes; the others' bounds take 80).
-                    let per_vpl = size_of::<GpuBoxBound>().max(size_of::<GpuBound>());
+                    // The culling keeps up to 80 bytes per VPL in one binding (its bounds;
+                    // the tight strategies' bounds over boxes, 112, lie over two).
+                    let per_vpl = size_of::<GpuBound>().max(size_of::<GpuBoxBound>() / 2);
                     vpls.fit_capacity(ctx, per_vpl as u64)?;
                     Ok(vpls)
                 })

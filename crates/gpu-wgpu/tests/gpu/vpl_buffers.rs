@@ -1,5 +1,6 @@
-//! VPLs over two storage bindings (`vpl::buffers`): on a device whose bindings hold fewer
-//! VPL records than a frame makes, the frame renders the same images bit for bit (but for
+//! VPLs and the tight strategies' bounds over boxes over two storage bindings
+//! (`device::split_buffers`): on a device whose bindings hold fewer VPL records, and fewer
+//! bounds over boxes, than a frame makes, the frame renders the same images bit for bit (but for
 //! clustered-raster's order of sums, which no two runs share) and counts
 //! the same VPLs as on one whose bindings hold them all; records uploaded over two bindings
 //! read back as they went in; VPLs beyond two bindings are refused by name.
@@ -38,8 +39,10 @@ fn narrow_gpu(shared: &GpuContext, bytes: u64) -> GpuContext {
 /// Bindings of 256 KiB hold 2,048 VPL records: the built-in scene at RSM 16 makes some
 /// 2,770 VPLs of both lobes (2,766 on lavapipe; room for 3,584), so some 700 lie in the
 /// second buffer. Bounds of 80 bytes for the 3,584 would not fit one binding (287 KB), so the
-/// count is read back and they are sized by it (`GpuVpls::fit_capacity`, 221 KB). The
-/// G-buffer and the lists fit one binding at 32x24 (at 64x48 `binned`'s lists needed 711 KB).
+/// count is read back and they are sized by it (`GpuVpls::fit_capacity`, 221 KB). The tight
+/// strategies' bounds over boxes (112 bytes, 310 KB for 2,766) lie over two bindings of
+/// 2,340 each. The G-buffer and the lists fit one binding at 32x24 (at 64x48 `binned`'s lists
+/// needed 711 KB).
 const NARROW: u64 = 256 * 1024;
 
 #[test]
@@ -48,17 +51,7 @@ fn vpls_over_two_bindings_render_as_over_one() {
     let narrow = narrow_gpu(&wide, NARROW);
     assert_eq!(VplBuffers::per_binding(&narrow), 2048);
     let scene = builtin("default").unwrap();
-    // Every strategy whose per-VPL buffers fit these bindings: not the tight ones, whose
-    // bounds over boxes take 112 bytes a VPL.
-    let strategies = [
-        Strategy::None,
-        Strategy::Sphere,
-        Strategy::Ellipsoid,
-        Strategy::Clustered,
-        Strategy::Binned,
-        Strategy::Splatting,
-        Strategy::ClusteredRaster,
-    ];
+    let strategies = Strategy::ALL.into_iter().chain(Strategy::RASTER);
     let (wide, narrow) = (
         GpuRenderer::from_context(wide).unwrap(),
         GpuRenderer::from_context(narrow).unwrap(),

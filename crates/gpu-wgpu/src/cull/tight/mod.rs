@@ -9,7 +9,7 @@
 //! Counting, a scan and writing in one submission, as the base cullers (`cull::room`: no
 //! count read back; the refined lists' total is read with the base lists' after the frame);
 //! the base lists' pixel entries are rewritten in place to point to the groups.
-use crate::cull::bounds::GpuBounds;
+use crate::cull::bounds::{GpuBounds, BOX_BOUND_BINDINGS};
 use crate::cull::frame::{cull_params, tile_grid, CullFrame};
 use crate::cull::lists::GpuLightLists;
 use crate::cull::records::{GpuCullParams, GpuCullStatus, CULL_COUNT, CULL_WRITE};
@@ -123,24 +123,22 @@ impl TightRefiner {
                 let params = bounds
                     .count
                     .uniform(ctx, encoder, "tight cull", &params, at);
-                ctx.encode_dispatch(
-                    encoder,
-                    "tight cull",
-                    &self.pipeline,
-                    &[
-                        &params,
-                        &tight,
-                        &frame.positions,
-                        &base.pixel_list,
-                        &base.offsets,
-                        &base.indices,
-                        &bounds.buffer,
-                        &bounds.box_bounds,
-                        &offsets,
-                        &lists,
-                    ],
-                    grid,
-                );
+                let buffers = [
+                    &params,
+                    &tight,
+                    &frame.positions,
+                    &base.pixel_list,
+                    &base.offsets,
+                    &base.indices,
+                    &bounds.buffer,
+                    &offsets,
+                    &lists,
+                ];
+                let bindings: Vec<_> = (0u32..)
+                    .zip(buffers)
+                    .chain(bounds.box_bounds.at(BOX_BOUND_BINDINGS))
+                    .collect();
+                ctx.encode_dispatch_at(encoder, "tight cull", &self.pipeline, &bindings, grid);
                 if mode == CULL_COUNT {
                     self.scan
                         .encode(ctx, encoder, &offsets, list_count, &status)?;
