@@ -4,6 +4,10 @@
 //! - linked with mangled names, a name used without its `import` is undeclared;
 //! - linked with the names as written (what the passes run, readable in a GPU debugger), two
 //!   modules declaring one name clash.
+//!
+//! It also counts the storage buffers each entry point binds (naga's uses of each global, as
+//! wgpu derives a pipeline's layout from them): the most of any is the limit a device must
+//! allow per shader stage, `OUT_DIR/kernels/limits.rs` (`GpuContext::required_limits`).
 
 /// A kernel: its artifact name, its root module (the one with the entry points) and the
 /// WESL features it is linked with (`@if(...)`).
@@ -82,7 +86,7 @@ fn link(kernel: &Kernel, mangler: wesl::ManglerKind) -> String {
     }
 }
 
-fn validate(kernel: &Kernel, source: &str, what: &str) {
+fn validate(kernel: &Kernel, source: &str, what: &str) -> (naga::Module, naga::valid::ModuleInfo) {
     let module = naga::front::wgsl::parse_str(source).unwrap_or_else(|e| {
         panic!(
             "kernel {} ({what}): {}\n{source}",
@@ -90,23 +94,53 @@ fn validate(kernel: &Kernel, source: &str, what: &str) {
             e.emit_to_string(source)
         )
     });
-    naga::valid::Validator::new(
+    let info = naga::valid::Validator::new(
         naga::valid::ValidationFlags::all(),
         naga::valid::Capabilities::all(),
     )
     .validate(&module)
     .unwrap_or_else(|e| panic!("kernel {} ({what}): {e:?}", kernel.name));
+    (module, info)
+}
+
+/// The storage buffers each entry point of `module` uses, with its name.
+fn storage_buffers<'a>(
+    module: &'a naga::Module,
+    info: &'a naga::valid::ModuleInfo,
+) -> impl Iterator<Item = (usize, &'a str)> + 'a {
+    module.entry_points.iter().enumerate().map(|(i, entry)| {
+        let uses = info.get_entry_point(i);
+        let count = (module.global_variables.iter())
+            .filter(|(handle, global)| {
+                matches!(global.space, naga::AddressSpace::Storage { .. })
+                    && !uses[*handle].is_empty()
+            })
+            .count();
+        (count, entry.name.as_str())
+    })
 }
 
 fn main() {
     println!("cargo:rerun-if-changed=src");
     let out = std::path::Path::new(&std::env::var("OUT_DIR").expect("OUT_DIR")).join("kernels");
     std::fs::create_dir_all(&out).expect("kernels folder");
+    let mut most = (0, String::new());
     for kernel in KERNELS {
         let strict = link(kernel, wesl::ManglerKind::Escape);
         validate(kernel, &strict, "names mangled: every name imported");
         let source = link(kernel, wesl::ManglerKind::None);
-        validate(kernel, &source, "names as written: no clash");
+        let (module, info) = validate(kernel, &source, "names as written: no clash");
+        for (count, entry) in storage_buffers(&module, &info) {
+            if count > most.0 {
+                most = (count, format!("{}'s {entry}", kernel.name));
+            }
+        }
         std::fs::write(out.join(format!("{}.wgsl", kernel.name)), source).expect("kernel file");
     }
+    let limits = format!(
+        "/// The most storage buffers one entry point of the kernels binds ({}), counted by \
+         build.rs.\npub(crate) const KERNEL_STORAGE_BUFFERS: u32 = {};\n",
+        most.1, most.0
+    );
+    std::fs::write(out.join("limits.rs"), limits).expect("limits file");
 }

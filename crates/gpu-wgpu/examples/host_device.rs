@@ -9,7 +9,9 @@ use slc_core::frame::{LobeSelection, Method, RenderSettings, Stochastic};
 use slc_core::{builtin, Strategy};
 use slc_gpu_wgpu::{GpuContext, GpuRenderer};
 
-/// The host's own device (here: the first adapter, with its own limits).
+/// The host's own device: the first adapter, with the limits slc's passes need (WebGPU's
+/// defaults and 12 storage buffers per shader stage; `adapter.limits()` instead allows the
+/// largest frames the adapter can run).
 fn host_device(
 ) -> Result<(wgpu::Device, wgpu::Queue, wgpu::AdapterInfo), Box<dyn std::error::Error>> {
     let instance =
@@ -17,7 +19,7 @@ fn host_device(
     let adapter = pollster::block_on(instance.request_adapter(&Default::default()))?;
     let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
         label: Some("host"),
-        required_limits: adapter.limits(),
+        required_limits: GpuContext::required_limits(),
         ..Default::default()
     }))?;
     Ok((device, queue, adapter.get_info()))

@@ -23,8 +23,9 @@
 //! - [`vsgl`]: virtual spherical Gaussian lights built, sampled and shaded on the GPU, with
 //!   imperfect shadow maps;
 //! - [`renderer`]: [`GpuRenderer`], the backend of the renderer API (`slc_core::Renderer`),
-//!   on a device it opens or one the host owns ([`GpuContext::from_device`]), and the frame
-//!   sizes it refuses before any work ([`renderer::limits`]).
+//!   on a device it opens or one the host owns ([`GpuContext::from_device`]; the host asks
+//!   for [`GpuContext::required_limits`] at least, a device below them is refused by name),
+//!   and the frame sizes it refuses before any work ([`renderer::limits`]).
 //!
 //! Shaders are WESL modules (`*.wesl` beside their Rust): a kernel imports what it uses
 //! (`import package::material::brdf::{brdf_eval};`), `build.rs` links each kernel into one

@@ -39,6 +39,11 @@ pub enum GpuError {
     NoAdapter(String),
     #[error("the GPU adapter {adapter} refused the device: {reason}")]
     RequestDevice { adapter: String, reason: String },
+    #[error(
+        "the device on {adapter} allows less than slc's passes need ({short}); make it with \
+         GpuContext::required_limits() or the adapter's own limits"
+    )]
+    Limits { adapter: String, short: String },
     #[error("the GPU device was lost ({0}); results are unavailable, try --backend cpu")]
     DeviceLost(String),
     #[error("GPU work did not finish within {0:?} (device hung or lost)")]
@@ -213,9 +218,10 @@ impl GpuContext {
     }
 
     /// Runs on a device and queue the host already owns (an engine's, a viewer's), from the
-    /// adapter `info` it was made on. The device must have the limits the passes need (the
-    /// adapter's own limits, `adapter.limits()`, always do; too small a limit is reported as
-    /// [`GpuError::Wgpu`] when the passes are built) and, for per-pass GPU times,
+    /// adapter `info` it was made on. The device must allow at least
+    /// [`Self::required_limits`] (the adapter's own limits, `adapter.limits()`, always do;
+    /// `GpuRenderer::from_context` refuses a device below them by name,
+    /// [`Self::check_limits`]) and, for per-pass GPU times,
     /// `Features::TIMESTAMP_QUERY`, for the one-pass tiled kernel's subgroup operations
     /// `Features::SUBGROUP`, for clustered-raster's hardware conservative rasterization
     /// `Features::CONSERVATIVE_RASTERIZATION`. The host keeps its device-lost callback: a lost device

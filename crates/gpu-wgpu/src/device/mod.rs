@@ -1,12 +1,15 @@
 //! The device every pass runs on and what the passes share to use it: the context, its
-//! faults as errors and its limits ([`context`]), timestamp profiles ([`profiler`]), buffers,
-//! uploads, readbacks and dispatch grids ([`buffers`]), counts left on the GPU and the
-//! indirect dispatches sized by them ([`count`], `dispatch_args.wesl`), the prefix sum
-//! ([`scan`], `scan.wesl`) and records over two bindings ([`split_buffers`]). `numbers.wesl` holds the f32 limits every kernel shares.
+//! faults as errors and its limits ([`context`]; the limits every pass needs:
+//! [`required_limits`]), timestamp profiles ([`profiler`]), buffers, uploads, readbacks and
+//! dispatch grids ([`buffers`]), counts left on the GPU and the indirect dispatches sized by
+//! them ([`count`], `dispatch_args.wesl`), the prefix sum ([`scan`], `scan.wesl`) and records
+//! over two bindings ([`split_buffers`]). `numbers.wesl` holds the f32 limits every kernel
+//! shares.
 pub mod buffers;
 pub mod context;
 pub mod count;
 pub mod profiler;
+pub mod required_limits;
 pub mod scan;
 pub mod split_buffers;
 

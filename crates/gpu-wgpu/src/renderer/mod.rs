@@ -156,8 +156,11 @@ impl GpuRenderer {
         Self::from_context(GpuContext::new()?)
     }
 
-    /// Compiles the passes on `ctx`, e.g. a host's device ([`GpuContext::from_device`]).
+    /// Compiles the passes on `ctx`, e.g. a host's device ([`GpuContext::from_device`]); a
+    /// device whose limits fall below [`GpuContext::required_limits`] is refused first, each
+    /// limit named ([`GpuError::Limits`]).
     pub fn from_context(ctx: GpuContext) -> Result<Self, GpuError> {
+        ctx.check_limits()?;
         Ok(Self {
             gbuffer: GbufferPass::new(&ctx)?,
             rsm: RsmPass::new(&ctx)?,

@@ -37,6 +37,30 @@ pub fn own_gpu() -> Option<GpuContext> {
     opened(GpuContext::new()).unwrap_or_else(|e| panic!("GPU device could not be created: {e}"))
 }
 
+/// A device of the shared one's adapter (and its features) with the limits `limits` makes of
+/// the adapter's own.
+pub fn device_with_limits(
+    shared: &GpuContext,
+    limits: impl FnOnce(wgpu::Limits) -> wgpu::Limits,
+) -> GpuContext {
+    let instance =
+        wgpu::Instance::new(wgpu::InstanceDescriptor::new_without_display_handle_from_env());
+    let adapter = pollster::block_on(instance.request_adapter(&wgpu::RequestAdapterOptions {
+        power_preference: wgpu::PowerPreference::HighPerformance,
+        ..Default::default()
+    }))
+    .expect("the shared device's adapter");
+    let info = adapter.get_info();
+    let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
+        label: Some("limits of a test's own"),
+        required_features: adapter.features() & shared.device.features(),
+        required_limits: limits(adapter.limits()),
+        ..Default::default()
+    }))
+    .expect("a device with the test's limits");
+    GpuContext::from_device(device, queue, &info)
+}
+
 /// The no-adapter policy of [`gpu`] applied to an opened device.
 fn opened(ctx: Result<GpuContext, GpuError>) -> Result<Option<GpuContext>, GpuError> {
     match ctx {

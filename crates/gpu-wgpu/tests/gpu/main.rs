@@ -11,6 +11,7 @@ mod culler;
 mod denoise;
 mod faults;
 mod ism;
+mod limits;
 mod profile;
 mod raster_baselines;
 mod raster_common;

@@ -4,7 +4,7 @@
 //! clustered-raster's order of sums, which no two runs share) and counts
 //! the same VPLs as on one whose bindings hold them all; records uploaded over two bindings
 //! read back as they went in; VPLs beyond two bindings are refused by name.
-use crate::common::{gpu, small_frame};
+use crate::common::{device_with_limits, gpu, small_frame};
 use glam::Vec3;
 use slc_core::frame::{Method, RenderSettings};
 use slc_core::render::render;
@@ -15,25 +15,10 @@ use slc_gpu_wgpu::{GpuContext, GpuError, GpuRenderer};
 
 /// A device of the shared one's adapter whose storage bindings hold `bytes` at most.
 fn narrow_gpu(shared: &GpuContext, bytes: u64) -> GpuContext {
-    let instance =
-        wgpu::Instance::new(wgpu::InstanceDescriptor::new_without_display_handle_from_env());
-    let adapter = pollster::block_on(instance.request_adapter(&wgpu::RequestAdapterOptions {
-        power_preference: wgpu::PowerPreference::HighPerformance,
-        ..Default::default()
-    }))
-    .expect("the shared device's adapter");
-    let info = adapter.get_info();
-    let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
-        label: Some("narrow bindings"),
-        required_features: adapter.features() & shared.device.features(),
-        required_limits: wgpu::Limits {
-            max_storage_buffer_binding_size: bytes,
-            ..adapter.limits()
-        },
-        ..Default::default()
-    }))
-    .expect("a device with smaller bindings");
-    GpuContext::from_device(device, queue, &info)
+    device_with_limits(shared, |adapter| wgpu::Limits {
+        max_storage_buffer_binding_size: bytes,
+        ..adapter
+    })
 }
 
 /// Bindings of 256 KiB hold 2,048 VPL records: the built-in scene at RSM 16 makes some

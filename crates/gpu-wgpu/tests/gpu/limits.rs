@@ -1,0 +1,67 @@
+//! The limits a host's device must allow (`GpuContext::required_limits`): every pass builds and
+//! every strategy and VSGLs render on a device with exactly those limits, and a device below
+//! them is refused before any pass is built, each limit it falls short of named.
+use crate::common::{device_with_limits, gpu, small_frame};
+use slc_core::frame::{DiffuseEmission, Importance, LightSampling, Method, RenderSettings};
+use slc_core::render::render;
+use slc_core::{builtin, Strategy};
+use slc_gpu_wgpu::{GpuContext, GpuError, GpuRenderer};
+
+#[test]
+fn every_pass_runs_within_the_required_limits() {
+    let Some(shared) = gpu() else { return };
+    let ctx = device_with_limits(&shared, |_| GpuContext::required_limits());
+    assert_eq!(ctx.limits.max_storage_buffers_per_shader_stage, 12);
+    let renderer = GpuRenderer::from_context(ctx).unwrap();
+    let scene = builtin("default").unwrap();
+    let frames = (Strategy::ALL.into_iter().chain(Strategy::RASTER))
+        .map(|s| small_frame(s, true))
+        .chain([RenderSettings {
+            method: Method::Vsgl(LightSampling {
+                count: 256,
+                importance: Importance::Bidirectional { camera_vsgls: 32 },
+                diffuse: DiffuseEmission::ClampedCosine,
+            }),
+            ..small_frame(Strategy::None, true)
+        }]);
+    for settings in frames {
+        let what = format!("{:?}", settings.method);
+        match render(&renderer, &scene, &settings, &|_| {}) {
+            Ok(frame) => assert!(
+                frame.indirect.pixels.iter().any(|p| p.max_element() > 0.0),
+                "{what}: black"
+            ),
+            // An adapter without f32 blending refuses the raster baselines by capability.
+            Err(e) if matches!(&settings.method, Method::Stochastic(s) if s.strategy.is_raster()) =>
+            {
+                assert!(e.to_string().contains("blend"), "{what}: {e}")
+            }
+            Err(e) => panic!("{what}: {e}"),
+        }
+    }
+}
+
+#[test]
+fn a_device_below_the_required_limits_is_refused_naming_each() {
+    let Some(shared) = gpu() else { return };
+    // WebGPU's defaults allow 8 storage buffers per stage; one pass binds 12. A smaller
+    // workgroup memory is a second shortfall.
+    let ctx = device_with_limits(&shared, |_| wgpu::Limits {
+        max_compute_workgroup_storage_size: 8192,
+        ..wgpu::Limits::default()
+    });
+    match GpuRenderer::from_context(ctx) {
+        Err(e @ GpuError::Limits { .. }) => {
+            let text = e.to_string();
+            for named in [
+                "max_storage_buffers_per_shader_stage is 8, needs 12",
+                "max_compute_workgroup_storage_size is 8192, needs 16384",
+                "GpuContext::required_limits()",
+            ] {
+                assert!(text.contains(named), "{text}");
+            }
+        }
+        Err(e) => panic!("{e}"),
+        Ok(_) => panic!("a device of 8 storage buffers per stage built every pass"),
+    }
+}
