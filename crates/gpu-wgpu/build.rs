@@ -5,9 +5,11 @@
 //! - linked with the names as written (what the passes run, readable in a GPU debugger), two
 //!   modules declaring one name clash.
 //!
-//! It also counts the storage buffers each entry point binds (naga's uses of each global, as
-//! wgpu derives a pipeline's layout from them): the most of any is the limit a device must
-//! allow per shader stage, `OUT_DIR/kernels/limits.rs` (`GpuContext::required_limits`).
+//! It also counts what each entry point binds and uses (naga's uses of each global, as wgpu
+//! derives a pipeline's layout from them): storage and uniform buffers, textures and samplers
+//! per stage, bind groups, workgroup sizes and workgroup memory. The most of each over every
+//! entry point is what a device must allow, `OUT_DIR/kernels/limits.rs`
+//! (`GpuContext::required_limits`).
 
 /// A kernel: its artifact name, its root module (the one with the entry points) and the
 /// WESL features it is linked with (`@if(...)`).
@@ -35,13 +37,21 @@ const KERNELS: &[Kernel] = &[
     k("bilateral", "frame::denoise::bilateral"),
     k("rng_eval", "vpl::rng_eval"),
     k("vpl_gen", "vpl::vpl_gen"),
-    k("bounds", "cull::bounds"),
+    Kernel {
+        name: "bounds",
+        root: "cull::bounds",
+        features: &[("box_bounds_written", true)],
+    },
     k("partition", "cull::partition"),
     k("tile_depth", "cull::tiled::tile_depth"),
     k("tiled_cull", "cull::tiled::tiled_cull"),
     k("cluster_depth", "cull::clustered::cluster_depth"),
     k("clustered_cull", "cull::clustered::clustered_cull"),
-    k("tight_cull", "cull::tight::tight_cull"),
+    Kernel {
+        name: "tight_cull",
+        root: "cull::tight::tight_cull",
+        features: &[("box_bounds_written", false)],
+    },
     k("none_cull", "cull::none::none_cull"),
     k("binned_footprint", "cull::binned::binned_footprint"),
     k("binned_tiles", "cull::binned::binned_tiles"),
@@ -103,44 +113,102 @@ fn validate(kernel: &Kernel, source: &str, what: &str) -> (naga::Module, naga::v
     (module, info)
 }
 
-/// The storage buffers each entry point of `module` uses, with its name.
-fn storage_buffers<'a>(
-    module: &'a naga::Module,
-    info: &'a naga::valid::ModuleInfo,
-) -> impl Iterator<Item = (usize, &'a str)> + 'a {
-    module.entry_points.iter().enumerate().map(|(i, entry)| {
-        let uses = info.get_entry_point(i);
-        let count = (module.global_variables.iter())
-            .filter(|(handle, global)| {
-                matches!(global.space, naga::AddressSpace::Storage { .. })
-                    && !uses[*handle].is_empty()
-            })
-            .count();
-        (count, entry.name.as_str())
-    })
+/// What one entry point, or the most of every entry point, needs of a device: each field
+/// the name of a `wgpu::Limits` field it bounds from below.
+#[derive(Default)]
+struct Needs([u32; 11]);
+
+const NEEDS: [&str; 11] = [
+    "max_storage_buffers_per_shader_stage",
+    "max_uniform_buffers_per_shader_stage",
+    "max_sampled_textures_per_shader_stage",
+    "max_storage_textures_per_shader_stage",
+    "max_samplers_per_shader_stage",
+    "max_bind_groups",
+    "max_compute_workgroup_size_x",
+    "max_compute_workgroup_size_y",
+    "max_compute_workgroup_size_z",
+    "max_compute_invocations_per_workgroup",
+    "max_compute_workgroup_storage_size",
+];
+
+/// What each entry point of `module` needs ([`NEEDS`]): the globals it uses of each kind,
+/// the bind groups up to the highest it uses, its workgroup size, and its workgroup memory
+/// (each variable rounded up to 16 bytes, as WebGPU counts it).
+fn needs(module: &naga::Module, info: &naga::valid::ModuleInfo) -> Vec<Needs> {
+    let mut layouter = naga::proc::Layouter::default();
+    layouter
+        .update(module.to_ctx())
+        .expect("the types of a validated module lay out");
+    (module.entry_points.iter().enumerate())
+        .map(|(i, entry)| {
+            let uses = info.get_entry_point(i);
+            let mut n = Needs::default();
+            for (handle, global) in module.global_variables.iter() {
+                if uses[handle].is_empty() {
+                    continue;
+                }
+                let kind = match (global.space, &module.types[global.ty].inner) {
+                    (naga::AddressSpace::Storage { .. }, _) => Some(0),
+                    (naga::AddressSpace::Uniform, _) => Some(1),
+                    (_, naga::TypeInner::Image { class, .. }) => match class {
+                        naga::ImageClass::Storage { .. } => Some(3),
+                        _ => Some(2),
+                    },
+                    (_, naga::TypeInner::Sampler { .. }) => Some(4),
+                    (naga::AddressSpace::WorkGroup, _) => {
+                        n.0[10] += layouter[global.ty].size.next_multiple_of(16);
+                        None
+                    }
+                    _ => None,
+                };
+                if let Some(k) = kind {
+                    n.0[k] += 1;
+                }
+                if let Some(binding) = &global.binding {
+                    n.0[5] = n.0[5].max(binding.group + 1);
+                }
+            }
+            if entry.stage == naga::ShaderStage::Compute {
+                let [x, y, z] = entry.workgroup_size;
+                n.0[6..10].copy_from_slice(&[x, y, z, x * y * z]);
+            }
+            n
+        })
+        .collect()
 }
 
 fn main() {
     println!("cargo:rerun-if-changed=src");
     let out = std::path::Path::new(&std::env::var("OUT_DIR").expect("OUT_DIR")).join("kernels");
     std::fs::create_dir_all(&out).expect("kernels folder");
-    let mut most = (0, String::new());
+    let mut most = Needs::default();
     for kernel in KERNELS {
         let strict = link(kernel, wesl::ManglerKind::Escape);
         validate(kernel, &strict, "names mangled: every name imported");
         let source = link(kernel, wesl::ManglerKind::None);
         let (module, info) = validate(kernel, &source, "names as written: no clash");
-        for (count, entry) in storage_buffers(&module, &info) {
-            if count > most.0 {
-                most = (count, format!("{}'s {entry}", kernel.name));
+        for n in needs(&module, &info) {
+            for (most, n) in most.0.iter_mut().zip(n.0) {
+                *most = (*most).max(n);
             }
         }
         std::fs::write(out.join(format!("{}.wgsl", kernel.name)), source).expect("kernel file");
     }
+    let needs: String = (NEEDS.iter().zip(most.0))
+        .map(|(name, n)| format!("    ({name:?}, {n}),\n"))
+        .collect();
+    let fields: String = NEEDS
+        .iter()
+        .map(|name| format!("        &mut limits.{name},\n"))
+        .collect();
     let limits = format!(
-        "/// The most storage buffers one entry point of the kernels binds ({}), counted by \
-         build.rs.\npub(crate) const KERNEL_STORAGE_BUFFERS: u32 = {};\n",
-        most.1, most.0
+        "/// Per `wgpu::Limits` field, the most any entry point of the kernels needs (build.rs).\n\
+         pub(crate) const KERNEL_NEEDS: [(&str, u32); {n}] = [\n{needs}];\n\n\
+         /// The fields of `limits` that [`KERNEL_NEEDS`] names, in its order.\n\
+         pub(crate) fn kernel_fields(limits: &mut wgpu::Limits) -> [&mut u32; {n}] {{\n    \
+         [\n{fields}    ]\n}}\n",
+        n = NEEDS.len()
     );
     std::fs::write(out.join("limits.rs"), limits).expect("limits file");
 }

@@ -9,8 +9,8 @@ use slc_core::frame::{LobeSelection, Method, RenderSettings, Stochastic};
 use slc_core::{builtin, Strategy};
 use slc_gpu_wgpu::{GpuContext, GpuRenderer};
 
-/// The host's own device: the first adapter, with the limits slc's passes need (WebGPU's
-/// defaults and 12 storage buffers per shader stage; `adapter.limits()` instead allows the
+/// The host's own device: the first adapter, with the limits slc's passes need (wgpu's
+/// downlevel defaults raised to what the kernels use; `adapter.limits()` instead allows the
 /// largest frames the adapter can run).
 fn host_device(
 ) -> Result<(wgpu::Device, wgpu::Queue, wgpu::AdapterInfo), Box<dyn std::error::Error>> {

@@ -45,7 +45,7 @@ impl ListRoom {
     pub fn entries<T>(&self, ctx: &GpuContext, frame: &CullFrame, lists_per_subregion: u64) -> u32 {
         let size = std::mem::size_of::<T>().max(1) as u64;
         let most = most_entries(lists_per_subregion, frame.vpls.capacity());
-        let limit = (ctx.limits.max_storage_buffer_binding_size / size).min(most);
+        let limit = (ctx.storage_limit() / size).min(most);
         let pixels = u64::from(frame.width) * u64::from(frame.height);
         room(self.needed.load(Ordering::Relaxed), pixels, limit)
     }

@@ -11,10 +11,10 @@ fn min_size<T>() -> u64 {
     (std::mem::size_of::<T>() as u64).max(16)
 }
 
-/// Refuses a storage buffer of `size` bytes larger than the device's
-/// `max_storage_buffer_binding_size` (128 MiB on lavapipe), naming both sizes.
+/// Refuses a storage buffer of `size` bytes larger than the device allows one
+/// ([`GpuContext::storage_limit`]: 128 MiB on lavapipe), naming both sizes.
 pub fn check_storage_size(ctx: &GpuContext, label: &str, size: u64) -> Result<(), GpuError> {
-    let limit = ctx.limits.max_storage_buffer_binding_size;
+    let limit = ctx.storage_limit();
     if size > limit {
         return Err(GpuError::BufferTooLarge {
             label: label.to_owned(),
@@ -23,6 +23,15 @@ pub fn check_storage_size(ctx: &GpuContext, label: &str, size: u64) -> Result<()
         });
     }
     Ok(())
+}
+
+/// The records of type `T` one storage buffer of `ctx` holds ([`GpuContext::storage_limit`]),
+/// at least one.
+pub fn per_binding<T>(ctx: &GpuContext) -> usize {
+    let record = std::mem::size_of::<T>().max(1) as u64;
+    usize::try_from(ctx.storage_limit() / record)
+        .unwrap_or(usize::MAX)
+        .max(1)
 }
 
 /// A read-only storage buffer holding `data` (size-checked).

@@ -7,8 +7,11 @@
 //!   device gives [`GpuError::DeviceLost`] instead of a hang;
 //! - validation and out-of-memory errors of a pass are caught in error scopes
 //!   ([`GpuContext::scoped`]) and returned as [`GpuError::Wgpu`];
-//! - buffers beyond `max_storage_buffer_binding_size` (128 MiB on lavapipe) are refused
-//!   before allocation ([`GpuError::BufferTooLarge`], see `buffers.rs`);
+//! - a host's device below the limits the kernels need is refused before any pass is built,
+//!   each limit named ([`GpuError::Limits`], `required_limits.rs`);
+//! - buffers beyond `max_storage_buffer_binding_size` (128 MiB on lavapipe; or
+//!   `max_buffer_size` where less, [`GpuContext::storage_limit`]) are refused before
+//!   allocation ([`GpuError::BufferTooLarge`], see `buffers.rs`);
 //! - more workgroups than one dispatch dimension allows are split into 2-D grids
 //!   (`buffers::Grid`), and beyond 65535² workgroups refused ([`GpuError::TooManyWorkgroups`]).
 use crate::device::buffers::{Grid, Workgroups};
@@ -40,8 +43,9 @@ pub enum GpuError {
     #[error("the GPU adapter {adapter} refused the device: {reason}")]
     RequestDevice { adapter: String, reason: String },
     #[error(
-        "the device on {adapter} allows less than slc's passes need ({short}); make it with \
-         GpuContext::required_limits() or the adapter's own limits"
+        "the device on {adapter} allows less than slc's passes need ({short}); a host makes \
+         its device with GpuContext::required_limits(), and where the adapter's own limits \
+         are lower, render with --backend cpu"
     )]
     Limits { adapter: String, short: String },
     #[error("the GPU device was lost ({0}); results are unavailable, try --backend cpu")]
@@ -120,6 +124,15 @@ pub struct GpuContext {
 }
 
 impl GpuContext {
+    /// The most bytes one storage buffer may hold and bind on this device: the storage
+    /// binding size, or the buffer size where a host's device allows less of that
+    /// (`max_buffer_size`). Every size check of the passes and of the frame is against it.
+    pub fn storage_limit(&self) -> u64 {
+        self.limits
+            .max_storage_buffer_binding_size
+            .min(self.limits.max_buffer_size)
+    }
+
     /// Bytes read back from the device since the context was made, by the label of what was
     /// read (`buffers::read_back`): what a frame costs the bus beyond its passes.
     pub fn readback_bytes(&self) -> BTreeMap<String, u64> {
@@ -218,9 +231,9 @@ impl GpuContext {
     }
 
     /// Runs on a device and queue the host already owns (an engine's, a viewer's), from the
-    /// adapter `info` it was made on. The device must allow at least
-    /// [`Self::required_limits`] (the adapter's own limits, `adapter.limits()`, always do;
-    /// `GpuRenderer::from_context` refuses a device below them by name,
+    /// adapter `info` it was made on. The device must allow what the kernels need (ask for
+    /// [`Self::required_limits`], or the adapter's own, `adapter.limits()`, where they are
+    /// higher; `GpuRenderer::from_context` refuses a device below them by name,
     /// [`Self::check_limits`]) and, for per-pass GPU times,
     /// `Features::TIMESTAMP_QUERY`, for the one-pass tiled kernel's subgroup operations
     /// `Features::SUBGROUP`, for clustered-raster's hardware conservative rasterization

@@ -7,35 +7,32 @@ use crate::device::context::{GpuContext, GpuError};
 include!(concat!(env!("OUT_DIR"), "/kernels/limits.rs"));
 
 impl GpuContext {
-    /// The smallest limits on which every pass builds: WebGPU's defaults
-    /// (`wgpu::Limits::default()`), with as many storage buffers per shader stage as the kernel
-    /// that binds the most (12: VSGL building's emit, counted from the kernels by build.rs).
-    /// A host that makes its own device for slc ([`Self::from_device`]) asks for at least
-    /// these. Frames are held to the device's binding size: under these limits (128 MiB) as
-    /// large as on lavapipe (`--rsm 1024`); a device with the adapter's own limits
+    /// The limits to ask of a device made for slc ([`Self::from_device`]): wgpu's downlevel
+    /// defaults (`wgpu::Limits::downlevel_defaults()`, which nearly every adapter allows), each
+    /// limit the kernels need more of raised to their need (build.rs counts it from every
+    /// entry point: 12 storage buffers per shader stage for VSGL building's emit, workgroups of
+    /// 256 invocations, ...). Frames are held to the device's storage binding and texture
+    /// sizes, and refused by name beyond them: under these limits (128 MiB, 2048 texels) up to
+    /// RSM 1024 and images of 2048 x 2048; a device with the adapter's own limits
     /// (`adapter.limits()`) runs the largest frames the adapter can.
     pub fn required_limits() -> wgpu::Limits {
-        wgpu::Limits {
-            max_storage_buffers_per_shader_stage: KERNEL_STORAGE_BUFFERS,
-            ..wgpu::Limits::default()
+        let mut limits = wgpu::Limits::downlevel_defaults();
+        for (field, (_, need)) in kernel_fields(&mut limits).into_iter().zip(KERNEL_NEEDS) {
+            *field = (*field).max(need);
         }
+        limits
     }
 
-    /// An error ([`GpuError::Limits`]) naming every limit of this device below
-    /// [`Self::required_limits`], with the device's value and the one needed. The sizes of a
-    /// storage binding and of a buffer are not checked here: they bound the frames, each
-    /// refused by name where it needs more (`GpuError::BufferTooLarge`, and before any work
-    /// by `GpuRenderer`'s frame-size check).
+    /// An error ([`GpuError::Limits`]) naming every limit of this device below what the
+    /// kernels need (those [`Self::required_limits`] raises), with the device's value and the
+    /// one needed. The other limits bound the frames, each refused by name where it needs more
+    /// (`GpuError::BufferTooLarge`, and before any work `GpuRenderer`'s frame-size check).
     pub fn check_limits(&self) -> Result<(), GpuError> {
-        let needed = wgpu::Limits {
-            max_storage_buffer_binding_size: self.limits.max_storage_buffer_binding_size,
-            max_buffer_size: self.limits.max_buffer_size,
-            ..Self::required_limits()
-        };
-        let mut short = Vec::new();
-        needed.check_limits_with_fail_fn(&self.limits, false, |name, need, has| {
-            short.push(format!("{name} is {has}, needs {need}"))
-        });
+        let mut limits = self.limits.clone();
+        let short: Vec<String> = (kernel_fields(&mut limits).into_iter().zip(KERNEL_NEEDS))
+            .filter(|(has, (_, need))| **has < *need)
+            .map(|(has, (name, need))| format!("{name} is {has}, needs {need}"))
+            .collect();
         match short.is_empty() {
             true => Ok(()),
             false => Err(GpuError::Limits {

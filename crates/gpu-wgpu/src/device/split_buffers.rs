@@ -4,7 +4,7 @@
 //! 184 MB, where lavapipe binds 128 MiB). A kernel reads and writes them through a module
 //! of its own that binds the two at fixed numbers and picks one by the index
 //! (`vpl_buffers.wesl`, `box_bound_buffers.wesl`).
-use crate::device::buffers::{check_storage_size, output, read_back, upload};
+use crate::device::buffers::{check_storage_size, output, per_binding, read_back, upload};
 use crate::device::context::{GpuContext, GpuError};
 use bytemuck::Pod;
 use std::marker::PhantomData;
@@ -13,35 +13,47 @@ use std::marker::PhantomData;
 /// (i − `low_capacity`)-th above. `low` holds as many as one storage binding allows
 /// ([`Self::per_binding`]), or all where they fit; `high` the rest, or one unused record
 /// (a binding is never empty).
-#[derive(Debug)]
 pub struct SplitBuffers<T> {
     pub low: wgpu::Buffer,
     pub high: wgpu::Buffer,
-    /// How many records `low` holds (`arrayLength` of its binding).
+    /// How many records `low` holds (`arrayLength` of its binding where `high` holds any).
     low_capacity: usize,
+    /// How many records both hold.
+    capacity: usize,
     /// The label the buffers were made with, for readbacks and errors.
     label: String,
     record: PhantomData<fn() -> T>,
 }
 
-// Not derived: the derive would ask `T: Clone` of the record type the buffers only name.
+// Not derived: the derives would ask `T: Clone` and `T: Debug` of the record type the
+// buffers only name.
 impl<T> Clone for SplitBuffers<T> {
     fn clone(&self) -> Self {
         Self {
             low: self.low.clone(),
             high: self.high.clone(),
             low_capacity: self.low_capacity,
+            capacity: self.capacity,
             label: self.label.clone(),
             record: PhantomData,
         }
     }
 }
 
+impl<T> std::fmt::Debug for SplitBuffers<T> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("SplitBuffers")
+            .field("label", &self.label)
+            .field("capacity", &self.capacity)
+            .field("low_capacity", &self.low_capacity)
+            .finish_non_exhaustive()
+    }
+}
+
 impl<T: Pod> SplitBuffers<T> {
-    /// The records one storage binding of `ctx` holds.
+    /// The records one storage binding of `ctx` holds (`buffers::per_binding`).
     pub fn per_binding(ctx: &GpuContext) -> usize {
-        let records = ctx.limits.max_storage_buffer_binding_size / std::mem::size_of::<T>() as u64;
-        usize::try_from(records).unwrap_or(usize::MAX).max(1)
+        per_binding::<T>(ctx)
     }
 
     /// Where `capacity` records split: how many go into the low buffer and how many into the
@@ -51,9 +63,9 @@ impl<T: Pod> SplitBuffers<T> {
         let low = capacity.min(per);
         let high = capacity - low;
         if high > per {
-            // Each of the two bindings would need half of them.
-            let size = (capacity as u64).saturating_mul(std::mem::size_of::<T>() as u64);
-            check_storage_size(ctx, &format!("{label} (each of two)"), size.div_ceil(2))?;
+            // The high buffer would hold more than a binding does.
+            let size = (high as u64).saturating_mul(std::mem::size_of::<T>() as u64);
+            check_storage_size(ctx, &format!("{label} (the second of two)"), size)?;
         }
         Ok([low, high])
     }
@@ -65,6 +77,7 @@ impl<T: Pod> SplitBuffers<T> {
             low: output::<T>(ctx, label, low)?,
             high: output::<T>(ctx, label, high.max(1))?,
             low_capacity: low,
+            capacity,
             label: label.to_owned(),
             record: PhantomData,
         })
@@ -82,13 +95,20 @@ impl<T: Pod> SplitBuffers<T> {
             low: upload(ctx, label, below)?,
             high: high_buffer,
             low_capacity: low,
+            capacity: records.len(),
             label: label.to_owned(),
             record: PhantomData,
         })
     }
 
-    /// The first `count` records, read back.
+    /// The first `count` records, read back; an error where the buffers hold fewer.
     pub fn read_back(&self, ctx: &GpuContext, count: usize) -> Result<Vec<T>, GpuError> {
+        if count > self.capacity {
+            return Err(GpuError::Input(format!(
+                "{count} records of {:?} read back where it holds {}",
+                self.label, self.capacity
+            )));
+        }
         let low = count.min(self.low_capacity);
         let mut records: Vec<T> = read_back(ctx, &self.label, &self.low, low)?;
         records.extend(read_back::<T>(ctx, &self.label, &self.high, count - low)?);

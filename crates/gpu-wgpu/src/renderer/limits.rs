@@ -1,7 +1,7 @@
-//! The sizes a frame's largest storage buffers take, checked against the adapter's binding
-//! limit before any work ([`Renderer::check`](slc_core::Renderer::check)), so a frame too large
-//! for this adapter (`--rsm 2048` on lavapipe, whose bindings hold 128 MiB) is refused with
-//! what to lower and how far, not by a pass halfway through.
+//! The sizes of a frame's textures and largest storage buffers, checked against the device's
+//! limits before any work ([`Renderer::check`](slc_core::Renderer::check)), so a frame too
+//! large for this device (`--rsm 2048` on lavapipe, whose bindings hold 128 MiB) is refused
+//! with what to lower and how far, not by a pass halfway through.
 use crate::device::GpuContext;
 use crate::frame::light::records::GpuRsmTexel;
 use crate::frame::raster::records::GpuSample;
@@ -13,45 +13,56 @@ use slc_core::frame::{RenderError, RenderSettings};
 use slc_core::Capabilities;
 use std::mem::size_of;
 
-/// Refuses `settings` when the G-buffer or one RSM face exceed one storage binding, or the
-/// VPL records of one single-face light (the least any scene with a light has) the two that
-/// [`VplBuffers`] spreads them over. The VPLs' bounds (one binding, sized by the VPLs a frame
-/// makes: `GpuVpls::fit_capacity`) are checked once their number is known.
+/// Refuses `settings` when the image or the RSM is wider or taller than the device's 2-D
+/// textures (`max_texture_dimension_2d`: the G-buffer and each RSM face are rasterized into
+/// them), the G-buffer or one RSM face exceed one storage buffer
+/// ([`GpuContext::storage_limit`]), or the VPL records of one single-face light (the least
+/// any scene with a light has) the two that [`VplBuffers`] spreads them over. The VPLs' bounds
+/// (one binding, sized by the VPLs a frame makes: `GpuVpls::fit_capacity`) are checked once
+/// their number is known.
 pub fn check_frame_size(ctx: &GpuContext, settings: &RenderSettings) -> Result<(), RenderError> {
-    let limit = ctx.limits.max_storage_buffer_binding_size;
-    let texels = u64::from(settings.rsm_resolution).pow(2);
-    let pixels = u64::from(settings.width) * u64::from(settings.height);
+    let refuse = |what: String| {
+        Err(RenderError::Unsupported {
+            backend: GpuRenderer::NAME,
+            what: format!("{what} on {}", ctx.adapter_name),
+            needs: Capabilities::needed(settings),
+        })
+    };
+    let side = ctx.limits.max_texture_dimension_2d;
+    let (width, height, n) = (settings.width, settings.height, settings.rsm_resolution);
+    if width.max(height).max(n) > side {
+        return refuse(format!(
+            "{width}x{height} with RSM {n}²: more than the {side} texels a side 2-D textures \
+             hold"
+        ));
+    }
+    let limit = ctx.storage_limit();
+    let texels = u64::from(n).pow(2);
+    let pixels = u64::from(width) * u64::from(height);
     // VPL generation leaves room for one record per texel and lobe `--lobes` selects
     // (`vpl::generate`).
     let lobes = u64::from(VplLobes::from(settings.lobes).per_texel());
     let records = 2 * VplBuffers::per_binding(ctx) as u64;
     let texels_fitting = (limit / size_of::<GpuRsmTexel>() as u64).min(records / lobes.max(1));
     let per_pixel = size_of::<GpuSample>() as u64;
-    let refuse = |what: String| {
-        Err(RenderError::Unsupported {
-            backend: GpuRenderer::NAME,
-            what: format!(
-                "{what}, more than the {limit} bytes one storage binding holds on {}",
-                ctx.adapter_name
-            ),
-            needs: Capabilities::needed(settings),
-        })
+    let beyond = |what: String| {
+        refuse(format!(
+            "{what}, more than the {limit} bytes one storage binding holds"
+        ))
     };
     if texels > texels_fitting {
         let most = (texels_fitting as f64).sqrt().floor();
-        return refuse(format!(
+        return beyond(format!(
             "RSM {n}² ({texels} texels of {} bytes per face and up to {lobes} VPLs of {} bytes \
              a texel; at most --rsm {most} here)",
             size_of::<GpuRsmTexel>(),
             size_of::<GpuVpl>(),
-            n = settings.rsm_resolution,
         ));
     }
     if pixels * per_pixel > limit {
-        return refuse(format!(
-            "{}x{} ({pixels} pixels of {per_pixel} bytes, {} bytes; at most {} pixels here)",
-            settings.width,
-            settings.height,
+        return beyond(format!(
+            "{width}x{height} ({pixels} pixels of {per_pixel} bytes, {} bytes; at most {} pixels \
+             here)",
             pixels * per_pixel,
             limit / per_pixel
         ));

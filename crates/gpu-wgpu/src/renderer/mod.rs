@@ -23,7 +23,9 @@ use crate::cull::frame::CullFrame;
 use crate::cull::lists::read_lists;
 use crate::cull::records::{GpuBound, GpuBoxBound};
 use crate::cull::{Culled, GpuCulling, ListCulling};
+use crate::device::buffers::per_binding;
 use crate::device::context::{GpuContext, GpuError};
+use crate::device::split_buffers::SplitBuffers;
 use crate::frame::denoise::{DenoisePass, Guide};
 use crate::frame::light::direct::DirectPass;
 use crate::frame::light::rsm::{GpuRsm, RsmPass};
@@ -52,7 +54,6 @@ use slc_core::{
 };
 use std::cell::{OnceCell, RefCell};
 use std::collections::BTreeMap;
-use std::mem::size_of;
 use std::sync::{Arc, Mutex};
 
 fn gpu(e: GpuError) -> RenderError {
@@ -371,10 +372,11 @@ impl Renderer for GpuRenderer {
             let vpls = t.time("vpl_generation", || {
                 self.step("vpl_generation", || {
                     let mut vpls = self.vpl_gen.generate(ctx, &maps, seed, lobes)?;
-                    // The culling keeps up to 80 bytes per VPL in one binding (its bounds;
-                    // the tight strategies' bounds over boxes, 112, lie over two).
-                    let per_vpl = size_of::<GpuBound>().max(size_of::<GpuBoxBound>() / 2);
-                    vpls.fit_capacity(ctx, per_vpl as u64)?;
+                    // The culling's bounds lie in one binding, the tight strategies'
+                    // bounds over boxes in two.
+                    let most = per_binding::<GpuBound>(ctx)
+                        .min(2 * SplitBuffers::<GpuBoxBound>::per_binding(ctx));
+                    vpls.fit_capacity(ctx, most)?;
                     Ok(vpls)
                 })
             })?;

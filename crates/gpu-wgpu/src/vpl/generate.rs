@@ -78,15 +78,13 @@ impl GpuVpls {
         self.count.read(ctx, "vpl count")
     }
 
-    /// Where a buffer of `bytes_per_vpl` bytes for each VPL the count's capacity allows would
-    /// exceed one storage binding, reads the count back (12 bytes, a wait for the
-    /// generation) and makes it the capacity, by which the passes after size their per-VPL
-    /// buffers: a 1024² RSM of both lobes has room for 2,097,152 VPLs, whose bounds of 80
-    /// bytes would take 160 MiB, where Sponza makes 1,647,184 (126 MiB). Other frames read
-    /// nothing.
-    pub fn fit_capacity(&mut self, ctx: &GpuContext, bytes_per_vpl: u64) -> Result<(), GpuError> {
-        let limit = ctx.limits.max_storage_buffer_binding_size;
-        if u64::from(self.count.capacity).saturating_mul(bytes_per_vpl) > limit {
+    /// Where the count's capacity exceeds `most`, the VPLs the passes after can keep per-VPL
+    /// records for, reads the count back (12 bytes, a wait for the generation) and makes it
+    /// the capacity, by which those passes size their per-VPL buffers: a 1024² RSM of both
+    /// lobes has room for 2,097,152 VPLs, whose bounds of 80 bytes would take 160 MiB, where
+    /// Sponza makes 1,647,184 (126 MiB). Other frames read nothing.
+    pub fn fit_capacity(&mut self, ctx: &GpuContext, most: usize) -> Result<(), GpuError> {
+        if self.count.capacity as usize > most {
             self.count.capacity = self.read_count(ctx)?;
         }
         Ok(())

@@ -227,7 +227,7 @@ fn lists_beyond_one_binding_are_refused_by_name() {
     let camera = scene.camera_or_default();
     let (gbuffer, vpls) = frame(&scene, &camera, (96, 64), 32);
     let input = cull_input(&gbuffer, &camera, &vpls, 1e-9, (1, 1));
-    let limit = ctx.limits.max_storage_buffer_binding_size;
+    let limit = ctx.storage_limit();
     match culler.cull(&ctx, &input, Strategy::Binned) {
         Err(e @ GpuError::BufferTooLarge { .. }) => {
             let text = e.to_string();

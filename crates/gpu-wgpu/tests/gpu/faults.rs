@@ -8,7 +8,7 @@ use slc_gpu_wgpu::GpuError;
 #[test]
 fn buffers_beyond_the_binding_limit_are_refused() {
     let Some(ctx) = gpu() else { return };
-    let limit = ctx.limits.max_storage_buffer_binding_size;
+    let limit = ctx.storage_limit();
     assert!(check_storage_size(&ctx, "ok", limit).is_ok());
     let e = output::<RngSample>(&ctx, "huge", (limit / 16 + 1) as usize).unwrap_err();
     assert!(matches!(e, GpuError::BufferTooLarge { size, .. } if size == limit + 16 - limit % 16));

@@ -152,7 +152,7 @@ impl BinnedCuller {
         let scratch = output::<u32>(
             ctx,
             "binned scratch",
-            scratch_entries(ctx.limits.max_storage_buffer_binding_size, pixels),
+            scratch_entries(ctx.storage_limit(), pixels),
         )?;
         let status = upload(ctx, "cull status", &[GpuCullStatus::CLEAR])?;
         let bin_status = upload(ctx, "bin status", &[GpuCullStatus::CLEAR])?;
