@@ -17,10 +17,25 @@ use std::mem::size_of;
 /// textures (`max_texture_dimension_2d`: the G-buffer and each RSM face are rasterized into
 /// them), the G-buffer or one RSM face exceed one storage buffer
 /// ([`GpuContext::storage_limit`]), or the VPL records of one single-face light (the least
-/// any scene with a light has) the two that [`VplBuffers`] spreads them over. The VPLs' bounds
-/// (one binding, sized by the VPLs a frame makes: `GpuVpls::fit_capacity`) are checked once
-/// their number is known.
+/// any scene with a light has) the two that [`VplBuffers`] spreads them over: what is known
+/// before the scene ([`check_scene_size`] once it is). The VPLs' bounds (one binding, sized
+/// by the VPLs a frame makes: `GpuVpls::fit_capacity`) are checked once their number is
+/// known.
 pub fn check_frame_size(ctx: &GpuContext, settings: &RenderSettings) -> Result<(), RenderError> {
+    check_scene_size(ctx, settings, &[1])
+}
+
+/// [`check_frame_size`] for lights whose maps have `faces` faces each (a spot light's one, a
+/// point light's cube six): each light's RSM texels lie in one binding, and the VPL records
+/// of all of them in two. Run before a frame's first pass. The largest `--rsm` it names is
+/// what the texels and the records allow; the VPLs' bounds, sized by the VPLs made (fewer
+/// than the texels where some see nothing), may still outgrow their binding there, refused
+/// by name once the count is known.
+pub fn check_scene_size(
+    ctx: &GpuContext,
+    settings: &RenderSettings,
+    faces: &[usize],
+) -> Result<(), RenderError> {
     let refuse = |what: String| {
         Err(RenderError::Unsupported {
             backend: GpuRenderer::NAME,
@@ -39,11 +54,36 @@ pub fn check_frame_size(ctx: &GpuContext, settings: &RenderSettings) -> Result<(
     let limit = ctx.storage_limit();
     let texels = u64::from(n).pow(2);
     let pixels = u64::from(width) * u64::from(height);
-    // VPL generation leaves room for one record per texel and lobe `--lobes` selects
-    // (`vpl::generate`).
+    let beyond = |what: String| {
+        refuse(format!(
+            "{what}, more than the {limit} bytes one storage binding holds"
+        ))
+    };
+    // Per face: one light's faces share its texels' binding; VPL generation leaves room for
+    // one record per texel of every face and lobe `--lobes` selects (`vpl::generate`) in two.
+    let (most_faces, all_faces) = (
+        faces.iter().copied().max().unwrap_or(0) as u64,
+        faces.iter().sum::<usize>() as u64,
+    );
     let lobes = u64::from(VplLobes::from(settings.lobes).per_texel());
     let records = 2 * VplBuffers::per_binding(ctx) as u64;
-    let texels_fitting = (limit / size_of::<GpuRsmTexel>() as u64).min(records / lobes.max(1));
+    let texels_fitting = (limit / size_of::<GpuRsmTexel>() as u64 / most_faces.max(1))
+        .min(records / (lobes * all_faces).max(1));
+    if texels > texels_fitting && all_faces > 0 {
+        let most = (texels_fitting as f64).sqrt().floor();
+        let lights = match (faces.len(), all_faces) {
+            (1, 1) => "1 face".to_owned(),
+            (1, _) => format!("{all_faces} faces"),
+            (count, _) => format!("{all_faces} faces of {count} lights"),
+        };
+        return beyond(format!(
+            "RSM {n}² over {lights} ({texels} texels of {} bytes per face, each light's in one \
+             binding, and up to {lobes} VPLs of {} bytes a texel in two; at most --rsm {most} \
+             here)",
+            size_of::<GpuRsmTexel>(),
+            size_of::<GpuVpl>(),
+        ));
+    }
     let per_pixel = size_of::<GpuSample>() as u64;
     let beyond = |what: String| {
         refuse(format!(

@@ -28,7 +28,7 @@ use crate::device::context::{GpuContext, GpuError};
 use crate::device::split_buffers::SplitBuffers;
 use crate::frame::denoise::{DenoisePass, Guide};
 use crate::frame::light::direct::DirectPass;
-use crate::frame::light::rsm::{GpuRsm, RsmPass};
+use crate::frame::light::rsm::{GpuRsm, RsmLayout, RsmPass};
 use crate::frame::raster::gbuffer::{GbufferPass, GpuGBuffer};
 use crate::frame::raster::scene::GpuScene;
 use crate::renderer::notes::{
@@ -351,6 +351,10 @@ impl Renderer for GpuRenderer {
         let seed = pass_seed(settings.seed, pass);
         let lobes = VplLobes::from(settings.lobes);
         let (ctx, scene_gpu) = (&self.ctx, &loaded.gpu);
+        let faces: Vec<usize> = (scene.lights.iter())
+            .map(|l| RsmLayout::new(l, scene_gpu.bounds).faces.len())
+            .collect();
+        limits::check_scene_size(ctx, settings, &faces)?;
         let ((gbuffer, maps, vpls, direct, timings), gpu_timings) = self.profiled(|| {
             let mut t = Timings::default();
             let gbuffer = t.time("gbuffer", || {

@@ -2,7 +2,9 @@
 //! every strategy and VSGLs render on a device with exactly those limits (wgpu's downlevel
 //! defaults, below WebGPU's in the limits the kernels do not need, raised where they need
 //! more), a frame beyond its textures is refused by name, and a device below what the
-//! kernels need is refused before any pass is built, each limit it falls short of named.
+//! kernels need is refused before any pass is built, each limit it falls short of named; a
+//! scene whose RSMs and VPLs outgrow the bindings is refused before the frame's first pass,
+//! with the largest `--rsm` that fits.
 use crate::common::{device_with_limits, gpu, small_frame};
 use slc_core::frame::{DiffuseEmission, Importance, LightSampling, Method, RenderSettings};
 use slc_core::render::render;
@@ -87,4 +89,35 @@ fn a_device_below_the_required_limits_is_refused_naming_each() {
         Err(e) => panic!("{e}"),
         Ok(_) => panic!("a device of 8 storage buffers per stage built every pass"),
     }
+}
+
+/// The built-in scene's spot light (1 face) and point light (a cube, 6 faces) on bindings of
+/// 1 MiB: at RSM 64 their VPLs (7 x 64² x 2 records of 128 bytes, 7.3 MB) outgrow two bindings,
+/// refused before the first pass with the largest RSM whose texels (6 x 34² per light) and
+/// records (7 x 34² x 2 in two bindings of 8,192) fit; at RSM 16 it renders.
+#[test]
+fn a_scene_beyond_the_bindings_is_refused_before_its_first_pass() {
+    let Some(shared) = gpu() else { return };
+    let ctx = device_with_limits(&shared, |adapter| wgpu::Limits {
+        max_storage_buffer_binding_size: 1 << 20,
+        ..adapter
+    });
+    let renderer = GpuRenderer::from_context(ctx).unwrap();
+    let scene = builtin("default").unwrap();
+    let frame = |rsm_resolution| RenderSettings {
+        width: 32,
+        height: 24,
+        rsm_resolution,
+        ..small_frame(Strategy::Ellipsoid, false)
+    };
+    let e = render(&renderer, &scene, &frame(64), &|_| {})
+        .unwrap_err()
+        .to_string();
+    for part in ["RSM 64² over 7 faces of 2 lights", "at most --rsm 34 here"] {
+        assert!(e.contains(part), "{e}");
+    }
+    // No pass ran: the RSM pass would have refused its texels by buffer name.
+    assert!(!e.contains("rsm texels"), "{e}");
+    let frame = render(&renderer, &scene, &frame(16), &|_| {}).unwrap();
+    assert!(frame.vpl_count > 2000, "{}", frame.vpl_count);
 }
