@@ -373,15 +373,15 @@ impl Renderer for GpuRenderer {
                 })
             })?;
             progress.check()?;
-            let vpls = t.time("vpl_generation", || {
+            let (vpls, counted) = t.time("vpl_generation", || {
                 self.step("vpl_generation", || {
                     let mut vpls = self.vpl_gen.generate(ctx, &maps, seed, lobes)?;
                     // The culling's bounds lie in one binding, the tight strategies'
                     // bounds over boxes in two.
                     let most = per_binding::<GpuBound>(ctx)
                         .min(2 * SplitBuffers::<GpuBoxBound>::per_binding(ctx));
-                    vpls.fit_capacity(ctx, most)?;
-                    Ok(vpls)
+                    let counted = vpls.fit_capacity(ctx, most)?;
+                    Ok((vpls, counted))
                 })
             })?;
             progress.check()?;
@@ -390,8 +390,9 @@ impl Renderer for GpuRenderer {
                     self.direct.render(ctx, scene_gpu, &gbuffer, &maps)
                 })
             })?;
-            Ok((gbuffer, maps, vpls, direct, t))
+            Ok((gbuffer, maps, (vpls, counted), direct, t))
         })?;
+        let (vpls, counted) = vpls;
         Ok(GpuPrepared {
             camera,
             gbuffer,
@@ -402,7 +403,8 @@ impl Renderer for GpuRenderer {
             gpu_timings,
             cpu_gbuffer: OnceCell::new(),
             cpu_vpls: OnceCell::new(),
-            vpl_count: OnceCell::new(),
+            // Read already where the VPLs' count sized their buffers: not read again.
+            vpl_count: counted.map_or_else(OnceCell::new, |n| OnceCell::from(n as usize)),
             ctx: Arc::clone(&self.ctx),
         })
     }

@@ -82,12 +82,14 @@ impl GpuVpls {
     /// records for, reads the count back (12 bytes, a wait for the generation) and makes it
     /// the capacity, by which those passes size their per-VPL buffers: a 1024² RSM of both
     /// lobes has room for 2,097,152 VPLs, whose bounds of 80 bytes would take 160 MiB, where
-    /// Sponza makes 1,647,184 (126 MiB). Other frames read nothing.
-    pub fn fit_capacity(&mut self, ctx: &GpuContext, most: usize) -> Result<(), GpuError> {
-        if self.count.capacity as usize > most {
-            self.count.capacity = self.read_count(ctx)?;
+    /// Sponza makes 1,647,184 (126 MiB). Other frames read nothing. Returns the count where
+    /// it was read.
+    pub fn fit_capacity(&mut self, ctx: &GpuContext, most: usize) -> Result<Option<u32>, GpuError> {
+        if self.count.capacity as usize <= most {
+            return Ok(None);
         }
-        Ok(())
+        self.count.capacity = self.read_count(ctx)?;
+        Ok(Some(self.count.capacity))
     }
 
     /// The VPLs as `slc_core::Vpl`s, in the CPU's order.

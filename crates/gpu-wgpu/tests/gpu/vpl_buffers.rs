@@ -64,6 +64,15 @@ fn vpls_over_two_bindings_render_as_over_one() {
         // More than the first buffer holds.
         assert!(a.vpl_count > 2048, "{strategy}: {} VPLs", a.vpl_count);
         assert_eq!(b.vpl_count, a.vpl_count, "{strategy}");
+        // The count is read once: on the narrow device where it sized the bounds, and not
+        // again for the frame's report.
+        for frame in [&a, &b] {
+            let count = frame
+                .readback_bytes
+                .as_ref()
+                .and_then(|r| r.get("vpl count"));
+            assert_eq!(count, Some(&12), "{strategy}");
+        }
         let bits = |i: &slc_core::Image| {
             i.pixels
                 .iter()
