@@ -1,6 +1,6 @@
-//! A software prefetch, for the loops that know which scattered records they will read next
-//! (a tile's G-buffer samples, K pixels apart): the hint is issued while the tile is walked
-//! once, so the reads that follow find the records in cache.
+//! A software prefetch, for the loops that know which records they will read next (a tile's
+//! G-buffer samples, K pixels apart; the scatter's next eight VPLs): the hint is issued a
+//! step ahead, so the reads that follow find the records in cache.
 
 /// Asks the CPU to bring the cache lines of `value` in. A hint only: it changes no result,
 /// and does nothing on other architectures.
