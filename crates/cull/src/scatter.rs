@@ -253,6 +253,7 @@ impl Screen {
 
     /// VPL `index` with its `test` (formed only then) where its `footprint` covers pixels of
     /// its subregion's image.
+    #[inline(always)]
     pub(crate) fn place(
         &self,
         vpl: &Vpl,
