@@ -34,6 +34,9 @@ pub struct Slopes {
     pub culling_plus_shading: Option<f64>,
     /// Culling + shading at the most VPLs over that at the fewest.
     pub growth: Option<f64>,
+    /// Culling + shading at the most VPLs over the fastest strategy's at the fewest VPLs run
+    /// at this resolution: what issue 42 holds a strategy to (docs/many-vpls.md).
+    pub over_fastest_at_fewest: Option<f64>,
 }
 
 /// The slope b of the least-squares line through (ln x, ln y): y ≈ a·x^b. `None` with fewer
@@ -73,6 +76,17 @@ fn curves(samples: &[Sample]) -> Vec<((u32, u32), Strategy, Vec<Sample>)> {
     curves
 }
 
+/// The fastest culling + shading at the fewest VPLs run at `resolution` (`None` without
+/// samples there).
+fn fastest_at_fewest(samples: &[Sample], resolution: (u32, u32)) -> Option<f64> {
+    let here = || samples.iter().filter(move |s| s.resolution == resolution);
+    let fewest = here().map(|s| s.vpls).min()?;
+    here()
+        .filter(|s| s.vpls == fewest)
+        .map(|s| s.culling_ms + s.shading_ms)
+        .min_by(f64::total_cmp)
+}
+
 /// Each curve's slopes.
 pub fn slopes(samples: &[Sample]) -> Vec<Slopes> {
     curves(samples)
@@ -96,6 +110,9 @@ pub fn slopes(samples: &[Sample]) -> Vec<Slopes> {
                 culling_plus_shading: fit(&both),
                 growth: (counts.len() > 1 && both(&first) > 0.0)
                     .then(|| both(&last) / both(&first)),
+                over_fastest_at_fewest: fastest_at_fewest(samples, (w, h))
+                    .filter(|&fastest| counts.len() > 1 && fastest > 0.0)
+                    .map(|fastest| both(&last) / fastest),
             }
         })
         .collect()
@@ -106,16 +123,18 @@ pub fn markdown(slopes: &[Slopes]) -> String {
     let mut md = String::from(
         "\n## Against the VPL count\n\nEach strategy's culling and shading (medians) against \
          the VPLs, fitted as ms ≈ a·N^b by least squares on log-log axes: the slope b (0: flat \
-         in the VPLs, 1: linear), and culling + shading at the most VPLs over that at the \
-         fewest. `scaling_culling.svg` and `scaling_shading.svg` plot the points.\n\n\
+         in the VPLs, 1: linear), culling + shading at the most VPLs over that at the \
+         fewest, and over the fastest strategy's at the fewest VPLs of the resolution (issue \
+         42's ratio). `scaling_culling.svg` and `scaling_shading.svg` plot the points.\n\n\
          | resolution | strategy | VPLs | culling slope | shading slope | culling + shading \
-         slope | culling + shading growth |\n|---|---|---|---|---|---|---|\n",
+         slope | culling + shading growth | over the fastest at the fewest |\n\
+         |---|---|---|---|---|---|---|---|\n",
     );
     let slope = |b: Option<f64>| b.map_or("n/a".into(), |b| format!("{b:.2}"));
     for s in slopes {
         let _ = writeln!(
             md,
-            "| {} | {} | {}–{} ({} counts) | {} | {} | {} | {} |",
+            "| {} | {} | {}–{} ({} counts) | {} | {} | {} | {} | {} |",
             s.resolution,
             s.strategy,
             s.vpls_min,
@@ -124,7 +143,9 @@ pub fn markdown(slopes: &[Slopes]) -> String {
             slope(s.culling),
             slope(s.shading),
             slope(s.culling_plus_shading),
-            s.growth.map_or("n/a".into(), |g| format!("{g:.1}×"))
+            s.growth.map_or("n/a".into(), |g| format!("{g:.1}×")),
+            s.over_fastest_at_fewest
+                .map_or("n/a".into(), |g| format!("{g:.2}×"))
         );
     }
     md
@@ -222,7 +243,8 @@ mod tests {
     }
 
     /// One curve per strategy, by ascending VPLs whatever the order they were run in; the
-    /// growth is the last point's culling + shading over the first's.
+    /// growth is the last point's culling + shading over the first's, and the ratio over
+    /// the fastest the last point's over the fastest strategy's first (at its resolution).
     #[test]
     fn each_strategy_gets_its_slopes_and_growth() {
         let samples = [
@@ -244,17 +266,33 @@ mod tests {
         assert_eq!(s[1].growth, Some(4.0));
         assert!(s[0].shading.unwrap().abs() < 1e-12);
         assert_eq!(s[0].growth, Some(1.0));
+        // Over ellipsoid's 20 ms at 50,000 VPLs, the fastest there.
+        assert_eq!(s[0].over_fastest_at_fewest, Some(2.0));
+        assert_eq!(s[1].over_fastest_at_fewest, Some(4.0));
         let md = markdown(&s);
         assert!(
             md.contains(
-                "| 480x270 | ellipsoid | 50000–200000 (2 counts) | 1.00 | 1.00 | 1.00 | 4.0× |"
+                "| 480x270 | ellipsoid | 50000–200000 (2 counts) | 1.00 | 1.00 | 1.00 | 4.0× | \
+                 4.00× |"
             ),
             "{md}"
         );
+        // Another resolution's faster frames are not this one's fastest.
+        let mut other = samples.to_vec();
+        other.push(Sample {
+            resolution: (960, 540),
+            ..sample(Strategy::Binned, 50_000, 0.5, 0.5)
+        });
+        let with_other = slopes(&other);
+        assert_eq!(with_other[0].over_fastest_at_fewest, Some(2.0));
+        assert_eq!(with_other[2].over_fastest_at_fewest, None);
         // One count: no slope, no growth.
         let one = slopes(&samples[1..2]);
-        assert_eq!((one[0].culling, one[0].growth), (None, None));
-        assert!(markdown(&one).contains("| n/a | n/a | n/a | n/a |"));
+        assert_eq!(
+            (one[0].culling, one[0].growth, one[0].over_fastest_at_fewest),
+            (None, None, None)
+        );
+        assert!(markdown(&one).contains("| n/a | n/a | n/a | n/a | n/a |"));
     }
 
     /// Each plot has a curve per strategy named with its slope, and a point per sample; with

@@ -392,8 +392,11 @@ fn bench_writes_a_row_per_resolution_vpl_count_and_strategy() {
             s["culling_plus_shading"].as_f64().unwrap().is_finite(),
             "{s}"
         );
+        let over_fastest = s["over_fastest_at_fewest"].as_f64().unwrap();
+        assert!(over_fastest.is_finite() && over_fastest > 0.0, "{s}");
     }
     assert!(md.contains("## Against the VPL count") && md.contains("| 24x16 | ellipsoid | "));
+    assert!(md.contains("| over the fastest at the fewest |"), "{md}");
     for plot in ["scaling_culling.svg", "scaling_shading.svg"] {
         let svg = std::fs::read_to_string(out.join(plot)).unwrap();
         assert!(
