@@ -392,8 +392,20 @@ fn bench_writes_a_row_per_resolution_vpl_count_and_strategy() {
             s["culling_plus_shading"].as_f64().unwrap().is_finite(),
             "{s}"
         );
+        // Every strategy ran at both counts: the fastest at the fewest is one of their own
+        // first points, so each ratio is at least its own growth, and one equals it.
         let over_fastest = s["over_fastest_at_fewest"].as_f64().unwrap();
+        let growth = s["growth"].as_f64().unwrap();
         assert!(over_fastest.is_finite() && over_fastest > 0.0, "{s}");
+        assert!(over_fastest >= growth * (1.0 - 1e-12), "{s}");
+    }
+    for resolution in ["16x16", "24x16"] {
+        assert!(
+            slopes.iter().any(
+                |s| s["resolution"] == resolution && s["over_fastest_at_fewest"] == s["growth"]
+            ),
+            "{slopes:?}"
+        );
     }
     assert!(md.contains("## Against the VPL count") && md.contains("| 24x16 | ellipsoid | "));
     assert!(md.contains("| over the fastest at the fewest |"), "{md}");
