@@ -125,7 +125,8 @@ pub fn markdown(slopes: &[Slopes]) -> String {
          the VPLs, fitted as ms ≈ a·N^b by least squares on log-log axes: the slope b (0: flat \
          in the VPLs, 1: linear), culling + shading at the most VPLs over that at the \
          fewest, and over the fastest strategy's at the fewest VPLs of the resolution (the \
-         ratio docs/many-vpls.md states its targets in). `scaling_culling.svg` and `scaling_shading.svg` plot the points.\n\n\
+         ratio docs/many-vpls.md states its targets in). `scaling_culling.svg` and \
+         `scaling_shading.svg` plot the points.\n\n\
          | resolution | strategy | VPLs | culling slope | shading slope | culling + shading \
          slope | culling + shading growth | over the fastest at the fewest |\n\
          |---|---|---|---|---|---|---|---|\n",

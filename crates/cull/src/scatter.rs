@@ -292,11 +292,11 @@ impl Screen {
         [sx, sy]: [u32; 2],
         [sw, sh]: [u32; 2],
     ) -> Option<[u32; 4]> {
-        let per_k = |x: f64| self.subregions.per_k(x);
+        let subregions = &self.subregions;
         let axis = |a: f32, b: f32, s: u32, n: u32| -> Option<[u32; 2]> {
             let s = f64::from(s);
-            let i0 = first_index(per_k(f64::from(a) - self.stray - 1.0 - s), n);
-            let i1 = last_index(per_k(f64::from(b) + self.stray - s), n);
+            let i0 = first_index(subregions.per_k(f64::from(a) - self.stray - 1.0 - s), n);
+            let i1 = last_index(subregions.per_k(f64::from(b) + self.stray - s), n);
             (i0 <= i1).then_some([i0 as u32, i1 as u32])
         };
         let [i0, i1] = axis(footprint.lo[0], footprint.hi[0], sx, sw)?;

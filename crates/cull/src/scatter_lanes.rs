@@ -22,8 +22,8 @@ pub(crate) fn scatter(
     out.clear();
     for (group, eight) in vpls.chunks(8).enumerate() {
         // The next eight records asked for while these are bounded: without the hint the
-        // lanes wait on each group's first read (docs/many-vpls.md, "Where the ratio is
-        // set"). A hint only: the results are the same.
+        // lanes wait on each group's first read (docs/many-vpls.md, "The next eight records
+        // asked for"). A hint only: the results are the same.
         for next in vpls.iter().skip(8 * group + 8).take(8) {
             prefetch(next);
         }

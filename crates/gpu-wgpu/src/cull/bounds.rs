@@ -14,7 +14,7 @@ use crate::cull::records::{
     GLOSSY_SPHERE, MAX_K,
 };
 use crate::cull::records::{GpuBoxBound, GpuLocalBound};
-use crate::device::buffers::{output, read_back};
+use crate::device::buffers::{output, per_binding, read_back};
 use crate::device::context::{GpuContext, GpuError};
 use crate::device::count::{ArgsPass, Count};
 use crate::device::split_buffers::SplitBuffers;
@@ -79,6 +79,15 @@ pub struct BoundsPass {
 }
 
 impl BoundsPass {
+    /// The most VPLs whose bounds `ctx` holds: each per-VPL buffer of [`Self::run_with_locals`]
+    /// in one binding (the bounds, shapes and local bounds), the bounds over boxes in two.
+    pub fn most_vpls(ctx: &GpuContext) -> usize {
+        per_binding::<GpuBound>(ctx)
+            .min(per_binding::<GpuBoundShape>(ctx))
+            .min(per_binding::<GpuLocalBound>(ctx))
+            .min(2 * per_binding::<GpuBoxBound>(ctx))
+    }
+
     pub fn new(ctx: &GpuContext) -> Result<Self, GpuError> {
         let args = ArgsPass::new(ctx)?;
         ctx.scoped("bounds pipeline", || {

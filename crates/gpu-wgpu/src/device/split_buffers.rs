@@ -11,7 +11,7 @@ use std::marker::PhantomData;
 
 /// Records of type `T`: record i is `low`'s i-th below `low_capacity`, `high`'s
 /// (i − `low_capacity`)-th above. `low` holds as many as one storage binding allows
-/// ([`Self::per_binding`]), or all where they fit; `high` the rest, or one unused record
+/// ([`per_binding`]), or all where they fit; `high` the rest, or one unused record
 /// (a binding is never empty).
 pub struct SplitBuffers<T> {
     pub low: wgpu::Buffer,
@@ -51,19 +51,15 @@ impl<T> std::fmt::Debug for SplitBuffers<T> {
 }
 
 impl<T: Pod> SplitBuffers<T> {
-    /// The records one storage binding of `ctx` holds (`buffers::per_binding`).
-    pub fn per_binding(ctx: &GpuContext) -> usize {
-        per_binding::<T>(ctx)
-    }
-
     /// Where `capacity` records split: how many go into the low buffer and how many into the
     /// high one; an error where they need more than two bindings.
     fn split(ctx: &GpuContext, label: &str, capacity: usize) -> Result<[usize; 2], GpuError> {
-        let per = Self::per_binding(ctx);
+        let per = per_binding::<T>(ctx);
         let low = capacity.min(per);
         let high = capacity - low;
         if high > per {
-            // The high buffer would hold more than a binding does.
+            // The high buffer would hold more than a binding does: the check fails, naming
+            // the buffer, its size and the limit.
             let size = (high as u64).saturating_mul(std::mem::size_of::<T>() as u64);
             check_storage_size(ctx, &format!("{label} (the second of two)"), size)?;
         }

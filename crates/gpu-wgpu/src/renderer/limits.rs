@@ -2,11 +2,11 @@
 //! limits before any work ([`Renderer::check`](slc_core::Renderer::check)), so a frame too
 //! large for this device (`--rsm 2048` on lavapipe, whose bindings hold 128 MiB) is refused
 //! with what to lower and how far, not by a pass halfway through.
+use crate::device::buffers::per_binding;
 use crate::device::GpuContext;
 use crate::frame::light::records::GpuRsmTexel;
 use crate::frame::raster::records::GpuSample;
 use crate::renderer::GpuRenderer;
-use crate::vpl::buffers::VplBuffers;
 use crate::vpl::generate::VplLobes;
 use crate::vpl::records::GpuVpl;
 use slc_core::frame::{RenderError, RenderSettings};
@@ -17,7 +17,8 @@ use std::mem::size_of;
 /// textures (`max_texture_dimension_2d`: the G-buffer and each RSM face are rasterized into
 /// them), the G-buffer or one RSM face exceed one storage buffer
 /// ([`GpuContext::storage_limit`]), or the VPL records of one single-face light (the least
-/// any scene with a light has) the two that [`VplBuffers`] spreads them over: what is known
+/// any scene with a light has) the two that
+/// [`VplBuffers`](crate::vpl::buffers::VplBuffers) spreads them over: what is known
 /// before the scene ([`check_scene_size`] once it is). The VPLs' bounds (one binding, sized
 /// by the VPLs a frame makes: `GpuVpls::fit_capacity`) are checked once their number is
 /// known.
@@ -66,7 +67,7 @@ pub fn check_scene_size(
         faces.iter().sum::<usize>() as u64,
     );
     let lobes = u64::from(VplLobes::from(settings.lobes).per_texel());
-    let records = 2 * VplBuffers::per_binding(ctx) as u64;
+    let records = 2 * per_binding::<GpuVpl>(ctx) as u64;
     let texels_fitting = (limit / size_of::<GpuRsmTexel>() as u64 / most_faces.max(1))
         .min(records / (lobes * all_faces).max(1));
     if texels > texels_fitting && all_faces > 0 {
@@ -85,20 +86,6 @@ pub fn check_scene_size(
         ));
     }
     let per_pixel = size_of::<GpuSample>() as u64;
-    let beyond = |what: String| {
-        refuse(format!(
-            "{what}, more than the {limit} bytes one storage binding holds"
-        ))
-    };
-    if texels > texels_fitting {
-        let most = (texels_fitting as f64).sqrt().floor();
-        return beyond(format!(
-            "RSM {n}² ({texels} texels of {} bytes per face and up to {lobes} VPLs of {} bytes \
-             a texel; at most --rsm {most} here)",
-            size_of::<GpuRsmTexel>(),
-            size_of::<GpuVpl>(),
-        ));
-    }
     if pixels * per_pixel > limit {
         return beyond(format!(
             "{width}x{height} ({pixels} pixels of {per_pixel} bytes, {} bytes; at most {} pixels \

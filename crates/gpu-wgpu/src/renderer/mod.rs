@@ -19,13 +19,11 @@
 pub mod limits;
 mod notes;
 
+use crate::cull::bounds::BoundsPass;
 use crate::cull::frame::CullFrame;
 use crate::cull::lists::read_lists;
-use crate::cull::records::{GpuBound, GpuBoxBound};
 use crate::cull::{Culled, GpuCulling, ListCulling};
-use crate::device::buffers::per_binding;
 use crate::device::context::{GpuContext, GpuError};
-use crate::device::split_buffers::SplitBuffers;
 use crate::frame::denoise::{DenoisePass, Guide};
 use crate::frame::light::direct::DirectPass;
 use crate::frame::light::rsm::{GpuRsm, RsmLayout, RsmPass};
@@ -376,11 +374,7 @@ impl Renderer for GpuRenderer {
             let (vpls, counted) = t.time("vpl_generation", || {
                 self.step("vpl_generation", || {
                     let mut vpls = self.vpl_gen.generate(ctx, &maps, seed, lobes)?;
-                    // The culling's bounds lie in one binding, the tight strategies'
-                    // bounds over boxes in two.
-                    let most = per_binding::<GpuBound>(ctx)
-                        .min(2 * SplitBuffers::<GpuBoxBound>::per_binding(ctx));
-                    let counted = vpls.fit_capacity(ctx, most)?;
+                    let counted = vpls.fit_capacity(ctx, BoundsPass::most_vpls(ctx))?;
                     Ok((vpls, counted))
                 })
             })?;

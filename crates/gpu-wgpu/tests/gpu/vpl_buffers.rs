@@ -9,6 +9,7 @@ use glam::Vec3;
 use slc_core::frame::{Method, RenderSettings};
 use slc_core::render::render;
 use slc_core::{builtin, Strategy, Vpl, VplLobe};
+use slc_gpu_wgpu::device::buffers::per_binding;
 use slc_gpu_wgpu::vpl::buffers::VplBuffers;
 use slc_gpu_wgpu::vpl::records::GpuVpl;
 use slc_gpu_wgpu::{GpuContext, GpuError, GpuRenderer};
@@ -34,7 +35,7 @@ const NARROW: u64 = 256 * 1024;
 fn vpls_over_two_bindings_render_as_over_one() {
     let Some(wide) = gpu() else { return };
     let narrow = narrow_gpu(&wide, NARROW);
-    assert_eq!(VplBuffers::per_binding(&narrow), 2048);
+    assert_eq!(per_binding::<GpuVpl>(&narrow), 2048);
     let scene = builtin("default").unwrap();
     let strategies = Strategy::ALL.into_iter().chain(Strategy::RASTER);
     let (wide, narrow) = (
