@@ -356,6 +356,12 @@ impl<L: Lanes8> Filter<L> {
         let t = dot(e, *a);
         let perp = [e[0] - t * a[0], e[1] - t * a[1], e[2] - t * a[2]];
         let quadric = dot(perp, perp) * self.inv_across_sq + t * t * self.inv_along_sq;
+        let maybe_in = quadric.le(self.maybe_inside);
+        // Most chunks end here: 85% of the VPLs placed at RSM 1024 pass no pixel, and outside
+        // the bound no lane may pass whatever the sign (docs/many-vpls.md).
+        if !L::any(maybe_in) {
+            return (0, 0);
+        }
         let cos = dot(*n, d);
         let (cos_sq, d_sq) = (cos * cos, dot(d, d));
         let negative = L::splat(0.0).gt(cos);
@@ -363,7 +369,7 @@ impl<L: Lanes8> Filter<L> {
         let decided = d_sq.gt(L::splat(SMALLEST_D_SQ));
         let behind = negative & cos_sq.gt(self.behind * d_sq) & decided;
         let front = (!negative | (self.front * d_sq).gt(cos_sq)) & decided;
-        let maybe = quadric.le(self.maybe_inside) & !behind;
+        let maybe = maybe_in & !behind;
         let sure = quadric.le(self.inside) & front;
         (L::bits(maybe), L::bits(sure))
     }
