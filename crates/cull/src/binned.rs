@@ -29,6 +29,7 @@ use crate::lists::pixel_count;
 use crate::pair_lists::{self, Bands};
 use crate::partition::check;
 use crate::pixel_rows::{Layout, PixelRows};
+use crate::prefetch::prefetch;
 use crate::scatter::Screen;
 use crate::scatter_lanes::scatter;
 use crate::view::CullView;
@@ -39,6 +40,10 @@ use slc_core::{CullError, CullInput, GBuffer, LightLists, NO_LIST, TILE_SIZE};
 
 /// VPLs scattered per piece of parallel work.
 const VPLS_PER_PIECE: usize = 4096;
+
+/// How many G-buffer samples ahead [`Receivers::new`] asks for the next one (of 4, 8 and 16
+/// measured, all alike).
+const SAMPLES_AHEAD: usize = 8;
 
 /// The lists of `input` by binning (see the module), VPLs whose rectangles cover more than
 /// `shared_above` pixels culled per cell ([`LARGE_PIXELS`] by default).
@@ -218,6 +223,11 @@ impl Receivers {
                 let slots = layout.slots();
                 for (x, ((g, sampled), slot)) in samples.iter().zip(sampled).zip(slots).enumerate()
                 {
+                    // A hint only, as in the scatter: without it the loop waits on each
+                    // sample's first read (docs/many-vpls.md, "The G-buffer read ahead").
+                    if let Some(ahead) = samples.get(x + SAMPLES_AHEAD) {
+                        prefetch(ahead);
+                    }
                     let Some(g) = g else {
                         continue;
                     };
