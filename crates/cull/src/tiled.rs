@@ -9,6 +9,7 @@ use crate::frusta::TileFrusta;
 use crate::lists::{assemble, pixel_count, ListChunk};
 use crate::partition::Partition;
 use crate::positions::positions;
+use crate::prefetch::prefetch;
 use crate::refine::{block_of, Place, Refiner, RefinerMemory, Scratch, BLOCKS};
 use crate::tiles::{tiles, Tile};
 use crate::view::CullView;
@@ -281,7 +282,17 @@ impl Worker {
         self.places.clear();
         let width = frame.width;
         let columns = tile.columns();
-        for (i, [x, y]) in tile.pixels(frame.k).enumerate() {
+        // The position a row of the tile ahead is asked for while this one is read: the
+        // pixels lie K apart, each on a cache line of its own, and the loop waited on each
+        // read (docs/cpu-frame.md, "The tiles' positions read a row ahead"). A hint only.
+        let ahead =
+            (tile.pixels(frame.k).skip(columns as usize).map(Some)).chain(std::iter::repeat(None));
+        for ((i, [x, y]), next) in tile.pixels(frame.k).enumerate().zip(ahead) {
+            if let Some(position) =
+                next.and_then(|[x, y]| frame.positions.get((y * width + x) as usize))
+            {
+                prefetch(position);
+            }
             let pixel = y * width + x;
             let Some(position) = frame.positions[pixel as usize] else {
                 continue;
