@@ -113,24 +113,39 @@ fn validate(kernel: &Kernel, source: &str, what: &str) -> (naga::Module, naga::v
     (module, info)
 }
 
-/// What one entry point, or the most of every entry point, needs of a device: each field
-/// the name of a `wgpu::Limits` field it bounds from below.
+/// What one entry point, or the most of every entry point, needs of a device: place i
+/// bounds from below the `wgpu::Limits` field `NEEDS[i]`.
 #[derive(Default)]
 struct Needs([u32; 11]);
 
-const NEEDS: [&str; 11] = [
-    "max_storage_buffers_per_shader_stage",
-    "max_uniform_buffers_per_shader_stage",
-    "max_sampled_textures_per_shader_stage",
-    "max_storage_textures_per_shader_stage",
-    "max_samplers_per_shader_stage",
-    "max_bind_groups",
-    "max_compute_workgroup_size_x",
-    "max_compute_workgroup_size_y",
-    "max_compute_workgroup_size_z",
-    "max_compute_invocations_per_workgroup",
-    "max_compute_workgroup_storage_size",
-];
+// The places of a [`Needs`].
+const STORAGE_BUFFERS: usize = 0;
+const UNIFORM_BUFFERS: usize = 1;
+const SAMPLED_TEXTURES: usize = 2;
+const STORAGE_TEXTURES: usize = 3;
+const SAMPLERS: usize = 4;
+const BIND_GROUPS: usize = 5;
+/// The workgroup's x, y and z sizes, then its invocations.
+const WORKGROUP_SIZE: usize = 6;
+const WORKGROUP_STORAGE: usize = 10;
+
+/// The `wgpu::Limits` field of each place of a [`Needs`] (a place left out would name no
+/// field, and the generated `limits.rs` would not compile).
+const NEEDS: [&str; 11] = {
+    let mut n = [""; 11];
+    n[STORAGE_BUFFERS] = "max_storage_buffers_per_shader_stage";
+    n[UNIFORM_BUFFERS] = "max_uniform_buffers_per_shader_stage";
+    n[SAMPLED_TEXTURES] = "max_sampled_textures_per_shader_stage";
+    n[STORAGE_TEXTURES] = "max_storage_textures_per_shader_stage";
+    n[SAMPLERS] = "max_samplers_per_shader_stage";
+    n[BIND_GROUPS] = "max_bind_groups";
+    n[WORKGROUP_SIZE] = "max_compute_workgroup_size_x";
+    n[WORKGROUP_SIZE + 1] = "max_compute_workgroup_size_y";
+    n[WORKGROUP_SIZE + 2] = "max_compute_workgroup_size_z";
+    n[WORKGROUP_SIZE + 3] = "max_compute_invocations_per_workgroup";
+    n[WORKGROUP_STORAGE] = "max_compute_workgroup_storage_size";
+    n
+};
 
 /// What each entry point of `module` needs ([`NEEDS`]): the globals it uses of each kind,
 /// the bind groups up to the highest it uses, its workgroup size, and its workgroup memory
@@ -149,15 +164,15 @@ fn needs(module: &naga::Module, info: &naga::valid::ModuleInfo) -> Vec<Needs> {
                     continue;
                 }
                 let kind = match (global.space, &module.types[global.ty].inner) {
-                    (naga::AddressSpace::Storage { .. }, _) => Some(0),
-                    (naga::AddressSpace::Uniform, _) => Some(1),
+                    (naga::AddressSpace::Storage { .. }, _) => Some(STORAGE_BUFFERS),
+                    (naga::AddressSpace::Uniform, _) => Some(UNIFORM_BUFFERS),
                     (_, naga::TypeInner::Image { class, .. }) => match class {
-                        naga::ImageClass::Storage { .. } => Some(3),
-                        _ => Some(2),
+                        naga::ImageClass::Storage { .. } => Some(STORAGE_TEXTURES),
+                        _ => Some(SAMPLED_TEXTURES),
                     },
-                    (_, naga::TypeInner::Sampler { .. }) => Some(4),
+                    (_, naga::TypeInner::Sampler { .. }) => Some(SAMPLERS),
                     (naga::AddressSpace::WorkGroup, _) => {
-                        n.0[10] += layouter[global.ty].size.next_multiple_of(16);
+                        n.0[WORKGROUP_STORAGE] += layouter[global.ty].size.next_multiple_of(16);
                         None
                     }
                     _ => None,
@@ -166,12 +181,12 @@ fn needs(module: &naga::Module, info: &naga::valid::ModuleInfo) -> Vec<Needs> {
                     n.0[k] += 1;
                 }
                 if let Some(binding) = &global.binding {
-                    n.0[5] = n.0[5].max(binding.group + 1);
+                    n.0[BIND_GROUPS] = n.0[BIND_GROUPS].max(binding.group + 1);
                 }
             }
             if entry.stage == naga::ShaderStage::Compute {
                 let [x, y, z] = entry.workgroup_size;
-                n.0[6..10].copy_from_slice(&[x, y, z, x * y * z]);
+                n.0[WORKGROUP_SIZE..WORKGROUP_SIZE + 4].copy_from_slice(&[x, y, z, x * y * z]);
             }
             n
         })
