@@ -116,4 +116,17 @@ impl<T: Pod> SplitBuffers<T> {
     pub fn at(&self, bindings: [u32; 2]) -> [(u32, &wgpu::Buffer); 2] {
         [(bindings[0], &self.low), (bindings[1], &self.high)]
     }
+
+    /// A kernel's bindings (`GpuContext::encode_dispatch_at`): `buffers` numbered from 0,
+    /// then the two buffers at `bindings` ([`Self::at`]).
+    pub fn after<'a>(
+        &'a self,
+        buffers: &[&'a wgpu::Buffer],
+        bindings: [u32; 2],
+    ) -> Vec<(u32, &'a wgpu::Buffer)> {
+        (0u32..)
+            .zip(buffers.iter().copied())
+            .chain(self.at(bindings))
+            .collect()
+    }
 }

@@ -15,9 +15,6 @@ impl VplBuffers {
     /// `buffers` numbered from 0, then the two buffers at [`VPL_BINDINGS`]: the bindings of
     /// a kernel that imports `vpl_buffers.wesl` (`GpuContext::encode_dispatch_at`).
     pub fn with<'a>(&'a self, buffers: &[&'a wgpu::Buffer]) -> Vec<(u32, &'a wgpu::Buffer)> {
-        (0u32..)
-            .zip(buffers.iter().copied())
-            .chain(self.at(VPL_BINDINGS))
-            .collect()
+        self.after(buffers, VPL_BINDINGS)
     }
 }

@@ -134,10 +134,7 @@ impl TightRefiner {
                     &offsets,
                     &lists,
                 ];
-                let bindings: Vec<_> = (0u32..)
-                    .zip(buffers)
-                    .chain(bounds.box_bounds.at(BOX_BOUND_BINDINGS))
-                    .collect();
+                let bindings = bounds.box_bounds.after(&buffers, BOX_BOUND_BINDINGS);
                 ctx.encode_dispatch_at(encoder, "tight cull", &self.pipeline, &bindings, grid);
                 if mode == CULL_COUNT {
                     self.scan
