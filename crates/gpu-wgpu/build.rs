@@ -118,7 +118,7 @@ fn validate(kernel: &Kernel, source: &str, what: &str) -> (naga::Module, naga::v
 #[derive(Default)]
 struct Needs([u32; 11]);
 
-// The places of a [`Needs`].
+// The places of a `Needs`.
 const STORAGE_BUFFERS: usize = 0;
 const UNIFORM_BUFFERS: usize = 1;
 const SAMPLED_TEXTURES: usize = 2;

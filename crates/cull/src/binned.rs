@@ -41,8 +41,8 @@ use slc_core::{CullError, CullInput, GBuffer, LightLists, NO_LIST, TILE_SIZE};
 /// VPLs scattered per piece of parallel work.
 const VPLS_PER_PIECE: usize = 4096;
 
-/// How many G-buffer samples ahead [`Receivers::new`] asks for the next one (of 4, 8 and 16
-/// measured, all alike).
+/// How far ahead in its row [`Receivers::new`] asks for a G-buffer sample (4, 8 and 16
+/// measured alike).
 const SAMPLES_AHEAD: usize = 8;
 
 /// The lists of `input` by binning (see the module), VPLs whose rectangles cover more than

@@ -283,10 +283,14 @@ impl Worker {
         let width = frame.width;
         let columns = tile.columns();
         // The position a row of the tile ahead is asked for while this one is read: the
-        // pixels lie K apart, each on a cache line of its own, and the loop waited on each
-        // read (docs/cpu-frame.md, "The tiles' positions read a row ahead"). A hint only.
-        let ahead =
-            (tile.pixels(frame.k).skip(columns as usize).map(Some)).chain(std::iter::repeat(None));
+        // pixels lie K apart (at K >= 4 each on a cache line of its own), and the loop waited
+        // on each read (docs/cpu-frame.md, "The tiles' positions read a row ahead"). A hint
+        // only.
+        let ahead = tile
+            .pixels(frame.k)
+            .skip(columns as usize)
+            .map(Some)
+            .chain(std::iter::repeat(None));
         for ((i, [x, y]), next) in tile.pixels(frame.k).enumerate().zip(ahead) {
             if let Some(position) =
                 next.and_then(|[x, y]| frame.positions.get((y * width + x) as usize))
