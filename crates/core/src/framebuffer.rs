@@ -53,6 +53,15 @@ impl Image {
         }
     }
 
+    /// Adds `other` (of the same size) pixel by pixel in place: the pixels [`Self::add`]
+    /// gives, without a new image.
+    pub fn add_assign(&mut self, other: &Image) {
+        assert_eq!((self.width, self.height), (other.width, other.height));
+        for (a, b) in self.pixels.iter_mut().zip(&other.pixels) {
+            *a += *b;
+        }
+    }
+
     /// Root-mean-square error against another image of the same size, over all pixels and channels.
     pub fn rmse(&self, other: &Image) -> f32 {
         assert_eq!((self.width, self.height), (other.width, other.height));
@@ -131,6 +140,31 @@ mod tests {
             e.contains("indirect pass produced 3 non-finite pixel(s) of 8"),
             "{e}"
         );
+    }
+
+    #[test]
+    fn add_assign_gives_the_pixels_of_add() {
+        let mut a = Image::new(3, 1);
+        let mut b = Image::new(3, 1);
+        a.pixels = vec![
+            Vec3::new(1.0, -0.0, 3e38),
+            Vec3::splat(0.1),
+            Vec3::splat(-0.0),
+        ];
+        b.pixels = vec![
+            Vec3::new(0.2, -0.0, 3e38),
+            Vec3::splat(0.2),
+            Vec3::splat(0.0),
+        ];
+        let sum = a.add(&b);
+        a.add_assign(&b);
+        let bits = |i: &Image| -> Vec<[u32; 3]> {
+            i.pixels
+                .iter()
+                .map(|p| p.to_array().map(f32::to_bits))
+                .collect()
+        };
+        assert_eq!(bits(&a), bits(&sum));
     }
 
     #[test]
