@@ -85,21 +85,11 @@ pub fn render_loaded<R: Renderer>(
     let mut timings = Timings::default();
     let mut gpu_timings = None;
     let readback_before = r.readback_bytes();
-    // The passes' direct and indirect images summed (`Sums`), the frame's once they are all in.
     let mut sums = Sums {
         size: (w, h),
         images: None,
     };
-    let mut frame = RenderedFrame {
-        direct: Image::new(0, 0),
-        indirect: Image::new(0, 0),
-        vpl_count: 0,
-        timings: Timings::default(),
-        gpu_timings: None,
-        metrics: None,
-        sampled_lights: None,
-        readback_bytes: None,
-    };
+    let (mut vpl_count, mut metrics, mut sampled_lights) = (0, None, None);
     for pass in 0..settings.spp {
         progress.check()?;
         if settings.method == Method::Path {
@@ -130,29 +120,22 @@ pub fn render_loaded<R: Renderer>(
         merge_optional(&mut gpu_timings, shaded.gpu_timings.as_ref());
         p.direct().check_finite("direct")?;
         shaded.indirect.check_finite("indirect")?;
-        frame.vpl_count = p.vpl_count()?;
-        frame.metrics = shaded.metrics;
-        frame.sampled_lights = shaded.sampled_lights;
+        vpl_count = p.vpl_count()?;
+        metrics = shaded.metrics;
+        sampled_lights = shaded.sampled_lights;
         sums.add([p.direct().clone(), shaded.indirect]);
     }
-    [frame.direct, frame.indirect] =
-        (sums.images).unwrap_or_else(|| [Image::new(w, h), Image::new(w, h)]);
-    // The mean over the passes; with one pass the sum is the mean (x·1 = x for every finite x).
-    if settings.spp > 1 {
-        let inv = 1.0 / settings.spp as f32;
-        for px in frame
-            .direct
-            .pixels
-            .iter_mut()
-            .chain(frame.indirect.pixels.iter_mut())
-        {
-            *px *= inv;
-        }
-    }
-    frame.timings = timings;
-    frame.gpu_timings = gpu_timings;
-    frame.readback_bytes = readback_since(r, readback_before);
-    Ok(frame)
+    let [direct, indirect] = sums.mean(settings.spp);
+    Ok(RenderedFrame {
+        direct,
+        indirect,
+        vpl_count,
+        timings,
+        gpu_timings,
+        metrics,
+        sampled_lights,
+        readback_bytes: readback_since(r, readback_before),
+    })
 }
 
 /// The direct and indirect images of a frame's passes summed pixel by pixel, in the passes'
@@ -185,6 +168,20 @@ impl Sums {
                 }
             }
         }
+    }
+
+    /// The mean of `passes` passes' sums (black images where none was added); with one pass
+    /// the sum itself (x·1 = x for every finite x).
+    fn mean(self, passes: u32) -> [Image; 2] {
+        let (w, h) = self.size;
+        let mut images = (self.images).unwrap_or_else(|| [Image::new(w, h), Image::new(w, h)]);
+        if passes > 1 {
+            let inv = 1.0 / passes as f32;
+            for px in images.iter_mut().flat_map(|image| image.pixels.iter_mut()) {
+                *px *= inv;
+            }
+        }
+        images
     }
 }
 
