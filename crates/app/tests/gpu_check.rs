@@ -86,5 +86,4 @@ fn gpu_check_quick_writes_its_report() {
     let scaling = report["scaling"].as_array().unwrap();
     assert_eq!(scaling.len(), 6, "3 RSM sizes x 2 strategies");
     assert!(md.contains("## Table 2") && md.contains("## Tests"));
-    std::fs::remove_dir_all(&out).unwrap();
 }

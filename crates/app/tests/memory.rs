@@ -73,5 +73,4 @@ fn the_estimate_is_at_least_the_peak_and_not_far_above_it() {
     }
     eprintln!("{table}");
     assert!(wrong.is_empty(), "{wrong:?}\n{table}");
-    std::fs::remove_dir_all(&out).ok();
 }

@@ -86,7 +86,6 @@ fn a_second_run_into_a_busy_folder_is_refused_naming_the_holder() {
     );
     assert!(first.wait().unwrap().success());
     assert!(out.join("report.json").is_file());
-    std::fs::remove_dir_all(&out).ok();
 }
 
 #[test]
@@ -117,7 +116,6 @@ fn a_run_killed_while_writing_leaves_the_previous_result_intact() {
         })
         .count();
     assert_eq!(versions, 1);
-    std::fs::remove_dir_all(&out).ok();
 }
 
 #[test]
@@ -157,7 +155,6 @@ fn a_result_that_cannot_be_placed_replaces_nothing() {
         "{err}"
     );
     assert_eq!(std::fs::read(out.join("report.json")).unwrap(), before);
-    std::fs::remove_dir_all(&out).ok();
 }
 
 fn compare(args: &str, out: &Path) -> Output {
@@ -207,7 +204,6 @@ fn a_file_in_the_way_of_a_strategy_folder_stops_compare_before_any_work() {
             .all(|n| !["none", "ellipsoid"].contains(&n.as_str())),
         "{left:?}"
     );
-    std::fs::remove_dir_all(&out).ok();
 }
 
 /// A floor quad under a light of the given intensity, as OBJ + scene settings.
@@ -249,5 +245,4 @@ fn an_overflowing_light_is_refused_when_loaded() {
         &out,
     );
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    std::fs::remove_dir_all(&dir).ok();
 }

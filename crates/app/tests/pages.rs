@@ -134,7 +134,6 @@ fn the_compare_page_loads_every_image() {
     // The figure, and per strategy total, indirect, heat map and FLIP map; the reference's
     // total and indirect.
     check_page(&out, 1 + 3 * 4 + 2);
-    std::fs::remove_dir_all(&out).ok();
 }
 
 #[test]
@@ -145,12 +144,10 @@ fn the_sweep_pages_load_every_image() {
         &out,
     );
     check_page(&out, 2);
-    std::fs::remove_dir_all(&out).ok();
     let out = out_dir("vsgl-sweep");
     run_ok(
         "sweep --shader vsgl --vsgls 8,32 --width 16 --height 12 --rsm 4",
         &out,
     );
     check_page(&out, 1);
-    std::fs::remove_dir_all(&out).ok();
 }

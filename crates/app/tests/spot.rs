@@ -75,7 +75,6 @@ fn check(backend: &str) {
             );
         }
     }
-    std::fs::remove_dir_all(&dir).ok();
 }
 
 #[test]

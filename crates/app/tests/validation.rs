@@ -133,7 +133,6 @@ fn a_scene_path_that_is_not_utf8_renders() {
         .unwrap();
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     assert!(dir.join("out/report.json").is_file());
-    std::fs::remove_dir_all(&dir).ok();
 }
 
 #[test]
@@ -158,7 +157,6 @@ fn a_settings_file_naming_a_pipe_says_so() {
     } else {
         eprintln!("notice: mkfifo is not available; the pipe case was not checked");
     }
-    std::fs::remove_dir_all(&dir).ok();
 }
 
 #[test]
@@ -185,7 +183,6 @@ fn a_delta_that_culls_every_pair_is_a_warning() {
     );
     let err = String::from_utf8_lossy(&o.stderr);
     assert!(o.status.success() && !err.contains("black"), "{err}");
-    std::fs::remove_dir_all(&out).ok();
 }
 
 #[test]
@@ -220,7 +217,6 @@ fn a_frame_beyond_the_adapters_binding_is_refused_before_work_naming_what_fits()
             assert!(err.contains("at most --rsm 1024 here"), "{err}");
         }
     }
-    std::fs::remove_dir_all(&out).ok();
 }
 
 /// RSM 1024² with both lobes renders on the GPU wherever a binding holds 128 MiB (lavapipe's
@@ -254,5 +250,4 @@ fn rsm_1024_with_both_lobes_renders_on_a_128_mib_binding() {
             assert!(text.contains("1647184 VPLs"), "{culling}: {text}");
         }
     }
-    std::fs::remove_dir_all(&out).ok();
 }

@@ -3,19 +3,19 @@
 //! with `CI` set, where CI's setup installs both and their absence fails.
 #![cfg(feature = "view")]
 use image::RgbImage;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::process::{Command, Output};
 use std::sync::Mutex;
 
 mod common;
-use common::gpu_available;
+use common::{gpu_available, out_dir, OutFolder};
 
 /// One X server at a time: parallel `xvfb-run -a` can race for the same display number.
 static XVFB: Mutex<()> = Mutex::new(());
 
-fn temp(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("slc-view-test-{name}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
+/// A fresh, empty folder for this test's files, removed when the test passes.
+fn temp(name: &str) -> OutFolder {
+    let dir = out_dir(&format!("view-{name}"));
     std::fs::create_dir_all(&dir).unwrap();
     dir
 }

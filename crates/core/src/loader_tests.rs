@@ -756,11 +756,13 @@ fn instances_beyond_memory_are_refused_before_reading() {
         roots.join(","),
         nodes.join(",")
     );
-    let path = temp_dir("instances").join("instances.gltf");
+    let dir = temp_dir("instances");
+    let path = dir.join("instances.gltf");
     std::fs::write(&path, json).unwrap();
     let e = load_scene(&path).unwrap_err().to_string();
     assert!(
         e.contains("20000 mesh placement(s) make 400000000 triangles") && e.contains("more than"),
         "{e}"
     );
+    std::fs::remove_dir_all(&dir).unwrap();
 }

@@ -5,6 +5,8 @@
 //!   `.slc.lock` (released by the OS when the process ends, however it ends; a second run into
 //!   a locked folder fails at once with the holder's pid, command line and start time),
 //!   removes what killed runs left, and makes the new version folder `.slc-result-N`.
+//! - A run that ends without a result (refused input, a failed pass or write) in a folder it
+//!   created removes that folder again, its lock included: nothing is left behind.
 //! - Every result is written into the version folder ([`OutDir::write`],
 //!   [`OutDir::write_with`]); [`OutDir::expect`] checks before the work that nothing a user put
 //!   in the folder is where a result will go.
@@ -50,6 +52,9 @@ pub struct OutDir {
     /// Files written, relative to the root.
     files: Vec<PathBuf>,
     committed: bool,
+    /// The topmost folder this run created: the root or a folder above it (removed again
+    /// without a result).
+    created: Option<PathBuf>,
     faults: Faults,
     _lock: File,
 }
@@ -76,7 +81,26 @@ impl OutDir {
                 root.display()
             ));
         }
+        let created = root
+            .ancestors()
+            .take_while(|f| !f.as_os_str().is_empty() && f.symlink_metadata().is_err())
+            .last()
+            .map(Path::to_path_buf);
         fs::create_dir_all(root).map_err(|e| at("cannot create the output folder", e))?;
+        Self::lock_and_stage(root, created.clone(), faults).inspect_err(|_| {
+            if let Some(top) = &created {
+                remove_created(root, top);
+            }
+        })
+    }
+
+    /// [`Self::open`] once `root` is there (`created`: the topmost folder this run made).
+    fn lock_and_stage(
+        root: &Path,
+        created: Option<PathBuf>,
+        faults: Faults,
+    ) -> Result<Self, String> {
+        let at = |what: &str, e: io::Error| format!("{}: {what}: {e}", root.display());
         let lock = lock::lock(root)?;
         let previous = current_version(root)?;
         tidy(root, previous).map_err(|e| at("cannot remove what an earlier run left", e))?;
@@ -92,6 +116,7 @@ impl OutDir {
             staging,
             files: Vec::new(),
             committed: false,
+            created,
             faults,
             _lock: lock,
         })
@@ -278,9 +303,26 @@ impl OutDir {
 }
 
 impl Drop for OutDir {
+    /// Without a result: removes the new version folder, and a folder this run created
+    /// along with its lock (only if nothing else is in it).
     fn drop(&mut self) {
         if !self.committed && self.faults.step().is_ok() {
             fs::remove_dir_all(&self.staging).ok();
+            if let Some(top) = &self.created {
+                remove_created(&self.root, top);
+            }
+        }
+    }
+}
+
+/// Removes `root` and the folders above it up to `top`, made by a run that ends without a
+/// result, and the root's lock: each folder only if nothing else is in it (what a failed
+/// commit could not undo stays for the next run).
+fn remove_created(root: &Path, top: &Path) {
+    fs::remove_file(root.join(lock::LOCK)).ok();
+    for folder in root.ancestors() {
+        if fs::remove_dir(folder).is_err() || folder == top {
+            break;
         }
     }
 }

@@ -227,8 +227,38 @@ fn a_second_run_is_refused_while_the_first_holds_the_folder() {
         "{e}"
     );
     drop(first);
-    OutDir::open(&root).unwrap();
-    fs::remove_dir_all(&root).unwrap();
+    let again = OutDir::open(&root).unwrap();
+    assert!(root.join(".slc.lock").is_file());
+    drop(again);
+}
+
+/// A run that ends without a result (dropped, or its commit failing) in a folder it created
+/// leaves no folder behind, nor the folders it made above it; in a folder that was there,
+/// what was there stays.
+#[test]
+fn a_run_without_a_result_removes_the_folders_it_created() {
+    let above = temp("created");
+    let root = above.join("deeper/out");
+    let mut out = OutDir::open(&root).unwrap();
+    out.write("report.json", b"new").unwrap();
+    drop(out);
+    assert!(!above.exists(), "{}", above.display());
+    // A failed write (steps 0-4: NEW's five files) or sync (5-7) of a first run.
+    for k in 0..8 {
+        let (result, _) = run(&root, NEW, Faults::planned(Fault::Fail(k)));
+        assert!(result.is_err(), "fault at {k}");
+        assert!(!above.exists(), "fault at {k}");
+    }
+    // An empty folder a user made stays, with slc's lock in it.
+    fs::create_dir_all(&root).unwrap();
+    drop(OutDir::open(&root).unwrap());
+    assert_eq!(listing(&root), [".slc.lock"]);
+    // A run refused by the lock of another removes nothing.
+    let first = OutDir::open(&root).unwrap();
+    assert!(OutDir::open(&root).is_err());
+    drop(first);
+    assert!(root.is_dir());
+    fs::remove_dir_all(&above).unwrap();
 }
 
 #[test]

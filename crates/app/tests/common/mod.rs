@@ -34,12 +34,46 @@ pub fn run_ok(args: &str, out: &Path) {
     );
 }
 
-/// A fresh output folder for this test process (removed if a previous run left it).
+/// A fresh output folder for this test process (removed if a previous run left it; not
+/// created), removed again when dropped, unless the test is failing: then it stays for a look.
 #[allow(dead_code)]
-pub fn out_dir(name: &str) -> PathBuf {
+pub fn out_dir(name: &str) -> OutFolder {
     let d = std::env::temp_dir().join(format!("slc-test-{name}-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&d);
-    d
+    OutFolder(d)
+}
+
+/// [`out_dir`]'s folder: a path that removes its folder when dropped, unless the thread is
+/// panicking (a failing test).
+pub struct OutFolder(PathBuf);
+
+impl std::ops::Deref for OutFolder {
+    type Target = Path;
+    fn deref(&self) -> &Path {
+        &self.0
+    }
+}
+
+impl AsRef<Path> for OutFolder {
+    fn as_ref(&self) -> &Path {
+        &self.0
+    }
+}
+
+impl AsRef<std::ffi::OsStr> for OutFolder {
+    fn as_ref(&self) -> &std::ffi::OsStr {
+        self.0.as_os_str()
+    }
+}
+
+impl Drop for OutFolder {
+    fn drop(&mut self) {
+        if std::thread::panicking() {
+            eprintln!("the failing test's output stays at {}", self.0.display());
+        } else {
+            let _ = std::fs::remove_dir_all(&self.0);
+        }
+    }
 }
 
 /// Whether a GPU adapter is there for the `--backend gpu` tests. None: with `CI` set the test
