@@ -2,12 +2,37 @@
 //! releases it when the process ends, however it ends), holding a line that names the holder.
 use std::fs::{self, File};
 use std::io::{Read, Write};
+use std::os::unix::fs::MetadataExt;
 use std::path::Path;
 
 pub const LOCK: &str = ".slc.lock";
 
 /// Takes the lock of `root` (an existing folder), or says who holds it.
+///
+/// A run that ends without a result in a folder it made removes its lock file while it holds
+/// it (`super::remove_created`): a run that opened that file just before can lock it once it
+/// is released, though the file is no longer the folder's. So the file locked must still be
+/// the one at `.slc.lock`; else the lock is taken again, from the file there now.
 pub fn lock(root: &Path) -> Result<File, String> {
+    for _ in 0..3 {
+        let lock = lock_file(root)?;
+        let now = fs::symlink_metadata(root.join(LOCK)).ok();
+        let held = lock.metadata().ok();
+        if let (Some(now), Some(held)) = (now, held) {
+            if (now.dev(), now.ino()) == (held.dev(), held.ino()) {
+                return Ok(lock);
+            }
+        }
+    }
+    Err(format!(
+        "{}: the output folder changed while it was being locked (another slc run gave it up); \
+         run again",
+        root.display()
+    ))
+}
+
+/// Opens `root`'s lock file (made if missing), locks it and writes the holder's line.
+fn lock_file(root: &Path) -> Result<File, String> {
     let at = |what: &str, e: std::io::Error| format!("{}: {what}: {e}", root.display());
     let mut lock = File::options()
         .read(true)

@@ -5,8 +5,9 @@
 //!   `.slc.lock` (released by the OS when the process ends, however it ends; a second run into
 //!   a locked folder fails at once with the holder's pid, command line and start time),
 //!   removes what killed runs left, and makes the new version folder `.slc-result-N`.
-//! - A run that ends without a result (refused input, a failed pass or write) in a folder it
-//!   created removes that folder again, its lock included: nothing is left behind.
+//! - A run that ends without a result (refused input, a failed pass or write) in a folder its
+//!   own `mkdir` made removes that folder again, with its lock and the folders above it that
+//!   it made, each only if nothing else is in it (a killed run leaves them to the next).
 //! - Every result is written into the version folder ([`OutDir::write`],
 //!   [`OutDir::write_with`]); [`OutDir::expect`] checks before the work that nothing a user put
 //!   in the folder is where a result will go.
@@ -52,8 +53,8 @@ pub struct OutDir {
     /// Files written, relative to the root.
     files: Vec<PathBuf>,
     committed: bool,
-    /// The topmost folder this run created: the root or a folder above it (removed again
-    /// without a result).
+    /// The topmost of the folders this run's own `mkdir` made, the root and those above it
+    /// down to the root (removed again without a result); `None` where the root was there.
     created: Option<PathBuf>,
     faults: Faults,
     _lock: File,
@@ -81,27 +82,35 @@ impl OutDir {
                 root.display()
             ));
         }
-        let created = root
-            .ancestors()
-            .take_while(|f| !f.as_os_str().is_empty() && f.symlink_metadata().is_err())
-            .last()
-            .map(Path::to_path_buf);
-        fs::create_dir_all(root).map_err(|e| at("cannot create the output folder", e))?;
-        Self::lock_and_stage(root, created.clone(), faults).inspect_err(|_| {
-            if let Some(top) = &created {
-                remove_created(root, top);
+        let created = make_folders(root).map_err(|e| at("cannot create the output folder", e))?;
+        // A lock held by another run: nothing here is this run's to remove.
+        let lock = lock::lock(root)?;
+        match Self::stage(root) {
+            Ok((previous, version, staging)) => Ok(Self {
+                root: root.to_path_buf(),
+                previous,
+                version,
+                staging,
+                files: Vec::new(),
+                committed: false,
+                created,
+                faults,
+                _lock: lock,
+            }),
+            Err(e) => {
+                // Removed while the lock is held.
+                if let Some(top) = &created {
+                    remove_created(root, top);
+                }
+                Err(e)
             }
-        })
+        }
     }
 
-    /// [`Self::open`] once `root` is there (`created`: the topmost folder this run made).
-    fn lock_and_stage(
-        root: &Path,
-        created: Option<PathBuf>,
-        faults: Faults,
-    ) -> Result<Self, String> {
+    /// Removes what killed runs left in the locked `root` and makes the new version folder:
+    /// the version the folder showed, the new version and its folder.
+    fn stage(root: &Path) -> Result<(Option<u64>, u64, PathBuf), String> {
         let at = |what: &str, e: io::Error| format!("{}: {what}: {e}", root.display());
-        let lock = lock::lock(root)?;
         let previous = current_version(root)?;
         tidy(root, previous).map_err(|e| at("cannot remove what an earlier run left", e))?;
         legacy::migrate(root)?;
@@ -109,17 +118,7 @@ impl OutDir {
         let version = previous.map_or(1, |n| n + 1);
         let staging = root.join(version_name(version));
         fs::create_dir(&staging).map_err(|e| at("cannot create the result folder", e))?;
-        Ok(Self {
-            root: root.to_path_buf(),
-            previous,
-            version,
-            staging,
-            files: Vec::new(),
-            committed: false,
-            created,
-            faults,
-            _lock: lock,
-        })
+        Ok((previous, version, staging))
     }
 
     /// The final folder (for messages).
@@ -315,9 +314,31 @@ impl Drop for OutDir {
     }
 }
 
+/// Makes `root` and the folders above it that are missing, top down, each by its own
+/// `mkdir`. Returns the topmost folder made from which every folder down to the root was
+/// made here; `None` where the root was there (or another process made it, or a folder
+/// below the one made, first).
+fn make_folders(root: &Path) -> io::Result<Option<PathBuf>> {
+    let missing: Vec<&Path> = root
+        .ancestors()
+        .take_while(|f| !f.as_os_str().is_empty() && f.symlink_metadata().is_err())
+        .collect();
+    let mut top = None;
+    for folder in missing.into_iter().rev() {
+        match fs::create_dir(folder) {
+            Ok(()) => {
+                top.get_or_insert_with(|| folder.to_path_buf());
+            }
+            Err(e) if e.kind() == io::ErrorKind::AlreadyExists && folder.is_dir() => top = None,
+            Err(e) => return Err(e),
+        }
+    }
+    Ok(top)
+}
+
 /// Removes `root` and the folders above it up to `top`, made by a run that ends without a
-/// result, and the root's lock: each folder only if nothing else is in it (what a failed
-/// commit could not undo stays for the next run).
+/// result, and the root's lock (while this run holds it): each folder only if nothing else
+/// is in it (what a failed commit could not undo stays for the next run).
 fn remove_created(root: &Path, top: &Path) {
     fs::remove_file(root.join(lock::LOCK)).ok();
     for folder in root.ancestors() {

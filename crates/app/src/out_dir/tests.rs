@@ -253,11 +253,43 @@ fn a_run_without_a_result_removes_the_folders_it_created() {
     fs::create_dir_all(&root).unwrap();
     drop(OutDir::open(&root).unwrap());
     assert_eq!(listing(&root), [".slc.lock"]);
-    // A run refused by the lock of another removes nothing.
+    // A run refused by the lock of another removes nothing, also where the other made the
+    // folder.
     let first = OutDir::open(&root).unwrap();
     assert!(OutDir::open(&root).is_err());
     drop(first);
     assert!(root.is_dir());
+    fs::remove_dir_all(&above).unwrap();
+    let first = OutDir::open(&root).unwrap();
+    assert!(OutDir::open(&root).is_err());
+    assert!(root.join(".slc.lock").is_file() && first.staging.is_dir());
+    drop(first);
+    assert!(!above.exists());
+}
+
+/// Only the folders this run's own `mkdir` made count as its: a folder that was there, or
+/// that a `..` in the path names, is not.
+#[test]
+fn the_folders_made_are_those_the_run_made() {
+    let above = temp("made");
+    assert_eq!(
+        make_folders(&above.join("a/b")).unwrap(),
+        Some(above.clone())
+    );
+    assert!(above.join("a/b").is_dir());
+    assert_eq!(make_folders(&above.join("a/b")).unwrap(), None);
+    assert_eq!(
+        make_folders(&above.join("a/c")).unwrap(),
+        Some(above.join("a/c"))
+    );
+    // `new` is made, `new/..` (the folder above) is there, and so is `a`.
+    assert_eq!(make_folders(&above.join("new/../a")).unwrap(), None);
+    assert_eq!(
+        make_folders(&above.join("new2/../d")).unwrap(),
+        Some(above.join("new2/../d"))
+    );
+    fs::write(above.join("file"), b"x").unwrap();
+    assert!(make_folders(&above.join("file/x")).is_err());
     fs::remove_dir_all(&above).unwrap();
 }
 
