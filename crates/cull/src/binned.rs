@@ -162,8 +162,9 @@ fn share(
 
 /// The G-buffer as the scatter reads it: per pixel its sample's world position, in rows of
 /// each subregion image ([`PixelRows`]; NaN where it has no sample, which fails every test),
-/// with how far any sample's projection strays outside its own pixel and the smallest view
-/// depth.
+/// with how far any sample's projection strays outside its own pixel (signed: below 0 where
+/// every sample lies inside its pixel, [`CENTRED`] where each is at its centre) and the
+/// smallest view depth.
 struct Receivers {
     rows: PixelRows,
     /// Per pixel, row by row, whether it has a sample (so the cells' lists are handed out
@@ -172,6 +173,14 @@ struct Receivers {
     stray: f64,
     near: f64,
 }
+
+/// The stray of a sample at its pixel's centre, the least: 0.5 pixels inside the pixel's
+/// edges. With samples at the centres (one per pixel, `slc`'s default), a VPL's rectangle
+/// of pixels is the pixels whose centre its footprint covers, where with samples anywhere in
+/// their pixel (a stray of 0) it takes every pixel the footprint touches: at a million VPLs
+/// most footprints are a pixel or two wide, and a row and a column more is most of their
+/// pixels (docs/many-vpls.md, "Rectangles of the pixels' centres").
+const CENTRED: f64 = -0.5;
 
 /// Whether a view-space point's projection ([`CullView::to_screen`] of v.xy / v.z) surely
 /// lies within a screen rectangle, without a division: with v.z > 0, X = (v.x / v.z) scale +
@@ -219,7 +228,7 @@ impl Receivers {
             .zip(sampled.par_chunks_mut(width))
             .enumerate()
             .map(|(y, ((row, samples), sampled))| {
-                let (mut near, mut stray) = (f64::INFINITY, 0.0f64);
+                let (mut near, mut stray) = (f64::INFINITY, CENTRED);
                 let slots = layout.slots();
                 for (x, ((g, sampled), slot)) in samples.iter().zip(sampled).zip(slots).enumerate()
                 {
@@ -255,7 +264,7 @@ impl Receivers {
                 Ok((near, stray))
             })
             .try_reduce(
-                || (f64::INFINITY, 0.0),
+                || (f64::INFINITY, CENTRED),
                 |a, b| Ok((a.0.min(b.0), a.1.max(b.1))),
             )?;
         Ok(Self {
@@ -317,7 +326,7 @@ mod tests {
                     let d = camera.ray_direction(x, y, u, v, w, h);
                     samples.push(sample(camera.position + d * rng.range(1.0, 9.0)));
                 }
-                let want = samples.iter().enumerate().fold(0.0f64, |m, (p, g)| {
+                let want = samples.iter().enumerate().fold(CENTRED, |m, (p, g)| {
                     let v = view.to_view(g.as_ref().unwrap().position);
                     let at = view.to_screen(DVec2::new(v.x, v.y) / v.z);
                     let corner = DVec2::new((p as u32 % w).into(), (p as u32 / w).into());
@@ -334,9 +343,10 @@ mod tests {
                     want.to_bits(),
                     "case {case}, spread {spread}"
                 );
-                // Centred samples stray nowhere; those on an edge by their f32 rounding only.
+                // Centred samples stay half a pixel inside their pixel's edges, up to their f32
+                // rounding; those on an edge stray by that rounding only.
                 let expected = match spread {
-                    0.0 => 0.0..=0.0,
+                    0.0 => -0.5..=-0.45,
                     0.5 => 0.0..=0.1,
                     2.0 => 0.5..=2.0,
                     _ => 1e4..=1e6,

@@ -152,17 +152,19 @@ pub(crate) struct Screen {
     subregions: Subregions,
     /// The eye, from which the bounds' centres are taken.
     pub eye: Vec3,
-    /// How far (in screen pixels) any sample's projection lies outside its own pixel.
+    /// How far (in screen pixels) any sample's projection lies outside its own pixel
+    /// (negative: inside it by at least that much).
     pub stray: f64,
     /// A footprint's rectangle covers no sample where it ends before `edges[0]` or starts
-    /// after `edges[1]` (x, y): one pixel beyond the samples' screen, rounded outwards.
+    /// after `edges[1]` (x, y): the image's pixels grown by the stray and a pixel, rounded
+    /// outwards.
     pub edges: [[f32; 2]; 2],
 }
 
 impl Screen {
     /// The scatter of a `width` x `height` image seen by `view` whose samples stray up to
-    /// `stray` pixels outside their own and lie no nearer than `near`. Errors on an
-    /// interleaving factor K of 0 or with K² beyond u32.
+    /// `stray` pixels outside their own (below 0: inside it by at least −`stray`) and lie no
+    /// nearer than `near`. Errors on an interleaving factor K of 0 or with K² beyond u32.
     pub(crate) fn new(
         view: &CullView,
         width: u32,
@@ -283,7 +285,7 @@ impl Screen {
     /// `[sw, sh]`) whose samples may project into the footprint's rectangle; `None` if none.
     ///
     /// Pixel x covers the screen's `[x, x + 1]` and its sample lies at most `stray` outside
-    /// it, so a sample at screen position X in `[X0, X1]` has x in
+    /// it (a negative stray: at least −`stray` inside its edges; −0.5: at its centre), so a sample at screen position X in `[X0, X1]` has x in
     /// `[⌈X0 − stray − 1⌉, ⌊X1 + stray⌋]`; subregion pixel i is screen pixel sx + K i, and
     /// ⌈(⌈X⌉ − s)/K⌉ = ⌈(X − s)/K⌉ for integers s and K (the same for the floor).
     fn subregion_pixels(
