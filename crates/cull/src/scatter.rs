@@ -285,8 +285,9 @@ impl Screen {
     /// `[sw, sh]`) whose samples may project into the footprint's rectangle; `None` if none.
     ///
     /// Pixel x covers the screen's `[x, x + 1]` and its sample lies at most `stray` outside
-    /// it (a negative stray: at least −`stray` inside its edges; −0.5: at its centre), so a sample at screen position X in `[X0, X1]` has x in
-    /// `[⌈X0 − stray − 1⌉, ⌊X1 + stray⌋]`; subregion pixel i is screen pixel sx + K i, and
+    /// it (a negative stray: at least −`stray` inside its edges; −0.5: at its centre), so a
+    /// sample at screen position X in `[X0, X1]` has x in `[⌈X0 − stray − 1⌉, ⌊X1 +
+    /// stray⌋]`; subregion pixel i is screen pixel sx + K i, and
     /// ⌈(⌈X⌉ − s)/K⌉ = ⌈(X − s)/K⌉ for integers s and K (the same for the floor).
     fn subregion_pixels(
         &self,
