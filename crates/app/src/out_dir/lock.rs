@@ -16,7 +16,7 @@ pub const LOCK: &str = ".slc.lock";
 pub fn lock(root: &Path) -> Result<File, String> {
     for _ in 0..3 {
         let lock = lock_file(root)?;
-        let now = fs::symlink_metadata(root.join(LOCK)).ok();
+        let now = fs::metadata(root.join(LOCK)).ok();
         let held = lock.metadata().ok();
         if let (Some(now), Some(held)) = (now, held) {
             if (now.dev(), now.ino()) == (held.dev(), held.ino()) {
