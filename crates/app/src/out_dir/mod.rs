@@ -317,20 +317,26 @@ impl Drop for OutDir {
 /// Makes `root` and the folders above it that are missing, top down, each by its own
 /// `mkdir`. Returns the topmost folder made from which every folder down to the root was
 /// made here; `None` where the root was there (or another process made it, or a folder
-/// below the one made, first).
+/// below the one made, first). On an error the folders made are removed again.
 fn make_folders(root: &Path) -> io::Result<Option<PathBuf>> {
     let missing: Vec<&Path> = root
         .ancestors()
         .take_while(|f| !f.as_os_str().is_empty() && f.symlink_metadata().is_err())
         .collect();
-    let mut top = None;
+    let (mut top, mut made) = (None, Vec::new());
     for folder in missing.into_iter().rev() {
         match fs::create_dir(folder) {
             Ok(()) => {
                 top.get_or_insert_with(|| folder.to_path_buf());
+                made.push(folder);
             }
             Err(e) if e.kind() == io::ErrorKind::AlreadyExists && folder.is_dir() => top = None,
-            Err(e) => return Err(e),
+            Err(e) => {
+                for folder in made.into_iter().rev() {
+                    fs::remove_dir(folder).ok();
+                }
+                return Err(e);
+            }
         }
     }
     Ok(top)

@@ -290,6 +290,10 @@ fn the_folders_made_are_those_the_run_made() {
     );
     fs::write(above.join("file"), b"x").unwrap();
     assert!(make_folders(&above.join("file/x")).is_err());
+    // A name too long for a folder below two new ones: both are removed again.
+    let long = "x".repeat(300);
+    assert!(make_folders(&above.join("e/f").join(&long)).is_err());
+    assert!(!above.join("e").exists());
     fs::remove_dir_all(&above).unwrap();
 }
 
