@@ -289,43 +289,46 @@ impl Screen {
     /// sample at screen position X in `[X0, X1]` has x in `[⌈X0 − stray − 1⌉, ⌊X1 +
     /// stray⌋]`; subregion pixel i is screen pixel sx + K i, and
     /// ⌈(⌈X⌉ − s)/K⌉ = ⌈(X − s)/K⌉ for integers s and K (the same for the floor).
+    #[inline(always)]
     fn subregion_pixels(
         &self,
         footprint: &Footprint<f32>,
         [sx, sy]: [u32; 2],
         [sw, sh]: [u32; 2],
     ) -> Option<[u32; 4]> {
+        // Both axes formed, then one branch: whether a rectangle is empty is not predictable.
         let subregions = &self.subregions;
-        let axis = |a: f32, b: f32, s: u32, n: u32| -> Option<[u32; 2]> {
+        let axis = |a: f32, b: f32, s: u32, n: u32| -> [i64; 2] {
             let s = f64::from(s);
-            let i0 = first_index(subregions.per_k(f64::from(a) - self.stray - 1.0 - s), n);
-            let i1 = last_index(subregions.per_k(f64::from(b) + self.stray - s), n);
-            (i0 <= i1).then_some([i0 as u32, i1 as u32])
+            [
+                first_index(subregions.per_k(f64::from(a) - self.stray - 1.0 - s), n),
+                last_index(subregions.per_k(f64::from(b) + self.stray - s), n),
+            ]
         };
-        let [i0, i1] = axis(footprint.lo[0], footprint.hi[0], sx, sw)?;
-        let [j0, j1] = axis(footprint.lo[1], footprint.hi[1], sy, sh)?;
-        Some([i0, j0, i1, j1])
+        let [i0, i1] = axis(footprint.lo[0], footprint.hi[0], sx, sw);
+        let [j0, j1] = axis(footprint.lo[1], footprint.hi[1], sy, sh);
+        ((i0 <= i1) & (j0 <= j1)).then_some([i0 as u32, j0 as u32, i1 as u32, j1 as u32])
     }
 }
 
-/// ⌈x⌉ clamped to `[0, n]` (NaN: 0), without a call into libm.
-#[inline]
+/// ⌈x⌉ clamped to `[0, n]` (NaN: 0), without a call into libm or a branch: `f64::clamp`
+/// keeps a NaN, which `as` casts to 0.
+#[inline(always)]
 fn first_index(x: f64, n: u32) -> i64 {
-    if x.is_nan() {
-        return 0;
-    }
     let x = x.clamp(0.0, f64::from(n));
     let t = x as i64;
     t + i64::from((t as f64) < x)
 }
 
 /// ⌊x⌋ clamped to `[-1, n - 1]` (NaN: n − 1), without a call into libm.
-#[inline]
+#[inline(always)]
 fn last_index(x: f64, n: u32) -> i64 {
-    if x.is_nan() {
-        return i64::from(n) - 1;
-    }
-    let x = x.clamp(-1.0, f64::from(n) - 1.0);
+    let last = f64::from(n) - 1.0;
+    let x = if x.is_nan() {
+        last
+    } else {
+        x.clamp(-1.0, last)
+    };
     let t = x as i64;
     t - i64::from((t as f64) > x)
 }

@@ -28,34 +28,34 @@ pub(crate) fn scatter(
             prefetch(next);
         }
         let first = first + 8 * group as u32;
-        let mut placed = [None; 8];
-        let left = scatter_lanes(screen, eight, first, delta, &mut placed);
-        for (k, (vpl, placed)) in eight.iter().zip(&placed).enumerate() {
-            match left >> k & 1 {
-                1 => out.extend(screen.scatter(vpl, first + k as u32, delta)?),
-                _ => out.extend(placed),
-            }
-        }
+        scatter_lanes(screen, eight, first, delta, out, |vpl, index| {
+            screen.scatter(vpl, index, delta)
+        })?;
     }
     Ok(())
 }
 
-/// The lanes of [`scatter`] for one to eight VPLs: the entry of `out` (all `None` on entry)
-/// of each VPL that covers a pixel. Returns the lanes left to slc-bounds (bit k: `vpls[k]`): those not plain,
-/// and those whose radius under- or overflows the range the lanes keep exact.
+/// The lanes of [`scatter`] for one to eight VPLs (numbered from `first`): pushes each VPL
+/// that covers a pixel onto `out`, in their order. The lanes bound the plain ones; the
+/// others (not plain, or with a radius that under- or overflows the range the lanes keep
+/// exact) are left to `left_to` (slc-bounds, [`Screen::scatter`], which bounds them or
+/// names what is wrong), whose first error is returned. The VPLs are pushed as they are
+/// placed, lane by lane (an array of eight entries copied onto `out` afterwards cost a
+/// copy of each and a branch per lane more).
 fn scatter_lanes(
     screen: &Screen,
     vpls: &[Vpl],
     first: u32,
     delta: f32,
-    out: &mut [Option<Scattered>; 8],
-) -> u8 {
+    out: &mut Vec<Scattered>,
+    left_to: impl FnMut(&Vpl, u32) -> Result<Option<Scattered>, CullError>,
+) -> Result<(), CullError> {
     #[cfg(target_arch = "x86_64")]
     if std::arch::is_x86_feature_detected!("avx2") {
         // SAFETY: the CPU supports AVX2, checked just above.
-        return unsafe { scatter_avx2(screen, vpls, first, delta, out) };
+        return unsafe { scatter_avx2(screen, vpls, first, delta, out, left_to) };
     }
-    scatter_in::<F8>(screen, vpls, first, delta, out)
+    scatter_in::<F8>(screen, vpls, first, delta, out, left_to)
 }
 
 /// [`scatter_in`] in AVX registers.
@@ -66,9 +66,10 @@ fn scatter_avx2(
     vpls: &[Vpl],
     first: u32,
     delta: f32,
-    out: &mut [Option<Scattered>; 8],
-) -> u8 {
-    scatter_in::<slc_bounds::lanes_avx::A8>(screen, vpls, first, delta, out)
+    out: &mut Vec<Scattered>,
+    left_to: impl FnMut(&Vpl, u32) -> Result<Option<Scattered>, CullError>,
+) -> Result<(), CullError> {
+    scatter_in::<slc_bounds::lanes_avx::A8>(screen, vpls, first, delta, out, left_to)
 }
 
 /// [`scatter_lanes`] in lanes of `L`. A lane whose footprint ends before the image or starts
@@ -80,8 +81,9 @@ fn scatter_in<L: Lanes8>(
     vpls: &[Vpl],
     first: u32,
     delta: f32,
-    out: &mut [Option<Scattered>; 8],
-) -> u8 {
+    out: &mut Vec<Scattered>,
+    mut left_to: impl FnMut(&Vpl, u32) -> Result<Option<Scattered>, CullError>,
+) -> Result<(), CullError> {
     let last = vpls.len() - 1;
     let group: [&Vpl; 8] = core::array::from_fn(|k| &vpls[k.min(last)]);
     let xi = F8(core::array::from_fn(|k| group[k].xi));
@@ -117,14 +119,19 @@ fn scatter_in<L: Lanes8>(
     let held = u8::MAX >> (7 - last);
     let left = L::bits(lanes.left) & held;
     let covers = !L::bits(lanes.empty | f.nowhere | off_screen) & !left & held;
-    if covers == 0 {
-        return left;
+    if covers | left == 0 {
+        return Ok(());
     }
     let (lo, hi) = (store_all(&f.lo), store_all(&f.hi));
     let stored = lanes.store();
     let everywhere = L::bits(f.everywhere);
-    for (k, (vpl, slot)) in vpls.iter().zip(out.iter_mut()).enumerate() {
-        if covers >> k & 1 == 0 {
+    let mut todo = covers | left;
+    while todo != 0 {
+        let k = todo.trailing_zeros() as usize;
+        todo &= todo - 1;
+        let (vpl, index) = (&vpls[k], first + k as u32);
+        if left >> k & 1 == 1 {
+            out.extend(left_to(vpl, index)?);
             continue;
         }
         let lane = |v: &F8| v.0[k];
@@ -134,7 +141,7 @@ fn scatter_in<L: Lanes8>(
             nowhere: false,
             everywhere: everywhere >> k & 1 == 1,
         };
-        *slot = screen.place(vpl, first + k as u32, &footprint, || {
+        out.extend(screen.place(vpl, index, &footprint, || {
             let b = stored.lane(k);
             PixelTest::new(
                 vpl.position.as_dvec3(),
@@ -144,9 +151,9 @@ fn scatter_in<L: Lanes8>(
                 b.along,
                 b.across,
             )
-        });
+        }));
     }
-    left
+    Ok(())
 }
 
 #[cfg(test)]
@@ -158,6 +165,22 @@ mod tests {
     use glam::Vec3;
     use slc_bounds::{Brdf, Fresnel, StochasticParams};
     use slc_core::{Camera, Interleaving, VplLobe};
+
+    /// [`scatter_lanes`] of `vpls` (numbered from 0): each one's entry (`None` where it
+    /// covers no pixel or is left to slc-bounds), and the lanes left (bit k: `vpls[k]`).
+    fn lanes_of(screen: &Screen, vpls: &[Vpl], delta: f32) -> ([Option<Scattered>; 8], u8) {
+        let (mut out, mut left) = (Vec::new(), 0u8);
+        scatter_lanes(screen, vpls, 0, delta, &mut out, |_, index| {
+            left |= 1 << index;
+            Ok(None)
+        })
+        .unwrap();
+        let mut placed = [None; 8];
+        for s in out {
+            placed[s.index as usize] = Some(s);
+        }
+        (placed, left)
+    }
 
     /// The lanes bound plain VPLs (δ from 1e-9 to 1e3, flux from 1e-6 to 1e6, α from 0.01
     /// to 1, ξ near 0 and 1) at least as far as slc-bounds does: every point of slc-bounds'
@@ -175,8 +198,7 @@ mod tests {
         for case in 0..3000 {
             let delta = 10f32.powf(rng.range(-9.0, 3.0));
             let vpls: Vec<Vpl> = (0..8).map(|k| random_vpl(&mut rng, case * 8 + k)).collect();
-            let mut out = [None; 8];
-            let left = scatter_lanes(&screen, &vpls, 0, delta, &mut out);
+            let (out, left) = lanes_of(&screen, &vpls, delta);
             for (k, vpl) in vpls.iter().enumerate() {
                 let scalar = screen.scatter(vpl, k as u32, delta).unwrap();
                 if left >> k & 1 == 1 {
@@ -281,9 +303,8 @@ mod tests {
             }),
         ];
         for base in [glossy, diffuse] {
-            let mut out = [None; 8];
-            let eight = [base; 8];
-            assert_eq!(scatter_lanes(&screen, &eight, 0, 1e-3, &mut out), 0);
+            let (out, left) = lanes_of(&screen, &[base; 8], 1e-3);
+            assert_eq!(left, 0);
             assert!(out.iter().all(Option::is_some), "{base:?}");
             for (what, change) in changes {
                 // A change of one lobe's fields is tried on that lobe only.
@@ -297,8 +318,29 @@ mod tests {
                 for k in 0..8 {
                     let mut group = [base; 8];
                     change(&mut group[k]);
-                    let left = scatter_lanes(&screen, &group, 0, 1e-3, &mut [None; 8]);
+                    let (_, left) = lanes_of(&screen, &group, 1e-3);
                     assert_eq!(left, 1 << k, "{what} in lane {k} of {:?}", base.lobe);
+                    // The scatter places the VPL slc-bounds bounds among the others, in
+                    // their order, or names what is wrong with it.
+                    let mut placed = Vec::new();
+                    match scatter(&screen, &group, 0, 1e-3, &mut placed) {
+                        Ok(()) => {
+                            let order: Vec<u32> = placed.iter().map(|s| s.index).collect();
+                            let want = match screen.scatter(&group[k], k as u32, 1e-3) {
+                                Ok(Some(_)) => (0..8).collect::<Vec<u32>>(),
+                                _ => (0..8).filter(|&i| i != k as u32).collect(),
+                            };
+                            assert_eq!(order, want, "{what} in lane {k}");
+                        }
+                        Err(e) => assert_eq!(
+                            Some(e.to_string()),
+                            screen
+                                .scatter(&group[k], k as u32, 1e-3)
+                                .err()
+                                .map(|e| e.to_string()),
+                            "{what} in lane {k}"
+                        ),
+                    }
                 }
             }
         }
