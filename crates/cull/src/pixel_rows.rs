@@ -16,6 +16,12 @@ use crate::scatter::{Frame, PixelTest, Scattered};
 use glam::Vec3;
 use slc_bounds::lanes::{dot, Lanes8, F8};
 
+/// A rectangle of at most this many pixels takes the exact test pixel by pixel
+/// ([`PixelRows::test_exactly`]), without forming its VPL's f32 filter (a few f64 divisions
+/// and roots, more than the tests it would spare): at 480x270 with RSM 1024, 234k of the
+/// 396k VPLs placed, whose culling took 1–1.5 ms less so (2 measured alike, docs/many-vpls.md).
+const EXACT_PIXELS: u32 = 4;
+
 /// Pixels per chunk: the lanes of one test.
 const LANES: usize = 8;
 
@@ -104,7 +110,8 @@ impl PixelRows {
     /// Pushes (pixel, VPL) for every pixel of every rectangle of `scattered` whose sample
     /// passes the VPL's [`PixelTest`], VPL by VPL, each rectangle row by row, or its pixels
     /// gathered into one chunk where it is small ([`Self::gathered`]; within a chunk, those
-    /// that surely pass first): the pairs the exact test gives on every pixel, each pixel's
+    /// that surely pass first), or pixel by pixel where it is smaller still
+    /// ([`Self::test_exactly`]): the pairs the exact test gives on every pixel, each pixel's
     /// in the order of `scattered`.
     ///
     /// The VPLs are taken subregion by subregion ([`by_subregion`]), so one subregion
@@ -121,12 +128,37 @@ impl PixelRows {
         test_lanes::<F8>(self, &ordered, pairs);
     }
 
+    /// Pushes the pixels of `s`'s rectangle that pass its exact test, one at a time, row by
+    /// row: those the filter and the chunks would give.
+    #[inline(always)]
+    fn test_exactly(&self, s: &Scattered, pairs: &mut Bands) {
+        let Layout {
+            chunks_per_row: per,
+            width,
+            k,
+        } = self.layout;
+        let [i0, j0, i1, j1] = s.pixels;
+        let [sx, sy] = s.subregion;
+        for j in j0..=j1 {
+            let y = sy + k * j;
+            let first = (y as usize * k as usize + sx as usize) * per;
+            for i in i0..=i1 {
+                let [x, y_, z] = &self.chunks[first + i as usize / LANES];
+                let lane = i as usize % LANES;
+                if s.test.contains(Vec3::new(x.0[lane], y_.0[lane], z.0[lane])) {
+                    pairs.push(y * width + sx + k * i, s.index);
+                }
+            }
+        }
+    }
+
     /// The pixels of `s`'s rectangle gathered into one chunk (lanes in row order, NaN past
     /// the last), their screen pixels and the lanes they fill, where the rectangle has at
     /// most eight pixels but lies in more than one chunk: one test where its rows would take
     /// two to four. Most rectangles are that small at a million VPLs (Sponza at 480x270 with
     /// RSM 1024: 234k of the 396k VPLs placed cover at most 4 pixels, and their rows took
-    /// 625k of the 1.97M chunks tested).
+    /// 625k of the 1.97M chunks tested); those of at most [`EXACT_PIXELS`] are tested pixel
+    /// by pixel instead.
     #[inline(always)]
     fn gathered(&self, s: &Scattered) -> Option<(Chunk, [u32; LANES], u8)> {
         let Layout {
@@ -236,8 +268,12 @@ fn test_lanes<L: Lanes8>(rows: &PixelRows, scattered: &[&Scattered], pairs: &mut
         k,
     } = rows.layout;
     for s in scattered {
-        let filter = Filter::of(&s.test).map(|f| f.lanes::<L>());
         let [i0, j0, i1, j1] = s.pixels;
+        if (i1 - i0 + 1) * (j1 - j0 + 1) <= EXACT_PIXELS {
+            rows.test_exactly(s, pairs);
+            continue;
+        }
+        let filter = Filter::of(&s.test).map(|f| f.lanes::<L>());
         let [sx, sy] = s.subregion;
         let (c0, c1) = (i0 as usize / LANES, i1 as usize / LANES);
         if let Some((chunk, pixels, within)) = rows.gathered(s) {
