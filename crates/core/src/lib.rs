@@ -97,6 +97,6 @@ pub use scene::{LoadReport, Scene};
 pub use settings::{load_settings, MaterialOverride, Settings};
 pub use shader::{ShadeInput, Shader};
 pub use strategy::{GlossyBound, Layout, Strategy, UnknownStrategy};
-pub use subregions::Subregions;
+pub use subregions::{PerK, Subregions};
 pub use texture::{Texture, TextureId};
 pub use vpl::{Vpl, VplLobe};

@@ -63,11 +63,27 @@ impl Subregions {
     /// both are exact products of x and 2⁻ʲ, rounded once), else the division.
     #[inline]
     pub fn per_k(&self, x: f64) -> f64 {
-        match self.inv_k {
-            Some(inv) => x * inv,
-            None => x / f64::from(self.k.d),
+        match self.per_k_operation() {
+            PerK::Times(inv) => x * inv,
+            PerK::Over(k) => x / k,
         }
     }
+
+    /// The one operation [`Self::per_k`] makes, for code that repeats it in lanes.
+    #[inline]
+    pub fn per_k_operation(&self) -> PerK {
+        match self.inv_k {
+            Some(inv) => PerK::Times(inv),
+            None => PerK::Over(f64::from(self.k.d)),
+        }
+    }
+}
+
+/// How [`Subregions::per_k`] divides x by K: times 1 / K (K a power of two) or over K.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum PerK {
+    Times(f64),
+    Over(f64),
 }
 
 /// Division and remainder by a fixed u32 d ≥ 1 as multiplications: with M = ⌈2⁶⁴ / d⌉

@@ -102,6 +102,7 @@ pub mod prefetch;
 pub mod reach;
 pub mod reach_chunks;
 pub mod receiver_chunks;
+mod rectangles;
 mod refine;
 mod rounding;
 mod scatter;

@@ -149,7 +149,7 @@ pub(crate) struct Scattered {
 pub(crate) struct Screen {
     pub map: ScreenMap<f32>,
     /// The interleaving's subregions of this image.
-    subregions: Subregions,
+    pub subregions: Subregions,
     /// The eye, from which the bounds' centres are taken.
     pub eye: Vec3,
     /// How far (in screen pixels) any sample's projection lies outside its own pixel
@@ -267,11 +267,11 @@ impl Screen {
             return None;
         }
         let subregion = self.subregions.of_vpl(vpl.id);
-        let [sw, sh] = self.subregions.size(subregion);
+        let size = self.subregions.size(subregion);
         let pixels = if footprint.everywhere {
-            (sw > 0 && sh > 0).then(|| [0, 0, sw - 1, sh - 1])
+            whole(size)
         } else {
-            self.subregion_pixels(footprint, subregion, [sw, sh])
+            self.subregion_pixels([footprint.lo, footprint.hi], subregion, size)
         }?;
         Some(Scattered {
             index,
@@ -290,9 +290,9 @@ impl Screen {
     /// stray⌋]`; subregion pixel i is screen pixel sx + K i, and
     /// ⌈(⌈X⌉ − s)/K⌉ = ⌈(X − s)/K⌉ for integers s and K (the same for the floor).
     #[inline(always)]
-    fn subregion_pixels(
+    pub(crate) fn subregion_pixels(
         &self,
-        footprint: &Footprint<f32>,
+        [lo, hi]: [[f32; 2]; 2],
         [sx, sy]: [u32; 2],
         [sw, sh]: [u32; 2],
     ) -> Option<[u32; 4]> {
@@ -305,10 +305,17 @@ impl Screen {
                 last_index(subregions.per_k(f64::from(b) + self.stray - s), n),
             ]
         };
-        let [i0, i1] = axis(footprint.lo[0], footprint.hi[0], sx, sw);
-        let [j0, j1] = axis(footprint.lo[1], footprint.hi[1], sy, sh);
+        let [i0, i1] = axis(lo[0], hi[0], sx, sw);
+        let [j0, j1] = axis(lo[1], hi[1], sy, sh);
         ((i0 <= i1) & (j0 <= j1)).then_some([i0 as u32, j0 as u32, i1 as u32, j1 as u32])
     }
+}
+
+/// Every pixel of a subregion image of size `[sw, sh]`, the rectangle of a footprint that
+/// reaches the eye's plane; `None` for an empty image.
+#[inline]
+pub(crate) fn whole([sw, sh]: [u32; 2]) -> Option<[u32; 4]> {
+    (sw > 0 && sh > 0).then(|| [0, 0, sw - 1, sh - 1])
 }
 
 /// ⌈x⌉ clamped to `[0, n]` (NaN: 0), without a call into libm or a branch: `f64::clamp`

@@ -1,9 +1,9 @@
 //! The `binned` strategy's scatter, eight VPLs at a time: the plain VPLs' own bounds in f32
 //! lanes ([`crate::vpl_lanes`]), then their footprints ([`crate::footprint`]); the others
 //! through slc-bounds ([`Screen::scatter`]).
-use crate::footprint::{footprint, Bound, Footprint, ScreenMap};
+use crate::footprint::{footprint, Bound, ScreenMap};
 use crate::prefetch::prefetch;
-use crate::scatter::{PixelTest, Scattered, Screen};
+use crate::scatter::{whole, PixelTest, Scattered, Screen};
 use crate::vpl_lanes::OwnBounds;
 use slc_bounds::lanes::{dot, splat_all, store_all, Lanes8, F8};
 use slc_core::{CullError, Vpl};
@@ -125,7 +125,17 @@ fn scatter_in<L: Lanes8>(
     let (lo, hi) = (store_all(&f.lo), store_all(&f.hi));
     let stored = lanes.store();
     let everywhere = L::bits(f.everywhere);
-    let mut todo = covers | left;
+    // Each covering lane's subregion, then all eight rectangles at once.
+    let (mut subregions, mut sizes) = ([[0; 2]; 8], [[0; 2]; 8]);
+    let mut lanes_left = covers;
+    while lanes_left != 0 {
+        let k = lanes_left.trailing_zeros() as usize;
+        lanes_left &= lanes_left - 1;
+        subregions[k] = screen.subregions.of_vpl(vpls[k].id);
+        sizes[k] = screen.subregions.size(subregions[k]);
+    }
+    let (rectangles, filled) = screen.rectangles(&lo, &hi, &subregions, &sizes);
+    let mut todo = (covers & (filled | everywhere)) | left;
     while todo != 0 {
         let k = todo.trailing_zeros() as usize;
         todo &= todo - 1;
@@ -134,24 +144,27 @@ fn scatter_in<L: Lanes8>(
             out.extend(left_to(vpl, index)?);
             continue;
         }
-        let lane = |v: &F8| v.0[k];
-        let footprint = Footprint {
-            lo: lo.each_ref().map(lane),
-            hi: hi.each_ref().map(lane),
-            nowhere: false,
-            everywhere: everywhere >> k & 1 == 1,
+        let pixels = match everywhere >> k & 1 {
+            1 => match whole(sizes[k]) {
+                Some(pixels) => pixels,
+                None => continue,
+            },
+            _ => rectangles[k],
         };
-        out.extend(screen.place(vpl, index, &footprint, || {
-            let b = stored.lane(k);
-            PixelTest::new(
+        let b = stored.lane(k);
+        out.push(Scattered {
+            index,
+            subregion: subregions[k],
+            test: PixelTest::new(
                 vpl.position.as_dvec3(),
                 vpl.normal.as_dvec3(),
                 b.offset,
                 b.axis,
                 b.along,
                 b.across,
-            )
-        }));
+            ),
+            pixels,
+        });
     }
     Ok(())
 }
