@@ -4,9 +4,10 @@
 //! chunk is first tested in f32, eight pixels at once, with limits moved by that
 //! arithmetic's worst rounding ([`Filter`]) to the pixels that surely pass the exact f64
 //! test ([`PixelTest::contains`]), those that surely fail it, and the few near the bound's
-//! surface or the VPL's tangent plane that only the exact test can decide. So the lists are
-//! those of the exact test on every pixel of the rectangle (`tests` checks both), at a
-//! fraction of its cost.
+//! surface or the VPL's tangent plane that only the exact test can decide (a rectangle of a
+//! few pixels takes the exact test alone, [`EXACT_PIXELS`]). So the lists are those of the
+//! exact test on every pixel of the rectangle (`tests` checks both), at a fraction of its
+//! cost.
 use crate::cells::CellBoxes;
 use crate::pair_lists::Bands;
 use crate::partition::group_by;
@@ -155,7 +156,7 @@ impl PixelRows {
     /// The pixels of `s`'s rectangle gathered into one chunk (lanes in row order, NaN past
     /// the last), their screen pixels and the lanes they fill, where the rectangle has at
     /// most eight pixels but lies in more than one chunk: one test where its rows would take
-    /// two to four. Most rectangles are that small at a million VPLs (Sponza at 480x270 with
+    /// two to eight. Most rectangles are that small at a million VPLs (Sponza at 480x270 with
     /// RSM 1024: 234k of the 396k VPLs placed cover at most 4 pixels, and their rows took
     /// 625k of the 1.97M chunks tested); those of at most [`EXACT_PIXELS`] are tested pixel
     /// by pixel instead.

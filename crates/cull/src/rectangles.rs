@@ -14,7 +14,9 @@ pub(crate) type Rectangles = ([[u32; 4]; 8], u8);
 impl Screen {
     /// Lane k's rectangle is [`Screen::subregion_pixels`] of the footprint `[lo, hi]` (lane k
     /// of each axis) in subregion `subregions[k]` of size `sizes[k]`, bit for bit; where it is
-    /// empty, its entry is unset.
+    /// empty, its entry is unspecified (read it only under the mask). The lanes convert the
+    /// sides to i32: a subregion image wider or taller than that (over 2³¹ pixels) takes
+    /// the scalar code.
     pub(crate) fn rectangles(
         &self,
         lo: &[F8; 2],
@@ -22,8 +24,9 @@ impl Screen {
         subregions: &[[u32; 2]; 8],
         sizes: &[[u32; 2]; 8],
     ) -> Rectangles {
+        let fit = sizes.iter().flatten().all(|&n| n <= i32::MAX as u32);
         #[cfg(target_arch = "x86_64")]
-        if std::arch::is_x86_feature_detected!("avx2") {
+        if fit && std::arch::is_x86_feature_detected!("avx2") {
             // SAFETY: the CPU has AVX2 (and so AVX), checked just above.
             return unsafe { self.rectangles_avx(lo, hi, subregions, sizes) };
         }
@@ -40,9 +43,10 @@ impl Screen {
     }
 
     /// [`Self::rectangles`] in AVX lanes of four f64: each side as `subregion_pixels` forms
-    /// it, its clamps as `max` and `min` (whose NaN operand yields the other, as `f64::clamp`
-    /// then `as` give 0 for the first pixel) and its rounding as `ceil` or `floor` of the
-    /// clamped value, which the scalar code forms from the truncation.
+    /// it, its clamps as `max` and `min` with the side as the first operand (a NaN first
+    /// operand yields the second: 0 for the first pixel, as `f64::clamp` then `as` give) and
+    /// its rounding as `ceil` or `floor` of the clamped value, which the scalar code forms
+    /// from the truncation. Every side must fit an i32.
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx2")]
     fn rectangles_avx(
@@ -159,9 +163,13 @@ mod tests {
         let (mut filled, mut empty) = (0, 0);
         for case in 0..4000u32 {
             let k = [1, 2, 3, 7, 8, 13, 64][case as usize % 7];
-            let (w, h) = (1 + (case * 37) % 600, 1 + (case * 11) % 300);
+            // Now and then an image wider than an i32 (the scalar code's, then).
+            let (w, h) = match case % 50 {
+                0 => (3_000_000_000, 1),
+                _ => (1 + (case * 37) % 600, 1 + (case * 11) % 300),
+            };
             let view = CullView::new(&cam, w, h).unwrap();
-            let stray = [-0.5, -0.499_999_9, 0.0, 0.3, 3.0][case as usize % 5];
+            let stray = [-0.5, -0.499_999_9, 0.0, 0.3, 3.0, 1e6][case as usize % 6];
             let il = Interleaving { k, seed: case };
             let screen = Screen::new(&view, w, h, il, stray, 0.05).unwrap();
             let subregions = Subregions::new(il, w, h).unwrap();

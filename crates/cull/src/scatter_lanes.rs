@@ -203,15 +203,19 @@ mod tests {
     #[test]
     fn lanes_contain_the_scalar_bounds() {
         let cam = Camera::look_at(Vec3::new(0.0, 0.0, 3.0), Vec3::ZERO, Vec3::Y, 1.2).unwrap();
-        let (w, h) = (96, 64);
-        let view = CullView::new(&cam, w, h).unwrap();
-        let screen = Screen::new(&view, w, h, Interleaving { k: 2, seed: 1 }, 0.0, 0.05).unwrap();
+        // An image of 96 x 64 pixels, and one of 3 x 2 split K = 4 times, where most
+        // subregion images are empty.
+        let screens = [(96, 64, 2), (3, 2, 4)].map(|(w, h, k)| {
+            let view = CullView::new(&cam, w, h).unwrap();
+            Screen::new(&view, w, h, Interleaving { k, seed: 1 }, 0.0, 0.05).unwrap()
+        });
         let mut rng = Rng(0x0B14_ED42);
-        let (mut in_lanes, mut placed, mut points) = (0, 0, 0);
+        let (mut in_lanes, mut placed, mut points, mut in_empty) = (0, 0, 0, 0);
         for case in 0..3000 {
+            let screen = &screens[usize::from(case % 4 == 3)];
             let delta = 10f32.powf(rng.range(-9.0, 3.0));
             let vpls: Vec<Vpl> = (0..8).map(|k| random_vpl(&mut rng, case * 8 + k)).collect();
-            let (out, left) = lanes_of(&screen, &vpls, delta);
+            let (out, left) = lanes_of(screen, &vpls, delta);
             for (k, vpl) in vpls.iter().enumerate() {
                 let scalar = screen.scatter(vpl, k as u32, delta).unwrap();
                 if left >> k & 1 == 1 {
@@ -219,6 +223,12 @@ mod tests {
                 }
                 in_lanes += 1;
                 let lanes = out[k];
+                // A VPL of an empty subregion image is placed nowhere, whatever it covers.
+                let size = screen.subregions.size(screen.subregions.of_vpl(vpl.id));
+                if size.contains(&0) {
+                    in_empty += 1;
+                    assert!(lanes.is_none(), "case {case}, lane {k}: {lanes:?}");
+                }
                 let (Some(s), Some(l)) = (scalar, lanes) else {
                     assert!(scalar.is_none(), "case {case}, lane {k}: {vpl:?}");
                     continue;
@@ -243,8 +253,8 @@ mod tests {
             }
         }
         assert!(
-            in_lanes > 20_000 && placed > 1000 && points > 10_000,
-            "{in_lanes} in lanes, {placed} placed, {points} points"
+            in_lanes > 20_000 && placed > 1000 && points > 10_000 && in_empty > 500,
+            "{in_lanes} in lanes, {placed} placed, {points} points, {in_empty} in empty images"
         );
     }
 
