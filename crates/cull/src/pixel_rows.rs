@@ -129,10 +129,10 @@ impl PixelRows {
         test_lanes::<F8>(self, &ordered, pairs);
     }
 
-    /// Pushes the pixels of `s`'s rectangle that pass its exact test, one at a time, row by
-    /// row: those the filter and the chunks would give.
+    /// The pixels of `s`'s rectangle, row by row: each one's chunk, its lane there and its
+    /// screen pixel.
     #[inline(always)]
-    fn test_exactly(&self, s: &Scattered, pairs: &mut Bands) {
+    fn rectangle(&self, s: &Scattered) -> impl Iterator<Item = (&Chunk, usize, u32)> + '_ {
         let Layout {
             chunks_per_row: per,
             width,
@@ -140,15 +140,23 @@ impl PixelRows {
         } = self.layout;
         let [i0, j0, i1, j1] = s.pixels;
         let [sx, sy] = s.subregion;
-        for j in j0..=j1 {
+        (j0..=j1).flat_map(move |j| {
             let y = sy + k * j;
             let first = (y as usize * k as usize + sx as usize) * per;
-            for i in i0..=i1 {
-                let [x, y_, z] = &self.chunks[first + i as usize / LANES];
-                let lane = i as usize % LANES;
-                if s.test.contains(Vec3::new(x.0[lane], y_.0[lane], z.0[lane])) {
-                    pairs.push(y * width + sx + k * i, s.index);
-                }
+            (i0..=i1).map(move |i| {
+                let chunk = &self.chunks[first + i as usize / LANES];
+                (chunk, i as usize % LANES, y * width + sx + k * i)
+            })
+        })
+    }
+
+    /// Pushes the pixels of `s`'s rectangle that pass its exact test, one at a time, row by
+    /// row: those the filter and the chunks would give.
+    #[inline(always)]
+    fn test_exactly(&self, s: &Scattered, pairs: &mut Bands) {
+        for ([x, y, z], lane, pixel) in self.rectangle(s) {
+            if s.test.contains(Vec3::new(x.0[lane], y.0[lane], z.0[lane])) {
+                pairs.push(pixel, s.index);
             }
         }
     }
@@ -162,13 +170,7 @@ impl PixelRows {
     /// by pixel instead.
     #[inline(always)]
     fn gathered(&self, s: &Scattered) -> Option<(Chunk, [u32; LANES], u8)> {
-        let Layout {
-            chunks_per_row: per,
-            width,
-            k,
-        } = self.layout;
         let [i0, j0, i1, j1] = s.pixels;
-        let [sx, sy] = s.subregion;
         let (w, h) = (i1 - i0 + 1, j1 - j0 + 1);
         let chunks = h as usize * (i1 as usize / LANES - i0 as usize / LANES + 1);
         let n = (w * h) as usize;
@@ -177,18 +179,11 @@ impl PixelRows {
         }
         let mut chunk: Chunk = [F8([f32::NAN; LANES]); 3];
         let mut pixels = [0; LANES];
-        let mut lane = 0;
-        for j in j0..=j1 {
-            let y = sy + k * j;
-            let first = (y as usize * k as usize + sx as usize) * per;
-            for i in i0..=i1 {
-                let from = &self.chunks[first + i as usize / LANES];
-                for (plane, from) in chunk.iter_mut().zip(from) {
-                    plane.0[lane] = from.0[i as usize % LANES];
-                }
-                pixels[lane] = y * width + sx + k * i;
-                lane += 1;
+        for (at, (from, lane, pixel)) in self.rectangle(s).enumerate() {
+            for (plane, from) in chunk.iter_mut().zip(from) {
+                plane.0[at] = from.0[lane];
             }
+            pixels[at] = pixel;
         }
         Some((chunk, pixels, (0xFFu16 >> (LANES - n)) as u8))
     }

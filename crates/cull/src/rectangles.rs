@@ -11,30 +11,32 @@ use slc_bounds::lanes::F8;
 /// empty (bit k: lane k).
 pub(crate) type Rectangles = ([[u32; 4]; 8], u8);
 
+/// Eight footprints (lane k: `[lo, hi]` of each axis) and the subregion of each, with its
+/// image's size.
+pub(crate) struct Footprints {
+    pub lo: [F8; 2],
+    pub hi: [F8; 2],
+    pub subregions: [[u32; 2]; 8],
+    pub sizes: [[u32; 2]; 8],
+}
+
 impl Screen {
-    /// Lane k's rectangle is [`Screen::subregion_pixels`] of the footprint `[lo, hi]` (lane k
-    /// of each axis) in subregion `subregions[k]` of size `sizes[k]`, bit for bit; where it is
-    /// empty, its entry is unspecified (read it only under the mask). The lanes convert the
-    /// sides to i32: a subregion image wider or taller than that (over 2³¹ pixels) takes
-    /// the scalar code.
-    pub(crate) fn rectangles(
-        &self,
-        lo: &[F8; 2],
-        hi: &[F8; 2],
-        subregions: &[[u32; 2]; 8],
-        sizes: &[[u32; 2]; 8],
-    ) -> Rectangles {
-        let fit = sizes.iter().flatten().all(|&n| n <= i32::MAX as u32);
+    /// Lane k's rectangle is [`Screen::subregion_pixels`] of footprint k in its subregion,
+    /// bit for bit; where it is empty, its entry is unspecified (read it only under the
+    /// mask). The lanes convert the sides to i32: a subregion image wider or taller than that
+    /// (over 2³¹ pixels) takes the scalar code.
+    pub(crate) fn rectangles(&self, f: &Footprints) -> Rectangles {
+        let fit = f.sizes.iter().flatten().all(|&n| n <= i32::MAX as u32);
         #[cfg(target_arch = "x86_64")]
         if fit && std::arch::is_x86_feature_detected!("avx2") {
             // SAFETY: the CPU has AVX2 (and so AVX), checked just above.
-            return unsafe { self.rectangles_avx(lo, hi, subregions, sizes) };
+            return unsafe { self.rectangles_avx(f) };
         }
         let mut out = ([[0; 4]; 8], 0);
         for k in 0..8 {
             let lane = |v: &F8| v.0[k];
-            let footprint = [lo.each_ref().map(lane), hi.each_ref().map(lane)];
-            if let Some(pixels) = self.subregion_pixels(footprint, subregions[k], sizes[k]) {
+            let footprint = [f.lo.each_ref().map(lane), f.hi.each_ref().map(lane)];
+            if let Some(pixels) = self.subregion_pixels(footprint, f.subregions[k], f.sizes[k]) {
                 out.0[k] = pixels;
                 out.1 |= 1 << k;
             }
@@ -49,13 +51,7 @@ impl Screen {
     /// from the truncation. Every side must fit an i32.
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx2")]
-    fn rectangles_avx(
-        &self,
-        lo: &[F8; 2],
-        hi: &[F8; 2],
-        subregions: &[[u32; 2]; 8],
-        sizes: &[[u32; 2]; 8],
-    ) -> Rectangles {
+    fn rectangles_avx(&self, f: &Footprints) -> Rectangles {
         use core::arch::x86_64::*;
         use slc_core::PerK;
         let per_k = self.subregions.per_k_operation();
@@ -79,9 +75,9 @@ impl Screen {
             // Per axis: the first and last pixel (as integral f64 values).
             let mut ends = [[zero; 2]; 2];
             for (axis, ends) in ends.iter_mut().enumerate() {
-                let s = of(core::array::from_fn(|k| subregions[4 * half + k][axis]));
-                let n = of(core::array::from_fn(|k| sizes[4 * half + k][axis]));
-                let (lo, hi) = (&lo[axis].0[lanes.clone()], &hi[axis].0[lanes.clone()]);
+                let s = of(core::array::from_fn(|k| f.subregions[4 * half + k][axis]));
+                let n = of(core::array::from_fn(|k| f.sizes[4 * half + k][axis]));
+                let (lo, hi) = (&f.lo[axis].0[lanes.clone()], &f.hi[axis].0[lanes.clone()]);
                 // SAFETY: each slice holds the four f32 read.
                 let (a, b) = unsafe { (_mm_loadu_ps(lo.as_ptr()), _mm_loadu_ps(hi.as_ptr())) };
                 let (a, b) = (_mm256_cvtps_pd(a), _mm256_cvtps_pd(b));
@@ -120,6 +116,7 @@ impl Screen {
 
 #[cfg(test)]
 mod tests {
+    use super::Footprints;
     use crate::scatter::Screen;
     use crate::test_rng::Rng;
     use crate::view::CullView;
@@ -187,7 +184,13 @@ mod tests {
                     };
                 }
             }
-            let (rects, lanes) = screen.rectangles(&lo, &hi, &subs, &sizes);
+            let footprints = Footprints {
+                lo,
+                hi,
+                subregions: subs,
+                sizes,
+            };
+            let (rects, lanes) = screen.rectangles(&footprints);
             for lane in 0..8 {
                 let footprint = [
                     [lo[0].0[lane], lo[1].0[lane]],

@@ -3,6 +3,7 @@
 //! through slc-bounds ([`Screen::scatter`]).
 use crate::footprint::{footprint, Bound, ScreenMap};
 use crate::prefetch::prefetch;
+use crate::rectangles::Footprints;
 use crate::scatter::{whole, PixelTest, Scattered, Screen};
 use crate::vpl_lanes::OwnBounds;
 use slc_bounds::lanes::{dot, splat_all, store_all, Lanes8, F8};
@@ -122,19 +123,27 @@ fn scatter_in<L: Lanes8>(
     if covers | left == 0 {
         return Ok(());
     }
-    let (lo, hi) = (store_all(&f.lo), store_all(&f.hi));
+    let mut footprints = Footprints {
+        lo: store_all(&f.lo),
+        hi: store_all(&f.hi),
+        subregions: [[0; 2]; 8],
+        sizes: [[0; 2]; 8],
+    };
     let stored = lanes.store();
     let everywhere = L::bits(f.everywhere);
     // Each covering lane's subregion, then all eight rectangles at once.
-    let (mut subregions, mut sizes) = ([[0; 2]; 8], [[0; 2]; 8]);
     let mut lanes_left = covers;
     while lanes_left != 0 {
         let k = lanes_left.trailing_zeros() as usize;
         lanes_left &= lanes_left - 1;
-        subregions[k] = screen.subregions.of_vpl(vpls[k].id);
-        sizes[k] = screen.subregions.size(subregions[k]);
+        let subregion = screen.subregions.of_vpl(vpls[k].id);
+        footprints.subregions[k] = subregion;
+        footprints.sizes[k] = screen.subregions.size(subregion);
     }
-    let (rectangles, filled) = screen.rectangles(&lo, &hi, &subregions, &sizes);
+    let (rectangles, filled) = screen.rectangles(&footprints);
+    let Footprints {
+        subregions, sizes, ..
+    } = footprints;
     let mut todo = (covers & (filled | everywhere)) | left;
     while todo != 0 {
         let k = todo.trailing_zeros() as usize;
