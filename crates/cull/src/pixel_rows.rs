@@ -270,8 +270,6 @@ fn test_lanes<L: Lanes8>(rows: &PixelRows, scattered: &[&Scattered], pairs: &mut
             continue;
         }
         let filter = Filter::of(&s.test).map(|f| f.lanes::<L>());
-        let [sx, sy] = s.subregion;
-        let (c0, c1) = (i0 as usize / LANES, i1 as usize / LANES);
         if let Some((chunk, pixels, within)) = rows.gathered(s) {
             decide(
                 &filter,
@@ -283,6 +281,8 @@ fn test_lanes<L: Lanes8>(rows: &PixelRows, scattered: &[&Scattered], pairs: &mut
             );
             continue;
         }
+        let [sx, sy] = s.subregion;
+        let (c0, c1) = (i0 as usize / LANES, i1 as usize / LANES);
         for j in j0..=j1 {
             let y = sy + k * j;
             let first = (y as usize * k as usize + sx as usize) * per;

@@ -151,8 +151,8 @@ mod tests {
 
     /// Every lane's rectangle is `subregion_pixels`' own, or empty where it is: footprints
     /// of every size and place (inside the image, beyond its edges, NaN, infinite, ±0, on a
-    /// subregion pixel's edge to the ulp), strays from −0.5 to 3, K a power of two and not,
-    /// subregion images of every size (0 included).
+    /// subregion pixel's edge to the ulp), strays from −0.5 to 1e6, K a power of two and
+    /// not, subregion images of every size (0 included, and one wider than an i32).
     #[test]
     fn lanes_give_the_scalar_rectangles() {
         let cam = Camera::look_at(Vec3::new(0.0, 0.0, 3.0), Vec3::ZERO, Vec3::Y, 1.2).unwrap();

@@ -254,9 +254,8 @@ impl Screen {
     }
 
     /// VPL `index` with its `test` (formed only then) where its `footprint` covers pixels of
-    /// its subregion's image.
-    #[inline(always)]
-    pub(crate) fn place(
+    /// its subregion's image (the lanes place theirs eight at a time, `scatter_lanes`).
+    fn place(
         &self,
         vpl: &Vpl,
         index: u32,
